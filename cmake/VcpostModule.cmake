@@ -1,0 +1,19 @@
+# Helpers shared by the module folders: warnings and one library per module.
+
+function(vcpost_warnings target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wconversion
+                                           -Wno-sign-conversion)
+endfunction()
+
+# vcpost_module(NAME <target> [DEPS <public deps>] [PRIVATE_DEPS <private deps>])
+# Builds every .cpp of the calling folder (not its subfolders, which are
+# modules of their own) into a static library; headers are included as
+# "folder/file.h" from the source root.
+function(vcpost_module)
+  cmake_parse_arguments(M "" "NAME" "DEPS;PRIVATE_DEPS" ${ARGN})
+  file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cpp)
+  add_library(${M_NAME} STATIC ${sources})
+  target_include_directories(${M_NAME} PUBLIC ${PROJECT_SOURCE_DIR})
+  target_link_libraries(${M_NAME} PUBLIC ${M_DEPS} PRIVATE ${M_PRIVATE_DEPS})
+  vcpost_warnings(${M_NAME})
+endfunction()

@@ -1,0 +1,31 @@
+// vcpost: constant cutting speed for 3-axis ball-end finishing.
+// Thin entry point: registers the subcommands, maps errors to exit codes.
+#include <exception>
+#include <iostream>
+
+#include "postproc/cli/commands.h"
+
+int main(int argc, char** argv) {
+  using namespace vcpost::cli;
+  CLI::App app{
+      "vcpost: keeps the real cutting speed constant in 3-axis ball-end finishing by\n"
+      "rewriting the spindle speed from the tool's working diameter at every point."};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "vcpost 0.1.0");
+  add_deff_command(app);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // CLI11 prints help and usage errors itself; usage errors exit 2.
+    const int code = app.exit(e);
+    return code == 0 ? exit_ok : exit_input_error;
+  } catch (const CommandError& e) {
+    std::cerr << "vcpost: error: " << e.what() << '\n';
+    return e.exit_code();
+  } catch (const std::exception& e) {
+    std::cerr << "vcpost: internal error: " << e.what() << '\n';
+    return exit_internal;
+  }
+  return exit_ok;
+}

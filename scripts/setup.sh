@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Installs everything vcpost needs to build and test, from Debian 12 packages.
+# Idempotent: packages already present are skipped, so a second run is quick.
+# Runs as root without prompts (sudo is used when not root and available).
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libeigen3-dev libcli11-dev libspdlog-dev libfmt-dev
+  libtomlplusplus-dev nlohmann-json3-dev libtbb-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  libocct-data-exchange-dev libocct-modeling-algorithms-dev
+  libocct-modeling-data-dev libocct-foundation-dev
+  linuxcnc-uspace
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+as_root=()
+[ "$(id -u)" -eq 0 ] || as_root=(sudo)
+echo "setup: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+"${as_root[@]}" apt-get update -qq
+"${as_root[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "setup: done"

@@ -1,0 +1,164 @@
+// The motion-event vocabulary: what an NC program means, independent of how
+// it was written (G-code of any dialect, APT CL data). Readers produce these
+// values; the pipeline and the transcript printer consume them.
+//
+// Units, always: positions in mm in the program (work) coordinate system
+// (the frame of the part model; work offsets and tool length offsets are NOT
+// applied, as in rs274's canonical calls), feeds in mm/min (or see FeedMode),
+// spindle speed in rpm, time in seconds. Position = tool tip or ball centre
+// as the CL point convention of the reader says (MODELS.md 1): the events do
+// not change it.
+//
+// Every event carries the SourceRef of the block (G-code) or record (CL) that
+// produced it, so later stages can report and patch that block.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <variant>
+
+namespace vcpost::program {
+
+// Where an event came from. line and column are 1-based; 0 means unknown
+// (an event made up by the reader, e.g. the implicit end of a program).
+// offset is the byte offset of the block's (record's) first byte in the file.
+struct SourceRef {
+  std::uint32_t line = 0;
+  std::uint32_t column = 0;
+  std::uint64_t offset = 0;
+  friend bool operator==(const SourceRef&, const SourceRef&) = default;
+};
+
+// The arc plane: G17 (XY, axis Z), G18 (XZ, axis Y), G19 (YZ, axis X).
+enum class Plane { xy, xz, yz };
+
+// How F is meant: mm/min (G94), 1/min inverse time (G93: the move takes
+// 1/F minutes), mm per spindle revolution (G95).
+enum class FeedMode { per_minute, inverse_time, per_revolution };
+
+enum class SpindleDirection { clockwise, counterclockwise };
+
+// Rapid move (G0, CL RAPID + GOTO) from start to end along a straight line.
+struct StraightTraverse {
+  Eigen::Vector3d start = Eigen::Vector3d::Zero();
+  Eigen::Vector3d end = Eigen::Vector3d::Zero();
+  SourceRef source;
+};
+
+// Cutting move along a straight line at the current feed.
+struct StraightFeed {
+  Eigen::Vector3d start = Eigen::Vector3d::Zero();
+  Eigen::Vector3d end = Eigen::Vector3d::Zero();
+  SourceRef source;
+};
+
+// Circular or helical cutting move in `plane`. centre's in-plane components
+// are the circle centre; its axis component equals start's (not meaningful).
+// rotation: sign = direction seen from the plane axis' positive side
+// (+ counterclockwise = G3, - clockwise = G2), |rotation| = number of turns
+// started (1 = less than or one full turn; 2 = one extra full turn, RS274 P2).
+// The axis coordinate moves linearly from start to end (helix).
+// Invariant: the in-plane distances of start and end from centre agree to the
+// reader's tolerance.
+struct ArcFeed {
+  Eigen::Vector3d start = Eigen::Vector3d::Zero();
+  Eigen::Vector3d end = Eigen::Vector3d::Zero();
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  Plane plane = Plane::xy;
+  int rotation = 1;
+  SourceRef source;
+};
+
+// Feed rate for the following feed moves; rate in the unit of `mode`.
+struct SetFeedRate {
+  double rate = 0.0;
+  FeedMode mode = FeedMode::per_minute;
+  SourceRef source;
+};
+
+// Commanded spindle speed (rpm, >= 0); S0 means "spindle stopped".
+struct SetSpindleSpeed {
+  double rpm = 0.0;
+  SourceRef source;
+};
+
+struct SpindleOn {  // M3 / M4
+  SpindleDirection direction = SpindleDirection::clockwise;
+  SourceRef source;
+};
+
+struct SpindleOff {  // M5
+  SourceRef source;
+};
+
+struct SelectTool {  // T word: prepare tool `number`
+  int number = 0;
+  SourceRef source;
+};
+
+struct ChangeTool {  // M6 (CL LOADTL): tool `number` is now in the spindle
+  int number = 0;
+  SourceRef source;
+};
+
+// G43 H.. (enabled, register) / G49 (disabled). The length itself is the
+// machine's business; it is not applied to positions (see the units note).
+struct ToolLengthOffset {
+  bool enabled = false;
+  std::optional<int> register_number;
+  SourceRef source;
+};
+
+enum class CompensationSide { off, left, right };
+
+struct CutterCompensation {  // G40 / G41 / G42, reported only
+  CompensationSide side = CompensationSide::off;
+  SourceRef source;
+};
+
+struct SelectPlane {
+  Plane plane = Plane::xy;
+  SourceRef source;
+};
+
+enum class CoolantChange { mist_on, flood_on, off };
+
+struct Coolant {  // M7 / M8 / M9, CL COOLNT
+  CoolantChange change = CoolantChange::off;
+  SourceRef source;
+};
+
+struct Dwell {  // G4, CL DELAY
+  double seconds = 0.0;
+  SourceRef source;
+};
+
+struct ProgramStop {  // M0 (optional = false), M1 (optional = true)
+  bool optional = false;
+  SourceRef source;
+};
+
+struct ProgramEnd {  // M2, M30, CL FINI
+  SourceRef source;
+};
+
+// A comment the operator should see: `(MSG,...)`, CL PPRINT.
+struct Message {
+  std::string text;
+  SourceRef source;
+};
+
+using Event = std::variant<StraightTraverse, StraightFeed, ArcFeed, SetFeedRate, SetSpindleSpeed,
+                           SpindleOn, SpindleOff, SelectTool, ChangeTool, ToolLengthOffset,
+                           CutterCompensation, SelectPlane, Coolant, Dwell, ProgramStop,
+                           ProgramEnd, Message>;
+
+// The source of any event.
+SourceRef source_of(const Event& event);
+
+// True for StraightTraverse, StraightFeed and ArcFeed.
+bool is_motion(const Event& event);
+
+}  // namespace vcpost::program

@@ -1,0 +1,182 @@
+#include "postproc/program/transcript.h"
+
+#include <charconv>
+#include <system_error>
+
+#include "postproc/program/arc.h"
+
+namespace vcpost::program {
+
+namespace {
+
+// "%.4f" as printf gives it (including "-0.0000"), without locale.
+void append_number(std::string& out, double value) {
+  char buffer[64];
+  const auto result =
+      std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed, 4);
+  if (result.ec == std::errc()) {
+    out.append(buffer, result.ptr);
+  } else {
+    out += "nan";  // only for values too large for 64 characters
+  }
+}
+
+void append_int(std::string& out, long long value) {
+  char buffer[24];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  out.append(buffer, result.ptr);
+}
+
+void append_xyz(std::string& out, const Eigen::Vector3d& p) {
+  append_number(out, p.x());
+  out += ", ";
+  append_number(out, p.y());
+  out += ", ";
+  append_number(out, p.z());
+  out += ", 0.0000, 0.0000, 0.0000)";
+}
+
+const char* plane_name(Plane plane) {
+  switch (plane) {
+    case Plane::xy:
+      return "CANON_PLANE_XY";
+    case Plane::xz:
+      return "CANON_PLANE_XZ";
+    case Plane::yz:
+      return "CANON_PLANE_YZ";
+  }
+  return "CANON_PLANE_XY";
+}
+
+void append_quoted(std::string& out, std::string_view name, std::string_view text) {
+  out += name;
+  out += "(\"";
+  out += text;
+  out += "\")";
+}
+
+// Writes the call(s) without the trailing newline; lines are separated by
+// '\n' and the caller adds the source suffix to each.
+void append_call(std::string& out, const Event& event) {
+  std::visit(
+      [&out](const auto& e) {
+        using T = std::decay_t<decltype(e)>;
+        if constexpr (std::is_same_v<T, StraightTraverse>) {
+          out += "STRAIGHT_TRAVERSE(";
+          append_xyz(out, e.end);
+        } else if constexpr (std::is_same_v<T, StraightFeed>) {
+          out += "STRAIGHT_FEED(";
+          append_xyz(out, e.end);
+        } else if constexpr (std::is_same_v<T, ArcFeed>) {
+          const auto ax = plane_axes(e.plane);
+          out += "ARC_FEED(";
+          append_number(out, e.end[ax[0]]);
+          out += ", ";
+          append_number(out, e.end[ax[1]]);
+          out += ", ";
+          append_number(out, e.centre[ax[0]]);
+          out += ", ";
+          append_number(out, e.centre[ax[1]]);
+          out += ", ";
+          append_int(out, e.rotation);
+          out += ", ";
+          append_number(out, e.end[ax[2]]);
+          out += ", 0.0000, 0.0000, 0.0000)";
+        } else if constexpr (std::is_same_v<T, SetFeedRate>) {
+          out += "SET_FEED_RATE(";
+          append_number(out, e.rate);
+          out += ')';
+        } else if constexpr (std::is_same_v<T, SetSpindleSpeed>) {
+          out += "SET_SPINDLE_SPEED(0, ";
+          append_number(out, e.rpm);
+          out += ')';
+        } else if constexpr (std::is_same_v<T, SpindleOn>) {
+          out += e.direction == SpindleDirection::clockwise ? "START_SPINDLE_CLOCKWISE(0)"
+                                                            : "START_SPINDLE_COUNTERCLOCKWISE(0)";
+        } else if constexpr (std::is_same_v<T, SpindleOff>) {
+          out += "STOP_SPINDLE_TURNING(0)";
+        } else if constexpr (std::is_same_v<T, SelectTool>) {
+          out += "SELECT_TOOL(";
+          append_int(out, e.number);
+          out += ')';
+        } else if constexpr (std::is_same_v<T, ChangeTool>) {
+          out += "CHANGE_TOOL(";
+          append_int(out, e.number);
+          out += ')';
+        } else if constexpr (std::is_same_v<T, ToolLengthOffset>) {
+          std::string text = e.enabled ? "interpreter: tool length offset on"
+                                       : "interpreter: tool length offset off";
+          if (e.enabled && e.register_number) {
+            text += " H";
+            append_int(text, *e.register_number);
+          }
+          append_quoted(out, "COMMENT", text);
+        } else if constexpr (std::is_same_v<T, CutterCompensation>) {
+          append_quoted(out, "COMMENT",
+                        e.side == CompensationSide::off ? "interpreter: cutter radius compensation off"
+                        : e.side == CompensationSide::left
+                            ? "interpreter: cutter radius compensation on left"
+                            : "interpreter: cutter radius compensation on right");
+        } else if constexpr (std::is_same_v<T, SelectPlane>) {
+          out += "SELECT_PLANE(";
+          out += plane_name(e.plane);
+          out += ')';
+        } else if constexpr (std::is_same_v<T, Coolant>) {
+          out += e.change == CoolantChange::mist_on    ? "MIST_ON()"
+                 : e.change == CoolantChange::flood_on ? "FLOOD_ON()"
+                                                       : "MIST_OFF()\nFLOOD_OFF()";
+        } else if constexpr (std::is_same_v<T, Dwell>) {
+          out += "DWELL(";
+          append_number(out, e.seconds);
+          out += ')';
+        } else if constexpr (std::is_same_v<T, ProgramStop>) {
+          out += e.optional ? "OPTIONAL_PROGRAM_STOP()" : "PROGRAM_STOP()";
+        } else if constexpr (std::is_same_v<T, ProgramEnd>) {
+          out += "PROGRAM_END()";
+        } else if constexpr (std::is_same_v<T, Message>) {
+          append_quoted(out, "MESSAGE", e.text);
+        }
+      },
+      event);
+}
+
+void append_source(std::string& out, const SourceRef& source, const TranscriptOptions& options) {
+  out += "  # ";
+  if (!options.source_name.empty()) {
+    out += options.source_name;
+    out += ':';
+  }
+  append_int(out, source.line);
+  out += ':';
+  append_int(out, source.column);
+}
+
+}  // namespace
+
+void append_transcript(std::string& out, const Event& event, const TranscriptOptions& options) {
+  if (!options.with_source) {
+    append_call(out, event);
+    out += '\n';
+    return;
+  }
+  std::string calls;
+  append_call(calls, event);
+  const SourceRef source = source_of(event);
+  std::string_view rest = calls;
+  while (true) {
+    const auto newline = rest.find('\n');
+    out += rest.substr(0, newline);
+    append_source(out, source, options);
+    out += '\n';
+    if (newline == std::string_view::npos) break;
+    rest.remove_prefix(newline + 1);
+  }
+}
+
+std::string transcript(const Event& event, const TranscriptOptions& options) {
+  std::string out;
+  append_transcript(out, event, options);
+  return out;
+}
+
+}  // namespace vcpost::program

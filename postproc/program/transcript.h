@@ -1,0 +1,35 @@
+// Prints motion events in the vocabulary of LinuxCNC's canonical transcript
+// (`rs274 -g`): same call names, argument order and "%.4f" numbers, one call
+// per line, so vcpost's reading can be compared with rs274's line by line.
+//
+// Differences, by design: numbers are always mm / mm/min (rs274 prints in the
+// program's units, inches after G20); only the XYZ machine of rs274's default
+// build is printed (A, B, C as 0.0000); SET_FEED_RATE carries the rate in the
+// event's FeedMode (rs274 prints inverse-time rates per move); tool length
+// and cutter compensation are printed as rs274's interpreter COMMENTs because
+// vcpost does not know the tool table. rs274's leading sequence number and
+// "N....." are not printed.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "postproc/program/events.h"
+
+namespace vcpost::program {
+
+struct TranscriptOptions {
+  // When true, each line ends with "  # <file>:<line>:<col>" (source_name
+  // may be empty: then "# <line>:<col>").
+  bool with_source = false;
+  std::string_view source_name;
+};
+
+// Appends the line(s) for `event` to `out`, each ending in '\n'. Most events
+// give one line; Coolant off gives two (MIST_OFF, FLOOD_OFF) as rs274 does.
+void append_transcript(std::string& out, const Event& event, const TranscriptOptions& options = {});
+
+// Convenience: the transcript of one event.
+std::string transcript(const Event& event, const TranscriptOptions& options = {});
+
+}  // namespace vcpost::program

@@ -48,8 +48,7 @@ double x_minus_sin_x(double x) {
 
 // R - sqrt(R^2 - c^2) in a form without cancellation for c << R.
 double sagitta(double radius, double half_chord) {
-  return half_chord * half_chord /
-         (radius + std::sqrt(radius * radius - half_chord * half_chord));
+  return half_chord * half_chord / (radius + std::sqrt(radius * radius - half_chord * half_chord));
 }
 
 }  // namespace
@@ -136,18 +135,14 @@ Roughness longitudinal_roughness(double radius, double feed_per_tooth) {
 
 Roughness oblique_roughness(double radius, double stepover, double slope) {
   require_slope("oblique_roughness", slope);
-  require(std::isfinite(stepover) && stepover >= 0, "oblique_roughness",
-          "stepover must be >= 0");
+  require(std::isfinite(stepover) && stepover >= 0, "oblique_roughness", "stepover must be >= 0");
   return arc_profile_roughness(radius, stepover / std::cos(slope));
 }
 
-double feed_mark_height(double feed_per_tooth, double working_radius, int teeth,
-                        MillingMode mode) {
+double feed_mark_height(double feed_per_tooth, double working_radius, int teeth, MillingMode mode) {
   constexpr const char* fn = "feed_mark_height";
-  require(std::isfinite(feed_per_tooth) && feed_per_tooth >= 0, fn,
-          "feed per tooth must be >= 0");
-  require(std::isfinite(working_radius) && working_radius > 0, fn,
-          "working radius must be > 0");
+  require(std::isfinite(feed_per_tooth) && feed_per_tooth >= 0, fn, "feed per tooth must be >= 0");
+  require(std::isfinite(working_radius) && working_radius > 0, fn, "working radius must be > 0");
   require(teeth >= 1, fn, "the tool needs at least one tooth");
   // Radius of curvature of the trochoidal tooth path at the generating point.
   const double shift = feed_per_tooth * teeth / std::numbers::pi;
@@ -163,8 +158,8 @@ RunoutBand runout_band(double working_diameter, const Runout& runout) {
   require(std::isfinite(working_diameter) && working_diameter >= 0, fn,
           "working diameter must be >= 0");
   require(std::isfinite(runout.offset) && runout.offset >= 0, fn, "axis offset must be >= 0");
-  require(std::isfinite(runout.tilt) && runout.tilt >= 0 && runout.tilt < std::numbers::pi / 2,
-          fn, "tilt must lie in [0, pi/2)");
+  require(std::isfinite(runout.tilt) && runout.tilt >= 0 && runout.tilt < std::numbers::pi / 2, fn,
+          "tilt must lie in [0, pi/2)");
   require(std::isfinite(runout.overhang) && runout.overhang > 0, fn, "overhang must be > 0");
   require(std::isfinite(runout.cut_height) && runout.cut_height >= 0 &&
               runout.cut_height <= runout.overhang,

@@ -83,8 +83,7 @@ Roughness oblique_roughness(double radius, double stepover, double slope);
 // milling; down milling leaves the higher marks.
 // REQUIRES: feed_per_tooth >= 0, working_radius > 0, teeth >= 1, and for
 // down milling working_radius > fz z / pi.
-double feed_mark_height(double feed_per_tooth, double working_radius, int teeth,
-                        MillingMode mode);
+double feed_mark_height(double feed_per_tooth, double working_radius, int teeth, MillingMode mode);
 
 // Tool setting errors (Dedic et al.). The tool's axis is offset by `offset`
 // from the spindle axis and tilted by `tilt` about the spindle gauge line;

@@ -73,8 +73,7 @@ double numeric_spacing_on_plane(double stepover, double slope, double feed_angle
   const double t = std::tan(slope);
   const auto lift = [t](double x, double y) { return Eigen::Vector3d(x, y, x * t); };
   const Eigen::Vector3d f = lift(std::sin(feed_angle), std::cos(feed_angle));
-  const Eigen::Vector3d w =
-      lift(stepover * std::cos(feed_angle), -stepover * std::sin(feed_angle));
+  const Eigen::Vector3d w = lift(stepover * std::cos(feed_angle), -stepover * std::sin(feed_angle));
   return w.cross(f).norm() / f.norm();
 }
 
@@ -117,8 +116,7 @@ TEST(InclinedCusp, ExactSpacingIsTheDistanceOfTheLiftedPasses) {
   for (double slope : {0.0, 10.0, 36.9, 45.0, 70.0}) {
     for (double angle : {0.0, 20.0, 45.0, 63.0, 90.0, 135.0}) {
       const InclinedCusp cusp = inclined_cusp(5, 0.4, deg(slope), deg(angle));
-      EXPECT_NEAR(cusp.exact_spacing, numeric_spacing_on_plane(0.4, deg(slope), deg(angle)),
-                  1e-12)
+      EXPECT_NEAR(cusp.exact_spacing, numeric_spacing_on_plane(0.4, deg(slope), deg(angle)), 1e-12)
           << "slope " << slope << " A " << angle;
       EXPECT_LE(cusp.exact_spacing, cusp.paper_spacing + 1e-12);
     }

@@ -26,5 +26,6 @@ class CommandError : public std::runtime_error {
 };
 
 void add_deff_command(CLI::App& app);
+void add_moves_command(CLI::App& app);
 
 }  // namespace vcpost::cli

@@ -1,0 +1,128 @@
+// `vcpost moves PROGRAM`: the interpreted motion events, one per line, in
+// the vocabulary of rs274's canonical transcript (see program/transcript.h).
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <iostream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "postproc/cli/commands.h"
+#include "postproc/gcode/interpreter.h"
+#include "postproc/program/transcript.h"
+
+namespace vcpost::cli {
+
+namespace {
+
+// The program text: a read-only memory map of the file (the interpreter
+// streams through it; nothing is copied), or stdin read whole for "-".
+class ProgramText {
+ public:
+  explicit ProgramText(const std::string& path) {
+    if (path == "-") {
+      buffer_.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
+      view_ = buffer_;
+      return;
+    }
+    const int fd = ::open(path.c_str(), O_RDONLY);
+    if (fd < 0) throw CommandError("moves: cannot open " + path);
+    struct stat st {};
+    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+      ::close(fd);
+      throw CommandError("moves: " + path + " is not a regular file");
+    }
+    size_ = static_cast<std::size_t>(st.st_size);
+    if (size_ > 0) {
+      void* map = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
+      if (map == MAP_FAILED) {
+        ::close(fd);
+        throw CommandError("moves: cannot read " + path);
+      }
+      ::madvise(map, size_, MADV_SEQUENTIAL);
+      map_ = map;
+      view_ = std::string_view(static_cast<const char*>(map), size_);
+    }
+    ::close(fd);
+  }
+  ProgramText(const ProgramText&) = delete;
+  ProgramText& operator=(const ProgramText&) = delete;
+  ~ProgramText() {
+    if (map_) ::munmap(map_, size_);
+  }
+  std::string_view view() const { return view_; }
+
+ private:
+  std::string buffer_;
+  void* map_ = nullptr;
+  std::size_t size_ = 0;
+  std::string_view view_;
+};
+
+}  // namespace
+
+void add_moves_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "moves", "Print the interpreted motion events in rs274's canonical-transcript vocabulary");
+  struct Options {
+    std::string program;
+    std::string dialect = "rs274ngc";
+    bool source = false;
+    bool count = false;
+  };
+  auto options = std::make_shared<Options>();
+  cmd->add_option("PROGRAM", options->program, "G-code program ('-' for stdin)")->required();
+  cmd->add_option("--dialect", options->dialect, "rs274ngc | fanuc (iso) | mazak (eia)")
+      ->capture_default_str();
+  cmd->add_flag("--source", options->source, "append file:line:col to every line");
+  cmd->add_flag("--count", options->count,
+                "print only the number of lines read and events (parse speed runs)");
+  cmd->callback([options] {
+    const auto dialect = gcode::dialect_from_name(options->dialect);
+    if (!dialect) throw CommandError("moves: unknown dialect '" + options->dialect + "'");
+    const ProgramText text(options->program);
+    gcode::Interpreter interpreter(text.view(), *dialect);
+    const std::string name = options->program == "-" ? "<stdin>" : options->program;
+    const program::TranscriptOptions print{options->source, name};
+    std::vector<program::Event> events;
+    std::string out;
+    std::uint64_t event_count = 0;
+    std::size_t warnings_shown = 0;
+    auto flush_warnings = [&] {
+      const auto& w = interpreter.warnings();
+      for (; warnings_shown < w.size(); ++warnings_shown)
+        std::cerr << gcode::format(w[warnings_shown], name) << '\n';
+    };
+    try {
+      while (interpreter.next(events)) {
+        event_count += events.size();
+        if (!options->count) {
+          for (const auto& e : events) program::append_transcript(out, e, print);
+          if (out.size() > (1u << 16)) {
+            std::fwrite(out.data(), 1, out.size(), stdout);
+            out.clear();
+          }
+        }
+        events.clear();
+      }
+    } catch (const gcode::GcodeError& e) {
+      std::fwrite(out.data(), 1, out.size(), stdout);
+      std::fflush(stdout);
+      flush_warnings();
+      throw CommandError(gcode::format(e.diagnostic(), name));
+    }
+    std::fwrite(out.data(), 1, out.size(), stdout);
+    if (options->count)
+      std::printf("lines %llu events %llu\n",
+                  static_cast<unsigned long long>(interpreter.lines_read()),
+                  static_cast<unsigned long long>(event_count));
+    std::fflush(stdout);
+    flush_warnings();
+  });
+}
+
+}  // namespace vcpost::cli

@@ -1,0 +1,38 @@
+#include "postproc/gcode/dialect.h"
+
+#include <algorithm>
+#include <cctype>
+#include <string>
+
+namespace vcpost::gcode {
+
+Dialect rs274ngc_dialect() { return Dialect{}; }
+
+Dialect fanuc_dialect() {
+  Dialect d;
+  d.kind = DialectKind::fanuc;
+  d.integer_lengths = IntegerLengths::increments;
+  d.named_parameters = false;
+  d.o_word_control = false;
+  d.fanuc_macros = true;
+  d.unknown_m_is_error = false;
+  return d;
+}
+
+Dialect mazak_dialect() {
+  Dialect d = fanuc_dialect();
+  d.kind = DialectKind::mazak;
+  return d;
+}
+
+std::optional<Dialect> dialect_from_name(std::string_view name) {
+  std::string lower(name);
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (lower == "rs274ngc" || lower == "linuxcnc" || lower == "ngc") return rs274ngc_dialect();
+  if (lower == "fanuc" || lower == "iso") return fanuc_dialect();
+  if (lower == "mazak" || lower == "eia") return mazak_dialect();
+  return std::nullopt;
+}
+
+}  // namespace vcpost::gcode

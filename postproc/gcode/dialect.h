@@ -1,0 +1,45 @@
+// G-code dialects as settings (from the machine profile or --dialect), not
+// as separate readers: one tokenizer and interpreter read them all.
+#pragma once
+
+#include <optional>
+#include <string_view>
+
+namespace vcpost::gcode {
+
+enum class DialectKind { rs274ngc, fanuc, mazak };
+
+// What a number without a decimal point means on a length word
+// (X Y Z I J K R): "X1000" = 1000 mm, or 1000 least increments (1.000 mm
+// with increment_mm = 0.001), as Fanuc controls do without parameter
+// 3401#0 (DPI).
+enum class IntegerLengths { units, increments };
+
+struct Dialect {
+  DialectKind kind = DialectKind::rs274ngc;
+  IntegerLengths integer_lengths = IntegerLengths::units;
+  double increment_mm = 0.001;     // least input increment, metric
+  double increment_inch = 0.0001;  // least input increment, inch
+  // `(MSG,...)`, `#` parameters and `[...]` expressions; named parameters
+  // `#<x>` and O-word control only in RS274NGC.
+  bool numbered_parameters = true;
+  bool named_parameters = true;
+  bool o_word_control = true;        // o100 sub / call / if / while ... (RS274NGC)
+  bool fanuc_macros = false;         // IF [..] THEN, program numbers O1234, M98/M99
+  // Unknown M codes: machine-specific on Fanuc-like controls (warning), an
+  // error for LinuxCNC.
+  bool unknown_m_is_error = true;
+  // Lines starting with '/' are skipped (the control's block-delete switch
+  // on). rs274's default is off: they run.
+  bool block_delete = false;
+};
+
+Dialect rs274ngc_dialect();
+Dialect fanuc_dialect();  // ISO/Fanuc: integer lengths are increments
+Dialect mazak_dialect();  // Mazak EIA: Fanuc-like, macros, G05 P2, G61.1
+
+// "rs274ngc" (also "linuxcnc", "ngc"), "fanuc" (also "iso"), "mazak"
+// (also "eia"); nullopt for another name.
+std::optional<Dialect> dialect_from_name(std::string_view name);
+
+}  // namespace vcpost::gcode

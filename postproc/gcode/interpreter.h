@@ -1,0 +1,131 @@
+// The G-code interpreter: program text -> motion events, one block at a
+// time (streaming: memory does not grow with the program's length; only
+// the subroutine index and the call/loop stacks are kept).
+//
+// Each block is a transaction: it is read into a Block, its words are
+// checked (modal groups, required words) against a copy of the modal state,
+// and only then are the state committed and its events appended. A block in
+// error changes nothing and throws GcodeError (file position included); the
+// caller decides whether to stop (the interpreter cannot go on soundly).
+//
+// Output units: mm, mm/min, rpm, seconds (see program/events.h). Positions
+// are in the program's work coordinate system, offsets not applied, as in
+// rs274's canonical calls.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "postproc/gcode/block.h"
+#include "postproc/gcode/diagnostics.h"
+#include "postproc/gcode/dialect.h"
+#include "postproc/gcode/parameters.h"
+#include "postproc/program/events.h"
+
+namespace vcpost::gcode {
+
+enum class Motion { none, rapid, linear, arc_cw, arc_ccw };
+
+// The modal state between blocks (all lengths mm).
+struct ModalState {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Motion motion = Motion::none;
+  program::Plane plane = program::Plane::xy;
+  bool inches = false;
+  bool absolute = true;
+  bool arc_absolute = false;  // G90.1; LinuxCNC starts in G91.1
+  program::FeedMode feed_mode = program::FeedMode::per_minute;
+  double feed = 0.0;          // mm/min, mm/rev or 1/min as feed_mode says
+  double spindle_rpm = 0.0;
+  int selected_tool = 0;
+  int tool_in_spindle = 0;
+  int work_system = 540;      // G54 x10
+  bool moved = false;         // any motion yet (work system changes refused after)
+};
+
+struct InterpreterLimits {
+  std::size_t max_call_depth = 64;
+  std::uint64_t max_loop_iterations = 10'000'000;
+};
+
+class Interpreter {
+ public:
+  // `text` must outlive the interpreter (e.g. a memory-mapped file).
+  Interpreter(std::string_view text, Dialect dialect, InterpreterLimits limits = {});
+
+  // Reads and executes the next block and appends its events to `events`
+  // (which it does not clear). Returns false when the program has ended
+  // (M2/M30, closing '%', end of text); then nothing is appended.
+  // Throws GcodeError; after a throw, further calls return false.
+  bool next(std::vector<program::Event>& events);
+
+  // The block last read by next() (its text, words and spans).
+  const Block& block() const { return block_; }
+  const ModalState& state() const { return state_; }
+  // Warnings so far (errors are thrown).
+  const std::vector<Diagnostic>& warnings() const { return warnings_; }
+  // Number of lines read (including skipped ones).
+  std::uint64_t lines_read() const { return lines_read_; }
+
+ private:
+  struct Line {
+    std::string_view text;
+    std::string_view eol;
+    std::uint64_t offset = 0;
+    std::uint32_t number = 0;
+  };
+  struct Frame {
+    std::uint64_t return_offset = 0;
+    std::uint32_t return_line = 0;
+    bool fanuc = false;
+    long repeat_left = 0;  // M98 L count
+    std::uint64_t body_offset = 0;
+    std::uint32_t body_line = 0;
+    std::size_t flow_depth = 0;
+  };
+  struct Flow {
+    ControlKind kind = ControlKind::none;
+    std::string name;
+    std::uint64_t start_offset = 0;  // the opening line (while) or the first body line (repeat)
+    std::uint32_t start_line = 0;
+    long remaining = 0;
+    bool taken = false;  // an if branch has run
+  };
+
+  bool line_at(std::uint64_t offset, std::uint32_t number, Line& line) const;
+  void jump(std::uint64_t offset, std::uint32_t number);
+  [[noreturn]] void fail(Code code, std::uint32_t column, std::string message) const;
+  void warn(Code code, std::uint32_t column, std::string message);
+
+  bool handle_control(std::vector<program::Event>& events);
+  void skip_to(const std::string& name, std::initializer_list<ControlKind> stops, bool fanuc_nesting);
+  std::pair<std::uint64_t, std::uint32_t> find_sub(const std::string& name, bool fanuc);
+  void call(const std::string& name, std::vector<double> arguments, bool fanuc, long repeat);
+  bool return_from_sub();
+  void commit_assignments();
+
+  void execute(std::vector<program::Event>& events);
+  double length(const Word& w) const;
+
+  std::string_view text_;
+  Dialect dialect_;
+  InterpreterLimits limits_;
+  Parameters parameters_;
+  ModalState state_;
+  Block block_;
+  std::vector<Diagnostic> warnings_;
+  std::vector<Frame> frames_;
+  std::vector<Flow> flow_;
+  std::unordered_map<std::string, std::pair<std::uint64_t, std::uint32_t>> subs_;
+  std::uint64_t pos_ = 0;
+  std::uint32_t line_ = 0;  // number of the line at pos_ minus one
+  std::uint64_t lines_read_ = 0;
+  std::uint64_t loop_iterations_ = 0;
+  bool percent_seen_ = false;
+  bool ended_ = false;
+};
+
+}  // namespace vcpost::gcode

@@ -2,6 +2,7 @@
 // angle, or for every row of a CSV file. Argument checks and output only;
 // the numbers come from geometry/engagement.h.
 #include <Eigen/Geometry>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -143,31 +144,48 @@ Description describe(const Request& request, const Blame& blame) {
   return description;
 }
 
-void run_batch(const Arguments& args) {
-  std::ifstream file;
-  std::istream* in = &std::cin;
-  std::string source = "<stdin>";
-  if (args.batch != "-") {
-    file.open(args.batch);
-    if (!file) throw usage("--batch", "cannot open '" + args.batch + "' for reading");
-    in = &file;
-    source = args.batch;
+// Writes the header and the rows with their result columns. The header goes
+// out with the first good row (or at the end of an input without rows), so
+// a bad first row leaves stdout empty; a later bad row stops the run with
+// the rows before it written.
+void stream_batch(std::istream& in, const std::string& source, bool radius) {
+  BatchReader reader(in, source);
+  bool header_written = false;
+  const auto write_header = [&] {
+    std::cout << reader.header() << ',' << csv_header(radius) << '\n';
+    header_written = true;
+  };
+  BatchRow row;
+  while (reader.next(row)) {
+    const std::string cells = csv_cells(evaluate(row.tool, row.setup), radius);
+    if (!header_written) write_header();
+    std::cout << row.text << ',' << cells << '\n';
   }
+  if (!header_written) write_header();
+  if (in.bad()) throw InputError(source + ": read error");
+}
+
+void run_batch(const Arguments& args) {
   try {
-    BatchReader reader(*in, source);
-    std::cout << reader.header() << ',' << csv_header(args.radius) << '\n';
-    BatchRow row;
-    // Each row is checked before it is printed; a bad row stops the run
-    // with the rows before it already written.
-    while (reader.next(row)) {
-      std::cout << row.text << ',' << csv_cells(evaluate(row.tool, row.setup), args.radius)
-                << '\n';
+    if (args.batch == "-") return stream_batch(std::cin, "<stdin>", args.radius);
+    std::ifstream file(args.batch);
+    if (!file) throw usage("--batch", "cannot open '" + args.batch + "' for reading");
+    std::error_code error;
+    if (std::filesystem::is_regular_file(args.batch, error)) {
+      // A file can be read twice: check every row first (without holding
+      // them), so a bad row anywhere leaves stdout empty.
+      BatchReader check(file, args.batch);
+      BatchRow row;
+      while (check.next(row)) {
+      }
+      file.clear();
+      file.seekg(0);
     }
+    stream_batch(file, args.batch, args.radius);
   } catch (const InputError& e) {
     std::cout.flush();
     throw CommandError(e.what(), exit_input_error);
   }
-  if (in->bad()) throw CommandError(source + ": read error", exit_input_error);
 }
 
 void run(CLI::App& command, const Arguments& args) {

@@ -417,11 +417,12 @@ void Interpreter::execute(std::vector<Event>& events) {
     const auto mode = c == 930   ? program::FeedMode::inverse_time
                       : c == 950 ? program::FeedMode::per_revolution
                                  : program::FeedMode::per_minute;
-    if (mode != s.feed_mode) {
-      s.feed_mode = mode;
-      s.feed = 0.0;  // as LinuxCNC: a new feed mode needs a new F
+    // As LinuxCNC: a G93/G94/G95 word resets the feed to 0 (it must be
+    // given again); G94 and G95 say so with a zero feed rate.
+    s.feed_mode = mode;
+    s.feed = 0.0;
+    if (mode != program::FeedMode::inverse_time)
       emit(program::SetFeedRate{0.0, mode, source(b, g->column)});
-    }
   }
   if (const Word* f = W('F')) {
     if (f->value < 0) fail(Code::bad_word_value, f->column, "negative feed rate");

@@ -221,7 +221,14 @@ void write_table(std::ostream& out, const Description& description, const Evalua
     add_row(cut_label, nullptr, std::nullopt);
   }
   write_aligned(out, rows);
-  out << "  (tool frame: origin at the ball centre, z along the tool axis; '-': no such point)\n\n";
+  const char* origin = description.tool.kind == geometry::ToolKind::ball ? "the ball centre"
+                       : description.tool.kind == geometry::ToolKind::flat
+                           ? "the end face's centre"
+                           : "the centre of the corner circles' plane";
+  out << "  (tool frame: origin at " << origin
+      << ", z up the tool axis; '-': no such point.\n"
+         "   Points 1..2'' are the paper's rim points: those behind the tool or in the previous\n"
+         "   pass do not cut, so their 2r may exceed D_max.)\n\n";
 
   const auto flags = flag_names(e.flags);
   std::string flag_text;

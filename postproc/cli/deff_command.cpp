@@ -84,12 +84,29 @@ struct Request {
   double feed_angle_deg = 0;
 };
 
-// Builds and checks one set-up; `names` says which option to blame for a
-// bad normal or feed.
+// Which option to blame for a bad normal or feed: the vector option, the
+// angle option or the sweep value they came from.
 struct Blame {
   std::string normal, feed;
 };
 
+geometry::CutSetup checked(const geometry::Tool& tool, const geometry::CutSetup& setup,
+                           const Blame& blame) {
+  try {
+    return checked_setup(tool, setup);
+  } catch (const SetupError& e) {
+    switch (e.field()) {
+      case SetupField::diameter: throw usage("--tool", e.what());
+      case SetupField::ap: throw usage("--ap", e.what());
+      case SetupField::ae: throw usage("--ae", e.what());
+      case SetupField::normal: throw usage(blame.normal, e.what());
+      case SetupField::feed: throw usage(blame.feed, e.what());
+    }
+    throw;
+  }
+}
+
+// Builds and checks one set-up from the request.
 Description describe(const Request& request, const Blame& blame) {
   Description description;
   description.tool = request.tool;
@@ -109,38 +126,19 @@ Description describe(const Request& request, const Blame& blame) {
     setup.normal = geometry::normal_from_angles(degrees_to_radians(request.tilt_deg),
                                                 degrees_to_radians(request.azimuth_deg));
   }
-  // The feed angle needs a valid normal to be projected on: check the
-  // normal first with a placeholder feed across it.
-  if (!request.feed) {
+  if (request.feed) {
+    setup.feed = *request.feed;
+  } else {
+    // The feed angle is projected onto the tangent plane, so the normal
+    // must be good first: check it with a stand-in feed across it.
     geometry::CutSetup probe = setup;
     probe.feed = setup.normal.unitOrthogonal();
-    try {
-      probe = checked_setup(request.tool, probe);
-    } catch (const SetupError& e) {
-      const std::string option = e.field() == SetupField::normal ? blame.normal
-                                 : e.field() == SetupField::ap   ? "--ap"
-                                 : e.field() == SetupField::ae   ? "--ae"
-                                                                 : "--tool";
-      throw usage(option, e.what());
-    }
+    setup.normal = checked(request.tool, probe, blame).normal;
     setup.feed = geometry::feed_from_angle(degrees_to_radians(request.feed_angle_deg),
-                                           probe.normal);
+                                           setup.normal);
     description.feed_angle_deg = request.feed_angle_deg;
-  } else {
-    setup.feed = *request.feed;
   }
-  try {
-    description.setup = checked_setup(request.tool, setup);
-  } catch (const SetupError& e) {
-    switch (e.field()) {
-      case SetupField::diameter: throw usage("--tool", e.what());
-      case SetupField::ap: throw usage("--ap", e.what());
-      case SetupField::ae: throw usage("--ae", e.what());
-      case SetupField::normal: throw usage(blame.normal, e.what());
-      case SetupField::feed: throw usage(blame.feed, e.what());
-    }
-    throw;
-  }
+  description.setup = checked(request.tool, setup, blame);
   return description;
 }
 
@@ -262,7 +260,6 @@ void run(CLI::App& command, const Arguments& args) {
       throw usage("--sweep", e.what());
     }
     const std::string swept(to_string(sweep.parameter));
-    const bool on_normal = sweep.parameter != SweepParameter::feed_angle;
     if (sweep.parameter == SweepParameter::tilt) {
       conflict("--sweep", "--normal", "the sweep sets the normal's tilt");
       conflict("--sweep", "--tilt", "the sweep sets the tilt");
@@ -284,7 +281,10 @@ void run(CLI::App& command, const Arguments& args) {
         case SweepParameter::azimuth: at.azimuth_deg = value; break;
         case SweepParameter::feed_angle: at.feed_angle_deg = value; break;
       }
-      (on_normal ? at_blame.normal : at_blame.feed) = name;
+      // A bad tilt is the sweep's; a feed vector parallel to the normal at
+      // some tilt or azimuth is the sweep value's as well.
+      if (sweep.parameter == SweepParameter::tilt) at_blame.normal = name;
+      at_blame.feed = name;
       cases.emplace_back(value, describe(at, at_blame));
     }
     std::cout << csv_name(sweep.parameter) << ',' << csv_header(args.radius) << '\n';

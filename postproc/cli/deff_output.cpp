@@ -225,10 +225,9 @@ void write_table(std::ostream& out, const Description& description, const Evalua
                        : description.tool.kind == geometry::ToolKind::flat
                            ? "the end face's centre"
                            : "the centre of the corner circles' plane";
-  out << "  (tool frame: origin at " << origin
-      << ", z up the tool axis; '-': no such point.\n"
-         "   Points 1..2'' are the paper's rim points: those behind the tool or in the previous\n"
-         "   pass do not cut, so their 2r may exceed D_max.)\n\n";
+  out << "  (tool frame: origin at " << origin << ", z up the tool axis. '-': no such point.\n"
+         "   Points 1..2'' are the paper's rim points: those behind the tool or in the\n"
+         "   previous pass do not cut, so their 2r may exceed D_max.)\n\n";
 
   const auto flags = flag_names(e.flags);
   std::string flag_text;
@@ -245,10 +244,12 @@ void write_table(std::ostream& out, const Description& description, const Evalua
   };
   if (speed) {
     std::string text = "policy " + std::string(to_string(speed->policy)) + ", D_ref ";
-    text += speed->d_ref ? fixed(*speed->d_ref, 4) + " mm" : std::string("none (no such point)");
+    text += speed->d_ref ? fixed(*speed->d_ref, 4) + " mm" : std::string("none (nothing engaged)");
     if (speed->vc_nominal) {
       text += ", vc " + shortest(*speed->vc_nominal) + " m/min -> n = ";
-      text += speed->rpm ? fixed(*speed->rpm, 0) + " rpm" : std::string("unbounded (D_ref is 0)");
+      text += speed->rpm    ? fixed(*speed->rpm, 0) + " rpm"
+              : speed->d_ref ? std::string("unbounded (D_ref is 0)")
+                             : std::string("none");
     } else {
       text += ", n = " + fixed(*speed->rpm, 0) + " rpm -> vc at D_ref = ";
       text += speed->d_ref ? fixed(*speed->vc_at(speed->d_ref), 2) + " m/min" : std::string("-");

@@ -255,6 +255,24 @@ TEST(DeffCommand, JsonWithoutSpeedHasNullSpeedAndNullPointSpeeds) {
   EXPECT_TRUE(json["points"]["p1"]["vc"].is_null());
 }
 
+TEST(DeffCommand, ZeroWidthOfCutIsValidButEngagesNothing) {
+  // ae = 0: the previous pass already took this pass's stock. Not an input
+  // error: empty diameters, flags, no spindle speed.
+  const Outcome run = run_deff({"--tool", "ball:10", "--ap", "0.3", "--ae", "0", "--vc", "120",
+                                "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json["engaged"], false);
+  EXPECT_TRUE(json["d_max"].is_null());
+  EXPECT_TRUE(json["d_mean"].is_null());
+  EXPECT_THAT(json["flags"].get<std::vector<std::string>>(),
+              ::testing::IsSupersetOf({"nothing_engaged", "zero_ae"}));
+  EXPECT_TRUE(json["speed"]["d_ref"].is_null());
+  EXPECT_TRUE(json["speed"]["rpm"].is_null());
+  // The rim still exists: its points keep 2 sqrt(ap (D - ap)).
+  EXPECT_NEAR(json["points"]["p1"]["d"].get<double>(), kRimDiameter, 1e-9);
+}
+
 TEST(DeffCommand, RpmGivesCuttingSpeedsAtThatSpindleSpeed) {
   // The paper's n = 3820 rpm: vc = pi * 2r * n / 1000 at each point.
   const Outcome run = run_deff(with(kHorizontal, {"--rpm", "3820", "--json"}));

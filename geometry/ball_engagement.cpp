@@ -1,18 +1,25 @@
 // The engaged zone of a ball mill, in the frame (a, b, c) = (F.P, S0.P, N.P)
-// of cut_frame.h, is the part of the sphere |P| = R with
+// of cut_frame.h. The stock layer and both parts of the previous pass's
+// sweep are prisms along F (F is normal to N and to S0), so they only
+// constrain the projection p = (b, c); the leading-side condition picks the
+// front half (a >= 0). Seen along F, the tool projects to a "2-D ball-end
+// mill": the disk |p| <= R (the ball) plus a half-strip of width 2R (the
+// shank) along d, the projection of the tool axis. The edge points engaged
+// on the sphere are therefore those with
 //   (1) c <= c0 = -(R - ap)                  inside the stock layer,
 //   (2) a >= 0                               on the leading side,
-//   (3) sigma*b <= ae - w(c), w = sqrt(R^2 - c^2)
-// where (3) says P lies outside the cylinder of radius R that the previous
-// pass's ball swept about the line through sigma*ae*S0 along F: at height c
-// both the tool's circle and that cylinder's section have half-width w(c).
+//   (3) |p - o| >= R, o = (sigma ae, 0)     outside the previous ball's sweep,
+//   (4) not (|u'| < R and v' > 0)            outside the previous shank's sweep,
+// where u', v' are the coordinates of p - o across and along d. Where the
+// zone's sphere point lies above the equator the tool's front is its shank
+// (r = R); the zone is connected, so it reaches the shank exactly when the
+// largest z on the sphere zone is >= 0.
 // On the sphere r^2 = R^2 - z^2, so the extremes of r are those of z, a
-// linear function: they lie on the zone's boundary (the rim c = c0, the
-// silhouette a = 0 and the previous pass's edge where (3) holds with '=')
-// or at the poles. The first two are circles (sinusoids, closed form), the
-// third a one-parameter curve whose stationary points are found by
-// bracketed root finding on pieces where z' is monotone.
-// Above the equator (z > 0) the tool is its shank, r = R.
+// linear function: they lie on the zone's boundary or at the poles. The
+// boundary consists of circles (the rim c = c0, the silhouette a = 0, the
+// shank sweep's edges |u'| = R) where z is a sinusoid, and the previous
+// ball's edge |p - o| = R, a curve on which z's stationary points are found
+// by bracketed root finding on pieces where dz is monotone.
 #include "geometry/ball_engagement.h"
 
 #include <algorithm>
@@ -20,8 +27,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "geometry/angle_set.h"
 #include "geometry/quadrature.h"
-#include "geometry/roots.h"
 #include "geometry/sinusoid.h"
 
 namespace vcpost::geometry {
@@ -32,64 +39,136 @@ constexpr double half_pi = std::numbers::pi / 2;
 double clamp_unit(double x) { return std::clamp(x, -1.0, 1.0); }
 double sqrt0(double x) { return std::sqrt(std::max(0.0, x)); }
 
+// A vector in frame coordinates (a, b, c).
+using FrameVector = Eigen::Vector3d;
+
+// A circle P(t) = centre + cos t e1 + sin t e2 in frame coordinates; linear
+// functionals of P along it are sinusoids in t.
+struct FrameCircle {
+  FrameVector centre, e1, e2;
+  Sinusoid along(const FrameVector& l, double constant = 0) const {
+    return {l.dot(e1), l.dot(e2), l.dot(centre) + constant};
+  }
+  FrameVector at(double t) const { return centre + std::cos(t) * e1 + std::sin(t) * e2; }
+};
+
 struct Ball {
   double R, ap, ae, sigma;
   CutFrame frame;
-  double c0, rho;   // stock plane height along N and the rim circle's radius
-  double fz, sz, nz;  // the tool axis +z in the frame: z = a fz + b sz + c nz
+  double c0, rho;             // stock plane height along N and the rim circle's radius
+  FrameVector up;             // the tool axis +z in frame coordinates: z = up.P
+  FrameVector across, along;  // unit vectors across (u) and along (v) the projected axis d
+  double offset;              // sigma * ae: the previous pass's centre line at b = offset, c = 0
+  bool shank_sweep_matters;   // the previous shank's sweep reaches the stock layer
 
   Ball(double radius, const CutSetup& setup, const CutFrame& f)
       : R(radius), ap(setup.ap), ae(setup.ae), sigma(f.sigma), frame(f) {
     c0 = -(R - ap);
     rho = sqrt0(R * R - c0 * c0);
-    fz = frame.feed.z();
-    sz = frame.side.z();
-    nz = frame.normal.z();
+    up = {frame.feed.z(), frame.side.z(), frame.normal.z()};
+    const double d = std::sqrt(up.y() * up.y() + up.z() * up.z());  // > 0 since N_z > 0
+    along = {0, up.y() / d, up.z() / d};
+    across = {0, up.z() / d, -up.y() / d};
+    offset = sigma * ae;
+    // The sweep's lowest points are its strip's corners, at c = -R |d_b| / |d|.
+    shank_sweep_matters = -R * std::abs(along.y()) < c0;
   }
 
-  double z(double a, double b, double c) const { return a * fz + b * sz + c * nz; }
-  Eigen::Vector3d point(double a, double b, double c) const {
-    return a * frame.feed + b * frame.side + c * frame.normal;
+  double z(const FrameVector& p) const { return up.dot(p); }
+  Eigen::Vector3d world(const FrameVector& p) const {
+    return p.x() * frame.feed + p.y() * frame.side + p.z() * frame.normal;
   }
-  bool engaged(double a, double b, double c) const {
+  FrameVector from_offset(const FrameVector& p) const { return p - FrameVector(0, offset, 0); }
+
+  bool inside_previous_shank(const FrameVector& p) const {
+    if (!shank_sweep_matters) return false;
+    const FrameVector q = from_offset(p);
     constexpr double slack = 1e-12;
-    return c <= c0 + slack * R && a >= -slack * R &&
-           sigma * b <= ae - sqrt0(R * R - c * c) + slack * R;
+    return std::abs(across.dot(q)) < R * (1 - slack) && along.dot(q) > slack * R;
+  }
+  bool engaged(const FrameVector& p) const {
+    constexpr double slack = 1e-12;
+    const FrameVector q = from_offset(p);
+    return p.z() <= c0 + slack * R && p.x() >= -slack * R &&
+           q.y() * q.y() + q.z() * q.z() >= R * R * (1 - slack) && !inside_previous_shank(p);
+  }
+
+  // Removes from `set` the angles where the circle lies inside the previous shank's sweep.
+  void remove_previous_shank(const FrameCircle& circle, AngleSet& set) const {
+    if (!shank_sweep_matters || set.empty()) return;
+    const FrameVector o(0, offset, 0);
+    AngleSet inside = set;
+    inside.keep_where(circle.along(across, -across.dot(o)), R);
+    inside.keep_where(circle.along(-across, across.dot(o)), R);
+    inside.keep_where(circle.along(-along, along.dot(o)), 0);
+    set.remove(inside);
   }
 };
 
-// z over the rim circle a = rho cos t, b = rho sin t, c = c0, where (2) and (3) hold.
-Extremes rim_extremes(const Ball& ball) {
-  const double k = (ball.ae - ball.rho) / ball.rho;  // (3): sigma sin t <= k
-  AngleInterval range{-half_pi, half_pi};
-  if (k < 1) {
-    const double t = std::asin(clamp_unit(k));
-    range = ball.sigma > 0 ? AngleInterval{-half_pi, t} : AngleInterval{-t, half_pi};
-  }
-  return sinusoid_extremes({ball.rho * ball.fz, ball.rho * ball.sz, ball.c0 * ball.nz}, range);
+Extremes extremes_on(const FrameCircle& circle, const AngleSet& set, const Ball& ball) {
+  Extremes out;
+  const Sinusoid z = circle.along(ball.up);
+  for (int i = 0; i < set.size(); ++i) out.add(sinusoid_extremes(z, set[i]));
+  return out;
 }
 
-// z over the silhouette a = 0: b = R sin t, c = -R cos t, |t| <= t0 from (1),
-// where (3) reduces to sigma sin t <= ae / 2R.
+// The angles t in [-pi/2, pi/2] with sigma sin t <= k: one interval.
+AngleInterval front_half_where(double sigma, double k) {
+  if (k >= 1) return {-half_pi, half_pi};
+  const double t = std::asin(clamp_unit(k));
+  return sigma > 0 ? AngleInterval{-half_pi, t} : AngleInterval{-t, half_pi};
+}
+
+// The rim c = c0 (a = rho cos t, b = rho sin t), where (3) reads sigma b <= ae - rho.
+Extremes rim_extremes(const Ball& ball) {
+  const FrameCircle rim{{0, 0, ball.c0}, {ball.rho, 0, 0}, {0, ball.rho, 0}};
+  AngleSet set(front_half_where(ball.sigma, (ball.ae - ball.rho) / ball.rho));
+  ball.remove_previous_shank(rim, set);
+  return extremes_on(rim, set, ball);
+}
+
+// The silhouette a = 0 (b = R sin t, c = -R cos t): (1) reads |t| <= t0, and
+// (3) sigma b <= ae/2, i.e. sigma sin t <= ae/2R, which removes the arc
+// (t1, pi - t1) mirrored by sigma.
 Extremes silhouette_extremes(const Ball& ball) {
-  const double t0 = std::acos(clamp_unit((ball.R - ball.ap) / ball.R));
-  const Sinusoid z{-ball.R * ball.nz, ball.R * ball.sz, 0};
+  const FrameCircle silhouette{{0, 0, 0}, {0, 0, -ball.R}, {0, ball.R, 0}};
+  const double t0 = std::acos(clamp_unit(-ball.c0 / ball.R));
   const double k = ball.ae / (2 * ball.R);
-  if (k >= 1) return sinusoid_extremes(z, {-t0, t0});
-  const double t = std::asin(k);  // sigma sin > k on (t, pi - t) mirrored by sigma
-  Extremes out;
-  if (ball.sigma > 0) {
-    out.add(sinusoid_extremes(z, {-t0, std::min(t0, t)}));
-    out.add(sinusoid_extremes(z, {std::numbers::pi - t, t0}));
+  AngleSet set;
+  if (k >= 1) {
+    set = AngleSet({-t0, t0});
   } else {
-    out.add(sinusoid_extremes(z, {std::max(-t0, -t), t0}));
-    out.add(sinusoid_extremes(z, {-t0, -(std::numbers::pi - t)}));
+    const double t1 = std::asin(k), s = ball.sigma;
+    // For sigma = +1 keep [-t0, min(t0, t1)] and [pi - t1, t0]; mirrored for -1.
+    const AngleInterval near{-t0, std::min(t0, t1)}, far{std::numbers::pi - t1, t0};
+    set = AngleSet(s > 0 ? near : AngleInterval{-near.hi, -near.lo});
+    if (!far.empty()) set.add(s > 0 ? far : AngleInterval{-far.hi, -far.lo});
+  }
+  ball.remove_previous_shank(silhouette, set);
+  return extremes_on(silhouette, set, ball);
+}
+
+// The edges |u'| = R of the previous shank's sweep (planes through F and the
+// tool axis), on the front half, with v' >= 0; (3) holds there by itself.
+Extremes shank_sweep_edge_extremes(const Ball& ball) {
+  Extremes out;
+  if (!ball.shank_sweep_matters) return out;
+  const FrameVector o(0, ball.offset, 0);
+  for (const double edge : {-ball.R, ball.R}) {
+    const double k = ball.across.dot(o) + edge;  // the plane across.P = k
+    if (std::abs(k) >= ball.R) continue;
+    const double radius = std::sqrt(ball.R * ball.R - k * k);
+    const FrameCircle circle{k * ball.across, {radius, 0, 0}, radius * ball.along};
+    AngleSet set({-half_pi, half_pi});
+    set.keep_where(circle.along({0, 0, 1}), ball.c0);
+    set.keep_where(circle.along(-ball.along, ball.along.dot(o)), 0);
+    out.add(extremes_on(circle, set, ball));
   }
   return out;
 }
 
-// The previous pass's edge, parametrised by the half-width w in [ae/2, R]:
-// a = sqrt(ae (2w - ae)), sigma b = ae - w, c = -+sqrt(R^2 - w^2).
+// The previous ball's edge, parametrised by the half-width w in [ae/2, R]:
+// a = sqrt(ae (2w - ae)), sigma b = ae - w, c = branch * sqrt(R^2 - w^2).
 struct EdgeCurve {
   const Ball& ball;
   double branch;  // -1: lower half of the sphere (c < 0), +1: upper
@@ -97,21 +176,41 @@ struct EdgeCurve {
   double a(double w) const { return sqrt0(ball.ae * (2 * w - ball.ae)); }
   double c(double w) const { return branch * sqrt0(ball.R * ball.R - w * w); }
   double z(double w) const {
-    return ball.fz * a(w) + ball.sigma * ball.sz * (ball.ae - w) + ball.nz * c(w);
+    return ball.up.x() * a(w) + ball.sigma * ball.up.y() * (ball.ae - w) + ball.up.z() * c(w);
   }
   double dz(double w) const {
-    return ball.fz * ball.ae / a(w) - ball.sigma * ball.sz -
-           branch * ball.nz * w / sqrt0(ball.R * ball.R - w * w);
+    return ball.up.x() * ball.ae / a(w) - ball.sigma * ball.up.y() -
+           branch * ball.up.z() * w / sqrt0(ball.R * ball.R - w * w);
+  }
+  double d2z(double w) const {
+    const double aw = a(w), h = ball.R * ball.R - w * w;
+    return -ball.up.x() * ball.ae * ball.ae / (aw * aw * aw) -
+           branch * ball.up.z() * ball.R * ball.R / (h * std::sqrt(h));
   }
 };
 
-// Adds z at the stationary points of the edge curve on [lo, hi], where dz is
-// monotone (or known to change sign at most once).
+// Adds z at the stationary point of the edge curve on [lo, hi] where dz is
+// monotone and changes sign: Newton's method on dz kept inside the bracket.
 void add_monotone_stationary(const EdgeCurve& curve, double lo, double hi, Extremes& out) {
+  if (!(hi > lo)) return;
   const double g_lo = curve.dz(lo), g_hi = curve.dz(hi);
-  if (!(hi > lo) || std::signbit(g_lo) == std::signbit(g_hi)) return;
-  const double w =
-      bracketed_root([&](double x) { return curve.dz(x); }, lo, hi, g_lo, g_hi, 1e-13 * curve.ball.R);
+  if (std::signbit(g_lo) == std::signbit(g_hi)) return;
+  // z is stationary at the root, so an error e in w moves z by O(e^2):
+  // 1e-8 R in w is already below double precision in z.
+  const double tolerance = 1e-8 * curve.ball.R;
+  double w = 0.5 * (lo + hi);
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    const double g = curve.dz(w);
+    if (g == 0) break;
+    (std::signbit(g) == std::signbit(g_lo) ? lo : hi) = w;
+    if (hi - lo <= tolerance) break;
+    const double newton = w - g / curve.d2z(w);
+    const bool inside = newton > lo && newton < hi;
+    const double next = inside ? newton : 0.5 * (lo + hi);
+    const bool converged = inside && std::abs(next - w) <= tolerance;
+    w = next;
+    if (converged) break;
+  }
   out.add(curve.z(w));
 }
 
@@ -120,16 +219,16 @@ Extremes edge_piece_extremes(const EdgeCurve& curve, double lo, double hi) {
   if (hi < lo) return out;
   out.add(curve.z(lo));
   out.add(curve.z(hi));
-  if (hi == lo) return out;
   const Ball& ball = curve.ball;
-  if (curve.branch < 0 && ball.fz <= 0) {
+  const double fz = ball.up.x(), nz = ball.up.z();
+  if (curve.branch < 0 && fz <= 0) {
     // dz = fz ae/a (rising) - const + nz w/sqrt(R^2-w^2) (rising): monotone.
     add_monotone_stationary(curve, lo, hi, out);
   } else if (curve.branch < 0) {
     // fz > 0: dz falls then rises; its minimum, where d2z = 0, in closed form:
-    // (R^2 - w^2) = K a^2 with K = (nz R^2 / (fz ae^2))^(2/3).
-    const double K = std::cbrt(std::pow(ball.nz * ball.R * ball.R / (ball.fz * ball.ae * ball.ae), 2));
+    // R^2 - w^2 = K a^2 with K = (nz R^2 / (fz ae^2))^(2/3).
     const double ae = ball.ae;
+    const double K = std::cbrt(std::pow(nz * ball.R * ball.R / (fz * ae * ae), 2));
     const double w_turn = -K * ae + std::sqrt(K * K * ae * ae + K * ae * ae + ball.R * ball.R);
     const double split = std::clamp(w_turn, lo, hi);
     add_monotone_stationary(curve, lo, split, out);
@@ -146,24 +245,32 @@ Extremes edge_piece_extremes(const EdgeCurve& curve, double lo, double hi) {
 }
 
 Extremes edge_extremes(const Ball& ball) {
-  Extremes out;
+  // On this curve p - o = (-sigma w, c) lies on the circle |p - o| = R, so (4)
+  // reduces to v' <= 0: -sigma d_b w + d_c c <= 0, which bounds w at
+  // w_v = d_c R / |d| on one branch (sign analysis in the comments below).
+  const double db = ball.sigma * ball.along.y(), dc = ball.along.z();
+  const double w_v = dc * ball.R;  // along is a unit vector: w_v = R d_c / |d|
   const double w_min = ball.ae / 2;
-  if (ball.c0 <= 0) {
-    out.add(edge_piece_extremes({ball, -1}, w_min, ball.rho));
-  } else {
-    out.add(edge_piece_extremes({ball, -1}, w_min, ball.R));
-    out.add(edge_piece_extremes({ball, +1}, std::max(w_min, ball.rho), ball.R));
+  double lower_hi = ball.c0 <= 0 ? ball.rho : ball.R;
+  double upper_lo = std::max(w_min, ball.rho), upper_hi = ball.c0 > 0 ? ball.R : -1;
+  if (ball.shank_sweep_matters) {
+    if (db < 0) lower_hi = std::min(lower_hi, w_v);  // lower: -db w <= dc sqrt(R^2 - w^2)
+    if (db > 0) upper_lo = std::max(upper_lo, w_v);  // upper: dc sqrt(R^2 - w^2) <= db w
+    else upper_hi = -1;
   }
+  Extremes out = edge_piece_extremes({ball, -1}, w_min, lower_hi);
+  if (upper_hi > 0) out.add(edge_piece_extremes({ball, +1}, upper_lo, upper_hi));
   return out;
 }
 
-// Range of z over the engaged part of the whole sphere.
+// Range of z over the engaged part of the sphere's front half.
 Extremes engaged_z_range(const Ball& ball) {
   Extremes out = rim_extremes(ball);
   out.add(silhouette_extremes(ball));
   out.add(edge_extremes(ball));
+  out.add(shank_sweep_edge_extremes(ball));
   for (const double pole : {-ball.R, ball.R}) {  // z's only stationary points on the sphere
-    if (ball.engaged(pole * ball.fz, pole * ball.sz, pole * ball.nz)) out.add(pole);
+    if (ball.engaged(pole * ball.up)) out.add(pole);
   }
   return out;
 }
@@ -180,17 +287,16 @@ struct RimPoint {
   double a, b;
 };
 
-// The shank ellipse at angle phi around the tool axis.
+// The shank's ellipse in the stock plane, by the angle phi about the tool axis.
 struct ShankRim {
   const Ball& ball;
   RimPoint at(double phi) const {
     const Eigen::Vector3d& n = ball.frame.normal;
     const double x = ball.R * std::cos(phi), y = ball.R * std::sin(phi);
-    const double zz = (ball.c0 - n.x() * x - n.y() * y) / n.z();
-    const Eigen::Vector3d p(x, y, zz);
+    const Eigen::Vector3d p(x, y, (ball.c0 - n.x() * x - n.y() * y) / n.z());
     return {ball.frame.feed.dot(p), ball.frame.side.dot(p)};
   }
-  double z(RimPoint p) const { return ball.z(p.a, p.b, ball.c0); }
+  double z(RimPoint p) const { return ball.z({p.a, p.b, ball.c0}); }
   // The angle where b is largest (sign +1) or smallest (-1).
   double extreme_b_angle(double sign) const {
     const Eigen::Vector3d& n = ball.frame.normal;
@@ -213,25 +319,26 @@ struct Rim {
   bool on_ball_only;  // the whole circle lies at z <= 0
 
   explicit Rim(const Ball& b)
-      : ball(b), on_ball_only(b.c0 * b.nz + b.rho * std::hypot(b.fz, b.sz) <= 0) {}
+      : ball(b), on_ball_only(b.c0 * b.up.z() + b.rho * std::sqrt(b.up.x() * b.up.x() + b.up.y() * b.up.y()) <= 0) {}
 
-  bool circle_point_valid(RimPoint p) const { return ball.z(p.a, p.b, ball.c0) <= 1e-12 * ball.R; }
+  bool circle_point_valid(RimPoint p) const { return ball.z({p.a, p.b, ball.c0}) <= 1e-12 * ball.R; }
 
-  // The rim point with the smallest (sign -1) or largest (+1) b.
+  // The rim point with the smallest (sign -1) or largest (+1) b. Gamma is
+  // convex, so if the circle's extreme lies on the ball it is Gamma's; else
+  // Gamma's lies on the ellipse or at a junction of circle and ellipse.
   RimPoint extreme(double sign) const {
     const RimPoint circle{0, sign * ball.rho};
     if (on_ball_only || circle_point_valid(circle)) return circle;
     const ShankRim shank{ball};
     RimPoint best = shank.at(shank.extreme_b_angle(sign));
     if (shank.z(best) < 0) best = {0, -sign * INFINITY};  // not on the shank part
-    // The junctions of circle and ellipse (z = 0 on the circle).
-    const double A = ball.rho * ball.fz, B = ball.rho * ball.sz, C = -ball.c0 * ball.nz;
-    const double m = std::hypot(A, B);
+    const double A = ball.rho * ball.up.x(), B = ball.rho * ball.up.y(), C = -ball.c0 * ball.up.z();
+    const double m = std::sqrt(A * A + B * B);
     if (m > 0 && std::abs(C) <= m) {
       const double t0 = std::atan2(B, A), dt = std::acos(clamp_unit(C / m));
       for (const double t : {t0 - dt, t0 + dt}) {
-        const RimPoint j{ball.rho * std::cos(t), ball.rho * std::sin(t)};
-        if (sign * j.b > sign * best.b) best = j;
+        const RimPoint junction{ball.rho * std::cos(t), ball.rho * std::sin(t)};
+        if (sign * junction.b > sign * best.b) best = junction;
       }
     }
     return best;
@@ -242,25 +349,23 @@ struct Rim {
     const double half = sqrt0(ball.rho * ball.rho - b * b);
     if (on_ball_only) return {RimPoint{half, b}, RimPoint{-half, b}};
     double ahead = -INFINITY, behind = INFINITY;
-    const ShankRim shank{ball};
+    auto take = [&](double a) {
+      ahead = std::max(ahead, a);
+      behind = std::min(behind, a);
+    };
     for (const double a : {half, -half}) {
-      if (std::abs(b) <= ball.rho && circle_point_valid({a, b})) {
-        ahead = std::max(ahead, a);
-        behind = std::min(behind, a);
-      }
+      if (std::abs(b) <= ball.rho && circle_point_valid({a, b})) take(a);
     }
+    const ShankRim shank{ball};
     for (const double a : shank.a_at(b)) {
-      if (shank.z({a, b}) >= -1e-12 * ball.R) {
-        ahead = std::max(ahead, a);
-        behind = std::min(behind, a);
-      }
+      if (shank.z({a, b}) >= -1e-12 * ball.R) take(a);
     }
     return {RimPoint{ahead, b}, RimPoint{behind, b}};
   }
 };
 
 CuttingPoint cutting_point(const Ball& ball, RimPoint p) {
-  const Eigen::Vector3d position = ball.point(p.a, p.b, ball.c0);
+  const Eigen::Vector3d position = ball.world({p.a, p.b, ball.c0});
   return {position, 2 * position.head<2>().norm()};
 }
 
@@ -311,56 +416,52 @@ double ball_mean_diameter(double radius, const CutSetup& setup, const CutFrame& 
   const double R = ball.R;
   const double tolerance = 1e-9 * R * R;
 
-  // Ball part: at height c the engaged arc of the circle of radius w(c),
-  // a = w cos t, b = w sin t; area element R dc dt (Archimedes).
-  auto ball_slice = [&](double c, double& area, double& moment) {
-    const double w = sqrt0(R * R - c * c);
-    area = moment = 0;
-    if (w <= 0) return;
-    AngleInterval range{-half_pi, half_pi};
-    const double k = (ball.ae - w) / w;
-    if (k < 1) {
-      const double t = std::asin(clamp_unit(k));
-      range = ball.sigma > 0 ? AngleInterval{-half_pi, t} : AngleInterval{-t, half_pi};
-    }
-    // Split where z crosses 0 so each piece is all ball (2r < D) or all shank-side.
-    const Sinusoid zt{w * ball.fz, w * ball.sz, c * ball.nz};
-    std::array<double, 4> cuts{range.lo, range.hi, range.lo, range.lo};
-    int count = 2;
-    const double m = std::hypot(zt.a, zt.b);
-    if (m > 0 && std::abs(zt.c) < m) {
-      const double t0 = std::atan2(zt.b, zt.a), dt = std::acos(clamp_unit(-zt.c / m));
-      for (const double t : {t0 - dt, t0 + dt}) {
-        const double inside = wrap_from(t, range.lo);
-        if (inside < range.hi) cuts[static_cast<std::size_t>(count++)] = inside;
-      }
-    }
-    std::sort(cuts.begin(), cuts.begin() + count);
-    for (int i = 0; i + 1 < count; ++i) {
-      const double lo = cuts[static_cast<std::size_t>(i)], hi = cuts[static_cast<std::size_t>(i + 1)];
-      if (zt(0.5 * (lo + hi)) > 0) continue;  // above the equator: not ball surface
-      area += R * (hi - lo);
-      moment += R * kronrod_rule(
-                        [&](double t) { return 2 * sqrt0(R * R - std::pow(zt(t), 2)); }, lo, hi);
-    }
+  // Ball part: at height c the engaged arcs of the circle of radius w(c),
+  // a = w cos t, b = w sin t, below the equator; area element R dc dt (Archimedes).
+  struct Slice {
+    double area = 0, moment = 0;
   };
-  const auto ball_area = integrate_adaptive(
-      [&](double c) { double a, m; ball_slice(c, a, m); return a; }, -R, ball.c0, tolerance);
-  const auto ball_moment = integrate_adaptive(
-      [&](double c) { double a, m; ball_slice(c, a, m); return m; }, -R, ball.c0, tolerance);
+  auto ball_slice = [&](double c) {
+    Slice slice;
+    const double w = sqrt0(R * R - c * c);
+    if (w <= 0) return slice;
+    const FrameCircle circle{{0, 0, c}, {w, 0, 0}, {0, w, 0}};
+    AngleSet set({-half_pi, half_pi});
+    set.keep_where(circle.along({0, ball.sigma, 0}), ball.ae - w);
+    ball.remove_previous_shank(circle, set);
+    const Sinusoid z = circle.along(ball.up);
+    set.keep_where(z, 0);
+    for (int i = 0; i < set.size(); ++i) {
+      slice.area += R * (set[i].hi - set[i].lo);
+      slice.moment += R * kronrod_rule([&](double t) { return 2 * sqrt0(R * R - std::pow(z(t), 2)); },
+                                       set[i].lo, set[i].hi);
+    }
+    return slice;
+  };
+  const double ball_area =
+      integrate_panels([&](double c) { return ball_slice(c).area; }, -R, ball.c0, tolerance);
+  const double ball_moment =
+      integrate_panels([&](double c) { return ball_slice(c).moment; }, -R, ball.c0, tolerance);
 
   // Shank part (r = R): on the vertical line at angle phi, z runs from 0 up
-  // to the stock plane, less where it is inside the previous pass's cylinder.
+  // to the stock plane and to where the line enters the previous shank's
+  // sweep, less where it is inside the previous ball's cylinder.
   const Eigen::Vector3d& n = frame.normal;
   const Eigen::Vector3d& f = frame.feed;
-  const Eigen::Vector3d offset = ball.sigma * ball.ae * frame.side;
+  const Eigen::Vector3d centre_line = ball.offset * frame.side;
   auto shank_length = [&](double phi) {
     const Eigen::Vector3d u(std::cos(phi), std::sin(phi), 0);
     if (f.x() * u.x() + f.y() * u.y() < 0) return 0.0;  // trailing side
-    const double top = (ball.c0 - R * (n.x() * u.x() + n.y() * u.y())) / n.z();
+    double top = (ball.c0 - R * (n.x() * u.x() + n.y() * u.y())) / n.z();
+    const Eigen::Vector3d y = R * u - centre_line;  // the line's foot, from the centre line
+    if (ball.shank_sweep_matters) {
+      const FrameVector q(f.dot(y), frame.side.dot(y), n.dot(y));  // already relative to o
+      // v' grows with z at the rate |d| = along.(0, S0_z, N_z) along the line.
+      const double rate = ball.along.dot(ball.up);
+      if (std::abs(ball.across.dot(q)) < R) top = std::min(top, -ball.along.dot(q) / rate);
+    }
     if (top <= 0) return 0.0;
     // |Y + z e_z|^2 - ((Y + z e_z).F)^2 < R^2 is inside the previous cylinder.
-    const Eigen::Vector3d y = R * u - offset;
     const double qa = 1 - f.z() * f.z(), qb = 2 * (y.z() - y.dot(f) * f.z());
     const double qc = y.squaredNorm() - std::pow(y.dot(f), 2) - R * R;
     const double disc = qb * qb - 4 * qa * qc;
@@ -371,9 +472,15 @@ double ball_mean_diameter(double radius, const CutSetup& setup, const CutFrame& 
     }
     return length;
   };
-  const double shank_area =
-      integrate_adaptive([&](double phi) { return R * shank_length(phi); }, -std::numbers::pi,
-                         std::numbers::pi, tolerance);
+  // Only where the line is on the leading side and reaches into the stock.
+  AngleSet lines({-std::numbers::pi, std::numbers::pi});
+  lines.keep_where({-f.x(), -f.y(), 0}, 0);           // F.u >= 0
+  lines.keep_where({R * n.x(), R * n.y(), 0}, ball.c0);  // N.(R u) <= c0 at z = 0
+  double shank_area = 0;
+  for (int i = 0; i < lines.size(); ++i) {
+    shank_area += integrate_panels([&](double phi) { return R * shank_length(phi); }, lines[i].lo,
+                                   lines[i].hi, tolerance);
+  }
   const double area = ball_area + shank_area;
   return area > 0 ? (ball_moment + 2 * R * shank_area) / area : 0;
 }

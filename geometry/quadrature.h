@@ -68,4 +68,17 @@ double integrate_adaptive(const Function& f, double lo, double hi, double tolera
   return detail::adaptive(f, lo, hi, tolerance, 0);
 }
 
+// The same on `panels` equal panels, each adaptive: an integrand that is
+// zero on most of [lo, hi] cannot hide from the first estimates.
+template <class Function>
+double integrate_panels(const Function& f, double lo, double hi, double tolerance, int panels = 16) {
+  if (!(hi > lo)) return 0;
+  double sum = 0;
+  const double width = (hi - lo) / panels;
+  for (int i = 0; i < panels; ++i) {
+    sum += detail::adaptive(f, lo + i * width, lo + (i + 1) * width, tolerance / panels, 0);
+  }
+  return sum;
+}
+
 }  // namespace vcpost::geometry

@@ -171,12 +171,20 @@ TEST(BallEngagement, DegenerateInputIsFlaggedNotThrown) {
   EXPECT_FALSE(engaged_mean_diameter(ball, setup(0.3, 0, {0, 0, 1}, {1, 0, 0})));
 }
 
-TEST(BallEngagement, SteepWallEngagesTheShank) {
-  // sin(beta) >= 1 - ap/R puts the stock above the equator: D_max = D.
+TEST(BallEngagement, SteepWallEngagesTheShankUnlessThePreviousShankTookTheStock) {
+  // Contour pass on an 80 deg wall, previous pass above (left): sin(beta) >=
+  // 1 - ap/R puts stock above the equator. With ae = 3 the shank cuts (D_max
+  // = D); with ae = 1 the previous pass's shank already swept that stock.
   const double beta = deg(80);
-  const auto e = evaluate_engagement(Tool::ball(10), setup(1, 1, tilted_normal(beta), {0, 1, 0}));
-  EXPECT_TRUE(e.flags.has(EngagementFlag::shank_engaged));
-  EXPECT_DOUBLE_EQ(*e.d_max, 10);
+  const auto wide = evaluate_engagement(Tool::ball(10), setup(1, 3, tilted_normal(beta), {0, 1, 0}));
+  EXPECT_TRUE(wide.flags.has(EngagementFlag::shank_engaged));
+  EXPECT_DOUBLE_EQ(*wide.d_max, 10);
+  const auto narrow = evaluate_engagement(Tool::ball(10), setup(1, 1, tilted_normal(beta), {0, 1, 0}));
+  EXPECT_FALSE(narrow.flags.has(EngagementFlag::shank_engaged));
+  EXPECT_LT(*narrow.d_max, 10);
+  const auto sampled = testing::sample_ball(10, 1, 1, tilted_normal(beta), {0, 1, 0}, true, 600);
+  EXPECT_FALSE(sampled.shank);
+  EXPECT_NEAR(*narrow.d_max, sampled.d_max, 6 * sampled.spacing);
 }
 
 TEST(MillingMode, ClockwiseSpindleWithPreviousPassOnTheLeftIsClimb) {
@@ -192,7 +200,8 @@ TEST(BallEngagement, AgreesWithBruteForceOnRandomSetups) {
   int compared = 0;
   for (int i = 0; i < 300; ++i) {
     const double d = 2 + 18 * unit(rng), R = d / 2;
-    const double ap = R * (0.02 + 0.9 * unit(rng)), ae = R * (0.02 + 1.2 * unit(rng));
+    // ap up to 1.7 R: the rim above the ball centre exercises the upper branches.
+    const double ap = R * (0.02 + 1.7 * unit(rng)), ae = R * (0.02 + 1.2 * unit(rng));
     const Eigen::Vector3d n = normal_from_angles(deg(80) * unit(rng), 2 * pi * unit(rng));
     const Eigen::Vector3d f = feed_from_angle(2 * pi * unit(rng), n);
     const bool left = unit(rng) < 0.5;

@@ -452,6 +452,33 @@ TEST(DeffCommand, BatchCopiesRowsAndAppendsResultColumns) {
   EXPECT_EQ(empty[21], "0");       // engaged
 }
 
+TEST(DeffCommand, BatchToolColumnsSelectBullNoseAndFlat) {
+  const TempDir dir;
+  dir.write("tools.csv",
+            "tool,rc,d,ap,ae,nx,ny,nz,fx,fy,fz,side\n"
+            "bull,2,10,0.3,5,0,0,1,1,0,0,left\n"
+            "flat,,10,0.3,5,0,0,1,1,0,0,left\n"
+            ",,10,0.3,5,0,0,1,1,0,0,left\n");
+  const Outcome run = run_deff({"--batch", "tools.csv"}, dir.path());
+  if (run.exit_code == 3 && run.err.find("not available yet") != std::string::npos) {
+    GTEST_SKIP() << "bull-nose/flat engagement not in the engine yet: " << run.err;
+  }
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto rows = read_csv(run.out);
+  ASSERT_EQ(rows.size(), 3u);
+  // Bull-nose on a horizontal floor, ap < rc: rim 2 (R0 + sqrt(ap (2 rc - ap))),
+  // R0 = R - rc = 3 (MODELS.md): 8.1071 mm at both groove edges.
+  const double bull_rim = 2 * (3 + std::sqrt(0.3 * (4 - 0.3)));
+  EXPECT_NEAR(cell(rows[0], "d_p1"), bull_rim, 5.01e-5);
+  EXPECT_NEAR(cell(rows[0], "d_p2"), bull_rim, 5.01e-5);
+  EXPECT_NEAR(cell(rows[0], "d_max"), bull_rim, 5.01e-5);
+  // Flat end mill: the periphery cuts with the full D.
+  EXPECT_EQ(rows[1].at("d_max"), "10.0000");
+  EXPECT_EQ(rows[1].at("d_cut"), "10.0000");
+  // An empty tool cell is a ball.
+  EXPECT_EQ(rows[2].at("d_max"), "3.4117");
+}
+
 TEST(DeffCommand, BatchFromStdinMatchesBatchFromFile) {
   const TempDir dir;
   const fs::path file = dir.write("cases.csv", std::string(kBatchHeader) +

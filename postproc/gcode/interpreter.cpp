@@ -79,10 +79,12 @@ bool Interpreter::next(std::vector<Event>& events) {
     Line l;
     if (!line_at(pos_, line_ + 1, l)) {
       ended_ = true;
-      if (!frames_.empty() || !flow_.empty())
+      if (!frames_.empty() || !flow_.empty()) {
+        block_.line = line_ == 0 ? 1 : line_;
         fail(Code::unmatched_control, 1, "program ends inside a subroutine or control block");
+      }
       if (!percent_seen_) {
-        block_.line = line_;
+        block_.line = line_ == 0 ? 1 : line_;
         warn(Code::missing_program_end, 1, "program ends without M2 or M30");
       }
       return false;

@@ -19,11 +19,16 @@ std::string trim(const std::string& text) {
 
 std::string column_label(SetupField field) {
   switch (field) {
-    case SetupField::diameter: return "column 'd'";
-    case SetupField::ap: return "column 'ap'";
-    case SetupField::ae: return "column 'ae'";
-    case SetupField::normal: return "columns 'nx,ny,nz'";
-    case SetupField::feed: return "columns 'fx,fy,fz'";
+    case SetupField::diameter:
+      return "column 'd'";
+    case SetupField::ap:
+      return "column 'ap'";
+    case SetupField::ae:
+      return "column 'ae'";
+    case SetupField::normal:
+      return "columns 'nx,ny,nz'";
+    case SetupField::feed:
+      return "columns 'fx,fy,fz'";
   }
   return "?";
 }
@@ -69,8 +74,9 @@ std::vector<std::string> split_csv_line(const std::string& line) {
 BatchReader::BatchReader(std::istream& in, std::string source)
     : in_(&in), source_(std::move(source)) {
   if (!read_line(header_)) {
-    throw InputError(source_ + ": empty input, expected a header row with the columns "
-                               "d,ap,ae,nx,ny,nz,fx,fy,fz,side");
+    throw InputError(source_ +
+                     ": empty input, expected a header row with the columns "
+                     "d,ap,ae,nx,ny,nz,fx,fy,fz,side");
   }
   // A byte-order mark is what spreadsheet programs put before the header.
   if (header_.rfind("\xEF\xBB\xBF", 0) == 0) header_.erase(0, 3);
@@ -108,8 +114,7 @@ bool BatchReader::read_line(std::string& line) {
 
 std::string BatchReader::where() const { return source_ + ":" + std::to_string(line_) + ": "; }
 
-double BatchReader::number(const std::vector<std::string>& cells,
-                           const std::string& column) const {
+double BatchReader::number(const std::vector<std::string>& cells, const std::string& column) const {
   try {
     return parse_number(cells[columns_.at(column)]);
   } catch (const InputError& e) {
@@ -154,8 +159,10 @@ bool BatchReader::next(BatchRow& row) {
   geometry::Tool tool;
   if (kind.empty() || kind == "ball" || kind == "flat") {
     if (has_rc) {
-      throw InputError(where() + "column 'rc': only a bull tool takes a corner radius, this row's "
-                                 "tool is " + (kind.empty() ? std::string("ball") : kind));
+      throw InputError(where() +
+                       "column 'rc': only a bull tool takes a corner radius, this row's "
+                       "tool is " +
+                       (kind.empty() ? std::string("ball") : kind));
     }
     tool = kind == "flat" ? geometry::Tool::flat(diameter) : geometry::Tool::ball(diameter);
   } else if (kind == "bull") {

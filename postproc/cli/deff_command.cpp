@@ -96,11 +96,16 @@ geometry::CutSetup checked(const geometry::Tool& tool, const geometry::CutSetup&
     return checked_setup(tool, setup);
   } catch (const SetupError& e) {
     switch (e.field()) {
-      case SetupField::diameter: throw usage("--tool", e.what());
-      case SetupField::ap: throw usage("--ap", e.what());
-      case SetupField::ae: throw usage("--ae", e.what());
-      case SetupField::normal: throw usage(blame.normal, e.what());
-      case SetupField::feed: throw usage(blame.feed, e.what());
+      case SetupField::diameter:
+        throw usage("--tool", e.what());
+      case SetupField::ap:
+        throw usage("--ap", e.what());
+      case SetupField::ae:
+        throw usage("--ae", e.what());
+      case SetupField::normal:
+        throw usage(blame.normal, e.what());
+      case SetupField::feed:
+        throw usage(blame.feed, e.what());
     }
     throw;
   }
@@ -134,8 +139,8 @@ Description describe(const Request& request, const Blame& blame) {
     geometry::CutSetup probe = setup;
     probe.feed = setup.normal.unitOrthogonal();
     setup.normal = checked(request.tool, probe, blame).normal;
-    setup.feed = geometry::feed_from_angle(degrees_to_radians(request.feed_angle_deg),
-                                           setup.normal);
+    setup.feed =
+        geometry::feed_from_angle(degrees_to_radians(request.feed_angle_deg), setup.normal);
     description.feed_angle_deg = request.feed_angle_deg;
   }
   description.setup = checked(request.tool, setup, blame);
@@ -251,7 +256,8 @@ void run(CLI::App& command, const Arguments& args) {
   if (given("--tilt")) request.tilt_deg = number_option("--tilt", args.tilt);
   if (given("--azimuth")) request.azimuth_deg = number_option("--azimuth", args.azimuth);
   if (given("--feed")) request.feed = vector_option("--feed", args.feed, "fx,fy,fz");
-  if (given("--feed-angle")) request.feed_angle_deg = number_option("--feed-angle", args.feed_angle);
+  if (given("--feed-angle"))
+    request.feed_angle_deg = number_option("--feed-angle", args.feed_angle);
   if (given("--sweep")) {
     Sweep sweep;
     try {
@@ -277,9 +283,15 @@ void run(CLI::App& command, const Arguments& args) {
       Blame at_blame = blame;
       const std::string name = "--sweep: " + swept + " = " + format_value(value);
       switch (sweep.parameter) {
-        case SweepParameter::tilt: at.tilt_deg = value; break;
-        case SweepParameter::azimuth: at.azimuth_deg = value; break;
-        case SweepParameter::feed_angle: at.feed_angle_deg = value; break;
+        case SweepParameter::tilt:
+          at.tilt_deg = value;
+          break;
+        case SweepParameter::azimuth:
+          at.azimuth_deg = value;
+          break;
+        case SweepParameter::feed_angle:
+          at.feed_angle_deg = value;
+          break;
       }
       // A bad tilt is the sweep's; a feed vector parallel to the normal at
       // some tilt or azimuth is the sweep value's as well.
@@ -300,7 +312,8 @@ void run(CLI::App& command, const Arguments& args) {
   SpeedRequest speed_request;
   const auto policy = parse_policy(args.policy);
   if (!policy) {
-    throw usage("--policy", "'" + args.policy + "' is not a policy (expected max, tangent or mean)");
+    throw usage("--policy",
+                "'" + args.policy + "' is not a policy (expected max, tangent or mean)");
   }
   speed_request.policy = *policy;
   if (given("--vc")) {
@@ -328,71 +341,86 @@ void run(CLI::App& command, const Arguments& args) {
 void add_deff_command(CLI::App& app) {
   auto* command = app.add_subcommand("deff", kDescription);
   auto args = std::make_shared<Arguments>();
-  command->add_option("--tool", args->tool,
-                      "tool, sizes in mm: ball:D, bull:D:rc or flat:D, e.g. ball:10 (required "
-                      "unless --batch)")
+  command
+      ->add_option("--tool", args->tool,
+                   "tool, sizes in mm: ball:D, bull:D:rc or flat:D, e.g. ball:10 (required "
+                   "unless --batch)")
       ->type_name("SPEC");
-  command->add_option("--ap", args->ap,
-                      "depth of cut along the surface normal, mm, in (0, D] (required unless "
-                      "--batch)")
+  command
+      ->add_option("--ap", args->ap,
+                   "depth of cut along the surface normal, mm, in (0, D] (required unless "
+                   "--batch)")
       ->type_name("MM");
-  command->add_option("--ae", args->ae,
-                      "width of cut (stepover) to the previous pass, on the surface, mm, >= 0 "
-                      "(required unless --batch)")
+  command
+      ->add_option("--ae", args->ae,
+                   "width of cut (stepover) to the previous pass, on the surface, mm, >= 0 "
+                   "(required unless --batch)")
       ->type_name("MM");
-  command->add_option("--normal", args->normal,
-                      "unit surface normal at the contact point, out of the material, n_z > 0 "
-                      "(default 0,0,1: horizontal); write --normal=-0.5,0,0.866 when it starts "
-                      "with a minus")
+  command
+      ->add_option("--normal", args->normal,
+                   "unit surface normal at the contact point, out of the material, n_z > 0 "
+                   "(default 0,0,1: horizontal); write --normal=-0.5,0,0.866 when it starts "
+                   "with a minus")
       ->type_name("NX,NY,NZ");
-  command->add_option("--tilt", args->tilt,
-                      "instead of --normal: tilt of the normal to +z (the paper's A_N2), degrees, "
-                      "in (-90, 90) (default 0)")
+  command
+      ->add_option("--tilt", args->tilt,
+                   "instead of --normal: tilt of the normal to +z (the paper's A_N2), degrees, "
+                   "in (-90, 90) (default 0)")
       ->type_name("DEG");
-  command->add_option("--azimuth", args->azimuth,
-                      "instead of --normal: azimuth of the normal's xy projection to +x (the "
-                      "paper's A_N1), degrees (default 0)")
+  command
+      ->add_option("--azimuth", args->azimuth,
+                   "instead of --normal: azimuth of the normal's xy projection to +x (the "
+                   "paper's A_N1), degrees (default 0)")
       ->type_name("DEG");
-  command->add_option("--feed", args->feed,
-                      "feed direction, any length, projected onto the tangent plane (default "
-                      "1,0,0)")
+  command
+      ->add_option("--feed", args->feed,
+                   "feed direction, any length, projected onto the tangent plane (default "
+                   "1,0,0)")
       ->type_name("FX,FY,FZ");
-  command->add_option("--feed-angle", args->feed_angle,
-                      "instead of --feed: the paper's feed angle A, azimuth of the feed to +x, "
-                      "degrees, projected onto the tangent plane (default 0)")
+  command
+      ->add_option("--feed-angle", args->feed_angle,
+                   "instead of --feed: the paper's feed angle A, azimuth of the feed to +x, "
+                   "degrees, projected onto the tangent plane (default 0)")
       ->type_name("DEG");
-  command->add_option("--side", args->side,
-                      "side of the path the previous pass lies on, looking along the feed "
-                      "(default left)")
+  command
+      ->add_option("--side", args->side,
+                   "side of the path the previous pass lies on, looking along the feed "
+                   "(default left)")
       ->type_name("left|right");
-  command->add_option("--vc", args->vc,
-                      "nominal cutting speed, m/min: print vc at each point and the spindle "
-                      "speed n = 1000 vc / (pi D_ref) (default none)")
+  command
+      ->add_option("--vc", args->vc,
+                   "nominal cutting speed, m/min: print vc at each point and the spindle "
+                   "speed n = 1000 vc / (pi D_ref) (default none)")
       ->type_name("M/MIN");
-  command->add_option("--rpm", args->rpm,
-                      "spindle speed, 1/min: print vc at each point at this speed (default none)")
+  command
+      ->add_option("--rpm", args->rpm,
+                   "spindle speed, 1/min: print vc at each point at this speed (default none)")
       ->type_name("RPM");
-  command->add_option("--policy", args->policy,
-                      "D_ref for --vc/--rpm: max = D_max, tangent = the cutting point's 2r, "
-                      "mean = D_mean (default max)")
+  command
+      ->add_option("--policy", args->policy,
+                   "D_ref for --vc/--rpm: max = D_max, tangent = the cutting point's 2r, "
+                   "mean = D_mean (default max)")
       ->type_name("max|tangent|mean");
-  command->add_option("--spindle", args->spindle,
-                      "spindle direction, cw = M3, ccw = M4; decides up/down milling "
-                      "(default cw)")
+  command
+      ->add_option("--spindle", args->spindle,
+                   "spindle direction, cw = M3, ccw = M4; decides up/down milling "
+                   "(default cw)")
       ->type_name("cw|ccw");
   command->add_flag("--radius", args->radius,
                     "also show r = 2r/2, the value the paper tabulates as 'working diameter'; "
                     "with --sweep/--batch append r_* columns (default off)");
   command->add_flag("--json", args->json,
                     "print one JSON object instead of the table (default off)");
-  command->add_option("--sweep", args->sweep,
-                      "CSV over an angle, degrees, stop included when on the grid: "
-                      "feed-angle=0:360:15, tilt=0:60:5 or azimuth=0:180:10 (default none)")
+  command
+      ->add_option("--sweep", args->sweep,
+                   "CSV over an angle, degrees, stop included when on the grid: "
+                   "feed-angle=0:360:15, tilt=0:60:5 or azimuth=0:180:10 (default none)")
       ->type_name("NAME=START:STOP:STEP");
-  command->add_option("--batch", args->batch,
-                      "CSV file of set-ups (columns d,ap,ae,nx,ny,nz,fx,fy,fz,side, optional "
-                      "tool,rc), '-' for stdin; writes the rows with result columns (default "
-                      "none)")
+  command
+      ->add_option("--batch", args->batch,
+                   "CSV file of set-ups (columns d,ap,ae,nx,ny,nz,fx,fy,fz,side, optional "
+                   "tool,rc), '-' for stdin; writes the rows with result columns (default "
+                   "none)")
       ->type_name("FILE");
   command->callback([command, args] { run(*command, *args); });
 }

@@ -73,8 +73,8 @@ std::string_view to_string(geometry::Side side) {
 
 geometry::CutSetup checked_setup(const geometry::Tool& tool, geometry::CutSetup setup) {
   if (!(tool.diameter > 0) || !std::isfinite(tool.diameter)) {
-    throw SetupError(SetupField::diameter, "diameter must be > 0 mm, got " +
-                                               format_number(tool.diameter));
+    throw SetupError(SetupField::diameter,
+                     "diameter must be > 0 mm, got " + format_number(tool.diameter));
   }
   if (!(setup.ap > 0)) {
     throw SetupError(SetupField::ap, "depth of cut must be > 0 mm, got " + format_number(setup.ap));
@@ -85,12 +85,14 @@ geometry::CutSetup checked_setup(const geometry::Tool& tool, geometry::CutSetup 
                                          format_number(tool.diameter) + " mm");
   }
   if (!(setup.ae >= 0)) {
-    throw SetupError(SetupField::ae, "width of cut must be >= 0 mm, got " + format_number(setup.ae));
+    throw SetupError(SetupField::ae,
+                     "width of cut must be >= 0 mm, got " + format_number(setup.ae));
   }
 
   const double length = setup.normal.norm();
   if (!setup.normal.allFinite() || length == 0) {
-    throw SetupError(SetupField::normal, "the normal is a zero vector; give the unit surface normal");
+    throw SetupError(SetupField::normal,
+                     "the normal is a zero vector; give the unit surface normal");
   }
   if (std::abs(length - 1) > kNormalLengthTolerance) {
     throw SetupError(SetupField::normal, "the normal must be a unit vector, its length is " +
@@ -127,18 +129,24 @@ void check_tilt(double tilt_deg) {
 
 std::string_view to_string(SweepParameter parameter) {
   switch (parameter) {
-    case SweepParameter::feed_angle: return "feed-angle";
-    case SweepParameter::tilt: return "tilt";
-    case SweepParameter::azimuth: return "azimuth";
+    case SweepParameter::feed_angle:
+      return "feed-angle";
+    case SweepParameter::tilt:
+      return "tilt";
+    case SweepParameter::azimuth:
+      return "azimuth";
   }
   return "?";
 }
 
 std::string_view csv_name(SweepParameter parameter) {
   switch (parameter) {
-    case SweepParameter::feed_angle: return "feed_angle";
-    case SweepParameter::tilt: return "tilt";
-    case SweepParameter::azimuth: return "azimuth";
+    case SweepParameter::feed_angle:
+      return "feed_angle";
+    case SweepParameter::tilt:
+      return "tilt";
+    case SweepParameter::azimuth:
+      return "azimuth";
   }
   return "?";
 }
@@ -155,8 +163,9 @@ std::vector<double> Sweep::values() const {
 }
 
 Sweep parse_sweep(std::string_view text) {
-  const std::string form = "expected NAME=START:STOP:STEP with NAME feed-angle, tilt or azimuth "
-                           "(degrees), e.g. feed-angle=0:360:15";
+  const std::string form =
+      "expected NAME=START:STOP:STEP with NAME feed-angle, tilt or azimuth "
+      "(degrees), e.g. feed-angle=0:360:15";
   const std::size_t equals = text.find('=');
   if (equals == std::string_view::npos) {
     throw InputError("'" + std::string(text) + "': " + form);
@@ -194,8 +203,8 @@ Sweep parse_sweep(std::string_view text) {
     throw InputError("'" + std::string(text) + "': the stop must not be below the start");
   }
   if ((sweep.stop - sweep.start) / sweep.step >= static_cast<double>(kMaxSweepPoints)) {
-    throw InputError("'" + std::string(text) + "': more than " +
-                     std::to_string(kMaxSweepPoints) + " values; use a larger step");
+    throw InputError("'" + std::string(text) + "': more than " + std::to_string(kMaxSweepPoints) +
+                     " values; use a larger step");
   }
   return sweep;
 }

@@ -134,9 +134,12 @@ Evaluation evaluate(const geometry::Tool& tool, const geometry::CutSetup& setup)
 
 std::string_view to_string(Policy policy) {
   switch (policy) {
-    case Policy::max: return "max";
-    case Policy::tangent: return "tangent";
-    case Policy::mean: return "mean";
+    case Policy::max:
+      return "max";
+    case Policy::tangent:
+      return "tangent";
+    case Policy::mean:
+      return "mean";
   }
   return "?";
 }
@@ -159,11 +162,15 @@ Speed plan_speed(const Evaluation& evaluation, const SpeedRequest& request) {
   speed.vc_nominal = request.vc;
   const auto& e = evaluation.engagement;
   switch (request.policy) {
-    case Policy::max: speed.d_ref = e.d_max; break;
+    case Policy::max:
+      speed.d_ref = e.d_max;
+      break;
     case Policy::tangent:
       if (e.points) speed.d_ref = e.points->cut.diameter;
       break;
-    case Policy::mean: speed.d_ref = evaluation.d_mean; break;
+    case Policy::mean:
+      speed.d_ref = evaluation.d_mean;
+      break;
   }
   if (request.rpm) {
     speed.rpm = request.rpm;
@@ -178,14 +185,15 @@ void write_table(std::ostream& out, const Description& description, const Evalua
   const auto& setup = description.setup;
   const auto& e = evaluation.engagement;
   out << "tool " << geometry::to_string(description.tool) << ", ap " << shortest(setup.ap)
-      << " mm, ae " << shortest(setup.ae) << " mm, previous pass on the "
-      << to_string(setup.side) << '\n';
+      << " mm, ae " << shortest(setup.ae) << " mm, previous pass on the " << to_string(setup.side)
+      << '\n';
   out << "normal N (" << fixed(setup.normal.x(), 4) << ", " << fixed(setup.normal.y(), 4) << ", "
       << fixed(setup.normal.z(), 4) << "): tilt " << fixed(tilt_deg(setup.normal), 2)
       << " deg, azimuth " << fixed(azimuth_deg(setup.normal), 2) << " deg\n";
   out << "feed F   (" << fixed(e.feed_dir.x(), 4) << ", " << fixed(e.feed_dir.y(), 4) << ", "
       << fixed(e.feed_dir.z(), 4) << "): unit, in the tangent plane";
-  if (description.feed_angle_deg) out << ", feed angle " << shortest(*description.feed_angle_deg) << " deg";
+  if (description.feed_angle_deg)
+    out << ", feed angle " << shortest(*description.feed_angle_deg) << " deg";
   out << "\n\n";
 
   std::vector<std::vector<std::string>> rows;
@@ -225,7 +233,8 @@ void write_table(std::ostream& out, const Description& description, const Evalua
                        : description.tool.kind == geometry::ToolKind::flat
                            ? "the end face's centre"
                            : "the centre of the corner circles' plane";
-  out << "  (tool frame: origin at " << origin << ", z up the tool axis. '-': no such point.\n"
+  out << "  (tool frame: origin at " << origin
+      << ", z up the tool axis. '-': no such point.\n"
          "   Points 1..2'' are the paper's rim points: those behind the tool or in the\n"
          "   previous pass do not cut, so their 2r may exceed D_max.)\n\n";
 
@@ -236,18 +245,18 @@ void write_table(std::ostream& out, const Description& description, const Evalua
   std::vector<std::vector<std::string>> facts = {
       {"engaged", e.d_max ? "yes" : "no"},
       {"flags", flags.empty() ? "none" : flag_text},
-      {"milling", std::string(to_string(mode)) +
-                      (mode == geometry::MillingMode::down ? " (climb)" : " (conventional)") +
-                      ", spindle " + std::string(to_string(description.spindle)) +
-                      (description.spindle == geometry::SpindleDirection::clockwise ? " (M3)"
-                                                                                    : " (M4)")},
+      {"milling",
+       std::string(to_string(mode)) +
+           (mode == geometry::MillingMode::down ? " (climb)" : " (conventional)") + ", spindle " +
+           std::string(to_string(description.spindle)) +
+           (description.spindle == geometry::SpindleDirection::clockwise ? " (M3)" : " (M4)")},
   };
   if (speed) {
     std::string text = "policy " + std::string(to_string(speed->policy)) + ", D_ref ";
     text += speed->d_ref ? fixed(*speed->d_ref, 4) + " mm" : std::string("none (nothing engaged)");
     if (speed->vc_nominal) {
       text += ", vc " + shortest(*speed->vc_nominal) + " m/min -> n = ";
-      text += speed->rpm    ? fixed(*speed->rpm, 0) + " rpm"
+      text += speed->rpm     ? fixed(*speed->rpm, 0) + " rpm"
               : speed->d_ref ? std::string("unbounded (D_ref is 0)")
                              : std::string("none");
     } else {
@@ -262,7 +271,7 @@ void write_table(std::ostream& out, const Description& description, const Evalua
 }
 
 nlohmann::ordered_json to_json(const Description& description, const Evaluation& evaluation,
-                       const std::optional<Speed>& speed) {
+                               const std::optional<Speed>& speed) {
   const auto& setup = description.setup;
   const auto& e = evaluation.engagement;
   nlohmann::ordered_json json;
@@ -335,7 +344,8 @@ std::string csv_cells(const Evaluation& evaluation, bool radius) {
     const auto scaled = [scale](const std::optional<double>& value) {
       return value ? std::optional<double>(*value * scale) : std::nullopt;
     };
-    for (const auto& point : kPoints) cells += fixed(scaled(point_diameter(evaluation, point)), 4) + ",";
+    for (const auto& point : kPoints)
+      cells += fixed(scaled(point_diameter(evaluation, point)), 4) + ",";
     cells += fixed(scaled(e.d_max), 4) + "," + fixed(scaled(e.d_min), 4) + "," +
              fixed(scaled(evaluation.d_mean), 4);
     if (scale == 1.0) cells += e.d_max ? ",1" : ",0";

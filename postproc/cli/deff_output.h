@@ -67,7 +67,7 @@ void write_table(std::ostream& out, const Description& description, const Evalua
 
 // Machine-readable report; keys documented in README.md ("vcpost deff").
 nlohmann::ordered_json to_json(const Description& description, const Evaluation& evaluation,
-                       const std::optional<Speed>& speed);
+                               const std::optional<Speed>& speed);
 
 // The result columns shared by --sweep and --batch:
 // d_cut,d_p1,d_p2,d_p1a,d_p1b,d_p2a,d_p2b,d_max,d_min,d_mean,engaged and,

@@ -143,9 +143,9 @@ const double kCapAngle = std::acos(4.7 / 5);
 const double kRimMean =
     10 * (kCapAngle / 2 - std::sin(2 * kCapAngle) / 4) / (1 - std::cos(kCapAngle));
 
-const std::vector<std::string> kHorizontal = {"--tool",   "ball:10", "--ap",   "0.3",
-                                              "--ae",     "5",       "--normal", "0,0,1",
-                                              "--feed",   "1,0,0",   "--side", "left"};
+const std::vector<std::string> kHorizontal = {"--tool", "ball:10", "--ap",     "0.3",
+                                              "--ae",   "5",       "--normal", "0,0,1",
+                                              "--feed", "1,0,0",   "--side",   "left"};
 
 std::vector<std::string> with(std::vector<std::string> base, const std::vector<std::string>& more) {
   base.insert(base.end(), more.begin(), more.end());
@@ -203,11 +203,11 @@ TEST(DeffCommand, JsonHasStableKeysAndTheClosedFormValues) {
   const auto json = nlohmann::json::parse(run.out);
   std::vector<std::string> keys;
   for (const auto& item : json.items()) keys.push_back(item.key());
-  EXPECT_THAT(keys, ::testing::UnorderedElementsAre(
-                        "tool", "diameter", "ap", "ae", "side", "normal", "tilt_deg",
-                        "azimuth_deg", "feed", "feed_angle_deg", "engaged", "d_max", "d_min",
-                        "d_mean", "r_max", "r_min", "r_mean", "cut_point", "points", "flags",
-                        "spindle", "milling", "speed"));
+  EXPECT_THAT(
+      keys, ::testing::UnorderedElementsAre(
+                "tool", "diameter", "ap", "ae", "side", "normal", "tilt_deg", "azimuth_deg", "feed",
+                "feed_angle_deg", "engaged", "d_max", "d_min", "d_mean", "r_max", "r_min", "r_mean",
+                "cut_point", "points", "flags", "spindle", "milling", "speed"));
   EXPECT_EQ(json["tool"], "ball:10");
   EXPECT_EQ(json["side"], "left");
   EXPECT_EQ(json["engaged"], true);
@@ -258,8 +258,8 @@ TEST(DeffCommand, JsonWithoutSpeedHasNullSpeedAndNullPointSpeeds) {
 TEST(DeffCommand, ZeroWidthOfCutIsValidButEngagesNothing) {
   // ae = 0: the previous pass already took this pass's stock. Not an input
   // error: empty diameters, flags, no spindle speed.
-  const Outcome run = run_deff({"--tool", "ball:10", "--ap", "0.3", "--ae", "0", "--vc", "120",
-                                "--json"});
+  const Outcome run =
+      run_deff({"--tool", "ball:10", "--ap", "0.3", "--ae", "0", "--vc", "120", "--json"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const auto json = nlohmann::json::parse(run.out);
   EXPECT_EQ(json["engaged"], false);
@@ -298,7 +298,7 @@ TEST(DeffCommand, SideAndSpindleDecideMilling) {
   // opposite side or the opposite spindle direction turns it to up milling.
   const auto milling = [](const std::string& side, const std::string& spindle) {
     const Outcome run = run_deff({"--tool", "ball:10", "--ap", "0.3", "--ae", "0.5", "--side", side,
-                              "--spindle", spindle, "--json"});
+                                  "--spindle", spindle, "--json"});
     EXPECT_EQ(run.exit_code, 0) << run.err;
     return nlohmann::json::parse(run.out)["milling"].get<std::string>();
   };
@@ -310,7 +310,7 @@ TEST(DeffCommand, SideAndSpindleDecideMilling) {
 
 TEST(DeffCommand, AnglesGiveThePapersNormalAndFeed) {
   const Outcome run = run_deff({"--tool", "ball:10", "--ap", "0.3", "--ae", "0.5", "--tilt", "25",
-                            "--azimuth", "35", "--feed-angle", "90", "--json"});
+                                "--azimuth", "35", "--feed-angle", "90", "--json"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const auto json = nlohmann::json::parse(run.out);
   // N = (sin b cos a, sin b sin a, cos b), b = A_N2 = 25 deg, a = A_N1 = 35 deg.
@@ -331,8 +331,8 @@ TEST(DeffCommand, AnglesGiveThePapersNormalAndFeed) {
   feed.precision(17);
   normal << n[0] << ',' << n[1] << ',' << n[2];
   feed << "0,1,0";
-  const Outcome vectors = run_deff({"--tool", "ball:10", "--ap", "0.3", "--ae", "0.5",
-                                "--normal", normal.str(), "--feed", feed.str(), "--json"});
+  const Outcome vectors = run_deff({"--tool", "ball:10", "--ap", "0.3", "--ae", "0.5", "--normal",
+                                    normal.str(), "--feed", feed.str(), "--json"});
   ASSERT_EQ(vectors.exit_code, 0) << vectors.err;
   const auto same = nlohmann::json::parse(vectors.out);
   EXPECT_NEAR(same["d_max"].get<double>(), json["d_max"].get<double>(), 1e-9);
@@ -345,7 +345,7 @@ TEST(DeffCommand, UphillOnTiltedSurfaceReachesThePublishedTiltedCutterDiameter) 
   // the leading half holds the cap's farthest point from the axis, 2r =
   // D sin(beta + acos((D - 2 ap)/D)) = 10 sin(45 deg + 19.95 deg) = 9.0593.
   const Outcome run = run_deff({"--tool", "ball:10", "--ap", "0.3", "--ae", "5", "--tilt", "45",
-                            "--azimuth", "0", "--feed-angle", "180", "--json"});
+                                "--azimuth", "0", "--feed-angle", "180", "--json"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const auto json = nlohmann::json::parse(run.out);
   EXPECT_NEAR(json["d_max"].get<double>(), 10 * std::sin(deg(45) + kCapAngle), 1e-6);
@@ -354,7 +354,7 @@ TEST(DeffCommand, UphillOnTiltedSurfaceReachesThePublishedTiltedCutterDiameter) 
 
 TEST(DeffCommand, TiltSweepRowsFollowTheTiltedCutterFormula) {
   const Outcome run = run_deff({"--tool", "ball:10", "--ap", "0.3", "--ae", "5", "--azimuth", "0",
-                            "--feed-angle", "180", "--sweep", "tilt=0:60:5"});
+                                "--feed-angle", "180", "--sweep", "tilt=0:60:5"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(run.err, "");
   const auto all = lines(run.out);
@@ -372,8 +372,8 @@ TEST(DeffCommand, TiltSweepRowsFollowTheTiltedCutterFormula) {
 }
 
 TEST(DeffCommand, FeedAngleSweepIncludesStopAndKeepsTheHorizontalRim) {
-  const Outcome run = run_deff({"--tool", "ball:10", "--ap", "0.3", "--ae", "5",
-                            "--sweep", "feed-angle=0:360:15"});
+  const Outcome run =
+      run_deff({"--tool", "ball:10", "--ap", "0.3", "--ae", "5", "--sweep", "feed-angle=0:360:15"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const auto rows = read_csv(run.out);
   ASSERT_EQ(rows.size(), 25u);  // 0, 15, ..., 360
@@ -388,8 +388,8 @@ TEST(DeffCommand, FeedAngleSweepIncludesStopAndKeepsTheHorizontalRim) {
 }
 
 TEST(DeffCommand, SweepStopOffTheGridIsNotIncluded) {
-  const Outcome run = run_deff({"--tool", "ball:10", "--ap", "0.3", "--ae", "5",
-                            "--sweep", "azimuth=0:10:3"});
+  const Outcome run =
+      run_deff({"--tool", "ball:10", "--ap", "0.3", "--ae", "5", "--sweep", "azimuth=0:10:3"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const auto rows = read_csv(run.out);
   ASSERT_EQ(rows.size(), 4u);  // 0, 3, 6, 9
@@ -400,7 +400,7 @@ TEST(DeffCommand, FeedAngleSweepReproducesThePapersFigure8Range) {
   // D = 10, tilt 25, azimuth 35, ap = 1: over all feed directions r at
   // points 1 and 2 spans 1.03 .. 4.41 mm (MODELS.md; paper's Fig. 8).
   const Outcome run = run_deff({"--tool", "ball:10", "--ap", "1", "--ae", "1", "--tilt", "25",
-                            "--azimuth", "35", "--radius", "--sweep", "feed-angle=0:360:0.5"});
+                                "--azimuth", "35", "--radius", "--sweep", "feed-angle=0:360:0.5"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const auto rows = read_csv(run.out);
   ASSERT_EQ(rows.size(), 721u);
@@ -433,7 +433,8 @@ TEST(DeffCommand, BatchCopiesRowsAndAppendsResultColumns) {
   ASSERT_EQ(all.size(), 3u);
   EXPECT_EQ(all[0], std::string(kBatchHeader) + "," + kResultColumns);
   EXPECT_THAT(all[1], StartsWith("\"floor, wide\",left,0.3,10,5,0,0,1,1,0,0,"));
-  const auto results = split(all[1].substr(std::string("\"floor, wide\",left,0.3,10,5,0,0,1,1,0,0,").size()));
+  const auto results =
+      split(all[1].substr(std::string("\"floor, wide\",left,0.3,10,5,0,0,1,1,0,0,").size()));
   ASSERT_EQ(results.size(), 11u);
   // d_cut .. d_p2b are rim points: 2 sqrt(0.3 * 9.7).
   for (std::size_t i = 0; i < 7; ++i) EXPECT_EQ(results[i], "3.4117") << i;
@@ -481,8 +482,8 @@ TEST(DeffCommand, BatchToolColumnsSelectBullNoseAndFlat) {
 
 TEST(DeffCommand, BatchFromStdinMatchesBatchFromFile) {
   const TempDir dir;
-  const fs::path file = dir.write("cases.csv", std::string(kBatchHeader) +
-                                                   "\nfloor,left,0.3,10,5,0,0,1,1,0,0\n");
+  const fs::path file =
+      dir.write("cases.csv", std::string(kBatchHeader) + "\nfloor,left,0.3,10,5,0,0,1,1,0,0\n");
   const Outcome from_file = run_deff({"--batch", "cases.csv", "--radius"}, dir.path());
   const Outcome from_stdin = run_deff({"--batch", "-", "--radius"}, dir.path(), file.string());
   ASSERT_EQ(from_file.exit_code, 0) << from_file.err;
@@ -512,7 +513,7 @@ TEST(DeffCommand, SampleCasesRun) {
 // starts with the argument or file:line at fault.
 struct BadInput {
   std::vector<std::string> args;
-  std::string blame;  // what the message must start with after "vcpost: error: "
+  std::string blame;      // what the message must start with after "vcpost: error: "
   std::string says = "";  // and a phrase it must hold
 };
 
@@ -614,12 +615,12 @@ INSTANTIATE_TEST_SUITE_P(
                 "bad.csv:3: column 'ap': 'x' is not a number", ""},
         BadFile{"d,ap,ae,nx,ny,nz,fx,fy,side\n" + kGoodRow, "bad.csv:1: missing column 'fz'", ""},
         BadFile{kHeader + kGoodRow + "10,0.3,0.5,0,0,1,1,0\n", "bad.csv:3:", "found 8"},
-        BadFile{kHeader + kGoodRow + "0,0.3,0.5,0,0,1,1,0,0,left\n", "bad.csv:3: column 'd':",
-                "> 0"},
-        BadFile{kHeader + kGoodRow + "-10,0.3,0.5,0,0,1,1,0,0,left\n", "bad.csv:3: column 'd':",
-                "> 0"},
-        BadFile{kHeader + kGoodRow + "10,11,0.5,0,0,1,1,0,0,left\n", "bad.csv:3: column 'ap':",
-                "exceeds"},
+        BadFile{kHeader + kGoodRow + "0,0.3,0.5,0,0,1,1,0,0,left\n",
+                "bad.csv:3: column 'd':", "> 0"},
+        BadFile{kHeader + kGoodRow + "-10,0.3,0.5,0,0,1,1,0,0,left\n",
+                "bad.csv:3: column 'd':", "> 0"},
+        BadFile{kHeader + kGoodRow + "10,11,0.5,0,0,1,1,0,0,left\n",
+                "bad.csv:3: column 'ap':", "exceeds"},
         BadFile{kHeader + kGoodRow + "10,0.3,0.5,0,0,0.5,1,0,0,left\n",
                 "bad.csv:3: columns 'nx,ny,nz':", "unit vector"},
         BadFile{kHeader + kGoodRow + "10,0.3,0.5,0,0,0,1,0,0,left\n",
@@ -628,16 +629,16 @@ INSTANTIATE_TEST_SUITE_P(
                 "bad.csv:3: columns 'nx,ny,nz':", "undercut"},
         BadFile{kHeader + kGoodRow + "10,0.3,0.5,0,0,1,0,0,1,left\n",
                 "bad.csv:3: columns 'fx,fy,fz':", "parallel"},
-        BadFile{kHeader + kGoodRow + "10,0.3,0.5,0,0,1,1,0,0,up\n", "bad.csv:3: column 'side':",
-                "left or right"},
+        BadFile{kHeader + kGoodRow + "10,0.3,0.5,0,0,1,1,0,0,up\n",
+                "bad.csv:3: column 'side':", "left or right"},
         BadFile{"d,ap,ae,nx,ny,nz,fx,fy,fz,side,tool\n10,0.3,0.5,0,0,1,1,0,0,left,ball\n"
                 "10,0.3,0.5,0,0,1,1,0,0,left,drill\n",
                 "bad.csv:3: column 'tool':", "unknown tool 'drill'"},
         BadFile{"d,ap,ae,nx,ny,nz,fx,fy,fz,side,tool,rc\n10,0.3,0.5,0,0,1,1,0,0,left,ball,\n"
                 "10,0.3,0.5,0,0,1,1,0,0,left,bull,\n",
                 "bad.csv:3: column 'rc':", "corner radius"},
-        BadFile{kHeader + kGoodRow + "\"10,0.3,0.5,0,0,1,1,0,0,left\n", "bad.csv:3:",
-                "unterminated"},
+        BadFile{kHeader + kGoodRow + "\"10,0.3,0.5,0,0,1,1,0,0,left\n",
+                "bad.csv:3:", "unterminated"},
         BadFile{"d,ap,ap,nx,ny,nz,fx,fy,fz,side\n", "bad.csv:1: column 'ap' appears twice", ""},
         BadFile{"", "bad.csv: empty input", ""}),
     [](const auto& test_case) { return "Case" + std::to_string(test_case.index); });
@@ -661,8 +662,9 @@ TEST(DeffCommand, BadRowOnStdinStopsTheStreamAfterTheRowsBeforeIt) {
   const auto out = lines(run.out);
   ASSERT_EQ(out.size(), 2u);
   EXPECT_THAT(out[1], StartsWith("10,0.3,0.5,0,0,1,1,0,0,left,"));
-  EXPECT_EQ(run.err, "vcpost: error: <stdin>:3: column 'side': 'sideways' is not a side "
-                     "(expected left or right)\n");
+  EXPECT_EQ(run.err,
+            "vcpost: error: <stdin>:3: column 'side': 'sideways' is not a side "
+            "(expected left or right)\n");
 }
 
 TEST(DeffCommand, NormalWithinToleranceOfUnitLengthIsAccepted) {

@@ -1,0 +1,134 @@
+#include "postproc/cldata/nurbs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+namespace vcpost::cldata {
+
+namespace {
+
+Eigen::Vector3d project(const Eigen::Vector4d& h) { return h.head<3>() / h[3]; }
+
+// Knot span index i with knots[i] <= u < knots[i+1] (the last non-empty span
+// for u at the end).
+std::size_t find_span(const BSpline& c, double u) {
+  const std::size_t n = c.control.size() - 1;
+  const auto p = static_cast<std::size_t>(c.degree);
+  if (u >= c.knots[n + 1]) return n;
+  const auto it = std::upper_bound(c.knots.begin() + static_cast<std::ptrdiff_t>(p),
+                                   c.knots.begin() + static_cast<std::ptrdiff_t>(n + 1), u);
+  return static_cast<std::size_t>(it - c.knots.begin()) - 1;
+}
+
+// de Boor's triangle with parameter xs[r-1] on level r: the blossom of the
+// span's polynomial at (xs[0], ..., xs[p-1]); all equal gives the point.
+Eigen::Vector4d blossom(const BSpline& c, std::size_t span, std::span<const double> xs) {
+  const auto p = static_cast<std::size_t>(c.degree);
+  std::vector<Eigen::Vector4d> d(c.control.begin() + static_cast<std::ptrdiff_t>(span - p),
+                                 c.control.begin() + static_cast<std::ptrdiff_t>(span + 1));
+  for (std::size_t r = 1; r <= p; ++r) {
+    for (std::size_t j = p; j >= r; --j) {
+      const std::size_t k = span - p + j;  // global index
+      const double denom = c.knots[k + p + 1 - r] - c.knots[k];
+      const double alpha = denom > 0 ? (xs[r - 1] - c.knots[k]) / denom : 0.0;
+      d[j] = (1 - alpha) * d[j - 1] + alpha * d[j];
+    }
+  }
+  return d[p];
+}
+
+double distance_to_segment(const Eigen::Vector3d& q, const Eigen::Vector3d& a,
+                           const Eigen::Vector3d& b) {
+  const Eigen::Vector3d ab = b - a;
+  const double len2 = ab.squaredNorm();
+  double t = len2 > 0 ? (q - a).dot(ab) / len2 : 0.0;
+  t = std::clamp(t, 0.0, 1.0);
+  return (q - (a + t * ab)).norm();
+}
+
+void flatten_bezier(std::vector<Eigen::Vector4d> b, double tolerance, int depth,
+                    std::vector<Eigen::Vector3d>& out) {
+  const Eigen::Vector3d a = project(b.front());
+  const Eigen::Vector3d e = project(b.back());
+  double worst = 0;
+  for (std::size_t i = 1; i + 1 < b.size(); ++i) {
+    worst = std::max(worst, distance_to_segment(project(b[i]), a, e));
+  }
+  if (worst <= tolerance || depth >= 40) {
+    out.push_back(e);
+    return;
+  }
+  // de Casteljau at t = 1/2.
+  const std::size_t n = b.size();
+  std::vector<Eigen::Vector4d> left(n), right(n);
+  for (std::size_t r = 0; r < n; ++r) {
+    left[r] = b[0];
+    right[n - 1 - r] = b[n - 1 - r];
+    for (std::size_t j = 0; j + 1 < n - r; ++j) b[j] = 0.5 * (b[j] + b[j + 1]);
+  }
+  flatten_bezier(std::move(left), tolerance, depth + 1, out);
+  flatten_bezier(std::move(right), tolerance, depth + 1, out);
+}
+
+}  // namespace
+
+std::optional<BSpline> nx_nurbs(const Eigen::Vector3d& start, std::span<const double> span_ends,
+                                std::span<const Eigen::Vector4d> cntrl, std::string& error) {
+  const auto spans = static_cast<long>(span_ends.size());
+  const long count = 1 + static_cast<long>(cntrl.size());
+  const long degree = count - spans;
+  if (spans < 1 || degree < 1 || degree > 9) {
+    error = std::to_string(span_ends.size()) + " KNOT values and " +
+            std::to_string(cntrl.size()) + " CNTRL points do not make a B-spline of degree 1 to 9";
+    return std::nullopt;
+  }
+  double previous = 0;
+  for (const double k : span_ends) {
+    if (!(k > previous)) {
+      error = "KNOT values must increase from 0";
+      return std::nullopt;
+    }
+    previous = k;
+  }
+  BSpline c;
+  c.degree = static_cast<int>(degree);
+  c.control.reserve(static_cast<std::size_t>(count));
+  c.control.push_back(Eigen::Vector4d(start.x(), start.y(), start.z(), 1.0));
+  for (const Eigen::Vector4d& h : cntrl) {
+    if (!(h[3] > 0)) {
+      error = "CNTRL weight must be positive";
+      return std::nullopt;
+    }
+    c.control.push_back(h);
+  }
+  c.knots.assign(static_cast<std::size_t>(degree + 1), 0.0);
+  c.knots.insert(c.knots.end(), span_ends.begin(), span_ends.end() - 1);
+  c.knots.insert(c.knots.end(), static_cast<std::size_t>(degree + 1), span_ends.back());
+  return c;
+}
+
+Eigen::Vector3d evaluate(const BSpline& curve, double u) {
+  const std::size_t span = find_span(curve, u);
+  std::vector<double> xs(static_cast<std::size_t>(curve.degree), u);
+  return project(blossom(curve, span, xs));
+}
+
+void flatten(const BSpline& curve, double tolerance, std::vector<Eigen::Vector3d>& out) {
+  const auto p = static_cast<std::size_t>(curve.degree);
+  const std::size_t n = curve.control.size() - 1;
+  for (std::size_t span = p; span <= n; ++span) {
+    const double a = curve.knots[span];
+    const double b = curve.knots[span + 1];
+    if (!(b > a)) continue;
+    std::vector<Eigen::Vector4d> bezier(p + 1);
+    std::vector<double> xs(p);
+    for (std::size_t k = 0; k <= p; ++k) {
+      for (std::size_t r = 0; r < p; ++r) xs[r] = r < p - k ? a : b;
+      bezier[k] = blossom(curve, span, xs);
+    }
+    flatten_bezier(std::move(bezier), tolerance, 0, out);
+  }
+}
+
+}  // namespace vcpost::cldata

@@ -1,0 +1,313 @@
+#include "postproc/output/mazak_writer.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <type_traits>
+
+namespace vcpost::output {
+
+namespace {
+
+using namespace vcpost::program;
+
+// Comments may not nest or hold control bytes; Mazak EIA takes printable
+// ASCII in ( ).
+std::string clean_comment(std::string_view text) {
+  std::string s;
+  s.reserve(text.size());
+  for (const char c : text) {
+    if (c == '(') {
+      s += '[';
+    } else if (c == ')') {
+      s += ']';
+    } else if (static_cast<unsigned char>(c) >= 0x20 && static_cast<unsigned char>(c) < 0x7F) {
+      s += c;
+    }
+  }
+  return s;
+}
+
+// letter + value, built by appending (GCC 12 warns falsely on "X" + string&&).
+std::string word(char letter, std::string_view value) {
+  std::string s;
+  s.reserve(value.size() + 1);
+  s += letter;
+  s += value;
+  return s;
+}
+
+}  // namespace
+
+OutputError::OutputError(std::string_view code, const std::string& message,
+                         program::SourceRef source)
+    : std::runtime_error(std::to_string(source.line) + ":" + std::to_string(source.column) +
+                         ": error[" + std::string(code) + "]: " + message),
+      code_(code),
+      source_(source) {}
+
+MazakWriter::MazakWriter(std::ostream& out, MazakFormat format)
+    : out_(out), format_(std::move(format)), next_n_(format_.line_number_start) {}
+
+// Fixed-point with `decimals` digits, trailing zeros dropped, the point
+// kept ("10.", "-0.5", "0."): the Fanuc/Mazak way of marking mm.
+std::string MazakWriter::number(double value, int decimals, const SourceRef& source) const {
+  if (!std::isfinite(value) || std::abs(value) >= 1e9) {
+    throw OutputError("E3203", "value cannot be written: " + std::to_string(value), source);
+  }
+  char buffer[64];
+  const auto r = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed,
+                               decimals);
+  std::string s(buffer, r.ptr);
+  if (s.find('.') == std::string::npos) s += '.';
+  while (s.back() == '0') s.pop_back();
+  if (s == "-0.") s = "0.";
+  return s;
+}
+
+void MazakWriter::block(std::string_view words) {
+  if (format_.line_numbers) {
+    out_ << 'N' << next_n_ << ' ';
+    next_n_ += format_.line_number_step;
+    // N has five digits on Mazak and Fanuc controls (and in rs274): wrap.
+    if (next_n_ > 99999) next_n_ = format_.line_number_start;
+  }
+  out_ << words << format_.end_of_line;
+  ++blocks_;
+}
+
+void MazakWriter::comment(std::string_view text) {
+  if (!format_.comments) return;
+  std::string words = take_pending();
+  if (!words.empty()) words += ' ';
+  words += '(';
+  words += clean_comment(text);
+  words += ')';
+  block(words);
+}
+
+std::string MazakWriter::take_pending() {
+  std::string words = std::move(pending_);
+  pending_.clear();
+  return words;
+}
+
+void MazakWriter::header() {
+  started_ = true;
+  if (format_.percent_lines) out_ << '%' << format_.end_of_line;
+  std::string o = word('O', std::to_string(format_.program_number));
+  if (!format_.title.empty() && format_.comments) {
+    o += '(';
+    o += clean_comment(format_.title);
+    o += ')';
+  }
+  out_ << o << format_.end_of_line;
+  block("G21 G17 G40 G49 G80 G90 G94");
+  block(word('G', std::to_string(format_.work_offset)));
+  if (format_.geometry_compensation) block("G61.1");
+}
+
+void MazakWriter::end_program() {
+  std::string words = take_pending();
+  if (high_speed_on_) {
+    block("G05 P0");
+    high_speed_on_ = false;
+  }
+  if (format_.geometry_compensation) block("G64");
+  if (!words.empty()) block(words);
+  block("M30");
+  if (format_.percent_lines) out_ << '%' << format_.end_of_line;
+  ended_ = true;
+}
+
+void MazakWriter::append_axis(std::string& words, char axis, double value, std::string& last,
+                              bool force, const SourceRef& source) {
+  std::string text = number(value, format_.decimals, source);
+  if (!force && text == last) return;
+  words += ' ';
+  words += axis;
+  words += text;
+  last = std::move(text);
+}
+
+void MazakWriter::motion(const Event& event) {
+  std::string words;
+  const SourceRef source = source_of(event);
+  if (pending_g43_) {
+    if (!std::holds_alternative<StraightTraverse>(event)) {
+      block("G43 H" + std::to_string(*pending_g43_));
+    } else {
+      words = "G43 H" + std::to_string(*pending_g43_);
+    }
+    pending_g43_.reset();
+  }
+  const auto motion_word = [&](int mode) {
+    if (mode != motion_mode_) {
+      if (!words.empty()) words += ' ';
+      words += mode == 0 ? "G0" : mode == 1 ? "G1" : mode == 2 ? "G2" : "G3";
+      motion_mode_ = mode;
+    }
+  };
+  if (const auto* t = std::get_if<StraightTraverse>(&event)) {
+    motion_word(0);
+    const std::size_t before = words.size();
+    append_axis(words, 'X', t->end.x(), last_x_, false, source);
+    append_axis(words, 'Y', t->end.y(), last_y_, false, source);
+    append_axis(words, 'Z', t->end.z(), last_z_, false, source);
+    if (words.size() == before) {  // no change: keep one block per move
+      append_axis(words, 'X', t->end.x(), last_x_, true, source);
+      append_axis(words, 'Y', t->end.y(), last_y_, true, source);
+      append_axis(words, 'Z', t->end.z(), last_z_, true, source);
+    }
+  } else if (const auto* f = std::get_if<StraightFeed>(&event)) {
+    motion_word(1);
+    const std::size_t before = words.size();
+    append_axis(words, 'X', f->end.x(), last_x_, false, source);
+    append_axis(words, 'Y', f->end.y(), last_y_, false, source);
+    append_axis(words, 'Z', f->end.z(), last_z_, false, source);
+    if (words.size() == before) {
+      append_axis(words, 'X', f->end.x(), last_x_, true, source);
+      append_axis(words, 'Y', f->end.y(), last_y_, true, source);
+      append_axis(words, 'Z', f->end.z(), last_z_, true, source);
+    }
+  } else if (const auto* a = std::get_if<ArcFeed>(&event)) {
+    if (std::abs(a->rotation) != 1) {
+      throw OutputError("E3201", "arc of more than one turn (P word) is not written", source);
+    }
+    const int plane = a->plane == Plane::xy ? 17 : a->plane == Plane::xz ? 18 : 19;
+    if (plane != plane_) {
+      if (!words.empty()) words += ' ';
+      words += word('G', std::to_string(plane));
+      plane_ = plane;
+    }
+    // rotation > 0 is counterclockwise seen from the plane normal's + side:
+    // G3 (rs274 and Fanuc agree, also in G18 with its Z-X orientation).
+    motion_mode_ = -1;  // always write G2/G3 with an arc
+    motion_word(a->rotation > 0 ? 3 : 2);
+    const Eigen::Vector3d offset = a->centre - a->start;
+    const bool xy = plane == 17, xz = plane == 18, yz = plane == 19;
+    append_axis(words, 'X', a->end.x(), last_x_, xy || xz, source);
+    append_axis(words, 'Y', a->end.y(), last_y_, xy || yz, source);
+    append_axis(words, 'Z', a->end.z(), last_z_, xz || yz, source);
+    std::string ignored;
+    if (!yz) append_axis(words, 'I', offset.x(), ignored, true, source);
+    if (!xz) append_axis(words, 'J', offset.y(), ignored, true, source);
+    if (!xy) append_axis(words, 'K', offset.z(), ignored, true, source);
+  }
+  std::string pending = take_pending();
+  if (!pending.empty()) words += ' ' + pending;
+  if (!words.empty() && words.front() == ' ') words.erase(0, 1);
+  block(words);
+}
+
+void MazakWriter::write(const Event& event) {
+  if (ended_) return;  // nothing follows M30
+  if (!started_) header();
+  std::visit(
+      [&](const auto& e) {
+        using T = std::decay_t<decltype(e)>;
+        if constexpr (std::is_same_v<T, StraightTraverse> || std::is_same_v<T, StraightFeed> ||
+                      std::is_same_v<T, ArcFeed>) {
+          motion(event);
+        } else if constexpr (std::is_same_v<T, SetFeedRate>) {
+          if (e.mode == FeedMode::inverse_time) {
+            throw OutputError("E3202", "inverse-time feed (G93) is not written", e.source);
+          }
+          const bool per_rev = e.mode == FeedMode::per_revolution;
+          std::string words;
+          if (per_rev != per_revolution_) {
+            words = per_rev ? "G95 " : "G94 ";
+            per_revolution_ = per_rev;
+          }
+          words += word('F', number(e.rate, per_rev ? 4 : format_.feed_decimals, e.source));
+          // A later F replaces an unwritten one.
+          if (const auto at = pending_.find('F'); at != std::string::npos) {
+            const auto stop = pending_.find(' ', at);
+            pending_.erase(at, stop == std::string::npos ? std::string::npos : stop - at + 1);
+          }
+          pending_ = pending_.empty() ? words : words + " " + pending_;
+        } else if constexpr (std::is_same_v<T, SetSpindleSpeed>) {
+          const long s = std::lround(e.rpm);
+          pending_ += (pending_.empty() ? "S" : " S") + std::to_string(s);
+        } else if constexpr (std::is_same_v<T, SpindleOn>) {
+          std::string words = take_pending();
+          words += words.empty() ? "" : " ";
+          words += e.direction == SpindleDirection::clockwise ? "M3" : "M4";
+          block(words);
+        } else if constexpr (std::is_same_v<T, SpindleOff>) {
+          std::string words = take_pending();
+          block(words.empty() ? "M5" : words + " M5");
+        } else if constexpr (std::is_same_v<T, SelectTool>) {
+          std::string words = take_pending();
+          block((words.empty() ? "" : words + " ") + "T" + std::to_string(e.number));
+        } else if constexpr (std::is_same_v<T, ChangeTool>) {
+          if (high_speed_on_) {
+            block("G05 P0");
+            high_speed_on_ = false;
+          }
+          std::string words = take_pending();
+          block((words.empty() ? "" : words + " ") + "T" + std::to_string(e.number) + " M6");
+          if (format_.tool_length_offset) pending_g43_ = e.number;
+          if (format_.high_speed_mode) {
+            block("G05 P2");
+            high_speed_on_ = true;
+          }
+          motion_mode_ = -1;
+        } else if constexpr (std::is_same_v<T, ToolLengthOffset>) {
+          if (e.enabled) {
+            block("G43 H" + std::to_string(e.register_number.value_or(0)));
+          } else {
+            block("G49");
+          }
+          pending_g43_.reset();
+        } else if constexpr (std::is_same_v<T, CutterCompensation>) {
+          comment(e.side == CompensationSide::off    ? "CUTCOM OFF"
+                  : e.side == CompensationSide::left ? "CUTCOM LEFT - CL PATH IS THE TOOL CENTRE"
+                                                     : "CUTCOM RIGHT - CL PATH IS THE TOOL CENTRE");
+        } else if constexpr (std::is_same_v<T, SelectPlane>) {
+          const int plane = e.plane == Plane::xy ? 17 : e.plane == Plane::xz ? 18 : 19;
+          if (plane != plane_) {
+            block(word('G', std::to_string(plane)));
+            plane_ = plane;
+          }
+        } else if constexpr (std::is_same_v<T, Coolant>) {
+          std::string words = take_pending();
+          words += words.empty() ? "" : " ";
+          words += e.change == CoolantChange::flood_on  ? "M8"
+                   : e.change == CoolantChange::mist_on ? "M7"
+                                                        : "M9";
+          block(words);
+        } else if constexpr (std::is_same_v<T, Dwell>) {
+          std::string words = take_pending();
+          words += words.empty() ? "G4 " : " G4 ";
+          switch (format_.dwell) {
+            case DwellWord::x_seconds:
+              words += word('X', number(e.seconds, 3, e.source));
+              break;
+            case DwellWord::p_seconds:
+              words += word('P', number(e.seconds, 3, e.source));
+              break;
+            case DwellWord::p_milliseconds:
+              words += word('P', std::to_string(std::lround(e.seconds * 1000)));
+              break;
+          }
+          block(words);
+        } else if constexpr (std::is_same_v<T, ProgramStop>) {
+          std::string words = take_pending();
+          block((words.empty() ? "" : words + " ") + (e.optional ? "M1" : "M0"));
+        } else if constexpr (std::is_same_v<T, ProgramEnd>) {
+          end_program();
+        } else if constexpr (std::is_same_v<T, Message>) {
+          comment(e.text);
+        }
+      },
+      event);
+}
+
+void MazakWriter::finish() {
+  if (!started_) header();
+  if (!ended_) end_program();
+  out_.flush();
+}
+
+}  // namespace vcpost::output

@@ -1,0 +1,307 @@
+// CL records -> motion events: the semantics of each word, checked by hand.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "postproc/cldata/cl_reader.h"
+#include "postproc/cldata/nurbs.h"
+#include "postproc/program/arc.h"
+#include "tests/postproc/cldata/cl_support.h"
+
+namespace vcpost::cldata {
+namespace {
+
+using namespace vcpost::program;
+using testing::read_events;
+
+template <class T>
+std::vector<T> only(const std::vector<Event>& events) {
+  std::vector<T> out;
+  for (const auto& e : events) {
+    if (const auto* t = std::get_if<T>(&e)) out.push_back(*t);
+  }
+  return out;
+}
+
+ClCode code_of(const std::string& text) {
+  try {
+    read_events(text);
+  } catch (const ClError& e) {
+    return e.code();
+  }
+  ADD_FAILURE() << "no error for: " << text;
+  return ClCode::unknown_record;
+}
+
+TEST(ClReader, FedratBothWordOrdersAndUnits) {
+  const auto feeds = only<SetFeedRate>(read_events(
+      "FEDRAT/MMPM,250\nFEDRAT/300,MMPM\nFEDRAT/10,IPM\nFEDRAT/0.1,MMPR\nUNITS/INCHES\n"
+      "FEDRAT/20\nFINI\n"));
+  ASSERT_EQ(feeds.size(), 5u);
+  EXPECT_DOUBLE_EQ(feeds[0].rate, 250.0);
+  EXPECT_DOUBLE_EQ(feeds[1].rate, 300.0);
+  EXPECT_DOUBLE_EQ(feeds[2].rate, 254.0);  // 10 in/min
+  EXPECT_EQ(feeds[3].mode, FeedMode::per_revolution);
+  EXPECT_DOUBLE_EQ(feeds[3].rate, 0.1);
+  EXPECT_DOUBLE_EQ(feeds[4].rate, 508.0);  // 20 per minute in inches
+}
+
+TEST(ClReader, RepeatedFedratOfTheSameValueIsOneEvent) {
+  EXPECT_EQ(only<SetFeedRate>(read_events("FEDRAT/250,MMPM\nFEDRAT/MMPM,250\nFINI\n")).size(), 1u);
+}
+
+TEST(ClReader, SpindlInAnyOrder) {
+  const auto events = read_events(
+      "SPINDL/3500,RPM,CLW\nSPINDL / RPM, 2000.0,  CCLW\nSPINDL/OFF\nFINI\n");
+  const auto speeds = only<SetSpindleSpeed>(events);
+  const auto on = only<SpindleOn>(events);
+  ASSERT_EQ(speeds.size(), 2u);
+  EXPECT_DOUBLE_EQ(speeds[0].rpm, 3500);
+  EXPECT_DOUBLE_EQ(speeds[1].rpm, 2000);
+  ASSERT_EQ(on.size(), 2u);
+  EXPECT_EQ(on[0].direction, SpindleDirection::clockwise);
+  EXPECT_EQ(on[1].direction, SpindleDirection::counterclockwise);
+  EXPECT_EQ(only<SpindleOff>(events).size(), 1u);
+}
+
+TEST(ClReader, SurfaceSpeedUsesTheCutterDiameter) {
+  // 120 m/min on D = 10 mm: n = 120000 / (pi * 10) = 3819.72 rpm.
+  const auto speeds = only<SetSpindleSpeed>(read_events("CUTTER/10,5\nSPINDL/SMM,120,CLW\nFINI\n"));
+  ASSERT_EQ(speeds.size(), 1u);
+  EXPECT_NEAR(speeds[0].rpm, 3819.7186, 1e-4);
+  EXPECT_EQ(code_of("SPINDL/SMM,120\nFINI\n"), ClCode::surface_speed_no_tool);
+}
+
+TEST(ClReader, CutterParametersBecomeTools) {
+  std::istringstream in(
+      "CUTTER/10\nCUTTER/10,5\nCUTTER/12,2\nCUTTER/6.,0,3.,0,0,0,51.\n"
+      "CUTTER/4.,0,2.,1.201721,31.,0,83.\nTLDATA/MILL,30.0000,15.0000,75.0000,0.0000,0.0000\n"
+      "UNITS/INCHES\nCUTTER/0.5,0.25\nFINI\n");
+  ClReader reader(in, "t.cl");
+  while (reader.next()) {
+  }
+  const auto& c = reader.cutters();
+  ASSERT_EQ(c.size(), 7u);
+  EXPECT_EQ(geometry::to_string(*c[0].tool), "flat:10");
+  EXPECT_EQ(geometry::to_string(*c[1].tool), "ball:10");
+  EXPECT_EQ(geometry::to_string(*c[2].tool), "bull:12:2");
+  EXPECT_EQ(geometry::to_string(*c[3].tool), "flat:6");
+  EXPECT_FALSE(c[4].tool.has_value());  // 118 deg drill point
+  EXPECT_NE(c[4].why_not.find("31 deg"), std::string::npos);
+  EXPECT_EQ(geometry::to_string(*c[5].tool), "ball:30");
+  ASSERT_TRUE(c[6].tool.has_value());
+  EXPECT_DOUBLE_EQ(c[6].tool->diameter, 12.7);
+  EXPECT_EQ(c[6].tool->kind, geometry::ToolKind::ball);
+  ASSERT_EQ(reader.warnings().size(), 1u);
+  EXPECT_EQ(reader.warnings()[0].code, ClCode::tool_not_modelled);
+  EXPECT_EQ(reader.warnings()[0].line, 5u);
+}
+
+TEST(ClReader, GotoRapidFromAndMultiplePoints) {
+  const auto events = read_events(
+      "FROM/0,0,100\nRAPID\nGOTO/10,20,30\nGOTO/10,20,5,0,0,1\nGOTO/1,1,1,2,2,2,3,3,3\n"
+      "GOTO / 4,4,4\n  5,5,5\nFINI\n");
+  const auto traverses = only<StraightTraverse>(events);
+  const auto feeds = only<StraightFeed>(events);
+  ASSERT_EQ(traverses.size(), 1u);
+  EXPECT_EQ(traverses[0].start, Eigen::Vector3d(0, 0, 100));
+  EXPECT_EQ(traverses[0].end, Eigen::Vector3d(10, 20, 30));
+  ASSERT_EQ(feeds.size(), 6u);  // RAPID applies to one record only
+  EXPECT_EQ(feeds[0].end, Eigen::Vector3d(10, 20, 5));
+  EXPECT_EQ(feeds[1].end, Eigen::Vector3d(1, 1, 1));
+  EXPECT_EQ(feeds[3].start, Eigen::Vector3d(2, 2, 2));
+  EXPECT_EQ(feeds[3].end, Eigen::Vector3d(3, 3, 3));
+  EXPECT_EQ(feeds[5].end, Eigen::Vector3d(5, 5, 5));
+  EXPECT_EQ(feeds[5].source.line, 7u);
+}
+
+TEST(ClReader, GodltaAndInchUnits) {
+  const auto feeds = only<StraightFeed>(
+      read_events("UNITS/INCHES\nGOTO/1,2,3\nGODLTA/0.5,0,0\nGODLTA/-1\nFINI\n"));
+  ASSERT_EQ(feeds.size(), 3u);
+  EXPECT_TRUE(feeds[0].end.isApprox(Eigen::Vector3d(25.4, 50.8, 76.2)));
+  EXPECT_TRUE(feeds[1].end.isApprox(Eigen::Vector3d(38.1, 50.8, 76.2)));
+  EXPECT_TRUE(feeds[2].end.isApprox(Eigen::Vector3d(38.1, 50.8, 50.8)));
+  EXPECT_EQ(code_of("GODLTA/1,0,0\nFINI\n"), ClCode::no_start_position);
+}
+
+TEST(ClReader, AptCircleTurnsCounterclockwiseAboutItsAxis) {
+  // Quarter circle r = 5 about (0,0): (5,0) -> (0,5) CCW about +Z = G3.
+  const auto arcs = only<ArcFeed>(read_events(
+      "GOTO/5,0,0\nCIRCLE/0,0,0,0,0,1,5\nGOTO/0,5,0\nCIRCLE/0,0,0,0,0,-1.,5\nGOTO/5,0,-1\nFINI\n"));
+  ASSERT_EQ(arcs.size(), 2u);
+  EXPECT_EQ(arcs[0].plane, Plane::xy);
+  EXPECT_EQ(arcs[0].rotation, 1);
+  EXPECT_NEAR(arc_sweep(arcs[0]), std::numbers::pi / 2, 1e-12);
+  EXPECT_EQ(arcs[1].rotation, -1);  // back CW, helical down by 1
+  EXPECT_NEAR(arc_sweep(arcs[1]), -std::numbers::pi / 2, 1e-12);
+  EXPECT_DOUBLE_EQ(arcs[1].end.z(), -1.0);
+  EXPECT_DOUBLE_EQ(arcs[1].centre.z(), 0.0);  // = start's axis coordinate
+}
+
+TEST(ClReader, NxCircleFormTurnsClockwiseAboutItsAxis) {
+  // The first arc of _1_KONTUR_NAR_40_N2.cls: 45.1 deg clockwise.
+  const auto arcs = only<ArcFeed>(read_events(
+      "GOTO/1221.5423,14.3929,466.0000\n"
+      "CIRCLE/1245.5000,-458.0000,466.0000,0.0000000,0.0000000,1.0000000,473.0000,0.0600,0.5000,"
+      "40.0000,1.0000\nGOTO/1563.1794,-107.5591,466.0000\nFINI\n"));
+  ASSERT_EQ(arcs.size(), 1u);
+  EXPECT_EQ(arcs[0].rotation, -1);
+  const double a0 = std::atan2(14.3929 + 458.0, 1221.5423 - 1245.5);
+  const double a1 = std::atan2(-107.5591 + 458.0, 1563.1794 - 1245.5);
+  EXPECT_NEAR(arc_sweep(arcs[0]), a1 - a0, 1e-9);
+  EXPECT_NEAR((a0 - a1) * 180 / std::numbers::pi, 45.1, 0.05);
+}
+
+TEST(ClReader, SideAxisCircleIsAnArcInItsPlaneAndTiltedOneBecomesLines) {
+  const auto yz = only<ArcFeed>(read_events("GOTO/0,5,0\nCIRCLE/0,0,0,1,0,0,5\nGOTO/0,0,5\nFINI\n"));
+  ASSERT_EQ(yz.size(), 1u);
+  EXPECT_EQ(yz[0].plane, Plane::yz);
+  EXPECT_EQ(yz[0].rotation, 1);  // Y towards Z about +X
+  ClReadOptions options;
+  options.chord_tolerance = 0.01;
+  const double s = std::sqrt(0.5);
+  const auto lines = only<StraightFeed>(read_events(
+      "GOTO/5,0,0\nCIRCLE/0,0,0,0," + std::to_string(-s) + "," + std::to_string(s) +
+          ",5\nGOTO/0,3.5355339,3.5355339\nFINI\n",
+      options));
+  // 90 deg at r = 5 within 0.01: step 2*acos(1 - 0.01/5) = 0.12650 rad -> 13 lines,
+  // after the first GOTO (a move from the unknown start, i.e. of length 0).
+  ASSERT_EQ(lines.size(), 14u);
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    const auto& l = lines[i];
+    const Eigen::Vector3d mid = 0.5 * (l.start + l.end);
+    EXPECT_LE(5.0 - mid.norm(), 0.01 + 1e-9);
+    EXPECT_NEAR(l.end.norm(), 5.0, 1e-6);
+  }
+}
+
+TEST(ClReader, InconsistentArcIsRefused) {
+  EXPECT_EQ(code_of("GOTO/5,0,0\nCIRCLE/0,0,0,0,0,1,5\nGOTO/0,5.1,0\nFINI\n"),
+            ClCode::arc_inconsistent);
+  EXPECT_EQ(code_of("GOTO/5,0,0\nCIRCLE/0,0,0,0,0,1,6\nGOTO/0,5,0\nFINI\n"),
+            ClCode::arc_inconsistent);
+  EXPECT_EQ(code_of("GOTO/5,0,0\nCIRCLE/0,0,0,0,0,1,5\nFINI\n"), ClCode::arc_without_goto);
+}
+
+TEST(ClReader, FiveAxisPointIsRefusedAtTheAxisValue) {
+  try {
+    read_events("GOTO/1,2,3\nGOTO/1,2,3,0,0.6,0.8\nFINI\n");
+    FAIL();
+  } catch (const ClError& e) {
+    EXPECT_EQ(e.code(), ClCode::tool_axis_not_z);
+    EXPECT_EQ(e.diagnostic().line, 2u);
+    EXPECT_EQ(e.diagnostic().column, 12u);
+  }
+}
+
+TEST(ClReader, DrillCycleIsExpandedLikeG81WithRetract) {
+  const auto events = read_events(
+      "FEDRAT/500,MMPM\nRAPID\nGOTO/29.06066,116.93934,25.\nCYCLE/INIT\n"
+      "CYCLE/DRILL,FEDTO,10.,MMPM,275.59,RAPTO,3.,RTRCTO,25.,DWELL,0\n"
+      "GOTO/29.06066,116.93934,0\nGOTO/76.93934,116.93934,0\nCYCLE/OFF\nGOTO/0,0,25\nFINI\n");
+  const auto feeds = only<StraightFeed>(events);
+  const auto traverses = only<StraightTraverse>(events);
+  const auto rates = only<SetFeedRate>(events);
+  ASSERT_EQ(feeds.size(), 3u);
+  EXPECT_TRUE(feeds[0].start.isApprox(Eigen::Vector3d(29.06066, 116.93934, 3)));
+  EXPECT_TRUE(feeds[0].end.isApprox(Eigen::Vector3d(29.06066, 116.93934, -10)));
+  EXPECT_TRUE(feeds[1].end.isApprox(Eigen::Vector3d(76.93934, 116.93934, -10)));
+  // rapid in, top -> clearance, back out per hole, plus the first RAPID.
+  ASSERT_EQ(traverses.size(), 7u);
+  EXPECT_TRUE(traverses[6].end.isApprox(Eigen::Vector3d(76.93934, 116.93934, 25)));
+  ASSERT_EQ(rates.size(), 3u);  // 500, the cycle's 275.59, 500 again after CYCLE/OFF
+  EXPECT_DOUBLE_EQ(rates[1].rate, 275.59);
+  EXPECT_DOUBLE_EQ(rates[2].rate, 500);
+  EXPECT_EQ(code_of("CYCLE/DRILL,DEEP,RAPTO,3,FEDTO,0,MMPM,250\nFINI\n"),
+            ClCode::unsupported_cycle);
+  EXPECT_EQ(code_of("CYCLE/TAP,FEDTO,10,MMPM,100,RAPTO,3\nFINI\n"), ClCode::unsupported_cycle);
+}
+
+TEST(ClReader, NurbsBecomesLinesWithinTheTolerance) {
+  const std::string text =
+      "GOTO/-254.9774,466.5681,206.8891\nNURBS/\n"
+      "KNOT/0.0416667,0.3750000,0.6250000,0.9583333,1.0000000\n"
+      "CNTRL/-254.9774,466.2698,206.9401\nCNTRL/-254.9775,463.5692,207.2380\n"
+      "CNTRL/-254.9776,459.2589,209.0136\nCNTRL/-254.9778,454.6135,213.9021\n"
+      "CNTRL/-254.9779,453.0599,218.2973\nCNTRL/-254.9779,452.9000,221.0096\n"
+      "CNTRL/-254.9779,452.8642,221.3100\nPAINT/COLOR,31\nGOTO/-254.9779,452.7940,223.3200\n"
+      "FINI\n";
+  ClReadOptions options;
+  options.chord_tolerance = 0.001;
+  const auto lines = only<StraightFeed>(read_events(text, options));
+  ASSERT_GE(lines.size(), 3u);
+  // The curve is clamped: it ends on the last CNTRL point, then the GOTO.
+  EXPECT_TRUE(lines[lines.size() - 2].end.isApprox(Eigen::Vector3d(-254.9779, 452.8642, 221.31)));
+  // Independent check: sample the cubic B-spline densely and measure the
+  // distance to the polyline.
+  std::string error;
+  std::vector<Eigen::Vector4d> cntrl = {
+      {-254.9774, 466.2698, 206.9401, 1}, {-254.9775, 463.5692, 207.2380, 1},
+      {-254.9776, 459.2589, 209.0136, 1}, {-254.9778, 454.6135, 213.9021, 1},
+      {-254.9779, 453.0599, 218.2973, 1}, {-254.9779, 452.9000, 221.0096, 1},
+      {-254.9779, 452.8642, 221.3100, 1}};
+  std::vector<double> knots = {0.0416667, 0.375, 0.625, 0.9583333, 1.0};
+  const auto curve = nx_nurbs({-254.9774, 466.5681, 206.8891}, knots, cntrl, error);
+  ASSERT_TRUE(curve) << error;
+  EXPECT_EQ(curve->degree, 3);
+  double worst = 0;
+  for (int i = 0; i <= 20000; ++i) {
+    const Eigen::Vector3d p = evaluate(*curve, i / 20000.0);
+    double best = 1e9;
+    for (std::size_t k = 0; k + 1 < lines.size(); ++k) {
+      const Eigen::Vector3d a = lines[k].start, b = lines[k].end;
+      const double t = std::clamp((p - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+      best = std::min(best, (p - (a + t * (b - a))).norm());
+    }
+    worst = std::max(worst, best);
+  }
+  EXPECT_LE(worst, 0.001);
+  EXPECT_GT(worst, 0.0001);  // not wastefully fine
+}
+
+TEST(ClReader, MessagesToolsCoolantCompensationDelay) {
+  const auto events = read_events(
+      "PARTNO/1\nPPRINT hello\nLOADTL/8\nLOAD/TOOL,14\nSELECT/TOOL,13\nCOOLNT/FLOOD\n"
+      "COOLNT/OFF\nCUTCOM/LEFT\nCUTCOM/OFF\nSPINDL/1000\nDELAY/1.5\nDELAY/REV,10\nFINI\n");
+  const auto messages = only<Message>(events);
+  ASSERT_EQ(messages.size(), 2u);
+  EXPECT_EQ(messages[0].text, "PARTNO 1");
+  EXPECT_EQ(messages[1].text, "hello");
+  const auto changes = only<ChangeTool>(events);
+  ASSERT_EQ(changes.size(), 2u);
+  EXPECT_EQ(changes[0].number, 8);
+  EXPECT_EQ(changes[1].number, 14);
+  EXPECT_EQ(only<SelectTool>(events).at(0).number, 13);
+  EXPECT_EQ(only<Coolant>(events).at(1).change, CoolantChange::off);
+  EXPECT_EQ(only<CutterCompensation>(events).at(0).side, CompensationSide::left);
+  const auto dwells = only<Dwell>(events);
+  ASSERT_EQ(dwells.size(), 2u);
+  EXPECT_DOUBLE_EQ(dwells[0].seconds, 1.5);
+  EXPECT_DOUBLE_EQ(dwells[1].seconds, 0.6);  // 10 rev at 1000 rpm
+  EXPECT_EQ(only<ProgramEnd>(events).size(), 1u);
+}
+
+TEST(ClReader, UnknownRecordsWarnOnceAndMissingFiniIsReported) {
+  std::istringstream in("CSI_SET_FLUTE_LENGTH/54.\nCSI_SET_FLUTE_LENGTH/16.\nGOTO/1,2,3\n");
+  ClReader reader(in, "t.cl");
+  std::size_t ends = 0;
+  while (auto e = reader.next()) ends += std::holds_alternative<ProgramEnd>(*e) ? 1 : 0;
+  EXPECT_EQ(ends, 1u);
+  ASSERT_EQ(reader.warnings().size(), 2u);
+  EXPECT_EQ(reader.warnings()[0].code, ClCode::unknown_record);
+  EXPECT_EQ(reader.warnings()[1].code, ClCode::missing_fini);
+}
+
+TEST(ClReader, CodeTableIsInOrderAndUnique) {
+  const auto table = cl_code_table();
+  for (std::size_t i = 0; i < table.size(); ++i) {
+    EXPECT_EQ(static_cast<std::size_t>(table[i].code), i);
+    for (std::size_t j = 0; j < i; ++j) EXPECT_NE(table[i].id, table[j].id);
+  }
+}
+
+}  // namespace
+}  // namespace vcpost::cldata

@@ -1,0 +1,33 @@
+// Helpers for the CL data tests: read a CL text into events, and the
+// canonical-transcript calls that rs274 and vcpost are compared on.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "postproc/cldata/cl_reader.h"
+#include "postproc/program/events.h"
+
+namespace vcpost::cldata::testing {
+
+// All events of `text` (throws ClError like the reader).
+std::vector<program::Event> read_events(const std::string& text, ClReadOptions options = {});
+
+// One canonical call: its name and numeric arguments.
+struct Call {
+  std::string name;
+  std::vector<double> args;
+};
+
+// Parses the calls named STRAIGHT_TRAVERSE, STRAIGHT_FEED, ARC_FEED,
+// SET_SPINDLE_SPEED, SET_FEED_RATE out of transcript lines (rs274's
+// "   12 N..... NAME(args)" or vcpost's "NAME(args)").
+std::vector<Call> motion_calls(const std::string& transcript);
+
+// stdout of `rs274 -g file`, or nullopt when rs274 cannot be run.
+std::optional<std::string> run_rs274(const std::string& path);
+
+bool have_rs274();
+
+}  // namespace vcpost::cldata::testing

@@ -1,0 +1,67 @@
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+#include "tests/postproc/cldata/cl_support.h"
+
+namespace vcpost::cldata::testing {
+
+std::vector<program::Event> read_events(const std::string& text, ClReadOptions options) {
+  std::istringstream in(text);
+  ClReader reader(in, "test.cl", options);
+  std::vector<program::Event> events;
+  while (auto e = reader.next()) events.push_back(std::move(*e));
+  return events;
+}
+
+std::vector<Call> motion_calls(const std::string& transcript) {
+  static const char* names[] = {"STRAIGHT_TRAVERSE", "STRAIGHT_FEED", "ARC_FEED",
+                                "SET_SPINDLE_SPEED", "SET_FEED_RATE"};
+  std::vector<Call> calls;
+  std::istringstream in(transcript);
+  std::string line;
+  while (std::getline(in, line)) {
+    for (const char* name : names) {
+      const std::string key = std::string(name) + "(";
+      const auto at = line.find(key);
+      if (at == std::string::npos) continue;
+      if (at > 0 && line[at - 1] != ' ') continue;
+      Call c;
+      c.name = name;
+      std::string args = line.substr(at + key.size());
+      args = args.substr(0, args.find(')'));
+      std::istringstream a(args);
+      std::string item;
+      while (std::getline(a, item, ',')) c.args.push_back(std::strtod(item.c_str(), nullptr));
+      calls.push_back(std::move(c));
+      break;
+    }
+  }
+  return calls;
+}
+
+bool have_rs274() { return access("/usr/bin/rs274", X_OK) == 0; }
+
+std::optional<std::string> run_rs274(const std::string& path) {
+  if (!have_rs274()) return std::nullopt;
+  // Tools 1..99 of length 0: rs274 refuses tools missing from its table,
+  // and G43 must not shift the comparison.
+  const std::string table = path + ".tbl";
+  {
+    std::ofstream t(table);
+    for (int i = 1; i <= 99; ++i) t << 'T' << i << " P" << i << " Z0 D6\n";
+  }
+  const std::string command = "/usr/bin/rs274 -t '" + table + "' -g '" + path + "' 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return std::nullopt;
+  std::string out;
+  char buffer[4096];
+  std::size_t n = 0;
+  while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) out.append(buffer, n);
+  pclose(pipe);
+  return out;
+}
+
+}  // namespace vcpost::cldata::testing

@@ -1,0 +1,175 @@
+// CL data -> Mazak-like G-code: the format, and the motions rs274 reads back
+// from the written program compared with the CL events.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "postproc/cldata/cl_reader.h"
+#include "postproc/output/mazak_writer.h"
+#include "postproc/program/transcript.h"
+#include "tests/postproc/cldata/cl_support.h"
+
+namespace vcpost::output {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace vcpost::program;
+using cldata::testing::Call;
+using cldata::testing::motion_calls;
+using cldata::testing::read_events;
+
+std::string write_program(const std::vector<Event>& events, const MazakFormat& format) {
+  std::ostringstream out;
+  MazakWriter writer(out, format);
+  for (const auto& e : events) writer.write(e);
+  writer.finish();
+  return out.str();
+}
+
+TEST(MazakWriter, SmallProgramInTheDefaultFormat) {
+  const auto events = read_events(
+      "PARTNO/BRACKET (A)\nLOADTL/3\nCOOLNT/FLOOD\nSPINDL/6556.4,RPM,CLW\nRAPID\n"
+      "GOTO/-4.360504,-10.464015,25.\nRAPID\nGOTO/-4.360504,-10.464015,2.5\n"
+      "FEDRAT/183.202375,MMPM\nGOTO/-4.360504,-10.464015,-6.\nGOTO/5,-10.464015,-6.\n"
+      "CIRCLE/5,-5,-6,0,0,1,5.464015\nGOTO/10.464015,-5,-6\nSPINDL/OFF\nFINI\n");
+  MazakFormat format;
+  format.title = "bracket";
+  const std::string expected =
+      "%\n"
+      "O1000(bracket)\n"
+      "G21 G17 G40 G49 G80 G90 G94\n"
+      "G54\n"
+      "(PARTNO BRACKET [A])\n"
+      "T3 M6\n"
+      "M8\n"
+      "S6556 M3\n"
+      "G43 H3 G0 X-4.3605 Y-10.464 Z25.\n"
+      "Z2.5\n"
+      "G1 Z-6. F183.2\n"
+      "X5.\n"
+      "G3 X10.464 Y-5. I0. J5.464\n"
+      "M5\n"
+      "M30\n"
+      "%\n";
+  EXPECT_EQ(write_program(events, format), expected);
+}
+
+TEST(MazakWriter, HighSpeedModeGeometryCompensationAndLineNumbers) {
+  const auto events =
+      read_events("LOADTL/1\nSPINDL/12000\nFEDRAT/1000\nGOTO/1,2,3\nDELAY/0.5\nFINI\n");
+  MazakFormat format;
+  format.high_speed_mode = true;
+  format.geometry_compensation = true;
+  format.line_numbers = true;
+  format.percent_lines = false;
+  format.program_number = 42;
+  format.end_of_line.assign(2, '\r');  // CRLF (GCC 12 warns falsely on = "\r\n")
+  format.end_of_line[1] = '\n';
+  const std::string expected =
+      "O42\r\n"
+      "N10 G21 G17 G40 G49 G80 G90 G94\r\n"
+      "N20 G54\r\n"
+      "N30 G61.1\r\n"
+      "N40 T1 M6\r\n"
+      "N50 G05 P2\r\n"
+      "N60 S12000 M3\r\n"
+      "N70 G43 H1\r\n"
+      "N80 G1 X1. Y2. Z3. F1000.\r\n"
+      "N90 G4 X0.5\r\n"
+      "N100 G05 P0\r\n"
+      "N110 G64\r\n"
+      "N120 M30\r\n";
+  EXPECT_EQ(write_program(events, format), expected);
+}
+
+TEST(MazakWriter, ArcPlanesAndRefusals) {
+  ArcFeed xz;
+  xz.start = {5, 0, 0};
+  xz.end = {0, 0, 5};
+  xz.centre = {0, 0, 0};
+  xz.plane = Plane::xz;
+  xz.rotation = -1;
+  std::ostringstream out;
+  MazakWriter writer(out, MazakFormat{});
+  writer.write(xz);
+  EXPECT_NE(out.str().find("G18 G2 X0. Y0. Z5. I-5. K0."), std::string::npos) << out.str();
+  xz.rotation = 2;
+  try {
+    writer.write(xz);
+    FAIL();
+  } catch (const OutputError& e) {
+    EXPECT_EQ(e.code(), "E3201");
+  }
+  EXPECT_THROW(writer.write(SetFeedRate{10, FeedMode::inverse_time, {}}), OutputError);
+}
+
+// --- rs274 comparison --------------------------------------------------------
+
+const fs::path data_dir = fs::path(VCPOST_SHARED_DATA_DIR) / "cldata";
+
+// The CL events as transcript calls; rs274's own SET_FEED_RATE(0) of the
+// program start and end (G94, M30) are not in CL data.
+void compare(const std::vector<Call>& cl, const std::vector<Call>& gcode, const MazakFormat& f) {
+  const double position_tol = 1e-4 + 1e-9;
+  const double feed_tol = 0.5 * std::pow(10.0, -f.feed_decimals) + 1e-9;
+  ASSERT_EQ(cl.size(), gcode.size());
+  for (std::size_t i = 0; i < cl.size(); ++i) {
+    SCOPED_TRACE("call " + std::to_string(i) + " " + cl[i].name);
+    ASSERT_EQ(cl[i].name, gcode[i].name);
+    ASSERT_EQ(cl[i].args.size(), gcode[i].args.size());
+    const double tol = cl[i].name == "SET_FEED_RATE"       ? feed_tol
+                       : cl[i].name == "SET_SPINDLE_SPEED" ? 0.5 + 1e-9
+                                                           : position_tol;
+    for (std::size_t k = 0; k < cl[i].args.size(); ++k) {
+      ASSERT_NEAR(cl[i].args[k], gcode[i].args[k], tol) << "argument " << k;
+    }
+  }
+}
+
+TEST(MazakWriter, Rs274ReadsTheSameMotionsAsTheClData) {
+  if (!cldata::testing::have_rs274()) GTEST_SKIP() << "rs274 (linuxcnc-uspace) not installed";
+  if (!fs::is_directory(data_dir)) GTEST_SKIP() << "no CL corpus at " << data_dir;
+  MazakFormat format;
+  format.geometry_compensation = true;  // G61.1: rs274 takes it; G05 P2 it does not
+  format.line_numbers = true;
+  format.dwell = DwellWord::p_seconds;
+  const fs::path tmp = fs::temp_directory_path() / ("vcpost_cl_rs274_" + std::to_string(getpid()));
+  fs::create_directories(tmp);
+  int compared = 0;
+  for (const char* name : {"gg.ncl", "traj1.ncl", "_1_KONTUR_NAR_40_N2.cls", "nurbs.clsf",
+                           "basemach.apt", "Telemecanique-Tilt-Support2.apt"}) {
+    SCOPED_TRACE(name);
+    std::ifstream in(data_dir / name, std::ios::binary);
+    cldata::ClReader reader(in, name);
+    std::string transcript;
+    const fs::path nc = tmp / (std::string(name) + ".nc");
+    {
+      std::ofstream out(nc, std::ios::binary);
+      MazakWriter writer(out, format);
+      while (auto e = reader.next()) {
+        append_transcript(transcript, *e);
+        writer.write(*e);
+      }
+      writer.finish();
+    }
+    const auto rs274 = cldata::testing::run_rs274(nc.string());
+    ASSERT_TRUE(rs274);
+    std::vector<Call> gcode_calls;
+    for (auto& c : motion_calls(*rs274)) {
+      if (c.name == "SET_FEED_RATE" && c.args.at(0) == 0.0) continue;
+      gcode_calls.push_back(std::move(c));
+    }
+    const auto cl_calls = motion_calls(transcript);
+    EXPECT_GT(cl_calls.size(), 10u);
+    compare(cl_calls, gcode_calls, format);
+    ++compared;
+  }
+  fs::remove_all(tmp);
+  EXPECT_EQ(compared, 6);
+}
+
+}  // namespace
+}  // namespace vcpost::output

@@ -187,6 +187,40 @@ TEST(BallEngagement, SteepWallEngagesTheShankUnlessThePreviousShankTookTheStock)
   EXPECT_NEAR(*narrow.d_max, sampled.d_max, 6 * sampled.spacing);
 }
 
+// Every cutting point lies on the rim (the tool surface in the stock plane)
+// at the lateral position its definition gives, 1' ahead of 1''.
+TEST(BallEngagement, CuttingPointsLieOnTheRimWhereTheirDefinitionsPutThem) {
+  std::mt19937 rng(99);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (int i = 0; i < 2000; ++i) {
+    const double R = 5, ap = R * (0.02 + 0.9 * unit(rng)), ae = R * 1.5 * unit(rng);
+    const Eigen::Vector3d n = normal_from_angles(deg(85) * unit(rng), 2 * pi * unit(rng));
+    const Eigen::Vector3d f = feed_from_angle(2 * pi * unit(rng), n);
+    const auto e = evaluate_engagement(Tool::ball(2 * R), setup(ap, ae, n, f));
+    ASSERT_TRUE(e.points);
+    const Eigen::Vector3d s0 = n.cross(e.feed_dir);
+    auto on_rim = [&](const CuttingPoint& p) {
+      const Eigen::Vector3d x = p.position;
+      const double surface = x.z() <= 0 ? x.norm() - R : x.head<2>().norm() - R;
+      return std::abs(n.dot(x) + (R - ap)) < 1e-9 && std::abs(surface) < 1e-9 &&
+             std::abs(p.diameter - 2 * x.head<2>().norm()) < 1e-12;
+    };
+    const auto& p = *e.points;
+    for (const auto* point : {&p.p1, &p.p2, &p.p1a, &p.p1b, &p.p2a, &p.p2b}) {
+      EXPECT_TRUE(on_rim(*point)) << i << " " << point->position.transpose();
+    }
+    const double s1 = s0.dot(p.p1.position), s2 = s0.dot(p.p2.position);
+    EXPECT_LE(s1, s2);
+    if (s1 + ae < s2) {
+      EXPECT_NEAR(s0.dot(p.p1a.position), s1 + ae, 1e-9);
+      EXPECT_NEAR(s0.dot(p.p1b.position), s1 + ae, 1e-9);
+      EXPECT_NEAR(s0.dot(p.p2a.position), s2 - ae, 1e-9);
+      EXPECT_GE(e.feed_dir.dot(p.p1a.position), e.feed_dir.dot(p.p1b.position));
+      EXPECT_GE(e.feed_dir.dot(p.p2a.position), e.feed_dir.dot(p.p2b.position));
+    }
+  }
+}
+
 TEST(MillingMode, ClockwiseSpindleWithPreviousPassOnTheLeftIsClimb) {
   EXPECT_EQ(milling_mode(Side::left, SpindleDirection::clockwise), MillingMode::down);
   EXPECT_EQ(milling_mode(Side::right, SpindleDirection::clockwise), MillingMode::up);

@@ -403,6 +403,9 @@ void ClReader::process_motion_points(const ClRecord& r, bool continuation) {
 }
 
 void ClReader::move_to(const Vec& p, const SourceRef& src) {
+  if (!p.allFinite()) {
+    fail(ClCode::bad_number, src.line, src.column, "coordinate out of range after units");
+  }
   const Vec start = position_.value_or(p);
   if (arc_active_) {
     if (!position_) {
@@ -461,7 +464,12 @@ void ClReader::emit_arc(const Vec& start, const Vec& end, const Arc& arc, const 
   const double r = std::max(rs, re);
   const double step =
       r > options_.chord_tolerance ? 2 * std::acos(1 - options_.chord_tolerance / r) : sweep;
-  const auto n = static_cast<int>(std::max(1.0, std::ceil(sweep / step)));
+  const double lines = std::max(1.0, std::ceil(sweep / step));
+  if (!(lines <= 1e6)) {
+    fail(ClCode::arc_inconsistent, src.line, src.column,
+         "tilted arc needs more than a million lines within the chord tolerance");
+  }
+  const auto n = static_cast<int>(lines);
   const double h0 = (start - arc.centre).dot(a);
   const double h1 = (end - arc.centre).dot(a);
   const Vec u = s / rs;
@@ -782,7 +790,10 @@ void ClReader::finish_nurbs() {
   const auto curve = nx_nurbs(*position_, knots_, cntrl_, error);
   if (!curve) fail(ClCode::bad_nurbs, nurbs_source_.line, nurbs_source_.column, error);
   scratch_.clear();
-  flatten(*curve, options_.chord_tolerance, scratch_);
+  if (!flatten(*curve, options_.chord_tolerance, scratch_)) {
+    fail(ClCode::bad_nurbs, nurbs_source_.line, nurbs_source_.column,
+         "NURBS needs more than a million lines within the chord tolerance");
+  }
   Vec previous = *position_;
   for (const Vec& p : scratch_) {
     if (nurbs_rapid_) {

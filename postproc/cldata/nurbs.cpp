@@ -48,14 +48,15 @@ double distance_to_segment(const Eigen::Vector3d& q, const Eigen::Vector3d& a,
 }
 
 void flatten_bezier(std::vector<Eigen::Vector4d> b, double tolerance, int depth,
-                    std::vector<Eigen::Vector3d>& out) {
+                    std::vector<Eigen::Vector3d>& out, std::size_t max_points) {
+  if (out.size() >= max_points) return;
   const Eigen::Vector3d a = project(b.front());
   const Eigen::Vector3d e = project(b.back());
   double worst = 0;
   for (std::size_t i = 1; i + 1 < b.size(); ++i) {
     worst = std::max(worst, distance_to_segment(project(b[i]), a, e));
   }
-  if (worst <= tolerance || depth >= 40) {
+  if (worst <= tolerance || !(worst < 1e300) || depth >= 30) {
     out.push_back(e);
     return;
   }
@@ -67,8 +68,8 @@ void flatten_bezier(std::vector<Eigen::Vector4d> b, double tolerance, int depth,
     right[n - 1 - r] = b[n - 1 - r];
     for (std::size_t j = 0; j + 1 < n - r; ++j) b[j] = 0.5 * (b[j] + b[j + 1]);
   }
-  flatten_bezier(std::move(left), tolerance, depth + 1, out);
-  flatten_bezier(std::move(right), tolerance, depth + 1, out);
+  flatten_bezier(std::move(left), tolerance, depth + 1, out, max_points);
+  flatten_bezier(std::move(right), tolerance, depth + 1, out, max_points);
 }
 
 }  // namespace
@@ -114,7 +115,9 @@ Eigen::Vector3d evaluate(const BSpline& curve, double u) {
   return project(blossom(curve, span, xs));
 }
 
-void flatten(const BSpline& curve, double tolerance, std::vector<Eigen::Vector3d>& out) {
+bool flatten(const BSpline& curve, double tolerance, std::vector<Eigen::Vector3d>& out,
+             std::size_t max_points) {
+  const std::size_t limit = out.size() + max_points;
   const auto p = static_cast<std::size_t>(curve.degree);
   const std::size_t n = curve.control.size() - 1;
   for (std::size_t span = p; span <= n; ++span) {
@@ -127,8 +130,10 @@ void flatten(const BSpline& curve, double tolerance, std::vector<Eigen::Vector3d
       for (std::size_t r = 0; r < p; ++r) xs[r] = r < p - k ? a : b;
       bezier[k] = blossom(curve, span, xs);
     }
-    flatten_bezier(std::move(bezier), tolerance, 0, out);
+    flatten_bezier(std::move(bezier), tolerance, 0, out, limit);
+    if (out.size() >= limit) return false;
   }
+  return true;
 }
 
 }  // namespace vcpost::cldata

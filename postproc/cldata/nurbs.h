@@ -37,7 +37,9 @@ Eigen::Vector3d evaluate(const BSpline& curve, double u);
 // point of the curve is farther than `tolerance` (mm, > 0) from the polyline.
 // The bound is rigorous: each span is split into Bezier pieces until their
 // control polygon lies within `tolerance` of the chord (convex hull property,
-// positive weights).
-void flatten(const BSpline& curve, double tolerance, std::vector<Eigen::Vector3d>& out);
+// positive weights). Returns false, with `out` partly filled, when more than
+// max_points would be needed (absurd coordinates or tolerance).
+bool flatten(const BSpline& curve, double tolerance, std::vector<Eigen::Vector3d>& out,
+             std::size_t max_points = 1'000'000);
 
 }  // namespace vcpost::cldata

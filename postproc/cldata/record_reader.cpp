@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstring>
 
 namespace vcpost::cldata {
@@ -146,7 +147,8 @@ void ClRecordReader::split_params(ClRecord& record, std::size_t text_begin) {
       if (t.front() == '+') t.remove_prefix(1);
       double v = 0;
       const auto r = std::from_chars(t.data(), t.data() + t.size(), v);
-      if (r.ec == std::errc() && r.ptr == t.data() + t.size()) {
+      // "inf" and "nan" parse, but are no coordinates: left as bad numbers.
+      if (r.ec == std::errc() && r.ptr == t.data() + t.size() && std::isfinite(v)) {
         p.value = v;
         p.is_number = true;
       }

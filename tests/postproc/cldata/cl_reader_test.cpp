@@ -162,10 +162,9 @@ TEST(ClReader, SideAxisCircleIsAnArcInItsPlaneAndTiltedOneBecomesLines) {
   EXPECT_EQ(yz[0].rotation, 1);  // Y towards Z about +X
   ClReadOptions options;
   options.chord_tolerance = 0.01;
-  const double s = std::sqrt(0.5);
+  // Axis (0, -sqrt(1/2), sqrt(1/2)).
   const auto lines = only<StraightFeed>(read_events(
-      "GOTO/5,0,0\nCIRCLE/0,0,0,0," + std::to_string(-s) + "," + std::to_string(s) +
-          ",5\nGOTO/0,3.5355339,3.5355339\nFINI\n",
+      "GOTO/5,0,0\nCIRCLE/0,0,0,0,-0.70710678,0.70710678,5\nGOTO/0,3.5355339,3.5355339\nFINI\n",
       options));
   // 90 deg at r = 5 within 0.01: step 2*acos(1 - 0.01/5) = 0.12650 rad -> 13 lines,
   // after the first GOTO (a move from the unknown start, i.e. of length 0).

@@ -426,12 +426,25 @@ void Interpreter::execute(std::vector<Event>& events) {
     if (mode != program::FeedMode::inverse_time)
       emit(program::SetFeedRate{0.0, mode, source(b, g->column)});
   }
+  // G93: the F event goes right before its move, with the path speed it
+  // gives that move (rs274's order and figure).
+  const Word* inverse_f = nullptr;
   if (const Word* f = W('F')) {
     if (f->value < 0) fail(Code::bad_word_value, f->column, "negative feed rate");
-    s.feed = s.feed_mode == program::FeedMode::inverse_time ? f->value
-                                                           : f->value * (s.inches ? kInch : 1.0);
-    emit(program::SetFeedRate{s.feed, s.feed_mode, source(b, f->column)});
+    if (s.feed_mode == program::FeedMode::inverse_time) {
+      s.feed = f->value;
+      inverse_f = f;
+    } else {
+      s.feed = f->value * (s.inches ? kInch : 1.0);
+      emit(program::SetFeedRate{s.feed, s.feed_mode, source(b, f->column)});
+    }
   }
+  auto emit_inverse_f = [&](std::optional<double> path_rate) {
+    if (!inverse_f) return;
+    emit(program::SetFeedRate{s.feed, program::FeedMode::inverse_time,
+                              source(b, inverse_f->column), path_rate});
+    inverse_f = nullptr;
+  };
   if (const Word* sw = W('S')) {
     if (sw->value < 0) fail(Code::bad_word_value, sw->column, "negative spindle speed");
     s.spindle_rpm = sw->value;
@@ -570,6 +583,7 @@ void Interpreter::execute(std::vector<Event>& events) {
       case Motion::linear:
         if (s.feed <= 0.0 || (s.feed_mode == program::FeedMode::inverse_time && !W('F')))
           fail(Code::missing_feed, motion_column, "G1 with no feed rate (F) in effect");
+        emit_inverse_f(s.feed * (end - s.position).norm());
         emit(program::StraightFeed{s.position, end, src});
         break;
       case Motion::arc_cw:
@@ -633,13 +647,17 @@ void Interpreter::execute(std::vector<Event>& events) {
             fail(Code::bad_word_value, p->column, "P (turns) of an arc must be a whole number >= 1");
           turns = static_cast<int>(p->value);
         }
-        emit(program::ArcFeed{s.position, end, centre, s.plane, cw ? -turns : turns, src});
+        const program::ArcFeed arc{s.position, end, centre, s.plane, cw ? -turns : turns, src};
+        emit_inverse_f(s.feed * program::arc_length(arc));
+        emit(arc);
         break;
       }
     }
     s.position = end;
     s.moved = true;
   }
+
+  emit_inverse_f(std::nullopt);
 
   // Stops and subprogram calls come last.
   bool end_program = false;

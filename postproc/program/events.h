@@ -76,6 +76,10 @@ struct SetFeedRate {
   double rate = 0.0;
   FeedMode mode = FeedMode::per_minute;
   SourceRef source;
+  // inverse_time only: the path speed in mm/min that this F gives the feed
+  // move right after it (F * move length, what rs274 prints); unset when no
+  // feed move follows in the same block, and in the other modes.
+  std::optional<double> path_rate = std::nullopt;
 };
 
 // Commanded spindle speed (rpm, >= 0); S0 means "spindle stopped".

@@ -83,9 +83,16 @@ void append_call(std::string& out, const Event& event) {
           append_number(out, e.end[ax[2]]);
           out += ", 0.0000, 0.0000, 0.0000)";
         } else if constexpr (std::is_same_v<T, SetFeedRate>) {
-          out += "SET_FEED_RATE(";
-          append_number(out, e.rate);
-          out += ')';
+          if (e.mode == FeedMode::inverse_time && !e.path_rate) {
+            // rs274 prints nothing for an F that moves nothing in G93.
+            out += "COMMENT(\"interpreter: inverse-time feed ";
+            append_number(out, e.rate);
+            out += " with no feed move\")";
+          } else {
+            out += "SET_FEED_RATE(";
+            append_number(out, e.mode == FeedMode::inverse_time ? *e.path_rate : e.rate);
+            out += ')';
+          }
         } else if constexpr (std::is_same_v<T, SetSpindleSpeed>) {
           out += "SET_SPINDLE_SPEED(0, ";
           append_number(out, e.rpm);

@@ -4,11 +4,12 @@
 //
 // Differences, by design: numbers are always mm / mm/min (rs274 prints in the
 // program's units, inches after G20); only the XYZ machine of rs274's default
-// build is printed (A, B, C as 0.0000); SET_FEED_RATE carries the rate in the
-// event's FeedMode (rs274 prints inverse-time rates per move); tool length
-// and cutter compensation are printed as rs274's interpreter COMMENTs because
-// vcpost does not know the tool table. rs274's leading sequence number and
-// "N....." are not printed.
+// build is printed (A, B, C as 0.0000); tool length and cutter compensation
+// are printed as rs274's interpreter COMMENTs because vcpost does not know the
+// tool table. rs274's leading sequence number and "N....." are not printed.
+// Inverse time (G93) is printed as rs274 does: SET_FEED_RATE(F * move length)
+// just before each feed move (SetFeedRate::path_rate); an F with no feed move
+// in its block becomes a COMMENT (rs274 prints nothing).
 #pragma once
 
 #include <string>

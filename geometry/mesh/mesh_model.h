@@ -1,0 +1,87 @@
+// An STL triangle mesh as a geometry::SurfaceModel: exact closest points on
+// the triangles (inside a face, on an edge, on a vertex) through a bounding
+// volume hierarchy, warm-started from the previous answer's neighbourhood.
+//
+// Units: mm (read_stl_file converts the file's unit). Faces are triangles:
+// ModelContact::face is the triangle's index in StlMesh::triangles, uv its
+// barycentric weights (of corners 1 and 2; corner 0 has 1 - u - v).
+// Normals: a face contact gets the facet normal (corners counterclockwise
+// seen from outside, the STL convention); an edge or vertex contact gets
+// N = (C - CC)/|C - CC|, turned to point out of the material (the side is
+// decided by the angle-weighted pseudo-normal of the edge or vertex, so a
+// query point inside a closed solid is seen as inside). curvature is empty:
+// a mesh has none worth reporting.
+//
+// Thread safety: immutable after construction; closest_point may run on
+// many threads at once, each with its own ContactHint.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "geometry/mesh/stl_reader.h"
+#include "geometry/model.h"
+
+namespace vcpost::mesh {
+
+class MeshModel final : public geometry::SurfaceModel {
+ public:
+  // Builds the index (O(n log n)). Throws std::invalid_argument for a mesh
+  // without triangles or with a corner index out of range.
+  explicit MeshModel(StlMesh mesh);
+
+  // See geometry::SurfaceModel. A hint with a valid face makes the query
+  // warm: the triangles around the previous answer give an upper bound that
+  // prunes most of the hierarchy; the answer is still the global closest
+  // point (the hierarchy is always searched within that bound).
+  std::optional<geometry::ModelContact> closest_point(const Eigen::Vector3d& point,
+                                                      double max_distance,
+                                                      geometry::ContactHint* hint) const override;
+  Eigen::AlignedBox3d bounds() const override { return bounds_; }
+  int face_count() const override { return static_cast<int>(mesh_.triangles.size()); }
+
+  const StlMesh& mesh() const { return mesh_; }
+  // Unit facet normal of triangle `face`.
+  const Eigen::Vector3d& facet_normal(int face) const { return facet_normal_[face]; }
+
+ private:
+  struct Node {
+    float lo[3], hi[3];
+    std::uint32_t first;  // leaf: first triangle slot; inner: index of the right child
+    std::uint32_t count;  // leaf: number of triangles (> 0); inner: 0 (left child = this + 1)
+  };
+  // A triangle as the query reads it, in hierarchy order.
+  struct Slot {
+    Eigen::Vector3d a, ab, ac;
+    std::uint32_t face;
+  };
+  struct Hit {
+    double d2 = 0;
+    Eigen::Vector3d point;
+    double v = 0, w = 0;
+    int feature = 0;  // 0 inside, 1..3 edge ab/bc/ca, 4..6 vertex a/b/c
+    std::uint32_t face = 0;
+  };
+
+  std::uint32_t build(std::uint32_t begin, std::uint32_t end,
+                      std::vector<Eigen::Vector3d>& centroids);
+  void test_slot(std::uint32_t slot, const Eigen::Vector3d& p, Hit& best) const;
+  geometry::ModelContact make_contact(const Eigen::Vector3d& p, const Hit& hit) const;
+
+  StlMesh mesh_;
+  Eigen::AlignedBox3d bounds_;
+  std::vector<Eigen::Vector3d> facet_normal_;
+  std::vector<std::array<Eigen::Vector3d, 3>> edge_normal_;  // per face: edges ab, bc, ca
+  std::vector<Eigen::Vector3d> vertex_normal_;                // angle-weighted
+  std::vector<std::uint32_t> ring_start_, ring_;  // vertex -> faces (CSR)
+  std::vector<std::uint32_t> slot_of_face_;
+  std::vector<Slot> slots_;
+  std::vector<Node> nodes_;
+};
+
+}  // namespace vcpost::mesh

@@ -1,0 +1,426 @@
+#include "geometry/mesh/stl_reader.h"
+
+#include <algorithm>
+#include <bit>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <unordered_map>
+
+namespace vcpost::mesh {
+namespace {
+
+std::string at_offset(const std::string& file, std::uint64_t offset, StlCode code) {
+  return file + ": offset " + std::to_string(offset) + ": error[" + code_id(code) + "]: ";
+}
+
+std::string at_line(const std::string& file, std::uint32_t line, std::uint32_t column,
+                    StlCode code) {
+  return file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": error[" +
+         code_id(code) + "]: ";
+}
+
+// Welds exactly equal corners; drops degenerate triangles.
+class MeshBuilder {
+ public:
+  explicit MeshBuilder(StlMesh& mesh) : mesh_(mesh) {}
+
+  void add(const std::array<Eigen::Vector3d, 3>& p) {
+    const Eigen::Vector3d n = (p[1] - p[0]).cross(p[2] - p[0]);
+    if (!(n.squaredNorm() > 0.0)) {
+      ++mesh_.degenerate_dropped;
+      return;
+    }
+    std::array<std::uint32_t, 3> t{};
+    for (int i = 0; i < 3; ++i) t[i] = index_of(p[i]);
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
+      ++mesh_.degenerate_dropped;
+      return;
+    }
+    mesh_.triangles.push_back(t);
+  }
+
+ private:
+  struct Key {
+    double x, y, z;
+    bool operator==(const Key&) const = default;
+  };
+  struct KeyHash {
+    std::size_t operator()(const Key& k) const {
+      // +0.0 and -0.0 compare equal, so hash them alike.
+      auto bits = [](double d) { return std::bit_cast<std::uint64_t>(d == 0.0 ? 0.0 : d); };
+      std::uint64_t h = bits(k.x) * 0x9E3779B97F4A7C15ULL;
+      h ^= bits(k.y) + 0x7F4A7C159E3779B9ULL + (h << 6) + (h >> 2);
+      h ^= bits(k.z) + 0x94D049BB133111EBULL + (h << 6) + (h >> 2);
+      return static_cast<std::size_t>(h);
+    }
+  };
+
+  std::uint32_t index_of(const Eigen::Vector3d& p) {
+    const auto [it, inserted] =
+        index_.try_emplace(Key{p.x(), p.y(), p.z()}, static_cast<std::uint32_t>(mesh_.vertices.size()));
+    if (inserted) mesh_.vertices.push_back(p);
+    return it->second;
+  }
+
+  StlMesh& mesh_;
+  std::unordered_map<Key, std::uint32_t, KeyHash> index_;
+};
+
+float read_float(const char* p) {
+  std::uint32_t u = 0;
+  std::memcpy(&u, p, 4);
+  if constexpr (std::endian::native == std::endian::big) u = __builtin_bswap32(u);
+  return std::bit_cast<float>(u);
+}
+
+std::uint32_t read_u32(const char* p) {
+  std::uint32_t u = 0;
+  std::memcpy(&u, p, 4);
+  if constexpr (std::endian::native == std::endian::big) u = __builtin_bswap32(u);
+  return u;
+}
+
+StlMesh parse_binary(std::string_view bytes, const std::string& file, double unit) {
+  StlMesh mesh;
+  mesh.format = StlFormat::binary;
+  if (bytes.size() < 84) {
+    throw StlError(StlCode::truncated,
+                   at_offset(file, bytes.size(), StlCode::truncated) +
+                       "binary STL shorter than its 84-byte header (" +
+                       std::to_string(bytes.size()) + " bytes), and not ASCII STL either");
+  }
+  std::string header(bytes.substr(0, 80));
+  header = header.substr(0, header.find('\0'));
+  while (!header.empty() && std::isspace(static_cast<unsigned char>(header.back()))) header.pop_back();
+  mesh.solid_name = header;
+  const std::uint64_t count = read_u32(bytes.data() + 80);
+  const std::uint64_t need = 84 + 50 * count;
+  if (bytes.size() < need) {
+    const std::uint64_t complete = (bytes.size() - 84) / 50;
+    throw StlError(StlCode::truncated,
+                   at_offset(file, 84 + 50 * complete, StlCode::truncated) +
+                       "binary STL truncated: header announces " + std::to_string(count) +
+                       " triangles (" + std::to_string(need) + " bytes) but the file has " +
+                       std::to_string(bytes.size()) + " bytes (" + std::to_string(complete) +
+                       " complete triangles)");
+  }
+  mesh.trailing_bytes = bytes.size() - need;
+  MeshBuilder builder(mesh);
+  mesh.triangles.reserve(count);
+  mesh.vertices.reserve(count / 2 + 3);
+  for (std::uint64_t t = 0; t < count; ++t) {
+    const char* rec = bytes.data() + 84 + 50 * t;
+    std::array<Eigen::Vector3d, 3> p;
+    for (int c = 0; c < 3; ++c) {
+      for (int k = 0; k < 3; ++k) {
+        const float f = read_float(rec + 12 + 12 * c + 4 * k);
+        if (!std::isfinite(f)) {
+          const std::uint64_t off = 84 + 50 * t + 12 + 12 * static_cast<std::uint64_t>(c) + 4 * static_cast<std::uint64_t>(k);
+          throw StlError(StlCode::bad_number,
+                         at_offset(file, off, StlCode::bad_number) + "triangle " +
+                             std::to_string(t + 1) + " vertex " + std::to_string(c + 1) +
+                             " has a non-finite coordinate (" + std::to_string(f) + ")");
+        }
+        p[c][k] = static_cast<double>(f) * unit;
+      }
+    }
+    builder.add(p);
+  }
+  if (mesh.triangles.empty()) {
+    throw StlError(StlCode::no_triangles,
+                   at_offset(file, 80, StlCode::no_triangles) +
+                       (count == 0 ? std::string("binary STL with zero triangles")
+                                   : "binary STL whose " + std::to_string(count) +
+                                         " triangles are all degenerate"));
+  }
+  return mesh;
+}
+
+// Whitespace-separated words with their line and column.
+class Words {
+ public:
+  Words(std::string_view text) : text_(text) {}
+
+  struct Word {
+    std::string_view text;
+    std::uint32_t line = 0;
+    std::uint32_t column = 0;
+  };
+
+  // The next word; empty text at the end.
+  Word next() {
+    skip_space();
+    Word w{{}, line_, column()};
+    const std::size_t start = pos_;
+    while (pos_ < text_.size() && !std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
+    w.text = text_.substr(start, pos_ - start);
+    return w;
+  }
+
+  // The rest of the current line (after the last word), trimmed.
+  std::string rest_of_line() {
+    const std::size_t start = pos_;
+    while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
+    std::string s(text_.substr(start, pos_ - start));
+    const auto b = s.find_first_not_of(" \t\r");
+    if (b == std::string::npos) return {};
+    s = s.substr(b);
+    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
+    return s;
+  }
+
+  std::uint32_t line() const { return line_; }
+
+ private:
+  void skip_space() {
+    while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) {
+      if (text_[pos_] == '\n') {
+        ++line_;
+        line_start_ = pos_ + 1;
+      }
+      ++pos_;
+    }
+  }
+  std::uint32_t column() const { return static_cast<std::uint32_t>(pos_ - line_start_ + 1); }
+
+  std::string_view text_;
+  std::size_t pos_ = 0;
+  std::size_t line_start_ = 0;
+  std::uint32_t line_ = 1;
+};
+
+bool iequals(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (std::tolower(static_cast<unsigned char>(a[i])) !=
+        std::tolower(static_cast<unsigned char>(b[i])))
+      return false;
+  }
+  return true;
+}
+
+StlMesh parse_ascii(std::string_view bytes, const std::string& file, double unit) {
+  StlMesh mesh;
+  mesh.format = StlFormat::ascii;
+  MeshBuilder builder(mesh);
+  Words words(bytes);
+  std::uint64_t facets = 0;
+
+  auto word_text = [](const Words::Word& w) {
+    return w.text.empty() ? std::string("the end of the file") : "'" + std::string(w.text) + "'";
+  };
+  auto expect = [&](std::string_view keyword, std::string_view context) {
+    const Words::Word w = words.next();
+    if (!iequals(w.text, keyword)) {
+      const StlCode code = w.text.empty() ? StlCode::truncated : StlCode::syntax;
+      throw StlError(code, at_line(file, w.line, w.column, code) + "expected '" +
+                               std::string(keyword) + "' " + std::string(context) + ", found " +
+                               word_text(w));
+    }
+  };
+  auto number = [&](bool must_be_finite, std::string_view what) {
+    const Words::Word w = words.next();
+    double v = 0.0;
+    const char* b = w.text.data();
+    const char* e = b + w.text.size();
+    if (!w.text.empty() && *b == '+') ++b;  // from_chars refuses a leading '+'
+    const auto [ptr, ec] = std::from_chars(b, e, v);
+    if (w.text.empty()) {
+      throw StlError(StlCode::truncated, at_line(file, w.line, w.column, StlCode::truncated) +
+                                             "file ends inside a facet (expected " +
+                                             std::string(what) + ")");
+    }
+    if (ec != std::errc() || ptr != e || (must_be_finite && !std::isfinite(v))) {
+      throw StlError(StlCode::bad_number, at_line(file, w.line, w.column, StlCode::bad_number) +
+                                              std::string(what) + " is not a finite number: '" +
+                                              std::string(w.text) + "'");
+    }
+    return v;
+  };
+
+  bool any_solid = false;
+  for (;;) {
+    Words::Word w = words.next();
+    if (w.text.empty()) {
+      if (any_solid) break;
+      throw StlError(StlCode::empty, at_line(file, w.line, w.column, StlCode::empty) +
+                                         "STL file holds only white space");
+    }
+    if (!iequals(w.text, "solid")) {
+      throw StlError(StlCode::syntax, at_line(file, w.line, w.column, StlCode::syntax) +
+                                          "expected 'solid', found " + word_text(w));
+    }
+    any_solid = true;
+    const std::string name = words.rest_of_line();
+    if (mesh.solid_name.empty()) mesh.solid_name = name;
+    for (;;) {
+      w = words.next();
+      if (iequals(w.text, "endsolid")) {
+        words.rest_of_line();
+        break;
+      }
+      if (!iequals(w.text, "facet")) {
+        const StlCode code = w.text.empty() ? StlCode::truncated : StlCode::syntax;
+        throw StlError(code, at_line(file, w.line, w.column, code) +
+                                 "expected 'facet' or 'endsolid', found " + word_text(w));
+      }
+      expect("normal", "after 'facet'");
+      // Exporters write nan normals for slivers; the normal is recomputed anyway.
+      for (int k = 0; k < 3; ++k) number(false, "facet normal component");
+      expect("outer", "after the facet normal");
+      expect("loop", "after 'outer'");
+      std::array<Eigen::Vector3d, 3> p;
+      for (int c = 0; c < 3; ++c) {
+        expect("vertex", "(a facet has three vertices)");
+        for (int k = 0; k < 3; ++k) p[c][k] = number(true, "vertex coordinate") * unit;
+      }
+      expect("endloop", "after the third vertex");
+      expect("endfacet", "after 'endloop'");
+      builder.add(p);
+      ++facets;
+    }
+  }
+  if (mesh.triangles.empty()) {
+    throw StlError(StlCode::no_triangles,
+                   at_line(file, 1, 1, StlCode::no_triangles) +
+                       (facets == 0 ? std::string("ASCII STL with no facet")
+                                    : "ASCII STL whose " + std::to_string(facets) +
+                                          " facets are all degenerate"));
+  }
+  return mesh;
+}
+
+bool starts_with_solid(std::string_view bytes) {
+  std::size_t i = 0;
+  while (i < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[i]))) ++i;
+  return bytes.size() - i >= 5 && iequals(bytes.substr(i, 5), "solid") &&
+         (bytes.size() - i == 5 || std::isspace(static_cast<unsigned char>(bytes[i + 5])));
+}
+
+std::string format_double(double v, int precision) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, precision);
+  return std::string(buf, r.ptr);
+}
+
+}  // namespace
+
+std::string code_id(StlCode code) {
+  std::string id(1, 'E');  // not "E" + ...: GCC 12 warns falsely (-Wrestrict) on that
+  id += std::to_string(static_cast<int>(code));
+  return id;
+}
+
+StlMesh parse_stl(std::string_view bytes, const std::string& file_name, const StlOptions& options) {
+  if (!(options.unit_mm > 0.0) || !std::isfinite(options.unit_mm)) {
+    throw StlError(StlCode::bad_unit, file_name + ": error[" + code_id(StlCode::bad_unit) +
+                                          "]: model unit must be a positive length in mm, got " +
+                                          std::to_string(options.unit_mm));
+  }
+  if (bytes.empty()) {
+    throw StlError(StlCode::empty,
+                   at_offset(file_name, 0, StlCode::empty) + "STL file is empty (0 bytes)");
+  }
+  const bool blank = std::all_of(bytes.begin(), bytes.end(),
+                                 [](char c) { return std::isspace(static_cast<unsigned char>(c)); });
+  if (blank) {
+    throw StlError(StlCode::empty,
+                   at_offset(file_name, 0, StlCode::empty) + "STL file holds only white space");
+  }
+  // Binary when the size matches the count exactly: the only reliable sign.
+  if (bytes.size() >= 84) {
+    const std::uint64_t count = read_u32(bytes.data() + 80);
+    if (84 + 50 * count == bytes.size()) return parse_binary(bytes, file_name, options.unit_mm);
+  }
+  if (starts_with_solid(bytes) && bytes.find('\0') == std::string_view::npos) {
+    return parse_ascii(bytes, file_name, options.unit_mm);
+  }
+  if (starts_with_solid(bytes) && bytes.size() < 84) {
+    return parse_ascii(bytes, file_name, options.unit_mm);
+  }
+  // Text that is not ASCII STL would otherwise be blamed as a truncated binary.
+  const bool text = std::none_of(bytes.begin(), bytes.end(), [](char c) {
+    const auto u = static_cast<unsigned char>(c);
+    return u < 0x09 || (u > 0x0D && u < 0x20) || u == 0x7F;
+  });
+  if (text) {
+    throw StlError(StlCode::syntax, at_line(file_name, 1, 1, StlCode::syntax) +
+                                        "text file that is not ASCII STL (it does not start "
+                                        "with 'solid') nor binary STL");
+  }
+  return parse_binary(bytes, file_name, options.unit_mm);
+}
+
+StlMesh read_stl_file(const std::filesystem::path& path, const StlOptions& options) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (!std::filesystem::exists(status)) {
+    throw StlError(StlCode::missing, path.string() + ": error[" + code_id(StlCode::missing) +
+                                         "]: STL file not found");
+  }
+  if (std::filesystem::is_directory(status)) {
+    throw StlError(StlCode::unreadable, path.string() + ": error[" +
+                                            code_id(StlCode::unreadable) +
+                                            "]: is a directory, not an STL file");
+  }
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream buffer;
+  if (in) buffer << in.rdbuf();
+  if (!in || in.bad()) {
+    throw StlError(StlCode::unreadable, path.string() + ": error[" +
+                                            code_id(StlCode::unreadable) +
+                                            "]: cannot read the file (permissions?)");
+  }
+  return parse_stl(buffer.view(), path.string(), options);
+}
+
+std::string to_ascii_stl(const StlMesh& mesh, const std::string& name, int precision) {
+  std::string out = "solid " + name + "\n";
+  for (const auto& t : mesh.triangles) {
+    const Eigen::Vector3d& a = mesh.vertices[t[0]];
+    const Eigen::Vector3d& b = mesh.vertices[t[1]];
+    const Eigen::Vector3d& c = mesh.vertices[t[2]];
+    Eigen::Vector3d n = (b - a).cross(c - a);
+    if (n.norm() > 0) n.normalize();
+    out += "  facet normal " + format_double(n.x(), precision) + " " +
+           format_double(n.y(), precision) + " " + format_double(n.z(), precision) +
+           "\n    outer loop\n";
+    for (const auto* p : {&a, &b, &c}) {
+      out += "      vertex " + format_double(p->x(), precision) + " " +
+             format_double(p->y(), precision) + " " + format_double(p->z(), precision) + "\n";
+    }
+    out += "    endloop\n  endfacet\n";
+  }
+  out += "endsolid " + name + "\n";
+  return out;
+}
+
+std::string to_binary_stl(const StlMesh& mesh, const std::string& header) {
+  std::string out(84 + 50 * mesh.triangles.size(), '\0');
+  std::memcpy(out.data(), header.data(), std::min<std::size_t>(header.size(), 80));
+  auto put_u32 = [&](std::size_t at, std::uint32_t u) {
+    if constexpr (std::endian::native == std::endian::big) u = __builtin_bswap32(u);
+    std::memcpy(out.data() + at, &u, 4);
+  };
+  auto put_float = [&](std::size_t at, double v) {
+    put_u32(at, std::bit_cast<std::uint32_t>(static_cast<float>(v)));
+  };
+  put_u32(80, static_cast<std::uint32_t>(mesh.triangles.size()));
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+    const auto& t = mesh.triangles[i];
+    const std::size_t rec = 84 + 50 * i;
+    const Eigen::Vector3d& a = mesh.vertices[t[0]];
+    Eigen::Vector3d n = (mesh.vertices[t[1]] - a).cross(mesh.vertices[t[2]] - a);
+    if (n.norm() > 0) n.normalize();
+    for (int k = 0; k < 3; ++k) put_float(rec + 4 * k, n[k]);
+    for (int c = 0; c < 3; ++c)
+      for (int k = 0; k < 3; ++k) put_float(rec + 12 + 12 * c + 4 * k, mesh.vertices[t[c]][k]);
+  }
+  return out;
+}
+
+}  // namespace vcpost::mesh

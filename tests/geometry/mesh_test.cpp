@@ -1,0 +1,324 @@
+// The STL reader and the mesh model: exact closest points on shapes whose
+// answers are worked out by hand, agreement of binary and ASCII files, a
+// brute-force cross-check, warm queries, bad files and the shared data.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "geometry/mesh/mesh_model.h"
+#include "geometry/mesh/stl_reader.h"
+
+namespace vcpost::mesh {
+namespace {
+
+using Eigen::Vector3d;
+namespace fs = std::filesystem;
+
+// The cube [0,10]^3 as 12 outward-facing triangles.
+StlMesh cube() {
+  StlMesh m;
+  for (int i = 0; i < 8; ++i) m.vertices.emplace_back(10.0 * (i & 1), 10.0 * ((i >> 1) & 1), 10.0 * ((i >> 2) & 1));
+  // Corner index bits: x=1, y=2, z=4. Quads counterclockwise seen from outside.
+  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                           {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& q : quads) {
+    m.triangles.push_back({std::uint32_t(q[0]), std::uint32_t(q[1]), std::uint32_t(q[2])});
+    m.triangles.push_back({std::uint32_t(q[0]), std::uint32_t(q[2]), std::uint32_t(q[3])});
+  }
+  return m;
+}
+
+// A UV sphere of radius r about c (poles on z), outward-facing.
+StlMesh uv_sphere(double r, const Vector3d& c, int rings, int segments) {
+  StlMesh m;
+  m.vertices.push_back(c + Vector3d(0, 0, r));
+  for (int i = 1; i < rings; ++i) {
+    const double th = M_PI * i / rings;
+    for (int j = 0; j < segments; ++j) {
+      const double ph = 2 * M_PI * j / segments;
+      m.vertices.push_back(c + r * Vector3d(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)));
+    }
+  }
+  m.vertices.push_back(c + Vector3d(0, 0, -r));
+  const auto at = [&](int i, int j) { return std::uint32_t(1 + (i - 1) * segments + (j % segments)); };
+  const auto south = std::uint32_t(m.vertices.size() - 1);
+  for (int j = 0; j < segments; ++j) {
+    m.triangles.push_back({0, at(1, j), at(1, j + 1)});
+    for (int i = 1; i + 1 < rings; ++i) {
+      m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+    m.triangles.push_back({at(rings - 1, j), south, at(rings - 1, j + 1)});
+  }
+  return m;
+}
+
+// Reference closest point, computed differently from the model: the plane
+// projection when it falls inside (barycentric signs), else the nearest of
+// the three clamped segment projections.
+Vector3d reference_closest(const Vector3d& p, const Vector3d& a, const Vector3d& b, const Vector3d& c) {
+  const Vector3d n = (b - a).cross(c - a).normalized();
+  const Vector3d q = p - n.dot(p - a) * n;
+  const auto side = [&](const Vector3d& u, const Vector3d& v) { return (v - u).cross(q - u).dot(n); };
+  if (side(a, b) >= 0 && side(b, c) >= 0 && side(c, a) >= 0) return q;
+  Vector3d best = a;
+  for (const auto& [u, v] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}}) {
+    const double t = std::clamp((p - u).dot(v - u) / (v - u).squaredNorm(), 0.0, 1.0);
+    const Vector3d s = u + t * (v - u);
+    if ((p - s).norm() < (p - best).norm()) best = s;
+  }
+  return best;
+}
+
+double brute_force_distance(const StlMesh& m, const Vector3d& p) {
+  double d = INFINITY;
+  for (const auto& t : m.triangles)
+    d = std::min(d, (p - reference_closest(p, m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]])).norm());
+  return d;
+}
+
+constexpr double exact = 1e-12;
+
+TEST(MeshModel, CubeFaceEdgeVertexContactsByHand) {
+  const MeshModel model(cube());
+  // Above the top face: CC straight below, facet normal +z, distance 3.
+  auto c = model.closest_point({5, 4, 13}, 100, nullptr);
+  ASSERT_TRUE(c);
+  EXPECT_EQ(c->type, geometry::ContactType::face);
+  EXPECT_NEAR((c->point - Vector3d(5, 4, 10)).norm(), 0, exact);
+  EXPECT_NEAR((c->normal - Vector3d(0, 0, 1)).norm(), 0, exact);
+  EXPECT_NEAR(c->distance, 3, exact);
+  // Beyond the edge x=10, z=10: CC on the edge, N = (3,0,4)/5, distance 5.
+  c = model.closest_point({13, 5, 14}, 100, nullptr);
+  ASSERT_TRUE(c);
+  EXPECT_EQ(c->type, geometry::ContactType::edge);
+  EXPECT_NEAR((c->point - Vector3d(10, 5, 10)).norm(), 0, exact);
+  EXPECT_NEAR((c->normal - Vector3d(0.6, 0, 0.8)).norm(), 0, exact);
+  EXPECT_NEAR(c->distance, 5, exact);
+  // Beyond the corner (10,10,10): vertex contact, N = (2,3,6)/7, distance 7.
+  c = model.closest_point({12, 13, 16}, 100, nullptr);
+  ASSERT_TRUE(c);
+  EXPECT_EQ(c->type, geometry::ContactType::vertex);
+  EXPECT_NEAR((c->point - Vector3d(10, 10, 10)).norm(), 0, exact);
+  EXPECT_NEAR((c->normal - Vector3d(2, 3, 6) / 7.0).norm(), 0, exact);
+  EXPECT_NEAR(c->distance, 7, exact);
+  // Exactly on the edge: the edge's pseudo-normal (1,0,1)/sqrt 2.
+  c = model.closest_point({10, 5, 10}, 100, nullptr);
+  ASSERT_TRUE(c);
+  EXPECT_NEAR(c->distance, 0, exact);
+  EXPECT_NEAR((c->normal - Vector3d(1, 0, 1) / std::sqrt(2.0)).norm(), 0, exact);
+}
+
+TEST(MeshModel, InsideTheSolidIsAGouge) {
+  const MeshModel model(cube());
+  // 1 mm under the top face (and 2 from the others): nearest is the top face.
+  auto c = model.closest_point({5, 5, 9}, 100, nullptr);
+  ASSERT_TRUE(c);
+  EXPECT_NEAR((c->point - Vector3d(5, 5, 10)).norm(), 0, exact);
+  EXPECT_NEAR((c->normal - Vector3d(0, 0, 1)).norm(), 0, exact);
+  const auto ball = geometry::classify_ball_contact({5, 5, 9}, 6, 1e-6, c);
+  EXPECT_EQ(ball.status, geometry::BallStatus::gouging);
+  EXPECT_NEAR(ball.distance_error, -7, exact);
+  // Inside near a corner, 1 mm from three faces at once: a tie, any face
+  // will do, but the normal must still point out of the material.
+  c = model.closest_point({9, 9, 9}, 100, nullptr);
+  ASSERT_TRUE(c);
+  EXPECT_NEAR(c->distance, 1, exact);
+  EXPECT_LT((Vector3d(9, 9, 9) - c->point).dot(c->normal), 0);
+}
+
+TEST(MeshModel, BallInAConcaveCornerTouchesBothFaces) {
+  // A V-groove: two planes z = |x| (for |x| <= 10, y in [0, 10]), normals up.
+  StlMesh m;
+  m.vertices = {{-10, 0, 10}, {0, 0, 0}, {10, 0, 10}, {-10, 10, 10}, {0, 10, 0}, {10, 10, 10}};
+  m.triangles = {{0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}};
+  const MeshModel model(m);
+  // Ball of radius 3 resting in the groove: centre at height 3*sqrt 2 on the
+  // axis; it touches both planes at distance 3 (the normals (+-1,0,1)/sqrt 2).
+  const double h = 3 * std::sqrt(2.0);
+  const auto c = model.closest_point({0, 5, h}, 10, nullptr);
+  ASSERT_TRUE(c);
+  EXPECT_EQ(c->type, geometry::ContactType::face);
+  EXPECT_NEAR(c->distance, 3, exact);
+  // The foot of C = (0, h) on z = x is (h/2, h/2) = (3/sqrt 2, 3/sqrt 2).
+  EXPECT_NEAR(std::abs(c->point.x()), 3 / std::sqrt(2.0), exact);
+  EXPECT_NEAR(c->point.z(), 3 / std::sqrt(2.0), exact);
+  EXPECT_NEAR(std::abs(c->normal.x()), 1 / std::sqrt(2.0), exact);
+}
+
+TEST(MeshModel, MaxDistanceIsInclusive) {
+  const MeshModel model(cube());
+  EXPECT_FALSE(model.closest_point({5, 5, 13}, 2.999, nullptr));
+  EXPECT_TRUE(model.closest_point({5, 5, 13}, 3.0, nullptr));
+  EXPECT_FALSE(model.closest_point({5, 5, 13}, -1, nullptr));
+  EXPECT_EQ(model.face_count(), 12);
+  EXPECT_NEAR((model.bounds().min() - Vector3d(0, 0, 0)).norm(), 0, 0);
+  EXPECT_NEAR((model.bounds().max() - Vector3d(10, 10, 10)).norm(), 0, 0);
+}
+
+TEST(MeshModel, AgreesWithBruteForceOnASphere) {
+  const StlMesh m = uv_sphere(50, {3, -2, 7}, 40, 80);
+  const MeshModel model(m);
+  std::mt19937_64 rng(42);
+  std::uniform_real_distribution<double> u(-80, 80);
+  for (int i = 0; i < 400; ++i) {
+    const Vector3d p(u(rng), u(rng), u(rng));
+    const auto c = model.closest_point(p, 1e9, nullptr);
+    ASSERT_TRUE(c);
+    EXPECT_NEAR(c->distance, brute_force_distance(m, p), 1e-11) << p.transpose();
+    EXPECT_NEAR((p - c->point).norm(), c->distance, 1e-11);
+    // CC lies on its own triangle: barycentric weights reproduce it.
+    const auto& t = m.triangles[c->face];
+    const Vector3d q = (1 - c->uv.x() - c->uv.y()) * m.vertices[t[0]] + c->uv.x() * m.vertices[t[1]] +
+                       c->uv.y() * m.vertices[t[2]];
+    EXPECT_NEAR((q - c->point).norm(), 0, 1e-11);
+  }
+}
+
+TEST(MeshModel, WarmQueriesGiveTheColdAnswerAlongAPath) {
+  const StlMesh m = uv_sphere(30, {0, 0, 0}, 60, 120);
+  const MeshModel model(m);
+  geometry::ContactHint hint;
+  for (int i = 0; i <= 2000; ++i) {
+    // A spiral at 6 mm above the sphere, like a ball centre on a finishing pass.
+    const double t = i / 2000.0;
+    const double th = 0.2 + 1.2 * t, ph = 40 * t;
+    const Vector3d p = 36.0 * Vector3d(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th));
+    const auto warm = model.closest_point(p, 10, &hint);
+    const auto cold = model.closest_point(p, 10, nullptr);
+    ASSERT_TRUE(warm && cold);
+    EXPECT_EQ(warm->distance, cold->distance);
+    EXPECT_NEAR((warm->point - cold->point).norm(), 0, 1e-12);
+    // Inscribed facets lie inside the sphere: 6 mm at the vertices, a bit more between.
+    EXPECT_GE(warm->distance, 6 - 1e-12);
+    EXPECT_LE(warm->distance, 6 + 30 * (1 - std::cos(M_PI / 60)) + 1e-9);
+  }
+  EXPECT_GT(hint.warm_queries, 1900u);
+  EXPECT_EQ(hint.warm_queries + hint.cold_queries, 2001u);
+}
+
+TEST(StlReader, BinaryAndAsciiAgree) {
+  // Float-exact coordinates so the binary file (single precision) is exact.
+  const StlMesh m = cube();
+  const StlMesh bin = parse_stl(to_binary_stl(m, "solid cube, a binary file anyway"), "cube.stl");
+  const StlMesh asc = parse_stl(to_ascii_stl(m, "cube"), "cube.stl");
+  EXPECT_EQ(bin.format, StlFormat::binary);  // its header starts with "solid": the size decides
+  EXPECT_EQ(asc.format, StlFormat::ascii);
+  EXPECT_EQ(asc.solid_name, "cube");
+  ASSERT_EQ(bin.vertices.size(), 8u);  // 36 corners welded into 8
+  ASSERT_EQ(asc.vertices.size(), 8u);
+  EXPECT_EQ(bin.triangles, asc.triangles);
+  for (std::size_t i = 0; i < 8; ++i) EXPECT_EQ(bin.vertices[i], asc.vertices[i]);
+  // Welding renumbers the corners (first use order); the triangles keep
+  // their order and corner order, so their coordinates are the original ones.
+  ASSERT_EQ(bin.triangles.size(), m.triangles.size());
+  for (std::size_t t = 0; t < m.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(bin.vertices[bin.triangles[t][k]], m.vertices[m.triangles[t][k]]);
+  const MeshModel a(bin), b(asc);
+  const auto ca = a.closest_point({12, 13, 16}, 100, nullptr);
+  const auto cb = b.closest_point({12, 13, 16}, 100, nullptr);
+  ASSERT_TRUE(ca && cb);
+  EXPECT_EQ(ca->point, cb->point);
+  EXPECT_EQ(ca->face, cb->face);
+}
+
+TEST(StlReader, AsciiVariantsAndUnits) {
+  // Upper case keywords, CRLF, tabs, exponents, several solids, no name.
+  const std::string text =
+      "solid\r\n facet normal 0 0 0\r\n\touter loop\r\n vertex 0 0 0\r\n VERTEX 1e1 0 0\r\n"
+      " vertex 0 +1.0E+1 0\r\n endloop\r\n ENDFACET\r\nendsolid\r\n"
+      "solid second\n facet normal nan nan nan\n outer loop\n vertex 0 0 1\n vertex 1 0 1\n"
+      " vertex 0 1 1\n endloop\n endfacet\nendsolid second\n";
+  const StlMesh m = parse_stl(text, "t.stl", {.unit_mm = 25.4});
+  ASSERT_EQ(m.triangles.size(), 2u);
+  EXPECT_EQ(m.vertices[1], Vector3d(254, 0, 0));
+  EXPECT_EQ(m.vertices[2], Vector3d(0, 254, 0));
+  EXPECT_EQ(m.vertices[5], Vector3d(0, 25.4, 25.4));
+  EXPECT_THROW(parse_stl(text, "t.stl", {.unit_mm = 0}), StlError);
+  // A degenerate facet is dropped and counted, the rest kept.
+  StlMesh d = cube();
+  d.vertices.emplace_back(20, 0, 0);
+  d.triangles.push_back({0, 1, 8});  // collinear corners
+  const StlMesh r = parse_stl(to_binary_stl(d, ""), "d.stl");
+  EXPECT_EQ(r.triangles.size(), 12u);
+  EXPECT_EQ(r.degenerate_dropped, 1u);
+}
+
+TEST(StlReader, BadFilesGiveTheirMessages) {
+  const fs::path dir = fs::path(VCPOST_SOURCE_DIR) / "tests/geometry/bad/stl";
+  std::ifstream list(dir / "expected.txt");
+  ASSERT_TRUE(list) << "missing " << (dir / "expected.txt");
+  std::string line;
+  int cases = 0;
+  while (std::getline(list, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    const auto tab = line.find('\t');
+    ASSERT_NE(tab, std::string::npos) << line;
+    const std::string file = line.substr(0, tab), expected = line.substr(tab + 1);
+    try {
+      read_stl_file(dir / file);
+      ADD_FAILURE() << file << " was accepted";
+    } catch (const StlError& e) {
+      std::string message = e.what();
+      const std::string prefix = (dir / "").string();
+      if (message.rfind(prefix, 0) == 0) message = message.substr(prefix.size());
+      EXPECT_EQ(message, expected);
+      EXPECT_EQ("E" + std::to_string(static_cast<int>(e.code())), expected.substr(expected.find("[E") + 1, 5));
+    }
+    ++cases;
+  }
+  EXPECT_GE(cases, 14);
+  // Files never written by anyone.
+  try {
+    read_stl_file(dir / "no_such_file.stl");
+    ADD_FAILURE();
+  } catch (const StlError& e) {
+    EXPECT_EQ(e.code(), StlCode::missing);
+    EXPECT_NE(std::string(e.what()).find("no_such_file.stl: error[E4601]: STL file not found"), std::string::npos);
+  }
+  try {
+    read_stl_file(dir);
+    ADD_FAILURE();
+  } catch (const StlError& e) {
+    EXPECT_EQ(e.code(), StlCode::unreadable);
+  }
+}
+
+// The APT + STL pairs of the shared data (PROVENANCE.md): the STL loads with
+// the triangle count and box it documents, and the model agrees with brute force.
+TEST(StlReader, SharedDataPairsLoad) {
+  const fs::path dir = fs::path(VCPOST_SHARED_DATA_DIR) / "cldata";
+  if (!fs::exists(dir)) GTEST_SKIP() << "shared data absent: " << dir;
+  struct Case {
+    const char* file;
+    std::size_t triangles;
+    Vector3d lo, hi;
+  };
+  // PROVENANCE.md rounds the boxes (37.75 is 37.7528 in the file): 0.01 mm.
+  const Case cases[] = {{"basemach.STL", 1564, {0, 0, -10}, {350, 150, 0}},
+                        {"Telemecanique-Tilt-Support2.stl", 1480, {0, 0, 0}, {37.75, 45, 30}}};
+  for (const auto& k : cases) {
+    const StlMesh m = read_stl_file(dir / k.file);
+    EXPECT_EQ(m.format, StlFormat::binary);
+    EXPECT_EQ(m.triangles.size() + m.degenerate_dropped, k.triangles) << k.file;
+    const MeshModel model(m);
+    EXPECT_NEAR((model.bounds().min() - k.lo).cwiseAbs().maxCoeff(), 0, 1e-2) << k.file;
+    EXPECT_NEAR((model.bounds().max() - k.hi).cwiseAbs().maxCoeff(), 0, 1e-2) << k.file;
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (int i = 0; i < 200; ++i) {
+      const Vector3d p = k.lo + (k.hi - k.lo).cwiseProduct(Vector3d(u(rng), u(rng), u(rng))) * 1.2 -
+                         0.1 * (k.hi - k.lo);
+      const auto c = model.closest_point(p, 1e9, nullptr);
+      ASSERT_TRUE(c);
+      EXPECT_NEAR(c->distance, brute_force_distance(m, p), 1e-9) << k.file;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace vcpost::mesh

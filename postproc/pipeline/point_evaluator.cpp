@@ -1,0 +1,89 @@
+#include "postproc/pipeline/point_evaluator.h"
+
+#include <cmath>
+#include <limits>
+
+namespace vcpost::pipeline {
+
+std::string_view to_string(DiameterPolicy policy) {
+  switch (policy) {
+    case DiameterPolicy::max: return "max";
+    case DiameterPolicy::tangent: return "tangent";
+    case DiameterPolicy::mean: return "mean";
+  }
+  return "?";
+}
+
+std::string_view to_string(AeSource source) {
+  switch (source) {
+    case AeSource::measured: return "measured";
+    case AeSource::given: return "given";
+    case AeSource::first_pass: return "first_pass";
+  }
+  return "?";
+}
+
+namespace {
+// Points kept by the pass tracker: a few passes of a large program; memory
+// stays bounded (about 100 bytes a point) whatever the program's length.
+constexpr std::size_t tracker_memory = 1 << 20;
+}  // namespace
+
+PointEvaluator::PointEvaluator(const geometry::SurfaceModel& model, PointSettings settings)
+    : model_(model),
+      settings_(settings),
+      tracker_(settings.tool.diameter, 4 * settings.tool.diameter, tracker_memory) {}
+
+PointResult PointEvaluator::evaluate(const PathSample& sample) {
+  using geometry::BallStatus;
+  const double radius = settings_.tool.radius();
+  PointResult out;
+  const Eigen::Vector3d center = geometry::ball_center(sample.point, radius, settings_.cl_point);
+  out.contact = geometry::ball_contact(model_, center, radius, settings_.contact_tolerance,
+                                       settings_.tool.diameter, &hint_);
+  const bool cuts = out.contact.status == BallStatus::touching ||
+                    out.contact.status == BallStatus::gouging;
+  if (!cuts) {
+    if (had_contact_) tracker_.break_pass();
+    had_contact_ = false;
+    return out;
+  }
+  had_contact_ = true;
+
+  const Eigen::Vector3d& n = out.contact.normal;
+  const Eigen::Vector3d tangent = sample.direction - sample.direction.dot(n) * n;
+  if (tangent.norm() > 1e-9) out.feed = tangent.normalized();
+  const Eigen::Vector3d cc = out.contact.contact->point;
+  const auto neighbour = out.feed.isZero() ? std::nullopt : tracker_.step(cc, n, out.feed);
+
+  if (settings_.ae && (settings_.ae_override || !neighbour)) {
+    out.ae = *settings_.ae;
+    out.ae_source = AeSource::given;
+  } else if (neighbour) {
+    out.ae = neighbour->ae;
+    out.ae_source = AeSource::measured;
+  } else {
+    out.ae = settings_.tool.diameter;  // no pass beside this one: the whole leading half cuts
+    out.ae_source = AeSource::first_pass;
+  }
+  if (neighbour) out.side = neighbour->side;
+
+  const geometry::CutSetup setup{settings_.ap, out.ae, n,
+                                 out.feed.isZero() ? sample.direction : out.feed, out.side};
+  out.engagement = geometry::evaluate_engagement(settings_.tool, setup);
+  const auto& e = *out.engagement;
+  switch (settings_.policy) {
+    case DiameterPolicy::max: out.d_ref = e.d_max; break;
+    case DiameterPolicy::tangent:
+      if (e.points && e.d_max) out.d_ref = e.points->cut.diameter;
+      break;
+    case DiameterPolicy::mean: out.d_ref = geometry::engaged_mean_diameter(settings_.tool, setup); break;
+  }
+  if (out.d_ref) {
+    out.target_rpm = *out.d_ref > 0 ? geometry::spindle_speed_for(settings_.vc, *out.d_ref)
+                                    : std::numeric_limits<double>::infinity();
+  }
+  return out;
+}
+
+}  // namespace vcpost::pipeline

@@ -1,0 +1,78 @@
+// Contact, engagement and target spindle speed at each sample of the path:
+// the per-point work of `vcpost post` and `vcpost report`.
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <string_view>
+
+#include "geometry/engagement.h"
+#include "geometry/model.h"
+#include "postproc/pipeline/pass_tracker.h"
+#include "postproc/pipeline/path_sampler.h"
+
+namespace vcpost::pipeline {
+
+// Which working diameter sets the spindle speed (MODELS.md section 2).
+enum class DiameterPolicy {
+  max,      // D_max: no engaged edge point runs faster than vc (default)
+  tangent,  // the paper's cutting point on the working side
+  mean,     // D_mean, area-weighted over the engaged zone
+};
+std::string_view to_string(DiameterPolicy policy);
+
+// Where the width of cut came from.
+enum class AeSource {
+  measured,    // from the neighbouring pass of the toolpath
+  given,       // --ae (as the override, or where no neighbour was found)
+  first_pass,  // no neighbour and no --ae: nothing removed beside this pass
+};
+std::string_view to_string(AeSource source);
+
+struct PointSettings {
+  geometry::Tool tool = geometry::Tool::ball(10);
+  double ap = 0.3;                                  // mm
+  std::optional<double> ae;                         // mm; see ae_override
+  bool ae_override = false;                         // use `ae` everywhere instead of measuring
+  geometry::ClPoint cl_point = geometry::ClPoint::tip;
+  double contact_tolerance = 0.01;                  // mm: |distance error| counted as touching
+  DiameterPolicy policy = DiameterPolicy::max;
+  double vc = 120;                                  // nominal cutting speed, m/min
+};
+
+struct PointResult {
+  geometry::BallContact contact;
+  Eigen::Vector3d feed = Eigen::Vector3d::Zero();  // F on the tangent plane (zero without contact)
+  double ae = 0;
+  AeSource ae_source = AeSource::first_pass;
+  geometry::Side side = geometry::Side::left;
+  std::optional<geometry::Engagement> engagement;  // when the ball touches (or gouges)
+  std::optional<double> d_ref;                     // the policy's diameter, mm
+  // 1000 vc / (pi d_ref), rpm; +infinity where d_ref is 0 (the machine caps
+  // it); empty where the tool does not cut (no contact, nothing engaged).
+  std::optional<double> target_rpm;
+};
+
+// Evaluates the samples of one path in order (the pass tracker needs path
+// order). Not thread-safe: one per path (or per chunk with its own tracker).
+class PointEvaluator {
+ public:
+  PointEvaluator(const geometry::SurfaceModel& model, PointSettings settings);
+
+  PointResult evaluate(const PathSample& sample);
+
+  // Call after a rapid: the next contact point starts a new pass.
+  void break_pass() { tracker_.break_pass(); }
+
+  const PointSettings& settings() const { return settings_; }
+  const geometry::ContactHint& hint() const { return hint_; }
+
+ private:
+  const geometry::SurfaceModel& model_;
+  PointSettings settings_;
+  geometry::ContactHint hint_;
+  PassTracker tracker_;
+  bool had_contact_ = false;
+};
+
+}  // namespace vcpost::pipeline

@@ -69,6 +69,8 @@ void Interpreter::fail(Code code, std::uint32_t column, std::string message) con
 }
 
 void Interpreter::warn(Code code, std::uint32_t column, std::string message) {
+  ++warning_count_;
+  if (warnings_.size() >= limits_.max_warnings) return;
   warnings_.push_back(
       Diagnostic{code, Severity::warning, block_.line, column == 0 ? 1u : column, std::move(message)});
 }
@@ -487,6 +489,7 @@ void Interpreter::execute(std::vector<Event>& events) {
       seconds = p->value;
     } else if (const Word* x = W('X')) {
       seconds = x->value;
+      word['X' - 'A'] = nullptr;  // a time here, not an axis
     } else if (const Word* p = W('P')) {
       seconds = p->decimal_point ? p->value : p->value / 1000.0;
     } else {
@@ -524,7 +527,19 @@ void Interpreter::execute(std::vector<Event>& events) {
   if (G(Group::distance)) s.absolute = Gc(Group::distance) == 900;
   if (G(Group::arc_distance)) s.arc_absolute = Gc(Group::arc_distance) == 901;
 
-  const bool has_axis = W('X') || W('Y') || W('Z');
+  // Mazak G117: M/S/T words output when the axes reach the given position
+  // during the next move; its axis words are that position, not a move.
+  // M and S output somewhere inside a move cannot be placed soundly.
+  const bool g117 = nonmodal && nonmodal_code == 1170;
+  if (g117) {
+    if (const Word* sw = W('S'))
+      fail(Code::unsupported_code, sw->column,
+           "S in a G117 block changes the speed inside the next move; vcpost cannot place it");
+    if (const Word* m = M(Group::spindle))
+      fail(Code::unsupported_code, m->column,
+           "spindle M code in a G117 block acts inside the next move; vcpost cannot place it");
+  }
+  const bool has_axis = !g117 && (W('X') || W('Y') || W('Z'));
   auto target_of = [&](bool absolute) {
     Eigen::Vector3d t = s.position;
     const char* axes = "XYZ";
@@ -562,7 +577,7 @@ void Interpreter::execute(std::vector<Event>& events) {
     emit(program::StraightTraverse{via, home, source(b, nonmodal->column)});
     s.position = home;
     s.moved = true;
-  } else if (has_axis || ((s.motion == Motion::arc_cw || s.motion == Motion::arc_ccw) &&
+  } else if (has_axis || (!g117 && (s.motion == Motion::arc_cw || s.motion == Motion::arc_ccw) &&
                           (W('I') || W('J') || W('K') || W('R')))) {
     const bool machine = nonmodal && nonmodal_code == 530;
     if (machine) {
@@ -668,6 +683,9 @@ void Interpreter::execute(std::vector<Event>& events) {
     } else if (c == 20 || c == 300) {
       end_program = true;
     } else if (c == 990) {
+      if (const Word* p = W('P'))
+        fail(Code::unsupported_flow, p->column,
+             "M99 P (return to a sequence number) is a jump vcpost does not follow");
       if (frames_.empty()) {
         end_program = true;  // M99 in a main program repeats it on the control: end here
       } else {
@@ -691,10 +709,16 @@ void Interpreter::execute(std::vector<Event>& events) {
     const Word* p = W('P');
     if (!p) fail(Code::missing_axis_word, m->column, "M98 needs P (program number)");
     const Word* l = W('L');
-    const long count = l ? std::lround(l->value) : 1;
+    long number = std::lround(p->value);
+    long count = l ? std::lround(l->value) : 1;
+    // Fanuc's short form M98 Prrrrnnnn: repetitions rrrr, program nnnn.
+    if (!l && dialect_.kind == DialectKind::fanuc && number > 9999) {
+      count = number / 10000;
+      number %= 10000;
+    }
     block_.control.column = m->column;
     char name[32];
-    std::snprintf(name, sizeof name, "%ld", std::lround(p->value));
+    std::snprintf(name, sizeof name, "%ld", number);
     call(name, {}, true, count < 1 ? 1 : count);
   }
   (void)first_event;

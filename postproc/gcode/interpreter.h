@@ -49,6 +49,9 @@ struct ModalState {
 struct InterpreterLimits {
   std::size_t max_call_depth = 64;
   std::uint64_t max_loop_iterations = 10'000'000;
+  // Warnings kept (later ones are counted only): memory stays flat even
+  // when every block of a long program warns.
+  std::size_t max_warnings = 1000;
 };
 
 class Interpreter {
@@ -65,8 +68,10 @@ class Interpreter {
   // The block last read by next() (its text, words and spans).
   const Block& block() const { return block_; }
   const ModalState& state() const { return state_; }
-  // Warnings so far (errors are thrown).
+  // Warnings so far (errors are thrown), at most limits.max_warnings of them;
+  // warning_count() counts all.
   const std::vector<Diagnostic>& warnings() const { return warnings_; }
+  std::uint64_t warning_count() const { return warning_count_; }
   // Number of lines read (including skipped ones).
   std::uint64_t lines_read() const { return lines_read_; }
 
@@ -124,6 +129,7 @@ class Interpreter {
   std::uint32_t line_ = 0;  // number of the line at pos_ minus one
   std::uint64_t lines_read_ = 0;
   std::uint64_t loop_iterations_ = 0;
+  std::uint64_t warning_count_ = 0;
   bool percent_seen_ = false;
   bool ended_ = false;
 };

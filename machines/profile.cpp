@@ -1,0 +1,441 @@
+#include "machines/profile.h"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <initializer_list>
+#include <iterator>
+#include <sstream>
+#include <utility>
+
+namespace vcpost::machines {
+
+namespace {
+std::string format(const std::string& code, const std::string& file, std::uint32_t line,
+                   std::uint32_t column, const std::string& message) {
+  std::string out = file;
+  if (line > 0) {
+    out += ':';
+    out += std::to_string(line);
+    out += ':';
+    out += std::to_string(column);
+  }
+  out += ": error[";
+  out += code;
+  out += "]: ";
+  out += message;
+  return out;
+}
+}  // namespace
+
+ProfileError::ProfileError(std::string code, std::string file, std::uint32_t line,
+                           std::uint32_t column, const std::string& message)
+    : std::runtime_error(format(code, file, line, column, message)),
+      code_(std::move(code)),
+      file_(std::move(file)),
+      line_(line),
+      column_(column) {}
+
+namespace {
+
+// The schema: every table and its keys. Anything else in a file is an error.
+constexpr std::array<std::string_view, 27> kSchemaKeys = {
+    "machine.name",
+    "machine.description",
+    "machine.dialect",
+    "machine.output_format",
+    "spindle.n_min_rpm",
+    "spindle.n_max_rpm",
+    "spindle.acceleration_rpm_per_s",
+    "spindle.deceleration_rpm_per_s",
+    "spindle.s_resolution_rpm",
+    "spindle.min_change_rpm",
+    "spindle.min_change_percent",
+    "spindle.max_changes_per_s",
+    "spindle.change_in_motion",
+    "spindle.change_code",
+    "spindle.stops_path_on_change",
+    "control.block_time_s",
+    "feed.f_min_mm_per_min",
+    "feed.f_max_mm_per_min",
+    "feed.rapid_mm_per_min",
+    "tool.default_teeth",
+    "output.program_number",
+    "output.high_speed_mode",
+    "output.geometry_compensation",
+    "output.work_offset",
+    "output.decimals",
+    "output.feed_decimals",
+    "output.line_numbers",
+};
+
+constexpr std::array<std::string_view, 7> kTables = {"machine", "spindle", "control", "feed",
+                                                     "tool",    "output",  "sources"};
+
+// Appended piece by piece ("literal" + temporary string trips a GCC 12
+// -Wrestrict false positive).
+std::string cat(std::initializer_list<std::string_view> parts) {
+  std::string out;
+  for (const auto p : parts) out.append(p);
+  return out;
+}
+
+// A number as a person writes it: 9000, 0.5.
+std::string number_text(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+
+std::string join(std::span<const std::string_view> names) {
+  std::string out;
+  for (const auto name : names) {
+    if (!out.empty()) out += ", ";
+    out += name;
+  }
+  return out;
+}
+
+// Reads one table of the profile; every accessor names file:line:col and
+// the full key in its error.
+class Reader {
+ public:
+  Reader(const toml::table& root, const std::string& file) : root_(root), file_(file) {}
+
+  [[noreturn]] void fail(std::string_view code, const toml::source_region& where,
+                         const std::string& message) const {
+    throw ProfileError(std::string(code), file_, where.begin.line, where.begin.column, message);
+  }
+
+  // Rejects tables and keys outside the schema, in the order of the file.
+  void check_unknown() const {
+    for (const auto& [key, node] : root_) {
+      const std::string_view name = key.str();
+      if (std::find(kTables.begin(), kTables.end(), name) == kTables.end()) {
+        fail(codes::unknown_key, key.source(),
+             cat({"unknown table '", name, "' (known: ", join(kTables), ")"}));
+      }
+      if (!node.is_table()) {
+        fail(codes::wrong_type, key.source(), cat({"'", name, "' must be a table ([", name, "])"}));
+      }
+      if (name == "sources") continue;
+      std::vector<std::string_view> known;
+      for (const auto full : kSchemaKeys) {
+        if (full.substr(0, name.size()) == name && full[name.size()] == '.')
+          known.push_back(full.substr(name.size() + 1));
+      }
+      for (const auto& [sub, value] : *node.as_table()) {
+        if (std::find(known.begin(), known.end(), sub.str()) == known.end()) {
+          fail(codes::unknown_key, sub.source(),
+               cat({"unknown key '", name, ".", sub.str(), "' (known in [", name,
+                    "]: ", join(known), ")"}));
+        }
+        (void)value;
+      }
+    }
+  }
+
+  const toml::table* table(std::string_view name) const {
+    const auto* node = root_.get(name);
+    return node ? node->as_table() : nullptr;
+  }
+
+  // The node of a key, or nullptr when absent (error if required).
+  const toml::node* node(std::string_view tbl, std::string_view key, bool required) const {
+    const auto* t = table(tbl);
+    const toml::node* n = t ? t->get(key) : nullptr;
+    if (!n && required) {
+      if (!t) {
+        toml::source_region start;
+        start.begin = {1, 1};
+        fail(codes::missing_key, start,
+             cat({"missing table [", tbl, "] (needed for ", quoted(tbl, key), ")"}));
+      }
+      fail(codes::missing_key, t->source(), cat({"missing required key ", quoted(tbl, key)}));
+    }
+    return n;
+  }
+
+  std::optional<double> number(std::string_view tbl, std::string_view key, bool required) const {
+    const auto* n = node(tbl, key, required);
+    if (!n) return std::nullopt;
+    double v = 0.0;
+    if (const auto* i = n->as_integer()) {
+      v = static_cast<double>(i->get());
+    } else if (const auto* f = n->as_floating_point()) {
+      v = f->get();
+    } else {
+      fail(codes::wrong_type, n->source(),
+           quoted(tbl, key) + " must be a number, not " + type_name(*n));
+    }
+    if (!std::isfinite(v))
+      fail(codes::out_of_range, n->source(), quoted(tbl, key) + " must be finite");
+    return v;
+  }
+
+  std::optional<std::int64_t> integer(std::string_view tbl, std::string_view key,
+                                      bool required) const {
+    const auto* n = node(tbl, key, required);
+    if (!n) return std::nullopt;
+    if (const auto* i = n->as_integer()) return i->get();
+    fail(codes::wrong_type, n->source(),
+         quoted(tbl, key) + " must be an integer, not " + type_name(*n));
+  }
+
+  std::optional<bool> boolean(std::string_view tbl, std::string_view key, bool required) const {
+    const auto* n = node(tbl, key, required);
+    if (!n) return std::nullopt;
+    if (const auto* b = n->as_boolean()) return b->get();
+    fail(codes::wrong_type, n->source(),
+         quoted(tbl, key) + " must be true or false, not " + type_name(*n));
+  }
+
+  std::optional<std::string> string(std::string_view tbl, std::string_view key,
+                                    bool required) const {
+    const auto* n = node(tbl, key, required);
+    if (!n) return std::nullopt;
+    if (const auto* s = n->as_string()) return s->get();
+    fail(codes::wrong_type, n->source(),
+         quoted(tbl, key) + " must be a string, not " + type_name(*n));
+  }
+
+  // Range checks on a key already read (it exists).
+  void require(bool ok, std::string_view tbl, std::string_view key, const std::string& reason,
+               std::string_view code = codes::out_of_range) const {
+    if (ok) return;
+    fail(code, node(tbl, key, true)->source(), quoted(tbl, key) + " " + reason);
+  }
+
+  template <class Enum, std::size_t N>
+  Enum choice(std::string_view tbl, std::string_view key,
+              const std::array<std::pair<std::string_view, Enum>, N>& names) const {
+    const std::string value = *string(tbl, key, true);
+    for (const auto& [name, e] : names)
+      if (name == value) return e;
+    std::vector<std::string_view> list;
+    for (const auto& [name, e] : names) list.push_back(name);
+    fail(codes::bad_choice, node(tbl, key, true)->source(),
+         quoted(tbl, key) + " is \"" + value + "\", not one of: " + join(list));
+  }
+
+  static std::string quoted(std::string_view tbl, std::string_view key) {
+    return cat({"'", tbl, ".", key, "'"});
+  }
+
+ private:
+  static std::string type_name(const toml::node& n) {
+    switch (n.type()) {
+      case toml::node_type::string:
+        return "a string";
+      case toml::node_type::integer:
+        return "an integer";
+      case toml::node_type::floating_point:
+        return "a number";
+      case toml::node_type::boolean:
+        return "a boolean";
+      case toml::node_type::table:
+        return "a table";
+      case toml::node_type::array:
+        return "an array";
+      default:
+        return "a date/time";
+    }
+  }
+
+  const toml::table& root_;
+  const std::string& file_;
+};
+
+constexpr std::array<std::pair<std::string_view, Dialect>, 3> kDialects = {
+    {{"rs274ngc", Dialect::rs274ngc}, {"fanuc", Dialect::fanuc}, {"mazak", Dialect::mazak}}};
+constexpr std::array<std::pair<std::string_view, OutputFormat>, 3> kFormats = {
+    {{"rs274ngc", OutputFormat::rs274ngc},
+     {"fanuc", OutputFormat::fanuc},
+     {"mazak", OutputFormat::mazak}}};
+constexpr std::array<std::pair<std::string_view, SChangeInMotion>, 3> kInMotion = {
+    {{"inline", SChangeInMotion::inline_word},
+     {"code", SChangeInMotion::code},
+     {"own_block", SChangeInMotion::own_block}}};
+
+bool schema_has(std::string_view key) {
+  // [sources] may note a key or a whole table (not itself).
+  return std::find(kSchemaKeys.begin(), kSchemaKeys.end(), key) != kSchemaKeys.end() ||
+         (key != "sources" && std::find(kTables.begin(), kTables.end(), key) != kTables.end());
+}
+
+}  // namespace
+
+std::span<const std::string_view> schema_keys() { return kSchemaKeys; }
+
+std::string_view to_string(Dialect d) {
+  for (const auto& [name, e] : kDialects)
+    if (e == d) return name;
+  return "?";
+}
+std::string_view to_string(OutputFormat f) {
+  for (const auto& [name, e] : kFormats)
+    if (e == f) return name;
+  return "?";
+}
+std::string_view to_string(SChangeInMotion m) {
+  for (const auto& [name, e] : kInMotion)
+    if (e == m) return name;
+  return "?";
+}
+
+const SourceNote* MachineProfile::source_of(std::string_view key) const {
+  const SourceNote* table_note = nullptr;
+  const std::string_view table = key.substr(0, key.find('.'));
+  for (const auto& note : sources_) {
+    if (note.key == key) return &note;
+    if (note.key == table) table_note = &note;
+  }
+  return table_note;
+}
+
+MachineProfile profile_from_toml(std::string_view text, const std::string& file) {
+  toml::table root;
+  try {
+    root = toml::parse(text, file);
+  } catch (const toml::parse_error& e) {
+    throw ProfileError(std::string(codes::syntax), file, e.source().begin.line,
+                       e.source().begin.column, std::string(e.description()));
+  }
+  const Reader r(root, file);
+  r.check_unknown();
+
+  MachineProfile p;
+  p.origin_ = file;
+  p.name_ = *r.string("machine", "name", true);
+  r.require(!p.name_.empty(), "machine", "name", "must not be empty");
+  p.description_ = r.string("machine", "description", false).value_or("");
+  p.dialect_ = r.choice("machine", "dialect", kDialects);
+  p.output_format_ = r.choice("machine", "output_format", kFormats);
+
+  auto& s = p.spindle_;
+  s.n_min_rpm = *r.number("spindle", "n_min_rpm", true);
+  r.require(s.n_min_rpm > 0, "spindle", "n_min_rpm", "must be > 0 rpm (S0 means spindle off)");
+  s.n_max_rpm = *r.number("spindle", "n_max_rpm", true);
+  r.require(s.n_max_rpm > 0, "spindle", "n_max_rpm", "must be > 0 rpm");
+  r.require(s.n_min_rpm <= s.n_max_rpm, "spindle", "n_min_rpm",
+            cat({"(", number_text(s.n_min_rpm), ") is greater than spindle.n_max_rpm (",
+                 number_text(s.n_max_rpm), ")"}),
+            codes::inconsistent);
+  s.acceleration_rpm_per_s = *r.number("spindle", "acceleration_rpm_per_s", true);
+  r.require(s.acceleration_rpm_per_s > 0, "spindle", "acceleration_rpm_per_s", "must be > 0 rpm/s");
+  s.deceleration_rpm_per_s = *r.number("spindle", "deceleration_rpm_per_s", true);
+  r.require(s.deceleration_rpm_per_s > 0, "spindle", "deceleration_rpm_per_s",
+            "must be > 0 rpm/s (a rate, given without sign)");
+  s.s_resolution_rpm = *r.number("spindle", "s_resolution_rpm", true);
+  r.require(s.s_resolution_rpm > 0, "spindle", "s_resolution_rpm", "must be > 0 rpm");
+  r.require(
+      std::ceil(s.n_min_rpm / s.s_resolution_rpm) <= std::floor(s.n_max_rpm / s.s_resolution_rpm),
+      "spindle", "s_resolution_rpm", "leaves no S value between n_min_rpm and n_max_rpm",
+      codes::inconsistent);
+  s.min_change_rpm = *r.number("spindle", "min_change_rpm", true);
+  r.require(s.min_change_rpm >= 0, "spindle", "min_change_rpm", "must be >= 0 rpm");
+  s.min_change_percent = *r.number("spindle", "min_change_percent", true);
+  r.require(s.min_change_percent >= 0 && s.min_change_percent < 100, "spindle",
+            "min_change_percent", "must be in [0, 100)");
+  s.max_changes_per_s = *r.number("spindle", "max_changes_per_s", true);
+  r.require(s.max_changes_per_s > 0, "spindle", "max_changes_per_s", "must be > 0");
+  s.change_in_motion = r.choice("spindle", "change_in_motion", kInMotion);
+  s.change_code = r.string("spindle", "change_code", false).value_or("");
+  if (s.change_in_motion == SChangeInMotion::code) {
+    r.require(!s.change_code.empty(), "spindle", "change_in_motion",
+              "is \"code\", but spindle.change_code does not name the code (e.g. \"G117\")",
+              codes::inconsistent);
+  } else if (!s.change_code.empty()) {
+    r.require(false, "spindle", "change_code",
+              "is only meaningful with change_in_motion = \"code\"", codes::inconsistent);
+  }
+  s.stops_path_on_change = *r.boolean("spindle", "stops_path_on_change", true);
+
+  p.control_.block_time_s = *r.number("control", "block_time_s", true);
+  r.require(p.control_.block_time_s >= 0, "control", "block_time_s", "must be >= 0 s");
+
+  auto& f = p.feed_;
+  f.f_min_mm_per_min = *r.number("feed", "f_min_mm_per_min", true);
+  r.require(f.f_min_mm_per_min > 0, "feed", "f_min_mm_per_min", "must be > 0 mm/min");
+  f.f_max_mm_per_min = *r.number("feed", "f_max_mm_per_min", true);
+  r.require(f.f_min_mm_per_min <= f.f_max_mm_per_min, "feed", "f_min_mm_per_min",
+            cat({"(", number_text(f.f_min_mm_per_min), ") is greater than feed.f_max_mm_per_min (",
+                 number_text(f.f_max_mm_per_min), ")"}),
+            codes::inconsistent);
+  f.rapid_mm_per_min = *r.number("feed", "rapid_mm_per_min", true);
+  r.require(f.rapid_mm_per_min > 0, "feed", "rapid_mm_per_min", "must be > 0 mm/min");
+
+  const auto teeth = *r.integer("tool", "default_teeth", true);
+  r.require(teeth >= 1 && teeth <= 100, "tool", "default_teeth", "must be in 1..100");
+  p.tool_.default_teeth = static_cast<int>(teeth);
+
+  auto& o = p.output_;
+  if (const auto v = r.integer("output", "program_number", false)) {
+    r.require(*v >= 1 && *v <= 9999, "output", "program_number", "must be in 1..9999");
+    o.program_number = static_cast<int>(*v);
+  }
+  o.high_speed_mode = r.boolean("output", "high_speed_mode", false).value_or(o.high_speed_mode);
+  o.geometry_compensation =
+      r.boolean("output", "geometry_compensation", false).value_or(o.geometry_compensation);
+  if (const auto v = r.integer("output", "work_offset", false)) {
+    r.require(*v >= 54 && *v <= 59, "output", "work_offset", "must be 54..59 (G54..G59)");
+    o.work_offset = static_cast<int>(*v);
+  }
+  if (const auto v = r.integer("output", "decimals", false)) {
+    r.require(*v >= 0 && *v <= 6, "output", "decimals", "must be in 0..6");
+    o.decimals = static_cast<int>(*v);
+  }
+  if (const auto v = r.integer("output", "feed_decimals", false)) {
+    r.require(*v >= 0 && *v <= 6, "output", "feed_decimals", "must be in 0..6");
+    o.feed_decimals = static_cast<int>(*v);
+  }
+  o.line_numbers = r.boolean("output", "line_numbers", false).value_or(o.line_numbers);
+
+  if (const auto* sources = r.table("sources")) {
+    for (const auto& [key, node] : *sources) {
+      const std::string k(key.str());
+      if (!schema_has(k)) {
+        r.fail(codes::bad_source, key.source(),
+               "'sources.\"" + k + "\"' names no key or table of the profile");
+      }
+      const auto* text_node = node.as_string();
+      if (!text_node) {
+        r.fail(codes::wrong_type, node.source(),
+               "'sources.\"" + k + "\"' must be a string \"vendor: ...\" or \"assumed: ...\"");
+      }
+      const std::string& note = text_node->get();
+      SourceNote n{k, false, ""};
+      auto rest = [&](std::size_t prefix) {
+        std::string t = note.substr(prefix);
+        t.erase(0, t.find_first_not_of(' '));
+        return t;
+      };
+      if (note.rfind("vendor:", 0) == 0) {
+        n.vendor = true;
+        n.text = rest(7);
+      } else if (note.rfind("assumed:", 0) == 0) {
+        n.text = rest(8);
+      } else {
+        r.fail(codes::bad_source, node.source(),
+               "'sources.\"" + k + "\"' must start with \"vendor:\" or \"assumed:\"");
+      }
+      if (n.text.empty()) {
+        r.fail(codes::bad_source, node.source(),
+               "'sources.\"" + k + "\"' needs the document or the reason after the colon");
+      }
+      p.sources_.push_back(std::move(n));
+    }
+  }
+  return p;
+}
+
+MachineProfile profile_from_stream(std::istream& in, const std::string& file) {
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw ProfileError(std::string(codes::unreadable), file, 0, 0, "cannot read");
+  return profile_from_toml(text.str(), file);
+}
+
+}  // namespace vcpost::machines

@@ -1,0 +1,170 @@
+// Machine profiles: what a machine and its control can do with the spindle
+// and the feed, validated from a TOML file into an immutable value.
+//
+// Units are in the key names: rpm, rpm/s, mm/min, s, percent. The schema
+// (tables, keys, types, ranges) is documented in machines/README.md and
+// enforced by profile_from_toml(): unknown keys are errors, so a typo never
+// silently falls back to a default.
+//
+// Provenance: the [sources] table of a profile says, per key, whether a
+// value comes from a vendor document ("vendor: <document>") or is an
+// assumption ("assumed: <why>"); the loader keeps these notes so that
+// `vcpost machines show` and the report can print them.
+#pragma once
+
+#include <cstdint>
+#include <istream>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace vcpost::machines {
+
+// The G-code dialect the control reads (same names as `--dialect`).
+enum class Dialect { rs274ngc, fanuc, mazak };
+// The format of G-code written from CL data for this machine.
+enum class OutputFormat { rs274ngc, fanuc, mazak };
+// How an S change in a motion block reaches the spindle:
+// inline_word: the S word goes into the motion block as it is;
+// code: the block also needs a code (Mazak's G117);
+// own_block: the S word must stand in a block of its own between moves.
+enum class SChangeInMotion { inline_word, code, own_block };
+
+struct SpindleSpec {
+  double n_min_rpm = 100.0;    // lowest speed the spindle holds, > 0 (S0 means off)
+  double n_max_rpm = 10000.0;  // highest speed, >= n_min_rpm
+  // Slew limits of the spindle drive, > 0. The planner assumes the spindle
+  // reaches a commanded speed at least this fast.
+  double acceleration_rpm_per_s = 2000.0;
+  double deceleration_rpm_per_s = 2000.0;
+  double s_resolution_rpm = 1.0;  // smallest S step the control takes, > 0 (1 = integer S)
+  // A change is worth a new S word only if it is at least both of these
+  // (threshold = max(min_change_rpm, min_change_percent % of the current S)).
+  double min_change_rpm = 1.0;      // >= 0
+  double min_change_percent = 1.0;  // 0 <= p < 100
+  double max_changes_per_s = 10.0;  // most S words per second, > 0: words at least 1/this apart
+  SChangeInMotion change_in_motion = SChangeInMotion::inline_word;
+  std::string change_code;            // e.g. "G117"; non-empty iff change_in_motion == code
+  bool stops_path_on_change = false;  // the control halts the path on an S change
+};
+
+struct FeedSpec {
+  double f_min_mm_per_min = 1.0;      // > 0
+  double f_max_mm_per_min = 10000.0;  // >= f_min
+  double rapid_mm_per_min = 20000.0;  // > 0
+};
+
+struct ControlSpec {
+  double block_time_s = 0.001;  // processing time of one block, >= 0
+};
+
+struct ToolSpec {
+  int default_teeth = 2;  // number of teeth when the command line gives none, >= 1
+};
+
+// Options of the G-code written from CL data (see postproc/output/).
+struct OutputSpec {
+  int program_number = 1000;           // O word, 1..9999
+  bool high_speed_mode = false;        // G05 P2 after each tool change
+  bool geometry_compensation = false;  // G61.1
+  int work_offset = 54;                // G54..G59
+  int decimals = 4;                    // digits after the point for lengths, 0..6
+  int feed_decimals = 1;               // digits after the point for F, 0..6
+  bool line_numbers = false;           // N words
+};
+
+// Provenance of one key ("spindle.n_max_rpm", or a whole table "feed").
+struct SourceNote {
+  std::string key;
+  bool vendor = false;  // true: taken from a vendor document
+  std::string text;     // the document, or why the value was assumed
+};
+
+class MachineProfile;
+
+// A profile that failed to load. what() is the whole one-line message:
+// "<file>:<line>:<col>: error[E5xxx]: '<table.key>' <reason>" (no
+// ":<line>:<col>" when no position applies, e.g. an unreadable file).
+class ProfileError : public std::runtime_error {
+ public:
+  ProfileError(std::string code, std::string file, std::uint32_t line, std::uint32_t column,
+               const std::string& message);
+  const std::string& code() const { return code_; }  // "E5002"
+  const std::string& file() const { return file_; }
+  std::uint32_t line() const { return line_; }  // 1-based; 0 when no position applies
+  std::uint32_t column() const { return column_; }
+
+ private:
+  std::string code_;
+  std::string file_;
+  std::uint32_t line_;
+  std::uint32_t column_;
+};
+
+// Stable diagnostic codes of profile loading.
+namespace codes {
+inline constexpr std::string_view syntax = "E5001";           // not valid TOML
+inline constexpr std::string_view unknown_key = "E5002";      // key or table not in the schema
+inline constexpr std::string_view wrong_type = "E5003";       // e.g. a string where a number is due
+inline constexpr std::string_view missing_key = "E5004";      // required key absent
+inline constexpr std::string_view out_of_range = "E5005";     // negative rate, n_min <= 0 ...
+inline constexpr std::string_view inconsistent = "E5006";     // n_min > n_max, f_min > f_max ...
+inline constexpr std::string_view bad_choice = "E5007";       // dialect not one of the names
+inline constexpr std::string_view bad_source = "E5008";       // [sources] note malformed
+inline constexpr std::string_view unknown_profile = "E5009";  // no built-in profile of that name
+inline constexpr std::string_view unreadable = "E5010";       // file cannot be read
+}  // namespace codes
+
+// The validated profile. Immutable: built only by the loaders below.
+class MachineProfile {
+ public:
+  const std::string& name() const { return name_; }
+  const std::string& description() const { return description_; }
+  Dialect dialect() const { return dialect_; }
+  OutputFormat output_format() const { return output_format_; }
+  const SpindleSpec& spindle() const { return spindle_; }
+  const FeedSpec& feed() const { return feed_; }
+  const ControlSpec& control() const { return control_; }
+  const ToolSpec& tool() const { return tool_; }
+  const OutputSpec& output() const { return output_; }
+  // Notes in the order of the file. A key without a note has no stated source.
+  const std::vector<SourceNote>& sources() const { return sources_; }
+  // The note that covers a key: its own, else its table's; nullptr if none.
+  const SourceNote* source_of(std::string_view key) const;
+  // Where the profile came from: a built-in name ("built-in mazak-3axis") or the file path.
+  const std::string& origin() const { return origin_; }
+
+  friend MachineProfile profile_from_toml(std::string_view text, const std::string& file);
+
+ private:
+  MachineProfile() = default;
+  std::string name_;
+  std::string description_;
+  Dialect dialect_ = Dialect::rs274ngc;
+  OutputFormat output_format_ = OutputFormat::rs274ngc;
+  SpindleSpec spindle_;
+  FeedSpec feed_;
+  ControlSpec control_;
+  ToolSpec tool_;
+  OutputSpec output_;
+  std::vector<SourceNote> sources_;
+  std::string origin_;
+};
+
+// Parses and validates a profile. `file` names the source in messages.
+// Throws ProfileError on the first problem found.
+MachineProfile profile_from_toml(std::string_view text, const std::string& file);
+// The same from a stream (read whole).
+MachineProfile profile_from_stream(std::istream& in, const std::string& file);
+
+// Every key of the schema, as "table.key" (for `machines show` and tests).
+std::span<const std::string_view> schema_keys();
+
+std::string_view to_string(Dialect d);
+std::string_view to_string(OutputFormat f);
+std::string_view to_string(SChangeInMotion m);
+
+}  // namespace vcpost::machines

@@ -1,0 +1,47 @@
+#include "postproc/cli/model_loader.h"
+
+#include <fstream>
+
+#include "geometry/mesh/mesh_model.h"
+#include "geometry/mesh/stl_reader.h"
+#include "geometry/occt/brep_model.h"
+#include "postproc/cli/commands.h"
+
+namespace vcpost::cli {
+namespace {
+
+// STEP files open with "ISO-10303-21;"; everything else is tried as STL.
+bool looks_like_step(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(64, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  return head.find("ISO-10303-21") != std::string::npos;
+}
+
+}  // namespace
+
+LoadedModel load_model(const std::filesystem::path& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) {
+    throw CommandError("--model: '" + path.string() + "': no such file");
+  }
+  try {
+    if (looks_like_step(path)) {
+      auto model = std::make_unique<occt::BrepModel>(occt::BrepModel::load_step(path));
+      const auto& info = model->info();
+      std::string description = std::to_string(info.faces) + " faces";
+      if (!info.length_unit.empty()) description += ", unit " + info.length_unit;
+      return {std::move(model), "STEP", description};
+    }
+    auto mesh = mesh::read_stl_file(path);
+    const std::string description = std::to_string(mesh.triangles.size()) + " triangles";
+    return {std::make_unique<mesh::MeshModel>(std::move(mesh)), "STL", description};
+  } catch (const occt::ModelError& e) {
+    throw CommandError(e.what());
+  } catch (const mesh::StlError& e) {
+    throw CommandError(e.what());
+  }
+}
+
+}  // namespace vcpost::cli

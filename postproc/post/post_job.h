@@ -1,0 +1,76 @@
+// `vcpost post` as a library call: the input program with its S words (and
+// F words, with feed coupling) rewritten so the cutting speed at the
+// reference working diameter stays at its nominal value, within what the
+// machine profile allows. No I/O: text in, text out through a sink.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "geometry/model.h"
+#include "machines/profile.h"
+#include "postproc/gcode/dialect.h"
+#include "postproc/pipeline/point_evaluator.h"
+#include "postproc/plan/spindle_plan.h"
+
+namespace vcpost::post {
+
+enum class ProgramKind { gcode, cldata };
+
+// G-code or APT CL data, recognised by content: CL records are `WORD/...`
+// statements (GOTO/, FEDRAT/, CUTTER/ ...) or bare PARTNO/FINI lines.
+ProgramKind detect_program_kind(std::string_view text);
+
+struct PostSettings {
+  pipeline::PointSettings point;
+  double sample_spacing_mm = 0.5;   // largest distance between evaluated points
+  std::optional<gcode::Dialect> dialect;  // G-code input; default: the profile's
+  bool adjust_feed = false;          // couple F = fz * z * n
+  std::optional<double> fz_mm;       // feed per tooth; default: the program's F at its S
+  std::optional<int> teeth;          // default: the profile's
+};
+
+// Statistics of the cutting speed over the cutting samples, weighted by
+// cutting time. vc in m/min at the reference diameter.
+struct VcStatistics {
+  double min = 0, max = 0, mean = 0;
+  double within_5_percent = 0;   // share of cutting time with |vc/vc_nom - 1| <= 5 %
+  double within_10_percent = 0;  // ... <= 10 %
+};
+
+struct PostSummary {
+  ProgramKind kind = ProgramKind::gcode;
+  std::uint64_t blocks = 0, motion_events = 0, samples = 0;
+  std::uint64_t touching = 0, lifted = 0, gouging = 0, missed = 0;
+  std::uint64_t ae_measured = 0, ae_given = 0, ae_first_pass = 0;
+  double program_time_s = 0, cutting_time_s = 0;
+  std::uint64_t s_words = 0, f_words = 0;
+  // Cutting time (s) of the blocks whose planned S each bound decided.
+  double time_clamped_max_s = 0, time_clamped_min_s = 0, time_slew_s = 0, time_rate_s = 0;
+  std::optional<VcStatistics> before, after;  // empty when no sample cut
+};
+
+// Progress: fraction of the input read, in [0, 1].
+using Progress = std::function<void(double)>;
+
+// Thrown for input the job cannot post soundly (the message says where and
+// why); readers' own errors (GcodeError, ClError, TimingError, OutputError)
+// pass through unchanged.
+class PostError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Posts `text` (the whole program; `file_name` for messages). Writes the
+// output program to `sink` in pieces: for G-code input the input with only
+// S/F words changed; for CL input G-code in the profile's format.
+PostSummary post_program(std::string_view text, const std::string& file_name,
+                         const geometry::SurfaceModel& model,
+                         const machines::MachineProfile& profile, const PostSettings& settings,
+                         const std::function<void(std::string_view)>& sink,
+                         const Progress& progress = {});
+
+}  // namespace vcpost::post

@@ -1,16 +1,672 @@
+// Engagement of the bull-nose and flat end mills (MODELS.md section 2).
+//
+// The method. F is normal to N, so the volume the tool sweeps along the
+// feed line is a prism along F: everything that matters is its projection
+// along F onto the (b, c) plane, b = e.P along e = the side of the previous
+// pass (+-S0), c = N.P. The tool projects to a convex region Q whose lower
+// boundary is the projection of the silhouette (the torus points whose
+// normal is normal to F, parametrised by the angle phi of that normal in the
+// (e, N) plane) and whose sides are two rays (the shank's silhouette lines).
+// Each slice c = const of Q is [bL(c), bR(c)]; the previous pass removes the
+// interior of Q shifted by ae along e, so the groove is
+//   G = { c_min <= c <= c0, bL(c) <= b <= min(bR(c), bL(c) + ae) },
+// and the engaged edge points are the front points (largest a = F.P) of the
+// tool above G. r has no local extremum inside G except r = 0 (centre of the
+// flat face) and r = R (a plateau that reaches the boundary), so the extremes
+// lie on G's four boundary curves: the silhouette on the far side (closed
+// form), the silhouette on the near side below the width-ae level c*, the
+// shifted silhouette above c*, and the stock line c = c0. The last two are
+// 1-D problems: bracketing on a fixed subdivision, then golden-section
+// refinement of every local extremum, with exact line-tool intersections.
 #include "geometry/revolved_engagement.h"
 
-#include <stdexcept>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <tuple>
+#include <utility>
 
 namespace vcpost::geometry {
+namespace {
 
-// Being written: until then non-ball tools are refused loudly.
-Engagement evaluate_revolved_engagement(const Tool&, const CutSetup&) {
-  throw std::logic_error("bull-nose and flat engagement not available yet");
+using Eigen::Vector3d;
+constexpr double kPi = std::numbers::pi;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// |F_z| below this counts as a feed parallel to the flat face: the face is
+// then edge-on (part of the silhouette) and handled in closed form.
+constexpr double kEdgeOn = 1e-12;
+
+// Final bracket [lo, hi] around a sign change of g (g(lo) and g(hi) of
+// opposite signs); Illinois regula falsi with bisection as the fallback. A
+// discontinuous g collapses the bracket onto its jump, which callers use.
+template <class Function>
+std::pair<double, double> bracket_root(const Function& g, double lo, double hi, double g_lo,
+                                       double g_hi, double tolerance) {
+  int last = 0;
+  for (int i = 0; i < 200 && hi - lo > tolerance; ++i) {
+    double x = 0.5 * (lo + hi);
+    if (g_lo != g_hi) {
+      const double secant = hi - g_hi * (hi - lo) / (g_hi - g_lo);
+      if (secant > lo && secant < hi) x = secant;
+    }
+    // Keep the bracket shrinking by a fixed share even when the secant crawls.
+    if (i % 4 == 3) x = 0.5 * (lo + hi);
+    const double g_x = g(x);
+    if (g_x == 0) return {x, x};
+    if ((g_x < 0) == (g_lo < 0)) {
+      lo = x;
+      g_lo = g_x;
+      if (last == -1) g_hi *= 0.5;
+      last = -1;
+    } else {
+      hi = x;
+      g_hi = g_x;
+      if (last == 1) g_lo *= 0.5;
+      last = 1;
+    }
+  }
+  return {lo, hi};
 }
 
-std::optional<double> revolved_mean_diameter(const Tool&, const CutSetup&) {
-  throw std::logic_error("bull-nose and flat engagement not available yet");
+template <class Function>
+double root(const Function& g, double lo, double hi, double tolerance) {
+  const auto [a, b] = bracket_root(g, lo, hi, g(lo), g(hi), tolerance);
+  return 0.5 * (a + b);
+}
+
+// Argument of the minimum of a unimodal f on [lo, hi] (golden section).
+template <class Function>
+double golden_argmin(const Function& f, double lo, double hi, double tolerance) {
+  const double ratio = 0.5 * (std::sqrt(5.0) - 1);
+  double x1 = hi - ratio * (hi - lo), x2 = lo + ratio * (hi - lo);
+  double f1 = f(x1), f2 = f(x2);
+  while (hi - lo > tolerance) {
+    if (f1 <= f2) {
+      hi = x2;
+      x2 = x1;
+      f2 = f1;
+      x1 = hi - ratio * (hi - lo);
+      f1 = f(x1);
+    } else {
+      lo = x1;
+      x1 = x2;
+      f1 = f2;
+      x2 = lo + ratio * (hi - lo);
+      f2 = f(x2);
+    }
+  }
+  return f1 <= f2 ? x1 : x2;
+}
+
+// Integral of f over [lo, hi] to a relative accuracy of about `relative`:
+// 5-point Gauss-Legendre on each interval against the sum over its halves,
+// bisecting where they disagree (at most 2^18 pieces deep, for kinks).
+template <class Function>
+double integrate(const Function& f, double lo, double hi, double relative) {
+  struct Rule {
+    std::array<double, 5> x, w;
+  };
+  static const Rule rule = [] {
+    const double s = 2 * std::sqrt(10.0 / 7), s70 = 13 * std::sqrt(70.0);
+    const double x1 = std::sqrt(5 - s) / 3, x2 = std::sqrt(5 + s) / 3;
+    const double w1 = (322 + s70) / 900, w2 = (322 - s70) / 900;
+    return Rule{{-x2, -x1, 0, x1, x2}, {w2, w1, 128.0 / 225, w1, w2}};
+  }();
+  const auto gauss = [&](double a, double b) {
+    const double centre = 0.5 * (a + b), half = 0.5 * (b - a);
+    double sum = 0;
+    for (std::size_t i = 0; i < 5; ++i) sum += rule.w[i] * f(centre + half * rule.x[i]);
+    return sum * half;
+  };
+  if (!(hi > lo)) return 0;
+  const auto refine = [&](const auto& self, double a, double b, double whole, double tolerance,
+                          int depth) -> double {
+    const double mid = 0.5 * (a + b);
+    const double left = gauss(a, mid), right = gauss(mid, b);
+    if (std::abs(left + right - whole) <= tolerance || depth >= 18) return left + right;
+    return self(self, a, mid, left, 0.5 * tolerance, depth + 1) +
+           self(self, mid, b, right, 0.5 * tolerance, depth + 1);
+  };
+  const double whole = gauss(lo, hi);
+  return refine(refine, lo, hi, whole, relative * std::abs(whole) + 1e-300, 0);
+}
+
+enum class Part { face, corner, shank };
+
+struct SurfacePoint {
+  Vector3d p;
+  Part part;
+};
+
+// Running extremes of r and of z over the engaged points met so far.
+struct Extremes {
+  double r_min = kInf, r_max = -kInf, z_max = -kInf;
+  void add(double r, double z) {
+    r_min = std::min(r_min, r);
+    r_max = std::max(r_max, r);
+    z_max = std::max(z_max, z);
+  }
+  void add(const Vector3d& p) { add(std::hypot(p.x(), p.y()), p.z()); }
+};
+
+// The cutting situation of one bull-nose or flat tool in the projected
+// frame described at the top of this file.
+class Groove {
+ public:
+  Groove(const Tool& tool, const Vector3d& feed, const Vector3d& normal, const Vector3d& side,
+         double ap, double ae)
+      : radius_(tool.radius()),
+        flat_radius_(tool.kind == ToolKind::flat ? tool.radius() : tool.flat_radius()),
+        corner_(tool.kind == ToolKind::flat ? 0.0 : tool.corner_radius),
+        ae_(ae),
+        feed_(feed),
+        normal_(normal),
+        side_(side) {
+    // +z projects to w = (e_z, N_z); the silhouette normal u(phi) has U_z =
+    // |w| cos(phi - omega) <= 0 on the lower boundary phi in [phiL, phiR].
+    omega_ = std::atan2(normal_.z(), side_.z());
+    phi_left_ = omega_ + kPi / 2;
+    phi_bottom_ = 1.5 * kPi;
+    phi_right_ = omega_ + 1.5 * kPi;
+    c_min_ = -flat_radius_ * std::hypot(normal_.x(), normal_.y()) - corner_;
+    c0_ = c_min_ + ap;
+    foot_left_ = silhouette(phi_left_);
+    foot_right_ = silhouette(phi_right_);
+    edge_on_ = std::abs(feed_.z()) <= kEdgeOn;
+    c_star_ = width_level();
+  }
+
+  double radius() const { return radius_; }
+  double c0() const { return c0_; }
+  double c_star() const { return c_star_; }
+
+  // The silhouette point with outward normal U = cos(phi) e + sin(phi) N.
+  Vector3d silhouette(double phi) const {
+    const Vector3d u = std::cos(phi) * side_ + std::sin(phi) * normal_;
+    const double length = std::hypot(u.x(), u.y());
+    const double scale = length > 0 ? flat_radius_ / length : 0;
+    return {scale * u.x() + corner_ * u.x(), scale * u.y() + corner_ * u.y(), corner_ * u.z()};
+  }
+
+  // r of the silhouette point at phi: R0 + rc |U_xy|, U_z = |w| cos(phi - omega).
+  double silhouette_r(double phi) const {
+    const Vector3d u = std::cos(phi) * side_ + std::sin(phi) * normal_;
+    return flat_radius_ + corner_ * std::sqrt(std::max(0.0, 1 - u.z() * u.z()));
+  }
+
+  struct BoundaryPoint {
+    Vector3d p;        // the tool point on the silhouette (or shank line) at this level
+    double b = 0;      // its b = e.P
+    double phi = 0;    // the silhouette parameter (the ray foot's on a ray)
+    double ray = 0;    // height above the ray foot, mm (0 on the lower boundary)
+  };
+
+  // The left (smallest b) or right boundary point of Q at level c.
+  BoundaryPoint boundary(double c, bool left) const {
+    const double phi_end = left ? phi_left_ : phi_right_;
+    const Vector3d& foot = left ? foot_left_ : foot_right_;
+    const double c_foot = normal_.dot(foot);
+    if (c >= c_foot) {
+      const double t = (c - c_foot) / normal_.z();
+      const Vector3d p = foot + t * Vector3d::UnitZ();
+      return {p, side_.dot(p), phi_end, t};
+    }
+    // Just beside the bottom normal: an edge-on face's end, not its middle.
+    const double phi_bottom = phi_bottom_ + (left ? -1e-10 : 1e-10);
+    if (c <= c_min_) {
+      const Vector3d p = silhouette(phi_bottom);
+      return {p, side_.dot(p), phi_bottom, 0};
+    }
+    const auto g = [&](double phi) { return normal_.dot(silhouette(phi)) - c; };
+    const double lo = left ? phi_end : phi_bottom, hi = left ? phi_bottom : phi_end;
+    const auto [a, b] = bracket_root(g, lo, hi, g(lo), g(hi), 1e-14);
+    const Vector3d pa = silhouette(a), pb = silhouette(b);
+    Vector3d p = pa;
+    if ((pa - pb).norm() > 1e-9 * radius_) {
+      // A straight edge of Q (the face seen edge-on): interpolate along it.
+      const double ca = normal_.dot(pa), cb = normal_.dot(pb);
+      p = pa + (c - ca) / (cb - ca) * (pb - pa);
+    }
+    return {p, side_.dot(p), 0.5 * (a + b), 0};
+  }
+
+  // The interval of t over which x0 + t F lies in the tool; empty when the
+  // line misses it (a line touching it within 1e-9 R counts as touching).
+  std::optional<std::pair<double, double>> line_interval(const Vector3d& x0) const {
+    const double fxy2 = feed_.x() * feed_.x() + feed_.y() * feed_.y();
+    if (!(fxy2 > 1e-24)) return std::nullopt;
+    const double beta = x0.x() * feed_.x() + x0.y() * feed_.y();
+    const double gamma = x0.x() * x0.x() + x0.y() * x0.y() - radius_ * radius_;
+    double disc = beta * beta - fxy2 * gamma;
+    if (disc < 0) {
+      if (disc < -1e-9 * radius_ * radius_ * fxy2) return std::nullopt;
+      disc = 0;
+    }
+    const double t1 = (-beta - std::sqrt(disc)) / fxy2, t2 = (-beta + std::sqrt(disc)) / fxy2;
+    const auto z = [&](double t) { return x0.z() + t * feed_.z(); };
+    if (corner_ == 0) {
+      // Flat: the solid cylinder above the end face z = 0.
+      double lo = t1, hi = t2;
+      if (feed_.z() > 0) lo = std::max(lo, -x0.z() / feed_.z());
+      if (feed_.z() < 0) hi = std::min(hi, -x0.z() / feed_.z());
+      if (feed_.z() == 0 && x0.z() < -1e-12 * radius_) return std::nullopt;
+      if (lo > hi) {
+        if (lo - hi > 1e-9 * radius_) return std::nullopt;
+        lo = hi = 0.5 * (lo + hi);
+      }
+      return std::pair{lo, hi};
+    }
+    // Bull-nose: distance to the core K = {r <= R0, z >= 0} at most rc;
+    // that distance is convex along the line.
+    const auto excess = [&](double t) {
+      const Vector3d x = x0 + t * feed_;
+      const double radial = std::max(0.0, std::hypot(x.x(), x.y()) - flat_radius_);
+      const double below = std::min(0.0, z(t));
+      return std::hypot(radial, below) - corner_;
+    };
+    const double e1 = excess(t1), e2 = excess(t2);
+    if (e1 <= 0 && e2 <= 0) return std::pair{t1, t2};
+    const double tm = golden_argmin(excess, t1, t2, 1e-13 * (radius_ + t2 - t1));
+    const double em = excess(tm);
+    if (em > 1e-9 * radius_) return std::nullopt;
+    if (em >= 0) return std::pair{tm, tm};
+    const double tolerance = 1e-14 * (radius_ + std::abs(t1) + std::abs(t2));
+    const double lo = e1 <= 0 ? t1 : root(excess, t1, tm, tolerance);
+    const double hi = e2 <= 0 ? t2 : root(excess, tm, t2, tolerance);
+    return std::pair{lo, hi};
+  }
+
+  Part classify(const Vector3d& p) const {
+    const double r = std::hypot(p.x(), p.y());
+    if (p.z() > 1e-9 * radius_) return Part::shank;
+    if (r < flat_radius_ - 1e-9 * radius_) return Part::face;
+    return corner_ > 0 ? Part::corner : Part::shank;
+  }
+
+  Vector3d point_at(double b, double c, double t) const {
+    return b * side_ + c * normal_ + t * feed_;
+  }
+
+  // The front (largest a) and back tool points above (b, c).
+  std::optional<std::pair<Vector3d, Vector3d>> fibre(double b, double c) const {
+    const auto interval = line_interval(b * side_ + c * normal_);
+    if (!interval) return std::nullopt;
+    return std::pair{point_at(b, c, interval->second), point_at(b, c, interval->first)};
+  }
+
+  std::optional<Vector3d> front(double b, double c) const {
+    const auto points = fibre(b, c);
+    if (!points) return std::nullopt;
+    return points->first;
+  }
+
+  // Outward unit normal of the tool at a surface point of the given part.
+  Vector3d surface_normal(const Vector3d& p, Part part) const {
+    if (part == Part::face) return -Vector3d::UnitZ();
+    const double r = std::hypot(p.x(), p.y());
+    const Vector3d radial(p.x() / r, p.y() / r, 0);
+    if (part == Part::shank || corner_ == 0) return radial;
+    return (p - flat_radius_ * radial) / corner_;
+  }
+
+  Extremes extremes() const;
+  double mean_diameter() const;
+
+ private:
+  // c* = the level below which the groove spans the whole slice (width of Q
+  // at most ae); c0 when the whole groove does, c_min when no level does.
+  double width_level() const {
+    const auto excess = [&](double c) { return boundary(c, false).b - boundary(c, true).b - ae_; };
+    if (excess(c0_) <= 0) return c0_;
+    if (excess(c_min_) >= 0) return c_min_;
+    return root(excess, c_min_, c0_, 1e-13 * radius_);
+  }
+
+  void silhouette_extremes(double phi_lo, double phi_hi, Extremes& out) const;
+  struct FaceStretches {
+    std::array<std::pair<double, double>, 2> v{};
+    int count = 0;
+  };
+  FaceStretches face_stretches(double u) const;
+  void face_extremes(Extremes& out) const;
+  template <class Curve>
+  void curve_extremes(const Curve& point_at_parameter, double lo, double hi,
+                      Extremes& out) const;
+
+  double radius_, flat_radius_, corner_, ae_;
+  Vector3d feed_, normal_, side_;
+  double omega_ = 0, phi_left_ = 0, phi_bottom_ = 0, phi_right_ = 0;
+  double c_min_ = 0, c0_ = 0, c_star_ = 0;
+  Vector3d foot_left_, foot_right_;
+  bool edge_on_ = false;
+};
+
+// Extremes of r over the silhouette arc phi in [phi_lo, phi_hi]: r depends
+// on |U_z| only, smallest where |U_z| peaks (phi = omega + pi).
+void Groove::silhouette_extremes(double phi_lo, double phi_hi, Extremes& out) const {
+  for (const double phi : {phi_lo, phi_hi, omega_ + kPi}) {
+    if (phi < phi_lo || phi > phi_hi) continue;
+    out.add(silhouette_r(phi), silhouette(phi).z());
+  }
+}
+
+// The leading flat face in its own plane: lines u = const across it (u
+// along H = z x F, v along H x z), on each the stretch in the stock and
+// outside the previous pass in closed form or by 1-D roots; the extremes
+// of r over u by subdivision and golden-section refinement. In (b, c) the
+// face is a thin ellipse when F is nearly parallel to it, too thin for the
+// boundary curves' subdivision.
+void Groove::face_extremes(Extremes& out) const {
+  constexpr int kSteps = 48;
+  const auto value = [&](double u, bool lowest) {
+    double best = lowest ? kInf : -kInf;
+    const FaceStretches stretches = face_stretches(u);
+    for (int k = 0; k < stretches.count; ++k) {
+      const auto [lo, hi] = stretches.v[k];
+      const double near = lo <= 0 && hi >= 0 ? 0.0 : std::min(std::abs(lo), std::abs(hi));
+      const double far = std::max(std::abs(lo), std::abs(hi));
+      best = lowest ? std::min(best, std::hypot(u, near)) : std::max(best, std::hypot(u, far));
+    }
+    return best;
+  };
+  for (const bool lowest : {true, false}) {
+    std::array<double, kSteps + 1> u{}, f{};
+    for (int i = 0; i <= kSteps; ++i) {
+      u[i] = flat_radius_ * (2.0 * i / kSteps - 1);
+      f[i] = lowest ? value(u[i], true) : -value(u[i], false);
+      if (std::isfinite(f[i])) out.add(lowest ? f[i] : -f[i], -corner_);
+    }
+    for (int i = 1; i < kSteps; ++i) {
+      if (!std::isfinite(f[i]) || f[i] > f[i - 1] || f[i] > f[i + 1]) continue;
+      const auto g = [&](double x) { return lowest ? value(x, true) : -value(x, false); };
+      const double x = golden_argmin(g, u[i - 1], u[i + 1], 1e-11 * radius_);
+      const double r = std::abs(g(x));
+      if (std::isfinite(r)) out.add(r, -corner_);
+    }
+  }
+}
+
+// On the face line u = const: the stretches of v (at most two) in the
+// stock and not removed by the previous pass.
+Groove::FaceStretches Groove::face_stretches(double u) const {
+  FaceStretches out;
+  const double half = std::sqrt(std::max(0.0, flat_radius_ * flat_radius_ - u * u));
+  if (!(half > 0)) return out;
+  const Vector3d across = Vector3d::UnitZ().cross(feed_).normalized();
+  const Vector3d along = across.cross(Vector3d::UnitZ());
+  const auto at = [&](double v) -> Vector3d {
+    return u * across + v * along - corner_ * Vector3d::UnitZ();
+  };
+  double lo = -half, hi = half;
+  // Stock: c is linear in v.
+  const double c_lo = normal_.dot(at(lo)), c_hi = normal_.dot(at(hi));
+  if (c_lo > c0_ && c_hi > c0_) return out;
+  if (c_lo > c0_) lo = lo + (c_lo - c0_) / (c_lo - c_hi) * (hi - lo);
+  else if (c_hi > c0_) hi = hi - (c_hi - c0_) / (c_hi - c_lo) * (hi - lo);
+  // Removed: strictly inside Q shifted by ae, i.e. right of bL(c) + ae and
+  // above the bottom level; concave along the line (bL is convex).
+  const auto removed = [&](double v) {
+    const Vector3d p = at(v);
+    const double c = normal_.dot(p);
+    return std::min(side_.dot(p) - boundary(c, true).b - ae_, c - c_min_);
+  };
+  const double peak = golden_argmin([&](double v) { return -removed(v); }, lo, hi,
+                                    1e-12 * radius_);
+  if (removed(peak) <= 0) {
+    out.v[out.count++] = {lo, hi};
+    return out;
+  }
+  const double tolerance = 1e-13 * radius_;
+  const double cut_lo = removed(lo) > 0 ? lo : root(removed, lo, peak, tolerance);
+  const double cut_hi = removed(hi) > 0 ? hi : root(removed, peak, hi, tolerance);
+  if (cut_lo > lo) out.v[out.count++] = {lo, cut_lo};
+  if (hi > cut_hi) out.v[out.count++] = {cut_hi, hi};
+  return out;
+}
+
+// Extremes of r (both) and z (largest) of the front points along a curve
+// of G's boundary: evaluation on a fixed subdivision to bracket every local
+// extremum, then golden-section refinement of each.
+template <class Curve>
+void Groove::curve_extremes(const Curve& point_at_parameter, double lo, double hi,
+                            Extremes& out) const {
+  constexpr int kSteps = 24;
+  struct Value {
+    bool valid = false;
+    double r = 0, z = 0;
+  };
+  const auto value = [&](double s) {
+    const std::optional<Vector3d> p = point_at_parameter(s);
+    if (!p) return Value{};
+    return Value{true, std::hypot(p->x(), p->y()), p->z()};
+  };
+  if (!(hi > lo)) {
+    if (const Value v = value(lo); v.valid) out.add(v.r, v.z);
+    return;
+  }
+  std::array<double, kSteps + 1> s{};
+  std::array<Value, kSteps + 1> v{};
+  for (int i = 0; i <= kSteps; ++i) {
+    s[i] = lo + (hi - lo) * i / kSteps;
+    v[i] = value(s[i]);
+    if (v[i].valid) out.add(v[i].r, v[i].z);
+  }
+  const double tolerance = 1e-10 * (hi - lo);
+  // objective 0: r (minimise), 1: -r, 2: -z (maximise r and z).
+  const auto objective = [](const Value& x, int which) {
+    if (!x.valid) return kInf;
+    return which == 0 ? x.r : which == 1 ? -x.r : -x.z;
+  };
+  for (int which = 0; which < 3; ++which) {
+    if (which == 2 && out.z_max > 1e-9 * radius_) continue;  // the shank is already known to cut
+    for (int i = 0; i <= kSteps; ++i) {
+      const double here = objective(v[i], which);
+      if (here == kInf || (i > 0 && here > objective(v[i - 1], which)) ||
+          (i < kSteps && here > objective(v[i + 1], which))) {
+        continue;
+      }
+      const auto f = [&](double x) { return objective(value(x), which); };
+      const double best =
+          golden_argmin(f, s[std::max(i - 1, 0)], s[std::min(i + 1, kSteps)], tolerance);
+      if (const Value b = value(best); b.valid) out.add(b.r, b.z);
+    }
+  }
+}
+
+Extremes Groove::extremes() const {
+  Extremes out;
+  const BoundaryPoint left_top = boundary(c0_, true);
+  // The far silhouette (away from the previous pass), from the bottom to c0.
+  silhouette_extremes(left_top.phi, phi_bottom_, out);
+  if (left_top.ray > 0) out.add(left_top.p);
+  // The near silhouette below c*.
+  const double right_level = std::min(c0_, c_star_);
+  const BoundaryPoint right_top = boundary(right_level, false);
+  silhouette_extremes(phi_bottom_, right_top.phi, out);
+  if (right_top.ray > 0) out.add(right_top.p);
+  // The shifted silhouette, from c* up to c0.
+  // Both curves are parametrised by v in [0, 1] with a cosine spacing: the
+  // front point moves like the square root of the distance from a
+  // silhouette end, and this makes it smooth there.
+  const auto spread = [](double lo, double hi, double v) {
+    return lo + (hi - lo) * 0.5 * (1 - std::cos(kPi * v));
+  };
+  if (c_star_ < c0_) {
+    curve_extremes(
+        [&](double v) {
+          const double c = spread(c_star_, c0_, v);
+          return front(boundary(c, true).b + ae_, c);
+        },
+        0.0, 1.0, out);
+  }
+  // The stock line.
+  const double b_hi = std::min(boundary(c0_, false).b, left_top.b + ae_);
+  curve_extremes([&](double v) { return front(spread(left_top.b, b_hi, v), c0_); }, 0.0, 1.0,
+                 out);
+  if (edge_on_ || feed_.z() < 0) {
+    face_extremes(out);
+  }
+  out.r_max = std::min(out.r_max, radius_);
+  return out;
+}
+
+// Area-weighted mean of 2r. Off the face: over G in (b, c) with the area
+// element db dc / (n.F) of the front surface, a cosine substitution across
+// each slice for the 1/sqrt growth at the silhouette and c = c_min + (c0 -
+// c_min) s^2 for the rounded bottom. The face (when leading) in its own
+// plane, along lines normal to the feed's horizontal direction, with the
+// integral of 2r along a line in closed form.
+double Groove::mean_diameter() const {
+  const double span = c0_ - c_min_;
+  // A leading face seen almost edge-on is a tall narrow plateau of 1/(n.F)
+  // in (b, c): integrate it in its own plane instead.
+  const bool face_apart = edge_on_ || (feed_.z() < 0 && feed_.z() > -0.05);
+  // Integrals of (2r, 1) over the part of a slice at level c off the face.
+  const auto slice = [&](double c, bool weighted) {
+    const double b_lo = boundary(c, true).b;
+    const double b_hi = c <= c_star_ ? boundary(c, false).b : b_lo + ae_;
+    const double width = b_hi - b_lo;
+    if (!(width > 0)) return 0.0;
+    const auto f = [&](double v) {
+      const double b = b_lo + width * 0.5 * (1 - std::cos(kPi * v));
+      const std::optional<Vector3d> p = front(b, c);
+      if (!p) return 0.0;
+      const Part part = classify(*p);
+      if (part == Part::face && face_apart) return 0.0;
+      const double along = surface_normal(*p, part).dot(feed_);
+      if (!(along > 0)) return 0.0;
+      const double jacobian = width * 0.5 * kPi * std::sin(kPi * v);
+      return (weighted ? 2 * std::hypot(p->x(), p->y()) : 1.0) * jacobian / along;
+    };
+    return integrate(f, 0.0, 1.0, 1e-7);
+  };
+  const auto over_groove = [&](bool weighted) {
+    const auto g = [&](double s) { return slice(c_min_ + span * s * s, weighted) * 2 * span * s; };
+    const double s_star = std::sqrt(std::clamp((c_star_ - c_min_) / span, 0.0, 1.0));
+    return integrate(g, 0.0, s_star, 1e-6) + integrate(g, s_star, 1.0, 1e-6);
+  };
+  double weighted = over_groove(true), area = over_groove(false);
+
+  if (face_apart) {
+    // Integral of 2 sqrt(u^2 + v^2) dv from 0 to v (signed).
+    const auto chord = [](double u, double v) {
+      return u == 0 ? v * std::abs(v) : v * std::hypot(u, v) + u * u * std::asinh(v / std::abs(u));
+    };
+    const auto line = [&](double u, bool weight) {
+      const FaceStretches stretches = face_stretches(u);
+      double sum = 0;
+      for (int k = 0; k < stretches.count; ++k) {
+        const auto [lo, hi] = stretches.v[k];
+        sum += weight ? chord(u, hi) - chord(u, lo) : hi - lo;
+      }
+      return sum;
+    };
+    weighted += integrate([&](double u) { return line(u, true); }, -flat_radius_, flat_radius_, 1e-6);
+    area += integrate([&](double u) { return line(u, false); }, -flat_radius_, flat_radius_, 1e-6);
+  }
+  return area > 0 ? weighted / area : 0.0;
+}
+
+struct Prepared {
+  Engagement out;
+  std::optional<Groove> groove;
+  double ae = 0;
+};
+
+// Frame and degenerate-input flags, as evaluate_engagement documents them.
+Prepared prepare(const Tool& tool, const CutSetup& setup) {
+  Prepared prepared;
+  Engagement& out = prepared.out;
+  if (!(setup.ap > 0)) out.flags.set(EngagementFlag::zero_ap);
+  if (!(setup.ae > 0)) out.flags.set(EngagementFlag::zero_ae);
+  if (setup.ap >= tool.diameter) out.flags.set(EngagementFlag::ap_exceeds_d);
+  const double n_length = setup.normal.norm();
+  if (!(n_length > 0) || !(setup.normal.z() / n_length > 0)) {
+    out.flags.set(EngagementFlag::undercut);
+  } else {
+    const Vector3d normal = setup.normal / n_length;
+    const Vector3d tangent = setup.feed - setup.feed.dot(normal) * normal;
+    if (!(tangent.norm() > 1e-9 * setup.feed.norm())) {
+      out.flags.set(EngagementFlag::feed_along_normal);
+    } else {
+      out.normal = normal;
+      out.feed_dir = tangent.normalized();
+      out.side_dir = normal.cross(out.feed_dir);
+    }
+  }
+  const std::uint32_t fatal =
+      static_cast<std::uint32_t>(EngagementFlag::zero_ap) |
+      static_cast<std::uint32_t>(EngagementFlag::ap_exceeds_d) |
+      static_cast<std::uint32_t>(EngagementFlag::undercut) |
+      static_cast<std::uint32_t>(EngagementFlag::feed_along_normal);
+  if ((out.flags.bits & fatal) == 0) {
+    // With ae = 0 the rim still exists: build the groove with ae = 0 for the points.
+    const double sign = setup.side == Side::left ? 1.0 : -1.0;
+    prepared.ae = std::max(0.0, setup.ae);
+    prepared.groove.emplace(tool, out.feed_dir, out.normal, sign * out.side_dir, setup.ap,
+                            prepared.ae);
+  }
+  return prepared;
+}
+
+CuttingPoint cutting_point(const Vector3d& p) { return {p, 2 * std::hypot(p.x(), p.y())}; }
+
+// The Mgherony-Miko points on the rim c = c0, in S0 = side_dir coordinates.
+CuttingPoints cutting_points(const Groove& groove, const Engagement& out, Side side, double ae) {
+  const bool left = side == Side::left;
+  // e = +S0 when left: the smallest s is the left boundary; else the right.
+  const Vector3d low = groove.boundary(groove.c0(), left).p;
+  const Vector3d high = groove.boundary(groove.c0(), !left).p;
+  const double sign = left ? 1.0 : -1.0;
+  const double s_min = out.side_dir.dot(low), s_max = out.side_dir.dot(high);
+  CuttingPoints points;
+  points.p1 = cutting_point(low);
+  points.p2 = cutting_point(high);
+  const auto pair_at = [&](double s, const Vector3d& fallback) {
+    if (s >= s_max || s <= s_min) return std::pair{cutting_point(fallback), cutting_point(fallback)};
+    const auto fibre = groove.fibre(sign * s, groove.c0());
+    if (!fibre) return std::pair{cutting_point(fallback), cutting_point(fallback)};
+    return std::pair{cutting_point(fibre->first), cutting_point(fibre->second)};
+  };
+  std::tie(points.p1a, points.p1b) = pair_at(s_min + ae, high);
+  std::tie(points.p2a, points.p2b) = pair_at(s_max - ae, low);
+  points.cut = left ? points.p1 : points.p2;
+  return points;
+}
+
+}  // namespace
+
+Engagement evaluate_revolved_engagement(const Tool& tool, const CutSetup& setup) {
+  Prepared prepared = prepare(tool, setup);
+  Engagement& out = prepared.out;
+  if (!prepared.groove) {
+    out.flags.set(EngagementFlag::nothing_engaged);
+    return out;
+  }
+  const Groove& groove = *prepared.groove;
+  out.points = cutting_points(groove, out, setup.side, prepared.ae);
+  if (!(prepared.ae > 0)) {
+    out.flags.set(EngagementFlag::nothing_engaged);
+    return out;
+  }
+  const Extremes extremes = groove.extremes();
+  if (!(extremes.r_max >= extremes.r_min)) {
+    out.flags.set(EngagementFlag::nothing_engaged);
+    return out;
+  }
+  out.d_min = 2 * extremes.r_min;
+  out.d_max = 2 * extremes.r_max;
+  if (extremes.z_max > 1e-9 * groove.radius()) out.flags.set(EngagementFlag::shank_engaged);
+  return out;
+}
+
+std::optional<double> revolved_mean_diameter(const Tool& tool, const CutSetup& setup) {
+  const Prepared prepared = prepare(tool, setup);
+  if (!prepared.groove || !(prepared.ae > 0)) return std::nullopt;
+  return prepared.groove->mean_diameter();
 }
 
 }  // namespace vcpost::geometry

@@ -163,6 +163,11 @@ MachineProfile profile_from_stream(std::istream& in, const std::string& file);
 // Every key of the schema, as "table.key" (for `machines show` and tests).
 std::span<const std::string_view> schema_keys();
 
+// The profile as a complete TOML file: every key with its value, a comment
+// with its source note ("vendor: ...", "assumed: ...", or "no source
+// given"), and the [sources] table; loading the text gives the same profile.
+std::string profile_to_toml(const MachineProfile& profile);
+
 std::string_view to_string(Dialect d);
 std::string_view to_string(OutputFormat f);
 std::string_view to_string(SChangeInMotion m);

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "machines/profile.h"
+
 namespace vcpost::cli {
 
 // Documented exit codes (README): 0 ok, 1 warnings with --strict,
@@ -27,5 +29,10 @@ class CommandError : public std::runtime_error {
 
 void add_deff_command(CLI::App& app);
 void add_moves_command(CLI::App& app);
+void add_machines_command(CLI::App& app);
+
+// The profile of `--machine NAME|FILE`: a shipped profile's name, or a
+// TOML file. Throws CommandError (exit 2) naming file:line:col and the key.
+machines::MachineProfile load_machine(const std::string& name_or_file);
 
 }  // namespace vcpost::cli

@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "vcpost 0.1.0");
   add_deff_command(app);
   add_moves_command(app);
+  add_machines_command(app);
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,104 @@
+// `vcpost machines [list | show NAME|FILE]`: the shipped machine profiles,
+// and any profile file checked and printed with the source of every value.
+// Also load_machine(), the `--machine NAME|FILE` loader of the other commands.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "machines/builtin.h"
+#include "machines/profile.h"
+#include "postproc/cli/commands.h"
+
+namespace vcpost::cli {
+
+machines::MachineProfile load_machine(const std::string& name_or_file) {
+  try {
+    if (machines::is_builtin_profile(name_or_file)) return machines::builtin_profile(name_or_file);
+    const std::filesystem::path path(name_or_file);
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) {
+      if (path.extension() != ".toml" && path.parent_path().empty())
+        return machines::builtin_profile(name_or_file);  // throws with the list of names
+      throw CommandError("machine profile " + name_or_file + ": no such file");
+    }
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw CommandError("machine profile " + name_or_file + ": cannot open");
+    return machines::profile_from_stream(in, name_or_file);
+  } catch (const machines::ProfileError& e) {
+    throw CommandError(e.what());
+  }
+}
+
+namespace {
+
+void list_profiles() {
+  std::printf("%-16s %-9s %-14s %-17s %s\n", "NAME", "DIALECT", "S (rpm)", "ACCEL/DECEL rpm/s",
+              "DESCRIPTION");
+  for (const auto& entry : machines::builtin_profiles()) {
+    const auto p = machines::builtin_profile(entry.name);
+    const auto& s = p.spindle();
+    const std::string range = std::to_string(static_cast<long>(s.n_min_rpm)) + "-" +
+                              std::to_string(static_cast<long>(s.n_max_rpm));
+    const std::string rates = std::to_string(static_cast<long>(s.acceleration_rpm_per_s)) + "/" +
+                              std::to_string(static_cast<long>(s.deceleration_rpm_per_s));
+    std::printf("%-16s %-9s %-14s %-17s %s\n", p.name().c_str(),
+                std::string(machines::to_string(p.dialect())).c_str(), range.c_str(), rates.c_str(),
+                p.description().c_str());
+  }
+  std::printf(
+      "\n`vcpost machines show NAME` prints a profile with the source of every value;\n"
+      "`--machine FILE` takes a profile of your own (start from `show generic`).\n");
+}
+
+void show_profile(const std::string& name_or_file) {
+  const auto p = load_machine(name_or_file);
+  std::size_t assumed = 0;
+  std::size_t unsourced = 0;
+  for (const auto key : machines::schema_keys()) {
+    const auto* note = p.source_of(key);
+    if (!note)
+      ++unsourced;
+    else if (!note->vendor)
+      ++assumed;
+  }
+  const bool builtin = machines::is_builtin_profile(name_or_file);
+  std::cout << "# " << p.name() << (builtin ? " (built-in, " : " (") << p.origin() << ")\n"
+            << "# " << machines::schema_keys().size() << " keys: " << assumed
+            << " assumed (not from a vendor document), " << unsourced << " without a source, "
+            << machines::schema_keys().size() - assumed - unsourced << " from vendor documents\n\n"
+            << machines::profile_to_toml(p);
+}
+
+}  // namespace
+
+void add_machines_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "machines", "List the shipped machine profiles, or check and show one (NAME or FILE)");
+  struct Options {
+    std::string action = "list";
+    std::string target;
+  };
+  auto options = std::make_shared<Options>();
+  cmd->add_option("ACTION", options->action, "list | show")
+      ->check(CLI::IsMember({"list", "show"}))
+      ->capture_default_str();
+  cmd->add_option("PROFILE", options->target,
+                  "for show: a shipped profile's name or a profile file (.toml)");
+  cmd->callback([options] {
+    if (options->action == "list") {
+      if (!options->target.empty())
+        throw CommandError("machines list takes no profile (did you mean `machines show " +
+                           options->target + "`?)");
+      list_profiles();
+      return;
+    }
+    if (options->target.empty())
+      throw CommandError("machines show needs a profile name or file (see `vcpost machines`)");
+    show_profile(options->target);
+  });
+}
+
+}  // namespace vcpost::cli

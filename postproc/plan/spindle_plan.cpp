@@ -64,17 +64,19 @@ struct Word {
 };
 
 void validate(std::span<const Sample> samples) {
+  auto fail = [](std::size_t i, const char* what) {
+    throw PlanError("sample " + std::to_string(i) + ": " + what);
+  };
   for (std::size_t i = 0; i < samples.size(); ++i) {
     const auto& s = samples[i];
-    const std::string at = "sample " + std::to_string(i) + ": ";
-    if (!std::isfinite(s.time_s)) throw PlanError(at + "time is not finite");
+    if (!std::isfinite(s.time_s)) fail(i, "time is not finite");
     if (!std::isfinite(s.program_rpm) || s.program_rpm < 0)
-      throw PlanError(at + "program S must be finite and >= 0");
+      fail(i, "program S must be finite and >= 0");
     if (s.target_rpm && (!std::isfinite(*s.target_rpm) || *s.target_rpm <= 0))
-      throw PlanError(at + "target speed must be finite and > 0");
+      fail(i, "target speed must be finite and > 0");
     if (i > 0) {
-      if (s.time_s < samples[i - 1].time_s) throw PlanError(at + "time goes backwards");
-      if (s.block < samples[i - 1].block) throw PlanError(at + "block index goes backwards");
+      if (s.time_s < samples[i - 1].time_s) fail(i, "time goes backwards");
+      if (s.block < samples[i - 1].block) fail(i, "block index goes backwards");
     }
   }
 }

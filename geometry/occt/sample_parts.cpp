@@ -1,0 +1,150 @@
+#include "geometry/occt/sample_parts.h"
+
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <Geom_CylindricalSurface.hxx>
+#include <Geom_SphericalSurface.hxx>
+#include <IFSelect_ReturnStatus.hxx>
+#include <Interface_Static.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <Message_Printer.hxx>
+#include <STEPControl_Writer.hxx>
+#include <Standard_Failure.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColgp_Array2OfPnt.hxx>
+#include <TopoDS_Face.hxx>
+#include <gp_Ax3.hxx>
+#include <stdexcept>
+
+namespace vcpost::occt {
+namespace {
+
+gp_Pnt pnt(const Eigen::Vector3d& p) { return gp_Pnt(p.x(), p.y(), p.z()); }
+gp_Dir dir(const Eigen::Vector3d& d) { return gp_Dir(d.x(), d.y(), d.z()); }
+
+// Distinct knots and their multiplicities, as OCCT takes them.
+void split_knots(const std::vector<double>& full, TColStd_Array1OfReal& knots,
+                 TColStd_Array1OfInteger& mults) {
+  std::vector<double> k;
+  std::vector<int> m;
+  for (double t : full) {
+    if (!k.empty() && t == k.back()) {
+      ++m.back();
+    } else {
+      k.push_back(t);
+      m.push_back(1);
+    }
+  }
+  knots.Resize(1, static_cast<int>(k.size()), false);
+  mults.Resize(1, static_cast<int>(m.size()), false);
+  for (std::size_t i = 0; i < k.size(); ++i) {
+    knots.SetValue(static_cast<int>(i) + 1, k[i]);
+    mults.SetValue(static_cast<int>(i) + 1, m[i]);
+  }
+}
+
+// OCCT's STEP writer prints transfer statistics on stdout; silence its
+// messenger while writing and give the printers back afterwards.
+class QuietMessenger {
+ public:
+  QuietMessenger() : printers_(Message::DefaultMessenger()->Printers()) {
+    Message::DefaultMessenger()->ChangePrinters().Clear();
+  }
+  ~QuietMessenger() { Message::DefaultMessenger()->ChangePrinters() = printers_; }
+  QuietMessenger(const QuietMessenger&) = delete;
+  QuietMessenger& operator=(const QuietMessenger&) = delete;
+
+ private:
+  Message_SequenceOfPrinters printers_;
+};
+
+void write_face(const std::filesystem::path& path, const TopoDS_Face& face, const std::string& name) {
+  const std::filesystem::path temporary = path.string() + ".partial";
+  const QuietMessenger quiet;
+  try {
+    Interface_Static::SetCVal("write.step.unit", "MM");
+    Interface_Static::SetCVal("write.step.schema", "AP214IS");
+    Interface_Static::SetCVal("write.step.product.name", name.c_str());
+    STEPControl_Writer writer;
+    if (writer.Transfer(face, STEPControl_AsIs) != IFSelect_RetDone) {
+      throw std::runtime_error(path.string() + ": OpenCASCADE could not translate the face to STEP");
+    }
+    if (writer.Write(temporary.string().c_str()) != IFSelect_RetDone) {
+      throw std::runtime_error(path.string() + ": cannot write the STEP file");
+    }
+  } catch (const Standard_Failure& e) {
+    std::filesystem::remove(temporary);
+    throw std::runtime_error(path.string() + ": OpenCASCADE failed: " + e.GetMessageString());
+  }
+  std::filesystem::rename(temporary, path);
+}
+
+TopoDS_Face make_face(const Handle(Geom_Surface) & surface, double u0, double u1, double v0,
+                      double v1, const std::string& what) {
+  BRepBuilderAPI_MakeFace maker(surface, u0, u1, v0, v1, 1e-9);
+  if (!maker.IsDone()) throw std::runtime_error("cannot make the " + what + " face");
+  return maker.Face();
+}
+
+}  // namespace
+
+void write_bspline_face_step(const std::filesystem::path& path, const BsplineSurfaceSpec& s,
+                             const std::string& name) {
+  if (s.count_u * s.count_v != static_cast<int>(s.poles.size())) {
+    throw std::runtime_error(path.string() + ": B-spline pole count does not match its grid");
+  }
+  TopoDS_Face face;
+  try {
+    TColgp_Array2OfPnt poles(1, s.count_u, 1, s.count_v);
+    for (int i = 0; i < s.count_u; ++i)
+      for (int j = 0; j < s.count_v; ++j) poles.SetValue(i + 1, j + 1, pnt(s.poles[i * s.count_v + j]));
+    TColStd_Array1OfReal ku(1, 1), kv(1, 1);
+    TColStd_Array1OfInteger mu(1, 1), mv(1, 1);
+    split_knots(s.knots_u, ku, mu);
+    split_knots(s.knots_v, kv, mv);
+    Handle(Geom_BSplineSurface) surface =
+        new Geom_BSplineSurface(poles, ku, kv, mu, mv, s.degree_u, s.degree_v);
+    BRepBuilderAPI_MakeFace maker(surface, 1e-9);
+    if (!maker.IsDone()) throw std::runtime_error(path.string() + ": cannot make the B-spline face");
+    face = maker.Face();
+  } catch (const Standard_Failure& e) {
+    throw std::runtime_error(path.string() + ": OpenCASCADE refused the B-spline: " +
+                             e.GetMessageString());
+  }
+  write_face(path, face, name);
+}
+
+void write_cylinder_face_step(const std::filesystem::path& path, const Eigen::Vector3d& origin,
+                              const Eigen::Vector3d& axis, const Eigen::Vector3d& ref,
+                              double radius, double angle_min, double angle_max, double h_min,
+                              double h_max, const std::string& name) {
+  TopoDS_Face face;
+  try {
+    Handle(Geom_CylindricalSurface) surface =
+        new Geom_CylindricalSurface(gp_Ax3(pnt(origin), dir(axis), dir(ref)), radius);
+    face = make_face(surface, angle_min, angle_max, h_min, h_max, "cylinder");
+  } catch (const Standard_Failure& e) {
+    throw std::runtime_error(path.string() + ": OpenCASCADE refused the cylinder: " +
+                             e.GetMessageString());
+  }
+  write_face(path, face, name);
+}
+
+void write_sphere_face_step(const std::filesystem::path& path, const Eigen::Vector3d& centre,
+                            const Eigen::Vector3d& pole, const Eigen::Vector3d& ref, double radius,
+                            double lat_min, double lat_max, const std::string& name) {
+  TopoDS_Face face;
+  try {
+    Handle(Geom_SphericalSurface) surface =
+        new Geom_SphericalSurface(gp_Ax3(pnt(centre), dir(pole), dir(ref)), radius);
+    face = make_face(surface, 0, 2 * M_PI, lat_min, lat_max, "sphere");
+  } catch (const Standard_Failure& e) {
+    throw std::runtime_error(path.string() + ": OpenCASCADE refused the sphere: " +
+                             e.GetMessageString());
+  }
+  write_face(path, face, name);
+}
+
+}  // namespace vcpost::occt

@@ -1,0 +1,211 @@
+// vcpost-samplegen: ball-end finishing programs over sample surfaces with
+// exact truth, and the STEP files of those surfaces. Thin: argument
+// parsing, files and exit codes; the work is in the samplegen library.
+//
+//   vcpost-samplegen path PART [options] --gcode F --cl F --truth F
+//   vcpost-samplegen step PART FILE
+//   vcpost-samplegen samples DIR        (regenerates samples/)
+//
+// Exit codes: 0 ok, 2 usage or input error, 3 internal error.
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <numbers>
+
+#include "geometry/occt/sample_parts.h"
+#include "postproc/samplegen/parts.h"
+
+namespace {
+
+using namespace vcpost::samplegen;
+namespace fs = std::filesystem;
+
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// An output file written through a temporary name, renamed on commit().
+class OutFile {
+ public:
+  explicit OutFile(const std::string& path) : path_(path) {
+    if (path.empty()) return;
+    temp_ = path + ".partial";
+    out_.open(temp_, std::ios::binary);
+    if (!out_) throw UsageError(path + ": cannot write");
+  }
+  ~OutFile() {
+    if (!temp_.empty() && !committed_) fs::remove(temp_);
+  }
+  std::ostream* stream() { return path_.empty() ? nullptr : &out_; }
+  void commit() {
+    if (path_.empty()) return;
+    out_.close();
+    if (!out_) throw UsageError(path_ + ": write failed");
+    fs::rename(temp_, path_);
+    committed_ = true;
+  }
+
+ private:
+  std::string path_, temp_;
+  std::ofstream out_;
+  bool committed_ = false;
+};
+
+Part part_or_throw(const std::string& name) {
+  auto p = make_part(name);
+  if (!p) throw UsageError("unknown part '" + name + "' (wavy, cylinder, dome)");
+  return std::move(*p);
+}
+
+void write_step(const Part& part, const fs::path& file) {
+  using vcpost::occt::write_bspline_face_step;
+  if (part.name == "wavy") {
+    const auto& d = dynamic_cast<const WavyBspline&>(*part.surface).data();
+    write_bspline_face_step(file, {d.degree_u, d.degree_v, d.knots_u, d.knots_v, d.count_u, d.count_v, d.poles},
+                            "vcpost wavy B-spline mould 120 x 80");
+  } else if (part.name == "cylinder") {
+    const auto& c = dynamic_cast<const SemiCylinder&>(*part.surface);
+    // Axis x, reference z: the points (h, -R sin a, R cos a), a in [-pi/2, pi/2].
+    vcpost::occt::write_cylinder_face_step(file, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(),
+                                           Eigen::Vector3d::UnitZ(), c.radius(), -std::numbers::pi / 2,
+                                           std::numbers::pi / 2, 0, c.length(),
+                                           "vcpost semi-cylinder R100");
+  } else {
+    const auto& d = dynamic_cast<const Dome&>(*part.surface);
+    vcpost::occt::write_sphere_face_step(file, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(),
+                                         Eigen::Vector3d::UnitX(), d.radius(),
+                                         std::numbers::pi / 2 - d.max_polar(), std::numbers::pi / 2,
+                                         "vcpost dome R40");
+  }
+}
+
+std::uint64_t write_program(const Part& part, const PathSpec& path, const ProgramSpec& program,
+                            const std::string& gcode, const std::string& cl,
+                            const std::string& truth) {
+  OutFile g(gcode), c(cl), t(truth);
+  ProgramWriter writer(program, g.stream(), c.stream(), t.stream());
+  const std::uint64_t n =
+      generate(*part.surface, path, program.decimals, [&](const PathPoint& p) { writer.add(p); });
+  writer.finish();
+  g.commit();
+  c.commit();
+  t.commit();
+  return n;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"vcpost-samplegen: ball-end finishing programs with exact truth over sample surfaces"};
+  app.require_subcommand(1);
+
+  auto* path_cmd = app.add_subcommand("path", "write one program (G-code, APT CL, truth CSV)");
+  std::string part_name, pattern = "raster", gcode, cl, truth, title;
+  double diameter = 0, angle = 0, ae = 1, step = 1, rpm = 4000, feed = 800;
+  std::uint64_t points = 0;
+  int decimals = 6;
+  std::vector<double> window;
+  std::optional<double> radius;
+  path_cmd->add_option("part", part_name, "wavy | cylinder | dome")->required();
+  path_cmd->add_option("--pattern", pattern, "raster | iso-u | iso-v")
+      ->check(CLI::IsMember({"raster", "iso-u", "iso-v"}));
+  path_cmd->add_option("--tool-diameter", diameter, "ball diameter, mm (default: the part's)");
+  path_cmd->add_option("--angle", angle, "raster feed direction in the xy plane, deg from +x");
+  path_cmd->add_option("--ae", ae, "stepover: mm in xy (raster) or parameter units (iso)")
+      ->check(CLI::PositiveNumber);
+  path_cmd->add_option("--step", step, "largest point spacing along a pass (as --ae)")
+      ->check(CLI::PositiveNumber);
+  path_cmd->add_option("--window", window, "x0,y0,x1,y1 (raster: ball-centre xy; iso: u,v)")
+      ->expected(4)->delimiter(',');
+  path_cmd->add_option("--radius", radius, "raster: also keep the ball centre within this xy radius");
+  path_cmd->add_option("--points", points,
+                       "about this many points: sets --ae = --step to fill the window")
+      ->check(CLI::Range(std::uint64_t{10}, std::uint64_t{1'000'000'000}));
+  path_cmd->add_option("--decimals", decimals, "decimals of the written coordinates (>= 6)")
+      ->check(CLI::Range(6, 12));
+  path_cmd->add_option("--rpm", rpm, "spindle speed S")->check(CLI::PositiveNumber);
+  path_cmd->add_option("--feed", feed, "feed F, mm/min")->check(CLI::PositiveNumber);
+  path_cmd->add_option("--title", title, "program title");
+  path_cmd->add_option("--gcode", gcode, "G-code output file");
+  path_cmd->add_option("--cl", cl, "APT CL output file");
+  path_cmd->add_option("--truth", truth, "truth CSV output file");
+
+  auto* step_cmd = app.add_subcommand("step", "write the STEP file of a part's surface");
+  std::string step_part, step_file;
+  step_cmd->add_option("part", step_part, "wavy | cylinder | dome")->required();
+  step_cmd->add_option("file", step_file, "output .step")->required();
+
+  auto* samples_cmd = app.add_subcommand("samples", "regenerate the samples/ folder's parts and programs");
+  std::string dir;
+  samples_cmd->add_option("dir", dir, "output folder")->required();
+
+  try {
+    app.parse(argc, argv);
+    if (*path_cmd) {
+      const Part part = part_or_throw(part_name);
+      if (gcode.empty() && cl.empty() && truth.empty()) {
+        throw UsageError("nothing to write: give --gcode, --cl and/or --truth");
+      }
+      PathSpec spec;
+      spec.pattern = pattern == "raster" ? Pattern::raster
+                     : pattern == "iso-u" ? Pattern::iso_u
+                                          : Pattern::iso_v;
+      spec.tool_radius = (diameter > 0 ? diameter : part.tool_diameter) / 2;
+      spec.angle_deg = angle;
+      spec.stepover = ae;
+      spec.step = step;
+      spec.zigzag = true;
+      const bool raster = spec.pattern == Pattern::raster;
+      spec.window = raster ? part.raster_window : part.iso_window;
+      spec.window_radius = raster ? (radius ? radius : part.raster_radius) : std::nullopt;
+      if (!window.empty()) {
+        spec.window = Eigen::AlignedBox2d(Eigen::Vector2d(window[0], window[1]),
+                                          Eigen::Vector2d(window[2], window[3]));
+        if (spec.window.isEmpty()) throw UsageError("--window: x0 <= x1 and y0 <= y1 expected");
+      }
+      if (points > 0) {
+        double area = spec.window.volume();
+        if (spec.window_radius) {
+          area = std::min(area, std::numbers::pi * *spec.window_radius * *spec.window_radius);
+        }
+        spec.stepover = spec.step = std::sqrt(area / static_cast<double>(points));
+      }
+      ProgramSpec program;
+      program.title = title.empty() ? part.name + " " + pattern + " sample" : title;
+      program.tool_diameter = 2 * spec.tool_radius;
+      program.spindle_rpm = rpm;
+      program.feed = feed;
+      program.decimals = decimals;
+      const std::uint64_t n = write_program(part, spec, program, gcode, cl, truth);
+      std::cerr << "vcpost-samplegen: " << n << " points\n";
+    } else if (*step_cmd) {
+      write_step(part_or_throw(step_part), step_file);
+    } else if (*samples_cmd) {
+      fs::create_directories(dir);
+      for (const auto& name : part_names()) write_step(part_or_throw(name), fs::path(dir) / (name + ".step"));
+      for (const auto& s : sample_programs()) {
+        const Part part = part_or_throw(s.part);
+        const fs::path base = fs::path(dir) / s.stem;
+        const std::uint64_t n = write_program(part, s.path, s.program, base.string() + ".nc",
+                                              base.string() + ".cls", base.string() + ".truth.csv");
+        std::cerr << s.stem << ": " << n << " points\n";
+      }
+    }
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  } catch (const UsageError& e) {
+    std::cerr << "vcpost-samplegen: error: " << e.what() << '\n';
+    return 2;
+  } catch (const SurfaceError& e) {
+    std::cerr << "vcpost-samplegen: error: " << e.what()
+              << " (the window reaches beyond the surface; give a smaller --window)\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "vcpost-samplegen: internal error: " << e.what() << '\n';
+    return 3;
+  }
+  return 0;
+}

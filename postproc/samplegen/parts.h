@@ -1,0 +1,42 @@
+// The sample parts: each surface with its default toolpath windows, and
+// the programs committed in samples/ (the `samples` preset list).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "postproc/samplegen/surfaces.h"
+#include "postproc/samplegen/toolpath.h"
+
+namespace vcpost::samplegen {
+
+struct Part {
+  std::string name;  // "wavy", "cylinder", "dome"
+  std::unique_ptr<SampleSurface> surface;
+  double tool_diameter = 12;  // mm, the part's default ball
+  // Defaults of the windows (see PathSpec): the ball-centre xy box (and
+  // disc) of the raster, the (u,v) box of the iso-parametric patterns.
+  Eigen::AlignedBox2d raster_window;
+  std::optional<double> raster_radius;
+  Eigen::AlignedBox2d iso_window;
+};
+
+// "wavy" | "cylinder" | "dome"; empty for another name.
+std::optional<Part> make_part(const std::string& name);
+std::vector<std::string> part_names();
+
+// One program of samples/: which part, the path, the file stem.
+struct SampleProgram {
+  std::string part;
+  std::string stem;  // e.g. "cylinder_r100_ae0.5_a45"
+  std::string title;
+  PathSpec path;
+  ProgramSpec program;
+};
+
+// The programs committed in samples/, in README order.
+std::vector<SampleProgram> sample_programs();
+
+}  // namespace vcpost::samplegen

@@ -1,0 +1,112 @@
+// Ball-end finishing toolpaths over a SampleSurface, with the exact truth
+// per point, and their writers (G-code, APT CL, truth CSV). Streaming: a
+// path of any length is produced point by point in constant memory.
+//
+// Units: mm, radians inside (angles in degrees in PathSpec), mm/min, rpm.
+// The CL point written is the tool tip (C - R*z). Every written position is
+// rounded to ProgramSpec::decimals first, and the truth is then computed for
+// the rounded point: CC = the exact closest point of the surface to the
+// ball centre C = tip + R*z as written, N the surface normal there (equal
+// to (C - CC)/|C - CC| up to the rounding of C), distance_error = |C - CC| - R
+// (at most about 10^-decimals).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <ostream>
+#include <string>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "postproc/samplegen/surfaces.h"
+
+namespace vcpost::samplegen {
+
+enum class Pattern {
+  raster,  // drop-cutter: straight lines in the xy plane, the ball resting on the surface
+  iso_u,   // iso-parametric: CC on lines of constant v, moving along u
+  iso_v,   // iso-parametric: CC on lines of constant u, moving along v
+};
+
+struct PathSpec {
+  Pattern pattern = Pattern::raster;
+  double tool_radius = 6;  // mm
+  // raster: feed direction in the xy plane (deg from +x), stepover between
+  // the lines (xy plane, mm), largest spacing of points along a line (mm);
+  // the ball centre's xy stays in `window` (and within `window_radius` of
+  // the origin when set).
+  double angle_deg = 0;
+  // iso_u / iso_v: stepover = parameter step between passes, step = largest
+  // parameter step along a pass; window = the (u,v) box covered.
+  double stepover = 1;
+  double step = 0.5;
+  Eigen::AlignedBox2d window{Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 1)};
+  std::optional<double> window_radius;
+  bool zigzag = true;  // alternate the direction of successive passes
+};
+
+// One point of the path, as written and with its truth.
+struct PathPoint {
+  std::uint64_t index = 0;  // 0-based, in path order
+  int pass = 0;             // 0-based pass number
+  bool pass_start = false;
+  Eigen::Vector3d tip = Eigen::Vector3d::Zero();     // CL point as written (rounded)
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();  // ball centre tip + R*z
+  Eigen::Vector3d cc = Eigen::Vector3d::Zero();      // exact closest surface point to center
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ(); // unit surface normal at cc
+  Eigen::Vector2d uv = Eigen::Vector2d::Zero();      // parameters of cc
+  double distance_error = 0;                          // |center - cc| - R
+};
+
+// The number of points `spec` will give (without computing them).
+std::uint64_t count_points(const PathSpec& spec);
+
+// Calls sink for every point in order; returns the number of points.
+// Throws SurfaceError when the window reaches beyond the surface.
+std::uint64_t generate(const SampleSurface& surface, const PathSpec& spec, int decimals,
+                       const std::function<void(const PathPoint&)>& sink);
+
+// Fixed-point text of v with `decimals` digits ("-0.000000" printed as
+// "0.000000"), and the double that text reads back as.
+std::string fixed(double v, int decimals);
+double round_trip(double v, int decimals);
+
+struct ProgramSpec {
+  std::string title;           // one line, printed in comments / PARTNO
+  double tool_diameter = 12;   // mm, ball-end mill
+  int tool_number = 1;
+  double spindle_rpm = 4000;
+  double feed = 800;           // mm/min
+  double safe_z = 50;          // mm, tip height of the approach and retract
+  int decimals = 6;
+};
+
+// Writes the program(s) and the truth as points arrive. Truth CSV columns:
+// point, pass, gcode_line, cl_line (1-based line of the point's block; 0
+// when that program is not written), tip_x..z (as written), cc_x..z (10
+// decimals), n_x..z (12 decimals), distance_error (|C - CC| - R). Any stream may be
+// null (that output is not written). finish() writes the end of the
+// programs; call it once after the last point.
+class ProgramWriter {
+ public:
+  ProgramWriter(ProgramSpec spec, std::ostream* gcode, std::ostream* cl, std::ostream* truth);
+  void add(const PathPoint& point);
+  void finish();
+
+ private:
+  void gline(const std::string& text);
+  void cline(const std::string& text);
+
+  ProgramSpec spec_;
+  std::ostream* gcode_;
+  std::ostream* cl_;
+  std::ostream* truth_;
+  std::uint64_t gcode_line_ = 0, cl_line_ = 0;
+  std::string last_[3];  // last written X, Y, Z words (G-code is modal)
+  Eigen::Vector3d last_tip_ = Eigen::Vector3d::Zero();
+  bool started_ = false;
+};
+
+}  // namespace vcpost::samplegen

@@ -1,0 +1,375 @@
+// The sample generator: its B-spline against an independent de Boor
+// evaluation, its truth against the closed forms (1e-9), the programs read
+// back by the G-code interpreter and the CL reader, and samples/ as the
+// generator writes it today.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "postproc/cldata/cl_reader.h"
+#include "postproc/gcode/interpreter.h"
+#include "postproc/samplegen/parts.h"
+#include "postproc/samplegen/surfaces.h"
+#include "postproc/samplegen/toolpath.h"
+
+namespace vcpost::samplegen {
+namespace {
+
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+namespace fs = std::filesystem;
+
+// de Boor's algorithm on one knot vector (independent of bspline_basis).
+double de_boor(const std::vector<double>& t, int p, const std::vector<double>& c, double x) {
+  int k = p;
+  while (k + 1 < static_cast<int>(c.size()) && x >= t[k + 1]) ++k;
+  std::vector<double> d(c.begin() + (k - p), c.begin() + k + 1);
+  for (int r = 1; r <= p; ++r) {
+    for (int j = p; j >= r; --j) {
+      const int i = j + k - p;
+      const double a = (x - t[i]) / (t[i + p + 1 - r] - t[i]);
+      d[j] = (1 - a) * d[j - 1] + a * d[j];
+    }
+  }
+  return d[p];
+}
+
+// The derivative curve's knots and coefficients (degree p - 1).
+std::pair<std::vector<double>, std::vector<double>> derivative(const std::vector<double>& t, int p,
+                                                               const std::vector<double>& c) {
+  std::vector<double> dc;
+  for (std::size_t i = 0; i + 1 < c.size(); ++i) dc.push_back(p * (c[i + 1] - c[i]) / (t[i + p + 1] - t[i + 1]));
+  return {std::vector<double>(t.begin() + 1, t.end() - 1), dc};
+}
+
+// h, hx, hy of the mould by de Boor in v, then in u (tensor product).
+std::array<double, 3> mould_height(const WavyBspline& s, double x, double y) {
+  const auto& d = s.data();
+  std::vector<double> column(d.count_u), dcolumn(d.count_u);
+  for (int i = 0; i < d.count_u; ++i) {
+    std::vector<double> row(d.count_v);
+    for (int j = 0; j < d.count_v; ++j) row[j] = d.poles[i * d.count_v + j].z();
+    column[i] = de_boor(d.knots_v, 3, row, y);
+    const auto [tv, dv] = derivative(d.knots_v, 3, row);
+    dcolumn[i] = de_boor(tv, 2, dv, y);
+  }
+  const auto [tu, du] = derivative(d.knots_u, 3, column);
+  return {de_boor(d.knots_u, 3, column, x), de_boor(tu, 2, du, x), de_boor(d.knots_u, 3, dcolumn, x)};
+}
+
+TEST(Bspline, BasisIsAPartitionOfUnityWithMatchingDerivatives) {
+  const std::vector<double> knots = {0, 0, 0, 0, 1, 2.5, 3, 5, 5, 5, 5};
+  for (double x = 0; x <= 5; x += 0.0625) {
+    std::array<std::array<double, 8>, 3> d{}, dp{}, dm{};
+    bspline_basis(knots, 3, x, d);
+    double sum = 0, dsum = 0, ddsum = 0;
+    for (int k = 0; k <= 3; ++k) {
+      sum += d[0][k];
+      dsum += d[1][k];
+      ddsum += d[2][k];
+    }
+    EXPECT_NEAR(sum, 1, 1e-14);
+    EXPECT_NEAR(dsum, 0, 1e-12);
+    EXPECT_NEAR(ddsum, 0, 1e-11);
+    // Central differences inside a span (same span on both sides).
+    const double h = 1e-5;
+    if (x - h > 0 && x + h < 5 && bspline_basis(knots, 3, x - h, dm) == bspline_basis(knots, 3, x + h, dp) &&
+        bspline_basis(knots, 3, x, d) == bspline_basis(knots, 3, x + h, dp)) {
+      for (int k = 0; k <= 3; ++k) {
+        EXPECT_NEAR(d[1][k], (dp[0][k] - dm[0][k]) / (2 * h), 1e-8);
+        EXPECT_NEAR(d[2][k], (dp[1][k] - dm[1][k]) / (2 * h), 1e-7);
+      }
+    }
+  }
+}
+
+TEST(Bspline, MouldIsTheGraphOfItsBspline) {
+  const WavyBspline s = WavyBspline::mould();
+  for (double x = 0; x <= 120; x += 3.7) {
+    for (double y = 0; y <= 80; y += 2.9) {
+      const Vector3d p = s.point({x, y});
+      EXPECT_NEAR(p.x(), x, 1e-12);  // poles at the Greville abscissae: x(u) = u
+      EXPECT_NEAR(p.y(), y, 1e-12);
+      const auto ref = mould_height(s, x, y);
+      EXPECT_NEAR(p.z(), ref[0], 1e-12);
+      const auto h = s.height({x, y});
+      EXPECT_NEAR(h[1], ref[1], 1e-11);
+      EXPECT_NEAR(h[2], ref[2], 1e-11);
+    }
+  }
+}
+
+// The smallest concave radius of the mould (a D12 ball must fit everywhere).
+TEST(Bspline, MouldConcaveRadiiExceedTheBall) {
+  const WavyBspline s = WavyBspline::mould();
+  double largest_concave = 0;  // largest positive principal curvature of z = h (concave up)
+  for (double x = 0; x <= 120; x += 0.5) {
+    for (double y = 0; y <= 80; y += 0.5) {
+      const auto h = s.height({x, y});
+      const double w = std::sqrt(1 + h[1] * h[1] + h[2] * h[2]);
+      // Second fundamental form over the first (graph surface), eigenvalues.
+      Eigen::Matrix2d I, II;
+      I << 1 + h[1] * h[1], h[1] * h[2], h[1] * h[2], 1 + h[2] * h[2];
+      II << h[3] / w, h[4] / w, h[4] / w, h[5] / w;
+      const Eigen::Vector2cd k = (I.inverse() * II).eigenvalues();
+      largest_concave = std::max({largest_concave, k[0].real(), k[1].real()});
+    }
+  }
+  EXPECT_LT(largest_concave, 1.0 / 6.0);
+}
+
+struct Row {
+  std::uint64_t point, gcode_line, cl_line;
+  int pass;
+  Vector3d tip, cc, n;
+  double error;
+};
+
+std::vector<Row> parse_truth(const std::string& csv) {
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "point,pass,gcode_line,cl_line,tip_x,tip_y,tip_z,cc_x,cc_y,cc_z,n_x,n_y,n_z,distance_error");
+  std::vector<Row> rows;
+  while (std::getline(in, line)) {
+    std::vector<double> v;
+    std::stringstream fields(line);
+    std::string f;
+    while (std::getline(fields, f, ',')) v.push_back(std::stod(f));
+    EXPECT_EQ(v.size(), 14u);
+    rows.push_back({static_cast<std::uint64_t>(v[0]), static_cast<std::uint64_t>(v[2]),
+                    static_cast<std::uint64_t>(v[3]), static_cast<int>(v[1]), Vector3d(v[4], v[5], v[6]),
+                    Vector3d(v[7], v[8], v[9]), Vector3d(v[10], v[11], v[12]), v[13]});
+  }
+  return rows;
+}
+
+struct Written {
+  std::string gcode, cl, truth;
+  std::vector<PathPoint> points;
+};
+
+Written write(const SampleProgram& s) {
+  const auto part = make_part(s.part);
+  std::ostringstream g, c, t;
+  Written w;
+  ProgramWriter writer(s.program, &g, &c, &t);
+  const auto n = generate(*part->surface, s.path, s.program.decimals, [&](const PathPoint& p) {
+    writer.add(p);
+    w.points.push_back(p);
+  });
+  writer.finish();
+  EXPECT_EQ(n, w.points.size());
+  EXPECT_EQ(count_points(s.path), n);
+  w.gcode = g.str();
+  w.cl = c.str();
+  w.truth = t.str();
+  return w;
+}
+
+// Closed-form checks of one truth point: CC on the surface, N its normal,
+// C - CC along N (CC is a foot of the perpendicular), distance ~ R.
+void check_truth(const std::string& part, const PathPoint& p, double r) {
+  const Vector3d d = p.center - p.cc;
+  Vector3d n_exact;
+  if (part == "cylinder") {
+    EXPECT_NEAR(std::hypot(p.cc.y(), p.cc.z()), 100, 1e-9);
+    n_exact = Vector3d(0, p.cc.y(), p.cc.z()) / 100;
+    EXPECT_NEAR(p.cc.x(), p.center.x(), 1e-9);
+  } else if (part == "dome") {
+    EXPECT_NEAR(p.cc.norm(), 40, 1e-9);
+    n_exact = p.cc / 40;
+  } else {
+    const WavyBspline s = WavyBspline::mould();
+    const auto h = mould_height(s, p.cc.x(), p.cc.y());
+    EXPECT_NEAR(p.cc.z(), h[0], 1e-9);
+    n_exact = Vector3d(-h[1], -h[2], 1).normalized();
+  }
+  EXPECT_NEAR((p.normal - n_exact).norm(), 0, 1e-9);
+  EXPECT_NEAR((d - d.norm() * n_exact).norm(), 0, 1e-9);
+  EXPECT_NEAR(p.distance_error, d.norm() - r, 1e-12);
+  // Rounding the tip to 6 decimals moves C by at most sqrt(3)*5e-7.
+  EXPECT_LE(std::abs(p.distance_error), 8.7e-7);
+}
+
+TEST(SampleGenerator, TruthAgreesWithTheClosedForms) {
+  for (const auto& s : sample_programs()) {
+    SCOPED_TRACE(s.stem);
+    const Written w = write(s);
+    ASSERT_GT(w.points.size(), 100u);
+    for (const auto& p : w.points) check_truth(s.part, p, s.path.tool_radius);
+  }
+}
+
+// No point of the surface is closer to C than the truth's CC (a grid of
+// 200 x 200 over the patch, checked for every 40th point).
+TEST(SampleGenerator, TruthIsTheGlobalClosestPoint) {
+  for (const auto& s : sample_programs()) {
+    if (s.stem.find("ae0.2") != std::string::npos) continue;  // same surface, fewer runs
+    SCOPED_TRACE(s.stem);
+    const auto part = make_part(s.part);
+    const auto box = part->surface->domain();
+    const Written w = write(s);
+    for (std::size_t i = 0; i < w.points.size(); i += 40) {
+      const auto& p = w.points[i];
+      const double truth = (p.center - p.cc).norm();
+      double grid = INFINITY;
+      const int nu = 200, nv = 200;
+      for (int a = 0; a <= nu; ++a) {
+        for (int b = 0; b <= nv; ++b) {
+          const Vector2d uv = box.min() + (box.max() - box.min()).cwiseProduct(Vector2d(double(a) / nu, double(b) / nv));
+          grid = std::min(grid, (part->surface->point(uv) - p.center).norm());
+        }
+      }
+      EXPECT_GE(grid, truth - 1e-9) << "point " << i;
+    }
+  }
+}
+
+TEST(SampleGenerator, RasterPointsAreOnTheirLines) {
+  for (const auto& s : sample_programs()) {
+    if (s.path.pattern != Pattern::raster) continue;
+    SCOPED_TRACE(s.stem);
+    const Written w = write(s);
+    const double a = s.path.angle_deg * std::numbers::pi / 180;
+    const Vector2d n(-std::sin(a), std::cos(a));
+    double first_offset = 0;
+    for (const auto& p : w.points) {
+      const Vector2d xy = p.tip.head<2>();
+      EXPECT_TRUE(s.path.window.exteriorDistance(xy) < 1e-6);
+      if (p.index == 0) first_offset = n.dot(xy);
+      // Line offsets are multiples of ae from the first (to the 6-decimal rounding).
+      const double k = (n.dot(xy) - first_offset) / s.path.stepover;
+      EXPECT_NEAR(k, std::round(k), 2e-6 / s.path.stepover);
+      EXPECT_NEAR(std::round(k), p.pass, 0.5);
+    }
+  }
+}
+
+TEST(SampleGenerator, GcodeReadsBackAsTheTruthPoints) {
+  for (const auto& s : sample_programs()) {
+    SCOPED_TRACE(s.stem);
+    const Written w = write(s);
+    const auto rows = parse_truth(w.truth);
+    ASSERT_EQ(rows.size(), w.points.size());
+    for (const auto& dialect : {gcode::rs274ngc_dialect(), gcode::fanuc_dialect()}) {
+      gcode::Interpreter in(w.gcode, dialect);
+      std::vector<program::Event> events;
+      while (in.next(events)) {
+      }
+      std::size_t k = 0;
+      bool spindle = false, tool = false, end = false;
+      for (const auto& e : events) {
+        if (const auto* f = std::get_if<program::StraightFeed>(&e)) {
+          ASSERT_LT(k, rows.size());
+          EXPECT_EQ(f->end, w.points[k].tip) << "point " << k;  // the same decimal, the same double
+          EXPECT_EQ(f->source.line, rows[k].gcode_line);
+          ++k;
+        } else if (const auto* sp = std::get_if<program::SetSpindleSpeed>(&e)) {
+          EXPECT_EQ(sp->rpm, s.program.spindle_rpm);
+          spindle = true;
+        } else if (const auto* t = std::get_if<program::ChangeTool>(&e)) {
+          EXPECT_EQ(t->number, 1);
+          tool = true;
+        } else if (std::holds_alternative<program::ProgramEnd>(e)) {
+          end = true;
+        }
+      }
+      EXPECT_EQ(k, rows.size());
+      EXPECT_TRUE(spindle && tool && end);
+    }
+  }
+}
+
+TEST(SampleGenerator, ClReadsBackAsTheTruthPoints) {
+  for (const auto& s : sample_programs()) {
+    SCOPED_TRACE(s.stem);
+    const Written w = write(s);
+    const auto rows = parse_truth(w.truth);
+    std::istringstream text(w.cl);
+    cldata::ClReader reader(text, s.stem + ".cls");
+    std::size_t k = 0;
+    bool end = false;
+    while (const auto e = reader.next()) {
+      if (const auto* f = std::get_if<program::StraightFeed>(&*e)) {
+        ASSERT_LT(k, rows.size());
+        EXPECT_EQ(f->end, w.points[k].tip) << "point " << k;
+        EXPECT_EQ(f->source.line, rows[k].cl_line);
+        ++k;
+      } else if (std::holds_alternative<program::ProgramEnd>(*e)) {
+        end = true;
+      }
+    }
+    EXPECT_EQ(k, rows.size());
+    EXPECT_TRUE(end);
+    EXPECT_TRUE(reader.warnings().empty());
+    ASSERT_EQ(reader.cutters().size(), 1u);
+    ASSERT_TRUE(reader.cutters()[0].tool.has_value());
+    EXPECT_EQ(reader.cutters()[0].diameter(), s.program.tool_diameter);
+  }
+}
+
+TEST(SampleGenerator, TruthCsvHoldsThePoints) {
+  const auto s = sample_programs().front();
+  const Written w = write(s);
+  const auto rows = parse_truth(w.truth);
+  ASSERT_EQ(rows.size(), w.points.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(rows[i].point, i);
+    EXPECT_EQ(rows[i].pass, w.points[i].pass);
+    EXPECT_EQ(rows[i].tip, w.points[i].tip);
+    EXPECT_NEAR((rows[i].cc - w.points[i].cc).cwiseAbs().maxCoeff(), 0, 5.1e-11);
+    EXPECT_NEAR((rows[i].n - w.points[i].normal).cwiseAbs().maxCoeff(), 0, 5.1e-13);
+  }
+}
+
+// samples/ holds exactly what `vcpost-samplegen samples` writes (programs
+// and truth byte for byte; the STEP files carry a time stamp).
+TEST(SampleGenerator, SamplesFolderIsUpToDate) {
+  const fs::path dir = fs::path(VCPOST_SOURCE_DIR) / "samples";
+  for (const auto& s : sample_programs()) {
+    SCOPED_TRACE(s.stem);
+    const Written w = write(s);
+    for (const auto& [ext, text] : {std::pair{".nc", &w.gcode}, std::pair{".cls", &w.cl},
+                                    std::pair{".truth.csv", &w.truth}}) {
+      std::ifstream in(dir / (s.stem + ext), std::ios::binary);
+      ASSERT_TRUE(in) << "missing " << (dir / (s.stem + ext));
+      std::ostringstream file;
+      file << in.rdbuf();
+      EXPECT_TRUE(file.str() == *text) << s.stem << ext << " differs: regenerate samples/ (README)";
+    }
+  }
+  for (const auto& name : part_names()) EXPECT_TRUE(fs::exists(dir / (name + ".step"))) << name;
+}
+
+TEST(SampleGenerator, ScalesToAGivenPointCountInConstantMemory) {
+  const auto part = make_part("wavy");
+  PathSpec spec;
+  spec.tool_radius = 5;
+  spec.window = part->raster_window;
+  spec.stepover = spec.step = std::sqrt(spec.window.volume() / 200000.0);
+  std::uint64_t n = 0;
+  double worst = 0;
+  generate(*part->surface, spec, 6, [&](const PathPoint& p) {
+    ++n;
+    worst = std::max(worst, std::abs(p.distance_error));
+  });
+  EXPECT_NEAR(static_cast<double>(n), 200000.0, 2000.0);
+  EXPECT_LE(worst, 8.7e-7);
+}
+
+TEST(SampleGenerator, WindowBeyondTheSurfaceIsRefused) {
+  const auto part = make_part("cylinder");
+  PathSpec spec;
+  spec.window = Eigen::AlignedBox2d(Vector2d(0, 0), Vector2d(10, 120));  // y beyond R + r
+  EXPECT_THROW(generate(*part->surface, spec, 6, [](const PathPoint&) {}), SurfaceError);
+}
+
+}  // namespace
+}  // namespace vcpost::samplegen

@@ -1,0 +1,742 @@
+#include "geometry/occt/brep_model.h"
+
+#include <BRepBndLib.hxx>
+#include <BRepClass_FaceClassifier.hxx>
+#include <BRepMesh_IncrementalMesh.hxx>
+#include <BRepTools.hxx>
+#include <BRep_Tool.hxx>
+#include <BSplSLib_Cache.hxx>
+#include <Bnd_Box.hxx>
+#include <Geom2d_Curve.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <Geom_Curve.hxx>
+#include <Geom_RectangularTrimmedSurface.hxx>
+#include <Geom_Surface.hxx>
+#include <Poly_Triangulation.hxx>
+#include <Standard_Failure.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Edge.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Vertex.hxx>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "geometry/occt/box_tree.h"
+#include "geometry/occt/shape_model.h"
+
+namespace vcpost::occt {
+
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+using geometry::ContactHint;
+using geometry::ContactType;
+using geometry::Curvature;
+using geometry::ModelContact;
+
+namespace {
+
+Vector3d to_eigen(const gp_XYZ& p) { return {p.X(), p.Y(), p.Z()}; }
+
+// Position and derivatives up to order 2 of a surface at (u,v).
+struct SurfacePoint {
+  Vector3d p, su, sv, suu, svv, suv;
+};
+
+// Evaluates a face's surface. B-spline surfaces get one prebuilt
+// BSplSLib_Cache (local power basis) per knot span: evaluation is then a
+// polynomial, several times faster than Geom_BSplineSurface::D2, and the
+// caches are never rebuilt, so evaluation stays const and thread-safe.
+class SurfaceEval {
+ public:
+  explicit SurfaceEval(Handle(Geom_Surface) surface) : surface_(std::move(surface)) {
+    Handle(Geom_Surface) basis = surface_;
+    while (auto trimmed = Handle(Geom_RectangularTrimmedSurface)::DownCast(basis)) {
+      basis = trimmed->BasisSurface();
+    }
+    bspline_ = Handle(Geom_BSplineSurface)::DownCast(basis);
+    if (bspline_.IsNull()) return;
+    const auto& uk = bspline_->UKnots();
+    const auto& vk = bspline_->VKnots();
+    for (int i = uk.Lower(); i <= uk.Upper(); ++i) u_knots_.push_back(uk(i));
+    for (int i = vk.Lower(); i <= vk.Upper(); ++i) v_knots_.push_back(vk(i));
+    const auto& flat_u = bspline_->UKnotSequence();
+    const auto& flat_v = bspline_->VKnotSequence();
+    const int nu = static_cast<int>(u_knots_.size()) - 1, nv = static_cast<int>(v_knots_.size()) - 1;
+    caches_.reserve(static_cast<std::size_t>(nu * nv));
+    for (int i = 0; i < nu; ++i) {
+      for (int j = 0; j < nv; ++j) {
+        Handle(BSplSLib_Cache) cache = new BSplSLib_Cache(
+            bspline_->UDegree(), bspline_->IsUPeriodic(), flat_u, bspline_->VDegree(),
+            bspline_->IsVPeriodic(), flat_v, bspline_->Weights());
+        cache->BuildCache((u_knots_[i] + u_knots_[i + 1]) / 2, (v_knots_[j] + v_knots_[j + 1]) / 2,
+                          flat_u, flat_v, bspline_->Poles(), bspline_->Weights());
+        caches_.push_back(cache);
+      }
+    }
+  }
+
+  SurfacePoint d2(double u, double v) const {
+    gp_Pnt p;
+    gp_Vec su, sv, suu, svv, suv;
+    if (bspline_.IsNull()) {
+      surface_->D2(u, v, p, su, sv, suu, svv, suv);
+    } else {
+      if (bspline_->IsUPeriodic()) u = wrap(u, u_knots_.front(), u_knots_.back());
+      if (bspline_->IsVPeriodic()) v = wrap(v, v_knots_.front(), v_knots_.back());
+      const std::size_t i = span(u_knots_, u), j = span(v_knots_, v);
+      caches_[i * (v_knots_.size() - 1) + j]->D2(u, v, p, su, sv, suu, svv, suv);
+    }
+    return {to_eigen(p.XYZ()), to_eigen(su.XYZ()),  to_eigen(sv.XYZ()),
+            to_eigen(suu.XYZ()), to_eigen(svv.XYZ()), to_eigen(suv.XYZ())};
+  }
+
+  const Handle(Geom_Surface)& surface() const { return surface_; }
+
+ private:
+  static double wrap(double x, double lo, double hi) {
+    const double period = hi - lo;
+    x = lo + std::fmod(x - lo, period);
+    return x < lo ? x + period : x;
+  }
+  static std::size_t span(const std::vector<double>& knots, double x) {
+    const auto it = std::upper_bound(knots.begin(), knots.end(), x);
+    const std::ptrdiff_t i = (it - knots.begin()) - 1;
+    return static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(i, 0, std::ssize(knots) - 2));
+  }
+
+  Handle(Geom_Surface) surface_;
+  Handle(Geom_BSplineSurface) bspline_;
+  std::vector<double> u_knots_, v_knots_;
+  std::vector<Handle(BSplSLib_Cache)> caches_;
+};
+
+struct EdgeData {
+  Handle(Geom_Curve) curve;
+  bool closed = false;  // starts and ends at one vertex (a full circle): its ends are no corner
+  double t0 = 0, t1 = 0;
+  std::vector<double> ts;  // samples for the start of Newton's method
+  std::vector<Vector3d> points;
+  Eigen::AlignedBox3d box;  // of the samples, grown by the chord error bound
+};
+
+struct FaceEdge {
+  int edge = 0;
+  Handle(Geom2d_Curve) pcurve;
+};
+
+enum class Trim : std::uint8_t { outside, inside, boundary };
+
+struct FaceData {
+  FaceData(TopoDS_Face f, SurfaceEval e) : face(std::move(f)), eval(std::move(e)) {}
+  TopoDS_Face face;
+  SurfaceEval eval;
+  bool reversed = false;
+  double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+  double u_period = 0, v_period = 0;  // > 0 when the surface is periodic in that direction
+  bool u_closed = false, v_closed = false;  // the face spans the whole period: no bound there
+  bool natural = false;               // the trim is the whole (u,v) box
+  static constexpr int kGrid = 32;
+  std::vector<Trim> cells;            // kGrid x kGrid classification of the (u,v) box
+  std::vector<std::array<Vector2d, 2>> loops;  // segments of the trim polygon in (u,v)
+  std::vector<std::array<Vector3d, 3>> triangles;
+  std::vector<std::array<Vector2d, 3>> triangle_uv;
+  BoxTree tree;
+  std::vector<FaceEdge> edges;
+  double slack = 0;  // bound on the tessellation's distance from the face, mm
+  Eigen::AlignedBox3d box;
+};
+
+// Closest point of triangle abc to p, as barycentric weights (wa, wb, wc).
+Eigen::Vector3d closest_on_triangle(const Vector3d& p, const Vector3d& a, const Vector3d& b,
+                                    const Vector3d& c) {
+  const Vector3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return {1, 0, 0};
+  const Vector3d bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return {0, 1, 0};
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const double t = d1 / (d1 - d3);
+    return {1 - t, t, 0};
+  }
+  const Vector3d cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return {0, 0, 1};
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const double t = d2 / (d2 - d6);
+    return {1 - t, 0, t};
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
+    const double t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return {0, 1 - t, t};
+  }
+  const double inv = 1 / (va + vb + vc);
+  return {1 - (vb + vc) * inv, vb * inv, vc * inv};
+}
+
+// Even-odd crossing test of a point against the trim polygon.
+bool inside_polygon(const std::vector<std::array<Vector2d, 2>>& segments, const Vector2d& q) {
+  bool inside = false;
+  for (const auto& [a, b] : segments) {
+    if ((a.y() > q.y()) != (b.y() > q.y())) {
+      const double x = a.x() + (q.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y());
+      if (x > q.x()) inside = !inside;
+    }
+  }
+  return inside;
+}
+
+// Principal curvatures from the fundamental forms, signed convex-positive
+// with respect to the oriented normal n (geometry/model.h).
+Curvature curvature_at(const SurfacePoint& s, const Vector3d& n) {
+  Eigen::Matrix2d first, second;
+  first << s.su.dot(s.su), s.su.dot(s.sv), s.su.dot(s.sv), s.sv.dot(s.sv);
+  // II with the sign flipped: a surface curving away from n is positive.
+  second << -s.suu.dot(n), -s.suv.dot(n), -s.suv.dot(n), -s.svv.dot(n);
+  Curvature c;
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d> solver(second, first);
+  if (solver.info() != Eigen::Success) return c;
+  c.k1 = solver.eigenvalues()(1);
+  c.k2 = solver.eigenvalues()(0);
+  const Eigen::Vector2d w = solver.eigenvectors().col(1);
+  const Vector3d d1 = w.x() * s.su + w.y() * s.sv;
+  if (d1.norm() > 0) c.d1 = d1.normalized();
+  c.d2 = n.cross(c.d1);
+  return c;
+}
+
+struct Local {
+  Vector2d uv;
+  SurfacePoint s;
+  bool on_box_bound = false;
+};
+
+}  // namespace
+
+struct BrepModel::Impl {
+  std::vector<FaceData> faces;
+  std::vector<EdgeData> edges;
+  BoxTree face_tree;
+  double max_slack = 0;
+  StepInfo info;
+  Eigen::AlignedBox3d bounds;
+
+  // Brings (u,v) into the face's box: periodic directions wrap to the
+  // period centred on the box, then every direction clamps.
+  Vector2d into_box(const FaceData& f, Vector2d uv, bool& clamped) const {
+    if (f.u_period > 0) {
+      const double mid = (f.u0 + f.u1) / 2;
+      uv.x() -= f.u_period * std::round((uv.x() - mid) / f.u_period);
+    }
+    if (f.v_period > 0) {
+      const double mid = (f.v0 + f.v1) / 2;
+      uv.y() -= f.v_period * std::round((uv.y() - mid) / f.v_period);
+    }
+    const Vector2d c(f.u_closed ? uv.x() : std::clamp(uv.x(), f.u0, f.u1),
+                     f.v_closed ? uv.y() : std::clamp(uv.y(), f.v0, f.v1));
+    clamped = c != uv;
+    return c;
+  }
+
+  static bool at_bound(const FaceData& f, const Vector2d& uv) {
+    return (!f.u_closed && (uv.x() <= f.u0 || uv.x() >= f.u1)) ||
+           (!f.v_closed && (uv.y() <= f.v0 || uv.y() >= f.v1));
+  }
+
+  // Newton's method for the closest point of the face's surface, inside
+  // its (u,v) box; a variable on the box bound with the gradient pointing
+  // out stays fixed. Empty when it does not converge.
+  std::optional<Local> newton(const FaceData& f, const Vector3d& p, Vector2d uv) const {
+    bool clamped = false;
+    uv = into_box(f, uv, clamped);
+    SurfacePoint s = f.eval.d2(uv.x(), uv.y());
+    double value = (s.p - p).squaredNorm();
+    const double scale = 1 + p.cwiseAbs().maxCoeff();
+    for (int iteration = 0; iteration < 40; ++iteration) {
+      const Vector3d r = s.p - p;
+      const Vector2d g(s.su.dot(r), s.sv.dot(r));
+      Eigen::Matrix2d h;
+      h << s.su.dot(s.su) + s.suu.dot(r), s.su.dot(s.sv) + s.suv.dot(r),
+          s.su.dot(s.sv) + s.suv.dot(r), s.sv.dot(s.sv) + s.svv.dot(r);
+      const bool fix_u =
+          !f.u_closed && ((uv.x() <= f.u0 && g.x() > 0) || (uv.x() >= f.u1 && g.x() < 0));
+      const bool fix_v =
+          !f.v_closed && ((uv.y() <= f.v0 && g.y() > 0) || (uv.y() >= f.v1 && g.y() < 0));
+      // Tangential residual in mm along the free directions.
+      const double ru = fix_u ? 0 : std::abs(g.x()) / std::max(s.su.norm(), 1e-300);
+      const double rv = fix_v ? 0 : std::abs(g.y()) / std::max(s.sv.norm(), 1e-300);
+      if (std::max(ru, rv) < 1e-12 * scale) {
+        return Local{uv, s, fix_u || fix_v || at_bound(f, uv)};
+      }
+      Vector2d step = Vector2d::Zero();
+      if (fix_u && fix_v) {
+        return Local{uv, s, true};
+      } else if (fix_u || fix_v) {
+        const int k = fix_u ? 1 : 0;
+        double hk = h(k, k);
+        const Vector3d& t = fix_u ? s.sv : s.su;
+        if (hk <= 0) hk = t.squaredNorm();
+        step[k] = -g[k] / hk;
+      } else {
+        if (h(0, 0) <= 0 || h.determinant() <= 0) {
+          h << s.su.dot(s.su), s.su.dot(s.sv), s.su.dot(s.sv), s.sv.dot(s.sv);  // Gauss-Newton
+        }
+        step = -h.ldlt().solve(g);
+        if (!step.allFinite()) return std::nullopt;
+      }
+      // Backtrack until the squared distance does not grow.
+      bool improved = false;
+      for (int halving = 0; halving < 30; ++halving) {
+        Vector2d trial = into_box(f, uv + step, clamped);
+        SurfacePoint st = f.eval.d2(trial.x(), trial.y());
+        const double trial_value = (st.p - p).squaredNorm();
+        if (trial_value <= value * (1 + 1e-15) + 1e-300) {
+          const double moved = (st.p - s.p).norm();
+          uv = trial;
+          s = st;
+          value = trial_value;
+          improved = true;
+          if (moved < 1e-13 * scale) {
+            return Local{uv, s, at_bound(f, uv)};
+          }
+          break;
+        }
+        step /= 2;
+      }
+      if (!improved) return Local{uv, s, at_bound(f, uv)};
+    }
+    return std::nullopt;
+  }
+
+  Trim classify(const FaceData& f, const Vector2d& uv) const {
+    if (f.natural) return Trim::inside;
+    const int gx = std::clamp(static_cast<int>((uv.x() - f.u0) / (f.u1 - f.u0) * FaceData::kGrid),
+                              0, FaceData::kGrid - 1);
+    const int gy = std::clamp(static_cast<int>((uv.y() - f.v0) / (f.v1 - f.v0) * FaceData::kGrid),
+                              0, FaceData::kGrid - 1);
+    const Trim cell = f.cells[static_cast<std::size_t>(gx * FaceData::kGrid + gy)];
+    if (cell != Trim::boundary) return cell;
+    // Near the boundary the polygon is not exact: classify on the pcurves.
+    const double tol = 1e-9 * std::max(f.u1 - f.u0, f.v1 - f.v0);
+    BRepClass_FaceClassifier classifier(f.face, gp_Pnt2d(uv.x(), uv.y()), tol);
+    const TopAbs_State state = classifier.State();
+    return state == TopAbs_IN ? Trim::inside : state == TopAbs_OUT ? Trim::outside : Trim::boundary;
+  }
+
+  ModelContact make_contact(int face, const Vector3d& p, const Vector2d& uv, const SurfacePoint& s,
+                            ContactType type, const Vector3d& point) const {
+    const FaceData& f = faces[static_cast<std::size_t>(face)];
+    ModelContact c;
+    c.point = point;
+    Vector3d n = s.su.cross(s.sv);
+    const double length = n.norm();
+    n = length > 0 ? Vector3d(n / length) : Vector3d((p - point).normalized());
+    if (f.reversed) n = -n;
+    c.normal = n;
+    c.distance = (p - point).norm();
+    c.curvature = curvature_at(s, n);
+    c.face = face;
+    c.uv = uv;
+    c.type = type;
+    return c;
+  }
+
+  // Closest point of the face's boundary edges (seams and degenerate edges
+  // excluded), nearer than `bound`.
+  std::optional<ModelContact> on_edges(int face, const Vector3d& p, double bound) const {
+    const FaceData& f = faces[static_cast<std::size_t>(face)];
+    double best = bound;
+    const FaceEdge* best_edge = nullptr;
+    double best_t = 0;
+    Vector3d best_point;
+    for (const FaceEdge& fe : f.edges) {
+      const EdgeData& e = edges[static_cast<std::size_t>(fe.edge)];
+      if (e.box.exteriorDistance(p) >= best) continue;
+      std::size_t nearest = 0;
+      double nearest_d = std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < e.points.size(); ++i) {
+        const double d = (e.points[i] - p).squaredNorm();
+        if (d < nearest_d) {
+          nearest_d = d;
+          nearest = i;
+        }
+      }
+      double t = e.ts[nearest];
+      gp_Pnt c;
+      gp_Vec c1, c2;
+      for (int iteration = 0; iteration < 30; ++iteration) {
+        e.curve->D2(t, c, c1, c2);
+        const Vector3d r = to_eigen(c.XYZ()) - p, d1 = to_eigen(c1.XYZ()), d2 = to_eigen(c2.XYZ());
+        const double g = d1.dot(r);
+        double h = d2.dot(r) + d1.squaredNorm();
+        if (h <= 0) h = d1.squaredNorm();
+        if (h <= 0) break;
+        const double next = std::clamp(t - g / h, e.t0, e.t1);
+        const double moved = std::abs(next - t) * d1.norm();
+        t = next;
+        if (moved < 1e-13 * (1 + p.cwiseAbs().maxCoeff())) break;
+      }
+      const Vector3d point = to_eigen(e.curve->Value(t).XYZ());
+      const double d = (point - p).norm();
+      if (d < best) {
+        best = d;
+        best_edge = &fe;
+        best_t = t;
+        best_point = point;
+      }
+    }
+    if (!best_edge) return std::nullopt;
+    const EdgeData& e = edges[static_cast<std::size_t>(best_edge->edge)];
+    const gp_Pnt2d uv2 = best_edge->pcurve->Value(best_t);
+    const Vector2d uv(uv2.X(), uv2.Y());
+    const SurfacePoint s = f.eval.d2(uv.x(), uv.y());
+    const ContactType type = (!e.closed && (best_t <= e.t0 || best_t >= e.t1))
+                                 ? ContactType::vertex
+                                 : ContactType::edge;
+    return make_contact(face, p, uv, s, type, best_point);
+  }
+
+  // The exact closest point of one face from a start (u,v): Newton on the
+  // surface, then the trim; outside it, the face's edges.
+  std::optional<ModelContact> refine(int face, const Vector3d& p, const Vector2d& start,
+                                     double bound) const {
+    const FaceData& f = faces[static_cast<std::size_t>(face)];
+    const std::optional<Local> local = newton(f, p, start);
+    if (!local) return std::nullopt;
+    if (!local->on_box_bound || f.natural) {
+      const Trim trim = local->on_box_bound ? Trim::boundary : classify(f, local->uv);
+      if (trim == Trim::inside) {
+        if ((local->s.p - p).norm() >= bound) return std::nullopt;
+        return make_contact(face, p, local->uv, local->s, ContactType::face, local->s.p);
+      }
+    }
+    return on_edges(face, p, bound);
+  }
+
+  // Nearest tessellation triangle of a face within `bound`: its distance
+  // and the (u,v) of its closest point.
+  std::optional<std::pair<double, Vector2d>> nearest_triangle(const FaceData& f, const Vector3d& p,
+                                                              double bound) const {
+    double best_sq = bound * bound;
+    std::optional<std::pair<double, Vector2d>> best;
+    f.tree.search(p, best_sq, [&](std::int32_t t, double) {
+      const auto& tri = f.triangles[static_cast<std::size_t>(t)];
+      const Vector3d w = closest_on_triangle(p, tri[0], tri[1], tri[2]);
+      const Vector3d q = w.x() * tri[0] + w.y() * tri[1] + w.z() * tri[2];
+      const double d = (q - p).squaredNorm();
+      if (d < best_sq) {
+        best_sq = d;
+        const auto& uv = f.triangle_uv[static_cast<std::size_t>(t)];
+        best = std::make_pair(std::sqrt(d), Vector2d(w.x() * uv[0] + w.y() * uv[1] + w.z() * uv[2]));
+      }
+      return best_sq;
+    });
+    return best;
+  }
+
+  std::optional<ModelContact> query(const Vector3d& p, double max_distance,
+                                    ContactHint* hint) const {
+    std::optional<ModelContact> best;
+    double bound = max_distance;
+    int done = -1;
+    if (hint && hint->face >= 0 && hint->face < static_cast<int>(faces.size())) {
+      done = hint->face;
+      best = refine(done, p, hint->uv, std::numeric_limits<double>::infinity());
+      if (best && best->distance > bound) best.reset();
+      if (best) bound = best->distance;
+    }
+    if (hint) ++(done >= 0 && best ? hint->warm_queries : hint->cold_queries);
+    // Every other face whose tessellation comes within the bound (plus the
+    // tessellation's own error) may hold a nearer point.
+    const double reach = bound + max_slack;
+    face_tree.search(p, reach * reach, [&](std::int32_t index, double) {
+      if (index != done) {
+        const FaceData& f = faces[static_cast<std::size_t>(index)];
+        const auto tri = nearest_triangle(f, p, bound + f.slack);
+        if (tri) {
+          auto c = refine(index, p, tri->second, bound);
+          if (c && c->distance < bound) {
+            best = c;
+            bound = c->distance;
+          }
+        }
+      }
+      const double r = bound + max_slack;
+      return r * r;
+    });
+    if (hint && best) {
+      hint->face = best->face;
+      hint->uv = best->uv;
+    }
+    return best;
+  }
+};
+
+namespace {
+
+void add_face(BrepModel::Impl& model, const TopoDS_Face& face,
+              const TopTools_IndexedMapOfShape& edge_map) {
+  Handle(Geom_Surface) surface = BRep_Tool::Surface(face);
+  if (surface.IsNull()) return;
+  FaceData f(face, SurfaceEval(surface));
+  f.reversed = face.Orientation() == TopAbs_REVERSED;
+  BRepTools::UVBounds(face, f.u0, f.u1, f.v0, f.v1);
+  if (surface->IsUPeriodic()) f.u_period = surface->UPeriod();
+  if (surface->IsVPeriodic()) f.v_period = surface->VPeriod();
+
+  // Trim polygon and the face's edges.
+  int wires = 0;
+  for (TopExp_Explorer w(face, TopAbs_WIRE); w.More(); w.Next()) ++wires;
+  for (TopExp_Explorer x(face, TopAbs_EDGE); x.More(); x.Next()) {
+    const TopoDS_Edge& edge = TopoDS::Edge(x.Current());
+    double a = 0, b = 0;
+    Handle(Geom2d_Curve) pcurve = BRep_Tool::CurveOnSurface(edge, face, a, b);
+    if (pcurve.IsNull()) continue;
+    constexpr int kSamples = 64;
+    Vector2d previous;
+    for (int i = 0; i <= kSamples; ++i) {
+      const gp_Pnt2d q = pcurve->Value(a + (b - a) * i / kSamples);
+      const Vector2d current(q.X(), q.Y());
+      if (i > 0) f.loops.push_back({previous, current});
+      previous = current;
+    }
+    if (BRep_Tool::Degenerated(edge) || BRep_Tool::IsClosed(edge, face)) continue;
+    const int index = edge_map.FindIndex(edge) - 1;
+    if (index >= 0) f.edges.push_back({index, pcurve});
+  }
+  const double span_u = f.u1 - f.u0, span_v = f.v1 - f.v0;
+  if (!(span_u > 0 && span_v > 0)) return;
+  f.u_closed = f.u_period > 0 && span_u >= f.u_period * (1 - 1e-9);
+  f.v_closed = f.v_period > 0 && span_v >= f.v_period * (1 - 1e-9);
+  const double eps = 1e-9 * std::max(span_u, span_v);
+  const auto on_box = [&](const Vector2d& q) {
+    return std::abs(q.x() - f.u0) < eps || std::abs(q.x() - f.u1) < eps ||
+           std::abs(q.y() - f.v0) < eps || std::abs(q.y() - f.v1) < eps;
+  };
+  f.natural = wires == 1 && std::all_of(f.loops.begin(), f.loops.end(), [&](const auto& s) {
+                return on_box(s[0]) && on_box(s[1]);
+              });
+  if (!f.natural) {
+    constexpr int g = FaceData::kGrid;
+    std::vector<bool> touched(g * g, false);
+    const auto cell_of = [&](double x, double lo, double span) {
+      return std::clamp(static_cast<int>((x - lo) / span * g), 0, g - 1);
+    };
+    for (const auto& [a, b] : f.loops) {
+      // Cells within one cell of a segment's box are boundary cells.
+      const int x0 = cell_of(std::min(a.x(), b.x()), f.u0, span_u) - 1;
+      const int x1 = cell_of(std::max(a.x(), b.x()), f.u0, span_u) + 1;
+      const int y0 = cell_of(std::min(a.y(), b.y()), f.v0, span_v) - 1;
+      const int y1 = cell_of(std::max(a.y(), b.y()), f.v0, span_v) + 1;
+      for (int x = std::max(x0, 0); x <= std::min(x1, g - 1); ++x) {
+        for (int y = std::max(y0, 0); y <= std::min(y1, g - 1); ++y) touched[x * g + y] = true;
+      }
+    }
+    f.cells.resize(g * g);
+    for (int x = 0; x < g; ++x) {
+      for (int y = 0; y < g; ++y) {
+        const Vector2d centre(f.u0 + (x + 0.5) * span_u / g, f.v0 + (y + 0.5) * span_v / g);
+        f.cells[x * g + y] = touched[x * g + y]       ? Trim::boundary
+                             : inside_polygon(f.loops, centre) ? Trim::inside
+                                                               : Trim::outside;
+      }
+    }
+  }
+
+  // Tessellation (with (u,v) at the nodes) or, without one, a (u,v) grid.
+  TopLoc_Location location;
+  const Handle(Poly_Triangulation) mesh = BRep_Tool::Triangulation(face, location);
+  if (!mesh.IsNull() && mesh->HasUVNodes() && mesh->NbTriangles() > 0) {
+    const gp_Trsf trsf = location.Transformation();
+    for (int t = 1; t <= mesh->NbTriangles(); ++t) {
+      int n[3];
+      mesh->Triangle(t).Get(n[0], n[1], n[2]);
+      std::array<Vector3d, 3> tri;
+      std::array<Vector2d, 3> uv;
+      for (int k = 0; k < 3; ++k) {
+        tri[k] = to_eigen(mesh->Node(n[k]).Transformed(trsf).XYZ());
+        const gp_Pnt2d q = mesh->UVNode(n[k]);
+        uv[k] = {q.X(), q.Y()};
+      }
+      f.triangles.push_back(tri);
+      f.triangle_uv.push_back(uv);
+    }
+    // The triangulation's own Deflection() is not a bound we can use, so
+    // measure how far the surface at each triangle's (u,v) centre and edge
+    // midpoints lies from the triangle.
+    double chord = 0;
+    for (std::size_t t = 0; t < f.triangles.size(); ++t) {
+      const auto& tri = f.triangles[t];
+      const auto& uv = f.triangle_uv[t];
+      const auto gap = [&](const Vector2d& q) {
+        const Vector3d x = f.eval.d2(q.x(), q.y()).p;
+        const Vector3d w = closest_on_triangle(x, tri[0], tri[1], tri[2]);
+        chord = std::max(chord, (w.x() * tri[0] + w.y() * tri[1] + w.z() * tri[2] - x).norm());
+      };
+      gap((uv[0] + uv[1] + uv[2]) / 3);
+      for (int k = 0; k < 3; ++k) gap((uv[k] + uv[(k + 1) % 3]) / 2);
+    }
+    f.slack = 2 * chord + 1e-6;
+  } else {
+    constexpr int g = 24;
+    std::vector<Vector3d> grid;
+    for (int i = 0; i <= g; ++i) {
+      for (int j = 0; j <= g; ++j) {
+        grid.push_back(f.eval.d2(f.u0 + span_u * i / g, f.v0 + span_v * j / g).p);
+      }
+    }
+    double chord = 0;
+    for (int i = 0; i < g; ++i) {
+      for (int j = 0; j < g; ++j) {
+        const auto at = [&](int a, int b) { return static_cast<std::size_t>(a * (g + 1) + b); };
+        const auto uv = [&](int a, int b) {
+          return Vector2d(f.u0 + span_u * a / g, f.v0 + span_v * b / g);
+        };
+        f.triangles.push_back({grid[at(i, j)], grid[at(i + 1, j)], grid[at(i + 1, j + 1)]});
+        f.triangle_uv.push_back({uv(i, j), uv(i + 1, j), uv(i + 1, j + 1)});
+        f.triangles.push_back({grid[at(i, j)], grid[at(i + 1, j + 1)], grid[at(i, j + 1)]});
+        f.triangle_uv.push_back({uv(i, j), uv(i + 1, j + 1), uv(i, j + 1)});
+        const Vector3d mid = f.eval.d2(f.u0 + span_u * (i + 0.5) / g, f.v0 + span_v * (j + 0.5) / g).p;
+        chord = std::max(chord, (mid - (grid[at(i, j)] + grid[at(i + 1, j + 1)]) / 2).norm());
+      }
+    }
+    f.slack = 4 * chord + 1e-6;
+  }
+  std::vector<Eigen::AlignedBox3d> boxes;
+  boxes.reserve(f.triangles.size());
+  for (const auto& tri : f.triangles) {
+    Eigen::AlignedBox3d b(tri[0]);
+    b.extend(tri[1]);
+    b.extend(tri[2]);
+    boxes.push_back(b);
+    f.box.extend(b);
+  }
+  f.tree = BoxTree(boxes);
+  const Vector3d grow = Vector3d::Constant(f.slack);
+  f.box = Eigen::AlignedBox3d(f.box.min() - grow, f.box.max() + grow);
+  model.faces.push_back(std::move(f));
+}
+
+void add_edges(BrepModel::Impl& model, const TopTools_IndexedMapOfShape& edge_map) {
+  model.edges.resize(static_cast<std::size_t>(edge_map.Extent()));
+  for (int i = 1; i <= edge_map.Extent(); ++i) {
+    const TopoDS_Edge& edge = TopoDS::Edge(edge_map(i));
+    EdgeData& e = model.edges[static_cast<std::size_t>(i - 1)];
+    if (BRep_Tool::Degenerated(edge)) continue;
+    e.curve = BRep_Tool::Curve(edge, e.t0, e.t1);
+    if (e.curve.IsNull()) continue;
+    TopoDS_Vertex first, last;
+    TopExp::Vertices(edge, first, last);
+    e.closed = !first.IsNull() && first.IsSame(last);
+    constexpr int kSamples = 64;
+    double chord = 0;
+    for (int k = 0; k <= kSamples; ++k) {
+      const double t = e.t0 + (e.t1 - e.t0) * k / kSamples;
+      e.ts.push_back(t);
+      e.points.push_back(to_eigen(e.curve->Value(t).XYZ()));
+      e.box.extend(e.points.back());
+      if (k > 0) {
+        const Vector3d mid = to_eigen(e.curve->Value(t - (e.t1 - e.t0) / kSamples / 2).XYZ());
+        chord = std::max(chord, (mid - (e.points[k - 1] + e.points[k]) / 2).norm());
+      }
+    }
+    const Vector3d grow = Vector3d::Constant(4 * chord + 1e-6);
+    e.box = Eigen::AlignedBox3d(e.box.min() - grow, e.box.max() + grow);
+  }
+}
+
+}  // namespace
+
+std::string_view code_of(ModelErrorCode code) {
+  switch (code) {
+    case ModelErrorCode::file_missing:
+      return "E4101";
+    case ModelErrorCode::file_unreadable:
+      return "E4102";
+    case ModelErrorCode::file_empty:
+      return "E4103";
+    case ModelErrorCode::not_step:
+      return "E4104";
+    case ModelErrorCode::no_faces:
+      return "E4105";
+    case ModelErrorCode::kernel_failure:
+      return "E4106";
+  }
+  return "E4100";
+}
+
+ModelError::ModelError(ModelErrorCode code, const std::string& path, const std::string& message)
+    : std::runtime_error(path + ": error[" + std::string(code_of(code)) + "]: " + message),
+      code_(code) {}
+
+BrepModel model_from_shape(const TopoDS_Shape& shape, const BrepOptions& options,
+                           const std::string& source, const std::string& length_unit) {
+  auto impl = std::make_unique<BrepModel::Impl>();
+  impl->info.length_unit = length_unit;
+  try {
+    TopTools_IndexedMapOfShape face_map, edge_map;
+    TopExp::MapShapes(shape, TopAbs_FACE, face_map);
+    TopExp::MapShapes(shape, TopAbs_EDGE, edge_map);
+    if (face_map.Extent() == 0) {
+      throw ModelError(ModelErrorCode::no_faces, source,
+                       "the model holds no faces (points, curves or an empty assembly only); "
+                       "export the finished surfaces or the solid");
+    }
+    Bnd_Box box;
+    BRepBndLib::Add(shape, box);
+    double deflection = options.deflection;
+    if (deflection <= 0) {
+      const double diagonal = box.IsVoid() ? 100 : std::sqrt(box.SquareExtent());
+      deflection = std::clamp(diagonal / 1000, 0.002, 0.2);
+    }
+    BRepMesh_IncrementalMesh mesher(shape, deflection, false, 0.2, false);
+    add_edges(*impl, edge_map);
+    for (int i = 1; i <= face_map.Extent(); ++i) {
+      add_face(*impl, TopoDS::Face(face_map(i)), edge_map);
+    }
+    if (impl->faces.empty()) {
+      throw ModelError(ModelErrorCode::no_faces, source, "no face of the model has a surface");
+    }
+    std::vector<Eigen::AlignedBox3d> boxes;
+    for (const FaceData& f : impl->faces) {
+      boxes.push_back(f.box);
+      impl->bounds.extend(f.box);
+      impl->max_slack = std::max(impl->max_slack, f.slack);
+      impl->info.triangles += static_cast<int>(f.triangles.size());
+    }
+    impl->face_tree = BoxTree(boxes);
+    impl->info.faces = static_cast<int>(impl->faces.size());
+    impl->info.deflection = deflection;
+  } catch (const Standard_Failure& failure) {
+    throw ModelError(ModelErrorCode::kernel_failure, source,
+                     std::string("OpenCASCADE failed while indexing the model: ") +
+                         failure.GetMessageString());
+  }
+  return BrepModel(std::move(impl));
+}
+
+BrepModel::BrepModel(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+BrepModel::BrepModel(BrepModel&&) noexcept = default;
+BrepModel& BrepModel::operator=(BrepModel&&) noexcept = default;
+BrepModel::~BrepModel() = default;
+
+std::optional<ModelContact> BrepModel::closest_point(const Eigen::Vector3d& point,
+                                                     double max_distance,
+                                                     ContactHint* hint) const {
+  return impl_->query(point, max_distance, hint);
+}
+
+Eigen::AlignedBox3d BrepModel::bounds() const { return impl_->bounds; }
+int BrepModel::face_count() const { return static_cast<int>(impl_->faces.size()); }
+const StepInfo& BrepModel::info() const { return impl_->info; }
+
+}  // namespace vcpost::occt

@@ -1,0 +1,88 @@
+// STEP models through OpenCASCADE, as a geometry::SurfaceModel.
+//
+// This header has no OpenCASCADE in it (geometry/occt/shape_model.h builds a
+// model from an OCCT shape in process). Units: every length in mm whatever
+// the STEP file declares (inch, metre, ...): OCCT's reader converts on
+// transfer and the declared unit is reported in StepInfo.
+//
+// Queries: a BVH over a tessellation of the faces gives candidate faces and
+// start points; Newton's method on the exact face surface refines, warm
+// started from the hint's face and (u,v); the trim is checked on the face's
+// boundary curves in (u,v), and a point outside it goes to the closest point
+// of the face's edges (edge or vertex contact). Other faces are checked by
+// the BVH with the tessellation's deflection as a safety margin, so the
+// answer is the global closest point, up to one limitation: on the hint's
+// own face a warm start trusts the local minimum it converges to.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include "geometry/model.h"
+
+namespace vcpost::occt {
+
+// Stable codes of the errors a model load can raise (E41xx).
+enum class ModelErrorCode {
+  file_missing,       // E4101: no such file
+  file_unreadable,    // E4102: exists but cannot be opened or read
+  file_empty,         // E4103: zero bytes
+  not_step,           // E4104: not a STEP file, or the reader refused it
+  no_faces,           // E4105: read, but holds no face to touch
+  kernel_failure,     // E4106: OpenCASCADE failed during transfer or meshing
+};
+
+std::string_view code_of(ModelErrorCode code);  // "E4101" ...
+
+// Thrown by the loaders; what() is "<path>: error[E41xx]: <message>".
+class ModelError : public std::runtime_error {
+ public:
+  ModelError(ModelErrorCode code, const std::string& path, const std::string& message);
+  ModelErrorCode code() const { return code_; }
+
+ private:
+  ModelErrorCode code_;
+};
+
+struct BrepOptions {
+  // Largest chord deviation of the tessellation that feeds the BVH, mm;
+  // <= 0: 1/1000 of the model's box diagonal, within [0.002, 0.2] mm. It
+  // only steers the search: answers are exact on the faces.
+  double deflection = 0;
+};
+
+struct StepInfo {
+  std::string length_unit;  // as declared by the file, e.g. "MILLIMETRE", "INCH"; empty if none
+  int faces = 0;
+  int triangles = 0;
+  double deflection = 0;  // mm, used for the tessellation
+};
+
+class BrepModel final : public geometry::SurfaceModel {
+ public:
+  // Reads a STEP file (AP203/AP214/AP242). Throws ModelError.
+  static BrepModel load_step(const std::filesystem::path& path, const BrepOptions& options = {});
+
+  BrepModel(BrepModel&&) noexcept;
+  BrepModel& operator=(BrepModel&&) noexcept;
+  ~BrepModel() override;
+
+  std::optional<geometry::ModelContact> closest_point(const Eigen::Vector3d& point,
+                                                      double max_distance,
+                                                      geometry::ContactHint* hint) const override;
+  Eigen::AlignedBox3d bounds() const override;
+  int face_count() const override;
+
+  const StepInfo& info() const;
+
+  struct Impl;
+  explicit BrepModel(std::unique_ptr<Impl> impl);
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace vcpost::occt

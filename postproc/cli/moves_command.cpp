@@ -13,6 +13,7 @@
 
 #include "postproc/cli/commands.h"
 #include "postproc/gcode/interpreter.h"
+#include "postproc/program/timing.h"
 #include "postproc/program/transcript.h"
 
 namespace vcpost::cli {
@@ -56,8 +57,23 @@ class ProgramText {
   }
   std::string_view view() const { return view_; }
 
+  // Gives back the mapped pages wholly before `offset`: the interpreter has
+  // read them, and a later jump back (subroutine call, loop) faults them in
+  // again from the page cache. Keeps the resident size flat however long the
+  // file is.
+  void release_before(std::uint64_t offset) {
+    if (!map_) return;
+    const auto page = static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
+    const std::uint64_t end = offset / page * page;
+    if (end <= released_ + kReleaseStep) return;
+    ::madvise(static_cast<char*>(map_) + released_, end - released_, MADV_DONTNEED);
+    released_ = end;
+  }
+
  private:
+  static constexpr std::uint64_t kReleaseStep = 1u << 20;
   std::string buffer_;
+  std::uint64_t released_ = 0;
   void* map_ = nullptr;
   std::size_t size_ = 0;
   std::string_view view_;
@@ -73,6 +89,8 @@ void add_moves_command(CLI::App& app) {
     std::string dialect = "rs274ngc";
     bool source = false;
     bool count = false;
+    bool time = false;
+    double rapid_rate = program::TimingSettings{}.rapid_mm_per_min;
   };
   auto options = std::make_shared<Options>();
   cmd->add_option("PROGRAM", options->program, "G-code program ('-' for stdin)")->required();
@@ -81,10 +99,16 @@ void add_moves_command(CLI::App& app) {
   cmd->add_flag("--source", options->source, "append file:line:col to every line");
   cmd->add_flag("--count", options->count,
                 "print only the number of lines read and events (parse speed runs)");
+  cmd->add_flag("--time", options->time,
+                "end with the programmed time along the path (feed, rapids, dwells; no "
+                "acceleration)");
+  cmd->add_option("--rapid-rate", options->rapid_rate, "rapid traverse rate for --time, mm/min")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   cmd->callback([options] {
     const auto dialect = gcode::dialect_from_name(options->dialect);
     if (!dialect) throw CommandError("moves: unknown dialect '" + options->dialect + "'");
-    const ProgramText text(options->program);
+    ProgramText text(options->program);
     gcode::Interpreter interpreter(text.view(), *dialect);
     const std::string name = options->program == "-" ? "<stdin>" : options->program;
     const program::TranscriptOptions print{options->source, name};
@@ -96,10 +120,18 @@ void add_moves_command(CLI::App& app) {
       const auto& w = interpreter.warnings();
       for (; warnings_shown < w.size(); ++warnings_shown)
         std::cerr << gcode::format(w[warnings_shown], name) << '\n';
+      if (interpreter.warning_count() > w.size())
+        std::cerr << name << ": " << interpreter.warning_count() - w.size()
+                  << " more warnings not shown\n";
     };
+    program::PathClock clock(program::TimingSettings{options->rapid_rate, 0.0,
+                                                     program::BlockTimeMode::added});
     try {
       while (interpreter.next(events)) {
         event_count += events.size();
+        if (options->time)
+          for (const auto& e : events) clock.advance(e);
+        text.release_before(interpreter.block().offset);
         if (!options->count) {
           for (const auto& e : events) program::append_transcript(out, e, print);
           if (out.size() > (1u << 16)) {
@@ -109,6 +141,12 @@ void add_moves_command(CLI::App& app) {
         }
         events.clear();
       }
+    } catch (const program::TimingError& e) {
+      std::fwrite(out.data(), 1, out.size(), stdout);
+      std::fflush(stdout);
+      flush_warnings();
+      throw CommandError(name + ":" + std::to_string(e.source().line) + ":" +
+                         std::to_string(e.source().column) + ": error: " + e.what());
     } catch (const gcode::GcodeError& e) {
       std::fwrite(out.data(), 1, out.size(), stdout);
       std::fflush(stdout);
@@ -120,6 +158,9 @@ void add_moves_command(CLI::App& app) {
       std::printf("lines %llu events %llu\n",
                   static_cast<unsigned long long>(interpreter.lines_read()),
                   static_cast<unsigned long long>(event_count));
+    if (options->time)
+      std::printf("# program time %.4f s (rapids at %.0f mm/min)\n", clock.elapsed(),
+                  options->rapid_rate);
     std::fflush(stdout);
     flush_warnings();
   });

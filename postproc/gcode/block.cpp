@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <numbers>
+#include <optional>
 
 #include "postproc/gcode/diagnostics.h"
 
@@ -365,6 +366,41 @@ class LineReader {
   // A decimal literal without sign; blanks between digits are skipped
   // (Fanuc and LinuxCNC ignore them).
   double read_number(bool& decimal_point, std::size_t word_start, char letter) {
+    if (const auto v = read_plain_number(decimal_point)) return *v;
+    return read_general_number(decimal_point, word_start, letter);
+  }
+
+  // The common case, on the hot path: digits, an optional point, digits,
+  // no blanks, at most 19 digits, exactly representable (mantissa below
+  // 2^53, so mantissa / 10^k is correctly rounded). nullopt (and i_
+  // unchanged) for anything else.
+  std::optional<double> read_plain_number(bool& decimal_point) {
+    const std::size_t n = s_.size();
+    std::size_t k = i_;
+    std::uint64_t mantissa = 0;
+    auto digits = [&] {
+      const std::size_t first = k;
+      for (unsigned d; k < n && (d = static_cast<unsigned char>(s_[k]) - unsigned{'0'}) < 10; ++k)
+        mantissa = mantissa * 10 + d;
+      return k - first;
+    };
+    const std::size_t whole = digits();
+    std::size_t fraction = 0;
+    const bool point = k < n && s_[k] == '.';
+    if (point) {
+      ++k;
+      fraction = digits();
+    }
+    constexpr std::uint64_t kExact = std::uint64_t{1} << 53;
+    if (whole + fraction == 0 || whole + fraction > 19 || fraction > 22 || mantissa > kExact ||
+        (k < n && (s_[k] == '.' || (is_blank(s_[k]) && literal_follows(k)))))
+      return std::nullopt;  // no digits, long, or a blank or second point: the general path
+    i_ = k;
+    decimal_point = point;
+    return static_cast<double>(mantissa) / kPow10[fraction];
+  }
+
+  double read_general_number(bool& decimal_point, std::size_t word_start, char letter) {
     std::uint64_t mantissa = 0;
     int digits = 0;
     int fraction = 0;

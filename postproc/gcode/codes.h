@@ -32,6 +32,8 @@ enum class Group : unsigned char {
   overrides,      // M48 M49 ...
 };
 
+inline constexpr std::size_t kGroupCount = static_cast<std::size_t>(Group::overrides) + 1;
+
 enum class Support : unsigned char {
   followed,  // interpreted
   ignored,   // no effect on motion, S or F: accepted and passed through

@@ -329,10 +329,10 @@ double Interpreter::length(const Word& w) const {
 void Interpreter::execute(std::vector<Event>& events) {
   const Block& b = block_;
   std::array<const Word*, 26> word{};
-  std::array<const Word*, 32> g_group{};
-  std::array<const Word*, 32> m_group{};
-  std::array<int, 32> g_code{};
-  std::array<int, 32> m_code{};
+  std::array<const Word*, kGroupCount> g_group{};
+  std::array<const Word*, kGroupCount> m_group{};
+  std::array<int, kGroupCount> g_code{};
+  std::array<int, kGroupCount> m_code{};
   for (const Word& w : b.words) {
     if (w.letter == 'G') {
       const auto entry = find_code(kGCodes, w.value);
@@ -379,6 +379,9 @@ void Interpreter::execute(std::vector<Event>& events) {
       m_group[group] = &w;
       m_code[group] = entry->code;
     } else {
+      if (std::strchr("ABCUVW", w.letter))
+        fail(Code::axis_not_supported, w.column,
+             std::string(1, w.letter) + " axis: vcpost reads 3-axis (X Y Z) programs only");
       auto& slot = word[static_cast<std::size_t>(w.letter - 'A')];
       if (slot)
         fail(Code::word_repeated, w.column, std::string(1, w.letter) + " word given twice");
@@ -391,15 +394,10 @@ void Interpreter::execute(std::vector<Event>& events) {
   auto M = [&](Group g) { return m_group[static_cast<std::size_t>(g)]; };
   auto Mc = [&](Group g) { return m_code[static_cast<std::size_t>(g)]; };
 
-  for (char rotary : {'A', 'B', 'C', 'U', 'V', 'W'})
-    if (const Word* w = W(rotary))
-      fail(Code::axis_not_supported, w->column,
-           std::string(1, rotary) + " axis: vcpost reads 3-axis (X Y Z) programs only");
-
   // The transaction: all checks against `s`, committed at the end.
   ModalState s = state_;
   const std::size_t first_event = events.size();
-  auto emit = [&](Event e) { events.push_back(std::move(e)); };
+  auto emit = [&](auto&& e) { events.emplace_back(std::forward<decltype(e)>(e)); };
 
   if (b.message) emit(program::Message{*b.message, source(b, b.comments.empty() ? 1 : b.comments.front().column)});
 

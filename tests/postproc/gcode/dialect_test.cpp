@@ -70,8 +70,9 @@ TEST(FanucNumbers, InchIncrementsArcWordsAndUnscaledWords) {
   // I/J and R are lengths too: from X0, G2 X2000 I1000 = half circle of
   // radius 1 mm about (1, 0); R1000 = R 1 mm, same arc back (G2 clockwise).
   // F1000 and S5000 are no lengths: 1000 mm/min, 5000 rpm.
-  const std::string text = "G21 G90 G17\nS5000 M3\nG0 X0 Y0\nG2 X2000 Y0 I1000 J0 F1000\n"
-                           "G2 X0 Y0 R1000\nM30\n";
+  const std::string text =
+      "G21 G90 G17\nS5000 M3\nG0 X0 Y0\nG2 X2000 Y0 I1000 J0 F1000\n"
+      "G2 X0 Y0 R1000\nM30\n";
   EXPECT_EQ(moves(text, fanuc_dialect()),
             "STRAIGHT_TRAVERSE(0.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n"
             "ARC_FEED(2.0000, 0.0000, 1.0000, 0.0000, -1, 0.0000, 0.0000, 0.0000, 0.0000)\n"
@@ -145,15 +146,15 @@ TEST(FanucSubprograms, EventsKeepTheSubprogramsSourceLines) {
   const auto events = all_events(kFanucSubs, fanuc_dialect());
   std::vector<std::uint32_t> feed_lines;
   for (const auto& e : events)
-    if (std::holds_alternative<program::StraightFeed>(e)) feed_lines.push_back(program::source_of(e).line);
+    if (std::holds_alternative<program::StraightFeed>(e))
+      feed_lines.push_back(program::source_of(e).line);
   // Z0 on line 5, then O2000's G1 (line 11) twice, O3000's G1 (line 15), O2000's again.
   EXPECT_EQ(feed_lines, (std::vector<std::uint32_t>{5, 11, 11, 15, 11}));
 }
 
 TEST(FanucSubprograms, ShortFormRepetitionsInP) {
   // Fanuc M98 P32000: O2000 three times (repetitions above the last four digits).
-  const std::string text =
-      "G21 G90\nG1 X0. F100.\nM98 P32000\nM30\nO2000\nG91 G1 X1.\nG90\nM99\n";
+  const std::string text = "G21 G90\nG1 X0. F100.\nM98 P32000\nM30\nO2000\nG91 G1 X1.\nG90\nM99\n";
   EXPECT_EQ(moves(text, fanuc_dialect()),
             "STRAIGHT_FEED(0.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n"
             "STRAIGHT_FEED(1.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n"
@@ -193,8 +194,7 @@ TEST(MazakEia, HighSpeedAndPathCodesAreAccepted) {
 }
 
 TEST(MazakEia, G117AxisWordsAreAPositionNotAMove) {
-  const std::string text =
-      "G21 G90\nG1 X0 Y0 F500.\nG117 X5. Y0 M8\nG1 X10.\nM30\n";
+  const std::string text = "G21 G90\nG1 X0 Y0 F500.\nG117 X5. Y0 M8\nG1 X10.\nM30\n";
   EXPECT_EQ(moves(text, mazak_dialect()),
             "STRAIGHT_FEED(0.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n"
             "STRAIGHT_FEED(10.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n");

@@ -1,6 +1,8 @@
 // Time along the path against durations computed by hand: lines, rapids,
 // arcs and helices in G94, G93 and G95, dwells, block processing time, and
 // a whole G-code program through the interpreter.
+#include "postproc/program/timing.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +10,6 @@
 #include <vector>
 
 #include "postproc/gcode/interpreter.h"
-#include "postproc/program/timing.h"
 
 namespace vcpost::program {
 namespace {
@@ -71,8 +72,9 @@ TEST(PathClock, InverseTimeIgnoresTheLength) {
   clock.advance(SetFeedRate{2.0, FeedMode::inverse_time, {}, 20.0});
   EXPECT_NEAR(clock.advance(StraightFeed{{0, 0, 0}, {10, 0, 0}, {}}).duration, 30.0, kTol);
   clock.advance(SetFeedRate{3.0, FeedMode::inverse_time, {}, 141.0});
-  EXPECT_NEAR(clock.advance(ArcFeed{{20, 10, 0}, {30, 0, 0}, {30, 10, 0}, Plane::xy, -1, {}}).duration,
-              20.0, kTol);
+  EXPECT_NEAR(
+      clock.advance(ArcFeed{{20, 10, 0}, {30, 0, 0}, {30, 10, 0}, Plane::xy, -1, {}}).duration,
+      20.0, kTol);
   // Rapids in G93 still run at the rapid rate: 50 mm -> 0.3 s.
   EXPECT_NEAR(clock.advance(StraightTraverse{{0, 0, 0}, {0, 0, 50}, {}}).duration, 0.3, kTol);
 }
@@ -128,7 +130,8 @@ TEST(PathClock, BlockProcessingTime) {
 TEST(PathClock, RefusesBadSettings) {
   EXPECT_THROW(PathClock(TimingSettings{0.0, 0.0, BlockTimeMode::added}), std::invalid_argument);
   EXPECT_THROW(PathClock(TimingSettings{-5.0, 0.0, BlockTimeMode::added}), std::invalid_argument);
-  EXPECT_THROW(PathClock(TimingSettings{1000.0, -1.0, BlockTimeMode::added}), std::invalid_argument);
+  EXPECT_THROW(PathClock(TimingSettings{1000.0, -1.0, BlockTimeMode::added}),
+               std::invalid_argument);
   EXPECT_THROW(PathClock(TimingSettings{std::nan(""), 0.0, BlockTimeMode::added}),
                std::invalid_argument);
 }
@@ -138,14 +141,14 @@ TEST(PathClock, WholeProgramFromTheInterpreter) {
   const std::string text =
       "G21 G90 G17 G94\n"
       "S1000 M3\n"
-      "G0 X0 Y0 Z10\n"           // 10 mm rapid at 10,000 mm/min: 0.06 s
-      "G1 Z0 F600\n"             // 10 mm at 600: 1 s
-      "G1 X30 Y40\n"             // 50 mm: 5 s
-      "G3 X20 Y50 I-10 J0\n"     // quarter circle r 10 about (20,40): 5 pi mm = pi/2 s
-      "G4 P1.5\n"                // 1.5 s
-      "G93 G1 X20 Y0 F4\n"       // 1/4 min: 15 s
-      "G95 G1 X0 F0.2\n"         // 0.2 mm/rev * 1000 rpm = 200 mm/min, 20 mm: 6 s
-      "G20 G94 G1 X1 F10\n"      // 25.4 mm at 254 mm/min: 6 s
+      "G0 X0 Y0 Z10\n"        // 10 mm rapid at 10,000 mm/min: 0.06 s
+      "G1 Z0 F600\n"          // 10 mm at 600: 1 s
+      "G1 X30 Y40\n"          // 50 mm: 5 s
+      "G3 X20 Y50 I-10 J0\n"  // quarter circle r 10 about (20,40): 5 pi mm = pi/2 s
+      "G4 P1.5\n"             // 1.5 s
+      "G93 G1 X20 Y0 F4\n"    // 1/4 min: 15 s
+      "G95 G1 X0 F0.2\n"      // 0.2 mm/rev * 1000 rpm = 200 mm/min, 20 mm: 6 s
+      "G20 G94 G1 X1 F10\n"   // 25.4 mm at 254 mm/min: 6 s
       "M2\n";
   gcode::Interpreter interpreter(text, gcode::rs274ngc_dialect());
   PathClock clock;

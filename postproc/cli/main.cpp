@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   add_deff_command(app);
   add_moves_command(app);
   add_machines_command(app);
+  add_post_command(app);
 
   try {
     app.parse(argc, argv);

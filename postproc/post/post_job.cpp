@@ -107,6 +107,8 @@ Collected collect(EventSource& source, std::string_view text, ProgramKind kind,
   program::SpindleDirection direction = program::SpindleDirection::clockwise;
   double program_s = 0, program_f = 0;
   bool tool_change = false;
+  std::optional<double> last_target;  // of the last sample evaluated
+  bool last_air = true;
   std::uint64_t last_offset = std::numeric_limits<std::uint64_t>::max();
   double next_report = 0.01;
 
@@ -155,6 +157,8 @@ Collected collect(EventSource& source, std::string_view text, ProgramKind kind,
         c.timeline.push_back({time.start, block_index, std::nullopt, true, tool_change,
                               spindle_state(), program_s});
         tool_change = false;
+        last_target.reset();
+        last_air = true;
         evaluator.break_pass();
         sampler.add(event, c.summary.motion_events - 1, path);
         continue;
@@ -164,6 +168,12 @@ Collected collect(EventSource& source, std::string_view text, ProgramKind kind,
       c.summary.cutting_time_s += time.duration;
       const float weight = path.empty() ? 0.0f
                                         : static_cast<float>(time.duration / static_cast<double>(path.size()));
+      // The planner holds a block's S from its first sample on: a move that
+      // continues the cut starts where the last one ended, at its target.
+      if (!path.empty() && path.front().fraction > 0) {
+        c.timeline.push_back({time.start, block_index, last_target, last_air, tool_change,
+                              spindle_state(), program_s});
+      }
       for (const auto& sample : path) {
         const auto r = evaluator.evaluate(sample);
         ++c.summary.samples;
@@ -182,8 +192,14 @@ Collected collect(EventSource& source, std::string_view text, ProgramKind kind,
         }
         std::optional<double> target = r.target_rpm;
         if (target && !std::isfinite(*target)) target = unbounded_rpm;
+        // No vc to keep near the part (lifted in the air on an approach or a
+        // link, or a plunge along the normal): like a rapid. Missed (far
+        // from the model) keeps the program's S: not this finishing cut.
+        const bool air = !target && r.contact.status != geometry::BallStatus::missed;
         c.timeline.push_back({time.start + time.duration * sample.fraction, block_index, target,
-                              false, tool_change, spindle_state(), program_s});
+                              air, tool_change, spindle_state(), program_s});
+        last_target = target;
+        last_air = air;
         tool_change = false;
         c.samples.push_back({r.d_ref ? static_cast<float>(*r.d_ref) : NAN, weight,
                              static_cast<std::uint32_t>(block_index)});

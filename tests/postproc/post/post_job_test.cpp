@@ -1,0 +1,233 @@
+// The post job end to end on an analytic dome with an exact drop-cutter
+// raster written in the test: only S words change, every S is one the
+// machine can take at the rate it can change, vc never exceeds nominal,
+// and the share of cutting time near nominal rises. When LinuxCNC's rs274
+// is installed, it must read the same motion from input and output.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <regex>
+#include <sstream>
+
+#include "geometry/analytic_surfaces.h"
+#include "machines/builtin.h"
+#include "postproc/gcode/interpreter.h"
+#include "postproc/post/post_job.h"
+#include "postproc/program/timing.h"
+
+namespace vcpost::post {
+namespace {
+
+using Eigen::Vector3d;
+constexpr double ball_radius = 5;
+
+// A dome: the sphere of radius 40 about (0, 0, -20), tilts up to ~50 deg
+// over |x|, |y| <= 25.
+geometry::AnalyticModel dome() {
+  geometry::SpherePatch sphere;
+  sphere.center = {0, 0, -20};
+  sphere.radius = 40;
+  sphere.max_polar = 1.4;
+  return geometry::AnalyticModel({sphere});
+}
+
+// Zig-zag raster along x with `stepover` in y; tip points of a ball of
+// radius 5 resting on the dome (centre on the sphere of radius 45).
+std::string dome_raster(double stepover, double spacing, int spindle) {
+  std::ostringstream out;
+  out.setf(std::ios::fixed);
+  out.precision(6);
+  out << "%\n(dome raster)\nG21 G90 G17 G94\nT1 M6\nS" << spindle << " M3\nF2000\n";
+  bool first = true;
+  int pass = 0;
+  for (double y = -20; y <= 20 + 1e-9; y += stepover, ++pass) {
+    for (int i = 0; i <= static_cast<int>(40 / spacing + 0.5); ++i) {
+      const double x = pass % 2 == 0 ? -20 + i * spacing : 20 - i * spacing;
+      const double z = -20 + std::sqrt(45.0 * 45.0 - x * x - y * y) - ball_radius;
+      if (first) {
+        out << "G0 X" << x << " Y" << y << " Z" << z + 5 << "\nG1 Z" << z << "\n";
+        first = false;
+      } else {
+        out << "G1 X" << x << " Y" << y << " Z" << z << "\n";
+      }
+    }
+  }
+  out << "G0 Z60\nM5\nM30\n%\n";
+  return out.str();
+}
+
+PostSettings settings_for(double vc) {
+  PostSettings s;
+  s.point.tool = geometry::Tool::ball(2 * ball_radius);
+  s.point.ap = 0.3;
+  s.point.vc = vc;
+  return s;
+}
+
+std::string run_post(const std::string& program, const machines::MachineProfile& profile,
+                     const PostSettings& settings, PostSummary* summary = nullptr) {
+  const auto model = dome();
+  std::string out;
+  const auto s = post_program(program, "dome.ngc", model, profile, settings,
+                              [&](std::string_view bytes) { out.append(bytes); });
+  if (summary) *summary = s;
+  return out;
+}
+
+// Every event of a program, in order.
+std::vector<program::Event> events_of(const std::string& text) {
+  gcode::Interpreter interpreter(text, gcode::rs274ngc_dialect());
+  std::vector<program::Event> events;
+  while (interpreter.next(events)) {
+  }
+  return events;
+}
+
+TEST(PostJob, OnlySWordsChangeAndTheMotionIsTheSame) {
+  const std::string input = dome_raster(1.0, 0.5, 8000);
+  const auto profile = machines::builtin_profile("mazak-3axis");
+  const std::string output = run_post(input, profile, settings_for(120));
+  ASSERT_NE(input, output);
+  // Line by line: equal once the S words are taken out.
+  std::istringstream a(input), b(output);
+  std::string la, lb;
+  const std::regex s_word(R"( ?S[0-9.]+)");
+  int lines = 0;
+  while (std::getline(a, la)) {
+    ASSERT_TRUE(std::getline(b, lb));
+    EXPECT_EQ(std::regex_replace(la, s_word, ""), std::regex_replace(lb, s_word, "")) << la;
+    ++lines;
+  }
+  EXPECT_FALSE(std::getline(b, lb));
+  // And as interpreted motion.
+  const auto before = events_of(input), after = events_of(output);
+  std::vector<Vector3d> ends_before, ends_after;
+  for (const auto& e : before) {
+    if (const auto* f = std::get_if<program::StraightFeed>(&e)) ends_before.push_back(f->end);
+  }
+  for (const auto& e : after) {
+    if (const auto* f = std::get_if<program::StraightFeed>(&e)) ends_after.push_back(f->end);
+  }
+  EXPECT_EQ(ends_before, ends_after);
+  EXPECT_GT(lines, 3000);
+}
+
+struct SWord {
+  double time_s;
+  double rpm;
+};
+
+// The S words of a program with the time each takes effect.
+std::vector<SWord> s_words(const std::string& text, const machines::MachineProfile& profile) {
+  program::PathClock clock({profile.feed().rapid_mm_per_min, profile.control().block_time_s});
+  std::vector<SWord> words;
+  for (const auto& e : events_of(text)) {
+    const auto t = clock.advance(e);
+    if (const auto* s = std::get_if<program::SetSpindleSpeed>(&e)) words.push_back({t.start, s->rpm});
+  }
+  return words;
+}
+
+TEST(PostJob, EverySpindleSpeedIsWithinTheMachinesRangeAndSlewLimit) {
+  for (const char* name : {"mazak-3axis", "generic", "fanuc-3axis", "linuxcnc-3axis"}) {
+    SCOPED_TRACE(name);
+    const auto profile = machines::builtin_profile(name);
+    const std::string output = run_post(dome_raster(1.0, 0.5, 8000), profile, settings_for(120));
+    const auto words = s_words(output, profile);
+    ASSERT_GT(words.size(), 2u);
+    const auto& spindle = profile.spindle();
+    for (std::size_t i = 0; i < words.size(); ++i) {
+      EXPECT_GE(words[i].rpm, spindle.n_min_rpm);
+      EXPECT_LE(words[i].rpm, spindle.n_max_rpm);
+      EXPECT_NEAR(std::fmod(words[i].rpm, spindle.s_resolution_rpm), 0, 1e-6);
+      if (i < 2) continue;  // the header S and the run's first S stand before the cut
+      const double dt = words[i].time_s - words[i - 1].time_s, ds = words[i].rpm - words[i - 1].rpm;
+      EXPECT_LE(ds, spindle.acceleration_rpm_per_s * dt + 1e-6) << i;
+      EXPECT_LE(-ds, spindle.deceleration_rpm_per_s * dt + 1e-6) << i;
+    }
+  }
+}
+
+TEST(PostJob, CuttingSpeedStaysAtOrUnderNominalAndMoreTimeIsNearIt) {
+  const auto profile = machines::builtin_profile("mazak-3axis");
+  PostSummary summary;
+  run_post(dome_raster(1.0, 0.5, 8000), profile, settings_for(120), &summary);
+  ASSERT_TRUE(summary.before && summary.after);
+  EXPECT_EQ(summary.touching, summary.samples - summary.lifted);
+  EXPECT_LE(summary.after->max, 120 * (1 + 1e-9));
+  EXPECT_GT(summary.after->within_10_percent, summary.before->within_10_percent);
+  EXPECT_GT(summary.after->within_10_percent, summary.before->within_10_percent + 0.2);
+  std::printf("dome raster, mazak-3axis: within +-10 %% of vc: %.1f %% before, %.1f %% after\n",
+              100 * summary.before->within_10_percent, 100 * summary.after->within_10_percent);
+}
+
+TEST(PostJob, LevelCutNeedsOneSpeedAndTheFormulaGivesIt) {
+  // A level plane: D_max is the rim diameter 2 sqrt(ap (D - ap)) everywhere,
+  // so the whole cut runs at floor(1000 vc / (pi D_max)).
+  geometry::PlanePatch plane;
+  plane.u_min = plane.v_min = -100;
+  plane.u_max = plane.v_max = 100;
+  const geometry::AnalyticModel model({plane});
+  std::string program = "G21 G90\nS6000 M3\nF1000\nG0 X0 Y0 Z1\nG1 Z0\n";
+  for (int k = 0; k < 5; ++k) {
+    program += k % 2 ? "G1 X0\n" : "G1 X30\n";
+    program += "G1 Y" + std::to_string(0.5 * (k + 1)) + "\n";
+  }
+  program += "M30\n";
+  std::string out;
+  const auto profile = machines::builtin_profile("mazak-3axis");  // 12,000 rpm: no clamp
+  const auto summary = post_program(program, "level.ngc", model, profile, settings_for(100),
+                                    [&](std::string_view bytes) { out.append(bytes); });
+  const double n = std::floor(100000 / (std::numbers::pi * 2 * std::sqrt(0.3 * 9.7)));  // 9330
+  // The header S and the approach (in the air, like a rapid) take the cut's speed.
+  EXPECT_NE(out.find("S" + std::to_string(static_cast<int>(n)) + " M3"), std::string::npos) << out;
+  const std::regex s_word(R"(S([0-9]+))");
+  int words = 0;
+  for (auto it = std::sregex_iterator(out.begin(), out.end(), s_word); it != std::sregex_iterator(); ++it) {
+    EXPECT_EQ(std::stod((*it)[1]), n) << out;
+    ++words;
+  }
+  EXPECT_LE(words, 2) << out;
+  EXPECT_EQ(summary.s_words, static_cast<std::uint64_t>(words));
+}
+
+TEST(PostJob, Rs274ReadsTheSameMotionFromInputAndOutput) {
+  if (std::system("command -v rs274 >/dev/null 2>&1") != 0) GTEST_SKIP() << "rs274 not installed";
+  const std::string input = dome_raster(2.0, 0.5, 8000);
+  const auto output = run_post(input, machines::builtin_profile("linuxcnc-3axis"), settings_for(120));
+  const auto dir = std::filesystem::temp_directory_path() / "vcpost_post_job_test";
+  std::filesystem::create_directories(dir);
+  auto transcript = [&](const std::string& name, const std::string& text) {
+    std::ofstream(dir / name) << text;
+    const std::string command = "rs274 -g '" + (dir / name).string() + "' < /dev/null 2>&1";
+    std::string lines, result;
+    if (FILE* pipe = popen(command.c_str(), "r")) {
+      char buffer[65536];
+      std::size_t n;
+      while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) lines.append(buffer, n);
+      pclose(pipe);
+    }
+    std::istringstream in(lines);
+    std::string line;
+    while (std::getline(in, line)) {
+      // Drop the sequence number and the spindle and feed calls.
+      static const std::regex call(R"([A-Z_]+\(.*)");
+      std::smatch m;
+      if (!std::regex_search(line, m, call)) continue;
+      const std::string rest = m[0];
+      if (rest.starts_with("SET_SPINDLE_SPEED") || rest.starts_with("SET_FEED_RATE")) continue;
+      result += rest + "\n";
+    }
+    return result;
+  };
+  const std::string a = transcript("in.ngc", input), b = transcript("out.ngc", output);
+  EXPECT_GT(std::count(a.begin(), a.end(), '\n'), 400);
+  EXPECT_EQ(a, b);
+}
+
+}  // namespace
+}  // namespace vcpost::post

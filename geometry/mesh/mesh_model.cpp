@@ -4,13 +4,12 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <numeric>
 #include <stdexcept>
 
 namespace vcpost::mesh {
 namespace {
 
-constexpr std::uint32_t leaf_size = 4;
+constexpr std::uint32_t leaf_size = 8;
 constexpr int max_stack = 96;
 
 float round_down(double v) {
@@ -76,16 +75,6 @@ MeshModel::MeshModel(StlMesh mesh) : mesh_(std::move(mesh)) {
     }
   }
 
-  // Vertex -> faces, for the warm start's neighbourhood.
-  ring_start_.assign(nv + 1, 0);
-  for (const auto& t : mesh_.triangles)
-    for (auto i : t) ++ring_start_[i + 1];
-  std::partial_sum(ring_start_.begin(), ring_start_.end(), ring_start_.begin());
-  ring_.resize(ring_start_.back());
-  std::vector<std::uint32_t> fill(ring_start_.begin(), ring_start_.end() - 1);
-  for (std::uint32_t f = 0; f < nf; ++f)
-    for (auto i : mesh_.triangles[f]) ring_[fill[i]++] = f;
-
   // The hierarchy: median split of the centroids along the box's longest axis.
   std::vector<Eigen::Vector3d> centroids(nf);
   slots_.resize(nf);
@@ -103,6 +92,10 @@ MeshModel::MeshModel(StlMesh mesh) : mesh_(std::move(mesh)) {
     slot.a = mesh_.vertices[t[0]];
     slot.ab = mesh_.vertices[t[1]] - slot.a;
     slot.ac = mesh_.vertices[t[2]] - slot.a;
+    slot.normal = facet_normal_[slot.face];
+    slot.abab = slot.ab.squaredNorm();
+    slot.abac = slot.ab.dot(slot.ac);
+    slot.acac = slot.ac.squaredNorm();
     slot_of_face_[slot.face] = s;
   }
 }
@@ -150,13 +143,16 @@ std::uint32_t MeshModel::build(std::uint32_t begin, std::uint32_t end,
 void MeshModel::test_slot(std::uint32_t s, const Eigen::Vector3d& p, Hit& best) const {
   const Slot& t = slots_[s];
   const Eigen::Vector3d ap = p - t.a;
+  // The plane is no farther than the triangle: most rejections end here.
+  const double plane = t.normal.dot(ap);
+  if (plane * plane >= best.d2) return;
   const double d1 = t.ab.dot(ap), d2 = t.ac.dot(ap);
   double v = 0, w = 0;
   int feature = 0;
   if (d1 <= 0 && d2 <= 0) {
     feature = 4;
   } else {
-    const double abab = t.ab.squaredNorm(), abac = t.ab.dot(t.ac), acac = t.ac.squaredNorm();
+    const double abab = t.abab, abac = t.abac, acac = t.acac;
     const double d3 = d1 - abab, d4 = d2 - abac;  // dots with p - b
     const double d5 = d1 - abac, d6 = d2 - acac;  // dots with p - c
     if (d3 >= 0 && d4 <= d3) {
@@ -238,14 +234,15 @@ std::optional<geometry::ModelContact> MeshModel::closest_point(const Eigen::Vect
   best.d2 = std::nextafter(max_distance * max_distance, std::numeric_limits<double>::infinity());
   const double limit = best.d2;
 
+  // Warm start: the previous answer's triangle alone gives a bound within a
+  // hair of the answer along a coherent path (its neighbours would only be
+  // tested again by the traversal).
   bool warm = false;
   if (hint != nullptr && hint->face >= 0 && hint->face < face_count()) {
-    for (auto i : mesh_.triangles[hint->face])
-      for (std::uint32_t k = ring_start_[i]; k < ring_start_[i + 1]; ++k)
-        test_slot(slot_of_face_[ring_[k]], p, best);
+    test_slot(slot_of_face_[hint->face], p, best);
     warm = best.d2 < limit;
   }
-  const double ring_d2 = best.d2;
+  const double hint_d2 = best.d2;
 
   auto box_d2 = [&](const Node& n) {
     double d2 = 0;
@@ -291,7 +288,7 @@ std::optional<geometry::ModelContact> MeshModel::closest_point(const Eigen::Vect
   }
   if (!(best.d2 < limit)) return std::nullopt;
   if (hint != nullptr) {
-    if (warm && best.d2 == ring_d2) {
+    if (warm && best.d2 == hint_d2) {
       ++hint->warm_queries;
     } else {
       ++hint->cold_queries;

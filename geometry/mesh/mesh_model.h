@@ -36,9 +36,11 @@ class MeshModel final : public geometry::SurfaceModel {
   explicit MeshModel(StlMesh mesh);
 
   // See geometry::SurfaceModel. A hint with a valid face makes the query
-  // warm: the triangles around the previous answer give an upper bound that
-  // prunes most of the hierarchy; the answer is still the global closest
-  // point (the hierarchy is always searched within that bound).
+  // warm: the previous answer's triangle gives an upper bound that prunes
+  // most of the hierarchy from the start; the answer is still the global
+  // closest point (the hierarchy is always searched within that bound).
+  // ContactHint::warm_queries counts the queries the hint's triangle
+  // answered, cold_queries the others.
   std::optional<geometry::ModelContact> closest_point(const Eigen::Vector3d& point,
                                                       double max_distance,
                                                       geometry::ContactHint* hint) const override;
@@ -58,6 +60,8 @@ class MeshModel final : public geometry::SurfaceModel {
   // A triangle as the query reads it, in hierarchy order.
   struct Slot {
     Eigen::Vector3d a, ab, ac;
+    Eigen::Vector3d normal;  // unit facet normal: |normal.(p - a)| bounds the distance from below
+    double abab, abac, acac;  // Gram matrix of the edges
     std::uint32_t face;
   };
   struct Hit {
@@ -78,7 +82,6 @@ class MeshModel final : public geometry::SurfaceModel {
   std::vector<Eigen::Vector3d> facet_normal_;
   std::vector<std::array<Eigen::Vector3d, 3>> edge_normal_;  // per face: edges ab, bc, ca
   std::vector<Eigen::Vector3d> vertex_normal_;                // angle-weighted
-  std::vector<std::uint32_t> ring_start_, ring_;  // vertex -> faces (CSR)
   std::vector<std::uint32_t> slot_of_face_;
   std::vector<Slot> slots_;
   std::vector<Node> nodes_;

@@ -124,8 +124,8 @@ void add_moves_command(CLI::App& app) {
         std::cerr << name << ": " << interpreter.warning_count() - w.size()
                   << " more warnings not shown\n";
     };
-    program::PathClock clock(program::TimingSettings{options->rapid_rate, 0.0,
-                                                     program::BlockTimeMode::added});
+    program::PathClock clock(
+        program::TimingSettings{options->rapid_rate, 0.0, program::BlockTimeMode::added});
     try {
       while (interpreter.next(events)) {
         event_count += events.size();

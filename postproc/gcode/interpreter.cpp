@@ -333,6 +333,7 @@ void Interpreter::execute(std::vector<Event>& events) {
   std::array<const Word*, kGroupCount> m_group{};
   std::array<int, kGroupCount> g_code{};
   std::array<int, kGroupCount> m_code{};
+  int m_words = 0;
   for (const Word& w : b.words) {
     if (w.letter == 'G') {
       const auto entry = find_code(kGCodes, w.value);
@@ -361,6 +362,8 @@ void Interpreter::execute(std::vector<Event>& events) {
       g_group[group] = &w;
       g_code[group] = entry->code;
     } else if (w.letter == 'M') {
+      // LinuxCNC's limit; Fanuc-like controls allow fewer.
+      if (++m_words > 4) fail(Code::too_many_m_codes, w.column, "more than four M codes in one block");
       const auto entry = find_code(kMCodes, w.value);
       if (!entry) {
         char text[32];

@@ -52,7 +52,7 @@ TEST(BadInput, EveryFileGivesItsExpectedDiagnostic) {
     EXPECT_NE(d->message.find(expect[4].str()), std::string::npos) << d->message;
     ++count;
   }
-  EXPECT_GE(count, 20);
+  EXPECT_GE(count, 40);
 }
 
 TEST(BadInput, TenMegabyteLineIsRefused) {

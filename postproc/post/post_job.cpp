@@ -69,6 +69,30 @@ gcode::Dialect dialect_of(const machines::MachineProfile& profile) {
   return gcode::rs274ngc_dialect();
 }
 
+// Numbers the blocks of a program as both passes see them: a G-code block
+// is a line (its events share a source offset); in CL data every motion
+// starts a block, and what comes before the first motion is block 0.
+class BlockCounter {
+ public:
+  explicit BlockCounter(ProgramKind kind) : kind_(kind) {}
+  // The block of `event`, and whether it starts a new one.
+  std::pair<std::size_t, bool> on(const Event& event) {
+    const program::SourceRef ref = program::source_of(event);
+    const bool fresh = kind_ == ProgramKind::gcode ? ref.offset != last_offset_ || !started_
+                                                   : program::is_motion(event) || !started_;
+    if (fresh && started_) ++block_;
+    started_ = true;
+    last_offset_ = ref.offset;
+    return {block_, fresh};
+  }
+
+ private:
+  ProgramKind kind_;
+  bool started_ = false;
+  std::size_t block_ = 0;
+  std::uint64_t last_offset_ = 0;
+};
+
 // What the job remembers of each block of the program.
 struct BlockInfo {
   std::uint64_t offset = 0;   // first byte (G-code) / record (CL)
@@ -109,18 +133,9 @@ Collected collect(EventSource& source, std::string_view text, ProgramKind kind,
   bool tool_change = false;
   std::optional<double> last_target;  // of the last sample evaluated
   bool last_air = true;
-  std::uint64_t last_offset = std::numeric_limits<std::uint64_t>::max();
   double next_report = 0.01;
 
-  auto open_block = [&](const program::SourceRef& ref, bool motion) {
-    const bool fresh = kind == ProgramKind::gcode ? ref.offset != last_offset : motion;
-    if (fresh || c.blocks.empty()) {
-      c.blocks.push_back({ref.offset, false, false, program_s, program_f});
-      last_offset = ref.offset;
-    }
-    c.blocks.back().program_s = program_s;
-    c.blocks.back().program_f = program_f;
-  };
+  BlockCounter counter(kind);
   auto spindle_state = [&] {
     if (spindle == plan::SpindleState::off || program_s <= 0) return plan::SpindleState::off;
     return direction == program::SpindleDirection::clockwise ? plan::SpindleState::cw
@@ -130,9 +145,9 @@ Collected collect(EventSource& source, std::string_view text, ProgramKind kind,
   while (source.next(events)) {
     for (const Event& event : events) {
       const bool motion = program::is_motion(event);
-      open_block(program::source_of(event), motion);
+      const auto [block_index, fresh] = counter.on(event);
+      if (fresh) c.blocks.push_back({program::source_of(event).offset, false, false, program_s, program_f});
       BlockInfo& block = c.blocks.back();
-      const auto block_index = c.blocks.size() - 1;
       const program::EventTime time = clock.advance(event);
       if (const auto* s = std::get_if<program::SetSpindleSpeed>(&event)) {
         program_s = block.program_s = s->rpm;
@@ -376,14 +391,12 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
     format.line_numbers = o.line_numbers;
     output::MazakWriter writer(buffer, format);
     EventSource again(text, file_name, kind, dialect);
+    BlockCounter counter(kind);
     std::vector<Event> events;
-    std::size_t block = 0;
-    bool started = false;
     while (again.next(events)) {
       for (Event& event : events) {
+        const std::size_t block = counter.on(event).first;
         if (program::is_motion(event)) {
-          if (started) ++block;
-          started = true;
           if (const auto s = s_for(block); s && !c.blocks[block].has_s) {
             writer.write(program::SetSpindleSpeed{std::floor(*s / s_step + 1e-9) * s_step, {}});
             ++summary.s_words;
@@ -393,10 +406,7 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
             ++summary.f_words;
           }
         } else if (auto* s = std::get_if<program::SetSpindleSpeed>(&event)) {
-          const std::size_t b = started ? block + 1 : 0;
-          if (b < c.blocks.size()) {
-            if (const auto planned = s_for(b)) s->rpm = std::floor(*planned / s_step + 1e-9) * s_step;
-          }
+          if (const auto planned = s_for(block)) s->rpm = std::floor(*planned / s_step + 1e-9) * s_step;
         }
         writer.write(event);
       }

@@ -161,23 +161,19 @@ void append_source(std::string& out, const SourceRef& source, const TranscriptOp
 }  // namespace
 
 void append_transcript(std::string& out, const Event& event, const TranscriptOptions& options) {
-  if (!options.with_source) {
-    append_call(out, event);
-    out += '\n';
-    return;
-  }
-  std::string calls;
-  append_call(calls, event);
-  const SourceRef source = source_of(event);
-  std::string_view rest = calls;
-  while (true) {
-    const auto newline = rest.find('\n');
-    out += rest.substr(0, newline);
+  const std::size_t start = out.size();
+  append_call(out, event);
+  if (options.with_source) {
+    const SourceRef source = source_of(event);
+    // Only Coolant off prints two calls; each line gets the suffix.
+    if (const auto newline = out.find('\n', start); newline != std::string::npos) {
+      std::string suffix;
+      append_source(suffix, source, options);
+      out.insert(newline, suffix);
+    }
     append_source(out, source, options);
-    out += '\n';
-    if (newline == std::string_view::npos) break;
-    rest.remove_prefix(newline + 1);
   }
+  out += '\n';
 }
 
 std::string transcript(const Event& event, const TranscriptOptions& options) {

@@ -117,9 +117,14 @@ struct Collected {
   PostSummary summary;
 };
 
+// Sees every evaluated point during collection, with its block and time.
+using Observer = std::function<void(const pipeline::PathSample&, const pipeline::PointResult&,
+                                    std::size_t block, double time_s, double weight_s)>;
+
 Collected collect(EventSource& source, std::string_view text, ProgramKind kind,
                   const geometry::SurfaceModel& model, const machines::MachineProfile& profile,
-                  const PostSettings& settings, const Progress& progress) {
+                  const PostSettings& settings, const Progress& progress,
+                  const Observer& observer = {}) {
   Collected c;
   c.summary.kind = kind;
   program::PathClock clock({profile.feed().rapid_mm_per_min, profile.control().block_time_s});
@@ -218,6 +223,9 @@ Collected collect(EventSource& source, std::string_view text, ProgramKind kind,
         tool_change = false;
         c.samples.push_back({r.d_ref ? static_cast<float>(*r.d_ref) : NAN, weight,
                              static_cast<std::uint32_t>(block_index)});
+        if (observer) {
+          observer(sample, r, block_index, time.start + time.duration * sample.fraction, weight);
+        }
       }
     }
     events.clear();
@@ -309,7 +317,7 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
                          const geometry::SurfaceModel& model,
                          const machines::MachineProfile& profile, const PostSettings& settings,
                          const std::function<void(std::string_view)>& sink,
-                         const Progress& progress) {
+                         const Progress& progress, const PointSink& points) {
   const ProgramKind kind = detect_program_kind(text);
   const gcode::Dialect dialect = settings.dialect.value_or(dialect_of(profile));
   EventSource source(text, file_name, kind, dialect);
@@ -363,7 +371,9 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
     return feeds[static_cast<std::size_t>(next[b])].f_mm_per_min;
   };
 
-  if (kind == ProgramKind::gcode) {
+  if (!sink) {
+    // A dry run: nothing written.
+  } else if (kind == ProgramKind::gcode) {
     std::vector<gcode::WordPatch> patches;
     for (std::size_t b = 0; b < c.blocks.size(); ++b) {
       if (const auto s = s_for(b)) {
@@ -438,6 +448,24 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
         return p >= 0 ? plan.blocks[static_cast<std::size_t>(p)].planned_rpm : c.blocks[s.block].program_s;
       },
       vc);
+  if (points) {
+    // The S in effect on a block: its plan's, else the program's.
+    auto after = [&](std::size_t b) {
+      const int p = own[b];
+      return p >= 0 ? plan.blocks[static_cast<std::size_t>(p)].planned_rpm : c.blocks[b].program_s;
+    };
+    EventSource again(text, file_name, kind, dialect);
+    collect(again, text, kind, model, profile, settings, {},
+            [&](const pipeline::PathSample& sample, const pipeline::PointResult& result,
+                std::size_t block, double time_s, double weight_s) {
+              const int p = own[block];
+              points(sample, result,
+                     PointRecord{sample.source.line, time_s, weight_s, c.blocks[block].program_s,
+                                 after(block),
+                                 p >= 0 ? plan.blocks[static_cast<std::size_t>(p)].bound
+                                        : plan::Bound::program});
+            });
+  }
   if (progress) progress(1.0);
   return summary;
 }

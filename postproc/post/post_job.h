@@ -53,6 +53,18 @@ struct PostSummary {
   std::optional<VcStatistics> before, after;  // empty when no sample cut
 };
 
+// One evaluated point of the path with the spindle speed before (the
+// program's) and after (the plan's), for reports.
+struct PointRecord {
+  std::uint32_t line = 0;      // NC line (CL record) of the block
+  double time_s = 0;           // from program start
+  double weight_s = 0;         // cutting time the point stands for
+  double s_before = 0, s_after = 0;  // rpm in effect
+  plan::Bound bound = plan::Bound::none;  // what decided s_after
+};
+using PointSink = std::function<void(const pipeline::PathSample&, const pipeline::PointResult&,
+                                     const PointRecord&)>;
+
 // Progress: fraction of the input read, in [0, 1].
 using Progress = std::function<void(double)>;
 
@@ -65,12 +77,14 @@ class PostError : public std::runtime_error {
 };
 
 // Posts `text` (the whole program; `file_name` for messages). Writes the
-// output program to `sink` in pieces: for G-code input the input with only
-// S/F words changed; for CL input G-code in the profile's format.
+// output program to `sink` in pieces (nothing when `sink` is empty: a dry
+// run): for G-code input the input with only S/F words changed; for CL
+// input G-code in the profile's format. With `points`, a second pass
+// evaluates the path again and hands every point to it, in path order.
 PostSummary post_program(std::string_view text, const std::string& file_name,
                          const geometry::SurfaceModel& model,
                          const machines::MachineProfile& profile, const PostSettings& settings,
                          const std::function<void(std::string_view)>& sink,
-                         const Progress& progress = {});
+                         const Progress& progress = {}, const PointSink& points = {});
 
 }  // namespace vcpost::post

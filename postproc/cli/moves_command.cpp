@@ -63,8 +63,7 @@ class ProgramText {
   // file is.
   void release_before(std::uint64_t offset) {
     if (!map_) return;
-    const auto page = static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
-    const std::uint64_t end = offset / page * page;
+    const std::uint64_t end = offset / page_ * page_;
     if (end <= released_ + kReleaseStep) return;
     ::madvise(static_cast<char*>(map_) + released_, end - released_, MADV_DONTNEED);
     released_ = end;
@@ -74,6 +73,7 @@ class ProgramText {
   static constexpr std::uint64_t kReleaseStep = 1u << 20;
   std::string buffer_;
   std::uint64_t released_ = 0;
+  std::uint64_t page_ = static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
   void* map_ = nullptr;
   std::size_t size_ = 0;
   std::string_view view_;

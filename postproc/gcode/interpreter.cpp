@@ -382,7 +382,8 @@ void Interpreter::execute(std::vector<Event>& events) {
       m_group[group] = &w;
       m_code[group] = entry->code;
     } else {
-      if (std::strchr("ABCUVW", w.letter))
+      const char l = w.letter;
+      if (l == 'A' || l == 'B' || l == 'C' || l == 'U' || l == 'V' || l == 'W')
         fail(Code::axis_not_supported, w.column,
              std::string(1, w.letter) + " axis: vcpost reads 3-axis (X Y Z) programs only");
       auto& slot = word[static_cast<std::size_t>(w.letter - 'A')];

@@ -3,6 +3,8 @@
 // the same process on the same points OpenCASCADE's GeomAPI_ProjectPointOnSurf
 // per point and a warm Extrema_GenLocateExtPS; after the Google Benchmark
 // runs, a summary prints microseconds per point and the ratios.
+#include <benchmark/benchmark.h>
+
 #include <BRep_Tool.hxx>
 #include <Extrema_GenLocateExtPS.hxx>
 #include <Extrema_POnSurf.hxx>
@@ -10,11 +12,9 @@
 #include <GeomAdaptor_Surface.hxx>
 #include <GeomLProp_SLProps.hxx>
 #include <Geom_Surface.hxx>
-#include <benchmark/benchmark.h>
-
 #include <chrono>
-#include <ctime>
 #include <cstdio>
+#include <ctime>
 #include <random>
 #include <thread>
 #include <vector>
@@ -38,7 +38,7 @@ struct Setup {
   BrepModel model = vcpost::occt::model_from_shape(face);
   std::vector<Vector3d> path;  // ball centres, zig-zag raster, 0.02 mm apart along the pass
   std::vector<Vector2d> path_uv;
-  std::vector<Vector3d> feet;  // the surface point under each centre: the exact CC
+  std::vector<Vector3d> feet;       // the surface point under each centre: the exact CC
   std::vector<Vector3d> scattered;  // random centres for cold queries
 
   Setup() {
@@ -191,7 +191,8 @@ void print_summary() {
   const Timing cold = per_point(
       [&] {
         double sum = 0;
-        for (const Vector3d& p : s.scattered) sum += s.model.closest_point(p, 1e9, nullptr)->distance;
+        for (const Vector3d& p : s.scattered)
+          sum += s.model.closest_point(p, 1e9, nullptr)->distance;
         return sum;
       },
       s.scattered.size(), 3);
@@ -201,11 +202,13 @@ void print_summary() {
   ContactHint hint;
   double worst = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    worst = std::max(worst, (s.model.closest_point(s.path[i], 2 * kRadius, &hint)->point - s.feet[i]).norm());
+    worst = std::max(
+        worst, (s.model.closest_point(s.path[i], 2 * kRadius, &hint)->point - s.feet[i]).norm());
   }
-  std::printf("\ncontact on a bicubic B-spline face (%d triangles in the index), %zu path points,"
-              " ball R %.0f mm; largest CC error against the construction %.2e mm\n",
-              s.model.info().triangles, n, kRadius, worst);
+  std::printf(
+      "\ncontact on a bicubic B-spline face (%d triangles in the index), %zu path points,"
+      " ball R %.0f mm; largest CC error against the construction %.2e mm\n",
+      s.model.info().triangles, n, kRadius, worst);
   std::printf("  %-32s %10s %10s %12s\n", "per point", "wall us", "CPU us", "M points/s");
   const auto row = [](const char* name, const Timing& t) {
     std::printf("  %-32s %10.3f %10.3f %12.3f\n", name, t.wall_us, t.cpu_us, 1 / t.wall_us);
@@ -215,11 +218,13 @@ void print_summary() {
   row("ours cold (BVH + Newton)", cold);
   row("GeomAPI_ProjectPointOnSurf", geomapi);
   row("Extrema_GenLocateExtPS warm", locate);
-  std::printf("  ratios (CPU): GeomAPI / ours warm %.0fx, GeomAPI / ours cold %.0fx, "
-              "Extrema_GenLocateExtPS / ours warm %.1fx\n",
-              geomapi.cpu_us / warm.cpu_us, geomapi.cpu_us / cold.cpu_us, locate.cpu_us / warm.cpu_us);
-  std::printf("  ratios (wall): GeomAPI / ours warm %.0fx, Extrema_GenLocateExtPS / ours warm %.1fx\n",
-              geomapi.wall_us / warm.wall_us, locate.wall_us / warm.wall_us);
+  std::printf(
+      "  ratios (CPU): GeomAPI / ours warm %.0fx, GeomAPI / ours cold %.0fx, "
+      "Extrema_GenLocateExtPS / ours warm %.1fx\n",
+      geomapi.cpu_us / warm.cpu_us, geomapi.cpu_us / cold.cpu_us, locate.cpu_us / warm.cpu_us);
+  std::printf(
+      "  ratios (wall): GeomAPI / ours warm %.0fx, Extrema_GenLocateExtPS / ours warm %.1fx\n",
+      geomapi.wall_us / warm.wall_us, locate.wall_us / warm.wall_us);
 }
 
 }  // namespace

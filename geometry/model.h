@@ -33,12 +33,13 @@ struct Curvature {
 
 // The closest point of the model to a query point.
 struct ModelContact {
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();   // CC, mm
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ(); // unit surface normal at CC, out of the material
-  double distance = 0;                               // |query - CC| >= 0, mm
-  std::optional<Curvature> curvature;                // of the owning face at CC; empty for meshes
-  int face = -1;                                     // index of the owning face, [0, face_count())
-  Eigen::Vector2d uv = Eigen::Vector2d::Zero();      // parameters on that face (model-specific)
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // CC, mm
+  Eigen::Vector3d normal =
+      Eigen::Vector3d::UnitZ();                  // unit surface normal at CC, out of the material
+  double distance = 0;                           // |query - CC| >= 0, mm
+  std::optional<Curvature> curvature;            // of the owning face at CC; empty for meshes
+  int face = -1;                                 // index of the owning face, [0, face_count())
+  Eigen::Vector2d uv = Eigen::Vector2d::Zero();  // parameters on that face (model-specific)
   ContactType type = ContactType::face;
 };
 
@@ -64,8 +65,9 @@ class SurfaceModel {
   // is within `max_distance` mm; empty otherwise (or when the model is
   // empty). `hint` may be null (a cold query); when given it is read as a
   // warm start and updated to this answer.
-  virtual std::optional<ModelContact> closest_point(
-      const Eigen::Vector3d& point, double max_distance, ContactHint* hint) const = 0;
+  virtual std::optional<ModelContact> closest_point(const Eigen::Vector3d& point,
+                                                    double max_distance,
+                                                    ContactHint* hint) const = 0;
 
   // Axis-aligned box holding the whole model, mm.
   virtual Eigen::AlignedBox3d bounds() const = 0;

@@ -39,8 +39,9 @@ void BoxTree::build(int node, int begin, int end, const std::vector<Eigen::Align
   int axis = 0;
   centre_box.sizes().maxCoeff(&axis);
   const int mid = (begin + end) / 2;
-  std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
-                   [&](std::int32_t a, std::int32_t b) { return centres[a][axis] < centres[b][axis]; });
+  std::nth_element(
+      order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
+      [&](std::int32_t a, std::int32_t b) { return centres[a][axis] < centres[b][axis]; });
   const int left = static_cast<int>(nodes_.size());
   nodes_.emplace_back();
   nodes_.emplace_back();

@@ -7,6 +7,7 @@
 #include <BRep_Tool.hxx>
 #include <BSplSLib_Cache.hxx>
 #include <Bnd_Box.hxx>
+#include <Eigen/Eigenvalues>
 #include <Geom2d_Curve.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <Geom_Curve.hxx>
@@ -21,7 +22,6 @@
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Vertex.hxx>
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -67,7 +67,8 @@ class SurfaceEval {
     for (int i = vk.Lower(); i <= vk.Upper(); ++i) v_knots_.push_back(vk(i));
     const auto& flat_u = bspline_->UKnotSequence();
     const auto& flat_v = bspline_->VKnotSequence();
-    const int nu = static_cast<int>(u_knots_.size()) - 1, nv = static_cast<int>(v_knots_.size()) - 1;
+    const int nu = static_cast<int>(u_knots_.size()) - 1,
+              nv = static_cast<int>(v_knots_.size()) - 1;
     caches_.reserve(static_cast<std::size_t>(nu * nv));
     for (int i = 0; i < nu; ++i) {
       for (int j = 0; j < nv; ++j) {
@@ -92,11 +93,11 @@ class SurfaceEval {
       const std::size_t i = span(u_knots_, u), j = span(v_knots_, v);
       caches_[i * (v_knots_.size() - 1) + j]->D2(u, v, p, su, sv, suu, svv, suv);
     }
-    return {to_eigen(p.XYZ()), to_eigen(su.XYZ()),  to_eigen(sv.XYZ()),
+    return {to_eigen(p.XYZ()),   to_eigen(su.XYZ()),  to_eigen(sv.XYZ()),
             to_eigen(suu.XYZ()), to_eigen(svv.XYZ()), to_eigen(suv.XYZ())};
   }
 
-  const Handle(Geom_Surface)& surface() const { return surface_; }
+  const Handle(Geom_Surface) & surface() const { return surface_; }
 
  private:
   static double wrap(double x, double lo, double hi) {
@@ -138,11 +139,11 @@ struct FaceData {
   SurfaceEval eval;
   bool reversed = false;
   double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
-  double u_period = 0, v_period = 0;  // > 0 when the surface is periodic in that direction
+  double u_period = 0, v_period = 0;        // > 0 when the surface is periodic in that direction
   bool u_closed = false, v_closed = false;  // the face spans the whole period: no bound there
-  bool natural = false;               // the trim is the whole (u,v) box
+  bool natural = false;                     // the trim is the whole (u,v) box
   static constexpr int kGrid = 32;
-  std::vector<Trim> cells;            // kGrid x kGrid classification of the (u,v) box
+  std::vector<Trim> cells;                     // kGrid x kGrid classification of the (u,v) box
   std::vector<std::array<Vector2d, 2>> loops;  // segments of the trim polygon in (u,v)
   std::vector<std::array<Vector3d, 3>> triangles;
   std::vector<std::array<Vector2d, 3>> triangle_uv;
@@ -399,9 +400,8 @@ struct BrepModel::Impl {
     const gp_Pnt2d uv2 = best_edge->pcurve->Value(best_t);
     const Vector2d uv(uv2.X(), uv2.Y());
     const SurfacePoint s = f.eval.d2(uv.x(), uv.y());
-    const ContactType type = (!e.closed && (best_t <= e.t0 || best_t >= e.t1))
-                                 ? ContactType::vertex
-                                 : ContactType::edge;
+    const ContactType type =
+        (!e.closed && (best_t <= e.t0 || best_t >= e.t1)) ? ContactType::vertex : ContactType::edge;
     return make_contact(face, p, uv, s, type, best_point);
   }
 
@@ -412,14 +412,40 @@ struct BrepModel::Impl {
     const FaceData& f = faces[static_cast<std::size_t>(face)];
     const std::optional<Local> local = newton(f, p, start);
     if (!local) return std::nullopt;
-    if (!local->on_box_bound || f.natural) {
-      const Trim trim = local->on_box_bound ? Trim::boundary : classify(f, local->uv);
-      if (trim == Trim::inside) {
-        if ((local->s.p - p).norm() >= bound) return std::nullopt;
-        return make_contact(face, p, local->uv, local->s, ContactType::face, local->s.p);
+    const double d = (local->s.p - p).norm();
+    if (!local->on_box_bound) {
+      if (classify(f, local->uv) == Trim::inside) {
+        if (d >= bound) return std::nullopt;
+        return face_contact(face, p, local->uv, local->s);
       }
+      return on_edges(face, p, bound);
     }
-    return on_edges(face, p, bound);
+    // On the (u,v) box: usually an edge, but a pole (degenerate edge) or a
+    // seam is no edge of ours, and there the surface point is the answer.
+    // It must be a true foot point (p - S along the normal), not a point
+    // where the box merely stopped Newton's method.
+    std::optional<ModelContact> edge = on_edges(face, p, bound);
+    const bool on_face = f.natural || classify(f, local->uv) != Trim::outside;
+    if (on_face && d < bound && (!edge || d < edge->distance - 1e-9)) {
+      ModelContact c = face_contact(face, p, local->uv, local->s);
+      if ((p - c.point).cross(c.normal).norm() <= 1e-7 * std::max(1.0, d)) return c;
+    }
+    return edge;
+  }
+
+  // A contact inside a face; where the parametrisation is singular (a
+  // pole: first fundamental form degenerate) normal and curvatures come
+  // from a point a hair inside the (u,v) box.
+  ModelContact face_contact(int face, const Vector3d& p, const Vector2d& uv,
+                            const SurfacePoint& s) const {
+    const FaceData& f = faces[static_cast<std::size_t>(face)];
+    const double area = s.su.cross(s.sv).norm();
+    if (area > 1e-10 * std::max(1.0, s.su.squaredNorm() + s.sv.squaredNorm())) {
+      return make_contact(face, p, uv, s, ContactType::face, s.p);
+    }
+    const Vector2d centre((f.u0 + f.u1) / 2, (f.v0 + f.v1) / 2);
+    const Vector2d nudged = uv + 1e-9 * (centre - uv);
+    return make_contact(face, p, uv, f.eval.d2(nudged.x(), nudged.y()), ContactType::face, s.p);
   }
 
   // Nearest tessellation triangle of a face within `bound`: its distance
@@ -436,7 +462,8 @@ struct BrepModel::Impl {
       if (d < best_sq) {
         best_sq = d;
         const auto& uv = f.triangle_uv[static_cast<std::size_t>(t)];
-        best = std::make_pair(std::sqrt(d), Vector2d(w.x() * uv[0] + w.y() * uv[1] + w.z() * uv[2]));
+        best =
+            std::make_pair(std::sqrt(d), Vector2d(w.x() * uv[0] + w.y() * uv[1] + w.z() * uv[2]));
       }
       return best_sq;
     });
@@ -449,10 +476,13 @@ struct BrepModel::Impl {
     double bound = max_distance;
     int done = -1;
     if (hint && hint->face >= 0 && hint->face < static_cast<int>(faces.size())) {
-      done = hint->face;
-      best = refine(done, p, hint->uv, std::numeric_limits<double>::infinity());
+      best = refine(hint->face, p, hint->uv, std::numeric_limits<double>::infinity());
       if (best && best->distance > bound) best.reset();
-      if (best) bound = best->distance;
+      // A failed warm start leaves the face to the global search below.
+      if (best) {
+        bound = best->distance;
+        done = hint->face;
+      }
     }
     if (hint) ++(done >= 0 && best ? hint->warm_queries : hint->cold_queries);
     // Every other face whose tessellation comes within the bound (plus the
@@ -545,7 +575,7 @@ void add_face(BrepModel::Impl& model, const TopoDS_Face& face,
     for (int x = 0; x < g; ++x) {
       for (int y = 0; y < g; ++y) {
         const Vector2d centre(f.u0 + (x + 0.5) * span_u / g, f.v0 + (y + 0.5) * span_v / g);
-        f.cells[x * g + y] = touched[x * g + y]       ? Trim::boundary
+        f.cells[x * g + y] = touched[x * g + y]                ? Trim::boundary
                              : inside_polygon(f.loops, centre) ? Trim::inside
                                                                : Trim::outside;
       }
@@ -605,7 +635,8 @@ void add_face(BrepModel::Impl& model, const TopoDS_Face& face,
         f.triangle_uv.push_back({uv(i, j), uv(i + 1, j), uv(i + 1, j + 1)});
         f.triangles.push_back({grid[at(i, j)], grid[at(i + 1, j + 1)], grid[at(i, j + 1)]});
         f.triangle_uv.push_back({uv(i, j), uv(i + 1, j + 1), uv(i, j + 1)});
-        const Vector3d mid = f.eval.d2(f.u0 + span_u * (i + 0.5) / g, f.v0 + span_v * (j + 0.5) / g).p;
+        const Vector3d mid =
+            f.eval.d2(f.u0 + span_u * (i + 0.5) / g, f.v0 + span_v * (j + 0.5) / g).p;
         chord = std::max(chord, (mid - (grid[at(i, j)] + grid[at(i + 1, j + 1)]) / 2).norm());
       }
     }
@@ -717,9 +748,9 @@ BrepModel model_from_shape(const TopoDS_Shape& shape, const BrepOptions& options
     impl->info.faces = static_cast<int>(impl->faces.size());
     impl->info.deflection = deflection;
   } catch (const Standard_Failure& failure) {
-    throw ModelError(ModelErrorCode::kernel_failure, source,
-                     std::string("OpenCASCADE failed while indexing the model: ") +
-                         failure.GetMessageString());
+    throw ModelError(
+        ModelErrorCode::kernel_failure, source,
+        std::string("OpenCASCADE failed while indexing the model: ") + failure.GetMessageString());
   }
   return BrepModel(std::move(impl));
 }
@@ -730,8 +761,7 @@ BrepModel& BrepModel::operator=(BrepModel&&) noexcept = default;
 BrepModel::~BrepModel() = default;
 
 std::optional<ModelContact> BrepModel::closest_point(const Eigen::Vector3d& point,
-                                                     double max_distance,
-                                                     ContactHint* hint) const {
+                                                     double max_distance, ContactHint* hint) const {
   return impl_->query(point, max_distance, hint);
 }
 

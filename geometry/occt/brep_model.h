@@ -27,12 +27,12 @@ namespace vcpost::occt {
 
 // Stable codes of the errors a model load can raise (E41xx).
 enum class ModelErrorCode {
-  file_missing,       // E4101: no such file
-  file_unreadable,    // E4102: exists but cannot be opened or read
-  file_empty,         // E4103: zero bytes
-  not_step,           // E4104: not a STEP file, or the reader refused it
-  no_faces,           // E4105: read, but holds no face to touch
-  kernel_failure,     // E4106: OpenCASCADE failed during transfer or meshing
+  file_missing,     // E4101: no such file
+  file_unreadable,  // E4102: exists but cannot be opened or read
+  file_empty,       // E4103: zero bytes
+  not_step,         // E4104: not a STEP file, or the reader refused it
+  no_faces,         // E4105: read, but holds no face to touch
+  kernel_failure,   // E4106: OpenCASCADE failed during transfer or meshing
 };
 
 std::string_view code_of(ModelErrorCode code);  // "E4101" ...

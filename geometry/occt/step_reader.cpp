@@ -3,8 +3,8 @@
 #include <IFSelect_ReturnStatus.hxx>
 #include <Interface_Static.hxx>
 #include <STEPControl_Reader.hxx>
-#include <StepData_StepModel.hxx>
 #include <Standard_Failure.hxx>
+#include <StepData_StepModel.hxx>
 #include <TColStd_SequenceOfAsciiString.hxx>
 #include <TopoDS_Shape.hxx>
 #include <fstream>
@@ -78,19 +78,19 @@ BrepModel BrepModel::load_step(const std::filesystem::path& path, const BrepOpti
     const int roots = reader.NbRootsForTransfer();
     if (reader.TransferRoots() == 0) {
       throw ModelError(ModelErrorCode::no_faces, name,
-                       roots == 0 ? std::string("the STEP file holds no shape entity (no solid, "
-                                                "shell or face) to transfer")
-                                  : "OpenCASCADE transferred none of the file's " +
-                                        std::to_string(roots) +
-                                        " root entities to a shape (unresolved references or "
-                                        "an unsupported representation); re-export the part "
-                                        "as AP214 or AP242 B-rep");
+                       roots == 0
+                           ? std::string("the STEP file holds no shape entity (no solid, "
+                                         "shell or face) to transfer")
+                           : "OpenCASCADE transferred none of the file's " + std::to_string(roots) +
+                                 " root entities to a shape (unresolved references or "
+                                 "an unsupported representation); re-export the part "
+                                 "as AP214 or AP242 B-rep");
     }
     shape = reader.OneShape();
   } catch (const Standard_Failure& failure) {
-    throw ModelError(ModelErrorCode::kernel_failure, name,
-                     std::string("OpenCASCADE failed while reading: ") +
-                         failure.GetMessageString());
+    throw ModelError(
+        ModelErrorCode::kernel_failure, name,
+        std::string("OpenCASCADE failed while reading: ") + failure.GetMessageString());
   }
   if (shape.IsNull()) {
     throw ModelError(ModelErrorCode::no_faces, name, "the STEP file holds no shape");

@@ -19,12 +19,12 @@ constexpr double kPi = std::numbers::pi;
 constexpr double kTol = 1e-9;
 
 void expect_near(const Vector3d& actual, const Vector3d& expected, double tol) {
-  EXPECT_LE((actual - expected).norm(), tol) << "actual " << actual.transpose() << "\nexpected "
-                                             << expected.transpose();
+  EXPECT_LE((actual - expected).norm(), tol)
+      << "actual " << actual.transpose() << "\nexpected " << expected.transpose();
 }
 
-PlanePatch plane(const Vector3d& origin, const Vector3d& u, const Vector3d& v, double u0,
-                 double u1, double v0, double v1) {
+PlanePatch plane(const Vector3d& origin, const Vector3d& u, const Vector3d& v, double u0, double u1,
+                 double v0, double v1) {
   PlanePatch p;
   p.origin = origin;
   p.u_axis = u;
@@ -37,8 +37,7 @@ PlanePatch plane(const Vector3d& origin, const Vector3d& u, const Vector3d& v, d
 }
 
 TEST(AnalyticContact, PlaneInteriorEdgeVertex) {
-  const PlanePatch p =
-      plane({1, 2, 3}, Vector3d::UnitX(), Vector3d::UnitY(), -10, 10, -5, 5);
+  const PlanePatch p = plane({1, 2, 3}, Vector3d::UnitX(), Vector3d::UnitY(), -10, 10, -5, 5);
   const ModelContact in = closest_point_on(p, {4, -1, 7});
   expect_near(in.point, {4, -1, 3}, kTol);
   expect_near(in.normal, Vector3d::UnitZ(), kTol);

@@ -3,6 +3,11 @@
 // N within 1e-5 rad of a dense search refined by GeomAPI_ProjectPointOnSurf),
 // trims, edges and vertices of B-rep solids, inch files, the shared real
 // STEP files (against BRepExtrema_DistShapeShape), and bad input.
+#include "geometry/occt/brep_model.h"
+
+#include <gtest/gtest.h>
+
+#include <BRepAlgoAPI_Cut.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
@@ -10,34 +15,33 @@
 #include <BRepBuilderAPI_MakeWire.hxx>
 #include <BRepExtrema_DistShapeShape.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakePrism.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
-#include <TopExp.hxx>
-#include <TopTools_IndexedMapOfShape.hxx>
-#include <TopoDS_Compound.hxx>
-#include <iostream>
 #include <GC_MakeCircle.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <GeomLProp_SLProps.hxx>
 #include <Geom_Surface.hxx>
 #include <IFSelect_ReturnStatus.hxx>
 #include <Interface_Static.hxx>
-#include <STEPControl_Reader.hxx>
 #include <STEPControl_Controller.hxx>
+#include <STEPControl_Reader.hxx>
 #include <STEPControl_Writer.hxx>
 #include <StepData_StepModel.hxx>
-#include <gp_Circ.hxx>
-#include <gtest/gtest.h>
-
+#include <TopExp.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS_Compound.hxx>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <gp_Circ.hxx>
+#include <iostream>
 #include <numbers>
 #include <random>
 #include <thread>
 
-#include "geometry/occt/brep_model.h"
 #include "geometry/occt/sample_shapes.h"
 #include "geometry/occt/shape_model.h"
 
@@ -58,7 +62,8 @@ double angle_between(const Vector3d& a, const Vector3d& b) {
 }
 
 fs::path temp_dir() {
-  const fs::path dir = fs::temp_directory_path() / ("vcpost_occt_test_" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("vcpost_occt_test_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   return dir;
 }
@@ -81,7 +86,7 @@ struct Truth {
   Vector3d point, normal;
   double k_max = 0, k_min = 0;
 };
-Truth surface_truth(const Handle(Geom_Surface)& surface, const Vector3d& p) {
+Truth surface_truth(const Handle(Geom_Surface) & surface, const Vector3d& p) {
   double u0, u1, v0, v1;
   surface->Bounds(u0, u1, v0, v1);
   constexpr int n = 400;
@@ -242,14 +247,16 @@ TEST_F(WavyFace, SearchDistanceAndThreads) {
   EXPECT_FALSE(model_->closest_point({50, 50, 40}, 10, nullptr));
   // Two threads, each with its own hint, give the single-thread answers.
   std::vector<Vector3d> points;
-  for (int i = 0; i < 2000; ++i) points.emplace_back(3 + 0.047 * i, 50 + 10 * std::cos(i * 0.01), 7);
+  for (int i = 0; i < 2000; ++i)
+    points.emplace_back(3 + 0.047 * i, 50 + 10 * std::cos(i * 0.01), 7);
   std::vector<Vector3d> expected(points.size()), got(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     expected[i] = model_->closest_point(points[i], 1e9, nullptr)->point;
   }
   auto run = [&](std::size_t begin, std::size_t end) {
     ContactHint hint;
-    for (std::size_t i = begin; i < end; ++i) got[i] = model_->closest_point(points[i], 1e9, &hint)->point;
+    for (std::size_t i = begin; i < end; ++i)
+      got[i] = model_->closest_point(points[i], 1e9, &hint)->point;
   };
   std::thread a(run, 0, 1000), b(run, 1000, 2000);
   a.join();
@@ -259,10 +266,9 @@ TEST_F(WavyFace, SearchDistanceAndThreads) {
 
 TEST(BrepModel, TrimmedFaceWithAHoleGivesTheHoleEdge) {
   // A 100 x 100 plate at z = 0 with a hole of radius 10 at (50, 50).
-  const TopoDS_Wire outer =
-      BRepBuilderAPI_MakePolygon(gp_Pnt(0, 0, 0), gp_Pnt(100, 0, 0), gp_Pnt(100, 100, 0),
-                                 gp_Pnt(0, 100, 0), true)
-          .Wire();
+  const TopoDS_Wire outer = BRepBuilderAPI_MakePolygon(gp_Pnt(0, 0, 0), gp_Pnt(100, 0, 0),
+                                                       gp_Pnt(100, 100, 0), gp_Pnt(0, 100, 0), true)
+                                .Wire();
   BRepBuilderAPI_MakeFace make(gp_Pln(gp::Origin(), gp::DZ()), outer);
   const gp_Circ circle(gp_Ax2(gp_Pnt(50, 50, 0), gp::DZ()), 10);
   TopoDS_Wire hole = BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(circle).Edge()).Wire();
@@ -298,8 +304,8 @@ TEST(BrepModel, BoxEdgeAndVertexContacts) {
   EXPECT_LT((edge.contact->point - Vector3d(100, 40, 100)).norm(), 1e-9);
   EXPECT_LT(angle_between(edge.normal, dir), 1e-9);
   const Vector3d diag = Vector3d(1, 1, 1).normalized();
-  const auto vertex = geometry::ball_contact(model, Vector3d(100, 100, 100) + radius * diag,
-                                             radius, 1e-9, 1, nullptr);
+  const auto vertex = geometry::ball_contact(model, Vector3d(100, 100, 100) + radius * diag, radius,
+                                             1e-9, 1, nullptr);
   ASSERT_EQ(vertex.status, BallStatus::touching);
   EXPECT_EQ(vertex.contact->type, ContactType::vertex);
   EXPECT_LT((vertex.contact->point - Vector3d(100, 100, 100)).norm(), 1e-9);
@@ -344,6 +350,49 @@ TEST(BrepModel, BallInAConcaveCornerTouchesBothFaces) {
   ASSERT_EQ(wall.status, BallStatus::touching);
   EXPECT_LT((wall.contact->point - Vector3d(20, 30, 25.5)).norm(), 1e-9);
   EXPECT_LT((wall.contact->normal - Vector3d::UnitX()).norm(), 1e-9);
+}
+
+// Analytic B-rep faces against closed form: a solid sphere (convex,
+// k = +1/r, seam and poles) and a cylindrical hole (concave, k = -1/r).
+TEST(BrepModel, SphereAndCylindricalHoleAgainstClosedForm) {
+  const BrepModel sphere = model_from_shape(BRepPrimAPI_MakeSphere(gp_Pnt(1, 2, 3), 20).Shape());
+  std::mt19937 rng(9);
+  std::normal_distribution<double> gauss;
+  ContactHint hint;
+  for (int i = 0; i < 200; ++i) {
+    const Vector3d dir = Vector3d(gauss(rng), gauss(rng), gauss(rng)).normalized();
+    const double r = i % 2 == 0 ? 26 : 13;  // outside and inside
+    const Vector3d p = Vector3d(1, 2, 3) + r * dir;
+    const auto c = sphere.closest_point(p, 1e9, i % 3 == 0 ? nullptr : &hint);
+    ASSERT_TRUE(c);
+    EXPECT_LT((c->point - (Vector3d(1, 2, 3) + 20 * dir)).norm(), 1e-9) << i;
+    EXPECT_LT(angle_between(c->normal, dir), 1e-9);
+    EXPECT_NEAR(c->curvature->k1, 1.0 / 20, 1e-9);
+    EXPECT_NEAR(c->curvature->k2, 1.0 / 20, 1e-9);
+  }
+  const auto pole = sphere.closest_point({1, 2, 50}, 1e9, nullptr);
+  ASSERT_TRUE(pole);
+  EXPECT_LT((pole->point - Vector3d(1, 2, 23)).norm(), 1e-9);
+  EXPECT_LT(angle_between(pole->normal, Vector3d::UnitZ()), 1e-6);
+  EXPECT_NEAR(pole->curvature->k1, 1.0 / 20, 1e-6);
+  EXPECT_NEAR(pole->curvature->k2, 1.0 / 20, 1e-6);
+
+  // A 100 mm cube with a vertical hole of radius 15 through its middle.
+  const TopoDS_Shape block = BRepAlgoAPI_Cut(
+      BRepPrimAPI_MakeBox(100, 100, 100).Shape(),
+      BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(50, 50, -10), gp::DZ()), 15, 120).Shape());
+  const BrepModel holed = model_from_shape(block);
+  const auto wall = holed.closest_point({50 + 5, 50, 40}, 1e9, nullptr);
+  ASSERT_TRUE(wall);
+  EXPECT_LT((wall->point - Vector3d(65, 50, 40)).norm(), 1e-9);
+  EXPECT_LT(angle_between(wall->normal, -Vector3d::UnitX()), 1e-9);  // into the hole
+  EXPECT_NEAR(wall->curvature->k1, 0, 1e-9);
+  EXPECT_NEAR(wall->curvature->k2, -1.0 / 15, 1e-9);
+  // The rim of the hole at the top: an edge contact.
+  const auto rim = holed.closest_point({50, 50 + 10, 104}, 1e9, nullptr);
+  ASSERT_TRUE(rim);
+  EXPECT_EQ(rim->type, ContactType::edge);
+  EXPECT_LT((rim->point - Vector3d(50, 65, 100)).norm(), 1e-9);
 }
 
 TEST(BrepModel, InchFileIsConvertedToMillimetres) {
@@ -417,6 +466,41 @@ TEST(BrepModel, SharedStepFilesLoadAndAgreeWithBRepExtrema) {
   }
   EXPECT_GE(loaded, 7);
   EXPECT_LE(refused, 1);
+}
+
+// A path across many trimmed B-spline and planar faces of a real part:
+// warm queries (one hint per thread, two threads) give the cold distances.
+TEST(BrepModel, WarmPathAcrossFacesOfARealPartMatchesColdQueries) {
+  const fs::path path = fs::path(VCPOST_SHARED_DATA_DIR) / "step" / "bug27693_cornetta-step.stp";
+  if (!fs::exists(path)) GTEST_SKIP() << path << " is absent";
+  const BrepModel model = BrepModel::load_step(path);
+  ASSERT_EQ(model.face_count(), 110);
+  const Eigen::AlignedBox3d box = model.bounds();
+  std::vector<Vector3d> points;
+  for (int pass = 0; pass < 4; ++pass) {
+    for (int i = 0; i <= 1000; ++i) {
+      const double t = i / 1000.0;
+      points.push_back(
+          box.min() +
+          Vector3d(t, 0.2 + 0.2 * pass, 0.5 + 0.45 * std::sin(6 * t)).cwiseProduct(box.sizes()));
+    }
+  }
+  std::vector<double> cold(points.size()), warm(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    cold[i] = model.closest_point(points[i], 1e9, nullptr)->distance;
+  }
+  std::vector<ContactHint> hints(2);
+  auto run = [&](int k) {
+    const std::size_t half = points.size() / 2;
+    for (std::size_t i = half * k; i < (k == 0 ? half : points.size()); ++i) {
+      warm[i] = model.closest_point(points[i], 1e9, &hints[k])->distance;
+    }
+  };
+  std::thread a(run, 0), b(run, 1);
+  a.join();
+  b.join();
+  for (std::size_t i = 0; i < points.size(); ++i) EXPECT_NEAR(warm[i], cold[i], 1e-9) << i;
+  EXPECT_GT(hints[0].warm_queries + hints[1].warm_queries, points.size() * 9 / 10);
 }
 
 void expect_error(const fs::path& path, ModelErrorCode code, const std::string& words) {

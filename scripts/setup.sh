@@ -11,7 +11,9 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libocct-data-exchange-dev libocct-modeling-algorithms-dev
   libocct-modeling-data-dev libocct-foundation-dev
-  linuxcnc-uspace
+  linuxcnc-uspace time
+  # the report's charting library (inlined into its HTML) and the browser that tests the page
+  libjs-chart.js chromium
 )
 
 missing=()

@@ -122,7 +122,9 @@ TEST(PointEvaluator, LevelRasterGivesTheRimDiameterAndItsSpindleSpeed) {
     EXPECT_NEAR(*r.d_ref, rim, 1e-12);  // every rim point of a level cut has r = rho
     EXPECT_NEAR(*r.target_rpm, 120000 / (pi * rim), 1e-6);
     EXPECT_EQ(r.ae_source, cc.y() == 0 ? AeSource::first_pass : AeSource::measured);
-    if (cc.y() > 0) EXPECT_NEAR(r.ae, 0.5, 1e-12);
+    if (cc.y() > 0) {
+      EXPECT_NEAR(r.ae, 0.5, 1e-12);
+    }
   }
 }
 

@@ -220,9 +220,44 @@ class Groove {
       const Vector3d p = silhouette(phi_bottom);
       return {p, side_.dot(p), phi_bottom, 0};
     }
-    const auto g = [&](double phi) { return normal_.dot(silhouette(phi)) - c; };
-    const double lo = left ? phi_end : phi_bottom, hi = left ? phi_bottom : phi_end;
-    const auto [a, b] = bracket_root(g, lo, hi, g(lo), g(hi), 1e-14);
+    // Newton's method on c(phi) = c inside the bracket, bisecting whenever a
+    // step leaves it (c is monotone on each side of the bottom).
+    double a = left ? phi_end : phi_bottom, b = left ? phi_bottom : phi_end;
+    const double sign = left ? -1.0 : 1.0;  // c decreases along the left branch
+    double phi = 0.5 * (a + b);
+    for (int i = 0; i < 200 && b - a > 1e-14; ++i) {
+      const double cos_phi = std::cos(phi), sin_phi = std::sin(phi);
+      const Vector3d u = cos_phi * side_ + sin_phi * normal_;
+      const Vector3d du = -sin_phi * side_ + cos_phi * normal_;
+      const double length = std::hypot(u.x(), u.y());
+      if (!(length > 1e-300)) {
+        phi = 0.5 * (a + b);
+        continue;
+      }
+      const Vector3d p(flat_radius_ * u.x() / length + corner_ * u.x(),
+                       flat_radius_ * u.y() / length + corner_ * u.y(), corner_ * u.z());
+      const double g = normal_.dot(p) - c;
+      if (g == 0) {
+        a = b = phi;
+        break;
+      }
+      if ((g > 0) == (sign > 0)) b = phi;  // c(phi) beyond c: the root is below phi
+      else a = phi;
+      // d/dphi of R0 U_xy/|U_xy| + rc U.
+      const double along = (u.x() * du.x() + u.y() * du.y()) / (length * length);
+      const double slope =
+          flat_radius_ / length *
+              (normal_.x() * (du.x() - u.x() * along) + normal_.y() * (du.y() - u.y() * along)) +
+          corner_ * normal_.dot(du);
+      const double next = phi - g / slope;
+      const bool newton = slope != 0 && next > a && next < b;
+      phi = newton ? next : 0.5 * (a + b);
+      if (newton && std::abs(g / slope) < 1e-14) {
+        a = b = phi;
+        break;
+      }
+    }
+    // A bracket still open here has closed onto a jump of c(phi).
     const Vector3d pa = silhouette(a), pb = silhouette(b);
     Vector3d p = pa;
     if ((pa - pb).norm() > 1e-9 * radius_) {
@@ -246,7 +281,6 @@ class Groove {
       disc = 0;
     }
     const double t1 = (-beta - std::sqrt(disc)) / fxy2, t2 = (-beta + std::sqrt(disc)) / fxy2;
-    const auto z = [&](double t) { return x0.z() + t * feed_.z(); };
     if (corner_ == 0) {
       // Flat: the solid cylinder above the end face z = 0.
       double lo = t1, hi = t2;
@@ -259,24 +293,43 @@ class Groove {
       }
       return std::pair{lo, hi};
     }
-    // Bull-nose: distance to the core K = {r <= R0, z >= 0} at most rc;
-    // that distance is convex along the line.
+    // Bull-nose: distance to the core K = {r <= R0, z >= 0} at most rc.
+    // That distance is convex along the line, so Newton's method started
+    // outside on either side walks monotonically onto the crossing (the
+    // tangent of a convex function stays below it), or, when the line
+    // misses, turns round (slope <= 0) before reaching it.
+    struct Excess {
+      double value, slope;
+    };
     const auto excess = [&](double t) {
       const Vector3d x = x0 + t * feed_;
-      const double radial = std::max(0.0, std::hypot(x.x(), x.y()) - flat_radius_);
-      const double below = std::min(0.0, z(t));
-      return std::hypot(radial, below) - corner_;
+      const double rho = std::hypot(x.x(), x.y());
+      const double radial = std::max(0.0, rho - flat_radius_);
+      const double below = std::min(0.0, x.z());
+      const double distance = std::hypot(radial, below);
+      if (!(distance > 0)) return Excess{-corner_, 0};
+      const double d_radial = radial > 0 ? (x.x() * feed_.x() + x.y() * feed_.y()) / rho : 0;
+      const double d_below = below < 0 ? feed_.z() : 0;
+      return Excess{distance - corner_, (radial * d_radial + below * d_below) / distance};
     };
-    const double e1 = excess(t1), e2 = excess(t2);
-    if (e1 <= 0 && e2 <= 0) return std::pair{t1, t2};
-    const double tm = golden_argmin(excess, t1, t2, 1e-13 * (radius_ + t2 - t1));
-    const double em = excess(tm);
-    if (em > 1e-9 * radius_) return std::nullopt;
-    if (em >= 0) return std::pair{tm, tm};
-    const double tolerance = 1e-14 * (radius_ + std::abs(t1) + std::abs(t2));
-    const double lo = e1 <= 0 ? t1 : root(excess, t1, tm, tolerance);
-    const double hi = e2 <= 0 ? t2 : root(excess, tm, t2, tolerance);
-    return std::pair{lo, hi};
+    const double touch = 1e-9 * radius_;
+    const auto walk = [&](double t, double direction) -> std::optional<double> {
+      for (int i = 0; i < 100; ++i) {
+        const Excess e = excess(t);
+        if (e.value <= 1e-13 * radius_) return t;
+        const double slope = direction * e.slope;  // must be negative walking inwards
+        if (!(slope < 0)) return e.value <= touch ? std::optional<double>(t) : std::nullopt;
+        const double step = -e.value / slope;
+        t += direction * step;
+        if (step < 1e-15 * radius_) return e.value <= touch ? std::optional<double>(t) : std::nullopt;
+      }
+      return excess(t).value <= touch ? std::optional<double>(t) : std::nullopt;
+    };
+    const std::optional<double> hi = walk(t2, -1);
+    if (!hi) return std::nullopt;
+    const std::optional<double> lo = walk(t1, +1);
+    if (!lo || *lo > *hi) return std::pair{*hi, *hi};
+    return std::pair{*lo, *hi};
   }
 
   Part classify(const Vector3d& p) const {
@@ -360,29 +413,45 @@ void Groove::silhouette_extremes(double phi_lo, double phi_hi, Extremes& out) co
 // face is a thin ellipse when F is nearly parallel to it, too thin for the
 // boundary curves' subdivision.
 void Groove::face_extremes(Extremes& out) const {
+  // None of the face is in the stock: nothing to do.
+  if (-flat_radius_ * std::hypot(normal_.x(), normal_.y()) - corner_ * normal_.z() > c0_) return;
   constexpr int kSteps = 48;
-  const auto value = [&](double u, bool lowest) {
-    double best = lowest ? kInf : -kInf;
+  struct Reach {
+    double nearest = kInf, farthest = -kInf;  // extremes of r on the line
+  };
+  const auto reach = [&](double u) {
+    Reach out_line;
     const FaceStretches stretches = face_stretches(u);
     for (int k = 0; k < stretches.count; ++k) {
       const auto [lo, hi] = stretches.v[k];
       const double near = lo <= 0 && hi >= 0 ? 0.0 : std::min(std::abs(lo), std::abs(hi));
-      const double far = std::max(std::abs(lo), std::abs(hi));
-      best = lowest ? std::min(best, std::hypot(u, near)) : std::max(best, std::hypot(u, far));
+      out_line.nearest = std::min(out_line.nearest, std::hypot(u, near));
+      out_line.farthest = std::max(out_line.farthest, std::hypot(u, std::max(-lo, hi)));
     }
-    return best;
+    return out_line;
   };
+  std::array<double, kSteps + 1> u{};
+  std::array<Reach, kSteps + 1> line{};
+  for (int i = 0; i <= kSteps; ++i) {
+    u[i] = flat_radius_ * (2.0 * i / kSteps - 1);
+    line[i] = reach(u[i]);
+    if (line[i].nearest < kInf) out.add(line[i].nearest, -corner_);
+    if (line[i].farthest > -kInf) out.add(line[i].farthest, -corner_);
+  }
   for (const bool lowest : {true, false}) {
-    std::array<double, kSteps + 1> u{}, f{};
+    // The face's rim is at R0: it cannot raise a maximum already >= R0.
+    if (!lowest && out.r_max >= flat_radius_) continue;
+    const auto objective = [&](const Reach& x) { return lowest ? x.nearest : -x.farthest; };
     for (int i = 0; i <= kSteps; ++i) {
-      u[i] = flat_radius_ * (2.0 * i / kSteps - 1);
-      f[i] = lowest ? value(u[i], true) : -value(u[i], false);
-      if (std::isfinite(f[i])) out.add(lowest ? f[i] : -f[i], -corner_);
-    }
-    for (int i = 1; i < kSteps; ++i) {
-      if (!std::isfinite(f[i]) || f[i] > f[i - 1] || f[i] > f[i + 1]) continue;
-      const auto g = [&](double x) { return lowest ? value(x, true) : -value(x, false); };
-      const double x = golden_argmin(g, u[i - 1], u[i + 1], 1e-11 * radius_);
+      const double here = objective(line[i]);
+      if (!std::isfinite(here) || (lowest && here == 0) ||
+          (i > 0 && here > objective(line[i - 1])) ||
+          (i < kSteps && here > objective(line[i + 1]))) {
+        continue;
+      }
+      const auto g = [&](double x) { return objective(reach(x)); };
+      const double x = golden_argmin(g, u[std::max(i - 1, 0)], u[std::min(i + 1, kSteps)],
+                                     1e-10 * radius_);
       const double r = std::abs(g(x));
       if (std::isfinite(r)) out.add(r, -corner_);
     }
@@ -414,7 +483,7 @@ Groove::FaceStretches Groove::face_stretches(double u) const {
     return std::min(side_.dot(p) - boundary(c, true).b - ae_, c - c_min_);
   };
   const double peak = golden_argmin([&](double v) { return -removed(v); }, lo, hi,
-                                    1e-12 * radius_);
+                                    1e-10 * radius_);
   if (removed(peak) <= 0) {
     out.v[out.count++] = {lo, hi};
     return out;

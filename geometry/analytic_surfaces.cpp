@@ -12,9 +12,9 @@ constexpr double kTwoPi = 2 * std::numbers::pi;
 
 // Principal curvatures from the two values along d1 and the normal; d2
 // completes the right-handed frame (d1 x d2 = N).
-Curvature principal(double k_a, const Eigen::Vector3d& d_a, double k_b,
-                    const Eigen::Vector3d& normal) {
-  Curvature c;
+PrincipalCurvatures principal(double k_a, const Eigen::Vector3d& d_a, double k_b,
+                              const Eigen::Vector3d& normal) {
+  PrincipalCurvatures c;
   c.k1 = k_a;
   c.d1 = d_a;
   c.k2 = k_b;

@@ -26,7 +26,7 @@ std::string_view to_string(ContactType type);
 // solid sphere of radius r: +1/r) is positive and a concave one negative.
 // k1 >= k2; d1, d2 are the unit principal directions (tangent, d1 x d2 = N).
 // Units: 1/mm.
-struct Curvature {
+struct PrincipalCurvatures {
   double k1 = 0, k2 = 0;
   Eigen::Vector3d d1 = Eigen::Vector3d::UnitX(), d2 = Eigen::Vector3d::UnitY();
 };
@@ -37,7 +37,7 @@ struct ModelContact {
   Eigen::Vector3d normal =
       Eigen::Vector3d::UnitZ();                  // unit surface normal at CC, out of the material
   double distance = 0;                           // |query - CC| >= 0, mm
-  std::optional<Curvature> curvature;            // of the owning face at CC; empty for meshes
+  std::optional<PrincipalCurvatures> curvature;  // of the owning face at CC; empty for meshes
   int face = -1;                                 // index of the owning face, [0, face_count())
   Eigen::Vector2d uv = Eigen::Vector2d::Zero();  // parameters on that face (model-specific)
   ContactType type = ContactType::face;

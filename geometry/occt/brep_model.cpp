@@ -7,7 +7,6 @@
 #include <BRep_Tool.hxx>
 #include <BSplSLib_Cache.hxx>
 #include <Bnd_Box.hxx>
-#include <Eigen/Eigenvalues>
 #include <Geom2d_Curve.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <Geom_Curve.hxx>
@@ -36,8 +35,8 @@ using Eigen::Vector2d;
 using Eigen::Vector3d;
 using geometry::ContactHint;
 using geometry::ContactType;
-using geometry::Curvature;
 using geometry::ModelContact;
+using geometry::PrincipalCurvatures;
 
 namespace {
 
@@ -197,19 +196,28 @@ bool inside_polygon(const std::vector<std::array<Vector2d, 2>>& segments, const 
 }
 
 // Principal curvatures from the fundamental forms, signed convex-positive
-// with respect to the oriented normal n (geometry/model.h).
-Curvature curvature_at(const SurfacePoint& s, const Vector3d& n) {
-  Eigen::Matrix2d first, second;
-  first << s.su.dot(s.su), s.su.dot(s.sv), s.su.dot(s.sv), s.sv.dot(s.sv);
+// with respect to the oriented normal n (geometry/model.h): the eigenvalues
+// of the shape operator W = I^-1 II in closed form (mean and Gaussian
+// curvature), the direction of k1 from W's eigenvector.
+PrincipalCurvatures curvature_at(const SurfacePoint& s, const Vector3d& n) {
+  const double e = s.su.dot(s.su), f = s.su.dot(s.sv), g = s.sv.dot(s.sv);
   // II with the sign flipped: a surface curving away from n is positive.
-  second << -s.suu.dot(n), -s.suv.dot(n), -s.suv.dot(n), -s.svv.dot(n);
-  Curvature c;
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d> solver(second, first);
-  if (solver.info() != Eigen::Success) return c;
-  c.k1 = solver.eigenvalues()(1);
-  c.k2 = solver.eigenvalues()(0);
-  const Eigen::Vector2d w = solver.eigenvectors().col(1);
-  const Vector3d d1 = w.x() * s.su + w.y() * s.sv;
+  const double l = -s.suu.dot(n), m = -s.suv.dot(n), nn = -s.svv.dot(n);
+  PrincipalCurvatures c;
+  const double det = e * g - f * f;
+  if (!(det > 0)) return c;
+  const double w00 = (g * l - f * m) / det, w01 = (g * m - f * nn) / det;
+  const double w10 = (e * m - f * l) / det, w11 = (e * nn - f * m) / det;
+  const double mean = (w00 + w11) / 2, gauss = (l * nn - m * m) / det;
+  const double root = std::sqrt(std::max(mean * mean - gauss, 0.0));
+  c.k1 = mean + root;
+  c.k2 = mean - root;
+  // (W - k1) x = 0: either row gives x; take the better conditioned one.
+  const Vector2d a(w01, c.k1 - w00), b(c.k1 - w11, w10);
+  const Vector2d x = a.squaredNorm() >= b.squaredNorm() ? a : b;
+  Vector3d d1 = x.squaredNorm() > 1e-30 * (1 + c.k1 * c.k1) ? Vector3d(x.x() * s.su + x.y() * s.sv)
+                                                            : s.su;  // umbilic: any direction
+  d1 -= d1.dot(n) * n;
   if (d1.norm() > 0) c.d1 = d1.normalized();
   c.d2 = n.cross(c.d1);
   return c;

@@ -85,6 +85,7 @@ fs::path write_step(const TopoDS_Shape& shape, const std::string& name, const ch
 struct Truth {
   Vector3d point, normal;
   double k_max = 0, k_min = 0;
+  Vector3d dir_of_occt_max, dir_of_occt_min;
 };
 Truth surface_truth(const Handle(Geom_Surface) & surface, const Vector3d& p) {
   double u0, u1, v0, v1;
@@ -122,6 +123,10 @@ Truth surface_truth(const Handle(Geom_Surface) & surface, const Vector3d& p) {
   // from it); ours are convex-positive.
   t.k_max = -props.MinCurvature();
   t.k_min = -props.MaxCurvature();
+  gp_Dir dmax, dmin;
+  props.CurvatureDirections(dmax, dmin);
+  t.dir_of_occt_max = {dmax.X(), dmax.Y(), dmax.Z()};
+  t.dir_of_occt_min = {dmin.X(), dmin.Y(), dmin.Z()};
   return t;
 }
 
@@ -174,6 +179,14 @@ TEST_F(WavyFace, ClosestPointsMatchDenseSearchAndOcctProjection) {
     const double k2 = sign > 0 ? truth.k_min : -truth.k_max;
     EXPECT_NEAR(c->curvature->k1, k1, 1e-6);
     EXPECT_NEAR(c->curvature->k2, k2, 1e-6);
+    // Directions: ours are convex-positive against our normal, OCCT's
+    // concave-positive against its own, so k1 pairs with OCCT's minimum
+    // when the normals agree and with its maximum when they are opposite.
+    const Vector3d d1 = sign > 0 ? truth.dir_of_occt_min : truth.dir_of_occt_max;
+    if (k1 - k2 > 1e-4) {
+      EXPECT_NEAR(std::abs(c->curvature->d1.dot(d1)), 1, 1e-8);
+    }
+    EXPECT_NEAR(c->curvature->d1.cross(c->curvature->d2).dot(c->normal), 1, 1e-12);
     EXPECT_EQ(c->type, ContactType::face);
   }
 }

@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -346,6 +347,38 @@ TEST(SampleGenerator, SamplesFolderIsUpToDate) {
     }
   }
   for (const auto& name : part_names()) EXPECT_TRUE(fs::exists(dir / (name + ".step"))) << name;
+}
+
+// LinuxCNC's interpreter reads the committed programs as the same feed
+// moves (rs274 prints 4 decimals).
+TEST(SampleGenerator, Rs274ReadsTheSamplePrograms) {
+  if (!fs::exists("/usr/bin/rs274")) GTEST_SKIP() << "rs274 (linuxcnc-uspace) not installed";
+  const fs::path dir = fs::path(VCPOST_SOURCE_DIR) / "samples";
+  for (const auto& s : sample_programs()) {
+    SCOPED_TRACE(s.stem);
+    const Written w = write(s);
+    const std::string command = "/usr/bin/rs274 -g '" + (dir / (s.stem + ".nc")).string() + "' < /dev/null 2>&1";
+    FILE* pipe = popen(command.c_str(), "r");
+    ASSERT_NE(pipe, nullptr);
+    std::string out;
+    char buf[4096];
+    while (std::fgets(buf, sizeof buf, pipe) != nullptr) out += buf;
+    pclose(pipe);
+    std::istringstream lines(out);
+    std::string line;
+    std::size_t k = 0;
+    while (std::getline(lines, line)) {
+      const auto at = line.find("STRAIGHT_FEED(");
+      if (at == std::string::npos) continue;
+      double x = 0, y = 0, z = 0;
+      ASSERT_EQ(std::sscanf(line.c_str() + at, "STRAIGHT_FEED(%lf, %lf, %lf", &x, &y, &z), 3) << line;
+      ASSERT_LT(k, w.points.size());
+      EXPECT_LE((Vector3d(x, y, z) - w.points[k].tip).cwiseAbs().maxCoeff(), 5.01e-5) << line;
+      ++k;
+    }
+    EXPECT_EQ(k, w.points.size());
+    EXPECT_EQ(out.find("error"), std::string::npos) << out.substr(0, 400);
+  }
 }
 
 TEST(SampleGenerator, ScalesToAGivenPointCountInConstantMemory) {

@@ -15,6 +15,8 @@
 #include <chrono>
 #include <cstdio>
 #include <ctime>
+#include <filesystem>
+#include <optional>
 #include <random>
 #include <thread>
 #include <vector>
@@ -148,6 +150,57 @@ void BM_ExtremaGenLocateExtPSWarm(benchmark::State& state) {
 }
 BENCHMARK(BM_ExtremaGenLocateExtPSWarm)->Unit(benchmark::kMillisecond);
 
+// A real free-form part (shared data: 110 faces, 74 B-splines, trimmed):
+// ball centres R off the surface along a zig-zag raster over its top.
+struct RealPart {
+  std::optional<BrepModel> model;
+  std::vector<Vector3d> path;
+
+  RealPart() {
+    const std::filesystem::path file =
+        std::filesystem::path(VCPOST_SHARED_DATA_DIR) / "step" / "bug27693_cornetta-step.stp";
+    if (!std::filesystem::exists(file)) return;
+    model.emplace(BrepModel::load_step(file));
+    const Eigen::AlignedBox3d box = model->bounds();
+    ContactHint hint;
+    for (int pass = 0; pass < 40; ++pass) {
+      const double y = box.min().y() + box.sizes().y() * (pass + 0.5) / 40;
+      for (int i = 0; i <= 1000; ++i) {
+        const double t = (pass % 2 == 0 ? i : 1000 - i) / 1000.0;
+        const Vector3d above(box.min().x() + box.sizes().x() * t, y, box.max().z() + 20);
+        const auto c = model->closest_point(above, 1e9, &hint);
+        path.push_back(c->point + kRadius * (above - c->point).normalized());
+      }
+    }
+  }
+};
+
+const RealPart& real_part() {
+  static const RealPart part;
+  return part;
+}
+
+double real_run(const RealPart& part, bool warm) {
+  ContactHint hint;
+  double sum = 0;
+  for (const Vector3d& p : part.path) {
+    sum += part.model->closest_point(p, 1e9, warm ? &hint : nullptr)->distance;
+  }
+  return sum;
+}
+
+void BM_RealPart(benchmark::State& state) {
+  const RealPart& part = real_part();
+  if (!part.model) {
+    state.SkipWithError("shared data absent");
+    return;
+  }
+  for (auto _ : state) benchmark::DoNotOptimize(real_run(part, state.range(0) == 1));
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(part.path.size()));
+  state.SetLabel(state.range(0) == 1 ? "warm" : "cold");
+}
+BENCHMARK(BM_RealPart)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
+
 struct Timing {
   double wall_us = 0, cpu_us = 0;  // per point; cpu is summed over the process' threads
 };
@@ -225,6 +278,14 @@ void print_summary() {
   std::printf(
       "  ratios (wall): GeomAPI / ours warm %.0fx, Extrema_GenLocateExtPS / ours warm %.1fx\n",
       geomapi.wall_us / warm.wall_us, locate.wall_us / warm.wall_us);
+  const RealPart& part = real_part();
+  if (part.model) {
+    const std::size_t m = part.path.size();
+    std::printf("  real part (cornetta, %d faces, %d triangles), %zu points on a raster:\n",
+                part.model->face_count(), part.model->info().triangles, m);
+    row("ours warm, 1 thread", per_point([&] { return real_run(part, true); }, m, 3));
+    row("ours cold", per_point([&] { return real_run(part, false); }, m, 2));
+  }
 }
 
 }  // namespace

@@ -8,6 +8,8 @@
 #include <BSplSLib_Cache.hxx>
 #include <Bnd_Box.hxx>
 #include <Geom2d_Curve.hxx>
+#include <Geom2d_Line.hxx>
+#include <Geom2d_TrimmedCurve.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <Geom_Curve.hxx>
 #include <Geom_RectangularTrimmedSurface.hxx>
@@ -144,6 +146,7 @@ struct FaceData {
   static constexpr int kGrid = 32;
   std::vector<Trim> cells;                     // kGrid x kGrid classification of the (u,v) box
   std::vector<std::array<Vector2d, 2>> loops;  // segments of the trim polygon in (u,v)
+  double polygon_error = 0;                    // largest chord error of those segments, in (u,v)
   std::vector<std::array<Vector3d, 3>> triangles;
   std::vector<std::array<Vector2d, 3>> triangle_uv;
   BoxTree tree;
@@ -334,6 +337,20 @@ struct BrepModel::Impl {
                               0, FaceData::kGrid - 1);
     const Trim cell = f.cells[static_cast<std::size_t>(gx * FaceData::kGrid + gy)];
     if (cell != Trim::boundary) return cell;
+    // The polygon decides unless the point is within its chord error of it.
+    bool inside = false;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const auto& [a, b] : f.loops) {
+      if ((a.y() > uv.y()) != (b.y() > uv.y())) {
+        const double x = a.x() + (uv.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y());
+        if (x > uv.x()) inside = !inside;
+      }
+      const Vector2d ab = b - a;
+      const double t = std::clamp((uv - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
+      nearest = std::min(nearest, (a + t * ab - uv).squaredNorm());
+    }
+    const double band = 2 * f.polygon_error + 1e-9 * std::max(f.u1 - f.u0, f.v1 - f.v0);
+    if (nearest > band * band) return inside ? Trim::inside : Trim::outside;
     // Near the boundary the polygon is not exact: classify on the pcurves.
     const double tol = 1e-9 * std::max(f.u1 - f.u0, f.v1 - f.v0);
     BRepClass_FaceClassifier classifier(f.face, gp_Pnt2d(uv.x(), uv.y()), tol);
@@ -539,12 +556,22 @@ void add_face(BrepModel::Impl& model, const TopoDS_Face& face,
     double a = 0, b = 0;
     Handle(Geom2d_Curve) pcurve = BRep_Tool::CurveOnSurface(edge, face, a, b);
     if (pcurve.IsNull()) continue;
-    constexpr int kSamples = 64;
+    // A straight pcurve is one segment; others 64, with the chord error
+    // measured at the segment midpoints.
+    Handle(Geom2d_Curve) basis = pcurve;
+    while (auto trimmed = Handle(Geom2d_TrimmedCurve)::DownCast(basis))
+      basis = trimmed->BasisCurve();
+    const int samples = basis->IsKind(STANDARD_TYPE(Geom2d_Line)) ? 1 : 64;
     Vector2d previous;
-    for (int i = 0; i <= kSamples; ++i) {
-      const gp_Pnt2d q = pcurve->Value(a + (b - a) * i / kSamples);
+    for (int i = 0; i <= samples; ++i) {
+      const gp_Pnt2d q = pcurve->Value(a + (b - a) * i / samples);
       const Vector2d current(q.X(), q.Y());
-      if (i > 0) f.loops.push_back({previous, current});
+      if (i > 0) {
+        f.loops.push_back({previous, current});
+        const gp_Pnt2d mid = pcurve->Value(a + (b - a) * (i - 0.5) / samples);
+        f.polygon_error = std::max(f.polygon_error,
+                                   (Vector2d(mid.X(), mid.Y()) - (previous + current) / 2).norm());
+      }
       previous = current;
     }
     if (BRep_Tool::Degenerated(edge) || BRep_Tool::IsClosed(edge, face)) continue;

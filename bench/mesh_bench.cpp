@@ -27,7 +27,8 @@ const std::string& stl_bytes() {
     for (int i = 0; i <= n; ++i)
       for (int j = 0; j <= n; ++j)
         m.vertices.push_back(part->surface->point(
-            box.min() + (box.max() - box.min()).cwiseProduct(Eigen::Vector2d(double(i) / n, double(j) / n))));
+            box.min() +
+            (box.max() - box.min()).cwiseProduct(Eigen::Vector2d(double(i) / n, double(j) / n))));
     const auto at = [&](int i, int j) { return std::uint32_t(i * (n + 1) + j); };
     for (int i = 0; i < n; ++i) {
       for (int j = 0; j < n; ++j) {
@@ -92,7 +93,8 @@ void query(benchmark::State& state, bool warm) {
   state.SetItemsProcessed(state.iterations());
   if (warm) {
     state.counters["warm_share"] = benchmark::Counter(
-        double(hint.warm_queries) / double(std::max<std::uint64_t>(1, hint.warm_queries + hint.cold_queries)),
+        double(hint.warm_queries) /
+            double(std::max<std::uint64_t>(1, hint.warm_queries + hint.cold_queries)),
         benchmark::Counter::kAvgThreads);
   }
 }

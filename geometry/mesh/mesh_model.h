@@ -16,13 +16,12 @@
 // many threads at once, each with its own ContactHint.
 #pragma once
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
 #include <optional>
 #include <vector>
-
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 
 #include "geometry/mesh/stl_reader.h"
 #include "geometry/model.h"
@@ -60,7 +59,7 @@ class MeshModel final : public geometry::SurfaceModel {
   // A triangle as the query reads it, in hierarchy order.
   struct Slot {
     Eigen::Vector3d a, ab, ac;
-    Eigen::Vector3d normal;  // unit facet normal: |normal.(p - a)| bounds the distance from below
+    Eigen::Vector3d normal;   // unit facet normal: |normal.(p - a)| bounds the distance from below
     double abab, abac, acac;  // Gram matrix of the edges
     std::uint32_t face;
   };
@@ -81,7 +80,7 @@ class MeshModel final : public geometry::SurfaceModel {
   Eigen::AlignedBox3d bounds_;
   std::vector<Eigen::Vector3d> facet_normal_;
   std::vector<std::array<Eigen::Vector3d, 3>> edge_normal_;  // per face: edges ab, bc, ca
-  std::vector<Eigen::Vector3d> vertex_normal_;                // angle-weighted
+  std::vector<Eigen::Vector3d> vertex_normal_;               // angle-weighted
   std::vector<std::uint32_t> slot_of_face_;
   std::vector<Slot> slots_;
   std::vector<Node> nodes_;

@@ -60,8 +60,8 @@ class MeshBuilder {
   };
 
   std::uint32_t index_of(const Eigen::Vector3d& p) {
-    const auto [it, inserted] =
-        index_.try_emplace(Key{p.x(), p.y(), p.z()}, static_cast<std::uint32_t>(mesh_.vertices.size()));
+    const auto [it, inserted] = index_.try_emplace(
+        Key{p.x(), p.y(), p.z()}, static_cast<std::uint32_t>(mesh_.vertices.size()));
     if (inserted) mesh_.vertices.push_back(p);
     return it->second;
   }
@@ -88,25 +88,26 @@ StlMesh parse_binary(std::string_view bytes, const std::string& file, double uni
   StlMesh mesh;
   mesh.format = StlFormat::binary;
   if (bytes.size() < 84) {
-    throw StlError(StlCode::truncated,
-                   at_offset(file, bytes.size(), StlCode::truncated) +
-                       "binary STL shorter than its 84-byte header (" +
-                       std::to_string(bytes.size()) + " bytes), and not ASCII STL either");
+    throw StlError(StlCode::truncated, at_offset(file, bytes.size(), StlCode::truncated) +
+                                           "binary STL shorter than its 84-byte header (" +
+                                           std::to_string(bytes.size()) +
+                                           " bytes), and not ASCII STL either");
   }
   std::string header(bytes.substr(0, 80));
   header = header.substr(0, header.find('\0'));
-  while (!header.empty() && std::isspace(static_cast<unsigned char>(header.back()))) header.pop_back();
+  while (!header.empty() && std::isspace(static_cast<unsigned char>(header.back())))
+    header.pop_back();
   mesh.solid_name = header;
   const std::uint64_t count = read_u32(bytes.data() + 80);
   const std::uint64_t need = 84 + 50 * count;
   if (bytes.size() < need) {
     const std::uint64_t complete = (bytes.size() - 84) / 50;
-    throw StlError(StlCode::truncated,
-                   at_offset(file, 84 + 50 * complete, StlCode::truncated) +
-                       "binary STL truncated: header announces " + std::to_string(count) +
-                       " triangles (" + std::to_string(need) + " bytes) but the file has " +
-                       std::to_string(bytes.size()) + " bytes (" + std::to_string(complete) +
-                       " complete triangles)");
+    throw StlError(StlCode::truncated, at_offset(file, 84 + 50 * complete, StlCode::truncated) +
+                                           "binary STL truncated: header announces " +
+                                           std::to_string(count) + " triangles (" +
+                                           std::to_string(need) + " bytes) but the file has " +
+                                           std::to_string(bytes.size()) + " bytes (" +
+                                           std::to_string(complete) + " complete triangles)");
   }
   mesh.trailing_bytes = bytes.size() - need;
   MeshBuilder builder(mesh);
@@ -119,7 +120,8 @@ StlMesh parse_binary(std::string_view bytes, const std::string& file, double uni
       for (int k = 0; k < 3; ++k) {
         const float f = read_float(rec + 12 + 12 * c + 4 * k);
         if (!std::isfinite(f)) {
-          const std::uint64_t off = 84 + 50 * t + 12 + 12 * static_cast<std::uint64_t>(c) + 4 * static_cast<std::uint64_t>(k);
+          const std::uint64_t off = 84 + 50 * t + 12 + 12 * static_cast<std::uint64_t>(c) +
+                                    4 * static_cast<std::uint64_t>(k);
           throw StlError(StlCode::bad_number,
                          at_offset(file, off, StlCode::bad_number) + "triangle " +
                              std::to_string(t + 1) + " vertex " + std::to_string(c + 1) +
@@ -325,8 +327,9 @@ StlMesh parse_stl(std::string_view bytes, const std::string& file_name, const St
     throw StlError(StlCode::empty,
                    at_offset(file_name, 0, StlCode::empty) + "STL file is empty (0 bytes)");
   }
-  const bool blank = std::all_of(bytes.begin(), bytes.end(),
-                                 [](char c) { return std::isspace(static_cast<unsigned char>(c)); });
+  const bool blank = std::all_of(bytes.begin(), bytes.end(), [](char c) {
+    return std::isspace(static_cast<unsigned char>(c));
+  });
   if (blank) {
     throw StlError(StlCode::empty,
                    at_offset(file_name, 0, StlCode::empty) + "STL file holds only white space");
@@ -363,16 +366,14 @@ StlMesh read_stl_file(const std::filesystem::path& path, const StlOptions& optio
                                          "]: STL file not found");
   }
   if (std::filesystem::is_directory(status)) {
-    throw StlError(StlCode::unreadable, path.string() + ": error[" +
-                                            code_id(StlCode::unreadable) +
+    throw StlError(StlCode::unreadable, path.string() + ": error[" + code_id(StlCode::unreadable) +
                                             "]: is a directory, not an STL file");
   }
   std::ifstream in(path, std::ios::binary);
   std::ostringstream buffer;
   if (in) buffer << in.rdbuf();
   if (!in || in.bad()) {
-    throw StlError(StlCode::unreadable, path.string() + ": error[" +
-                                            code_id(StlCode::unreadable) +
+    throw StlError(StlCode::unreadable, path.string() + ": error[" + code_id(StlCode::unreadable) +
                                             "]: cannot read the file (permissions?)");
   }
   return parse_stl(buffer.view(), path.string(), options);

@@ -12,6 +12,8 @@
 // "<file>: offset <byte>: error[E46xx]: ..." (binary).
 #pragma once
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -20,21 +22,18 @@
 #include <string_view>
 #include <vector>
 
-#include <Eigen/Core>
-#include <Eigen/Geometry>
-
 namespace vcpost::mesh {
 
 // Stable codes; never renumber.
 enum class StlCode : std::uint16_t {
-  missing = 4601,          // the file does not exist
-  unreadable = 4602,       // exists but cannot be read (permissions, a directory)
-  empty = 4603,            // zero bytes
-  truncated = 4604,        // binary shorter than its triangle count says; ASCII without endsolid
-  bad_number = 4605,       // NaN, infinity or not a number in a coordinate
-  no_triangles = 4606,     // a valid file with no (non-degenerate) triangle
-  syntax = 4607,           // ASCII: a keyword other than the one expected
-  bad_unit = 4608,         // unit_mm not a positive finite number
+  missing = 4601,       // the file does not exist
+  unreadable = 4602,    // exists but cannot be read (permissions, a directory)
+  empty = 4603,         // zero bytes
+  truncated = 4604,     // binary shorter than its triangle count says; ASCII without endsolid
+  bad_number = 4605,    // NaN, infinity or not a number in a coordinate
+  no_triangles = 4606,  // a valid file with no (non-degenerate) triangle
+  syntax = 4607,        // ASCII: a keyword other than the one expected
+  bad_unit = 4608,      // unit_mm not a positive finite number
 };
 
 // "E4604"
@@ -63,9 +62,9 @@ struct StlMesh {
   std::vector<Eigen::Vector3d> vertices;                // mm
   std::vector<std::array<std::uint32_t, 3>> triangles;  // counterclockwise seen from outside
   StlFormat format = StlFormat::binary;
-  std::string solid_name;                 // ASCII "solid <name>", or the binary header text
+  std::string solid_name;  // ASCII "solid <name>", or the binary header text
   std::uint64_t degenerate_dropped = 0;
-  std::uint64_t trailing_bytes = 0;       // binary: bytes after the last triangle (ignored)
+  std::uint64_t trailing_bytes = 0;  // binary: bytes after the last triangle (ignored)
 };
 
 // Parses STL bytes already in memory. file_name is used in messages only.

@@ -60,7 +60,8 @@ class QuietMessenger {
   Message_SequenceOfPrinters printers_;
 };
 
-void write_face(const std::filesystem::path& path, const TopoDS_Face& face, const std::string& name) {
+void write_face(const std::filesystem::path& path, const TopoDS_Face& face,
+                const std::string& name) {
   const std::filesystem::path temporary = path.string() + ".partial";
   const QuietMessenger quiet;
   try {
@@ -69,7 +70,8 @@ void write_face(const std::filesystem::path& path, const TopoDS_Face& face, cons
     Interface_Static::SetCVal("write.step.product.name", name.c_str());
     STEPControl_Writer writer;
     if (writer.Transfer(face, STEPControl_AsIs) != IFSelect_RetDone) {
-      throw std::runtime_error(path.string() + ": OpenCASCADE could not translate the face to STEP");
+      throw std::runtime_error(path.string() +
+                               ": OpenCASCADE could not translate the face to STEP");
     }
     if (writer.Write(temporary.string().c_str()) != IFSelect_RetDone) {
       throw std::runtime_error(path.string() + ": cannot write the STEP file");
@@ -99,7 +101,8 @@ void write_bspline_face_step(const std::filesystem::path& path, const BsplineSur
   try {
     TColgp_Array2OfPnt poles(1, s.count_u, 1, s.count_v);
     for (int i = 0; i < s.count_u; ++i)
-      for (int j = 0; j < s.count_v; ++j) poles.SetValue(i + 1, j + 1, pnt(s.poles[i * s.count_v + j]));
+      for (int j = 0; j < s.count_v; ++j)
+        poles.SetValue(i + 1, j + 1, pnt(s.poles[i * s.count_v + j]));
     TColStd_Array1OfReal ku(1, 1), kv(1, 1);
     TColStd_Array1OfInteger mu(1, 1), mv(1, 1);
     split_knots(s.knots_u, ku, mu);
@@ -107,11 +110,12 @@ void write_bspline_face_step(const std::filesystem::path& path, const BsplineSur
     Handle(Geom_BSplineSurface) surface =
         new Geom_BSplineSurface(poles, ku, kv, mu, mv, s.degree_u, s.degree_v);
     BRepBuilderAPI_MakeFace maker(surface, 1e-9);
-    if (!maker.IsDone()) throw std::runtime_error(path.string() + ": cannot make the B-spline face");
+    if (!maker.IsDone())
+      throw std::runtime_error(path.string() + ": cannot make the B-spline face");
     face = maker.Face();
   } catch (const Standard_Failure& e) {
-    throw std::runtime_error(path.string() + ": OpenCASCADE refused the B-spline: " +
-                             e.GetMessageString());
+    throw std::runtime_error(path.string() +
+                             ": OpenCASCADE refused the B-spline: " + e.GetMessageString());
   }
   write_face(path, face, name);
 }
@@ -126,8 +130,8 @@ void write_cylinder_face_step(const std::filesystem::path& path, const Eigen::Ve
         new Geom_CylindricalSurface(gp_Ax3(pnt(origin), dir(axis), dir(ref)), radius);
     face = make_face(surface, angle_min, angle_max, h_min, h_max, "cylinder");
   } catch (const Standard_Failure& e) {
-    throw std::runtime_error(path.string() + ": OpenCASCADE refused the cylinder: " +
-                             e.GetMessageString());
+    throw std::runtime_error(path.string() +
+                             ": OpenCASCADE refused the cylinder: " + e.GetMessageString());
   }
   write_face(path, face, name);
 }
@@ -141,8 +145,8 @@ void write_sphere_face_step(const std::filesystem::path& path, const Eigen::Vect
         new Geom_SphericalSurface(gp_Ax3(pnt(centre), dir(pole), dir(ref)), radius);
     face = make_face(surface, 0, 2 * M_PI, lat_min, lat_max, "sphere");
   } catch (const Standard_Failure& e) {
-    throw std::runtime_error(path.string() + ": OpenCASCADE refused the sphere: " +
-                             e.GetMessageString());
+    throw std::runtime_error(path.string() +
+                             ": OpenCASCADE refused the sphere: " + e.GetMessageString());
   }
   write_face(path, face, name);
 }

@@ -8,11 +8,10 @@
 // std::runtime_error naming the path when OCCT or the file system fails.
 #pragma once
 
+#include <Eigen/Core>
 #include <filesystem>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 namespace vcpost::occt {
 

@@ -63,21 +63,21 @@ void write_step(const Part& part, const fs::path& file) {
   using vcpost::occt::write_bspline_face_step;
   if (part.name == "wavy") {
     const auto& d = dynamic_cast<const WavyBspline&>(*part.surface).data();
-    write_bspline_face_step(file, {d.degree_u, d.degree_v, d.knots_u, d.knots_v, d.count_u, d.count_v, d.poles},
-                            "vcpost wavy B-spline mould 120 x 80");
+    write_bspline_face_step(
+        file, {d.degree_u, d.degree_v, d.knots_u, d.knots_v, d.count_u, d.count_v, d.poles},
+        "vcpost wavy B-spline mould 120 x 80");
   } else if (part.name == "cylinder") {
     const auto& c = dynamic_cast<const SemiCylinder&>(*part.surface);
     // Axis x, reference z: the points (h, -R sin a, R cos a), a in [-pi/2, pi/2].
     vcpost::occt::write_cylinder_face_step(file, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(),
-                                           Eigen::Vector3d::UnitZ(), c.radius(), -std::numbers::pi / 2,
-                                           std::numbers::pi / 2, 0, c.length(),
-                                           "vcpost semi-cylinder R100");
+                                           Eigen::Vector3d::UnitZ(), c.radius(),
+                                           -std::numbers::pi / 2, std::numbers::pi / 2, 0,
+                                           c.length(), "vcpost semi-cylinder R100");
   } else {
     const auto& d = dynamic_cast<const Dome&>(*part.surface);
-    vcpost::occt::write_sphere_face_step(file, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(),
-                                         Eigen::Vector3d::UnitX(), d.radius(),
-                                         std::numbers::pi / 2 - d.max_polar(), std::numbers::pi / 2,
-                                         "vcpost dome R40");
+    vcpost::occt::write_sphere_face_step(
+        file, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX(),
+        d.radius(), std::numbers::pi / 2 - d.max_polar(), std::numbers::pi / 2, "vcpost dome R40");
   }
 }
 
@@ -98,7 +98,8 @@ std::uint64_t write_program(const Part& part, const PathSpec& path, const Progra
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"vcpost-samplegen: ball-end finishing programs with exact truth over sample surfaces"};
+  CLI::App app{
+      "vcpost-samplegen: ball-end finishing programs with exact truth over sample surfaces"};
   app.require_subcommand(1);
 
   auto* path_cmd = app.add_subcommand("path", "write one program (G-code, APT CL, truth CSV)");
@@ -118,10 +119,13 @@ int main(int argc, char** argv) {
   path_cmd->add_option("--step", step, "largest point spacing along a pass (as --ae)")
       ->check(CLI::PositiveNumber);
   path_cmd->add_option("--window", window, "x0,y0,x1,y1 (raster: ball-centre xy; iso: u,v)")
-      ->expected(4)->delimiter(',');
-  path_cmd->add_option("--radius", radius, "raster: also keep the ball centre within this xy radius");
-  path_cmd->add_option("--points", points,
-                       "about this many points: sets --ae = --step to fill the window")
+      ->expected(4)
+      ->delimiter(',');
+  path_cmd->add_option("--radius", radius,
+                       "raster: also keep the ball centre within this xy radius");
+  path_cmd
+      ->add_option("--points", points,
+                   "about this many points: sets --ae = --step to fill the window")
       ->check(CLI::Range(std::uint64_t{10}, std::uint64_t{1'000'000'000}));
   path_cmd->add_option("--decimals", decimals, "decimals of the written coordinates (>= 6)")
       ->check(CLI::Range(6, 12));
@@ -137,7 +141,8 @@ int main(int argc, char** argv) {
   step_cmd->add_option("part", step_part, "wavy | cylinder | dome")->required();
   step_cmd->add_option("file", step_file, "output .step")->required();
 
-  auto* samples_cmd = app.add_subcommand("samples", "regenerate the samples/ folder's parts and programs");
+  auto* samples_cmd =
+      app.add_subcommand("samples", "regenerate the samples/ folder's parts and programs");
   std::string dir;
   samples_cmd->add_option("dir", dir, "output folder")->required();
 
@@ -149,7 +154,7 @@ int main(int argc, char** argv) {
         throw UsageError("nothing to write: give --gcode, --cl and/or --truth");
       }
       PathSpec spec;
-      spec.pattern = pattern == "raster" ? Pattern::raster
+      spec.pattern = pattern == "raster"  ? Pattern::raster
                      : pattern == "iso-u" ? Pattern::iso_u
                                           : Pattern::iso_v;
       spec.tool_radius = (diameter > 0 ? diameter : part.tool_diameter) / 2;
@@ -184,7 +189,8 @@ int main(int argc, char** argv) {
       write_step(part_or_throw(step_part), step_file);
     } else if (*samples_cmd) {
       fs::create_directories(dir);
-      for (const auto& name : part_names()) write_step(part_or_throw(name), fs::path(dir) / (name + ".step"));
+      for (const auto& name : part_names())
+        write_step(part_or_throw(name), fs::path(dir) / (name + ".step"));
       for (const auto& s : sample_programs()) {
         const Part part = part_or_throw(s.part);
         const fs::path base = fs::path(dir) / s.stem;

@@ -107,8 +107,8 @@ std::vector<SampleProgram> sample_programs() {
         raster, 4800, 1000);
     PathSpec rings = spec(Pattern::iso_u, 0, 4 * deg, 7.5 * deg, p->iso_window);
     rings.zigzag = false;  // every ring starts at azimuth -180 deg
-    add("dome", "dome_iso_rings", "dome R40, D10 ball, iso-parametric rings 4 deg apart (to 74 deg)",
-        rings, 4800, 1000);
+    add("dome", "dome_iso_rings",
+        "dome R40, D10 ball, iso-parametric rings 4 deg apart (to 74 deg)", rings, 4800, 1000);
   }
   return out;
 }

@@ -148,7 +148,8 @@ Vector2d WavyBspline::closest(const Vector3d& q, const Vector2d& guess) const {
     const Vector2d step = H.ldlt().solve(-g);
     uv += step;
     if (step.norm() < 1e-15 * (1 + uv.norm())) break;
-    if (it == 49) throw SurfaceError("wavy mould: closest point did not converge near " + text(guess));
+    if (it == 49)
+      throw SurfaceError("wavy mould: closest point did not converge near " + text(guess));
   }
   if (!inside(domain(), uv, 0)) {
     throw SurfaceError("wavy mould: the closest point " + text(uv) + " is outside the patch");

@@ -8,15 +8,14 @@
 // the cylinder and the dome as OpenCASCADE's analytic surfaces.
 #pragma once
 
-#include <array>
-#include <memory>
-#include <stdexcept>
-#include <optional>
-#include <string>
-#include <vector>
-
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace vcpost::samplegen {
 
@@ -53,8 +52,8 @@ class SampleSurface {
 // y(v) = v exactly) and pole heights taken from a wave. (u,v) = (x,y).
 struct BsplineData {
   int degree_u = 3, degree_v = 3;
-  std::vector<double> knots_u, knots_v;       // full knot vectors (with repetition)
-  std::vector<Eigen::Vector3d> poles;         // row-major: poles[i * count_v + j]
+  std::vector<double> knots_u, knots_v;  // full knot vectors (with repetition)
+  std::vector<Eigen::Vector3d> poles;    // row-major: poles[i * count_v + j]
   int count_u = 0, count_v = 0;
 };
 
@@ -74,7 +73,8 @@ class WavyBspline final : public SampleSurface {
   Eigen::Vector3d point(const Eigen::Vector2d& uv) const override;
   Eigen::Vector3d normal(const Eigen::Vector2d& uv) const override;
   Eigen::Vector2d closest(const Eigen::Vector3d& q, const Eigen::Vector2d& guess) const override;
-  Eigen::Vector2d drop(const Eigen::Vector2d& xy, double r, const Eigen::Vector2d& guess) const override;
+  Eigen::Vector2d drop(const Eigen::Vector2d& xy, double r,
+                       const Eigen::Vector2d& guess) const override;
 
   const BsplineData& data() const { return data_; }
   // h and its derivatives at (u,v): {h, hu, hv, huu, huv, hvv}.
@@ -95,7 +95,8 @@ class SemiCylinder final : public SampleSurface {
   Eigen::Vector3d point(const Eigen::Vector2d& uv) const override;
   Eigen::Vector3d normal(const Eigen::Vector2d& uv) const override;
   Eigen::Vector2d closest(const Eigen::Vector3d& q, const Eigen::Vector2d& guess) const override;
-  Eigen::Vector2d drop(const Eigen::Vector2d& xy, double r, const Eigen::Vector2d& guess) const override;
+  Eigen::Vector2d drop(const Eigen::Vector2d& xy, double r,
+                       const Eigen::Vector2d& guess) const override;
   double radius() const { return radius_; }
   double length() const { return length_; }
 
@@ -114,7 +115,8 @@ class Dome final : public SampleSurface {
   Eigen::Vector3d point(const Eigen::Vector2d& uv) const override;
   Eigen::Vector3d normal(const Eigen::Vector2d& uv) const override;
   Eigen::Vector2d closest(const Eigen::Vector3d& q, const Eigen::Vector2d& guess) const override;
-  Eigen::Vector2d drop(const Eigen::Vector2d& xy, double r, const Eigen::Vector2d& guess) const override;
+  Eigen::Vector2d drop(const Eigen::Vector2d& xy, double r,
+                       const Eigen::Vector2d& guess) const override;
   double radius() const { return radius_; }
   double max_polar() const { return max_polar_; }
 

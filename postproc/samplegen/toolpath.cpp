@@ -3,8 +3,8 @@
 #include <charconv>
 #include <cmath>
 #include <initializer_list>
-#include <string_view>
 #include <numbers>
+#include <string_view>
 
 namespace vcpost::samplegen {
 namespace {
@@ -24,7 +24,8 @@ std::uint64_t walk(const PathSpec& spec, Visit&& visit) {
   auto emit_line = [&](const Vector2d& base, const Vector2d& dir, double t0, double t1) {
     const double length = t1 - t0;
     if (!(length > 1e-9)) return;
-    const auto segments = static_cast<std::uint64_t>(std::max(1.0, std::ceil(length / spec.step - 1e-9)));
+    const auto segments =
+        static_cast<std::uint64_t>(std::max(1.0, std::ceil(length / spec.step - 1e-9)));
     const bool reverse = spec.zigzag && pass % 2 == 1;
     for (std::uint64_t i = 0; i <= segments; ++i) {
       const std::uint64_t k = reverse ? segments - i : i;
@@ -238,7 +239,8 @@ void ProgramWriter::add(const PathPoint& point) {
     for (int k = 0; k < 3; ++k) num(point.tip[k], dec);
     for (int k = 0; k < 3; ++k) num(point.cc[k], 10);
     for (int k = 0; k < 3; ++k) num(point.normal[k], 12);
-    o = std::to_chars(o, buf + sizeof buf, point.distance_error, std::chars_format::scientific, 3).ptr;
+    o = std::to_chars(o, buf + sizeof buf, point.distance_error, std::chars_format::scientific, 3)
+            .ptr;
     *o++ = '\n';
     truth_->write(buf, o - buf);
   }

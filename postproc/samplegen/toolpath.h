@@ -11,14 +11,13 @@
 // (at most about 10^-decimals).
 #pragma once
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <functional>
 #include <optional>
 #include <ostream>
 #include <string>
-
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 
 #include "postproc/samplegen/surfaces.h"
 
@@ -52,11 +51,11 @@ struct PathPoint {
   std::uint64_t index = 0;  // 0-based, in path order
   int pass = 0;             // 0-based pass number
   bool pass_start = false;
-  Eigen::Vector3d tip = Eigen::Vector3d::Zero();     // CL point as written (rounded)
-  Eigen::Vector3d center = Eigen::Vector3d::Zero();  // ball centre tip + R*z
-  Eigen::Vector3d cc = Eigen::Vector3d::Zero();      // exact closest surface point to center
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ(); // unit surface normal at cc
-  Eigen::Vector2d uv = Eigen::Vector2d::Zero();      // parameters of cc
+  Eigen::Vector3d tip = Eigen::Vector3d::Zero();      // CL point as written (rounded)
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();   // ball centre tip + R*z
+  Eigen::Vector3d cc = Eigen::Vector3d::Zero();       // exact closest surface point to center
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // unit surface normal at cc
+  Eigen::Vector2d uv = Eigen::Vector2d::Zero();       // parameters of cc
   double distance_error = 0;                          // |center - cc| - R
 };
 
@@ -74,12 +73,12 @@ std::string fixed(double v, int decimals);
 double round_trip(double v, int decimals);
 
 struct ProgramSpec {
-  std::string title;           // one line, printed in comments / PARTNO
-  double tool_diameter = 12;   // mm, ball-end mill
+  std::string title;          // one line, printed in comments / PARTNO
+  double tool_diameter = 12;  // mm, ball-end mill
   int tool_number = 1;
   double spindle_rpm = 4000;
-  double feed = 800;           // mm/min
-  double safe_z = 50;          // mm, tip height of the approach and retract
+  double feed = 800;   // mm/min
+  double safe_z = 50;  // mm, tip height of the approach and retract
   int decimals = 6;
 };
 

@@ -21,7 +21,8 @@ namespace fs = std::filesystem;
 // The cube [0,10]^3 as 12 outward-facing triangles.
 StlMesh cube() {
   StlMesh m;
-  for (int i = 0; i < 8; ++i) m.vertices.emplace_back(10.0 * (i & 1), 10.0 * ((i >> 1) & 1), 10.0 * ((i >> 2) & 1));
+  for (int i = 0; i < 8; ++i)
+    m.vertices.emplace_back(10.0 * (i & 1), 10.0 * ((i >> 1) & 1), 10.0 * ((i >> 2) & 1));
   // Corner index bits: x=1, y=2, z=4. Quads counterclockwise seen from outside.
   const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
                            {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
@@ -40,11 +41,14 @@ StlMesh uv_sphere(double r, const Vector3d& c, int rings, int segments) {
     const double th = M_PI * i / rings;
     for (int j = 0; j < segments; ++j) {
       const double ph = 2 * M_PI * j / segments;
-      m.vertices.push_back(c + r * Vector3d(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)));
+      m.vertices.push_back(
+          c + r * Vector3d(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)));
     }
   }
   m.vertices.push_back(c + Vector3d(0, 0, -r));
-  const auto at = [&](int i, int j) { return std::uint32_t(1 + (i - 1) * segments + (j % segments)); };
+  const auto at = [&](int i, int j) {
+    return std::uint32_t(1 + (i - 1) * segments + (j % segments));
+  };
   const auto south = std::uint32_t(m.vertices.size() - 1);
   for (int j = 0; j < segments; ++j) {
     m.triangles.push_back({0, at(1, j), at(1, j + 1)});
@@ -60,10 +64,13 @@ StlMesh uv_sphere(double r, const Vector3d& c, int rings, int segments) {
 // Reference closest point, computed differently from the model: the plane
 // projection when it falls inside (barycentric signs), else the nearest of
 // the three clamped segment projections.
-Vector3d reference_closest(const Vector3d& p, const Vector3d& a, const Vector3d& b, const Vector3d& c) {
+Vector3d reference_closest(const Vector3d& p, const Vector3d& a, const Vector3d& b,
+                           const Vector3d& c) {
   const Vector3d n = (b - a).cross(c - a).normalized();
   const Vector3d q = p - n.dot(p - a) * n;
-  const auto side = [&](const Vector3d& u, const Vector3d& v) { return (v - u).cross(q - u).dot(n); };
+  const auto side = [&](const Vector3d& u, const Vector3d& v) {
+    return (v - u).cross(q - u).dot(n);
+  };
   if (side(a, b) >= 0 && side(b, c) >= 0 && side(c, a) >= 0) return q;
   Vector3d best = a;
   for (const auto& [u, v] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}}) {
@@ -77,7 +84,8 @@ Vector3d reference_closest(const Vector3d& p, const Vector3d& a, const Vector3d&
 double brute_force_distance(const StlMesh& m, const Vector3d& p) {
   double d = INFINITY;
   for (const auto& t : m.triangles)
-    d = std::min(d, (p - reference_closest(p, m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]])).norm());
+    d = std::min(
+        d, (p - reference_closest(p, m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]])).norm());
   return d;
 }
 
@@ -173,8 +181,8 @@ TEST(MeshModel, AgreesWithBruteForceOnASphere) {
     EXPECT_NEAR((p - c->point).norm(), c->distance, 1e-11);
     // CC lies on its own triangle: barycentric weights reproduce it.
     const auto& t = m.triangles[c->face];
-    const Vector3d q = (1 - c->uv.x() - c->uv.y()) * m.vertices[t[0]] + c->uv.x() * m.vertices[t[1]] +
-                       c->uv.y() * m.vertices[t[2]];
+    const Vector3d q = (1 - c->uv.x() - c->uv.y()) * m.vertices[t[0]] +
+                       c->uv.x() * m.vertices[t[1]] + c->uv.y() * m.vertices[t[2]];
     EXPECT_NEAR((q - c->point).norm(), 0, 1e-11);
   }
 }
@@ -189,7 +197,8 @@ TEST(MeshModel, WarmQueriesGiveTheColdAnswerAlongAPath) {
     // A spiral at 6 mm above the sphere, like a ball centre on a finishing pass.
     const double t = i / 2000.0;
     const double th = 0.2 + 1.2 * t, ph = 40 * t;
-    const Vector3d p = 36.0 * Vector3d(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th));
+    const Vector3d p =
+        36.0 * Vector3d(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th));
     const auto warm = model.closest_point(p, 10, &hint);
     const auto cold = model.closest_point(p, 10, nullptr);
     ASSERT_TRUE(warm && cold);
@@ -225,7 +234,8 @@ TEST(StlReader, BinaryAndAsciiAgree) {
   // their order and corner order, so their coordinates are the original ones.
   ASSERT_EQ(bin.triangles.size(), m.triangles.size());
   for (std::size_t t = 0; t < m.triangles.size(); ++t)
-    for (int k = 0; k < 3; ++k) EXPECT_EQ(bin.vertices[bin.triangles[t][k]], m.vertices[m.triangles[t][k]]);
+    for (int k = 0; k < 3; ++k)
+      EXPECT_EQ(bin.vertices[bin.triangles[t][k]], m.vertices[m.triangles[t][k]]);
   const MeshModel a(bin), b(asc);
   const auto ca = a.closest_point({12, 13, 16}, 100, nullptr);
   const auto cb = b.closest_point({12, 13, 16}, 100, nullptr);
@@ -275,7 +285,8 @@ TEST(StlReader, BadFilesGiveTheirMessages) {
       const std::string prefix = (dir / "").string();
       if (message.rfind(prefix, 0) == 0) message = message.substr(prefix.size());
       EXPECT_EQ(message, expected);
-      EXPECT_EQ("E" + std::to_string(static_cast<int>(e.code())), expected.substr(expected.find("[E") + 1, 5));
+      EXPECT_EQ("E" + std::to_string(static_cast<int>(e.code())),
+                expected.substr(expected.find("[E") + 1, 5));
     }
     ++cases;
   }
@@ -286,7 +297,8 @@ TEST(StlReader, BadFilesGiveTheirMessages) {
     ADD_FAILURE();
   } catch (const StlError& e) {
     EXPECT_EQ(e.code(), StlCode::missing);
-    EXPECT_NE(std::string(e.what()).find("no_such_file.stl: error[E4601]: STL file not found"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("no_such_file.stl: error[E4601]: STL file not found"),
+              std::string::npos);
   }
   try {
     read_stl_file(dir);

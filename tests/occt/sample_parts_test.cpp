@@ -3,6 +3,8 @@
 // known parameters (1e-9 mm, normals 1e-9), and the OpenCASCADE facade
 // (BrepModel) finds every truth CC and N from the programs' points within
 // the 1e-5 mm / 1e-5 rad.
+#include <gtest/gtest.h>
+
 #include <BRep_Tool.hxx>
 #include <GeomLProp_SLProps.hxx>
 #include <Geom_Surface.hxx>
@@ -11,8 +13,6 @@
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Face.hxx>
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -44,7 +44,8 @@ std::vector<TruthRow> read_truth(const fs::path& file) {
       ADD_FAILURE() << file << ": " << line;
       break;
     }
-    rows.push_back({Vector3d(v[4], v[5], v[6]), Vector3d(v[7], v[8], v[9]), Vector3d(v[10], v[11], v[12])});
+    rows.push_back(
+        {Vector3d(v[4], v[5], v[6]), Vector3d(v[7], v[8], v[9]), Vector3d(v[10], v[11], v[12])});
   }
   return rows;
 }
@@ -66,9 +67,15 @@ struct Part {
 };
 
 const Part parts[] = {
-    {"wavy", 5, [](const Vector3d& p) { return std::pair{p.x(), p.y()}; }},
+    {"wavy", 5,
+     [](const Vector3d& p) {
+       return std::pair{p.x(), p.y()};
+     }},
     // Axis x, reference z: (h, -R sin a, R cos a).
-    {"cylinder", 6, [](const Vector3d& p) { return std::pair{std::atan2(-p.y(), p.z()), p.x()}; }},
+    {"cylinder", 6,
+     [](const Vector3d& p) {
+       return std::pair{std::atan2(-p.y(), p.z()), p.x()};
+     }},
     {"dome", 5,
      [](const Vector3d& p) {
        double u = std::atan2(p.y(), p.x());
@@ -90,7 +97,8 @@ std::vector<fs::path> truth_files(const std::string& part) {
 TEST(SampleParts, StepSurfacesAreTheTruthSurfaces) {
   for (const auto& part : parts) {
     SCOPED_TRACE(part.name);
-    const TopoDS_Face face = read_face(fs::path(VCPOST_SOURCE_DIR) / "samples" / (std::string(part.name) + ".step"));
+    const TopoDS_Face face =
+        read_face(fs::path(VCPOST_SOURCE_DIR) / "samples" / (std::string(part.name) + ".step"));
     const Handle(Geom_Surface) surface = BRep_Tool::Surface(face);
     const double sign = face.Orientation() == TopAbs_REVERSED ? -1 : 1;
     const auto files = truth_files(part.name);
@@ -125,12 +133,14 @@ TEST(SampleParts, FacadeFindsEveryTruthContact) {
         const auto c = model.closest_point(centre, part.ball_radius + 1, &hint);
         ASSERT_TRUE(c) << file;
         worst_cc = std::max(worst_cc, (c->point - row.cc).norm());
-        worst_angle = std::max(worst_angle, std::atan2(c->normal.cross(row.n).norm(), c->normal.dot(row.n)));
+        worst_angle =
+            std::max(worst_angle, std::atan2(c->normal.cross(row.n).norm(), c->normal.dot(row.n)));
       }
     }
     EXPECT_LE(worst_cc, 1e-5);
     EXPECT_LE(worst_angle, 1e-5);
-    std::cout << part.name << ": largest CC error " << worst_cc << " mm, N error " << worst_angle << " rad\n";
+    std::cout << part.name << ": largest CC error " << worst_cc << " mm, N error " << worst_angle
+              << " rad\n";
   }
 }
 

@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
-
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -45,7 +44,8 @@ double de_boor(const std::vector<double>& t, int p, const std::vector<double>& c
 std::pair<std::vector<double>, std::vector<double>> derivative(const std::vector<double>& t, int p,
                                                                const std::vector<double>& c) {
   std::vector<double> dc;
-  for (std::size_t i = 0; i + 1 < c.size(); ++i) dc.push_back(p * (c[i + 1] - c[i]) / (t[i + p + 1] - t[i + 1]));
+  for (std::size_t i = 0; i + 1 < c.size(); ++i)
+    dc.push_back(p * (c[i + 1] - c[i]) / (t[i + p + 1] - t[i + 1]));
   return {std::vector<double>(t.begin() + 1, t.end() - 1), dc};
 }
 
@@ -61,7 +61,8 @@ std::array<double, 3> mould_height(const WavyBspline& s, double x, double y) {
     dcolumn[i] = de_boor(tv, 2, dv, y);
   }
   const auto [tu, du] = derivative(d.knots_u, 3, column);
-  return {de_boor(d.knots_u, 3, column, x), de_boor(tu, 2, du, x), de_boor(d.knots_u, 3, dcolumn, x)};
+  return {de_boor(d.knots_u, 3, column, x), de_boor(tu, 2, du, x),
+          de_boor(d.knots_u, 3, dcolumn, x)};
 }
 
 TEST(Bspline, BasisIsAPartitionOfUnityWithMatchingDerivatives) {
@@ -80,7 +81,8 @@ TEST(Bspline, BasisIsAPartitionOfUnityWithMatchingDerivatives) {
     EXPECT_NEAR(ddsum, 0, 1e-11);
     // Central differences inside a span (same span on both sides).
     const double h = 1e-5;
-    if (x - h > 0 && x + h < 5 && bspline_basis(knots, 3, x - h, dm) == bspline_basis(knots, 3, x + h, dp) &&
+    if (x - h > 0 && x + h < 5 &&
+        bspline_basis(knots, 3, x - h, dm) == bspline_basis(knots, 3, x + h, dp) &&
         bspline_basis(knots, 3, x, d) == bspline_basis(knots, 3, x + h, dp)) {
       for (int k = 0; k <= 3; ++k) {
         EXPECT_NEAR(d[1][k], (dp[0][k] - dm[0][k]) / (2 * h), 1e-8);
@@ -136,7 +138,9 @@ std::vector<Row> parse_truth(const std::string& csv) {
   std::istringstream in(csv);
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line, "point,pass,gcode_line,cl_line,tip_x,tip_y,tip_z,cc_x,cc_y,cc_z,n_x,n_y,n_z,distance_error");
+  EXPECT_EQ(
+      line,
+      "point,pass,gcode_line,cl_line,tip_x,tip_y,tip_z,cc_x,cc_y,cc_z,n_x,n_y,n_z,distance_error");
   std::vector<Row> rows;
   while (std::getline(in, line)) {
     std::vector<double> v;
@@ -145,8 +149,9 @@ std::vector<Row> parse_truth(const std::string& csv) {
     while (std::getline(fields, f, ',')) v.push_back(std::stod(f));
     EXPECT_EQ(v.size(), 14u);
     rows.push_back({static_cast<std::uint64_t>(v[0]), static_cast<std::uint64_t>(v[2]),
-                    static_cast<std::uint64_t>(v[3]), static_cast<int>(v[1]), Vector3d(v[4], v[5], v[6]),
-                    Vector3d(v[7], v[8], v[9]), Vector3d(v[10], v[11], v[12]), v[13]});
+                    static_cast<std::uint64_t>(v[3]), static_cast<int>(v[1]),
+                    Vector3d(v[4], v[5], v[6]), Vector3d(v[7], v[8], v[9]),
+                    Vector3d(v[10], v[11], v[12]), v[13]});
   }
   return rows;
 }
@@ -224,7 +229,9 @@ TEST(SampleGenerator, TruthIsTheGlobalClosestPoint) {
       const int nu = 200, nv = 200;
       for (int a = 0; a <= nu; ++a) {
         for (int b = 0; b <= nv; ++b) {
-          const Vector2d uv = box.min() + (box.max() - box.min()).cwiseProduct(Vector2d(double(a) / nu, double(b) / nv));
+          const Vector2d uv =
+              box.min() +
+              (box.max() - box.min()).cwiseProduct(Vector2d(double(a) / nu, double(b) / nv));
           grid = std::min(grid, (part->surface->point(uv) - p.center).norm());
         }
       }
@@ -357,7 +364,8 @@ TEST(SampleGenerator, Rs274ReadsTheSamplePrograms) {
   for (const auto& s : sample_programs()) {
     SCOPED_TRACE(s.stem);
     const Written w = write(s);
-    const std::string command = "/usr/bin/rs274 -g '" + (dir / (s.stem + ".nc")).string() + "' < /dev/null 2>&1";
+    const std::string command =
+        "/usr/bin/rs274 -g '" + (dir / (s.stem + ".nc")).string() + "' < /dev/null 2>&1";
     FILE* pipe = popen(command.c_str(), "r");
     ASSERT_NE(pipe, nullptr);
     std::string out;
@@ -371,7 +379,8 @@ TEST(SampleGenerator, Rs274ReadsTheSamplePrograms) {
       const auto at = line.find("STRAIGHT_FEED(");
       if (at == std::string::npos) continue;
       double x = 0, y = 0, z = 0;
-      ASSERT_EQ(std::sscanf(line.c_str() + at, "STRAIGHT_FEED(%lf, %lf, %lf", &x, &y, &z), 3) << line;
+      ASSERT_EQ(std::sscanf(line.c_str() + at, "STRAIGHT_FEED(%lf, %lf, %lf", &x, &y, &z), 3)
+          << line;
       ASSERT_LT(k, w.points.size());
       EXPECT_LE((Vector3d(x, y, z) - w.points[k].tip).cwiseAbs().maxCoeff(), 5.01e-5) << line;
       ++k;

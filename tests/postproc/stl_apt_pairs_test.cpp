@@ -38,7 +38,8 @@ Feeds feeds_against(const fs::path& apt, const vcpost::mesh::MeshModel& model) {
       if (model.bounds().exteriorDistance(move->end) > 12) ++f.far_from_box;
     }
   }
-  for (const auto& cutter : reader.cutters()) f.largest_diameter = std::max(f.largest_diameter, cutter.diameter());
+  for (const auto& cutter : reader.cutters())
+    f.largest_diameter = std::max(f.largest_diameter, cutter.diameter());
   return f;
 }
 
@@ -57,7 +58,8 @@ TEST(StlAptPairs, BasemachSharesTheFrameOfItsStl) {
 TEST(StlAptPairs, TelemecaniqueLoads) {
   const fs::path dir = fs::path(VCPOST_SHARED_DATA_DIR) / "cldata";
   if (!fs::exists(dir)) GTEST_SKIP() << "shared data absent: " << dir;
-  const vcpost::mesh::MeshModel model(vcpost::mesh::read_stl_file(dir / "Telemecanique-Tilt-Support2.stl"));
+  const vcpost::mesh::MeshModel model(
+      vcpost::mesh::read_stl_file(dir / "Telemecanique-Tilt-Support2.stl"));
   const Feeds f = feeds_against(dir / "Telemecanique-Tilt-Support2.apt", model);
   EXPECT_GT(f.count, 100u);
   EXPECT_EQ(f.largest_diameter, 12);

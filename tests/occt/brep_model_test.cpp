@@ -68,6 +68,17 @@ fs::path temp_dir() {
   return dir;
 }
 
+// The temporary folder goes when the suite ends.
+class TempDirCleanup : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    std::error_code ignored;
+    fs::remove_all(temp_dir(), ignored);
+  }
+};
+::testing::Environment* const kTempDirCleanup =
+    ::testing::AddGlobalTestEnvironment(new TempDirCleanup);
+
 fs::path write_step(const TopoDS_Shape& shape, const std::string& name, const char* unit = "MM") {
   const fs::path path = temp_dir() / name;
   STEPControl_Controller::Init();  // registers write.step.unit

@@ -539,7 +539,7 @@ struct BrepModel::Impl {
 namespace {
 
 void add_face(BrepModel::Impl& model, const TopoDS_Face& face,
-              const TopTools_IndexedMapOfShape& edge_map) {
+              const TopTools_IndexedMapOfShape& edge_map, bool orient_up) {
   Handle(Geom_Surface) surface = BRep_Tool::Surface(face);
   if (surface.IsNull()) return;
   FaceData f(face, SurfaceEval(surface));
@@ -689,6 +689,20 @@ void add_face(BrepModel::Impl& model, const TopoDS_Face& face,
   f.tree = BoxTree(boxes);
   const Vector3d grow = Vector3d::Constant(f.slack);
   f.box = Eigen::AlignedBox3d(f.box.min() - grow, f.box.max() + grow);
+  if (orient_up) {
+    // Area-weighted mean of the oriented normal over the tessellation.
+    double up = 0;
+    for (std::size_t t = 0; t < f.triangles.size(); ++t) {
+      const auto& tri = f.triangles[t];
+      const auto& uv = f.triangle_uv[t];
+      const Vector2d c = (uv[0] + uv[1] + uv[2]) / 3;
+      const SurfacePoint sp = f.eval.d2(c.x(), c.y());
+      const Vector3d n = sp.su.cross(sp.sv);
+      const double area = (tri[1] - tri[0]).cross(tri[2] - tri[0]).norm();
+      if (n.norm() > 0) up += area * n.z() / n.norm();
+    }
+    if ((f.reversed ? -up : up) < 0) f.reversed = !f.reversed;
+  }
   model.faces.push_back(std::move(f));
 }
 
@@ -765,9 +779,12 @@ BrepModel model_from_shape(const TopoDS_Shape& shape, const BrepOptions& options
       deflection = std::clamp(diagonal / 1000, 0.002, 0.2);
     }
     BRepMesh_IncrementalMesh mesher(shape, deflection, false, 0.2, false);
+    TopTools_IndexedMapOfShape solids;
+    TopExp::MapShapes(shape, TopAbs_SOLID, solids);
+    const bool orient_up = options.orient_open_faces_up && solids.Extent() == 0;
     add_edges(*impl, edge_map);
     for (int i = 1; i <= face_map.Extent(); ++i) {
-      add_face(*impl, TopoDS::Face(face_map(i)), edge_map);
+      add_face(*impl, TopoDS::Face(face_map(i)), edge_map, orient_up);
     }
     if (impl->faces.empty()) {
       throw ModelError(ModelErrorCode::no_faces, source, "no face of the model has a surface");

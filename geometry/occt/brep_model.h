@@ -52,6 +52,11 @@ struct BrepOptions {
   // <= 0: 1/1000 of the model's box diagonal, within [0.002, 0.2] mm. It
   // only steers the search: answers are exact on the faces.
   double deflection = 0;
+  // A model without solids (open faces or shells, as surface models often
+  // are) does not say where its material is. true: each such face is
+  // oriented so that its mean normal points up (+z), the side a 3-axis
+  // tool comes from; false: the faces' own orientation is kept.
+  bool orient_open_faces_up = true;
 };
 
 struct StepInfo {

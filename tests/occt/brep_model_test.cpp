@@ -288,6 +288,26 @@ TEST_F(WavyFace, SearchDistanceAndThreads) {
   for (std::size_t i = 0; i < points.size(); ++i) EXPECT_LT((got[i] - expected[i]).norm(), 1e-9);
 }
 
+// An open face says nothing of its material: by default it is turned to
+// face +z (where a 3-axis tool comes from); the option keeps it as it is.
+TEST(BrepModel, OpenFacesAreOrientedUpUnlessAskedNotTo) {
+  const TopoDS_Shape down = wavy_bspline_face().Reversed();
+  const auto up_normal = model_from_shape(down).closest_point({50, 50, 20}, 1e9, nullptr);
+  ASSERT_TRUE(up_normal);
+  EXPECT_GT(up_normal->normal.z(), 0.5);
+  BrepOptions keep;
+  keep.orient_open_faces_up = false;
+  const auto as_is = model_from_shape(down, keep).closest_point({50, 50, 20}, 1e9, nullptr);
+  ASSERT_TRUE(as_is);
+  EXPECT_LT((as_is->normal + up_normal->normal).norm(), 1e-12);
+  // Curvatures follow the normal: their signs flip with it.
+  EXPECT_NEAR(as_is->curvature->k1, -up_normal->curvature->k2, 1e-12);
+  // A solid keeps its outward normals, even on its bottom face.
+  const auto bottom = model_from_shape(BRepPrimAPI_MakeBox(10, 10, 10).Shape())
+                          .closest_point({5, 5, -3}, 1e9, nullptr);
+  EXPECT_LT((bottom->normal + Vector3d::UnitZ()).norm(), 1e-12);
+}
+
 TEST(BrepModel, TrimmedFaceWithAHoleGivesTheHoleEdge) {
   // A 100 x 100 plate at z = 0 with a hole of radius 10 at (50, 50).
   const TopoDS_Wire outer = BRepBuilderAPI_MakePolygon(gp_Pnt(0, 0, 0), gp_Pnt(100, 0, 0),

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   add_moves_command(app);
   add_machines_command(app);
   add_post_command(app);
+  add_report_command(app);
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,366 @@
+// The job behind `vcpost post` and `vcpost report`: options, set-up, the
+// run, and the report files beside it. The work itself is in postproc/post
+// and postproc/report; this file only wires files to them.
+#include "postproc/cli/post_options.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "postproc/cldata/cl_codes.h"
+#include "postproc/cli/atomic_file.h"
+#include "postproc/cli/commands.h"
+#include "postproc/gcode/diagnostics.h"
+#include "postproc/output/mazak_writer.h"
+#include "postproc/program/timing.h"
+#include "postproc/report/chart_library.h"
+#include "postproc/report/csv_writer.h"
+#include "postproc/report/report.h"
+
+namespace vcpost::cli {
+namespace {
+
+std::string read_program(const std::string& path) {
+  if (path == "-") {
+    return {std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>()};
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw CommandError("'" + path + "': cannot open the program");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+nlohmann::json vc_json(const std::optional<post::VcStatistics>& s) {
+  if (!s) return nullptr;
+  return {{"min", s->min}, {"max", s->max}, {"mean", s->mean},
+          {"within_5_percent", s->within_5_percent}, {"within_10_percent", s->within_10_percent}};
+}
+
+nlohmann::json summary_json(const PostArguments& args, const JobRun& run) {
+  const post::PostSummary& s = run.summary;
+  return {
+      {"program", args.program},
+      {"kind", s.kind == post::ProgramKind::gcode ? "gcode" : "cldata"},
+      {"model", {{"file", args.model}, {"kind", run.model.kind}, {"description", run.model.description}}},
+      {"machine", run.profile.name()},
+      {"tool", args.tool},
+      {"vc_nominal", args.vc},
+      {"ap", args.ap},
+      {"ae", args.ae ? nlohmann::json(*args.ae) : nlohmann::json(nullptr)},
+      {"policy", args.policy},
+      {"blocks", s.blocks},
+      {"motion_events", s.motion_events},
+      {"points", s.samples},
+      {"contact", {{"touching", s.touching}, {"lifted", s.lifted}, {"gouging", s.gouging},
+                   {"missed", s.missed}}},
+      {"ae_source", {{"measured", s.ae_measured}, {"given", s.ae_given},
+                     {"first_pass", s.ae_first_pass}}},
+      {"time_s", {{"program", s.program_time_s}, {"cutting", s.cutting_time_s},
+                  {"clamped_max", s.time_clamped_max_s}, {"clamped_min", s.time_clamped_min_s},
+                  {"slew", s.time_slew_s}, {"rate", s.time_rate_s}}},
+      {"words_written", {{"s", s.s_words}, {"f", s.f_words}}},
+      {"vc_before", vc_json(s.before)},
+      {"vc_after", vc_json(s.after)},
+      {"run_time_s", run.run_time_s},
+  };
+}
+
+post::PostSettings settings_from(const PostArguments& args) {
+  post::PostSettings settings;
+  try {
+    settings.point.tool = geometry::parse_tool(args.tool);
+  } catch (const std::invalid_argument& e) {
+    throw CommandError(std::string("--tool: ") + e.what());
+  }
+  if (settings.point.tool.kind != geometry::ToolKind::ball) {
+    throw CommandError("--tool: posting is for ball-end mills (ball:D); use `vcpost deff` for " +
+                       geometry::to_string(settings.point.tool));
+  }
+  if (args.ap >= settings.point.tool.diameter) throw CommandError("--ap: must be below the tool diameter");
+  settings.point.ap = args.ap;
+  settings.point.ae = args.ae;
+  settings.point.ae_override = args.ae_override;
+  settings.point.vc = args.vc;
+  settings.point.contact_tolerance = args.tolerance;
+  settings.point.cl_point = args.cl_point == "center" ? geometry::ClPoint::center : geometry::ClPoint::tip;
+  settings.point.policy = args.policy == "tangent" ? pipeline::DiameterPolicy::tangent
+                          : args.policy == "mean"  ? pipeline::DiameterPolicy::mean
+                                                   : pipeline::DiameterPolicy::max;
+  settings.sample_spacing_mm = args.spacing;
+  settings.adjust_feed = args.adjust_feed;
+  settings.fz_mm = args.fz;
+  settings.teeth = args.teeth;
+  if (!args.dialect.empty()) {
+    settings.dialect = gcode::dialect_from_name(args.dialect);
+    if (!settings.dialect) throw CommandError("--dialect: unknown dialect '" + args.dialect + "'");
+  }
+  return settings;
+}
+
+// One report file: its format and, for the streamed CSV, its open file.
+struct ReportFile {
+  std::string path;  // "-": standard output (JSON)
+  report::ReportFormat format = report::ReportFormat::json;
+  std::unique_ptr<AtomicFile> file;
+  std::unique_ptr<report::CsvWriter> csv;
+};
+
+std::vector<ReportFile> open_reports(const PostArguments& args) {
+  std::vector<ReportFile> out;
+  for (const std::string& path : args.reports) {
+    ReportFile r;
+    r.path = path;
+    if (path != "-") {
+      const auto format = report::format_of(path);
+      if (!format) {
+        throw CommandError("report '" + path + "': unknown format; name the file .json, .csv or .html");
+      }
+      r.format = *format;
+      if (args.program != "-" && same_file(args.program, path)) {
+        throw CommandError("report '" + path + "' is the input program; it is never overwritten");
+      }
+      if (args.output == path) throw CommandError("report '" + path + "' is also the output program");
+    }
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+std::string read_chart_library() {
+  const std::string path(report::chart_library_path());
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    throw CommandError("HTML report: the charting library '" + path + "' is missing; install " +
+                       std::string(report::kChartLibraryPackage) + " (scripts/setup.sh)");
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+report::ReportInputs report_inputs(const PostArguments& args, const post::PostSettings& settings,
+                                   const LoadedModel& model, const machines::MachineProfile& profile,
+                                   post::ProgramKind kind) {
+  report::ReportInputs in;
+  in.program = args.program == "-" ? "<stdin>" : args.program;
+  in.program_kind = kind == post::ProgramKind::gcode ? "gcode" : "cldata";
+  in.model = args.model;
+  in.model_kind = model.kind;
+  in.model_description = model.description;
+  in.machine = profile.name();
+  in.tool = args.tool;
+  in.policy = args.policy;
+  in.cl_point = args.cl_point;
+  in.tool_radius_mm = settings.point.tool.diameter / 2;
+  in.vc_nominal = args.vc;
+  in.ap_mm = args.ap;
+  in.ae_mm = args.ae;
+  in.ae_override = args.ae_override;
+  in.adjust_feed = args.adjust_feed;
+  in.spacing_mm = args.spacing;
+  in.n_min_rpm = profile.spindle().n_min_rpm;
+  in.n_max_rpm = profile.spindle().n_max_rpm;
+  // Top views over the model's plan grown by the tool radius (programmed
+  // points of a touching ball lie within it).
+  const Eigen::AlignedBox3d box = model.model->bounds();
+  const double margin = in.tool_radius_mm + 1;
+  if (!box.isEmpty()) {
+    in.plan_min = box.min().head<2>() - Eigen::Vector2d::Constant(margin);
+    in.plan_max = box.max().head<2>() + Eigen::Vector2d::Constant(margin);
+  } else {
+    in.plan_min = Eigen::Vector2d::Constant(-margin);
+    in.plan_max = Eigen::Vector2d::Constant(margin);
+  }
+  return in;
+}
+
+}  // namespace
+
+void add_job_options(CLI::App& command, PostArguments& args) {
+  command.add_option("program", args.program, "G-code or APT CL program ('-': standard input)")->required();
+  command.add_option("--model", args.model, "finished-surface model: STEP (mm or inch) or STL (mm)")->required();
+  command.add_option("--tool", args.tool, "ball-end mill, ball:D with D in mm, e.g. ball:10")->required();
+  command.add_option("--vc", args.vc, "nominal cutting speed, m/min")->required()->check(CLI::PositiveNumber);
+  command.add_option("--ap", args.ap, "depth of cut along the surface normal, mm")->required()->check(CLI::PositiveNumber);
+  command.add_option("--ae", args.ae, "width of cut, mm: used where the toolpath shows no neighbouring pass")
+      ->check(CLI::PositiveNumber);
+  command.add_flag("--ae-override", args.ae_override, "use --ae everywhere instead of measuring it from the toolpath");
+  command.add_option("--machine", args.machine, "machine profile: a built-in name (vcpost machines list) or a TOML file")
+      ->capture_default_str();
+  command.add_option("--policy", args.policy, "reference diameter: max (no edge faster than vc), tangent, mean")
+      ->check(CLI::IsMember({"max", "tangent", "mean"}))->capture_default_str();
+  command.add_flag("--adjust-feed", args.adjust_feed, "couple the feed to the speed: F = fz * z * n");
+  command.add_option("--fz", args.fz, "feed per tooth for --adjust-feed, mm (default: the program's F at its S)")
+      ->check(CLI::PositiveNumber);
+  command.add_option("--teeth", args.teeth, "number of teeth for --adjust-feed (default: the profile's)")
+      ->check(CLI::PositiveNumber);
+  command.add_option("--cl-point", args.cl_point, "what the program's points are: the tool tip or the ball centre")
+      ->check(CLI::IsMember({"tip", "center"}))->capture_default_str();
+  command.add_option("--spacing", args.spacing, "largest distance between evaluated points, mm")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  command.add_option("--contact-tolerance", args.tolerance, "distance error still counted as contact, mm")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  command.add_option("--dialect", args.dialect, "G-code dialect: rs274ngc, fanuc, mazak (default: the profile's)");
+  command.add_option("--summary-json", args.summary_json, "write the job's JSON summary to this file ('-': standard error)");
+  command.add_flag("-q,--quiet", args.quiet, "print nothing but errors");
+  command.add_flag("--strict", args.strict, "exit 1 when there were warnings (gouges, points without contact)");
+}
+
+JobRun run_job(const PostArguments& args, bool write_program) {
+  const auto started = std::chrono::steady_clock::now();
+  if (write_program && args.output != "-" && args.program != "-" && same_file(args.program, args.output)) {
+    throw CommandError("-o: '" + args.output + "' is the input program; it is never overwritten");
+  }
+  const post::PostSettings settings = settings_from(args);
+  std::vector<ReportFile> reports = open_reports(args);
+  std::string chart_library;
+  for (const auto& r : reports) {
+    if (r.format == report::ReportFormat::html && chart_library.empty()) chart_library = read_chart_library();
+  }
+
+  const machines::MachineProfile profile = load_machine(args.machine);
+  LoadedModel model = load_model(args.model);
+  const std::string text = read_program(args.program);
+  const std::string name = args.program == "-" ? "<stdin>" : args.program;
+
+  const bool show_progress = !args.quiet && ::isatty(STDERR_FILENO);
+  const post::Progress progress = [&](double done) {
+    if (show_progress) std::cerr << "\rvcpost: posting " << static_cast<int>(done * 100) << " %" << std::flush;
+  };
+
+  std::optional<AtomicFile> file;
+  if (write_program && args.output != "-") file.emplace(args.output);
+  std::string pending;  // stdout is written only once the job has succeeded
+  // A dry run still writes the program, to nowhere, so the report can say
+  // how many S and F words the rewrite would change.
+  std::function<void(std::string_view)> sink = [](std::string_view) {};
+  if (write_program) {
+    sink = [&](std::string_view bytes) {
+      if (file) {
+        file->write(bytes);
+      } else {
+        pending.append(bytes);
+      }
+    };
+  }
+
+  // Reports: the CSV streams while the points come; the rest is written at the end.
+  std::optional<report::ReportCollector> collector;
+  std::vector<report::CsvWriter*> csv_writers;
+  if (!reports.empty()) {
+    collector.emplace(report_inputs(args, settings, model, profile, post::detect_program_kind(text)));
+    for (auto& r : reports) {
+      if (r.format != report::ReportFormat::csv) continue;
+      r.file = std::make_unique<AtomicFile>(r.path);
+      AtomicFile* out = r.file.get();
+      r.csv = std::make_unique<report::CsvWriter>([out](std::string_view bytes) { out->write(bytes); });
+      csv_writers.push_back(r.csv.get());
+    }
+  }
+  post::PointSink points;
+  if (collector) {
+    points = collector->point_sink([&](const report::PointRow& row) {
+      for (auto* csv : csv_writers) csv->write(row);
+    });
+  }
+
+  post::PostSummary summary;
+  try {
+    summary = post::post_program(text, name, *model.model, profile, settings, sink, progress, points);
+  } catch (const gcode::GcodeError& e) {
+    throw CommandError(e.what());
+  } catch (const cldata::ClError& e) {
+    throw CommandError(e.what());
+  } catch (const program::TimingError& e) {
+    throw CommandError(name + ":" + std::to_string(e.source().line) + ": " + e.what());
+  } catch (const output::OutputError& e) {
+    throw CommandError(name + ":" + std::to_string(e.source().line) + ": " + e.what());
+  } catch (const plan::PlanError& e) {
+    throw CommandError(std::string("planning: ") + e.what(), exit_internal);
+  }
+  if (show_progress) std::cerr << "\r\x1b[K";
+  if (summary.samples > 0 && summary.touching + summary.gouging == 0) {
+    throw CommandError(
+        "the toolpath never touches the model (" + std::to_string(summary.samples) +
+        " points checked): check the work offset and units of the program against the model, "
+        "and --cl-point (tip or center)");
+  }
+  if (file) file->commit();
+  std::cout << pending << std::flush;
+
+  const double run_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  if (collector) {
+    const report::ReportData data = collector->finish(summary, run_time);
+    for (auto& r : reports) {
+      if (r.format == report::ReportFormat::csv) {
+        r.csv->finish();
+        r.file->commit();
+        continue;
+      }
+      std::string bytes;
+      if (r.format == report::ReportFormat::json) {
+        bytes = report::summary_json(data).dump(2) + "\n";
+      } else {
+        try {
+          bytes = report::render_html(data, chart_library);
+        } catch (const std::invalid_argument& e) {
+          throw CommandError(std::string("HTML report: ") + e.what());
+        }
+      }
+      if (r.path == "-") {
+        std::cout << bytes << std::flush;
+      } else {
+        AtomicFile out(r.path);
+        out.write(bytes);
+        out.commit();
+      }
+    }
+  }
+  return JobRun{summary, std::move(model), profile, run_time};
+}
+
+void finish_job(const PostArguments& args, const JobRun& run) {
+  const post::PostSummary& summary = run.summary;
+  if (!args.summary_json.empty()) {
+    const std::string json = summary_json(args, run).dump(2) + "\n";
+    if (args.summary_json == "-") {
+      std::cerr << json;
+    } else {
+      AtomicFile out(args.summary_json);
+      out.write(json);
+      out.commit();
+    }
+  }
+  const bool warnings = summary.gouging > 0 || summary.lifted + summary.missed > 0;
+  if (!args.quiet) {
+    std::cerr << "vcpost: " << summary.samples << " points, " << summary.s_words << " S words";
+    if (args.adjust_feed) std::cerr << ", " << summary.f_words << " F words";
+    if (summary.before && summary.after) {
+      std::cerr << "; cutting time within +-10 % of vc " << args.vc << " m/min: "
+                << static_cast<int>(std::round(summary.before->within_10_percent * 100)) << " % before, "
+                << static_cast<int>(std::round(summary.after->within_10_percent * 100)) << " % after";
+    }
+    std::cerr << '\n';
+    for (const auto& path : args.reports) {
+      if (path != "-") std::cerr << "vcpost: report written to " << path << '\n';
+    }
+    if (summary.gouging > 0) std::cerr << "vcpost: warning: " << summary.gouging << " points gouge the model\n";
+    if (summary.lifted + summary.missed > 0) {
+      std::cerr << "vcpost: warning: " << summary.lifted + summary.missed
+                << " cutting points do not touch the model (their blocks keep the program's S)\n";
+    }
+  }
+  if (warnings && args.strict) throw CommandError("warnings with --strict", exit_warnings);
+}
+
+}  // namespace vcpost::cli

@@ -1,0 +1,51 @@
+// What `vcpost post` and `vcpost report` share: their options, the job's
+// set-up from them, and the run itself with its report files. The commands
+// differ only in what they write (the program, the report, or both).
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "machines/profile.h"
+#include "postproc/cli/model_loader.h"
+#include "postproc/post/post_job.h"
+
+namespace vcpost::cli {
+
+struct PostArguments {
+  std::string program, model, tool, machine = "generic", output, summary_json;
+  std::string policy = "max", cl_point = "tip", dialect;
+  double vc = 0, ap = 0, spacing = 0.5, tolerance = 0.01;
+  std::optional<double> ae, fz;
+  std::optional<int> teeth;
+  bool ae_override = false, adjust_feed = false, quiet = false, strict = false;
+  std::vector<std::string> reports;  // report files; the format follows the extension
+};
+
+// Registers the options common to both commands on `command` (not -o or
+// the report files, which each command words its own way).
+void add_job_options(CLI::App& command, PostArguments& args);
+
+// What one run did, for the command's own output.
+struct JobRun {
+  post::PostSummary summary;
+  LoadedModel model;
+  machines::MachineProfile profile;
+  double run_time_s = 0;
+};
+
+// Runs the job: posts (writing the program to args.output when
+// `write_program`, atomically, '-' = standard output) and writes every
+// report file of args.reports. Checks all outputs before any work; throws
+// CommandError (exit 2) for bad options, unreadable input, unknown report
+// formats or a toolpath that never touches the model; nothing is left
+// half-written.
+JobRun run_job(const PostArguments& args, bool write_program);
+
+// The end-of-run lines on stderr (unless --quiet), the --summary-json file,
+// and exit 1 for warnings with --strict.
+void finish_job(const PostArguments& args, const JobRun& run);
+
+}  // namespace vcpost::cli

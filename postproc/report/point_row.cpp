@@ -1,0 +1,144 @@
+#include "postproc/report/point_row.h"
+
+#include <array>
+#include <cmath>
+#include <stdexcept>
+
+#include "geometry/surface_quality.h"
+
+namespace vcpost::report {
+namespace {
+
+constexpr std::array<std::pair<PointFlag, std::string_view>, 13> kFlagNames{{
+    {PointFlag::no_contact, "no_contact"},
+    {PointFlag::gouge, "gouge"},
+    {PointFlag::no_cut, "no_cut"},
+    {PointFlag::clamped_max, "clamped_max"},
+    {PointFlag::clamped_min, "clamped_min"},
+    {PointFlag::slew, "slew"},
+    {PointFlag::rate, "rate"},
+    {PointFlag::hysteresis, "hysteresis"},
+    {PointFlag::program_s, "program_s"},
+    {PointFlag::spindle_off, "spindle_off"},
+    {PointFlag::first_pass, "first_pass"},
+    {PointFlag::before_over_max, "before_over_max"},
+    {PointFlag::before_under_min, "before_under_min"},
+}};
+
+// Below this |k| (1/mm, a radius of 1 km) a surface counts as flat.
+constexpr double kFlatCurvature = 1e-6;
+
+}  // namespace
+
+std::string_view to_string(PointFlag flag) {
+  for (const auto& [f, name] : kFlagNames) {
+    if (f == flag) return name;
+  }
+  return "?";
+}
+
+std::string flags_text(std::uint32_t flags) {
+  std::string out;
+  for (const auto& [f, name] : kFlagNames) {
+    if ((flags & static_cast<std::uint32_t>(f)) == 0) continue;
+    if (!out.empty()) out += '|';
+    out += name;
+  }
+  return out;
+}
+
+std::optional<double> cusp_height_um(double radius, double ae, double curvature_across) {
+  if (!(ae > 0) || !(ae < 2 * radius) || !std::isfinite(curvature_across)) return std::nullopt;
+  try {
+    if (std::abs(curvature_across) < kFlatCurvature) {
+      return 1000 * geometry::flat_cusp_height(radius, ae);
+    }
+    const double rho = 1 / std::abs(curvature_across);
+    const auto kind = curvature_across > 0 ? geometry::Curvature::convex : geometry::Curvature::concave;
+    return 1000 * geometry::curved_cusp_height(radius, ae, rho, kind);
+  } catch (const std::invalid_argument&) {
+    // Outside the model's range (hollow tighter than the ball, no overlap).
+    return std::nullopt;
+  }
+}
+
+PointRow make_row(const pipeline::PathSample& sample, const pipeline::PointResult& result,
+                  const post::PointRecord& record, const ReportInputs& inputs) {
+  PointRow row;
+  row.line = record.line;
+  row.point = sample.point;
+  row.status = result.contact.status;
+  if (result.contact.contact) {
+    row.cc = result.contact.contact->point;
+    row.normal = result.contact.normal;
+  }
+  row.feed = result.feed;
+  row.ae = result.ae;
+  row.ae_source = result.ae_source;
+  row.s_before = record.s_before;
+  row.s_after = record.s_after;
+  row.time_s = record.time_s;
+  row.weight_s = record.weight_s;
+  row.bound = record.bound;
+
+  auto set = [&](PointFlag f) { row.flags |= static_cast<std::uint32_t>(f); };
+  switch (result.contact.status) {
+    case geometry::BallStatus::lifted:
+    case geometry::BallStatus::missed: set(PointFlag::no_contact); break;
+    case geometry::BallStatus::gouging: set(PointFlag::gouge); break;
+    case geometry::BallStatus::touching: break;
+  }
+  switch (record.bound) {
+    case plan::Bound::n_max: set(PointFlag::clamped_max); break;
+    case plan::Bound::n_min: set(PointFlag::clamped_min); break;
+    case plan::Bound::slew: set(PointFlag::slew); break;
+    case plan::Bound::rate: set(PointFlag::rate); break;
+    case plan::Bound::hysteresis: set(PointFlag::hysteresis); break;
+    case plan::Bound::program: set(PointFlag::program_s); break;
+    case plan::Bound::off: set(PointFlag::spindle_off); break;
+    default: break;
+  }
+  if (inputs.n_max_rpm > 0 && record.s_before > inputs.n_max_rpm) set(PointFlag::before_over_max);
+  if (record.s_before > 0 && record.s_before < inputs.n_min_rpm) set(PointFlag::before_under_min);
+
+  if (result.engagement) {
+    row.d_max = result.engagement->d_max;
+    row.d_min = result.engagement->d_min;
+    if (result.engagement->points) row.d_cut = result.engagement->points->cut.diameter;
+    if (result.ae_source == pipeline::AeSource::first_pass) set(PointFlag::first_pass);
+  }
+  row.d_ref = result.d_ref;
+  if (result.contact.status == geometry::BallStatus::touching && !result.d_ref) set(PointFlag::no_cut);
+  if (result.d_ref) {
+    row.vc_before = geometry::cutting_speed(*result.d_ref, record.s_before);
+    row.vc_after = geometry::cutting_speed(*result.d_ref, record.s_after);
+    row.dev_before = *row.vc_before / inputs.vc_nominal - 1;
+    row.dev_after = *row.vc_after / inputs.vc_nominal - 1;
+  }
+
+  // Surface quality where the ball cuts: the transverse profile (arcs of
+  // the ball every ae); the cusp with the surface's curvature across the
+  // feed where the model knows it (exact faces), flat otherwise (meshes).
+  // No cusp where no earlier pass lies beside this one (first pass: a full
+  // groove) or where the ball is not on the surface.
+  if (result.engagement && result.contact.contact && result.feed.squaredNorm() > 0 &&
+      result.contact.status == geometry::BallStatus::touching &&
+      result.ae_source != pipeline::AeSource::first_pass) {
+    const double radius = inputs.tool_radius_mm;
+    double k_across = 0;
+    if (const auto& curvature = result.contact.contact->curvature) {
+      const Eigen::Vector3d across = result.contact.normal.cross(result.feed).normalized();
+      const double c1 = curvature->d1.dot(across), c2 = curvature->d2.dot(across);
+      k_across = curvature->k1 * c1 * c1 + curvature->k2 * c2 * c2;  // Euler's formula
+    }
+    row.cusp_um = cusp_height_um(radius, result.ae, k_across);
+    if (result.ae > 0 && result.ae < 2 * radius) {
+      const auto r = geometry::transverse_roughness(radius, result.ae);
+      row.ra_um = 1000 * r.ra;
+      row.rz_um = 1000 * r.rz;
+    }
+  }
+  return row;
+}
+
+}  // namespace vcpost::report

@@ -8,10 +8,13 @@
 #include <cstdio>
 #include <iostream>
 #include <iterator>
+#include <sstream>
 #include <string>
 #include <vector>
 
+#include "postproc/cldata/cl_reader.h"
 #include "postproc/cli/commands.h"
+#include "postproc/post/post_job.h"
 #include "postproc/gcode/interpreter.h"
 #include "postproc/program/timing.h"
 #include "postproc/program/transcript.h"
@@ -81,6 +84,43 @@ class ProgramText {
 
 }  // namespace
 
+// APT CL data: the same events from the CL reader, printed the same way.
+template <class Options>
+void print_cl_moves(std::string_view text, const std::string& name,
+                    const program::TranscriptOptions& print, const Options& options) {
+  std::string copy(text);
+  std::istringstream in(copy);
+  cldata::ClReader reader(in, name);
+  program::PathClock clock(
+      program::TimingSettings{options.rapid_rate, 0.0, program::BlockTimeMode::added});
+  std::string out;
+  std::uint64_t events = 0;
+  try {
+    while (auto event = reader.next()) {
+      ++events;
+      if (options.time) clock.advance(*event);
+      if (!options.count) program::append_transcript(out, *event, print);
+    }
+  } catch (const cldata::ClError& e) {
+    std::fwrite(out.data(), 1, out.size(), stdout);
+    std::fflush(stdout);
+    throw CommandError(e.what());
+  } catch (const program::TimingError& e) {
+    std::fwrite(out.data(), 1, out.size(), stdout);
+    std::fflush(stdout);
+    throw CommandError(name + ":" + std::to_string(e.source().line) + ": error: " + e.what());
+  }
+  std::fwrite(out.data(), 1, out.size(), stdout);
+  if (options.count) {
+    std::printf("records %llu events %llu\n", static_cast<unsigned long long>(reader.record_count()),
+                static_cast<unsigned long long>(events));
+  }
+  if (options.time) {
+    std::printf("# program time %.4f s (rapids at %.0f mm/min)\n", clock.elapsed(), options.rapid_rate);
+  }
+  for (const auto& w : reader.warnings()) std::cerr << cldata::format(w, name) << '\n';
+}
+
 void add_moves_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "moves", "Print the interpreted motion events in rs274's canonical-transcript vocabulary");
@@ -93,7 +133,7 @@ void add_moves_command(CLI::App& app) {
     double rapid_rate = program::TimingSettings{}.rapid_mm_per_min;
   };
   auto options = std::make_shared<Options>();
-  cmd->add_option("PROGRAM", options->program, "G-code program ('-' for stdin)")->required();
+  cmd->add_option("PROGRAM", options->program, "G-code or APT CL program ('-' for stdin)")->required();
   cmd->add_option("--dialect", options->dialect, "rs274ngc | fanuc (iso) | mazak (eia)")
       ->capture_default_str();
   cmd->add_flag("--source", options->source, "append file:line:col to every line");
@@ -109,9 +149,13 @@ void add_moves_command(CLI::App& app) {
     const auto dialect = gcode::dialect_from_name(options->dialect);
     if (!dialect) throw CommandError("moves: unknown dialect '" + options->dialect + "'");
     ProgramText text(options->program);
-    gcode::Interpreter interpreter(text.view(), *dialect);
     const std::string name = options->program == "-" ? "<stdin>" : options->program;
     const program::TranscriptOptions print{options->source, name};
+    if (post::detect_program_kind(text.view()) == post::ProgramKind::cldata) {
+      print_cl_moves(text.view(), name, print, *options);
+      return;
+    }
+    gcode::Interpreter interpreter(text.view(), *dialect);
     std::vector<program::Event> events;
     std::string out;
     std::uint64_t event_count = 0;

@@ -313,6 +313,25 @@ ProgramKind detect_program_kind(std::string_view text) {
   return ProgramKind::gcode;
 }
 
+std::optional<geometry::Tool> tool_from_program(std::string_view text, const std::string& file_name) {
+  if (detect_program_kind(text) != ProgramKind::cldata) return std::nullopt;
+  ViewBuffer buffer(text);
+  std::istream in(&buffer);
+  cldata::ClReader reader(in, file_name);
+  for (;;) {
+    const auto event = reader.next();
+    if (!reader.cutters().empty()) break;
+    if (!event || program::is_motion(*event)) return std::nullopt;
+  }
+  const auto& cutter = reader.cutters().front();
+  if (!cutter.tool) {
+    throw PostError(file_name + ":" + std::to_string(cutter.source.line) + ": " +
+                    cutter.source_word + " is not a ball, bull-nose or flat mill (" +
+                    cutter.why_not + "); give --tool");
+  }
+  return cutter.tool;
+}
+
 PostSummary post_program(std::string_view text, const std::string& file_name,
                          const geometry::SurfaceModel& model,
                          const machines::MachineProfile& profile, const PostSettings& settings,
@@ -362,6 +381,9 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
   auto f_for = [&](std::size_t b) -> std::optional<double> {
     if (feeds.empty()) return std::nullopt;
     const int own_plan = own[b];
+    if (own_plan >= 0 && plan.blocks[static_cast<std::size_t>(own_plan)].bound == plan::Bound::rapid) {
+      return std::nullopt;  // rapids do not use F
+    }
     if (own_plan >= 0 && feeds[static_cast<std::size_t>(own_plan)].f_word) {
       return feeds[static_cast<std::size_t>(own_plan)].f_mm_per_min;
     }

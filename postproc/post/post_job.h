@@ -24,6 +24,12 @@ enum class ProgramKind { gcode, cldata };
 // statements (GOTO/, FEDRAT/, CUTTER/ ...) or bare PARTNO/FINI lines.
 ProgramKind detect_program_kind(std::string_view text);
 
+// The first cutter an APT CL program defines (CUTTER, TLDATA/MILL) as a
+// tool, for when the command line gives none; empty for G-code, or when the
+// CL data define no cutter before their first motion. Throws PostError when
+// that cutter is not a shape vcpost models (a drill point, a taper).
+std::optional<geometry::Tool> tool_from_program(std::string_view text, const std::string& file_name);
+
 struct PostSettings {
   pipeline::PointSettings point;
   double sample_spacing_mm = 0.5;   // largest distance between evaluated points

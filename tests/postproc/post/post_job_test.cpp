@@ -195,6 +195,35 @@ TEST(PostJob, LevelCutNeedsOneSpeedAndTheFormulaGivesIt) {
   EXPECT_EQ(summary.s_words, static_cast<std::uint64_t>(words));
 }
 
+TEST(PostJob, AdjustFeedKeepsTheFeedPerTooth) {
+  // Level plane, one speed n = 9329 rpm: with fz = 0.05 mm and 2 teeth the
+  // cut runs at F = 0.05 * 2 * 9329 = 932.9 mm/min, written as F932 (the
+  // profile writes whole mm/min, rounding down so fz is never exceeded).
+  geometry::PlanePatch plane;
+  plane.u_min = plane.v_min = -100;
+  plane.u_max = plane.v_max = 100;
+  const geometry::AnalyticModel model({plane});
+  const std::string program = "G21 G90\nS6000 M3\nF1000\nG0 X0 Y0 Z1\nG1 Z0\nG1 X30\nG1 Y0.5\nG1 X0\nM30\n";
+  PostSettings settings = settings_for(100);
+  settings.adjust_feed = true;
+  settings.fz_mm = 0.05;
+  settings.teeth = 2;
+  std::string out;
+  const auto summary = post_program(program, "level.ngc", model, machines::builtin_profile("mazak-3axis"),
+                                    settings, [&](std::string_view bytes) { out.append(bytes); });
+  EXPECT_NE(out.find("G1 X30 F932\n"), std::string::npos) << out;
+  EXPECT_EQ(out.find("G0 X0 Y0 Z1 S9329 F"), std::string::npos) << out;  // no F on rapids
+  EXPECT_GE(summary.f_words, 1u);
+}
+
+TEST(PostJob, ToolComesFromTheClCutterWhenNoneIsGiven) {
+  const auto tool = tool_from_program("PARTNO T\nUNITS/MM\nCUTTER/12.0,6.0\nGOTO/0,0,0\nFINI\n", "t.cls");
+  ASSERT_TRUE(tool);
+  EXPECT_EQ(tool->kind, geometry::ToolKind::ball);
+  EXPECT_DOUBLE_EQ(tool->diameter, 12);
+  EXPECT_FALSE(tool_from_program("G0 X0\nM30\n", "t.ngc"));
+}
+
 TEST(PostJob, Rs274ReadsTheSameMotionFromInputAndOutput) {
   if (std::system("command -v rs274 >/dev/null 2>&1") != 0) GTEST_SKIP() << "rs274 not installed";
   const std::string input = dome_raster(2.0, 0.5, 8000);

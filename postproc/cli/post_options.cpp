@@ -52,7 +52,7 @@ nlohmann::json summary_json(const PostArguments& args, const JobRun& run) {
       {"kind", s.kind == post::ProgramKind::gcode ? "gcode" : "cldata"},
       {"model", {{"file", args.model}, {"kind", run.model.kind}, {"description", run.model.description}}},
       {"machine", run.profile.name()},
-      {"tool", args.tool},
+      {"tool", geometry::to_string(run.tool)},
       {"vc_nominal", args.vc},
       {"ap", args.ap},
       {"ae", args.ae ? nlohmann::json(*args.ae) : nlohmann::json(nullptr)},
@@ -74,13 +74,31 @@ nlohmann::json summary_json(const PostArguments& args, const JobRun& run) {
   };
 }
 
-post::PostSettings settings_from(const PostArguments& args) {
-  post::PostSettings settings;
+// The tool of --tool, or else the CL program's first cutter.
+geometry::Tool tool_from(const PostArguments& args, std::string_view text, const std::string& name) {
+  if (args.tool.empty()) {
+    std::optional<geometry::Tool> tool;
+    try {
+      tool = post::tool_from_program(text, name);
+    } catch (const post::PostError& e) {
+      throw CommandError(e.what());
+    } catch (const cldata::ClError& e) {
+      throw CommandError(e.what());
+    }
+    if (!tool) throw CommandError("--tool: required (the program defines no cutter before its first move)");
+    return *tool;
+  }
   try {
-    settings.point.tool = geometry::parse_tool(args.tool);
+    return geometry::parse_tool(args.tool);
   } catch (const std::invalid_argument& e) {
     throw CommandError(std::string("--tool: ") + e.what());
   }
+}
+
+post::PostSettings settings_from(const PostArguments& args, std::string_view text,
+                                 const std::string& name) {
+  post::PostSettings settings;
+  settings.point.tool = tool_from(args, text, name);
   if (settings.point.tool.kind != geometry::ToolKind::ball) {
     throw CommandError("--tool: posting is for ball-end mills (ball:D); use `vcpost deff` for " +
                        geometry::to_string(settings.point.tool));
@@ -157,7 +175,7 @@ report::ReportInputs report_inputs(const PostArguments& args, const post::PostSe
   in.model_kind = model.kind;
   in.model_description = model.description;
   in.machine = profile.name();
-  in.tool = args.tool;
+  in.tool = geometry::to_string(settings.point.tool);
   in.policy = args.policy;
   in.cl_point = args.cl_point;
   in.tool_radius_mm = settings.point.tool.diameter / 2;
@@ -188,7 +206,8 @@ report::ReportInputs report_inputs(const PostArguments& args, const post::PostSe
 void add_job_options(CLI::App& command, PostArguments& args) {
   command.add_option("program", args.program, "G-code or APT CL program ('-': standard input)")->required();
   command.add_option("--model", args.model, "finished-surface model: STEP (mm or inch) or STL (mm)")->required();
-  command.add_option("--tool", args.tool, "ball-end mill, ball:D with D in mm, e.g. ball:10")->required();
+  command.add_option("--tool", args.tool,
+                     "ball-end mill, ball:D with D in mm, e.g. ball:10 (default for CL input: its CUTTER)");
   command.add_option("--vc", args.vc, "nominal cutting speed, m/min")->required()->check(CLI::PositiveNumber);
   command.add_option("--ap", args.ap, "depth of cut along the surface normal, mm")->required()->check(CLI::PositiveNumber);
   command.add_option("--ae", args.ae, "width of cut, mm: used where the toolpath shows no neighbouring pass")
@@ -220,7 +239,9 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   if (write_program && args.output != "-" && args.program != "-" && same_file(args.program, args.output)) {
     throw CommandError("-o: '" + args.output + "' is the input program; it is never overwritten");
   }
-  const post::PostSettings settings = settings_from(args);
+  const std::string text = read_program(args.program);
+  const std::string name = args.program == "-" ? "<stdin>" : args.program;
+  const post::PostSettings settings = settings_from(args, text, name);
   std::vector<ReportFile> reports = open_reports(args);
   std::string chart_library;
   for (const auto& r : reports) {
@@ -229,8 +250,6 @@ JobRun run_job(const PostArguments& args, bool write_program) {
 
   const machines::MachineProfile profile = load_machine(args.machine);
   LoadedModel model = load_model(args.model);
-  const std::string text = read_program(args.program);
-  const std::string name = args.program == "-" ? "<stdin>" : args.program;
 
   const bool show_progress = !args.quiet && ::isatty(STDERR_FILENO);
   const post::Progress progress = [&](double done) {
@@ -326,7 +345,7 @@ JobRun run_job(const PostArguments& args, bool write_program) {
       }
     }
   }
-  return JobRun{summary, std::move(model), profile, run_time};
+  return JobRun{summary, settings.point.tool, std::move(model), profile, run_time};
 }
 
 void finish_job(const PostArguments& args, const JobRun& run) {

@@ -31,6 +31,7 @@ void add_job_options(CLI::App& command, PostArguments& args);
 // What one run did, for the command's own output.
 struct JobRun {
   post::PostSummary summary;
+  geometry::Tool tool;  // from --tool or the CL program's cutter
   LoadedModel model;
   machines::MachineProfile profile;
   double run_time_s = 0;

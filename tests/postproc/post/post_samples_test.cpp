@@ -27,6 +27,8 @@ struct Case {
   double diameter, vc, ap;
 };
 
+void PrintTo(const Case& c, std::ostream* out) { *out << c.program; }
+
 std::string read(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream text;

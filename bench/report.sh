@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# End-to-end figures of the report (issue 6): page size and time for a
+# program of N points from the sample generator, against the same job
+# writing no report. Usage (from the repository root, after building vcpost
+# and vcpost-samplegen in BUILD):
+#   bash bench/report.sh [BUILD=build/release] [POINTS=1000000]
+set -euo pipefail
+build=${1:-build/release}
+points=${2:-1000000}
+vcpost=$build/postproc/cli/vcpost
+samplegen=$build/postproc/samplegen/vcpost-samplegen
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+"$samplegen" path wavy --points "$points" --gcode "$work/big.nc" >/dev/null
+job=("$work/big.nc" --model samples/wavy.step --tool ball:10 --vc 120 --ap 0.3 --machine mazak-3axis -q)
+
+seconds() {  # wall seconds of a command
+  local start end
+  start=$(date +%s.%N)
+  "$@"
+  end=$(date +%s.%N)
+  echo "$end - $start" | bc
+}
+
+echo "program: $points points, $(stat -c %s "$work/big.nc") bytes"
+echo "post, no report:       $(seconds "$vcpost" post "${job[@]}" -o "$work/out.nc") s"
+echo "report -o .json:       $(seconds "$vcpost" report "${job[@]}" -o "$work/r.json") s"
+echo "report -o .html:       $(seconds "$vcpost" report "${job[@]}" -o "$work/r.html") s, page $(stat -c %s "$work/r.html") bytes"
+echo "report -o .csv:        $(seconds "$vcpost" report "${job[@]}" -o "$work/r.csv") s, csv $(stat -c %s "$work/r.csv") bytes"
+if command -v chromium >/dev/null; then
+  echo "chromium load+draw:    $(seconds chromium --headless --no-sandbox --disable-gpu --no-first-run \
+      --disable-background-networking --disable-component-update --disable-sync \
+      --user-data-dir="$work/profile" --dump-dom "file://$work/r.html" >"$work/dom.html" 2>/dev/null) s" \
+      "(selfcheck: $(grep -o '<pre id="selfcheck">[^<]*' "$work/dom.html" | sed 's/.*>//'))"
+fi

@@ -59,8 +59,12 @@ Point point(std::size_t k, std::size_t n) {
   p.result.engagement = e;
   p.result.d_ref = d;
   const double target = 1000 * 120 / (std::numbers::pi * d);
-  p.record = {static_cast<std::uint32_t>(10 + k / 4), 0.001 * static_cast<double>(k), 0.001, 4800,
-              std::min(target, 12000.0), target > 12000 ? plan::Bound::n_max : plan::Bound::none};
+  p.record = {static_cast<std::uint32_t>(10 + k / 4),
+              0.001 * static_cast<double>(k),
+              0.001,
+              4800,
+              std::min(target, 12000.0),
+              target > 12000 ? plan::Bound::n_max : plan::Bound::none};
   return p;
 }
 
@@ -85,7 +89,8 @@ void BM_CollectAndCsv(benchmark::State& state) {
     benchmark::DoNotOptimize(collector.finish({}, 0));
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * n));
-  state.counters["csv_MB"] = static_cast<double>(bytes) / static_cast<double>(state.iterations()) / 1e6;
+  state.counters["csv_MB"] =
+      static_cast<double>(bytes) / static_cast<double>(state.iterations()) / 1e6;
 }
 BENCHMARK(BM_CollectAndCsv)->Arg(1000000)->Unit(benchmark::kMillisecond);
 

@@ -25,11 +25,13 @@ void add_post_command(CLI::App& app) {
   auto* post = app.add_subcommand("post", "Rewrite S (and F) so the cutting speed stays nominal");
   post->description(kDescription);
   add_job_options(*post, *args);
-  post->add_option("-o,--output", args->output, "output program ('-': standard output); written whole or not at all")
+  post->add_option("-o,--output", args->output,
+                   "output program ('-': standard output); written whole or not at all")
       ->required();
-  post->add_option("--report", args->reports,
-                   "also write the dry-run report of this job: FILE.json (summary), FILE.csv (every point) "
-                   "or FILE.html (plots); may be given more than once");
+  post->add_option(
+      "--report", args->reports,
+      "also write the dry-run report of this job: FILE.json (summary), FILE.csv (every point) "
+      "or FILE.html (plots); may be given more than once");
   post->callback([args] { finish_job(*args, run_job(*args, true)); });
 }
 

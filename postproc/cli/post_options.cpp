@@ -41,8 +41,11 @@ std::string read_program(const std::string& path) {
 
 nlohmann::json vc_json(const std::optional<post::VcStatistics>& s) {
   if (!s) return nullptr;
-  return {{"min", s->min}, {"max", s->max}, {"mean", s->mean},
-          {"within_5_percent", s->within_5_percent}, {"within_10_percent", s->within_10_percent}};
+  return {{"min", s->min},
+          {"max", s->max},
+          {"mean", s->mean},
+          {"within_5_percent", s->within_5_percent},
+          {"within_10_percent", s->within_10_percent}};
 }
 
 nlohmann::json summary_json(const PostArguments& args, const JobRun& run) {
@@ -50,7 +53,8 @@ nlohmann::json summary_json(const PostArguments& args, const JobRun& run) {
   return {
       {"program", args.program},
       {"kind", s.kind == post::ProgramKind::gcode ? "gcode" : "cldata"},
-      {"model", {{"file", args.model}, {"kind", run.model.kind}, {"description", run.model.description}}},
+      {"model",
+       {{"file", args.model}, {"kind", run.model.kind}, {"description", run.model.description}}},
       {"machine", run.profile.name()},
       {"tool", geometry::to_string(run.tool)},
       {"vc_nominal", args.vc},
@@ -60,13 +64,20 @@ nlohmann::json summary_json(const PostArguments& args, const JobRun& run) {
       {"blocks", s.blocks},
       {"motion_events", s.motion_events},
       {"points", s.samples},
-      {"contact", {{"touching", s.touching}, {"lifted", s.lifted}, {"gouging", s.gouging},
-                   {"missed", s.missed}}},
-      {"ae_source", {{"measured", s.ae_measured}, {"given", s.ae_given},
-                     {"first_pass", s.ae_first_pass}}},
-      {"time_s", {{"program", s.program_time_s}, {"cutting", s.cutting_time_s},
-                  {"clamped_max", s.time_clamped_max_s}, {"clamped_min", s.time_clamped_min_s},
-                  {"slew", s.time_slew_s}, {"rate", s.time_rate_s}}},
+      {"contact",
+       {{"touching", s.touching},
+        {"lifted", s.lifted},
+        {"gouging", s.gouging},
+        {"missed", s.missed}}},
+      {"ae_source",
+       {{"measured", s.ae_measured}, {"given", s.ae_given}, {"first_pass", s.ae_first_pass}}},
+      {"time_s",
+       {{"program", s.program_time_s},
+        {"cutting", s.cutting_time_s},
+        {"clamped_max", s.time_clamped_max_s},
+        {"clamped_min", s.time_clamped_min_s},
+        {"slew", s.time_slew_s},
+        {"rate", s.time_rate_s}}},
       {"words_written", {{"s", s.s_words}, {"f", s.f_words}}},
       {"vc_before", vc_json(s.before)},
       {"vc_after", vc_json(s.after)},
@@ -75,7 +86,8 @@ nlohmann::json summary_json(const PostArguments& args, const JobRun& run) {
 }
 
 // The tool of --tool, or else the CL program's first cutter.
-geometry::Tool tool_from(const PostArguments& args, std::string_view text, const std::string& name) {
+geometry::Tool tool_from(const PostArguments& args, std::string_view text,
+                         const std::string& name) {
   if (args.tool.empty()) {
     std::optional<geometry::Tool> tool;
     try {
@@ -85,7 +97,8 @@ geometry::Tool tool_from(const PostArguments& args, std::string_view text, const
     } catch (const cldata::ClError& e) {
       throw CommandError(e.what());
     }
-    if (!tool) throw CommandError("--tool: required (the program defines no cutter before its first move)");
+    if (!tool)
+      throw CommandError("--tool: required (the program defines no cutter before its first move)");
     return *tool;
   }
   try {
@@ -103,13 +116,15 @@ post::PostSettings settings_from(const PostArguments& args, std::string_view tex
     throw CommandError("--tool: posting is for ball-end mills (ball:D); use `vcpost deff` for " +
                        geometry::to_string(settings.point.tool));
   }
-  if (args.ap >= settings.point.tool.diameter) throw CommandError("--ap: must be below the tool diameter");
+  if (args.ap >= settings.point.tool.diameter)
+    throw CommandError("--ap: must be below the tool diameter");
   settings.point.ap = args.ap;
   settings.point.ae = args.ae;
   settings.point.ae_override = args.ae_override;
   settings.point.vc = args.vc;
   settings.point.contact_tolerance = args.tolerance;
-  settings.point.cl_point = args.cl_point == "center" ? geometry::ClPoint::center : geometry::ClPoint::tip;
+  settings.point.cl_point =
+      args.cl_point == "center" ? geometry::ClPoint::center : geometry::ClPoint::tip;
   settings.point.policy = args.policy == "tangent" ? pipeline::DiameterPolicy::tangent
                           : args.policy == "mean"  ? pipeline::DiameterPolicy::mean
                                                    : pipeline::DiameterPolicy::max;
@@ -140,13 +155,15 @@ std::vector<ReportFile> open_reports(const PostArguments& args) {
     if (path != "-") {
       const auto format = report::format_of(path);
       if (!format) {
-        throw CommandError("report '" + path + "': unknown format; name the file .json, .csv or .html");
+        throw CommandError("report '" + path +
+                           "': unknown format; name the file .json, .csv or .html");
       }
       r.format = *format;
       if (args.program != "-" && same_file(args.program, path)) {
         throw CommandError("report '" + path + "' is the input program; it is never overwritten");
       }
-      if (args.output == path) throw CommandError("report '" + path + "' is also the output program");
+      if (args.output == path)
+        throw CommandError("report '" + path + "' is also the output program");
     }
     out.push_back(std::move(r));
   }
@@ -166,7 +183,8 @@ std::string read_chart_library() {
 }
 
 report::ReportInputs report_inputs(const PostArguments& args, const post::PostSettings& settings,
-                                   const LoadedModel& model, const machines::MachineProfile& profile,
+                                   const LoadedModel& model,
+                                   const machines::MachineProfile& profile,
                                    post::ProgramKind kind) {
   report::ReportInputs in;
   in.program = args.program == "-" ? "<stdin>" : args.program;
@@ -204,39 +222,71 @@ report::ReportInputs report_inputs(const PostArguments& args, const post::PostSe
 }  // namespace
 
 void add_job_options(CLI::App& command, PostArguments& args) {
-  command.add_option("program", args.program, "G-code or APT CL program ('-': standard input)")->required();
-  command.add_option("--model", args.model, "finished-surface model: STEP (mm or inch) or STL (mm)")->required();
-  command.add_option("--tool", args.tool,
-                     "ball-end mill, ball:D with D in mm, e.g. ball:10 (default for CL input: its CUTTER)");
-  command.add_option("--vc", args.vc, "nominal cutting speed, m/min")->required()->check(CLI::PositiveNumber);
-  command.add_option("--ap", args.ap, "depth of cut along the surface normal, mm")->required()->check(CLI::PositiveNumber);
-  command.add_option("--ae", args.ae, "width of cut, mm: used where the toolpath shows no neighbouring pass")
+  command.add_option("program", args.program, "G-code or APT CL program ('-': standard input)")
+      ->required();
+  command
+      .add_option("--model", args.model, "finished-surface model: STEP (mm or inch) or STL (mm)")
+      ->required();
+  command.add_option(
+      "--tool", args.tool,
+      "ball-end mill, ball:D with D in mm, e.g. ball:10 (default for CL input: its CUTTER)");
+  command.add_option("--vc", args.vc, "nominal cutting speed, m/min")
+      ->required()
       ->check(CLI::PositiveNumber);
-  command.add_flag("--ae-override", args.ae_override, "use --ae everywhere instead of measuring it from the toolpath");
-  command.add_option("--machine", args.machine, "machine profile: a built-in name (vcpost machines list) or a TOML file")
+  command.add_option("--ap", args.ap, "depth of cut along the surface normal, mm")
+      ->required()
+      ->check(CLI::PositiveNumber);
+  command
+      .add_option("--ae", args.ae,
+                  "width of cut, mm: used where the toolpath shows no neighbouring pass")
+      ->check(CLI::PositiveNumber);
+  command.add_flag("--ae-override", args.ae_override,
+                   "use --ae everywhere instead of measuring it from the toolpath");
+  command
+      .add_option("--machine", args.machine,
+                  "machine profile: a built-in name (vcpost machines list) or a TOML file")
       ->capture_default_str();
-  command.add_option("--policy", args.policy, "reference diameter: max (no edge faster than vc), tangent, mean")
-      ->check(CLI::IsMember({"max", "tangent", "mean"}))->capture_default_str();
-  command.add_flag("--adjust-feed", args.adjust_feed, "couple the feed to the speed: F = fz * z * n");
-  command.add_option("--fz", args.fz, "feed per tooth for --adjust-feed, mm (default: the program's F at its S)")
+  command
+      .add_option("--policy", args.policy,
+                  "reference diameter: max (no edge faster than vc), tangent, mean")
+      ->check(CLI::IsMember({"max", "tangent", "mean"}))
+      ->capture_default_str();
+  command.add_flag("--adjust-feed", args.adjust_feed,
+                   "couple the feed to the speed: F = fz * z * n");
+  command
+      .add_option("--fz", args.fz,
+                  "feed per tooth for --adjust-feed, mm (default: the program's F at its S)")
       ->check(CLI::PositiveNumber);
-  command.add_option("--teeth", args.teeth, "number of teeth for --adjust-feed (default: the profile's)")
+  command
+      .add_option("--teeth", args.teeth,
+                  "number of teeth for --adjust-feed (default: the profile's)")
       ->check(CLI::PositiveNumber);
-  command.add_option("--cl-point", args.cl_point, "what the program's points are: the tool tip or the ball centre")
-      ->check(CLI::IsMember({"tip", "center"}))->capture_default_str();
+  command
+      .add_option("--cl-point", args.cl_point,
+                  "what the program's points are: the tool tip or the ball centre")
+      ->check(CLI::IsMember({"tip", "center"}))
+      ->capture_default_str();
   command.add_option("--spacing", args.spacing, "largest distance between evaluated points, mm")
-      ->check(CLI::PositiveNumber)->capture_default_str();
-  command.add_option("--contact-tolerance", args.tolerance, "distance error still counted as contact, mm")
-      ->check(CLI::PositiveNumber)->capture_default_str();
-  command.add_option("--dialect", args.dialect, "G-code dialect: rs274ngc, fanuc, mazak (default: the profile's)");
-  command.add_option("--summary-json", args.summary_json, "write the job's JSON summary to this file ('-': standard error)");
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command
+      .add_option("--contact-tolerance", args.tolerance,
+                  "distance error still counted as contact, mm")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command.add_option("--dialect", args.dialect,
+                     "G-code dialect: rs274ngc, fanuc, mazak (default: the profile's)");
+  command.add_option("--summary-json", args.summary_json,
+                     "write the job's JSON summary to this file ('-': standard error)");
   command.add_flag("-q,--quiet", args.quiet, "print nothing but errors");
-  command.add_flag("--strict", args.strict, "exit 1 when there were warnings (gouges, points without contact)");
+  command.add_flag("--strict", args.strict,
+                   "exit 1 when there were warnings (gouges, points without contact)");
 }
 
 JobRun run_job(const PostArguments& args, bool write_program) {
   const auto started = std::chrono::steady_clock::now();
-  if (write_program && args.output != "-" && args.program != "-" && same_file(args.program, args.output)) {
+  if (write_program && args.output != "-" && args.program != "-" &&
+      same_file(args.program, args.output)) {
     throw CommandError("-o: '" + args.output + "' is the input program; it is never overwritten");
   }
   const std::string text = read_program(args.program);
@@ -245,7 +295,8 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   std::vector<ReportFile> reports = open_reports(args);
   std::string chart_library;
   for (const auto& r : reports) {
-    if (r.format == report::ReportFormat::html && chart_library.empty()) chart_library = read_chart_library();
+    if (r.format == report::ReportFormat::html && chart_library.empty())
+      chart_library = read_chart_library();
   }
 
   const machines::MachineProfile profile = load_machine(args.machine);
@@ -253,7 +304,8 @@ JobRun run_job(const PostArguments& args, bool write_program) {
 
   const bool show_progress = !args.quiet && ::isatty(STDERR_FILENO);
   const post::Progress progress = [&](double done) {
-    if (show_progress) std::cerr << "\rvcpost: posting " << static_cast<int>(done * 100) << " %" << std::flush;
+    if (show_progress)
+      std::cerr << "\rvcpost: posting " << static_cast<int>(done * 100) << " %" << std::flush;
   };
 
   std::optional<AtomicFile> file;
@@ -276,12 +328,14 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   std::optional<report::ReportCollector> collector;
   std::vector<report::CsvWriter*> csv_writers;
   if (!reports.empty()) {
-    collector.emplace(report_inputs(args, settings, model, profile, post::detect_program_kind(text)));
+    collector.emplace(
+        report_inputs(args, settings, model, profile, post::detect_program_kind(text)));
     for (auto& r : reports) {
       if (r.format != report::ReportFormat::csv) continue;
       r.file = std::make_unique<AtomicFile>(r.path);
       AtomicFile* out = r.file.get();
-      r.csv = std::make_unique<report::CsvWriter>([out](std::string_view bytes) { out->write(bytes); });
+      r.csv =
+          std::make_unique<report::CsvWriter>([out](std::string_view bytes) { out->write(bytes); });
       csv_writers.push_back(r.csv.get());
     }
   }
@@ -294,7 +348,8 @@ JobRun run_job(const PostArguments& args, bool write_program) {
 
   post::PostSummary summary;
   try {
-    summary = post::post_program(text, name, *model.model, profile, settings, sink, progress, points);
+    summary =
+        post::post_program(text, name, *model.model, profile, settings, sink, progress, points);
   } catch (const gcode::GcodeError& e) {
     throw CommandError(e.what());
   } catch (const cldata::ClError& e) {
@@ -366,14 +421,17 @@ void finish_job(const PostArguments& args, const JobRun& run) {
     if (args.adjust_feed) std::cerr << ", " << summary.f_words << " F words";
     if (summary.before && summary.after) {
       std::cerr << "; cutting time within +-10 % of vc " << args.vc << " m/min: "
-                << static_cast<int>(std::round(summary.before->within_10_percent * 100)) << " % before, "
-                << static_cast<int>(std::round(summary.after->within_10_percent * 100)) << " % after";
+                << static_cast<int>(std::round(summary.before->within_10_percent * 100))
+                << " % before, "
+                << static_cast<int>(std::round(summary.after->within_10_percent * 100))
+                << " % after";
     }
     std::cerr << '\n';
     for (const auto& path : args.reports) {
       if (path != "-") std::cerr << "vcpost: report written to " << path << '\n';
     }
-    if (summary.gouging > 0) std::cerr << "vcpost: warning: " << summary.gouging << " points gouge the model\n";
+    if (summary.gouging > 0)
+      std::cerr << "vcpost: warning: " << summary.gouging << " points gouge the model\n";
     if (summary.lifted + summary.missed > 0) {
       std::cerr << "vcpost: warning: " << summary.lifted + summary.missed
                 << " cutting points do not touch the model (their blocks keep the program's S)\n";

@@ -20,11 +20,14 @@ constexpr const char* kDescription =
 
 void add_report_command(CLI::App& app) {
   auto args = std::make_shared<PostArguments>();
-  auto* report = app.add_subcommand("report", "Dry run: report how vc deviates, before and after (JSON, CSV, HTML)");
+  auto* report = app.add_subcommand(
+      "report", "Dry run: report how vc deviates, before and after (JSON, CSV, HTML)");
   report->description(kDescription);
   add_job_options(*report, *args);
-  report->add_option("-o,--output", args->reports,
-                     "report file: .json, .csv or .html ('-': JSON on standard output); may be given more than once")
+  report
+      ->add_option("-o,--output", args->reports,
+                   "report file: .json, .csv or .html ('-': JSON on standard output); may be given "
+                   "more than once")
       ->required();
   report->callback([args] { finish_job(*args, run_job(*args, false)); });
 }

@@ -11,7 +11,8 @@ namespace {
 void append_number(std::string& out, double value, int decimals) {
   if (!std::isfinite(value)) return;
   char buffer[64];
-  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed, decimals);
+  const auto [end, ec] =
+      std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed, decimals);
   if (ec != std::errc()) return;
   char* last = end;
   if (decimals > 0) {
@@ -42,16 +43,26 @@ void vector_fields(std::string& out, const std::optional<Eigen::Vector3d>& v, in
 
 std::string_view bound_name(plan::Bound bound) {
   switch (bound) {
-    case plan::Bound::none: return "none";
-    case plan::Bound::resolution: return "resolution";
-    case plan::Bound::hysteresis: return "hysteresis";
-    case plan::Bound::n_max: return "n_max";
-    case plan::Bound::n_min: return "n_min";
-    case plan::Bound::slew: return "slew";
-    case plan::Bound::rate: return "rate";
-    case plan::Bound::program: return "program";
-    case plan::Bound::rapid: return "rapid";
-    case plan::Bound::off: return "off";
+    case plan::Bound::none:
+      return "none";
+    case plan::Bound::resolution:
+      return "resolution";
+    case plan::Bound::hysteresis:
+      return "hysteresis";
+    case plan::Bound::n_max:
+      return "n_max";
+    case plan::Bound::n_min:
+      return "n_min";
+    case plan::Bound::slew:
+      return "slew";
+    case plan::Bound::rate:
+      return "rate";
+    case plan::Bound::program:
+      return "program";
+    case plan::Bound::rapid:
+      return "rapid";
+    case plan::Bound::off:
+      return "off";
   }
   return "?";
 }

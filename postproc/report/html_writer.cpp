@@ -43,23 +43,33 @@ json sparse_grids(const PlanGrid& before, const PlanGrid& after, const PlanGrid&
     a.push_back(value(after.cells()[i], 100, 0.01));
     c.push_back(value(cusp.cells()[i], 1, 0.01));
   }
-  return {{"nx", after.nx()}, {"ny", after.ny()}, {"cell", after.cell()},
-          {"x0", after.lo().x()}, {"y0", after.lo().y()},
-          {"index_gaps", index_gaps}, {"before_pct", b}, {"after_pct", a}, {"cusp_um", c}};
+  return {{"nx", after.nx()},     {"ny", after.ny()},     {"cell", after.cell()},
+          {"x0", after.lo().x()}, {"y0", after.lo().y()}, {"index_gaps", index_gaps},
+          {"before_pct", b},      {"after_pct", a},       {"cusp_um", c}};
 }
 
 std::string_view bound_text(plan::Bound bound) {
   switch (bound) {
-    case plan::Bound::none: return "target";
-    case plan::Bound::resolution: return "S resolution";
-    case plan::Bound::hysteresis: return "hysteresis";
-    case plan::Bound::n_max: return "n_max";
-    case plan::Bound::n_min: return "n_min";
-    case plan::Bound::slew: return "slew limit";
-    case plan::Bound::rate: return "S-word rate";
-    case plan::Bound::program: return "program's S";
-    case plan::Bound::rapid: return "rapid";
-    case plan::Bound::off: return "spindle off";
+    case plan::Bound::none:
+      return "target";
+    case plan::Bound::resolution:
+      return "S resolution";
+    case plan::Bound::hysteresis:
+      return "hysteresis";
+    case plan::Bound::n_max:
+      return "n_max";
+    case plan::Bound::n_min:
+      return "n_min";
+    case plan::Bound::slew:
+      return "slew limit";
+    case plan::Bound::rate:
+      return "S-word rate";
+    case plan::Bound::program:
+      return "program's S";
+    case plan::Bound::rapid:
+      return "rapid";
+    case plan::Bound::off:
+      return "spindle off";
   }
   return "?";
 }
@@ -89,19 +99,23 @@ json page_data(const ReportData& d) {
   return {
       {"summary", summary_json(d)},
       {"bucket_points", d.plot_bucket_points},
-      {"vc", {{"before", flat_points(d.vc_before, t_step, vc * 1e-5)},
-              {"after", flat_points(d.vc_after, t_step, vc * 1e-5)}}},
-      {"s", {{"before", flat_points(d.s_before, t_step, 0.1)},
-             {"after", flat_points(d.s_after, t_step, 0.1)}}},
-      {"hist", {{"step_pct", 100 * d.histogram.step},
-                {"limit_pct", 100 * d.histogram.limit},
-                {"before_s", d.histogram.before_s},
-                {"after_s", d.histogram.after_s}}},
+      {"vc",
+       {{"before", flat_points(d.vc_before, t_step, vc * 1e-5)},
+        {"after", flat_points(d.vc_after, t_step, vc * 1e-5)}}},
+      {"s",
+       {{"before", flat_points(d.s_before, t_step, 0.1)},
+        {"after", flat_points(d.s_after, t_step, 0.1)}}},
+      {"hist",
+       {{"step_pct", 100 * d.histogram.step},
+        {"limit_pct", 100 * d.histogram.limit},
+        {"before_s", d.histogram.before_s},
+        {"after_s", d.histogram.after_s}}},
       {"grid", sparse_grids(d.dev_before, d.dev_after, d.cusp)},
-      {"regions", {{"after", regions_json(d.regions_after)},
-                   {"before", regions_json(d.regions_before)},
-                   {"after_threshold_pct", 100 * kRegionThresholdAfter},
-                   {"before_threshold_pct", 100 * kRegionThresholdBefore}}},
+      {"regions",
+       {{"after", regions_json(d.regions_after)},
+        {"before", regions_json(d.regions_before)},
+        {"after_threshold_pct", 100 * kRegionThresholdAfter},
+        {"before_threshold_pct", 100 * kRegionThresholdBefore}}},
   };
 }
 
@@ -124,11 +138,20 @@ std::string html_escape(std::string_view text) {
   std::string out;
   for (const char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -512,7 +535,8 @@ std::string render_html(const ReportData& data, std::string_view chart_library) 
   }
   const std::string data_text = script_safe(page_data(data).dump());
   std::string out;
-  out.reserve(kHead.size() + kStyle.size() + data_text.size() + chart_library.size() + kScript.size() + 256);
+  out.reserve(kHead.size() + kStyle.size() + data_text.size() + chart_library.size() +
+              kScript.size() + 256);
   out += kHead;
   out += html_escape("vcpost report: " + data.inputs.program);
   out += kStyle;

@@ -94,7 +94,8 @@ void PlanGrid::add(const Eigen::Vector2d& p, double value) {
   if (!std::isfinite(value) || !p.allFinite()) return;
   const int i = std::clamp(static_cast<int>(std::floor((p.x() - lo_.x()) / cell_)), 0, nx_ - 1);
   const int j = std::clamp(static_cast<int>(std::floor((p.y() - lo_.y()) / cell_)), 0, ny_ - 1);
-  auto& c = cells_[static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i)];
+  auto& c = cells_[static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) +
+                   static_cast<std::size_t>(i)];
   if (!c || std::abs(value) > std::abs(*c)) c = static_cast<float>(value);
 }
 
@@ -106,7 +107,8 @@ DeviationHistogram::DeviationHistogram() {
 
 std::size_t DeviationHistogram::bin_of(double deviation) const {
   const double position = std::floor((deviation + limit) / step + 1e-9);
-  return static_cast<std::size_t>(std::clamp(position, 0.0, static_cast<double>(before_s.size() - 1)));
+  return static_cast<std::size_t>(
+      std::clamp(position, 0.0, static_cast<double>(before_s.size() - 1)));
 }
 
 void DeviationHistogram::add(double dev_before, double dev_after, double weight_s) {
@@ -114,7 +116,8 @@ void DeviationHistogram::add(double dev_before, double dev_after, double weight_
   after_s[bin_of(dev_after)] += weight_s;
 }
 
-RegionTracker::RegionTracker(double threshold, std::size_t keep) : threshold_(threshold), keep_(keep) {}
+RegionTracker::RegionTracker(double threshold, std::size_t keep)
+    : threshold_(threshold), keep_(keep) {}
 
 void RegionTracker::add(const PointRow& row, std::optional<double> vc, std::optional<double> dev,
                         double cut_time_s) {
@@ -123,7 +126,8 @@ void RegionTracker::add(const PointRow& row, std::optional<double> vc, std::opti
     return;
   }
   if (!open_) {
-    open_ = Region{row.line, row.line, cut_time_s, 0, *dev, *vc, *vc, 0, row.point.head<2>(), row.bound};
+    open_ = Region{row.line, row.line, cut_time_s,          0,        *dev, *vc,
+                   *vc,      0,        row.point.head<2>(), row.bound};
     bound_time_.fill(0);
   }
   Region& r = *open_;
@@ -148,7 +152,8 @@ void RegionTracker::close() {
   open_.reset();
   // Bounded memory: trim to the best `keep_` now and then.
   if (regions_.size() >= 8 * keep_ + 64) {
-    std::partial_sort(regions_.begin(), regions_.begin() + static_cast<std::ptrdiff_t>(keep_), regions_.end(),
+    std::partial_sort(regions_.begin(), regions_.begin() + static_cast<std::ptrdiff_t>(keep_),
+                      regions_.end(),
                       [](const Region& a, const Region& b) { return a.score > b.score; });
     regions_.resize(keep_);
   }
@@ -158,7 +163,8 @@ std::vector<Region> RegionTracker::result() const {
   RegionTracker copy = *this;
   copy.close();
   auto out = std::move(copy.regions_);
-  std::sort(out.begin(), out.end(), [](const Region& a, const Region& b) { return a.score > b.score; });
+  std::sort(out.begin(), out.end(),
+            [](const Region& a, const Region& b) { return a.score > b.score; });
   if (out.size() > keep_) out.resize(keep_);
   return out;
 }

@@ -79,7 +79,7 @@ class PlanGrid {
 // Share of cutting time per deviation bin: bins of `step` from -limit to
 // +limit, the first and last also holding everything beyond.
 struct DeviationHistogram {
-  double step = 0.01, limit = 0.5;  // fractions (1 %, 50 %)
+  double step = 0.01, limit = 0.5;        // fractions (1 %, 50 %)
   std::vector<double> before_s, after_s;  // cutting time per bin, s
   DeviationHistogram();
   void add(double dev_before, double dev_after, double weight_s);
@@ -91,9 +91,9 @@ struct DeviationHistogram {
 struct Region {
   std::uint32_t first_line = 0, last_line = 0;
   double start_cut_s = 0, duration_s = 0;  // along cutting time
-  double worst_dev = 0;        // the signed deviation of largest magnitude
+  double worst_dev = 0;                    // the signed deviation of largest magnitude
   double vc_min = 0, vc_max = 0;
-  double score = 0;            // sum of weight * |dev|: ranks the regions
+  double score = 0;  // sum of weight * |dev|: ranks the regions
   Eigen::Vector2d worst_xy = Eigen::Vector2d::Zero();
   plan::Bound bound = plan::Bound::none;  // the plan's bound with the most time in it
 };

@@ -54,7 +54,8 @@ std::optional<double> cusp_height_um(double radius, double ae, double curvature_
       return 1000 * geometry::flat_cusp_height(radius, ae);
     }
     const double rho = 1 / std::abs(curvature_across);
-    const auto kind = curvature_across > 0 ? geometry::Curvature::convex : geometry::Curvature::concave;
+    const auto kind =
+        curvature_across > 0 ? geometry::Curvature::convex : geometry::Curvature::concave;
     return 1000 * geometry::curved_cusp_height(radius, ae, rho, kind);
   } catch (const std::invalid_argument&) {
     // Outside the model's range (hollow tighter than the ball, no overlap).
@@ -84,19 +85,39 @@ PointRow make_row(const pipeline::PathSample& sample, const pipeline::PointResul
   auto set = [&](PointFlag f) { row.flags |= static_cast<std::uint32_t>(f); };
   switch (result.contact.status) {
     case geometry::BallStatus::lifted:
-    case geometry::BallStatus::missed: set(PointFlag::no_contact); break;
-    case geometry::BallStatus::gouging: set(PointFlag::gouge); break;
-    case geometry::BallStatus::touching: break;
+    case geometry::BallStatus::missed:
+      set(PointFlag::no_contact);
+      break;
+    case geometry::BallStatus::gouging:
+      set(PointFlag::gouge);
+      break;
+    case geometry::BallStatus::touching:
+      break;
   }
   switch (record.bound) {
-    case plan::Bound::n_max: set(PointFlag::clamped_max); break;
-    case plan::Bound::n_min: set(PointFlag::clamped_min); break;
-    case plan::Bound::slew: set(PointFlag::slew); break;
-    case plan::Bound::rate: set(PointFlag::rate); break;
-    case plan::Bound::hysteresis: set(PointFlag::hysteresis); break;
-    case plan::Bound::program: set(PointFlag::program_s); break;
-    case plan::Bound::off: set(PointFlag::spindle_off); break;
-    default: break;
+    case plan::Bound::n_max:
+      set(PointFlag::clamped_max);
+      break;
+    case plan::Bound::n_min:
+      set(PointFlag::clamped_min);
+      break;
+    case plan::Bound::slew:
+      set(PointFlag::slew);
+      break;
+    case plan::Bound::rate:
+      set(PointFlag::rate);
+      break;
+    case plan::Bound::hysteresis:
+      set(PointFlag::hysteresis);
+      break;
+    case plan::Bound::program:
+      set(PointFlag::program_s);
+      break;
+    case plan::Bound::off:
+      set(PointFlag::spindle_off);
+      break;
+    default:
+      break;
   }
   if (inputs.n_max_rpm > 0 && record.s_before > inputs.n_max_rpm) set(PointFlag::before_over_max);
   if (record.s_before > 0 && record.s_before < inputs.n_min_rpm) set(PointFlag::before_under_min);
@@ -108,7 +129,8 @@ PointRow make_row(const pipeline::PathSample& sample, const pipeline::PointResul
     if (result.ae_source == pipeline::AeSource::first_pass) set(PointFlag::first_pass);
   }
   row.d_ref = result.d_ref;
-  if (result.contact.status == geometry::BallStatus::touching && !result.d_ref) set(PointFlag::no_cut);
+  if (result.contact.status == geometry::BallStatus::touching && !result.d_ref)
+    set(PointFlag::no_cut);
   if (result.d_ref) {
     row.vc_before = geometry::cutting_speed(*result.d_ref, record.s_before);
     row.vc_after = geometry::cutting_speed(*result.d_ref, record.s_after);

@@ -37,19 +37,19 @@ struct ReportInputs {
 
 // Flags of a point, in the order the CSV lists them.
 enum class PointFlag : std::uint32_t {
-  no_contact = 1u << 0,    // ball lifted off or far from the model
-  gouge = 1u << 1,         // ball reaches into the model
-  no_cut = 1u << 2,        // touching, but nothing engaged (no working diameter)
-  clamped_max = 1u << 3,   // planned S held at n_max (vc under nominal)
-  clamped_min = 1u << 4,   // planned S held at n_min (vc over nominal)
-  slew = 1u << 5,          // the spindle's acceleration limit decided S
-  rate = 1u << 6,          // the S-word rate limit decided S
-  hysteresis = 1u << 7,    // S kept within the change threshold
-  program_s = 1u << 8,     // the block keeps the program's S (no target)
-  spindle_off = 1u << 9,   // spindle off
-  first_pass = 1u << 10,   // no neighbouring pass and no --ae: full-width groove
-  before_over_max = 1u << 11,  // the program's S is above n_max (the machine clamps it)
-  before_under_min = 1u << 12, // the program's S is below n_min
+  no_contact = 1u << 0,         // ball lifted off or far from the model
+  gouge = 1u << 1,              // ball reaches into the model
+  no_cut = 1u << 2,             // touching, but nothing engaged (no working diameter)
+  clamped_max = 1u << 3,        // planned S held at n_max (vc under nominal)
+  clamped_min = 1u << 4,        // planned S held at n_min (vc over nominal)
+  slew = 1u << 5,               // the spindle's acceleration limit decided S
+  rate = 1u << 6,               // the S-word rate limit decided S
+  hysteresis = 1u << 7,         // S kept within the change threshold
+  program_s = 1u << 8,          // the block keeps the program's S (no target)
+  spindle_off = 1u << 9,        // spindle off
+  first_pass = 1u << 10,        // no neighbouring pass and no --ae: full-width groove
+  before_over_max = 1u << 11,   // the program's S is above n_max (the machine clamps it)
+  before_under_min = 1u << 12,  // the program's S is below n_min
 };
 
 // "no_contact|clamped_max|slew"; empty when no flag is set.
@@ -68,8 +68,8 @@ struct PointRow {
   double s_before = 0, s_after = 0;                  // rpm
   std::optional<double> vc_before, vc_after;         // m/min at d_ref; empty without d_ref
   std::optional<double> dev_before, dev_after;       // vc / vc_nominal - 1
-  double time_s = 0;    // program time at the point
-  double weight_s = 0;  // cutting time it stands for
+  double time_s = 0;                                 // program time at the point
+  double weight_s = 0;                               // cutting time it stands for
   plan::Bound bound = plan::Bound::none;
   std::uint32_t flags = 0;
   std::optional<double> cusp_um, ra_um, rz_um;  // predicted, where the ball cuts

@@ -5,11 +5,10 @@
 #pragma once
 
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "postproc/post/post_job.h"
 #include "postproc/report/plot_data.h"
@@ -39,7 +38,8 @@ class ReportCollector {
  public:
   // Plot sizes: up to 2 * plot_buckets buckets along time, plan grids with
   // `grid_cells` cells along the longer side.
-  explicit ReportCollector(ReportInputs inputs, std::size_t plot_buckets = 2000, int grid_cells = 240);
+  explicit ReportCollector(ReportInputs inputs, std::size_t plot_buckets = 2000,
+                           int grid_cells = 240);
 
   // Adds one point (in path order) and returns its row (valid until the
   // next call), e.g. for the CSV writer.

@@ -17,7 +17,7 @@ std::size_t surface_bins(double radius_mm) {
 
 std::optional<Distribution> distribution(const WeightedQuantiles& q) {
   if (q.empty()) return std::nullopt;
-  return Distribution{q.min(),         q.max(),          q.mean(),       q.quantile(0.05),
+  return Distribution{q.min(),         q.max(),          q.mean(),     q.quantile(0.05),
                       q.quantile(0.5), q.quantile(0.95), q.bin_width()};
 }
 
@@ -75,10 +75,18 @@ StatisticsAccumulator::StatisticsAccumulator(double vc_nominal, double tool_radi
 void StatisticsAccumulator::add(const PointRow& row) {
   ++counts_.points;
   switch (row.status) {
-    case geometry::BallStatus::touching: ++counts_.touching; break;
-    case geometry::BallStatus::lifted: ++counts_.lifted; break;
-    case geometry::BallStatus::missed: ++counts_.missed; break;
-    case geometry::BallStatus::gouging: ++counts_.gouging; break;
+    case geometry::BallStatus::touching:
+      ++counts_.touching;
+      break;
+    case geometry::BallStatus::lifted:
+      ++counts_.lifted;
+      break;
+    case geometry::BallStatus::missed:
+      ++counts_.missed;
+      break;
+    case geometry::BallStatus::gouging:
+      ++counts_.gouging;
+      break;
   }
   if (row.has(PointFlag::no_cut)) ++counts_.no_cut;
   const double w = row.weight_s;

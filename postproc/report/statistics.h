@@ -49,11 +49,11 @@ struct Distribution {
 };
 
 struct SpeedStatistics {
-  std::optional<Distribution> vc;       // m/min; empty when nothing cut
-  double within_5_percent = 0;          // share of cutting time with |vc/vc_nom - 1| <= 5 %
+  std::optional<Distribution> vc;  // m/min; empty when nothing cut
+  double within_5_percent = 0;     // share of cutting time with |vc/vc_nom - 1| <= 5 %
   double within_10_percent = 0;
-  double below_nominal_time_s = 0;      // vc under nominal by more than 5 %
-  double above_nominal_time_s = 0;      // vc over nominal by more than 5 %
+  double below_nominal_time_s = 0;  // vc under nominal by more than 5 %
+  double above_nominal_time_s = 0;  // vc over nominal by more than 5 %
   // Cutting time the machine's spindle range bounds: for `before` the
   // program's S outside [n_min, n_max] (the control clamps it); for `after`
   // the plan held at n_max / n_min.

@@ -11,8 +11,13 @@ json optional_number(const std::optional<double>& v) { return v ? json(*v) : jso
 
 json distribution_json(const std::optional<Distribution>& d) {
   if (!d) return nullptr;
-  return {{"min", d->min}, {"max", d->max}, {"mean", d->mean}, {"p5", d->p5},
-          {"p50", d->p50}, {"p95", d->p95}, {"resolution", d->resolution}};
+  return {{"min", d->min},
+          {"max", d->max},
+          {"mean", d->mean},
+          {"p5", d->p5},
+          {"p50", d->p50},
+          {"p95", d->p95},
+          {"resolution", d->resolution}};
 }
 
 json speed_json(const SpeedStatistics& s) {
@@ -39,7 +44,8 @@ json summary_json(const ReportData& data) {
       {"inputs",
        {{"program", in.program},
         {"kind", in.program_kind},
-        {"model", {{"file", in.model}, {"kind", in.model_kind}, {"description", in.model_description}}},
+        {"model",
+         {{"file", in.model}, {"kind", in.model_kind}, {"description", in.model_description}}},
         {"tool", in.tool},
         {"ap", in.ap_mm},
         {"ae", optional_number(in.ae_mm)},

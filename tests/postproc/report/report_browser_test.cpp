@@ -33,7 +33,8 @@ int shell(const std::string& command) {
 
 // build/<name>/postproc/cli/vcpost -> build/<name>/test-artefacts/report
 fs::path artefact_dir() {
-  return fs::path(VCPOST_BINARY).parent_path().parent_path().parent_path() / "test-artefacts" / "report";
+  return fs::path(VCPOST_BINARY).parent_path().parent_path().parent_path() / "test-artefacts" /
+         "report";
 }
 
 std::string chromium(const fs::path& profile) {
@@ -51,15 +52,18 @@ TEST(ReportBrowser, PageDrawsEveryPlotWithoutConsoleMessages) {
   fs::create_directories(dir);
   const fs::path page = dir / "report.html";
   const std::string samples = std::string(VCPOST_SOURCE_DIR) + "/samples/";
-  ASSERT_EQ(shell(std::string(VCPOST_BINARY) + " report " + samples + "wavy_raster_a0_ae2.nc --model " + samples +
-                  "wavy.step --tool ball:10 --vc 120 --ap 0.3 --machine mazak-3axis -q -o " + page.string()),
-            0);
+  ASSERT_EQ(
+      shell(std::string(VCPOST_BINARY) + " report " + samples + "wavy_raster_a0_ae2.nc --model " +
+            samples + "wavy.step --tool ball:10 --vc 120 --ap 0.3 --machine mazak-3axis -q -o " +
+            page.string()),
+      0);
 
-  const fs::path profile = fs::temp_directory_path() / ("vcpost_chromium_" + std::to_string(::getpid()));
+  const fs::path profile =
+      fs::temp_directory_path() / ("vcpost_chromium_" + std::to_string(::getpid()));
   fs::remove_all(profile);
   const fs::path dom = dir / "dom.html", log = dir / "chromium.log";
-  ASSERT_EQ(shell(chromium(profile / "a") + " --virtual-time-budget=10000 --dump-dom file://" + page.string() +
-                  " >" + dom.string() + " 2>" + log.string()),
+  ASSERT_EQ(shell(chromium(profile / "a") + " --virtual-time-budget=10000 --dump-dom file://" +
+                  page.string() + " >" + dom.string() + " 2>" + log.string()),
             0)
       << read(log);
 
@@ -76,7 +80,8 @@ TEST(ReportBrowser, PageDrawsEveryPlotWithoutConsoleMessages) {
   const auto begin = text.find(open);
   ASSERT_NE(begin, std::string::npos) << "no #selfcheck in the DOM";
   const auto end = text.find("</pre>", begin);
-  const auto check = nlohmann::json::parse(text.substr(begin + open.size(), end - begin - open.size()));
+  const auto check =
+      nlohmann::json::parse(text.substr(begin + open.size(), end - begin - open.size()));
   EXPECT_EQ(check["chart"], "3.9.1") << check.dump();
   EXPECT_TRUE(check["errors"].empty()) << check.dump();
   EXPECT_EQ(check["drawn"], check["canvases"]) << check.dump();
@@ -86,7 +91,8 @@ TEST(ReportBrowser, PageDrawsEveryPlotWithoutConsoleMessages) {
 
   const fs::path shot = dir / "report.png";
   fs::remove(shot);
-  ASSERT_EQ(shell(chromium(profile / "b") + " --window-size=1400,2400 --virtual-time-budget=10000 --screenshot=" +
+  ASSERT_EQ(shell(chromium(profile / "b") +
+                  " --window-size=1400,2400 --virtual-time-budget=10000 --screenshot=" +
                   shot.string() + " file://" + page.string() + " >/dev/null 2>&1"),
             0);
   // A blank 1400 x 2400 PNG is a few kB; plots, maps and tables make far more.

@@ -3,7 +3,6 @@
 // job's own summary, one CSV row per point, the program unchanged by a
 // report, and clear errors (exit 2) for formats it does not know.
 #include <gtest/gtest.h>
-
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -53,8 +52,9 @@ class ReportCli : public ::testing::Test {
 TEST_F(ReportCli, ReportWritesEveryFormatByItsName) {
   const fs::path json = dir_ / "r.json", csv = dir_ / "r.csv", html = dir_ / "r.html";
   const fs::path job_summary = dir_ / "job.json";
-  ASSERT_EQ(run("report " + job() + " -o " + json.string() + " -o " + csv.string() + " -o " + html.string() +
-                " --summary-json " + job_summary.string() + " 2>" + (dir_ / "err").string()),
+  ASSERT_EQ(run("report " + job() + " -o " + json.string() + " -o " + csv.string() + " -o " +
+                html.string() + " --summary-json " + job_summary.string() + " 2>" +
+                (dir_ / "err").string()),
             0)
       << read(dir_ / "err");
   const auto j = nlohmann::json::parse(read(json));
@@ -63,7 +63,8 @@ TEST_F(ReportCli, ReportWritesEveryFormatByItsName) {
   EXPECT_EQ(j["points"]["total"], s["points"]);
   EXPECT_EQ(j["points"]["gouge"], s["contact"]["gouging"]);
   EXPECT_NEAR(j["time_s"]["cutting"].get<double>(), s["time_s"]["cutting"].get<double>(), 1e-9);
-  EXPECT_NEAR(j["after"]["within_10_percent"].get<double>(), s["vc_after"]["within_10_percent"].get<double>(), 1e-3);
+  EXPECT_NEAR(j["after"]["within_10_percent"].get<double>(),
+              s["vc_after"]["within_10_percent"].get<double>(), 1e-3);
   EXPECT_NEAR(j["before"]["vc"]["mean"].get<double>(), s["vc_before"]["mean"].get<double>(), 1e-3);
   // A dry run counts the S words the rewrite would write.
   EXPECT_GT(j["words_written"]["s"].get<int>(), 0);
@@ -71,10 +72,11 @@ TEST_F(ReportCli, ReportWritesEveryFormatByItsName) {
   EXPECT_EQ(j["profile"]["n_max_rpm"].get<double>(), 12000);
 
   const std::string rows = read(csv);
-  EXPECT_EQ(rows.rfind("line,x,y,z,cc_x,cc_y,cc_z,n_x,n_y,n_z,f_x,f_y,f_z,ae,d_ref,d_max,d_min,d_cut,"
-                       "s_before,s_after,vc_before,vc_after,dev_pct,flags",
-                       0),
-            0u);
+  EXPECT_EQ(
+      rows.rfind("line,x,y,z,cc_x,cc_y,cc_z,n_x,n_y,n_z,f_x,f_y,f_z,ae,d_ref,d_max,d_min,d_cut,"
+                 "s_before,s_after,vc_before,vc_after,dev_pct,flags",
+                 0),
+      0u);
   EXPECT_EQ(static_cast<std::uint64_t>(std::count(rows.begin(), rows.end(), '\n')),
             j["points"]["total"].get<std::uint64_t>() + 1);
 
@@ -90,17 +92,19 @@ TEST_F(ReportCli, PostWritesTheReportBesideTheSameProgram) {
   ASSERT_EQ(run("post " + job() + " -o " + with.string() + " --report " + report.string()), 0);
   EXPECT_EQ(read(plain), read(with));
   const auto j = nlohmann::json::parse(read(report));
-  EXPECT_GT(j["after"]["within_10_percent"].get<double>(), j["before"]["within_10_percent"].get<double>());
+  EXPECT_GT(j["after"]["within_10_percent"].get<double>(),
+            j["before"]["within_10_percent"].get<double>());
 }
 
 TEST_F(ReportCli, UnknownFormatIsAnInputErrorAndWritesNothing) {
   const fs::path out = dir_ / "r.txt";
   EXPECT_EQ(run("report " + job() + " -o " + out.string() + " 2>" + (dir_ / "err").string()), 2);
-  EXPECT_NE(read(dir_ / "err").find(".json, .csv or .html"), std::string::npos) << read(dir_ / "err");
+  EXPECT_NE(read(dir_ / "err").find(".json, .csv or .html"), std::string::npos)
+      << read(dir_ / "err");
   EXPECT_FALSE(fs::exists(out));
   const fs::path program = dir_ / "p.nc";
-  EXPECT_EQ(run("post " + job() + " -o " + program.string() + " --report " + (dir_ / "r.pdf").string() +
-                " 2>/dev/null"),
+  EXPECT_EQ(run("post " + job() + " -o " + program.string() + " --report " +
+                (dir_ / "r.pdf").string() + " 2>/dev/null"),
             2);
   EXPECT_FALSE(fs::exists(program));
 }

@@ -82,8 +82,9 @@ DomeRun run_dome(const std::string& machine, int spindle, double vc) {
     run.rows.push_back(row);
     csv.write(row);
   });
-  run.summary = post::post_program(dome_raster(2, 1, spindle), "dome.ngc", model, profile, settings,
-                                   [](std::string_view) {}, {}, sink);
+  run.summary = post::post_program(
+      dome_raster(2, 1, spindle), "dome.ngc", model, profile, settings, [](std::string_view) {}, {},
+      sink);
   csv.finish();
   run.data = collector.finish(run.summary, 0.5);
   return run;
@@ -176,8 +177,8 @@ TEST(ReportJob, CsvHasOneRowPerPointAndTheJsonItsKeys) {
   EXPECT_EQ(static_cast<std::uint64_t>(std::count(run.csv.begin(), run.csv.end(), '\n')),
             run.summary.samples + 1);
   const nlohmann::json j = summary_json(*run.data);
-  for (const char* key : {"schema", "inputs", "profile", "vc_nominal", "points", "time_s", "before", "after",
-                          "words_written", "surface", "run_time_s"}) {
+  for (const char* key : {"schema", "inputs", "profile", "vc_nominal", "points", "time_s", "before",
+                          "after", "words_written", "surface", "run_time_s"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
   for (const char* side : {"before", "after"}) {
@@ -194,7 +195,8 @@ TEST(ReportJob, CsvHasOneRowPerPointAndTheJsonItsKeys) {
   EXPECT_EQ(j["points"]["gouge"], run.summary.gouging);
   EXPECT_EQ(j["points"]["no_contact"], run.summary.lifted + run.summary.missed);
   EXPECT_DOUBLE_EQ(j["vc_nominal"].get<double>(), 100);
-  for (const char* key : {"cusp_um", "ra_um", "rz_um"}) EXPECT_TRUE(j["surface"][key].is_object()) << key;
+  for (const char* key : {"cusp_um", "ra_um", "rz_um"})
+    EXPECT_TRUE(j["surface"][key].is_object()) << key;
 }
 
 TEST(ReportJob, PlotsKeepTheExtremesOfEveryPoint) {

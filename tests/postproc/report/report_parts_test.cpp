@@ -35,7 +35,8 @@ pipeline::PointResult touching_point(double ae) {
   geometry::ModelContact c;
   c.point = Vector3d::Zero();
   c.normal = Vector3d::UnitZ();
-  c.curvature = geometry::PrincipalCurvatures{1.0 / 40, 1.0 / 40, Vector3d::UnitX(), Vector3d::UnitY()};
+  c.curvature =
+      geometry::PrincipalCurvatures{1.0 / 40, 1.0 / 40, Vector3d::UnitX(), Vector3d::UnitY()};
   r.contact.contact = c;
   r.feed = Vector3d::UnitX();
   r.ae = ae;
@@ -67,8 +68,8 @@ TEST(ReportRow, SpeedsDeviationFlagsAndSurfaceOfATouchingPoint) {
   const PointRow row = make_row(sample, touching_point(1.0), record, inputs());
   EXPECT_EQ(row.line, 42u);
   // vc = pi d n / 1000 at d_ref = 3 mm.
-  EXPECT_NEAR(*row.vc_before, std::numbers::pi * 3 * 5000 / 1000, 1e-12);   // 47.124
-  EXPECT_NEAR(*row.vc_after, std::numbers::pi * 3 * 12000 / 1000, 1e-12);   // 113.097
+  EXPECT_NEAR(*row.vc_before, std::numbers::pi * 3 * 5000 / 1000, 1e-12);  // 47.124
+  EXPECT_NEAR(*row.vc_after, std::numbers::pi * 3 * 12000 / 1000, 1e-12);  // 113.097
   EXPECT_NEAR(*row.dev_after, 113.09733552923255 / 120 - 1, 1e-12);        // -5.75 %
   EXPECT_EQ(flags_text(row.flags), "clamped_max");
   EXPECT_DOUBLE_EQ(*row.d_cut, 2.5);
@@ -144,9 +145,9 @@ TEST(StatisticsAccumulator, SharesAndClampedTimes) {
     r.flags = flags;
     return r;
   };
-  acc.add(row(80, 100, 2, static_cast<std::uint32_t>(PointFlag::slew)));   // before -20 %, after 0
+  acc.add(row(80, 100, 2, static_cast<std::uint32_t>(PointFlag::slew)));  // before -20 %, after 0
   acc.add(row(96, 92, 1, static_cast<std::uint32_t>(PointFlag::clamped_max)));  // -4 %, -8 %
-  acc.add(row(104, 104, 1, 0));                                              // +4 %, +4 %
+  acc.add(row(104, 104, 1, 0));                                                 // +4 %, +4 %
   const ReportStatistics s = acc.result();
   EXPECT_EQ(s.cutting_points, 3u);
   EXPECT_DOUBLE_EQ(s.cutting_time_s, 4);
@@ -179,8 +180,14 @@ TEST(MinMaxDecimator, KeepsEveryPeakOfAMillionPointsInBoundedSize) {
     if (k > 0) {
       EXPECT_GE(s[k].x, s[k - 1].x);
     }
-    if (s[k].y > max_y) { max_y = s[k].y; at_max = s[k].x; }
-    if (s[k].y < min_y) { min_y = s[k].y; at_min = s[k].x; }
+    if (s[k].y > max_y) {
+      max_y = s[k].y;
+      at_max = s[k].x;
+    }
+    if (s[k].y < min_y) {
+      min_y = s[k].y;
+      at_min = s[k].x;
+    }
   }
   EXPECT_EQ(max_y, 50);
   EXPECT_EQ(at_max, 123457);

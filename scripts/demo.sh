@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Sets up, builds, and runs vcpost on the bundled samples: the constant-vc
 # post of finishing programs (G-code and APT CL) against their STEP models
-# for a Mazak-like 3-axis machine, and the working-diameter model at the
-# paper's set-up. Results go to out/.
+# for a Mazak-like 3-axis machine with an HTML report of each, and the
+# working-diameter model at the paper's set-up. Results go to out/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh >/dev/null
@@ -12,8 +12,8 @@ mkdir -p out
 post() {  # program model tool vc ap output
   echo "== vcpost post $1 --model $2 --tool $3 --vc $4 --ap $5 --machine mazak-3axis"
   "$vcpost" post "$1" --model "$2" --tool "$3" --vc "$4" --ap "$5" --machine mazak-3axis \
-    -o "out/$6" --summary-json "out/${6%.*}.summary.json"
-  echo "   wrote out/$6 and out/${6%.*}.summary.json"
+    -o "out/$6" --summary-json "out/${6%.*}.summary.json" --report "out/${6%.*}.html"
+  echo "   wrote out/$6, out/${6%.*}.summary.json and the report out/${6%.*}.html"
 }
 post samples/wavy_raster_a0_ae2.nc samples/wavy.step ball:10 120 0.3 wavy_raster.ccs.nc
 post samples/cylinder_r100_ae0.5_a45.cls samples/cylinder.step ball:12 150 0.2 cylinder_a45.ccs.nc

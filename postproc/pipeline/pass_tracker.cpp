@@ -8,7 +8,11 @@ constexpr double parallel_cos = 0.70710678118654752;  // cos 45 deg
 }
 
 PassTracker::PassTracker(double search_radius, double min_path_gap, std::size_t memory)
-    : radius_(search_radius), min_gap_(min_path_gap), cell_(search_radius), memory_(memory) {
+    : radius_(search_radius),
+      min_gap_(min_path_gap),
+      cell_(search_radius / 8),
+      abeam_(0.1 * search_radius),
+      memory_(memory) {
   ring_.reserve(memory);
 }
 
@@ -43,7 +47,9 @@ std::optional<NeighbourPass> PassTracker::step(const Eigen::Vector3d& cc,
   Entry current{cc, feed, 0, pass_, false};
   if (last) current.path = last->path + (cc - last->point).norm();
   current.joined = last && last->pass == pass_;
+  if (current.joined) max_segment_ = std::max(max_segment_, (cc - last->point).norm());
   auto found = nearest(current, normal);
+  if (found) last_ae_ = found->ae;
   add(current);
   return found;
 }
@@ -80,37 +86,47 @@ std::optional<NeighbourPass> PassTracker::nearest(const Entry& current,
     if (across > radius_ || across <= 1e-9 || (best && across >= best->ae)) return;
     best = NeighbourPass{across, left.dot(d) >= 0 ? geometry::Side::left : geometry::Side::right, p};
   };
-  const std::int64_t cx = static_cast<std::int64_t>(std::floor(cc.x() / cell_));
-  const std::int64_t cy = static_cast<std::int64_t>(std::floor(cc.y() / cell_));
-  const std::int64_t cz = static_cast<std::int64_t>(std::floor(cc.z() / cell_));
-  for (std::int64_t dx = -1; dx <= 1; ++dx) {
-    for (std::int64_t dy = -1; dy <= 1; ++dy) {
-      for (std::int64_t dz = -1; dz <= 1; ++dz) {
-        const auto cell = grid_.find(key_of(cx + dx, cy + dy, cz + dz));
-        if (cell == grid_.end()) continue;
-        for (const std::uint64_t s : cell->second) {
-          const Entry* e = entry(s);
-          if (!e || std::abs(e->feed.dot(feed)) < parallel_cos) continue;
-          const bool earlier = e->pass != current.pass || current.path - e->path > min_gap_;
-          if (!earlier) continue;
-          // Where that pass crosses the plane across the feed through CC:
-          // on the segment from its previous point, if it crosses there.
-          const Entry* before = e->joined ? entry(s - 1) : nullptr;
-          const double h1 = feed.dot(e->point - cc);
-          if (before) {
-            const double h0 = feed.dot(before->point - cc);
-            if ((h0 <= 0) != (h1 <= 0) || h1 == 0) {
-              const double t = h0 / (h0 - h1);
-              consider(before->point + t * (e->point - before->point));
-              continue;
-            }
-          }
-          // A pass end, or the crossing lies on another segment: only a
-          // point almost abeam counts on its own.
-          if (std::abs(h1) <= 0.1 * radius_) consider(e->point);
+  auto scan_cell = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+    const auto cell = grid_.find(key_of(x, y, z));
+    if (cell == grid_.end()) return;
+    for (const std::uint64_t s : cell->second) {
+      const Entry* e = entry(s);
+      if (!e || std::abs(e->feed.dot(feed)) < parallel_cos) continue;
+      const bool earlier = e->pass != current.pass || current.path - e->path > min_gap_;
+      if (!earlier) continue;
+      // Where that pass crosses the plane across the feed through CC:
+      // on the segment from its previous point, if it crosses there.
+      const Entry* before = e->joined ? entry(s - 1) : nullptr;
+      const double h1 = feed.dot(e->point - cc);
+      if (before) {
+        const double h0 = feed.dot(before->point - cc);
+        if ((h0 <= 0) != (h1 <= 0) || h1 == 0) {
+          const double t = h0 / (h0 - h1);
+          consider(before->point + t * (e->point - before->point));
+          continue;
         }
       }
+      // A pass end, or the crossing lies on another segment: only a point
+      // almost abeam counts on its own.
+      if (std::abs(h1) <= abeam_) consider(e->point);
     }
+  };
+  // Search outwards: every candidate found within a cube of half-width
+  // r + slack is a point or crossing within r + slack of CC, so once the
+  // best lies within r no farther candidate can beat it. Most points find
+  // their neighbour at about the last width of cut, in a handful of cells.
+  const double slack = std::max(max_segment_, abeam_);
+  for (double r = std::max(cell_, 2 * last_ae_);; r *= 2) {
+    const double reach = std::min(r, radius_) + slack;
+    const auto lo = [&](double v) { return static_cast<std::int64_t>(std::floor((v - reach) / cell_)); };
+    const auto hi = [&](double v) { return static_cast<std::int64_t>(std::floor((v + reach) / cell_)); };
+    best.reset();
+    for (std::int64_t x = lo(cc.x()); x <= hi(cc.x()); ++x) {
+      for (std::int64_t y = lo(cc.y()); y <= hi(cc.y()); ++y) {
+        for (std::int64_t z = lo(cc.z()); z <= hi(cc.z()); ++z) scan_cell(x, y, z);
+      }
+    }
+    if ((best && best->ae <= r) || r >= radius_) break;
   }
   return best;
 }

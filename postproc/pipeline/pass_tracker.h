@@ -61,7 +61,11 @@ class PassTracker {
   void add(const Entry& e);
   void compact();
 
-  double radius_, min_gap_, cell_;
+  double radius_, min_gap_;
+  double cell_;   // grid cell edge, mm: an eighth of the search radius
+  double abeam_;  // how far along the feed a pass end still counts as abeam, mm
+  double max_segment_ = 0;  // longest step between consecutive points of a pass so far
+  double last_ae_ = 0;      // the last width of cut found: where the next search starts
   std::size_t memory_;
   std::vector<Entry> ring_;                // the last `memory` entries, by sequence % memory
   std::uint64_t next_ = 0;                 // sequence number of the next entry

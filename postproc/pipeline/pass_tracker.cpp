@@ -10,7 +10,7 @@ constexpr double parallel_cos = 0.70710678118654752;  // cos 45 deg
 PassTracker::PassTracker(double search_radius, double min_path_gap, std::size_t memory)
     : radius_(search_radius),
       min_gap_(min_path_gap),
-      cell_(search_radius / 8),
+      cell_(search_radius / 16),
       abeam_(0.1 * search_radius),
       memory_(memory) {
   ring_.reserve(memory);

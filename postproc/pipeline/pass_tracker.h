@@ -62,7 +62,7 @@ class PassTracker {
   void compact();
 
   double radius_, min_gap_;
-  double cell_;   // grid cell edge, mm: an eighth of the search radius
+  double cell_;   // grid cell edge, mm: a sixteenth of the search radius
   double abeam_;  // how far along the feed a pass end still counts as abeam, mm
   double max_segment_ = 0;  // longest step between consecutive points of a pass so far
   double last_ae_ = 0;      // the last width of cut found: where the next search starts

@@ -16,6 +16,7 @@
 #include "geometry/analytic_surfaces.h"
 #include "machines/builtin.h"
 #include "postproc/gcode/interpreter.h"
+#include "../dome_program_support.h"
 #include "postproc/post/post_job.h"
 #include "postproc/program/timing.h"
 
@@ -23,42 +24,10 @@ namespace vcpost::post {
 namespace {
 
 using Eigen::Vector3d;
-constexpr double ball_radius = 5;
+constexpr double ball_radius = testing::dome_ball_radius;
 
-// A dome: the sphere of radius 40 about (0, 0, -20), tilts up to ~50 deg
-// over |x|, |y| <= 25.
-geometry::AnalyticModel dome() {
-  geometry::SpherePatch sphere;
-  sphere.center = {0, 0, -20};
-  sphere.radius = 40;
-  sphere.max_polar = 1.4;
-  return geometry::AnalyticModel({sphere});
-}
-
-// Zig-zag raster along x with `stepover` in y; tip points of a ball of
-// radius 5 resting on the dome (centre on the sphere of radius 45).
-std::string dome_raster(double stepover, double spacing, int spindle) {
-  std::ostringstream out;
-  out.setf(std::ios::fixed);
-  out.precision(6);
-  out << "%\n(dome raster)\nG21 G90 G17 G94\nT1 M6\nS" << spindle << " M3\nF2000\n";
-  bool first = true;
-  int pass = 0;
-  for (double y = -20; y <= 20 + 1e-9; y += stepover, ++pass) {
-    for (int i = 0; i <= static_cast<int>(40 / spacing + 0.5); ++i) {
-      const double x = pass % 2 == 0 ? -20 + i * spacing : 20 - i * spacing;
-      const double z = -20 + std::sqrt(45.0 * 45.0 - x * x - y * y) - ball_radius;
-      if (first) {
-        out << "G0 X" << x << " Y" << y << " Z" << z + 5 << "\nG1 Z" << z << "\n";
-        first = false;
-      } else {
-        out << "G1 X" << x << " Y" << y << " Z" << z << "\n";
-      }
-    }
-  }
-  out << "G0 Z60\nM5\nM30\n%\n";
-  return out.str();
-}
+using testing::dome;
+using testing::dome_raster;
 
 PostSettings settings_for(double vc) {
   PostSettings s;

@@ -12,6 +12,7 @@
 #include "geometry/analytic_surfaces.h"
 #include "geometry/surface_quality.h"
 #include "machines/builtin.h"
+#include "../dome_program_support.h"
 #include "postproc/post/post_job.h"
 #include "postproc/report/csv_writer.h"
 #include "postproc/report/report.h"
@@ -19,39 +20,10 @@
 namespace vcpost::report {
 namespace {
 
-constexpr double ball_radius = 5;
+constexpr double ball_radius = testing::dome_ball_radius;
 
-geometry::AnalyticModel dome() {
-  geometry::SpherePatch sphere;
-  sphere.center = {0, 0, -20};
-  sphere.radius = 40;
-  sphere.max_polar = 1.4;
-  return geometry::AnalyticModel({sphere});
-}
-
-// Zig-zag raster along x, tip points of the ball resting on the dome.
-std::string dome_raster(double stepover, double spacing, int spindle) {
-  std::ostringstream out;
-  out.setf(std::ios::fixed);
-  out.precision(6);
-  out << "%\nG21 G90 G17 G94\nT1 M6\nS" << spindle << " M3\nF2000\n";
-  bool first = true;
-  int pass = 0;
-  for (double y = -20; y <= 20 + 1e-9; y += stepover, ++pass) {
-    for (int i = 0; i <= static_cast<int>(40 / spacing + 0.5); ++i) {
-      const double x = pass % 2 == 0 ? -20 + i * spacing : 20 - i * spacing;
-      const double z = -20 + std::sqrt(45.0 * 45.0 - x * x - y * y) - ball_radius;
-      if (first) {
-        out << "G0 X" << x << " Y" << y << " Z" << z + 5 << "\nG1 Z" << z << "\n";
-        first = false;
-      } else {
-        out << "G1 X" << x << " Y" << y << " Z" << z << "\n";
-      }
-    }
-  }
-  out << "G0 Z60\nM5\nM30\n%\n";
-  return out.str();
-}
+using testing::dome;
+using testing::dome_raster;
 
 struct DomeRun {
   post::PostSummary summary;

@@ -41,32 +41,6 @@ void vector_fields(std::string& out, const std::optional<Eigen::Vector3d>& v, in
   }
 }
 
-std::string_view bound_name(plan::Bound bound) {
-  switch (bound) {
-    case plan::Bound::none:
-      return "none";
-    case plan::Bound::resolution:
-      return "resolution";
-    case plan::Bound::hysteresis:
-      return "hysteresis";
-    case plan::Bound::n_max:
-      return "n_max";
-    case plan::Bound::n_min:
-      return "n_min";
-    case plan::Bound::slew:
-      return "slew";
-    case plan::Bound::rate:
-      return "rate";
-    case plan::Bound::program:
-      return "program";
-    case plan::Bound::rapid:
-      return "rapid";
-    case plan::Bound::off:
-      return "off";
-  }
-  return "?";
-}
-
 void append_row(std::string& out, const PointRow& r) {
   char line[16];
   const auto [end, ec] = std::to_chars(line, line + sizeof line, r.line);
@@ -95,7 +69,7 @@ void append_row(std::string& out, const PointRow& r) {
   out += ',';
   out += pipeline::to_string(r.ae_source);
   out += ',';
-  out += bound_name(r.bound);
+  out += plan::to_string(r.bound);
   field(out, r.cusp_um, 3);
   field(out, r.ra_um, 3);
   field(out, r.rz_um, 3);

@@ -264,12 +264,14 @@ std::optional<VcStatistics> vc_statistics(const std::vector<SampleInfo>& samples
   return out;
 }
 
-// The number written for S or F: on the control's grid, rounded down so vc
-// (or the feed per tooth) never exceeds the planned value.
+// S or F on the control's grid, rounded down so vc (or the feed per tooth)
+// never exceeds the planned value.
+double on_grid(double value, double step) { return std::floor(value / step + 1e-9) * step; }
+
+// The number written for S or F.
 std::string format_word(double value, double step, int decimals) {
-  const double on_grid = std::floor(value / step + 1e-9) * step;
   char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, on_grid);
+  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, on_grid(value, step));
   return buffer;
 }
 
@@ -430,15 +432,15 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
         const std::size_t block = counter.on(event).first;
         if (program::is_motion(event)) {
           if (const auto s = s_for(block); s && !c.blocks[block].has_s) {
-            writer.write(program::SetSpindleSpeed{std::floor(*s / s_step + 1e-9) * s_step, {}});
+            writer.write(program::SetSpindleSpeed{on_grid(*s, s_step), {}});
             ++summary.s_words;
           }
           if (const auto f = f_for(block); f && !c.blocks[block].has_f) {
-            writer.write(program::SetFeedRate{std::floor(*f / f_step + 1e-9) * f_step, program::FeedMode::per_minute, {}, std::nullopt});
+            writer.write(program::SetFeedRate{on_grid(*f, f_step), program::FeedMode::per_minute, {}, std::nullopt});
             ++summary.f_words;
           }
         } else if (auto* s = std::get_if<program::SetSpindleSpeed>(&event)) {
-          if (const auto planned = s_for(block)) s->rpm = std::floor(*planned / s_step + 1e-9) * s_step;
+          if (const auto planned = s_for(block)) s->rpm = on_grid(*planned, s_step);
         }
         writer.write(event);
       }
@@ -461,21 +463,15 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
       default: break;
     }
   }
+  // The S in effect on a block after the rewrite: its plan's, else the program's.
+  auto after = [&](std::size_t b) {
+    const int p = own[b];
+    return p >= 0 ? plan.blocks[static_cast<std::size_t>(p)].planned_rpm : c.blocks[b].program_s;
+  };
   const double vc = settings.point.vc;
   summary.before = vc_statistics(c.samples, [&](const SampleInfo& s) { return c.blocks[s.block].program_s; }, vc);
-  summary.after = vc_statistics(
-      c.samples,
-      [&](const SampleInfo& s) {
-        const int p = own[s.block];
-        return p >= 0 ? plan.blocks[static_cast<std::size_t>(p)].planned_rpm : c.blocks[s.block].program_s;
-      },
-      vc);
+  summary.after = vc_statistics(c.samples, [&](const SampleInfo& s) { return after(s.block); }, vc);
   if (points) {
-    // The S in effect on a block: its plan's, else the program's.
-    auto after = [&](std::size_t b) {
-      const int p = own[b];
-      return p >= 0 ? plan.blocks[static_cast<std::size_t>(p)].planned_rpm : c.blocks[b].program_s;
-    };
     EventSource again(text, file_name, kind, dialect);
     collect(again, text, kind, model, profile, settings, {},
             [&](const pipeline::PathSample& sample, const pipeline::PointResult& result,

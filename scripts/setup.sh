@@ -14,6 +14,8 @@ packages=(
   linuxcnc-uspace time
   # the report's charting library (inlined into its HTML) and the browser that tests the page
   libjs-chart.js chromium
+  # fuzzing (scripts/fuzz.sh): clang with libFuzzer and its sanitizer runtimes
+  clang-14 libclang-rt-14-dev
 )
 
 missing=()

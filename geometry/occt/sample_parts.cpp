@@ -1,6 +1,7 @@
 #include "geometry/occt/sample_parts.h"
 
 #include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_Sewing.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <Geom_CylindricalSurface.hxx>
 #include <Geom_SphericalSurface.hxx>
@@ -17,6 +18,8 @@
 #include <TopoDS_Face.hxx>
 #include <gp_Ax3.hxx>
 #include <stdexcept>
+
+#include "geometry/occt/sample_shapes.h"
 
 namespace vcpost::occt {
 namespace {
@@ -60,8 +63,8 @@ class QuietMessenger {
   Message_SequenceOfPrinters printers_;
 };
 
-void write_face(const std::filesystem::path& path, const TopoDS_Face& face,
-                const std::string& name) {
+void write_shape(const std::filesystem::path& path, const TopoDS_Shape& shape,
+                 const std::string& name) {
   const std::filesystem::path temporary = path.string() + ".partial";
   const QuietMessenger quiet;
   try {
@@ -69,7 +72,7 @@ void write_face(const std::filesystem::path& path, const TopoDS_Face& face,
     Interface_Static::SetCVal("write.step.schema", "AP214IS");
     Interface_Static::SetCVal("write.step.product.name", name.c_str());
     STEPControl_Writer writer;
-    if (writer.Transfer(face, STEPControl_AsIs) != IFSelect_RetDone) {
+    if (writer.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone) {
       throw std::runtime_error(path.string() +
                                ": OpenCASCADE could not translate the face to STEP");
     }
@@ -90,14 +93,11 @@ TopoDS_Face make_face(const Handle(Geom_Surface) & surface, double u0, double u1
   return maker.Face();
 }
 
-}  // namespace
-
-void write_bspline_face_step(const std::filesystem::path& path, const BsplineSurfaceSpec& s,
-                             const std::string& name) {
+Handle(Geom_BSplineSurface) make_bspline(const std::filesystem::path& path,
+                                         const BsplineSurfaceSpec& s) {
   if (s.count_u * s.count_v != static_cast<int>(s.poles.size())) {
     throw std::runtime_error(path.string() + ": B-spline pole count does not match its grid");
   }
-  TopoDS_Face face;
   try {
     TColgp_Array2OfPnt poles(1, s.count_u, 1, s.count_v);
     for (int i = 0; i < s.count_u; ++i)
@@ -107,8 +107,56 @@ void write_bspline_face_step(const std::filesystem::path& path, const BsplineSur
     TColStd_Array1OfInteger mu(1, 1), mv(1, 1);
     split_knots(s.knots_u, ku, mu);
     split_knots(s.knots_v, kv, mv);
-    Handle(Geom_BSplineSurface) surface =
-        new Geom_BSplineSurface(poles, ku, kv, mu, mv, s.degree_u, s.degree_v);
+    return new Geom_BSplineSurface(poles, ku, kv, mu, mv, s.degree_u, s.degree_v);
+  } catch (const Standard_Failure& e) {
+    throw std::runtime_error(path.string() +
+                             ": OpenCASCADE refused the B-spline: " + e.GetMessageString());
+  }
+}
+
+}  // namespace
+
+TopoDS_Shape bspline_patches(const Handle(Geom_BSplineSurface) & surface, int nu, int nv) {
+  if (surface.IsNull() || nu < 1 || nv < 1) {
+    throw std::runtime_error("bspline_patches: needs a surface and at least one patch each way");
+  }
+  try {
+    double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+    surface->Bounds(u0, u1, v0, v1);
+    // Tolerance for merging the shared boundaries: the cut edges of two
+    // neighbours are the same iso-curve up to rounding.
+    BRepBuilderAPI_Sewing sewing(1e-6);
+    for (int i = 0; i < nu; ++i) {
+      for (int j = 0; j < nv; ++j) {
+        const double a = u0 + (u1 - u0) * i / nu, b = i + 1 == nu ? u1 : u0 + (u1 - u0) * (i + 1) / nu;
+        const double c = v0 + (v1 - v0) * j / nv, d = j + 1 == nv ? v1 : v0 + (v1 - v0) * (j + 1) / nv;
+        Handle(Geom_BSplineSurface) piece = Handle(Geom_BSplineSurface)::DownCast(surface->Copy());
+        piece->Segment(a, b, c, d);
+        BRepBuilderAPI_MakeFace maker(piece, 1e-9);
+        if (!maker.IsDone()) throw std::runtime_error("bspline_patches: cannot make a patch face");
+        sewing.Add(maker.Face());
+      }
+    }
+    sewing.Perform();
+    TopoDS_Shape sewn = sewing.SewedShape();
+    if (sewn.IsNull()) throw std::runtime_error("bspline_patches: sewing gave no shape");
+    return sewn;
+  } catch (const Standard_Failure& e) {
+    throw std::runtime_error(std::string("bspline_patches: OpenCASCADE failed: ") +
+                             e.GetMessageString());
+  }
+}
+
+void write_shape_step(const std::filesystem::path& path, const TopoDS_Shape& shape,
+                      const std::string& name) {
+  write_shape(path, shape, name);
+}
+
+void write_bspline_face_step(const std::filesystem::path& path, const BsplineSurfaceSpec& s,
+                             const std::string& name) {
+  const Handle(Geom_BSplineSurface) surface = make_bspline(path, s);
+  TopoDS_Face face;
+  try {
     BRepBuilderAPI_MakeFace maker(surface, 1e-9);
     if (!maker.IsDone())
       throw std::runtime_error(path.string() + ": cannot make the B-spline face");
@@ -117,7 +165,19 @@ void write_bspline_face_step(const std::filesystem::path& path, const BsplineSur
     throw std::runtime_error(path.string() +
                              ": OpenCASCADE refused the B-spline: " + e.GetMessageString());
   }
-  write_face(path, face, name);
+  write_shape(path, face, name);
+}
+
+void write_bspline_patches_step(const std::filesystem::path& path, const BsplineSurfaceSpec& s,
+                                int nu, int nv, const std::string& name) {
+  const Handle(Geom_BSplineSurface) surface = make_bspline(path, s);
+  TopoDS_Shape shape;
+  try {
+    shape = bspline_patches(surface, nu, nv);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(path.string() + ": " + e.what());
+  }
+  write_shape(path, shape, name);
 }
 
 void write_cylinder_face_step(const std::filesystem::path& path, const Eigen::Vector3d& origin,
@@ -133,7 +193,7 @@ void write_cylinder_face_step(const std::filesystem::path& path, const Eigen::Ve
     throw std::runtime_error(path.string() +
                              ": OpenCASCADE refused the cylinder: " + e.GetMessageString());
   }
-  write_face(path, face, name);
+  write_shape(path, face, name);
 }
 
 void write_sphere_face_step(const std::filesystem::path& path, const Eigen::Vector3d& centre,
@@ -148,7 +208,7 @@ void write_sphere_face_step(const std::filesystem::path& path, const Eigen::Vect
     throw std::runtime_error(path.string() +
                              ": OpenCASCADE refused the sphere: " + e.GetMessageString());
   }
-  write_face(path, face, name);
+  write_shape(path, face, name);
 }
 
 }  // namespace vcpost::occt

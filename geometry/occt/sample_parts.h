@@ -27,6 +27,15 @@ struct BsplineSurfaceSpec {
 void write_bspline_face_step(const std::filesystem::path& path, const BsplineSurfaceSpec& surface,
                              const std::string& name);
 
+// The same surface cut into nu x nv faces at equal steps of its knot range
+// in u and v, sewn into one open shell (neighbours share edges and
+// vertices): a multi-face STEP model whose faces together are exactly the
+// uncut surface, so the uncut surface's truth holds for it. REQUIRES nu,
+// nv >= 1.
+void write_bspline_patches_step(const std::filesystem::path& path,
+                                const BsplineSurfaceSpec& surface, int nu, int nv,
+                                const std::string& name);
+
 // The cylinder origin + h*axis + radius*(cos a*ref + sin a*(axis x ref)),
 // a in [angle_min, angle_max], h in [h_min, h_max]. REQUIRES unit,
 // perpendicular axis and ref.

@@ -1,6 +1,7 @@
 #include "geometry/occt/sample_shapes.h"
 
 #include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRep_Tool.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <TColStd_Array1OfInteger.hxx>
 #include <TColStd_Array1OfReal.hxx>
@@ -31,6 +32,12 @@ TopoDS_Face wavy_bspline_face(double size, int poles, double amplitude, double w
   Handle(Geom_BSplineSurface) surface =
       new Geom_BSplineSurface(points, values, values, mults, mults, kDegree, kDegree);
   return BRepBuilderAPI_MakeFace(surface, 1e-7).Face();
+}
+
+TopoDS_Shape wavy_patches(int nu, int nv, double size, int poles, double amplitude,
+                          double wavelength) {
+  const TopoDS_Face face = wavy_bspline_face(size, poles, amplitude, wavelength);
+  return bspline_patches(Handle(Geom_BSplineSurface)::DownCast(BRep_Tool::Surface(face)), nu, nv);
 }
 
 }  // namespace vcpost::occt

@@ -1,0 +1,190 @@
+// `vcpost verify INPUT OUTPUT`: proves that a posted program differs from
+// its input only in S and F words (or, from CL data, moves like them).
+// Reading, printing and exit codes only; the proof is postproc/verify.
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "postproc/cli/commands.h"
+#include "postproc/gcode/dialect.h"
+#include "postproc/post/post_job.h"
+#include "postproc/verify/verify.h"
+
+namespace vcpost::cli {
+namespace {
+
+// Exit code when the proof fails (distinct from input errors, 2).
+constexpr int exit_differences = 1;
+// Violations printed on stderr before "... and K more".
+constexpr std::size_t kShown = 20;
+
+constexpr const char* kDescription =
+    "Proves that OUTPUT is INPUT with only S and F words changed, as `vcpost post` writes it.\n"
+    "\n"
+    "G-code INPUT: every byte outside S/F words must be equal (lines, line endings, words,\n"
+    "blanks, comments; nothing inside comments may change). An S/F word may get a new value\n"
+    "(a plain positive number) or be added to a block that had none; it may not be removed\n"
+    "or repeated. Then both programs are interpreted (--dialect, default the --machine\n"
+    "profile's) and must give the same motions and other events, positions exactly equal;\n"
+    "only spindle speeds and feed rates may differ.\n"
+    "APT CL INPUT: OUTPUT (G-code in the --machine profile's dialect) must hold the CL\n"
+    "motions one to one: rapids as rapids, feeds as feeds, arcs with the same plane,\n"
+    "direction and centre; end points within --tolerance on each axis (at least half a\n"
+    "step of the profile's output decimals, the rounding a correct output has); spindle\n"
+    "on/off and tool changes in the same order. S and F values are free.\n"
+    "\n"
+    "Prints \"verified: ...\" and exits 0 when the proof holds. Each difference goes to\n"
+    "stderr as file:line:col: error[E71xx]: message (line and column in OUTPUT, the\n"
+    "input's line in brackets), at most 20 of them.\n"
+    "Exit codes: 0 verified; 1 differences found; 2 usage or input error (unreadable\n"
+    "file, INPUT that does not read); 3 internal error.\n"
+    "\n"
+    "Example:\n"
+    "  vcpost post finish.nc --model part.step --tool ball:10 --vc 120 -o finish.ccs.nc\n"
+    "  vcpost verify finish.nc finish.ccs.nc --changes\n";
+
+struct Arguments {
+  std::string input, output;
+  bool changes = false;
+  bool json = false;
+  std::string machine = "generic";  // as `vcpost post`: the same flags verify what it wrote
+  std::string dialect;
+  double tolerance = 0.0005;
+};
+
+std::string read_file(const std::string& path) {
+  if (path == "-")
+    return std::string(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw CommandError("verify: cannot open " + path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw CommandError("verify: cannot read " + path);
+  return text.str();
+}
+
+gcode::Dialect dialect_of(const machines::MachineProfile& profile) {
+  switch (profile.dialect()) {
+    case machines::Dialect::fanuc: return gcode::fanuc_dialect();
+    case machines::Dialect::mazak: return gcode::mazak_dialect();
+    case machines::Dialect::rs274ngc: break;
+  }
+  return gcode::rs274ngc_dialect();
+}
+
+nlohmann::json to_json(const verify::Result& r) {
+  nlohmann::json changes = nlohmann::json::array();
+  for (const auto& c : r.changes)
+    changes.push_back({{"line", c.line},
+                       {"column", c.column},
+                       {"input_line", c.input_line},
+                       {"letter", std::string(1, c.letter)},
+                       {"old", c.added ? nlohmann::json(nullptr) : nlohmann::json(c.old_text)},
+                       {"new", c.new_text},
+                       {"added", c.added}});
+  nlohmann::json violations = nlohmann::json::array();
+  for (const auto& v : r.violations)
+    violations.push_back({{"code", verify::code_id(v.code)},
+                          {"line", v.line},
+                          {"column", v.column},
+                          {"input_line", v.input_line},
+                          {"message", v.message}});
+  nlohmann::json out = {{"verified", r.ok()},
+                        {"input_kind", r.kind == verify::InputKind::gcode ? "gcode" : "cldata"},
+                        {"s_changes", r.s_changes},
+                        {"f_changes", r.f_changes},
+                        {"motions", r.motions},
+                        {"violation_count", r.violation_count},
+                        {"changes", std::move(changes)},
+                        {"violations", std::move(violations)}};
+  if (r.kind == verify::InputKind::cldata) out["tolerance_mm"] = r.tolerance_mm;
+  return out;
+}
+
+void run(const Arguments& args) {
+  if (args.input == "-" && args.output == "-")
+    throw CommandError("verify: INPUT and OUTPUT cannot both be '-'");
+  const machines::MachineProfile profile = load_machine(args.machine);
+  verify::Options options;
+  options.dialect = dialect_of(profile);
+  if (!args.dialect.empty()) {
+    const auto d = gcode::dialect_from_name(args.dialect);
+    if (!d) throw CommandError("verify: --dialect: unknown dialect '" + args.dialect + "'");
+    options.dialect = *d;
+  }
+  options.tolerance_mm = args.tolerance;
+  options.output_decimals = profile.output().decimals;
+  const std::string input = read_file(args.input), output = read_file(args.output);
+  const std::string in_name = args.input == "-" ? "<stdin>" : args.input;
+  const std::string out_name = args.output == "-" ? "<stdin>" : args.output;
+  if (post::detect_program_kind(output) == post::ProgramKind::cldata)
+    throw CommandError("verify: " + out_name + " is APT CL data; OUTPUT must be G-code");
+
+  verify::Result result;
+  try {
+    result = post::detect_program_kind(input) == post::ProgramKind::cldata
+                 ? verify::verify_cl(input, output, options, in_name)
+                 : verify::verify_gcode(input, output, options, in_name);
+  } catch (const verify::InputError& e) {
+    throw CommandError(e.what());
+  }
+
+  if (args.json) std::cout << to_json(result).dump(2) << '\n';
+  if (args.changes && !args.json)
+    for (const auto& c : result.changes)
+      std::cout << c.line << ": " << verify::describe(c) << '\n';
+  std::cout.flush();
+  if (!result.ok()) {
+    for (std::size_t k = 0; k < result.violations.size() && k < kShown; ++k)
+      std::cerr << verify::format(result.violations[k], out_name) << '\n';
+    const std::uint64_t shown = std::min<std::uint64_t>(result.violations.size(), kShown);
+    if (result.violation_count > shown)
+      std::cerr << "... and " << result.violation_count - shown << " more\n";
+    throw CommandError("verify: " + out_name + " differs from " + in_name + " in " +
+                           std::to_string(result.violation_count) +
+                           " place(s) other than S and F words",
+                       exit_differences);
+  }
+  if (!args.json)
+    std::cout << "verified: only S and F words differ (" << result.s_changes << " S words, "
+              << result.f_changes << " F words changed)"
+              << (result.kind == verify::InputKind::cldata
+                      ? "; " + std::to_string(result.motions) + " motions match the CL data"
+                      : "")
+              << '\n';
+}
+
+}  // namespace
+
+void add_verify_command(CLI::App& app) {
+  auto args = std::make_shared<Arguments>();
+  auto* cmd = app.add_subcommand(
+      "verify", "Prove that a posted program differs from its input only in S and F words");
+  cmd->description(kDescription);
+  cmd->add_option("INPUT", args->input, "the program given to `vcpost post` (G-code or APT CL)")
+      ->required();
+  cmd->add_option("OUTPUT", args->output, "the program `vcpost post` wrote (G-code)")->required();
+  cmd->add_flag("--changes", args->changes,
+                "print each changed word: `LINE: S12000 -> S9870`, `LINE: + S9870` when added");
+  cmd->add_flag("--json", args->json,
+                "print the result as JSON (changes and differences) on standard output");
+  cmd->add_option("--machine", args->machine,
+                  "machine profile (built-in name or TOML file): the dialect, and the output "
+                  "decimals for CL input")
+      ->capture_default_str();
+  cmd->add_option("--dialect", args->dialect,
+                  "G-code dialect of both programs: rs274ngc, fanuc, mazak (default: the profile's)");
+  cmd->add_option("--tolerance", args->tolerance,
+                  "CL input: largest per-axis distance of an output end point or arc centre from "
+                  "the CL's, mm")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->callback([args] { run(*args); });
+}
+
+}  // namespace vcpost::cli

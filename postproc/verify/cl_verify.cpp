@@ -1,0 +1,304 @@
+// CL in, G-code out: the same motions, spindle on/off and tool changes, one
+// to one and in order; S and F values are free (see verify.h).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <deque>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "postproc/cldata/cl_reader.h"
+#include "postproc/gcode/diagnostics.h"
+#include "postproc/gcode/interpreter.h"
+#include "postproc/program/transcript.h"
+#include "postproc/verify/verify.h"
+#include "postproc/verify/verify_detail.h"
+
+namespace vcpost::verify {
+
+namespace {
+
+using program::Event;
+
+// An S or F value of one side: the CL's number, or the output's word.
+struct SfValue {
+  double value = 0;
+  std::string text;  // the output's word as written; empty for CL values
+  std::uint32_t line = 0, column = 0;
+};
+
+// A motion, spindle on/off or tool change, with the S/F values set since
+// the previous item on the same side.
+struct Item {
+  Event event;
+  std::uint32_t line = 0, column = 0;
+  std::optional<SfValue> s, f;
+};
+
+bool is_item(const Event& e) {
+  return program::is_motion(e) || std::holds_alternative<program::SpindleOn>(e) ||
+         std::holds_alternative<program::SpindleOff>(e) ||
+         std::holds_alternative<program::ChangeTool>(e);
+}
+
+class ClItems {
+ public:
+  ClItems(std::string_view text, const std::string& name) : in_(std::string(text)), reader_(in_, name) {}
+
+  std::optional<Item> next() {
+    try {
+      while (auto event = reader_.next()) {
+        const auto src = program::source_of(*event);
+        if (const auto* s = std::get_if<program::SetSpindleSpeed>(&*event)) {
+          s_ = SfValue{s->rpm, "", src.line, src.column};
+        } else if (const auto* f = std::get_if<program::SetFeedRate>(&*event)) {
+          f_ = SfValue{f->rate, "", src.line, src.column};
+        } else if (is_item(*event)) {
+          Item item{*event, src.line, src.column, std::move(s_), std::move(f_)};
+          s_.reset();
+          f_.reset();
+          return item;
+        }
+      }
+    } catch (const cldata::ClError& e) {
+      throw InputError(e.what());
+    }
+    return std::nullopt;
+  }
+
+ private:
+  std::istringstream in_;
+  cldata::ClReader reader_;
+  std::optional<SfValue> s_, f_;
+};
+
+// The output's items. Throws gcode::GcodeError.
+class GcodeItems {
+ public:
+  GcodeItems(std::string_view text, const gcode::Dialect& dialect) : interpreter_(text, dialect) {}
+
+  std::optional<Item> next() {
+    while (true) {
+      while (at_ < events_.size()) {
+        const Event& e = events_[at_++];
+        const auto src = program::source_of(e);
+        if (std::holds_alternative<program::SetSpindleSpeed>(e)) {
+          s_ = word('S', std::get<program::SetSpindleSpeed>(e).rpm, src);
+        } else if (std::holds_alternative<program::SetFeedRate>(e)) {
+          f_ = word('F', std::get<program::SetFeedRate>(e).rate, src);
+        } else if (is_item(e)) {
+          Item item{e, src.line, src.column, std::move(s_), std::move(f_)};
+          s_.reset();
+          f_.reset();
+          return item;
+        }
+      }
+      events_.clear();
+      at_ = 0;
+      if (done_ || !interpreter_.next(events_)) {
+        done_ = true;
+        return std::nullopt;
+      }
+      for (const auto& w : interpreter_.block().words)
+        if (w.letter == 'S' || w.letter == 'F')
+          (w.letter == 'S' ? s_word_ : f_word_) = Span{w.begin, w.end, w.column};
+    }
+  }
+
+ private:
+  struct Span {
+    std::uint32_t begin = 0, end = 0, column = 0;
+  };
+  SfValue word(char letter, double value, const program::SourceRef& src) const {
+    const gcode::Block& block = interpreter_.block();
+    const Span& span = letter == 'S' ? s_word_ : f_word_;
+    SfValue v{value, std::string(block.text.substr(span.begin, span.end - span.begin)), src.line,
+              span.column};
+    if (v.text.empty()) v.text = std::string(1, letter);
+    return v;
+  }
+
+  gcode::Interpreter interpreter_;
+  std::vector<Event> events_;
+  std::size_t at_ = 0;
+  bool done_ = false;
+  Span s_word_, f_word_;
+  std::optional<SfValue> s_, f_;
+};
+
+std::string number(double v) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.4f", v);
+  std::string text = buffer;
+  while (!text.empty() && text.back() == '0') text.pop_back();
+  if (!text.empty() && text.back() == '.') text.pop_back();
+  return text;
+}
+
+std::string point(const Eigen::Vector3d& p) {
+  return "(" + number(p.x()) + ", " + number(p.y()) + ", " + number(p.z()) + ")";
+}
+
+std::string shown(const Event& e) {
+  std::string text = program::transcript(e);
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+  return text;
+}
+
+const char* kind_name(const Event& e) {
+  if (std::holds_alternative<program::StraightTraverse>(e)) return "rapid";
+  if (std::holds_alternative<program::StraightFeed>(e)) return "feed move";
+  if (std::holds_alternative<program::ArcFeed>(e)) return "arc";
+  if (std::holds_alternative<program::SpindleOn>(e)) return "spindle start";
+  if (std::holds_alternative<program::SpindleOff>(e)) return "spindle stop";
+  return "tool change";
+}
+
+Eigen::Vector3d end_of(const Event& e) {
+  if (const auto* t = std::get_if<program::StraightTraverse>(&e)) return t->end;
+  if (const auto* f = std::get_if<program::StraightFeed>(&e)) return f->end;
+  return std::get<program::ArcFeed>(e).end;
+}
+
+class Comparer {
+ public:
+  Comparer(double tolerance, Result& result, ViolationSink& sink)
+      : tolerance_(tolerance), result_(result), sink_(sink) {}
+
+  // Compares a pair of items; false when the sequences no longer line up.
+  bool compare(const Item& cl, const Item& out) {
+    changes(cl, out);
+    const bool cl_motion = program::is_motion(cl.event), out_motion = program::is_motion(out.event);
+    if (cl_motion != out_motion) {
+      add(cl_motion ? Code::motion_count : Code::spindle_or_tool, cl, out,
+          std::string("the output has a ") + kind_name(out.event) + " where the CL data have a " +
+              kind_name(cl.event) + ": " + shown(out.event) + " vs " + shown(cl.event));
+      return false;
+    }
+    if (!cl_motion) return compare_control(cl, out);
+    ++result_.motions;
+    if (cl.event.index() != out.event.index()) {
+      add(Code::motion_kind, cl, out,
+          std::string("the output has a ") + kind_name(out.event) + " where the CL data have a " +
+              kind_name(cl.event));
+    }
+    const Eigen::Vector3d a = end_of(cl.event), b = end_of(out.event);
+    const double off = (b - a).cwiseAbs().maxCoeff();
+    if (!(off <= tolerance_ + 1e-9)) {
+      add(Code::end_point, cl, out,
+          "end point " + point(b) + " is " + number_um(off) + " from the CL point " + point(a) +
+              " (tolerance " + number_um(tolerance_) + " per axis)");
+    }
+    const auto* ca = std::get_if<program::ArcFeed>(&cl.event);
+    const auto* oa = std::get_if<program::ArcFeed>(&out.event);
+    if (ca && oa) compare_arc(*ca, *oa, cl, out);
+    return true;
+  }
+
+  void add(Code code, const Item& cl, const Item& out, std::string message) {
+    sink_.add(code, out.line, out.column, cl.line, std::move(message));
+  }
+
+ private:
+  static std::string number_um(double mm) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.4f mm", mm);
+    return buffer;
+  }
+
+  bool compare_control(const Item& cl, const Item& out) {
+    if (cl.event.index() != out.event.index()) {
+      add(Code::spindle_or_tool, cl, out,
+          std::string("the output has a ") + kind_name(out.event) + " where the CL data have a " +
+              kind_name(cl.event));
+      return false;
+    }
+    if (!same_event(cl.event, out.event, false))
+      add(Code::spindle_or_tool, cl, out,
+          "the output means " + shown(out.event) + " where the CL data mean " + shown(cl.event));
+    return true;
+  }
+
+  void compare_arc(const program::ArcFeed& a, const program::ArcFeed& b, const Item& cl,
+                   const Item& out) {
+    if (a.plane != b.plane || a.rotation != b.rotation) {
+      add(Code::arc_differs, cl, out,
+          "arc " + shown(out.event) + " differs in plane or direction from the CL's " +
+              shown(cl.event));
+      return;
+    }
+    // The centre's axis component is not meaningful (events.h).
+    Eigen::Vector3d d = (b.centre - a.centre).cwiseAbs();
+    d[a.plane == program::Plane::xy ? 2 : a.plane == program::Plane::xz ? 1 : 0] = 0;
+    if (!(d.maxCoeff() <= tolerance_ + 1e-9))
+      add(Code::arc_differs, cl, out,
+          "arc centre " + point(b.centre) + " is " + number_um(d.maxCoeff()) +
+              " from the CL's " + point(a.centre) + " (tolerance " + number_um(tolerance_) +
+              " per axis)");
+  }
+
+  void changes(const Item& cl, const Item& out) {
+    for (const char letter : {'S', 'F'}) {
+      const auto& o = letter == 'S' ? out.s : out.f;
+      const auto& c = letter == 'S' ? cl.s : cl.f;
+      if (!o) continue;
+      if (c && std::abs(c->value - o->value) <= 1e-9) continue;
+      Change change{o->line, o->column, c ? c->line : cl.line, letter,
+                    c ? letter + number(c->value) : "", o->text, !c};
+      ++(letter == 'S' ? result_.s_changes : result_.f_changes);
+      result_.changes.push_back(std::move(change));
+    }
+  }
+
+  double tolerance_;
+  Result& result_;
+  ViolationSink& sink_;
+};
+
+}  // namespace
+
+Result verify_cl(std::string_view cl_text, std::string_view output, const Options& options,
+                 const std::string& input_name) {
+  Result result;
+  result.kind = InputKind::cldata;
+  result.tolerance_mm =
+      std::max(options.tolerance_mm, 0.5 * std::pow(10.0, -std::clamp(options.output_decimals, 0, 9)));
+  ViolationSink sink(options.max_violations);
+  Comparer comparer(result.tolerance_mm, result, sink);
+  ClItems cl(cl_text, input_name);
+  GcodeItems out(output, options.dialect);
+  while (true) {
+    const std::optional<Item> a = cl.next();
+    std::optional<Item> b;
+    try {
+      b = out.next();
+    } catch (const gcode::GcodeError& e) {
+      const auto& d = e.diagnostic();
+      sink.add(Code::output_unreadable, d.line, d.column, a ? a->line : 0,
+               "the output does not interpret: " + gcode::code_id(d.code, d.severity) + " " +
+                   d.message);
+      break;
+    }
+    if (!a && !b) break;
+    if (!a || !b) {
+      if (b)
+        sink.add(Code::motion_count, b->line, b->column, 0,
+                 std::string("the output has a ") + kind_name(b->event) +
+                     " after the CL data's last (" + shown(b->event) + ")");
+      else
+        sink.add(Code::motion_count,
+                 static_cast<std::uint32_t>(std::count(output.begin(), output.end(), '\n') + 1), 1,
+                 a->line,
+                 std::string("the output ends before the CL data's ") + kind_name(a->event) +
+                     " (" + shown(a->event) + ")");
+      break;
+    }
+    if (!comparer.compare(*a, *b)) break;
+  }
+  sink.move_into(result);
+  return result;
+}
+
+}  // namespace vcpost::verify

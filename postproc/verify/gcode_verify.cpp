@@ -1,0 +1,344 @@
+// G-code in, G-code out: the lexical proof (lines and tokens) and the
+// semantic proof (interpreted events), see verify.h.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "postproc/gcode/diagnostics.h"
+#include "postproc/gcode/interpreter.h"
+#include "postproc/program/transcript.h"
+#include "postproc/verify/lexer.h"
+#include "postproc/verify/verify.h"
+#include "postproc/verify/verify_detail.h"
+
+namespace vcpost::verify {
+
+namespace {
+
+std::string quoted(std::string_view text) { return "'" + std::string(text) + "'"; }
+
+std::string eol_name(std::string_view eol) {
+  if (eol == "\r\n") return "CRLF";
+  if (eol == "\n") return "LF";
+  return "none (end of file)";
+}
+
+int letter_index(char letter) { return letter == 'S' ? 0 : 1; }
+
+// Compares one line of the input with the same line of the output.
+class LineComparer {
+ public:
+  // Appends the line's changes (by column) and violations to `changes` / `sink`.
+  void compare(const Line& in, const Line& out, std::vector<Change>& changes, ViolationSink& sink) {
+    const std::size_t first = changes.size();
+    compare_tokens(in, out, changes, sink);
+    std::stable_sort(changes.begin() + static_cast<std::ptrdiff_t>(first), changes.end(),
+                     [](const Change& a, const Change& b) { return a.column < b.column; });
+  }
+
+ private:
+  void compare_tokens(const Line& in, const Line& out, std::vector<Change>& changes,
+                      ViolationSink& sink) {
+    tokenize(in.text, a_);
+    tokenize(out.text, b_);
+    if (in.eol != out.eol)
+      sink.add(Code::line_ending, out.number, static_cast<std::uint32_t>(out.text.size() + 1),
+               in.number,
+               "line ends with " + eol_name(out.eol) + " where the input has " + eol_name(in.eol));
+
+    std::array<int, 2> count_a{0, 0}, count_b{0, 0};
+    for (const auto& t : a_)
+      if (t.is_sf()) ++count_a[letter_index(t.letter())];
+    for (const auto& t : b_)
+      if (t.is_sf()) ++count_b[letter_index(t.letter())];
+
+    // Words of a letter the input's line lacks are added (as the writer adds
+    // them, with the one blank it puts in front); a second one is repeated.
+    kept_.clear();
+    std::array<bool, 2> seen{false, false};
+    for (std::size_t k = 0; k < b_.size(); ++k) {
+      const Token& t = b_[k];
+      if (!t.is_sf() || count_a[letter_index(t.letter())] > 0) {
+        kept_.push_back(t);
+        continue;
+      }
+      if (!kept_.empty() && kept_.back().kind == TokenKind::blank && kept_.back().text == " ")
+        kept_.pop_back();
+      bool& first = seen[letter_index(t.letter())];
+      if (first) {
+        sink.add(Code::sf_repeated, out.number, t.column, in.number,
+                 quoted(t.text) + " is a second " + std::string(1, t.letter()) +
+                     " word in this block");
+        continue;
+      }
+      first = true;
+      if (!is_plain_positive(t.value()))
+        sink.add(Code::bad_sf_value, out.number, t.column, in.number,
+                 "added " + quoted(t.text) + ": the value is not a plain positive number");
+      changes.push_back(Change{out.number, t.column, in.number, t.letter(), "",
+                               std::string(t.text), true});
+    }
+
+    std::size_t i = 0, j = 0;
+    while (i < a_.size() && j < kept_.size()) {
+      const Token& x = a_[i];
+      const Token& y = kept_[j];
+      const bool same_sf_word = x.is_sf() && y.kind == TokenKind::word && y.text[0] == x.text[0];
+      if (same_sf_word && x.text != y.text) {
+        if (!is_plain_positive(y.value()))
+          sink.add(Code::bad_sf_value, out.number, y.column, in.number,
+                   quoted(x.text) + " became " + quoted(y.text) +
+                       ": the value is not a plain positive number");
+        changes.push_back(Change{out.number, y.column, in.number, x.letter(), std::string(x.text),
+                                 std::string(y.text), false});
+      } else if (x.text != y.text || x.kind != y.kind) {
+        report(in, out, i, j, count_a, count_b, sink);
+        return;
+      }
+      ++i;
+      ++j;
+    }
+    if (i < a_.size() || j < kept_.size()) report(in, out, i, j, count_a, count_b, sink);
+  }
+
+  // The first difference at a_[i] / kept_[j] (either may be past the end).
+  void report(const Line& in, const Line& out, std::size_t i, std::size_t j,
+              const std::array<int, 2>& count_a, const std::array<int, 2>& count_b,
+              ViolationSink& sink) {
+    const Token* x = i < a_.size() ? &a_[i] : nullptr;
+    const Token* y = j < kept_.size() ? &kept_[j] : nullptr;
+    const std::uint32_t column =
+        y ? y->column : static_cast<std::uint32_t>(out.text.size() + 1);
+    auto add = [&](Code code, std::string message) {
+      sink.add(code, out.number, column, in.number, std::move(message));
+    };
+    const std::string in_col = x ? " (input column " + std::to_string(x->column) + ")" : "";
+    if (x && x->is_sf() && !(y && y->kind == TokenKind::word && y->text[0] == x->text[0]) &&
+        count_b[letter_index(x->letter())] < count_a[letter_index(x->letter())]) {
+      add(Code::sf_removed, quoted(x->text) + " removed" + in_col);
+      return;
+    }
+    if (y && y->is_sf() &&
+        count_b[letter_index(y->letter())] > count_a[letter_index(y->letter())]) {
+      add(Code::sf_repeated, quoted(y->text) + " is a second " + std::string(1, y->letter()) +
+                                 " word in this block");
+      return;
+    }
+    if ((x && x->kind == TokenKind::blank) || (y && y->kind == TokenKind::blank)) {
+      if (x && y && x->kind == TokenKind::blank && y->kind == TokenKind::blank)
+        add(Code::whitespace_changed,
+            "blanks " + quoted(x->text) + " became " + quoted(y->text) + in_col);
+      else if (x && x->kind == TokenKind::blank)
+        add(Code::whitespace_changed, "blank " + quoted(x->text) + " removed" + in_col);
+      else
+        add(Code::whitespace_changed, "blank " + quoted(y->text) + " added");
+      return;
+    }
+    if (x && y && x->kind == TokenKind::comment && y->kind == TokenKind::comment) {
+      if (comment_words_only(x->text, y->text))
+        add(Code::word_in_comment, "an S/F word inside the comment changed: " + quoted(x->text) +
+                                       " became " + quoted(y->text) +
+                                       " (comments are never edited)");
+      else
+        add(Code::comment_changed, "comment " + quoted(x->text) + " became " + quoted(y->text));
+      return;
+    }
+    // One token missing or extra, when the rest lines up again after it.
+    auto same = [](const std::vector<Token>& v, std::size_t k, const Token* t) {
+      return t && k < v.size() && v[k].text == t->text;
+    };
+    const bool removed = x && (same(a_, i + 1, y) ||
+                               (i + 1 < a_.size() && a_[i + 1].kind == TokenKind::blank &&
+                                same(a_, i + 2, y)) ||
+                               (!y && i + 1 == a_.size()));
+    const bool added = y && (same(kept_, j + 1, x) ||
+                             (j + 1 < kept_.size() && kept_[j + 1].kind == TokenKind::blank &&
+                              same(kept_, j + 2, x)) ||
+                             (!x && j + 1 == kept_.size()));
+    const auto what = [](const Token& t) {
+      return std::string(t.kind == TokenKind::comment ? "comment " : "") + quoted(t.text);
+    };
+    if (removed && !added) {
+      add(Code::token_removed, what(*x) + " removed" + in_col);
+    } else if (added && !removed) {
+      add(Code::token_added, what(*y) + " added");
+    } else if (x && y) {
+      add(Code::word_changed, quoted(x->text) + " changed to " + quoted(y->text) + in_col);
+    } else if (x) {
+      add(Code::token_removed, "the rest of the line " + quoted(in.text.substr(x->column - 1)) +
+                                   " removed" + in_col);
+    } else {
+      add(Code::token_added, quoted(out.text.substr(y->column - 1)) + " added");
+    }
+  }
+
+  // True when two comments differ only in S/F words (and blanks).
+  bool comment_words_only(std::string_view a, std::string_view b) {
+    auto inner = [](std::string_view c) {
+      if (!c.empty() && (c.front() == '(' || c.front() == ';')) c.remove_prefix(1);
+      if (!c.empty() && c.back() == ')') c.remove_suffix(1);
+      return c;
+    };
+    auto rest = [](std::string_view text, std::vector<Token>& tokens, std::string& out) {
+      tokenize(text, tokens);
+      out.clear();
+      for (const auto& t : tokens)
+        if (!t.is_sf() && t.kind != TokenKind::blank) out += t.text;
+    };
+    rest(inner(a), ca_, sa_);
+    rest(inner(b), cb_, sb_);
+    return sa_ == sb_;
+  }
+
+  std::vector<Token> a_, b_, kept_, ca_, cb_;
+  std::string sa_, sb_;
+};
+
+// True when the pair of lines holds no violation.
+bool equivalent(LineComparer& comparer, const Line& in, const Line& out) {
+  std::vector<Change> changes;
+  ViolationSink scratch(0);
+  comparer.compare(in, out, changes, scratch);
+  return scratch.count() == 0;
+}
+
+void compare_lines(std::string_view input, std::string_view output, Result& result,
+                   ViolationSink& sink) {
+  const std::vector<Line> a = split_lines(input), b = split_lines(output);
+  LineComparer comparer;
+  if (a.size() == b.size()) {
+    for (std::size_t k = 0; k < a.size(); ++k) comparer.compare(a[k], b[k], result.changes, sink);
+    return;
+  }
+  // Lines added or removed: the longest equal head and tail, the rest is
+  // what was added, removed or replaced.
+  const std::size_t n = std::min(a.size(), b.size());
+  std::size_t head = 0;
+  while (head < n && equivalent(comparer, a[head], b[head])) ++head;
+  std::size_t tail = 0;
+  while (tail < n - head &&
+         equivalent(comparer, a[a.size() - 1 - tail], b[b.size() - 1 - tail]))
+    ++tail;
+  for (std::size_t k = 0; k < head; ++k) comparer.compare(a[k], b[k], result.changes, sink);
+  const std::size_t a_mid = a.size() - head - tail, b_mid = b.size() - head - tail;
+  const auto at = static_cast<std::uint32_t>(head + 1);
+  const auto range = [](std::size_t first, std::size_t count) {
+    return count == 1 ? "line " + std::to_string(first)
+                      : "lines " + std::to_string(first) + ".." + std::to_string(first + count - 1);
+  };
+  std::string message;
+  if (a_mid == 0)
+    message = std::to_string(b_mid) + " line(s) added: output " + range(head + 1, b_mid);
+  else if (b_mid == 0)
+    message = std::to_string(a_mid) + " line(s) removed: input " + range(head + 1, a_mid);
+  else
+    message = "input " + range(head + 1, a_mid) + " became output " + range(head + 1, b_mid);
+  message += " (the input has " + std::to_string(a.size()) + " lines, the output " +
+             std::to_string(b.size()) + ")";
+  sink.add(Code::line_count, at, 1, at, message);
+  for (std::size_t k = tail; k > 0; --k)
+    comparer.compare(a[a.size() - k], b[b.size() - k], result.changes, sink);
+}
+
+// Events of one program with SetSpindleSpeed/SetFeedRate left out, pulled
+// one at a time.
+class EventStream {
+ public:
+  EventStream(std::string_view text, const gcode::Dialect& dialect) : interpreter_(text, dialect) {}
+
+  // The next event, or nullptr at the end. Throws GcodeError.
+  const program::Event* next() {
+    while (at_ >= events_.size()) {
+      events_.clear();
+      at_ = 0;
+      if (done_ || !interpreter_.next(events_)) {
+        done_ = true;
+        return nullptr;
+      }
+      std::erase_if(events_, [](const program::Event& e) {
+        return std::holds_alternative<program::SetSpindleSpeed>(e) ||
+               std::holds_alternative<program::SetFeedRate>(e);
+      });
+    }
+    return &events_[at_++];
+  }
+
+ private:
+  gcode::Interpreter interpreter_;
+  std::vector<program::Event> events_;
+  std::size_t at_ = 0;
+  bool done_ = false;
+};
+
+std::string shown(const program::Event& e) {
+  std::string text = program::transcript(e);
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+  return text;
+}
+
+// The semantic proof: identical events but S/F, in the same order. Stops
+// at the first difference (what follows no longer lines up).
+void compare_events(std::string_view input, std::string_view output, const Options& options,
+                    bool same_lines, const std::string& input_name, Result& result,
+                    ViolationSink& sink) {
+  EventStream a(input, options.dialect), b(output, options.dialect);
+  while (true) {
+    const program::Event* x = nullptr;
+    try {
+      x = a.next();
+    } catch (const gcode::GcodeError& e) {
+      throw InputError(gcode::format(e.diagnostic(), input_name));
+    }
+    const program::Event* y = nullptr;
+    try {
+      y = b.next();
+    } catch (const gcode::GcodeError& e) {
+      const auto& d = e.diagnostic();
+      sink.add(Code::output_unreadable, d.line, d.column, x ? program::source_of(*x).line : 0,
+               "the output does not interpret where the input does: " + gcode::code_id(d.code, d.severity) +
+                   " " + d.message);
+      return;
+    }
+    if (!x && !y) return;
+    if (!x || !y) {
+      const auto line = y ? program::source_of(*y).line : 0;
+      sink.add(Code::event_count, line, y ? program::source_of(*y).column : 0,
+               x ? program::source_of(*x).line : 0,
+               y ? "the output has more events than the input, from " + shown(*y)
+                 : "the output ends before the input's " + shown(*x));
+      return;
+    }
+    if (program::is_motion(*x)) ++result.motions;
+    if (!same_event(*x, *y, same_lines)) {
+      const auto sy = program::source_of(*y);
+      sink.add(Code::event_differs, sy.line, sy.column, program::source_of(*x).line,
+               "the output means " + shown(*y) + " where the input means " + shown(*x));
+      return;
+    }
+  }
+}
+
+}  // namespace
+
+Result verify_gcode(std::string_view input, std::string_view output, const Options& options,
+                    const std::string& input_name) {
+  Result result;
+  result.kind = InputKind::gcode;
+  ViolationSink sink(options.max_violations);
+  compare_lines(input, output, result, sink);
+  // The interpreted events carry their lines; with lines added or removed
+  // only the order of events can be compared.
+  const bool same_lines = sink.count_of(Code::line_count) == 0;
+  ViolationSink semantic(options.max_violations);
+  compare_events(input, output, options, same_lines, input_name, result, semantic);
+  // The second proof's finding is news only on a line the first did not flag.
+  for (const auto& v : semantic.violations())
+    if (!sink.has_line(v.line)) sink.add(v.code, v.line, v.column, v.input_line, v.message);
+  for (const auto& c : result.changes) ++(c.letter == 'S' ? result.s_changes : result.f_changes);
+  sink.move_into(result);
+  return result;
+}
+
+}  // namespace vcpost::verify

@@ -1,0 +1,141 @@
+#include "postproc/verify/lexer.h"
+
+namespace vcpost::verify {
+
+namespace {
+
+constexpr bool is_blank(char c) { return c == ' ' || c == '\t'; }
+constexpr bool is_digit(char c) { return c >= '0' && c <= '9'; }
+constexpr bool is_alpha(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
+constexpr char upper(char c) { return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 32) : c; }
+
+// End of a word's value starting at `k` (after the letter and blanks), or
+// `k` when no value starts there. The same grammar as the writer's word
+// spans: sign, then [expression], #parameter or digits/point with blanks
+// between digits.
+std::size_t value_end(std::string_view s, std::size_t k) {
+  const std::size_t start = k;
+  if (k < s.size() && (s[k] == '-' || s[k] == '+')) ++k;
+  if (k < s.size() && s[k] == '[') {
+    int depth = 0;
+    for (; k < s.size(); ++k) {
+      if (s[k] == '[') ++depth;
+      if (s[k] == ']' && --depth == 0) return k + 1;
+    }
+    return s.size();
+  }
+  if (k < s.size() && s[k] == '#') {
+    ++k;
+    if (k < s.size() && s[k] == '<') {
+      while (k < s.size() && s[k] != '>') ++k;
+      return k < s.size() ? k + 1 : k;
+    }
+    while (k < s.size() && (is_digit(s[k]) || s[k] == '#')) ++k;
+    return k;
+  }
+  const std::size_t digits = k;
+  while (k < s.size() && (is_digit(s[k]) || s[k] == '.' ||
+                          (is_blank(s[k]) && k + 1 < s.size() && k > digits &&
+                           (is_digit(s[k + 1]) || s[k + 1] == '.'))))
+    ++k;
+  return k > digits ? k : start;
+}
+
+}  // namespace
+
+char Token::letter() const { return kind == TokenKind::word ? upper(text[0]) : '\0'; }
+
+std::string_view Token::value() const {
+  if (kind != TokenKind::word) return {};
+  std::size_t k = 1;
+  while (k < text.size() && is_blank(text[k])) ++k;
+  return text.substr(k);
+}
+
+std::vector<Line> split_lines(std::string_view text) {
+  std::vector<Line> lines;
+  std::size_t at = 0;
+  std::uint32_t number = 0;
+  while (at < text.size()) {
+    std::size_t nl = text.find('\n', at);
+    Line line;
+    line.number = ++number;
+    if (nl == std::string_view::npos) {
+      line.text = text.substr(at);
+      at = text.size();
+    } else {
+      std::size_t end = nl;
+      if (end > at && text[end - 1] == '\r') --end;
+      line.text = text.substr(at, end - at);
+      line.eol = text.substr(end, nl + 1 - end);
+      at = nl + 1;
+    }
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+void tokenize(std::string_view s, std::vector<Token>& out) {
+  out.clear();
+  std::size_t i = 0;
+  int depth = 0;
+  auto push = [&](TokenKind kind, std::size_t begin, std::size_t end) {
+    out.push_back(Token{kind, s.substr(begin, end - begin), static_cast<std::uint32_t>(begin + 1)});
+  };
+  while (i < s.size()) {
+    const char c = s[i];
+    const std::size_t begin = i;
+    if (is_blank(c)) {
+      while (i < s.size() && is_blank(s[i])) ++i;
+      push(TokenKind::blank, begin, i);
+    } else if (c == '(') {
+      const std::size_t close = s.find(')', i);
+      i = close == std::string_view::npos ? s.size() : close + 1;
+      push(TokenKind::comment, begin, i);
+    } else if (c == ';') {
+      i = s.size();
+      push(TokenKind::comment, begin, i);
+    } else if (c == '#' && i + 1 < s.size() && s[i + 1] == '<') {
+      // A named parameter: its letters are no words (#<f1> holds no F word).
+      const std::size_t close = s.find('>', i);
+      i = close == std::string_view::npos ? s.size() : close + 1;
+      push(TokenKind::other, begin, i);
+    } else if (is_alpha(c)) {
+      if (depth == 0 && !(i + 1 < s.size() && is_alpha(s[i + 1]))) {
+        std::size_t k = i + 1;
+        while (k < s.size() && is_blank(s[k])) ++k;
+        const std::size_t end = value_end(s, k);
+        if (end > k) {
+          i = end;
+          push(TokenKind::word, begin, i);
+          continue;
+        }
+      }
+      while (i < s.size() && is_alpha(s[i])) ++i;
+      push(TokenKind::name, begin, i);
+    } else {
+      if (c == '[') ++depth;
+      if (c == ']' && depth > 0) --depth;
+      ++i;
+      push(TokenKind::other, begin, i);
+    }
+  }
+}
+
+bool is_plain_positive(std::string_view v) {
+  bool digit = false, nonzero = false, point = false;
+  for (char c : v) {
+    if (c == '.') {
+      if (point) return false;
+      point = true;
+    } else if (is_digit(c)) {
+      digit = true;
+      nonzero = nonzero || c != '0';
+    } else {
+      return false;
+    }
+  }
+  return digit && nonzero;
+}
+
+}  // namespace vcpost::verify

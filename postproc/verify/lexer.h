@@ -1,0 +1,47 @@
+// The lexical layer of verification: program text -> lines -> tokens, with
+// no evaluation. Deliberately independent of gcode::read_block: a second
+// reading of the same bytes, so that a slip in one cannot hide in the other.
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+namespace vcpost::verify {
+
+struct Line {
+  std::string_view text;  // without its terminator
+  std::string_view eol;   // "\n", "\r\n" or "" (last line without one)
+  std::uint32_t number = 0;
+};
+
+// All lines of `text`; a final terminator does not start another line.
+std::vector<Line> split_lines(std::string_view text);
+
+enum class TokenKind {
+  blank,    // a run of spaces and tabs
+  comment,  // "(...)" (to the end of the line when unclosed) or ";..." to the end
+  word,     // a letter and its value at bracket depth 0, S #<rpm>, F[#1*2]
+  name,     // a run of letters, or a letter without a value (GOTO, EQ, THEN)
+  other,    // any other byte: % / # = [ ] digits outside words ...
+};
+
+struct Token {
+  TokenKind kind = TokenKind::other;
+  std::string_view text;     // the token's bytes
+  std::uint32_t column = 0;  // 1-based
+  char letter() const;       // word: upper-case letter; 0 otherwise
+  std::string_view value() const;  // word: the bytes after the letter (blanks trimmed in front)
+  bool is_sf() const { return letter() == 'S' || letter() == 'F'; }
+};
+
+// Cuts one line (no terminator) into tokens; concatenated, their texts are
+// the line. Never throws.
+void tokenize(std::string_view line, std::vector<Token>& out);
+
+// A plain positive number as vcpost writes S and F: digits with at most one
+// decimal point, at least one digit, value > 0 (no sign, no blanks, no
+// expression or parameter).
+bool is_plain_positive(std::string_view value);
+
+}  // namespace vcpost::verify

@@ -1,0 +1,136 @@
+// `vcpost verify` as a library call: proves that an output program differs
+// from its input only in S and F words (G-code in, G-code out), or that it
+// moves like the CL data it was written from (CL in, G-code out).
+//
+// G-code in, G-code out: two independent proofs.
+//  1. Lexical: both texts are cut into lines and each line into tokens
+//     (words, blanks, comments, other bytes). Outside S/F words every byte
+//     must be equal: the same lines, line endings, words, blanks, comments.
+//     An S/F word may change its value (to a plain positive number) or be
+//     added where the input's block had none (as gcode::write_patched adds
+//     it); it may not be removed or repeated, and nothing inside a comment
+//     may change.
+//  2. Semantic: both programs are run through the interpreter with the same
+//     dialect; the event streams without SetSpindleSpeed/SetFeedRate must be
+//     identical (positions compared exactly, source lines too).
+// CL in, G-code out: the CL events and the output's events must hold the
+// same motions one to one (rapid/feed/arc; end points and arc centres
+// within the tolerance, arc plane and direction equal) and the same spindle
+// on/off and tool changes in the same order; S and F values are free.
+//
+// No I/O: texts in, a Result out. Units: mm.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "postproc/gcode/dialect.h"
+
+namespace vcpost::verify {
+
+// Stable codes of verification findings (never renumber). Identifiers are
+// "E7101" style; all are errors (a verification either holds or fails).
+enum class Code : std::uint16_t {
+  // 71xx: lexical comparison (G-code in, G-code out)
+  line_count = 7101,          // lines added or removed
+  line_ending = 7102,         // a line terminator changed (CRLF vs LF, final newline)
+  word_changed = 7103,        // a word other than S/F with another letter or value
+  token_added = 7104,         // a word, comment or other token only in the output
+  token_removed = 7105,       // a word, comment or other token missing from the output
+  whitespace_changed = 7106,  // blanks added, removed or changed
+  comment_changed = 7107,     // a comment's text changed
+  word_in_comment = 7108,     // an S/F word inside a comment changed or inserted
+  sf_removed = 7109,          // an S or F word of the input is missing
+  sf_repeated = 7110,         // a second S or F word in one block
+  bad_sf_value = 7111,        // a new S/F value that is not a plain positive number
+  // 712x: interpreted comparison (G-code in, G-code out)
+  event_differs = 7121,       // a motion or other non-S/F event differs
+  event_count = 7122,         // one program has events the other lacks
+  output_unreadable = 7123,   // the output fails to interpret where the input does not
+  // 713x: CL in, G-code out
+  motion_count = 7131,        // a motion (or spindle/tool event) only on one side
+  end_point = 7132,           // a motion's end point beyond the tolerance
+  motion_kind = 7133,         // rapid vs feed vs arc
+  arc_differs = 7134,         // arc centre beyond the tolerance, plane or direction
+  spindle_or_tool = 7135,     // spindle on/off or tool change different or out of order
+};
+
+struct CodeInfo {
+  Code code;
+  std::string_view summary;
+};
+
+// The table of all codes, in code order.
+const std::vector<CodeInfo>& code_table();
+const CodeInfo& info(Code code);
+std::string code_id(Code code);  // "E7103"
+
+// One S or F word that the output changed or added.
+struct Change {
+  std::uint32_t line = 0;        // output line, 1-based
+  std::uint32_t column = 0;      // output column of the word's letter, 1-based
+  std::uint32_t input_line = 0;  // input line (G-code) or CL record line
+  char letter = 'S';             // 'S' or 'F' (upper case)
+  std::string old_text;          // the input's word (e.g. "S12000"); empty when added
+  std::string new_text;          // the output's word (e.g. "S9870")
+  bool added = false;            // the input's block (CL position) had no such word
+};
+
+struct Violation {
+  Code code = Code::word_changed;
+  std::uint32_t line = 0;        // output line, 1-based (0: no place, e.g. end of file)
+  std::uint32_t column = 0;      // output column, 1-based
+  std::uint32_t input_line = 0;  // the input's line (CL record) it was compared with
+  std::string message;
+};
+
+enum class InputKind { gcode, cldata };
+
+struct Result {
+  InputKind kind = InputKind::gcode;
+  std::vector<Change> changes;        // in output order
+  std::uint64_t s_changes = 0, f_changes = 0;
+  std::vector<Violation> violations;  // at most Options::max_violations, in output order
+  std::uint64_t violation_count = 0;  // all of them
+  std::uint64_t motions = 0;          // motions compared by the semantic proof
+  double tolerance_mm = 0;            // CL: the end-point tolerance applied
+  bool ok() const { return violation_count == 0; }
+};
+
+struct Options {
+  gcode::Dialect dialect = gcode::rs274ngc_dialect();  // of both (G-code) or the output (CL)
+  // CL only: largest per-axis distance of an output end point (arc centre)
+  // from the CL's, mm. Raised to half a step of the output's grid
+  // (0.5 * 10^-output_decimals) when smaller: a correct output written
+  // with that many decimals is off by up to that much on each axis.
+  double tolerance_mm = 0.0005;
+  int output_decimals = 4;
+  std::size_t max_violations = 1000;  // kept in Result::violations (all are counted)
+};
+
+// A program that cannot be read at all (the input's parse error, a CL
+// reader error); what() is "file:line:col: error[E....]: message".
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// G-code input vs G-code output. Throws InputError when the input does not
+// interpret (an output that does not is a violation).
+Result verify_gcode(std::string_view input, std::string_view output, const Options& options,
+                    const std::string& input_name = "input");
+
+// APT CL input vs G-code output. Throws InputError when the CL data do not read.
+Result verify_cl(std::string_view cl_text, std::string_view output, const Options& options,
+                 const std::string& input_name = "input");
+
+// "<file>:<line>:<col>: error[E7103]: <message> (input line N)".
+std::string format(const Violation& violation, std::string_view output_name);
+
+// "S12000 -> S9870" or "+ S9870".
+std::string describe(const Change& change);
+
+}  // namespace vcpost::verify

@@ -32,6 +32,7 @@ void add_moves_command(CLI::App& app);
 void add_machines_command(CLI::App& app);
 void add_post_command(CLI::App& app);
 void add_report_command(CLI::App& app);
+void add_verify_command(CLI::App& app);
 
 // The profile of `--machine NAME|FILE`: a shipped profile's name, or a
 // TOML file. Throws CommandError (exit 2) naming file:line:col and the key.

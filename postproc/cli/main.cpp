@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   add_machines_command(app);
   add_post_command(app);
   add_report_command(app);
+  add_verify_command(app);
 
   try {
     app.parse(argc, argv);

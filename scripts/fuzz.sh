@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (the "fuzz" preset: clang-14, ASan + UBSan)
+# and runs each for DURATION seconds (default 60) on the seed corpus that
+# fuzz/collect_corpus.sh gathers from the tests' inputs. Fails on any
+# finding: crash, sanitizer report, undocumented exception, an input slower
+# than 5 s or above 2 GB; the input is left in build/fuzz/findings/<target>/
+# (save it under fuzz/regressions/<target>/ with a regression test).
+# Prints the executions per target. Longer runs: README, "Hardening".
+# Usage: scripts/fuzz.sh [DURATION] [TARGET...]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+duration="${1:-60}"
+shift || true
+targets=("$@")
+[ ${#targets[@]} -gt 0 ] || targets=(gcode_fuzz cldata_fuzz profile_fuzz)
+
+bash scripts/setup.sh
+cmake --preset fuzz >/dev/null
+cmake --build --preset fuzz -j "$(nproc)"
+build=build/fuzz
+bash fuzz/collect_corpus.sh "$build"
+
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+failed=()
+for t in "${targets[@]}"; do
+  corpus="$build/corpus/$t"
+  findings="$build/findings/$t"
+  log="$build/logs/$t.log"
+  mkdir -p "$corpus" "$findings" "$(dirname "$log")"
+  status=0
+  "$build/fuzz/$t" "$corpus" "$build/seeds/$t" -dict="fuzz/${t%_fuzz}.dict" \
+    -max_total_time="$duration" -timeout=5 -rss_limit_mb=2048 -print_final_stats=1 \
+    -artifact_prefix="$findings/" >"$log" 2>&1 || status=$?
+  runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+  units=$(ls "$corpus" | wc -l)
+  if [ "$status" -eq 0 ]; then
+    echo "fuzz: $t ${runs:-?} executions in ${duration} s, corpus $units inputs, no finding"
+  else
+    echo "fuzz: $t FINDING (exit $status) after ${runs:-?} executions; log $log; inputs:"
+    ls -1 "$findings" | sed 's/^/  /'
+    grep -m1 -A25 -E '^==[0-9]+==ERROR|runtime error|uncaught exception|ALARM|out-of-memory|deadly signal' \
+      "$log" || tail -30 "$log"
+    failed+=("$t")
+  fi
+done
+if [ ${#failed[@]} -gt 0 ]; then
+  echo "fuzz: findings in ${failed[*]}"
+  exit 1
+fi

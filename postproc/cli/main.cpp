@@ -4,14 +4,21 @@
 #include <iostream>
 
 #include "postproc/cli/commands.h"
+#include "postproc/cli/interrupt.h"
 
 int main(int argc, char** argv) {
   using namespace vcpost::cli;
+  install_signal_handlers();  // before any thread: interrupts leave no temporary file
   CLI::App app{
       "vcpost: keeps the real cutting speed constant in 3-axis ball-end finishing by\n"
       "rewriting the spindle speed from the tool's working diameter at every point."};
   app.require_subcommand(1);
   app.set_version_flag("--version", "vcpost 0.1.0");
+  app.footer(
+      "Exit codes: 0 done; 1 warnings with --strict; 2 bad usage or input, or an output that\n"
+      "cannot be written (missing or read-only folder, disk full, file-size limit); 3 internal\n"
+      "error; killed by SIGINT/SIGTERM/SIGHUP/SIGPIPE after removing unfinished outputs\n"
+      "(the shell shows 128 + the signal's number: 130 for SIGINT, 143 for SIGTERM).");
   add_deff_command(app);
   add_moves_command(app);
   add_machines_command(app);

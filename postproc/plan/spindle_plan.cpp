@@ -6,6 +6,9 @@
 #include <limits>
 #include <string>
 
+#include "postproc/plan/plan_rules.h"
+#include "postproc/plan/streaming_plan.h"
+
 namespace vcpost::plan {
 
 std::string_view to_string(Bound b) {
@@ -40,16 +43,9 @@ double change_threshold(const machines::SpindleSpec& spec, double s_rpm) {
 
 namespace {
 
-// Values on the S grid (multiples of the resolution). The small allowance
-// keeps a value computed as 7345 - 1e-12 on 7345 instead of 7344.
-struct Grid {
-  double res;
-  double floor(double x) const { return std::floor(x / res + 1e-9) * res; }
-  double ceil(double x) const { return std::ceil(x / res - 1e-9) * res; }
-};
-
-// Comparisons of speeds on the grid: well under any resolution.
-constexpr double kEps = 1e-6;
+using detail::Grid;
+using detail::kEps;
+using detail::spindle_on;
 
 struct BlockSpan {
   std::size_t first = 0;  // first sample
@@ -64,24 +60,9 @@ struct Word {
 };
 
 void validate(std::span<const Sample> samples) {
-  auto fail = [](std::size_t i, const char* what) {
-    throw PlanError("sample " + std::to_string(i) + ": " + what);
-  };
-  for (std::size_t i = 0; i < samples.size(); ++i) {
-    const auto& s = samples[i];
-    if (!std::isfinite(s.time_s)) fail(i, "time is not finite");
-    if (!std::isfinite(s.program_rpm) || s.program_rpm < 0)
-      fail(i, "program S must be finite and >= 0");
-    if (s.target_rpm && (!std::isfinite(*s.target_rpm) || *s.target_rpm <= 0))
-      fail(i, "target speed must be finite and > 0");
-    if (i > 0) {
-      if (s.time_s < samples[i - 1].time_s) fail(i, "time goes backwards");
-      if (s.block < samples[i - 1].block) fail(i, "block index goes backwards");
-    }
-  }
+  for (std::size_t i = 0; i < samples.size(); ++i)
+    detail::check_sample(i, samples[i], i > 0 ? &samples[i - 1] : nullptr);
 }
-
-bool spindle_on(const Sample& s) { return s.spindle != SpindleState::off && s.program_rpm > 0; }
 
 // Plans one run: blocks [kb, ke] of `blocks`, writing into plan.blocks.
 class RunPlanner {
@@ -299,31 +280,16 @@ class RunPlanner {
 
   Bound bound(std::size_t k, const BlockPlan& bp, bool lowered) const {
     const auto& b = blocks_[kb_ + k];
-    bool any_target = false;
-    bool all_rapid = true;
-    double ceiling = std::numeric_limits<double>::infinity();
+    detail::BlockFacts facts;
+    facts.ceiling = std::numeric_limits<double>::infinity();
     for (std::size_t i = b.first; i <= b.last; ++i) {
-      any_target = any_target || samples_[i].target_rpm.has_value();
-      all_rapid = all_rapid && samples_[i].rapid;
-      ceiling = std::min(ceiling, ceiling_[i - ia_]);
+      facts.any_target = facts.any_target || samples_[i].target_rpm.has_value();
+      facts.all_rapid = facts.all_rapid && samples_[i].rapid;
+      facts.ceiling = std::min(facts.ceiling, ceiling_[i - ia_]);
     }
-    if (!any_target) return all_rapid ? Bound::rapid : Bound::program;
-    const double target = *bp.target_rpm;
-    const double s = bp.planned_rpm;
-    if (target < g_min_ - kEps) return Bound::n_min;
-    const bool clamped_max = target > g_max_ + kEps;
-    const double deficit = ceiling - s;
-    const double band = change_threshold(spec_, ceiling) + spec_.s_resolution_rpm;
-    if (deficit <= kEps) return clamped_max ? Bound::n_max : Bound::none;
-    if (s >= grid_.floor(ceiling) - kEps) return clamped_max ? Bound::n_max : Bound::resolution;
-    if (deficit <= band + kEps) return clamped_max ? Bound::n_max : Bound::hysteresis;
-    if (lowered) return Bound::slew;
-    // The larger share of the deficit names the limit: the curve under the
-    // ceiling over the block's span (acceleration, or the slow-down before a
-    // lower target), or the staircase under the curve (the word rate).
-    const double slew_part = ceiling - curve_min_[k];
-    const double rate_part = curve_min_[k] - s;
-    return slew_part >= rate_part ? Bound::slew : Bound::rate;
+    facts.curve_min = curve_min_[k];
+    return detail::classify_bound(spec_, g_min_, g_max_, facts, bp.target_rpm, bp.planned_rpm,
+                                  lowered);
   }
 
   std::span<const Sample> samples_;
@@ -344,6 +310,47 @@ class RunPlanner {
 };
 
 }  // namespace
+
+namespace detail {
+
+void check_sample(std::size_t index, const Sample& s, const Sample* prev) {
+  auto fail = [index](const char* what) {
+    throw PlanError("sample " + std::to_string(index) + ": " + what);
+  };
+  if (!std::isfinite(s.time_s)) fail("time is not finite");
+  if (!std::isfinite(s.program_rpm) || s.program_rpm < 0) fail("program S must be finite and >= 0");
+  if (s.target_rpm && (!std::isfinite(*s.target_rpm) || *s.target_rpm <= 0))
+    fail("target speed must be finite and > 0");
+  if (prev) {
+    if (s.time_s < prev->time_s) fail("time goes backwards");
+    if (s.block < prev->block) fail("block index goes backwards");
+  }
+}
+
+Bound classify_bound(const machines::SpindleSpec& spec, double g_min, double g_max,
+                     const BlockFacts& facts, std::optional<double> target_rpm, double s,
+                     bool lowered) {
+  if (!facts.any_target) return facts.all_rapid ? Bound::rapid : Bound::program;
+  const Grid grid{spec.s_resolution_rpm};
+  const double target = *target_rpm;
+  const double ceiling = facts.ceiling;
+  if (target < g_min - kEps) return Bound::n_min;
+  const bool clamped_max = target > g_max + kEps;
+  const double deficit = ceiling - s;
+  const double band = change_threshold(spec, ceiling) + spec.s_resolution_rpm;
+  if (deficit <= kEps) return clamped_max ? Bound::n_max : Bound::none;
+  if (s >= grid.floor(ceiling) - kEps) return clamped_max ? Bound::n_max : Bound::resolution;
+  if (deficit <= band + kEps) return clamped_max ? Bound::n_max : Bound::hysteresis;
+  if (lowered) return Bound::slew;
+  // The larger share of the deficit names the limit: the curve under the
+  // ceiling over the block's span (acceleration, or the slow-down before a
+  // lower target), or the staircase under the curve (the word rate).
+  const double slew_part = ceiling - facts.curve_min;
+  const double rate_part = facts.curve_min - s;
+  return slew_part >= rate_part ? Bound::slew : Bound::rate;
+}
+
+}  // namespace detail
 
 SpindlePlan plan_spindle(std::span<const Sample> samples, const machines::SpindleSpec& spec) {
   validate(samples);
@@ -423,30 +430,10 @@ std::vector<BlockFeed> plan_feeds(const SpindlePlan& plan, std::span<const Block
                                   const machines::FeedSpec& feed, double step_mm_per_min) {
   if (inputs.size() != plan.blocks.size())
     throw PlanError("plan_feeds: one feed input per plan block is needed");
-  if (!(step_mm_per_min > 0)) throw PlanError("plan_feeds: the F step must be > 0");
-  const Grid grid{step_mm_per_min};
-  std::vector<BlockFeed> out(inputs.size());
-  std::optional<double> in_effect;
-  for (std::size_t k = 0; k < inputs.size(); ++k) {
-    const auto& bp = plan.blocks[k];
-    const auto& in = inputs[k];
-    auto& o = out[k];
-    o.f_mm_per_min = in.program_f_mm_per_min;
-    const bool coupled = bp.target_rpm && bp.bound != Bound::off && bp.bound != Bound::rapid &&
-                         bp.bound != Bound::program && in.program_f_mm_per_min > 0;
-    if (coupled) {
-      const double fz =
-          fz_mm ? *fz_mm : feed_per_tooth(in.program_f_mm_per_min, in.program_s_rpm, teeth);
-      const auto c = coupled_feed(fz, teeth, bp.planned_rpm, feed);
-      o.bound = c.bound;
-      // Down to the output's step, but never under f_min.
-      o.f_mm_per_min = std::max(grid.floor(c.f_mm_per_min), grid.ceil(feed.f_min_mm_per_min));
-    }
-    if (o.f_mm_per_min > 0) {
-      o.f_word = !in_effect || std::abs(*in_effect - o.f_mm_per_min) > step_mm_per_min * 1e-6;
-      in_effect = o.f_mm_per_min;
-    }
-  }
+  StreamingFeedPlanner planner(fz_mm, teeth, feed, step_mm_per_min);
+  std::vector<BlockFeed> out;
+  out.reserve(inputs.size());
+  for (std::size_t k = 0; k < inputs.size(); ++k) out.push_back(planner.next(plan.blocks[k], inputs[k]));
   return out;
 }
 

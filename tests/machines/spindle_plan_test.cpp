@@ -12,6 +12,7 @@
 #include <random>
 
 #include "machines/builtin.h"
+#include "tests/machines/plan_timeline_support.h"
 
 namespace vcpost::plan {
 namespace {
@@ -462,64 +463,15 @@ TEST(SpindlePlan, RejectsABrokenTimeline) {
   EXPECT_TRUE(plan_spindle({}, spec).blocks.empty());
 }
 
-// Random timelines: blocks of random length with 1..4 samples, targets as a
-// random walk with jumps, beyond the range now and then, rapids, air moves,
-// tool changes, M5 and S0 stretches, on the shipped profiles and on random
-// specs (coarse resolutions, slow spindles, tight rates).
+// Random timelines (plan_timeline_support.h) on the shipped profiles and on
+// random specs.
 TEST(SpindlePlanProperty, RandomTimelinesKeepEveryInvariant) {
   std::mt19937 rng(20240605);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  const auto shipped = machines::builtin_profiles();
   std::size_t checked_blocks = 0;
   for (int round = 0; round < 300; ++round) {
     SCOPED_TRACE("round " + std::to_string(round));
-    SpindleSpec spec;
-    if (round % 2 == 0) {
-      spec = machines::builtin_profile(
-                 shipped[static_cast<std::size_t>(round / 2) % shipped.size()].name)
-                 .spindle();
-    } else {
-      spec.n_min_rpm = 10 + 2000 * u(rng);
-      spec.n_max_rpm = spec.n_min_rpm + 100 + 20000 * u(rng);
-      spec.acceleration_rpm_per_s = 50 + 8000 * u(rng);
-      spec.deceleration_rpm_per_s = 50 + 8000 * u(rng);
-      const double resolutions[] = {0.001, 0.5, 1, 5, 10, 50};
-      spec.s_resolution_rpm = resolutions[static_cast<std::size_t>(u(rng) * 6) % 6];
-      spec.min_change_rpm = 20 * u(rng);
-      spec.min_change_percent = 3 * u(rng);
-      spec.max_changes_per_s = 0.5 + 30 * u(rng);
-    }
-    std::vector<Sample> samples;
-    double t = 0.0;
-    double target = spec.n_min_rpm + (spec.n_max_rpm - spec.n_min_rpm) * u(rng);
-    SpindleState state = SpindleState::cw;
-    double program = 6000;
-    const std::size_t blocks = 50 + static_cast<std::size_t>(u(rng) * 400);
-    for (std::size_t k = 0; k < blocks; ++k) {
-      const double len = u(rng) < 0.2 ? 0.5 * u(rng) : 0.05 * u(rng) * u(rng);
-      const bool rapid = u(rng) < 0.05;
-      const bool air = !rapid && u(rng) < 0.05;
-      const bool tool_change = u(rng) < 0.01;
-      if (u(rng) < 0.02) state = state == SpindleState::off ? SpindleState::cw : SpindleState::off;
-      if (u(rng) < 0.01) state = SpindleState::ccw;
-      if (u(rng) < 0.02) program = u(rng) < 0.3 ? 0.0 : 1000 + 9000 * u(rng);
-      const int n = 1 + static_cast<int>(u(rng) * 4);
-      for (int i = 0; i < n; ++i) {
-        Sample s;
-        s.time_s = t + len * i / n;
-        s.block = k;
-        s.rapid = rapid;
-        s.tool_change = tool_change && i == 0;
-        s.spindle = state;
-        s.program_rpm = program;
-        if (u(rng) < 0.03) target *= 0.5 + u(rng);  // a jump
-        target *= 1.0 + 0.02 * (u(rng) - 0.5);
-        target = std::clamp(target, 5.0, 40000.0);
-        if (!rapid && !air) s.target_rpm = target;
-        samples.push_back(s);
-      }
-      t += len;
-    }
+    const SpindleSpec spec = testing::property_spec(round, rng);
+    const auto samples = testing::random_timeline(spec, rng);
     const auto plan = plan_spindle(samples, spec);
     checked_blocks += plan.blocks.size();
     check_invariants(samples, plan, spec);

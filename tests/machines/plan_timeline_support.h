@@ -1,0 +1,24 @@
+// Random spindle specs and timelines for the planner's property tests
+// (spindle_plan_test.cpp, streaming_plan_test.cpp).
+#pragma once
+
+#include <random>
+#include <vector>
+
+#include "machines/profile.h"
+#include "postproc/plan/spindle_plan.h"
+
+namespace vcpost::plan::testing {
+
+// Round `round`'s spec: a shipped profile on even rounds, a random one
+// (coarse resolutions, slow spindles, tight rates) on odd ones.
+machines::SpindleSpec property_spec(int round, std::mt19937& rng);
+
+// Blocks of random length with 1..4 samples, targets as a random walk with
+// jumps, beyond the range now and then, rapids, air moves, tool changes,
+// M5 and S0 stretches, direction changes. `time_scale` stretches every
+// block (0.01: dense samples, 20: sparse ones).
+std::vector<Sample> random_timeline(const machines::SpindleSpec& spec, std::mt19937& rng,
+                                    double time_scale = 1.0);
+
+}  // namespace vcpost::plan::testing

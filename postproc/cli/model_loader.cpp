@@ -1,5 +1,6 @@
 #include "postproc/cli/model_loader.h"
 
+#include <cctype>
 #include <fstream>
 
 #include "geometry/mesh/mesh_model.h"
@@ -19,15 +20,24 @@ bool looks_like_step(const std::filesystem::path& path) {
   return head.find("ISO-10303-21") != std::string::npos;
 }
 
+// A .step/.stp/.p21 name is a promise of STEP: a file that breaks it gets
+// the STEP loader's message (E41xx), not the STL reader's.
+bool named_step(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".step" || ext == ".stp" || ext == ".p21";
+}
+
 }  // namespace
 
 LoadedModel load_model(const std::filesystem::path& path) {
   std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) {
+  const bool step = named_step(path);
+  if (!step && !std::filesystem::is_regular_file(path, error)) {
     throw CommandError("--model: '" + path.string() + "': no such file");
   }
   try {
-    if (looks_like_step(path)) {
+    if (step || looks_like_step(path)) {
       auto model = std::make_unique<occt::BrepModel>(occt::BrepModel::load_step(path));
       const auto& info = model->info();
       std::string description = std::to_string(info.faces) + " faces";

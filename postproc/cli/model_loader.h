@@ -1,5 +1,6 @@
 // Loads the finished-surface model a toolpath is posted against: STEP
-// through OpenCASCADE, STL as a triangle mesh, chosen by content.
+// through OpenCASCADE, STL as a triangle mesh, chosen by content (a
+// .step/.stp/.p21 name always goes to the STEP loader and its E41xx errors).
 #pragma once
 
 #include <filesystem>

@@ -39,8 +39,8 @@ std::vector<Sample> timeline(std::size_t samples) {
       s.rapid = rapid;
       s.program_rpm = 8000;
       if (!rapid && !air)
-        s.target_rpm = 7000.0 + 3000.0 * std::sin(0.3 * s.time_s) + 800.0 * std::sin(9.0 * s.time_s) +
-                       50.0 * u(rng);
+        s.target_rpm = 7000.0 + 3000.0 * std::sin(0.3 * s.time_s) +
+                       800.0 * std::sin(9.0 * s.time_s) + 50.0 * u(rng);
       out.push_back(s);
     }
     t += len;

@@ -42,7 +42,6 @@ struct BlockFacts {
 // The limit that decided planned S `s` of a block whose smallest target is
 // `target`; `lowered`: the S word in effect was lowered by the slew passes.
 Bound classify_bound(const machines::SpindleSpec& spec, double g_min, double g_max,
-                     const BlockFacts& facts, std::optional<double> target, double s,
-                     bool lowered);
+                     const BlockFacts& facts, std::optional<double> target, double s, bool lowered);
 
 }  // namespace vcpost::plan::detail

@@ -433,7 +433,8 @@ std::vector<BlockFeed> plan_feeds(const SpindlePlan& plan, std::span<const Block
   StreamingFeedPlanner planner(fz_mm, teeth, feed, step_mm_per_min);
   std::vector<BlockFeed> out;
   out.reserve(inputs.size());
-  for (std::size_t k = 0; k < inputs.size(); ++k) out.push_back(planner.next(plan.blocks[k], inputs[k]));
+  for (std::size_t k = 0; k < inputs.size(); ++k)
+    out.push_back(planner.next(plan.blocks[k], inputs[k]));
   return out;
 }
 

@@ -155,9 +155,10 @@ void StreamingPlanner::add_point(const Sample& s, std::size_t block, bool first)
   if (s.rapid) return;  // its E waits for the next cut
   const double e = clamp(s.target_rpm ? *s.target_rpm : s.program_rpm);
   auto forward = [this](Point& q) {
-    q.forward = last_forward_ ? std::min(q.ceiling, *last_forward_ + spec_.acceleration_rpm_per_s *
-                                                                          (q.time_s - last_forward_time_))
-                              : q.ceiling;
+    q.forward = last_forward_
+                    ? std::min(q.ceiling, *last_forward_ + spec_.acceleration_rpm_per_s *
+                                                               (q.time_s - last_forward_time_))
+                    : q.ceiling;
     last_forward_ = q.forward;
     last_forward_time_ = q.time_s;
   };
@@ -176,9 +177,10 @@ void StreamingPlanner::settle_ceilings_at_run_end() {
   for (std::size_t i = known_; i < points_.size(); ++i) {
     auto& q = points_[i];
     q.ceiling = last_cut_ceiling_ ? *last_cut_ceiling_ : clamp(q.program_rpm);
-    q.forward = last_forward_ ? std::min(q.ceiling, *last_forward_ + spec_.acceleration_rpm_per_s *
-                                                                          (q.time_s - last_forward_time_))
-                              : q.ceiling;
+    q.forward = last_forward_
+                    ? std::min(q.ceiling, *last_forward_ + spec_.acceleration_rpm_per_s *
+                                                               (q.time_s - last_forward_time_))
+                    : q.ceiling;
     last_forward_ = q.forward;
     last_forward_time_ = q.time_s;
   }
@@ -384,8 +386,8 @@ BlockFeed StreamingFeedPlanner::next(const BlockPlan& block, const BlockFeedInpu
                        input.program_f_mm_per_min > 0;
   if (coupled) {
     const Grid grid{step_};
-    const double fz = fz_mm_ ? *fz_mm_
-                             : feed_per_tooth(input.program_f_mm_per_min, input.program_s_rpm, teeth_);
+    const double fz =
+        fz_mm_ ? *fz_mm_ : feed_per_tooth(input.program_f_mm_per_min, input.program_s_rpm, teeth_);
     const auto c = coupled_feed(fz, teeth_, block.planned_rpm, feed_);
     o.bound = c.bound;
     // Down to the output's step, but never under f_min.

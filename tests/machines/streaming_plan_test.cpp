@@ -35,9 +35,10 @@ double horizon(const SpindleSpec& spec) {
 // every push), checking after each push that the held samples are within
 // the bound: the open block's samples and those at or after t_c - 2 H,
 // t_c the time of the last non-rapid sample before the open block.
-// Returns the streamed plan; `peak` gets the most samples held.
+// Returns the streamed plan; `peak` gets the most samples held, `lag` the
+// longest time from a taken block's end to the last sample pushed.
 SpindlePlan stream(const std::vector<Sample>& samples, const SpindleSpec& spec,
-                   std::size_t take_every = 1, std::size_t* peak = nullptr) {
+                   std::size_t take_every = 1, std::size_t* peak = nullptr, double* lag = nullptr) {
   StreamingPlanner planner(spec);
   SpindlePlan plan;
   const double window = 2 * horizon(spec);
@@ -55,6 +56,9 @@ SpindlePlan stream(const std::vector<Sample>& samples, const SpindleSpec& spec,
     EXPECT_LE(planner.held_samples(), bound) << "after sample " << i;
     most = std::max(most, planner.held_samples());
     if ((i + 1) % take_every == 0) planner.take_final(plan.blocks);
+    if (lag)
+      *lag = std::max(*lag, s.time_s - (plan.blocks.empty() ? samples.front().time_s
+                                                            : plan.blocks.back().end_s));
   }
   planner.finish();
   planner.take_final(plan.blocks);
@@ -256,10 +260,16 @@ TEST(StreamingPlan, OneMillionSamplesInBoundedMemory) {
   for (std::size_t k = 0; k < samples.size(); ++k)
     if (k % 2000 >= 1960) samples[k].rapid = true, samples[k].target_rpm.reset();
   std::size_t peak = 0;
-  const auto streamed = stream(samples, spec, 1, &peak);
+  double lag = 0.0;
+  const auto streamed = stream(samples, spec, 1, &peak, &lag);
   const double bound = 2 * horizon(spec) / 0.001 + 1 + 1 + 40;
   EXPECT_LE(static_cast<double>(peak), bound);
   EXPECT_GT(static_cast<double>(peak), 0.5 * bound);  // the bound is not loose by orders
+  // Blocks come out at most 3 H + 1 / rate (+ the rapid, 40 ms, and two
+  // 1 ms blocks) behind the last sample: 2 H for the curve, the word
+  // look-ahead, and H for the backward slew pass to settle a word (8.26 s
+  // measured).
+  EXPECT_LE(lag, 3 * horizon(spec) + 1.0 / spec.max_changes_per_s + 0.04 + 0.002);
   expect_same(streamed, plan_spindle(samples, spec));
 }
 

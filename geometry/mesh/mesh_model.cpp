@@ -1,7 +1,9 @@
 #include "geometry/mesh/mesh_model.h"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <stdexcept>
@@ -9,14 +11,8 @@
 namespace vcpost::mesh {
 namespace {
 
-constexpr std::uint32_t leaf_size = 8;
-constexpr int max_stack = 96;
-
-float round_down(double v) {
-  float f = static_cast<float>(v);
-  if (static_cast<double>(f) > v) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
-  return f;
-}
+constexpr std::uint32_t leaf_size = 4;
+constexpr int max_stack = 128;
 
 float round_up(double v) {
   float f = static_cast<float>(v);
@@ -75,6 +71,44 @@ MeshModel::MeshModel(StlMesh mesh) : mesh_(std::move(mesh)) {
     }
   }
 
+  // Adjacency: faces across each edge (sorted edge keys; an edge used by
+  // exactly two faces links them) and the fan of faces around each vertex.
+  across_.assign(nf, {kNone, kNone, kNone});
+  {
+    struct EdgeUse {
+      std::uint32_t lo, hi, face, k;
+    };
+    std::vector<EdgeUse> uses;
+    uses.reserve(3 * nf);
+    for (std::uint32_t f = 0; f < nf; ++f) {
+      const auto& t = mesh_.triangles[f];
+      for (std::uint32_t k = 0; k < 3; ++k) {
+        const auto key = std::minmax(t[k], t[(k + 1) % 3]);
+        uses.push_back({key.first, key.second, f, k});
+      }
+    }
+    std::sort(uses.begin(), uses.end(), [](const EdgeUse& a, const EdgeUse& b) {
+      return a.lo != b.lo ? a.lo < b.lo : a.hi != b.hi ? a.hi < b.hi : a.face < b.face;
+    });
+    for (std::size_t i = 0; i < uses.size();) {
+      std::size_t j = i;
+      while (j < uses.size() && uses[j].lo == uses[i].lo && uses[j].hi == uses[i].hi) ++j;
+      if (j - i == 2) {
+        across_[uses[i].face][uses[i].k] = uses[i + 1].face;
+        across_[uses[i + 1].face][uses[i + 1].k] = uses[i].face;
+      }
+      i = j;
+    }
+    fan_start_.assign(nv + 1, 0);
+    for (const auto& t : mesh_.triangles)
+      for (auto v : t) ++fan_start_[v + 1];
+    for (std::size_t v = 0; v < nv; ++v) fan_start_[v + 1] += fan_start_[v];
+    fan_.resize(3 * nf);
+    std::vector<std::uint32_t> fill(fan_start_.begin(), fan_start_.end() - 1);
+    for (std::uint32_t f = 0; f < nf; ++f)
+      for (auto v : mesh_.triangles[f]) fan_[fill[v]++] = f;
+  }
+
   // The hierarchy: median split of the centroids along the box's longest axis.
   std::vector<Eigen::Vector3d> centroids(nf);
   slots_.resize(nf);
@@ -85,6 +119,10 @@ MeshModel::MeshModel(StlMesh mesh) : mesh_(std::move(mesh)) {
   }
   nodes_.reserve(2 * nf / leaf_size + 2);
   build(0, static_cast<std::uint32_t>(nf), centroids);
+  wide_.reserve(nodes_.size() / 3 + 1);
+  collapse(0);
+  nodes_.clear();
+  nodes_.shrink_to_fit();
   slot_of_face_.resize(nf);
   for (std::uint32_t s = 0; s < nf; ++s) {
     Slot& slot = slots_[s];
@@ -104,21 +142,10 @@ std::uint32_t MeshModel::build(std::uint32_t begin, std::uint32_t end,
                                std::vector<Eigen::Vector3d>& centroids) {
   const auto index = static_cast<std::uint32_t>(nodes_.size());
   nodes_.push_back({});
-  Eigen::AlignedBox3d box, centre_box;
-  box.setEmpty();
+  Eigen::AlignedBox3d centre_box;
   centre_box.setEmpty();
-  for (std::uint32_t s = begin; s < end; ++s) {
-    const auto& t = mesh_.triangles[slots_[s].face];
-    for (auto i : t) box.extend(mesh_.vertices[i]);
-    centre_box.extend(centroids[slots_[s].face]);
-  }
-  {
-    Node& node = nodes_[index];
-    for (int k = 0; k < 3; ++k) {
-      node.lo[k] = round_down(box.min()[k]);
-      node.hi[k] = round_up(box.max()[k]);
-    }
-  }
+  for (std::uint32_t s = begin; s < end; ++s) centre_box.extend(centroids[slots_[s].face]);
+  fit_node(nodes_[index], begin, end);
   if (end - begin <= leaf_size) {
     nodes_[index].first = begin;
     nodes_[index].count = end - begin;
@@ -136,6 +163,166 @@ std::uint32_t MeshModel::build(std::uint32_t begin, std::uint32_t end,
   nodes_[index].first = right;
   nodes_[index].count = 0;
   return index;
+}
+
+// The box of the corners of slots [begin, end): in the principal frame of
+// the corners or in x, y, z, whichever is smaller (volume, with a floor so
+// flat boxes compare by area). The frame is rounded to float first and the
+// extents measured in that rounded frame, then rounded up, so the box holds
+// every corner exactly; node_distance_squared allows for the rounded frame
+// being orthonormal only to float precision.
+void MeshModel::fit_node(Node& node, std::uint32_t begin, std::uint32_t end) const {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  Eigen::AlignedBox3d box;
+  box.setEmpty();
+  std::size_t corners = 0;
+  for (std::uint32_t s = begin; s < end; ++s) {
+    for (auto i : mesh_.triangles[slots_[s].face]) {
+      mean += mesh_.vertices[i];
+      box.extend(mesh_.vertices[i]);
+      ++corners;
+    }
+  }
+  mean /= static_cast<double>(corners);
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (std::uint32_t s = begin; s < end; ++s) {
+    for (auto i : mesh_.triangles[slots_[s].face]) {
+      const Eigen::Vector3d d = mesh_.vertices[i] - mean;
+      covariance += d * d.transpose();
+    }
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+  const double floor = 1e-3 * std::max(box.diagonal().norm(), 1e-9);
+  const auto fit = [&](const Eigen::Matrix3d& frame, Node& out) {
+    // Rows of `frame` are the axes; returns the floored volume.
+    Eigen::Matrix3d axes;
+    for (int k = 0; k < 3; ++k)
+      for (int j = 0; j < 3; ++j) {
+        out.axis[k][j] = static_cast<float>(frame(k, j));
+        axes(k, j) = static_cast<double>(out.axis[k][j]);
+      }
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+    Eigen::Vector3d hi = -lo;
+    for (std::uint32_t s = begin; s < end; ++s) {
+      for (auto i : mesh_.triangles[slots_[s].face]) {
+        const Eigen::Vector3d q = axes * mesh_.vertices[i];
+        lo = lo.cwiseMin(q);
+        hi = hi.cwiseMax(q);
+      }
+    }
+    // The centre in world coordinates, rounded to float; the extents about it.
+    const Eigen::Vector3d mid = axes.transpose() * ((lo + hi) / 2);
+    Eigen::Vector3d centre;
+    for (int j = 0; j < 3; ++j) {
+      out.centre[j] = static_cast<float>(mid[j]);
+      centre[j] = static_cast<double>(out.centre[j]);
+    }
+    const Eigen::Vector3d c = axes * centre;
+    double volume = 1;
+    for (int k = 0; k < 3; ++k) {
+      const double h = std::max(hi[k] - c[k], c[k] - lo[k]);
+      // Rounding of the projections above: a few ulps of the coordinates.
+      const double slack = 1e-12 * (std::abs(c[k]) + std::abs(h) + 1);
+      out.half[k] = round_up(h + slack);
+      volume *= static_cast<double>(out.half[k]) + floor;
+    }
+    return volume;
+  };
+  Node principal = node, aligned = node;
+  const double v_principal = fit(solver.eigenvectors().transpose(), principal);
+  const double v_aligned = fit(Eigen::Matrix3d::Identity(), aligned);
+  const Node& chosen = v_principal < v_aligned ? principal : aligned;
+  std::copy(std::begin(chosen.centre), std::end(chosen.centre), node.centre);
+  for (int k = 0; k < 3; ++k) {
+    std::copy(std::begin(chosen.axis[k]), std::end(chosen.axis[k]), node.axis[k]);
+  }
+  std::copy(std::begin(chosen.half), std::end(chosen.half), node.half);
+}
+
+// A wide node over binary node `binary`: its children, or grandchildren
+// where there is room (up to four lanes; a leaf stays one lane). Each lane
+// keeps its binary node's frame, with the centre turned into per-axis
+// offsets rounded to float and the half extents grown by that rounding.
+std::uint32_t MeshModel::collapse(std::uint32_t binary) {
+  std::vector<std::uint32_t> lanes;
+  const Node& top = nodes_[binary];
+  if (top.count > 0) {
+    lanes.push_back(binary);
+  } else {
+    lanes = {binary + 1, top.first};
+    for (std::size_t i = 0; i < lanes.size() && lanes.size() < 4;) {
+      const Node& n = nodes_[lanes[i]];
+      if (n.count == 0) {
+        const std::uint32_t left = lanes[i] + 1, right = n.first;
+        lanes[i] = left;
+        lanes.insert(lanes.begin() + static_cast<std::ptrdiff_t>(i) + 1, right);
+        i += 2;
+      } else {
+        ++i;
+      }
+    }
+  }
+  const auto index = static_cast<std::uint32_t>(wide_.size());
+  wide_.emplace_back();
+  for (int l = 0; l < 4; ++l) {
+    WideNode& w = wide_[index];
+    w.child[l] = kNone;
+    w.count[l] = 0;
+    for (int k = 0; k < 3; ++k) {
+      for (int j = 0; j < 3; ++j) w.axis[k][j][l] = 0;
+      // An empty lane is unreachable: its box is beyond any point.
+      w.offset[k][l] = std::numeric_limits<float>::max();
+      w.half[k][l] = 0;
+    }
+  }
+  for (std::size_t l = 0; l < lanes.size(); ++l) {
+    const Node n = nodes_[lanes[l]];
+    float axis[3][3], offset[3], half[3];
+    for (int k = 0; k < 3; ++k) {
+      double exact = 0;
+      for (int j = 0; j < 3; ++j) {
+        axis[k][j] = n.axis[k][j];
+        exact += static_cast<double>(n.axis[k][j]) * static_cast<double>(n.centre[j]);
+      }
+      offset[k] = static_cast<float>(exact);
+      const double moved = std::abs(static_cast<double>(offset[k]) - exact);
+      // Grown by the rounding of offset and by the query's float error on
+      // the offset's side (1e-6 |offset|, see closest_point).
+      half[k] = round_up(static_cast<double>(n.half[k]) + moved + 1e-6 * std::abs(exact) +
+                         1e-12);
+    }
+    const std::uint32_t child = n.count > 0 ? n.first : collapse(lanes[l]);
+    WideNode& w = wide_[index];  // collapse may have moved the array
+    for (int k = 0; k < 3; ++k) {
+      for (int j = 0; j < 3; ++j) w.axis[k][j][l] = axis[k][j];
+      w.offset[k][l] = offset[k];
+      w.half[k][l] = half[k];
+    }
+    w.child[l] = child;
+    w.count[l] = n.count;
+  }
+  return index;
+}
+
+// From the triangle in `best`, moves to any nearer triangle
+// across an edge of the current best or around the vertex it touches,
+// until none is nearer: a local minimum of the distance over the mesh.
+void MeshModel::walk(const Eigen::Vector3d& p, Hit& best) const {
+  std::uint32_t previous = kNone;
+  for (int step = 0; step < 256 && best.face != previous; ++step) {
+    previous = best.face;
+    const std::uint32_t current = best.face;
+    const int feature = best.feature;
+    for (const std::uint32_t next : across_[current]) {
+      if (next != kNone) test_slot(slot_of_face_[next], p, best);
+    }
+    if (feature >= 4) {
+      const std::uint32_t v = mesh_.triangles[current][static_cast<std::size_t>(feature - 4)];
+      for (std::uint32_t i = fan_start_[v]; i < fan_start_[v + 1]; ++i) {
+        if (fan_[i] != current) test_slot(slot_of_face_[fan_[i]], p, best);
+      }
+    }
+  }
 }
 
 // Closest point of one triangle by the Voronoi regions of its corners,
@@ -239,51 +426,84 @@ std::optional<geometry::ModelContact> MeshModel::closest_point(const Eigen::Vect
   // tested again by the traversal).
   bool warm = false;
   if (hint != nullptr && hint->face >= 0 && hint->face < face_count()) {
-    test_slot(slot_of_face_[hint->face], p, best);
-    warm = best.d2 < limit;
+    const auto start = static_cast<std::uint32_t>(hint->face);
+    // The start triangle counts whatever its distance: the walk needs it
+    // as the current best even beyond max_distance.
+    Hit local;
+    local.d2 = std::numeric_limits<double>::infinity();
+    test_slot(slot_of_face_[start], p, local);
+    walk(p, local);
+    if (local.d2 < limit) {
+      best = local;
+      warm = true;
+    }
   }
   const double hint_d2 = best.d2;
 
-  auto box_d2 = [&](const Node& n) {
-    double d2 = 0;
-    for (int k = 0; k < 3; ++k) {
-      const double lo = static_cast<double>(n.lo[k]) - p[k];
-      const double hi = p[k] - static_cast<double>(n.hi[k]);
-      const double d = std::max(std::max(lo, hi), 0.0);
-      d2 += d * d;
-    }
-    return d2;
-  };
-
-  std::uint32_t stack[max_stack];
+  // Lower bounds of the squared distance from p to the four lanes' boxes,
+  // in single precision: |axis.p - offset| is off by at most a few float
+  // ulps of |p|_1 + |offset| (the margin and the grown half extents take
+  // that off), and the float axes are orthonormal to ~1e-7 (the final
+  // factor takes that back).
+  const float px = static_cast<float>(p.x()), py = static_cast<float>(p.y()),
+              pz = static_cast<float>(p.z());
+  // Rounding of axis.p in float: a few ulps of |p|_1 (the offsets' own
+  // share is in the half extents).
+  const float margin = 1e-6f * (std::abs(px) + std::abs(py) + std::abs(pz));
+  constexpr double shrink = 1 - 1e-5;
+  std::uint32_t stack_child[max_stack], stack_count[max_stack];
   double stack_d2[max_stack];
   int top = 0;
-  const double root_d2 = box_d2(nodes_[0]);
-  if (root_d2 < best.d2) {
-    stack[top] = 0;
-    stack_d2[top++] = root_d2;
-  }
+  const auto open = [&](std::uint32_t index) {
+    const WideNode& n = wide_[index];
+    // Four lanes at once (GCC/Clang vector extension: SSE on x86-64).
+    using F4 = float __attribute__((vector_size(16)));
+    const auto load = [](const float (&a)[4]) {
+      F4 v;
+      std::memcpy(&v, a, sizeof v);
+      return v;
+    };
+    const F4 zero = {0, 0, 0, 0};
+    F4 d2 = zero;
+    for (int k = 0; k < 3; ++k) {
+      const F4 along = load(n.axis[k][0]) * px + load(n.axis[k][1]) * py +
+                       load(n.axis[k][2]) * pz - load(n.offset[k]);
+      const F4 abs_along = along > zero ? along : -along;
+      F4 e = abs_along - load(n.half[k]) - margin;
+      e = e > zero ? e : zero;
+      d2 += e * e;
+    }
+    float lb[4];
+    std::memcpy(lb, &d2, sizeof lb);
+    // Cold, the nearest lanes go on top of the stack so the bound shrinks
+    // early; warm, the walk's bound is already (nearly) the answer and the
+    // order hardly matters, so they go on as they are.
+    int order[4], m = 0;
+    for (int l = 0; l < 4; ++l) {
+      if (static_cast<double>(lb[l]) * shrink < best.d2) {
+        int i = m++;
+        while (!warm && i > 0 && lb[order[i - 1]] < lb[l]) {
+          order[i] = order[i - 1];
+          --i;
+        }
+        order[i] = l;
+      }
+    }
+    for (int i = 0; i < m && top < max_stack; ++i) {
+      stack_child[top] = n.child[order[i]];
+      stack_count[top] = n.count[order[i]];
+      stack_d2[top++] = static_cast<double>(lb[order[i]]) * shrink;
+    }
+  };
+  open(0);
   while (top > 0) {
     --top;
     if (stack_d2[top] >= best.d2) continue;
-    std::uint32_t ni = stack[top];
-    for (;;) {
-      const Node& n = nodes_[ni];
-      if (n.count > 0) {
-        for (std::uint32_t s = n.first; s < n.first + n.count; ++s) test_slot(s, p, best);
-        break;
-      }
-      const std::uint32_t left = ni + 1, right = n.first;
-      const double dl = box_d2(nodes_[left]), dr = box_d2(nodes_[right]);
-      const bool left_first = dl <= dr;
-      const std::uint32_t near = left_first ? left : right, far = left_first ? right : left;
-      const double dn = left_first ? dl : dr, df = left_first ? dr : dl;
-      if (dn >= best.d2) break;
-      if (df < best.d2 && top < max_stack) {
-        stack[top] = far;
-        stack_d2[top++] = df;
-      }
-      ni = near;
+    const std::uint32_t child = stack_child[top], count = stack_count[top];
+    if (count > 0) {
+      for (std::uint32_t s = child; s < child + count; ++s) test_slot(s, p, best);
+    } else {
+      open(child);
     }
   }
   if (!(best.d2 < limit)) return std::nullopt;

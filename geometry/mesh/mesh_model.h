@@ -1,6 +1,7 @@
 // An STL triangle mesh as a geometry::SurfaceModel: exact closest points on
 // the triangles (inside a face, on an edge, on a vertex) through a bounding
-// volume hierarchy, warm-started from the previous answer's neighbourhood.
+// volume hierarchy of oriented boxes, warm-started by a walk over the
+// triangles next to the previous answer.
 //
 // Units: mm (read_stl_file converts the file's unit). Faces are triangles:
 // ModelContact::face is the triangle's index in StlMesh::triangles, uv its
@@ -35,11 +36,12 @@ class MeshModel final : public geometry::SurfaceModel {
   explicit MeshModel(StlMesh mesh);
 
   // See geometry::SurfaceModel. A hint with a valid face makes the query
-  // warm: the previous answer's triangle gives an upper bound that prunes
-  // most of the hierarchy from the start; the answer is still the global
-  // closest point (the hierarchy is always searched within that bound).
-  // ContactHint::warm_queries counts the queries the hint's triangle
-  // answered, cold_queries the others.
+  // warm: from the hint's triangle a walk moves to whichever neighbour
+  // (across an edge, or around the vertex the contact sits on) is nearer,
+  // until none is; that local answer bounds the search of the hierarchy,
+  // which then only confirms it in the usual case. The answer is always
+  // the global closest point. ContactHint::warm_queries counts the
+  // queries the walk answered, cold_queries the others.
   std::optional<geometry::ModelContact> closest_point(const Eigen::Vector3d& point,
                                                       double max_distance,
                                                       geometry::ContactHint* hint) const override;
@@ -51,10 +53,27 @@ class MeshModel final : public geometry::SurfaceModel {
   const Eigen::Vector3d& facet_normal(int face) const { return facet_normal_[face]; }
 
  private:
+  // Build-time binary hierarchy node, an oriented box: |axis[k].(x -
+  // centre)| <= half[k] for every corner x of the node's triangles (axes:
+  // a principal frame of the corners, or x, y, z when that box is smaller).
+  // Along a smooth surface the principal frame hugs the patch, so a ball
+  // resting on it reaches far fewer boxes than with axis-aligned ones.
   struct Node {
-    float lo[3], hi[3];
+    float centre[3];
+    float axis[3][3];
+    float half[3];
     std::uint32_t first;  // leaf: first triangle slot; inner: index of the right child
     std::uint32_t count;  // leaf: number of triangles (> 0); inner: 0 (left child = this + 1)
+  };
+  // The query hierarchy: the binary one collapsed to four children per
+  // node, their boxes side by side in single precision (structure of
+  // arrays), so one pass over the four lanes bounds all children at once.
+  struct WideNode {
+    float axis[3][3][4];     // axis[k][j][lane]: component j of axis k
+    float offset[3][4];      // axis[k] . centre
+    float half[3][4];        // half extents along the axes
+    std::uint32_t child[4];  // inner: wide node index; leaf: first slot; empty lane: kNone
+    std::uint32_t count[4];  // leaf: number of triangles (> 0); inner or empty: 0
   };
   // A triangle as the query reads it, in hierarchy order.
   struct Slot {
@@ -73,7 +92,10 @@ class MeshModel final : public geometry::SurfaceModel {
 
   std::uint32_t build(std::uint32_t begin, std::uint32_t end,
                       std::vector<Eigen::Vector3d>& centroids);
+  void fit_node(Node& node, std::uint32_t begin, std::uint32_t end) const;
+  std::uint32_t collapse(std::uint32_t binary);
   void test_slot(std::uint32_t slot, const Eigen::Vector3d& p, Hit& best) const;
+  void walk(const Eigen::Vector3d& p, Hit& best) const;
   geometry::ModelContact make_contact(const Eigen::Vector3d& p, const Hit& hit) const;
 
   StlMesh mesh_;
@@ -82,8 +104,15 @@ class MeshModel final : public geometry::SurfaceModel {
   std::vector<std::array<Eigen::Vector3d, 3>> edge_normal_;  // per face: edges ab, bc, ca
   std::vector<Eigen::Vector3d> vertex_normal_;               // angle-weighted
   std::vector<std::uint32_t> slot_of_face_;
+  // Adjacency for the walk: the face across edges ab, bc, ca (kNone at a
+  // border or where more than two faces share the edge), and the faces
+  // around each vertex (vertex v: fan_[fan_start_[v] .. fan_start_[v+1])).
+  static constexpr std::uint32_t kNone = 0xffffffffu;
+  std::vector<std::array<std::uint32_t, 3>> across_;
+  std::vector<std::uint32_t> fan_start_, fan_;
   std::vector<Slot> slots_;
-  std::vector<Node> nodes_;
+  std::vector<Node> nodes_;  // build time only
+  std::vector<WideNode> wide_;
 };
 
 }  // namespace vcpost::mesh

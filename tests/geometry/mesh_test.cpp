@@ -3,11 +3,14 @@
 // brute-force cross-check, warm queries, bad files and the shared data.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <thread>
 
 #include "geometry/mesh/mesh_model.h"
 #include "geometry/mesh/stl_reader.h"
@@ -337,6 +340,116 @@ TEST(StlReader, SharedDataPairsLoad) {
       ASSERT_TRUE(c);
       EXPECT_NEAR(c->distance, brute_force_distance(m, p), 1e-9) << k.file;
     }
+  }
+}
+
+
+// The wavy mould z = 5 sin(2 pi x / 60) cos(2 pi y / 60) over [0, 100]^2 as
+// a 224 x 224 grid of split quads: 100,352 triangles (as in mesh_bench).
+StlMesh wavy_mesh() {
+  const auto height = [](double x, double y) {
+    return 5 * std::sin(2 * M_PI * x / 60) * std::cos(2 * M_PI * y / 60);
+  };
+  StlMesh m;
+  constexpr int n = 224;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) {
+      const double x = 100.0 * i / n, y = 100.0 * j / n;
+      m.vertices.emplace_back(x, y, height(x, y));
+    }
+  const auto at = [&](int i, int j) { return std::uint32_t(i * (n + 1) + j); };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  return m;
+}
+
+// A walk over the wavy mould: steps of 0.05 to 0.5 mm with a slowly turning
+// heading, reflected off a window 3 mm wider than the mesh; each point is
+// 3 to 7 mm above the surface along its normal (lifted, touching, gouging
+// balls of R 5), and beyond the border moved out sideways (border edges).
+std::vector<Vector3d> wavy_walk(std::size_t count, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> step(0.05, 0.5), turn(-0.3, 0.3), radius(3, 7);
+  Eigen::Vector2d xy(50, 50);
+  double heading = 0.7;
+  const double k = 2 * M_PI / 60;
+  std::vector<Vector3d> out;
+  for (std::size_t i = 0; i < count; ++i) {
+    heading += turn(rng);
+    xy += step(rng) * Eigen::Vector2d(std::cos(heading), std::sin(heading));
+    for (int a = 0; a < 2; ++a) {
+      if (xy[a] < -3 || xy[a] > 103) {
+        xy[a] = std::clamp(xy[a], -3.0, 103.0);
+        heading = a == 0 ? M_PI - heading : -heading;
+      }
+    }
+    const Eigen::Vector2d in = xy.cwiseMax(0.0).cwiseMin(100.0);
+    const double x = in.x(), y = in.y();
+    const Vector3d n = Vector3d(-5 * k * std::cos(k * x) * std::cos(k * y),
+                                5 * k * std::sin(k * x) * std::sin(k * y), 1)
+                           .normalized();
+    const Vector3d foot(x, y, 5 * std::sin(k * x) * std::cos(k * y));
+    out.push_back(foot + radius(rng) * n + Vector3d(xy.x() - x, xy.y() - y, 0));
+  }
+  return out;
+}
+
+// 5000 warm queries (the walk's hint) against cold ones at every point, and
+// against a brute force over all 100,352 triangles at every 25th; the walk
+// meets contacts inside faces, on edges and on vertices.
+TEST(MeshModel, WarmWalkOnAHundredThousandTrianglesGivesTheColdAnswers) {
+  const StlMesh m = wavy_mesh();
+  ASSERT_EQ(m.triangles.size(), 100352u);
+  const MeshModel model(m);
+  const std::vector<Vector3d> walk = wavy_walk(5000, 4);
+  geometry::ContactHint hint;
+  int types[3] = {0, 0, 0};
+  for (std::size_t i = 0; i < walk.size(); ++i) {
+    const Vector3d& p = walk[i];
+    const auto warm = model.closest_point(p, 20, &hint);
+    const auto cold = model.closest_point(p, 20, nullptr);
+    ASSERT_TRUE(warm && cold) << p.transpose();
+    ASSERT_LT((warm->point - cold->point).norm(), 1e-9) << i << ": " << p.transpose();
+    ASSERT_NEAR(warm->distance, cold->distance, 1e-12) << i;
+    ASSERT_LT((warm->normal - cold->normal).norm(), 1e-9) << i;
+    ++types[static_cast<int>(warm->type)];
+    if (i % 25 == 0) {
+      EXPECT_NEAR(warm->distance, brute_force_distance(m, p), 1e-11) << i;
+    }
+  }
+  EXPECT_GT(types[0], 500);  // inside a triangle
+  EXPECT_GT(types[1], 100);  // on an edge (the convex parts: inscribed facets)
+  EXPECT_GT(types[2], 10);   // on a vertex
+  // Nearly every query is answered by the walk (the hierarchy confirms).
+  EXPECT_GT(hint.warm_queries, walk.size() * 9 / 10);
+}
+
+// The same 20,000 warm queries on two threads at once, each with its own
+// hint, and on one thread: bit for bit the same answers.
+TEST(MeshModel, TwoThreadsGiveTheOneThreadAnswersBitForBit) {
+  const MeshModel model(wavy_mesh());
+  const std::vector<Vector3d> walk = wavy_walk(20000, 9);
+  const auto run = [&](std::vector<geometry::ModelContact>& out) {
+    geometry::ContactHint hint;
+    out.resize(walk.size());
+    for (std::size_t i = 0; i < walk.size(); ++i) out[i] = *model.closest_point(walk[i], 20, &hint);
+  };
+  std::vector<geometry::ModelContact> one, a, b;
+  run(one);
+  std::thread other([&] { run(b); });
+  run(a);
+  other.join();
+  const auto same = [](const geometry::ModelContact& x, const geometry::ModelContact& y) {
+    return std::memcmp(x.point.data(), y.point.data(), sizeof(double) * 3) == 0 &&
+           std::memcmp(x.normal.data(), y.normal.data(), sizeof(double) * 3) == 0 &&
+           std::memcmp(&x.distance, &y.distance, sizeof(double)) == 0 && x.face == y.face &&
+           x.type == y.type && std::memcmp(x.uv.data(), y.uv.data(), sizeof(double) * 2) == 0;
+  };
+  for (std::size_t i = 0; i < walk.size(); ++i) {
+    ASSERT_TRUE(same(one[i], a[i]) && same(one[i], b[i])) << "query " << i;
   }
 }
 

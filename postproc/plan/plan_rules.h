@@ -1,6 +1,6 @@
-// Rules shared by the whole-timeline planner (spindle_plan.cpp) and the
-// streaming one (streaming_plan.cpp), so that both give the same plan to
-// the bit. Internal to the plan module.
+// Rules shared by the planner (streaming_plan.cpp) and its whole-timeline
+// reference in the tests (tests/machines/plan_reference_support.cpp), so
+// that both give the same plan to the bit. Internal to the plan module.
 #pragma once
 
 #include <cmath>

@@ -108,7 +108,8 @@ class PlanError : public std::invalid_argument {
 };
 
 // Plans the spindle over the whole timeline. The spec must be valid (as a
-// loaded profile's is). Throws PlanError.
+// loaded profile's is). Throws PlanError. (It feeds StreamingPlanner of
+// streaming_plan.h, which gives the same blocks with bounded memory.)
 SpindlePlan plan_spindle(std::span<const Sample> samples, const machines::SpindleSpec& spec);
 
 // The hysteresis threshold at the current speed s (rpm).

@@ -225,15 +225,26 @@ void StreamingPlanner::fold(const Point& p) {
   b.last_curve = p.curve;
 }
 
-// U: the curve's lowest point over the block's span on the grid; a rapid
-// commands the curve at its end (spindle_plan.cpp says why).
+// U: the highest S a block may command: the curve's lowest point over the
+// block's span (its samples and the next block's first sample), on the grid.
+// Commanding it, the spindle stays under the curve: it is already under at
+// the block's start and moves towards U at least as fast as the curve. A
+// rapid needs the curve only at its end (no vc requirement on the way; its
+// ceiling is the same at all its samples, so the curve has no dip in it):
+// it commands the curve's end value and so already moves towards the next
+// cut's speed, up or down.
 void StreamingPlanner::complete(Block& b) const {
   b.u = std::max(g_min_, Grid{res_}.floor(b.all_rapid ? b.end_curve : b.span_min));
   b.u_done = true;
 }
 
-// ---- Blocks: the greedy S words (spindle_plan.cpp's choose_words, one
-// block at a time once its look-ahead window is known).
+// ---- Blocks: the greedy S words, one block at a time once its look-ahead
+// window is known. A word at block k holds at least 1/rate, so it takes the
+// lowest U of the blocks starting within that time. A word is forced when U
+// drops under the S in effect; it then goes a threshold under the block's
+// own need (so that a slow decline writes one word per threshold, not one
+// per block, and the block stays in the band). A word is written by choice
+// when the gain reaches the threshold.
 
 void StreamingPlanner::greedy(bool run_end) {
   const std::size_t end = blocks_base_ + blocks_.size();
@@ -266,6 +277,8 @@ void StreamingPlanner::decide(std::size_t k) {
     const double thr = change_threshold(spec_, s_);
     const bool may_write = start - last_word_time_ >= hold_;
     if (s_ > b.u + kEps) {
+      // Cannot happen before the hold has passed: the last word covered it.
+      // (A rapid has no need of its own: it goes to the next cut's speed.)
       const double own = b.own_min;
       v = b.all_rapid
               ? wm
@@ -290,7 +303,9 @@ void StreamingPlanner::decide(std::size_t k) {
   pending_.push_back(w);
 }
 
-// ---- Words: the backward slew pass, dropping, and the blocks' S.
+// ---- Words: the backward slew pass, dropping, and the blocks' S. The slew
+// passes lower only: every ceiling still holds, and on the grid one pass
+// each way suffices.
 
 void StreamingPlanner::backward_slew(std::vector<Word>& words, const Word* next) const {
   const Grid grid{res_};
@@ -336,7 +351,8 @@ void StreamingPlanner::settle_words(bool run_end) {
 }
 
 // After lowering, a word that repeats the S in effect or raises it by less
-// than the threshold is dropped.
+// than the threshold is dropped (keeping the lower S is always safe, and the
+// slew between the remaining words still holds by the triangle inequality).
 void StreamingPlanner::keep(const Word& w) {
   if (kept_s_) {
     const double prev = *kept_s_;

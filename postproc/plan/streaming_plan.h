@@ -1,7 +1,9 @@
-// The spindle planner for a streamed timeline: the same plan as
-// plan_spindle() (spindle_plan.h states the contract), computed while the
-// samples come in, in memory bounded by the spindle's figures, not by the
-// program's length.
+// The spindle planner for a streamed timeline: the plan of spindle_plan.h
+// (which states the contract), computed while the samples come in, in
+// memory bounded by the spindle's figures, not by the program's length.
+// plan_spindle() is this planner fed the whole timeline; the tests hold it
+// against a reference that runs every pass over the whole timeline at once
+// (tests/machines/plan_reference_support.cpp).
 //
 // Why a window suffices, pass by pass (within one run; a run's end settles
 // everything before it):
@@ -33,7 +35,8 @@
 //   wait longer;
 // - dropping repeated or too small rises, and giving each block its S:
 //   sequential.
-// Nothing is approximated: the plan equals plan_spindle()'s bit for bit.
+// Nothing is approximated: the plan equals the whole-timeline passes' bit
+// for bit (same operations in the same order where it matters).
 //
 // Memory and delay: held_samples() <= the samples of the open block (the
 // one the last sample belongs to) plus those pushed at or after t_c - 2 H,

@@ -1,7 +1,9 @@
-// The streaming planner against plan_spindle() over the whole timeline:
-// field for field and bit for bit (both apply the same rules in the same
-// floating-point order; a window that cuts a dependency shows up as a
-// difference), with the held samples within the bound of streaming_plan.h.
+// The streaming planner against the reference planner that runs every pass
+// over the whole timeline at once (plan_reference_support.cpp, formerly
+// plan_spindle()): field for field and bit for bit (both apply the same
+// rules in the same floating-point order; a window that cuts a dependency
+// shows up as a difference), with the held samples within the bound of
+// streaming_plan.h. plan_spindle() itself now runs on the streaming planner.
 #include "postproc/plan/streaming_plan.h"
 
 #include <gtest/gtest.h>
@@ -13,6 +15,7 @@
 #include <string>
 
 #include "machines/builtin.h"
+#include "tests/machines/plan_reference_support.h"
 #include "tests/machines/plan_timeline_support.h"
 
 namespace vcpost::plan {
@@ -119,8 +122,9 @@ TEST(StreamingPlan, EqualsThePlanOfTheWholeTimelineOnRandomTimelines) {
     SCOPED_TRACE("round " + std::to_string(round) + " scale " + std::to_string(scale));
     const SpindleSpec spec = testing::property_spec(round / 3, rng);
     const auto samples = testing::random_timeline(spec, rng, scale);
-    const auto whole = plan_spindle(samples, spec);
+    const auto whole = testing::reference_plan_spindle(samples, spec);
     expect_same(stream(samples, spec), whole);
+    expect_same(plan_spindle(samples, spec), whole);
     blocks += whole.blocks.size();
     words += whole.s_words;
     if (::testing::Test::HasFailure()) break;  // one round's report is enough
@@ -135,7 +139,7 @@ TEST(StreamingPlan, TakingFinalBlocksRarelyOrOnlyAtTheEndChangesNothing) {
     SCOPED_TRACE("round " + std::to_string(round));
     const SpindleSpec spec = testing::property_spec(round, rng);
     const auto samples = testing::random_timeline(spec, rng);
-    const auto whole = plan_spindle(samples, spec);
+    const auto whole = testing::reference_plan_spindle(samples, spec);
     expect_same(stream(samples, spec, 97), whole);
     expect_same(stream(samples, spec, samples.size() + 1), whole);
     if (::testing::Test::HasFailure()) break;
@@ -162,10 +166,10 @@ TEST(StreamingPlan, BlocksComeOutWhileTheTimelineStreams) {
   ASSERT_GE(out.size(), 101u);
   EXPECT_DOUBLE_EQ(out[0].planned_rpm, 8000.0);
   EXPECT_DOUBLE_EQ(out[100].planned_rpm, 6000.0);
-  EXPECT_EQ(planner.s_words(), 6u);  // as plan_spindle's hand-checked figure
+  EXPECT_EQ(planner.s_words(), 6u);  // as spindle_plan_test's hand-checked figure
 }
 
-// Hand-made runs: each case against plan_spindle, field for field.
+// Hand-made runs: each case against the reference, field for field.
 TEST(StreamingPlan, ToolChangesSpindleOffRapidsAndAirAsTheWholePlan) {
   const auto spec = mazak();
   const double h = horizon(spec);
@@ -244,7 +248,7 @@ TEST(StreamingPlan, ToolChangesSpindleOffRapidsAndAirAsTheWholePlan) {
   cases.push_back({"empty", {}});
   for (const auto& c : cases) {
     SCOPED_TRACE(c.name);
-    expect_same(stream(c.samples, spec), plan_spindle(c.samples, spec));
+    expect_same(stream(c.samples, spec), testing::reference_plan_spindle(c.samples, spec));
   }
 }
 
@@ -270,7 +274,7 @@ TEST(StreamingPlan, OneMillionSamplesInBoundedMemory) {
   // look-ahead, and H for the backward slew pass to settle a word (8.26 s
   // measured).
   EXPECT_LE(lag, 3 * horizon(spec) + 1.0 / spec.max_changes_per_s + 0.04 + 0.002);
-  expect_same(streamed, plan_spindle(samples, spec));
+  expect_same(streamed, testing::reference_plan_spindle(samples, spec));
 }
 
 TEST(StreamingPlan, RejectsABrokenSampleAndGoesOn) {
@@ -296,7 +300,7 @@ TEST(StreamingPlan, RejectsABrokenSampleAndGoesOn) {
   planner.finish();
   planner.take_final(plan.blocks);
   plan.s_words = planner.s_words();
-  expect_same(plan, plan_spindle(samples, spec));
+  expect_same(plan, testing::reference_plan_spindle(samples, spec));
   EXPECT_THROW(planner.push(samples.back()), PlanError);  // after finish()
 }
 

@@ -15,8 +15,9 @@
 //   [g_min, g_max] (the clamped range on the S grid), so a sample later by
 //   more than H = (g_max - g_min) / deceleration + 1 ms cannot pull a
 //   curve value down: the chain from it has risen past g_max on the way.
-//   The 1 ms covers the rounding of the chain's sums (< 1e-6 rpm per step,
-//   against >= 0.05 rpm that 1 ms adds at the slowest profile's 50 rpm/s).
+//   The 1 ms covers the rounding of the chain's sums (under 1e-11 rpm per
+//   sample for speeds under 65536 rpm, against the >= 0.05 rpm that 1 ms
+//   adds at 50 rpm/s: billions of samples in a window).
 //   The pass is recomputed from the latest known sample once the window
 //   spans 2 H, and the samples more than H before it are final;
 // - per-block ceiling U: the curve over the block and the next block's

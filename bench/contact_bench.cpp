@@ -1,8 +1,10 @@
 // Closest-point queries on a B-spline STEP face (geometry/occt): warm along
 // a coherent toolpath (one and two threads), cold through the BVH, and in
 // the same process on the same points OpenCASCADE's GeomAPI_ProjectPointOnSurf
-// per point and a warm Extrema_GenLocateExtPS; after the Google Benchmark
-// runs, a summary prints microseconds per point and the ratios.
+// per point and a warm Extrema_GenLocateExtPS; the same surface cut into
+// 10 x 10 sewn faces (occt::wavy_patches) written to STEP and loaded back
+// (load time, warm and cold queries on the same path); after the Google
+// Benchmark runs, a summary prints microseconds per point and the ratios.
 #include <benchmark/benchmark.h>
 
 #include <BRep_Tool.hxx>
@@ -12,12 +14,15 @@
 #include <GeomAdaptor_Surface.hxx>
 #include <GeomLProp_SLProps.hxx>
 #include <Geom_Surface.hxx>
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
 #include <optional>
 #include <random>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -82,6 +87,81 @@ double warm_run(const Setup& s, std::size_t begin, std::size_t end) {
   }
   return sum;
 }
+
+// Warm queries of `model` over every `stride`-th point of the path (stride
+// 1: 0.02 mm apart, 5: 0.1 mm, 25: 0.5 mm).
+double strided_warm_run(const BrepModel& model, const std::vector<Vector3d>& path,
+                        std::size_t stride) {
+  ContactHint hint;
+  double sum = 0;
+  for (std::size_t i = 0; i < path.size(); i += stride) {
+    sum += model.closest_point(path[i], 2 * kRadius, &hint)->distance;
+  }
+  return sum;
+}
+
+double cold_run(const BrepModel& model, const std::vector<Vector3d>& points) {
+  double sum = 0;
+  for (const Vector3d& p : points) sum += model.closest_point(p, 1e9, nullptr)->distance;
+  return sum;
+}
+
+double cpu_seconds();
+
+// The wavy surface as 10 x 10 sewn B-spline faces, through a STEP file: the
+// 100-face model of issue 7 (load time measured here, in this process).
+struct Patches {
+  std::optional<BrepModel> model;
+  double load_wall_s = 0, load_cpu_s = 0;
+
+  Patches() {
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                      ("vcpost_contact_bench_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const std::filesystem::path file = dir / "patches.step";
+    vcpost::occt::write_shape_step(file, vcpost::occt::wavy_patches(10, 10),
+                                   "vcpost wavy patches 10 x 10");
+    const double cpu0 = cpu_seconds();
+    const auto start = std::chrono::steady_clock::now();
+    model.emplace(BrepModel::load_step(file));
+    load_wall_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    load_cpu_s = cpu_seconds() - cpu0;
+    std::filesystem::remove_all(dir);
+  }
+};
+
+const Patches& patches() {
+  static const Patches p;
+  return p;
+}
+
+void BM_PatchesWarm(benchmark::State& state) {
+  const Setup& s = setup();
+  const Patches& p = patches();
+  const auto stride = static_cast<std::size_t>(state.range(0));
+  for (auto _ : state) benchmark::DoNotOptimize(strided_warm_run(*p.model, s.path, stride));
+  state.SetItemsProcessed(state.iterations() *
+                          static_cast<std::int64_t>((s.path.size() + stride - 1) / stride));
+}
+BENCHMARK(BM_PatchesWarm)->Arg(1)->Arg(5)->Arg(25)->Unit(benchmark::kMillisecond);
+
+void BM_PatchesCold(benchmark::State& state) {
+  const Setup& s = setup();
+  const Patches& p = patches();
+  for (auto _ : state) benchmark::DoNotOptimize(cold_run(*p.model, s.scattered));
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(s.scattered.size()));
+}
+BENCHMARK(BM_PatchesCold)->Unit(benchmark::kMillisecond);
+
+void BM_FaceWarmStrided(benchmark::State& state) {
+  const Setup& s = setup();
+  const auto stride = static_cast<std::size_t>(state.range(0));
+  for (auto _ : state) benchmark::DoNotOptimize(strided_warm_run(s.model, s.path, stride));
+  state.SetItemsProcessed(state.iterations() *
+                          static_cast<std::int64_t>((s.path.size() + stride - 1) / stride));
+}
+BENCHMARK(BM_FaceWarmStrided)->Arg(5)->Arg(25)->Unit(benchmark::kMillisecond);
 
 void BM_WarmQueries(benchmark::State& state) {
   const Setup& s = setup();
@@ -278,6 +358,34 @@ void print_summary() {
   std::printf(
       "  ratios (wall): GeomAPI / ours warm %.0fx, Extrema_GenLocateExtPS / ours warm %.1fx\n",
       geomapi.wall_us / warm.wall_us, locate.wall_us / warm.wall_us);
+  const Patches& p = patches();
+  std::printf(
+      "  the same surface as 10 x 10 sewn faces (%d faces, %d triangles): STEP load %.3f s wall,"
+      " %.3f s CPU (first load in this process)\n",
+      p.model->face_count(), p.model->info().triangles, p.load_wall_s, p.load_cpu_s);
+  for (const std::size_t stride : {std::size_t{1}, std::size_t{5}, std::size_t{25}}) {
+    const std::size_t m = (n + stride - 1) / stride;
+    const std::string face_name =
+        "1 face warm, " + std::to_string(0.02 * static_cast<double>(stride)).substr(0, 4) + " mm";
+    const std::string name = "100 faces warm, " +
+                             std::to_string(0.02 * static_cast<double>(stride)).substr(0, 4) +
+                             " mm";
+    row(face_name.c_str(), per_point([&] { return strided_warm_run(s.model, s.path, stride); }, m, 3));
+    row(name.c_str(), per_point([&] { return strided_warm_run(*p.model, s.path, stride); }, m, 3));
+  }
+  row("100 faces cold", per_point([&] { return cold_run(*p.model, s.scattered); },
+                                  s.scattered.size(), 2));
+  {
+    // Same surface, same points: the two models must give the same CC.
+    ContactHint patch_hint;
+    double worst_patch = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      worst_patch = std::max(
+          worst_patch,
+          (p.model->closest_point(s.path[i], 2 * kRadius, &patch_hint)->point - s.feet[i]).norm());
+    }
+    std::printf("  100 faces: largest CC error against the construction %.2e mm\n", worst_patch);
+  }
   const RealPart& part = real_part();
   if (part.model) {
     const std::size_t m = part.path.size();
@@ -290,11 +398,23 @@ void print_summary() {
 
 }  // namespace
 
+// --no_summary skips the summary (for profiling one benchmark, e.g. under
+// valgrind --tool=callgrind).
 int main(int argc, char** argv) {
+  bool summary = true;
+  int kept = 1;
+  for (int i = 1; i < argc; ++i) {
+    if (std::string(argv[i]) == "--no_summary") {
+      summary = false;
+    } else {
+      argv[kept++] = argv[i];
+    }
+  }
+  argc = kept;
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
-  print_summary();
+  if (summary) print_summary();
   return 0;
 }

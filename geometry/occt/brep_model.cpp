@@ -49,10 +49,52 @@ struct SurfacePoint {
   Vector3d p, su, sv, suu, svv, suv;
 };
 
-// Evaluates a face's surface. B-spline surfaces get one prebuilt
-// BSplSLib_Cache (local power basis) per knot span: evaluation is then a
-// polynomial, several times faster than Geom_BSplineSurface::D2, and the
-// caches are never rebuilt, so evaluation stays const and thread-safe.
+// One knot span of a non-rational B-spline surface as a polynomial in
+// x = (u - um)/hu, y = (v - vm)/hv about the span's centre (hu, hv: half
+// widths): P = sum c[a][b] x^a y^b, the coefficients from the surface's own
+// derivatives at the centre (Taylor, exact for a polynomial). Evaluation of
+// the point and all derivatives up to order 2 is a nested Horner scheme.
+struct PolynomialSpan {
+  double um = 0, vm = 0, inv_hu = 1, inv_hv = 1;
+  int degree_u = 0, degree_v = 0;
+  std::vector<Vector3d> c;  // c[a * (degree_v + 1) + b]
+
+  void d2(double u, double v, SurfacePoint& out) const {
+    const double x = (u - um) * inv_hu, y = (v - vm) * inv_hv;
+    const int nv = degree_v + 1;
+    // Horner in x over columns Q_a(y) and their y-derivatives.
+    Vector3d p0 = Vector3d::Zero(), p1 = p0, p2 = p0;  // P, dP/dx, d2P/dx2 / 2
+    Vector3d y0 = p0, y1 = p0;                          // dP/dy and its x-derivative
+    Vector3d yy = p0;                                   // d2P/dy2 / 2
+    for (int a = degree_u; a >= 0; --a) {
+      const Vector3d* col = &c[static_cast<std::size_t>(a * nv)];
+      Vector3d q0 = col[degree_v], q1 = Vector3d::Zero(), q2 = Vector3d::Zero();
+      for (int b = degree_v - 1; b >= 0; --b) {
+        q2 = q2 * y + q1;
+        q1 = q1 * y + q0;
+        q0 = q0 * y + col[b];
+      }
+      p2 = p2 * x + p1;
+      p1 = p1 * x + p0;
+      p0 = p0 * x + q0;
+      y1 = y1 * x + y0;
+      y0 = y0 * x + q1;
+      yy = yy * x + q2;
+    }
+    out.p = p0;
+    out.su = p1 * inv_hu;
+    out.sv = y0 * inv_hv;
+    out.suu = 2 * inv_hu * inv_hu * p2;
+    out.svv = 2 * inv_hv * inv_hv * yy;
+    out.suv = inv_hu * inv_hv * y1;
+  }
+};
+
+// Evaluates a face's surface. Non-rational B-spline surfaces get one
+// PolynomialSpan per knot span, rational ones one prebuilt BSplSLib_Cache
+// (local power basis) per span: evaluation is then a polynomial, several
+// times faster than Geom_BSplineSurface::D2, and nothing is rebuilt at
+// query time, so evaluation stays const and thread-safe.
 class SurfaceEval {
  public:
   explicit SurfaceEval(Handle(Geom_Surface) surface) : surface_(std::move(surface)) {
@@ -66,10 +108,44 @@ class SurfaceEval {
     const auto& vk = bspline_->VKnots();
     for (int i = uk.Lower(); i <= uk.Upper(); ++i) u_knots_.push_back(uk(i));
     for (int i = vk.Lower(); i <= vk.Upper(); ++i) v_knots_.push_back(vk(i));
-    const auto& flat_u = bspline_->UKnotSequence();
-    const auto& flat_v = bspline_->VKnotSequence();
     const int nu = static_cast<int>(u_knots_.size()) - 1,
               nv = static_cast<int>(v_knots_.size()) - 1;
+    const bool rational = bspline_->IsURational() || bspline_->IsVRational();
+    if (!rational) {
+      const int du = bspline_->UDegree(), dv = bspline_->VDegree();
+      spans_.reserve(static_cast<std::size_t>(nu * nv));
+      for (int i = 0; i < nu; ++i) {
+        for (int j = 0; j < nv; ++j) {
+          PolynomialSpan span;
+          span.degree_u = du;
+          span.degree_v = dv;
+          span.um = (u_knots_[i] + u_knots_[i + 1]) / 2;
+          span.vm = (v_knots_[j] + v_knots_[j + 1]) / 2;
+          const double hu = (u_knots_[i + 1] - u_knots_[i]) / 2;
+          const double hv = (v_knots_[j + 1] - v_knots_[j]) / 2;
+          span.inv_hu = 1 / hu;
+          span.inv_hv = 1 / hv;
+          span.c.resize(static_cast<std::size_t>((du + 1) * (dv + 1)));
+          double fa = 1;  // a!
+          for (int a = 0; a <= du; ++a) {
+            if (a > 0) fa *= a;
+            double fb = 1;  // b!
+            for (int b = 0; b <= dv; ++b) {
+              if (b > 0) fb *= b;
+              const Vector3d d =
+                  a + b == 0 ? to_eigen(bspline_->Value(span.um, span.vm).XYZ())
+                             : to_eigen(bspline_->DN(span.um, span.vm, a, b).XYZ());
+              span.c[static_cast<std::size_t>(a * (dv + 1) + b)] =
+                  d * (std::pow(hu, a) * std::pow(hv, b) / (fa * fb));
+            }
+          }
+          spans_.push_back(std::move(span));
+        }
+      }
+      return;
+    }
+    const auto& flat_u = bspline_->UKnotSequence();
+    const auto& flat_v = bspline_->VKnotSequence();
     caches_.reserve(static_cast<std::size_t>(nu * nv));
     for (int i = 0; i < nu; ++i) {
       for (int j = 0; j < nv; ++j) {
@@ -84,16 +160,25 @@ class SurfaceEval {
   }
 
   SurfacePoint d2(double u, double v) const {
+    if (bspline_.IsNull()) {
+      gp_Pnt p;
+      gp_Vec su, sv, suu, svv, suv;
+      surface_->D2(u, v, p, su, sv, suu, svv, suv);
+      return {to_eigen(p.XYZ()),   to_eigen(su.XYZ()),  to_eigen(sv.XYZ()),
+              to_eigen(suu.XYZ()), to_eigen(svv.XYZ()), to_eigen(suv.XYZ())};
+    }
+    if (bspline_->IsUPeriodic()) u = wrap(u, u_knots_.front(), u_knots_.back());
+    if (bspline_->IsVPeriodic()) v = wrap(v, v_knots_.front(), v_knots_.back());
+    const std::size_t i = span(u_knots_, u), j = span(v_knots_, v);
+    const std::size_t k = i * (v_knots_.size() - 1) + j;
+    if (!spans_.empty()) {
+      SurfacePoint out;
+      spans_[k].d2(u, v, out);
+      return out;
+    }
     gp_Pnt p;
     gp_Vec su, sv, suu, svv, suv;
-    if (bspline_.IsNull()) {
-      surface_->D2(u, v, p, su, sv, suu, svv, suv);
-    } else {
-      if (bspline_->IsUPeriodic()) u = wrap(u, u_knots_.front(), u_knots_.back());
-      if (bspline_->IsVPeriodic()) v = wrap(v, v_knots_.front(), v_knots_.back());
-      const std::size_t i = span(u_knots_, u), j = span(v_knots_, v);
-      caches_[i * (v_knots_.size() - 1) + j]->D2(u, v, p, su, sv, suu, svv, suv);
-    }
+    caches_[k]->D2(u, v, p, su, sv, suu, svv, suv);
     return {to_eigen(p.XYZ()),   to_eigen(su.XYZ()),  to_eigen(sv.XYZ()),
             to_eigen(suu.XYZ()), to_eigen(svv.XYZ()), to_eigen(suv.XYZ())};
   }
@@ -115,7 +200,8 @@ class SurfaceEval {
   Handle(Geom_Surface) surface_;
   Handle(Geom_BSplineSurface) bspline_;
   std::vector<double> u_knots_, v_knots_;
-  std::vector<Handle(BSplSLib_Cache)> caches_;
+  std::vector<PolynomialSpan> spans_;           // non-rational
+  std::vector<Handle(BSplSLib_Cache)> caches_;  // rational
 };
 
 struct EdgeData {
@@ -147,6 +233,14 @@ struct FaceData {
   std::vector<Trim> cells;                     // kGrid x kGrid classification of the (u,v) box
   std::vector<std::array<Vector2d, 2>> loops;  // segments of the trim polygon in (u,v)
   double polygon_error = 0;                    // largest chord error of those segments, in (u,v)
+  // Where the grid says "boundary": the segments whose v range meets each
+  // grid row (the crossing count of a ray along +u needs no others) and the
+  // segments within one cell of each cell (the only ones that can be
+  // within the chord-error band of a point in it). local_lists is false
+  // when the band is wider than a cell; then every segment is read.
+  bool local_lists = false;
+  std::vector<std::uint32_t> row_start, row_segments;
+  std::vector<std::uint32_t> cell_start, cell_segments;
   std::vector<std::array<Vector3d, 3>> triangles;
   std::vector<std::array<Vector2d, 3>> triangle_uv;
   BoxTree tree;
@@ -305,13 +399,20 @@ struct BrepModel::Impl {
         step = -h.ldlt().solve(g);
         if (!step.allFinite()) return std::nullopt;
       }
-      // Backtrack until the squared distance does not grow.
+      // Backtrack until the squared distance does not grow. Within ~1e-8
+      // of the minimum the squared distance no longer tells (its change is
+      // below its rounding), so a full step that shrinks the gradient is
+      // taken too: that is where Newton's method converges quadratically.
       bool improved = false;
+      const double gradient = g.squaredNorm();
       for (int halving = 0; halving < 30; ++halving) {
         Vector2d trial = into_box(f, uv + step, clamped);
         SurfacePoint st = f.eval.d2(trial.x(), trial.y());
-        const double trial_value = (st.p - p).squaredNorm();
-        if (trial_value <= value * (1 + 1e-15) + 1e-300) {
+        const Vector3d rt = st.p - p;
+        const double trial_value = rt.squaredNorm();
+        const bool flat = halving == 0 && (st.p - s.p).squaredNorm() < 1e-12 * value &&
+                          Vector2d(st.su.dot(rt), st.sv.dot(rt)).squaredNorm() < gradient;
+        if (trial_value <= value * (1 + 1e-15) + 1e-300 || flat) {
           const double moved = (st.p - s.p).norm();
           uv = trial;
           s = st;
@@ -340,14 +441,33 @@ struct BrepModel::Impl {
     // The polygon decides unless the point is within its chord error of it.
     bool inside = false;
     double nearest = std::numeric_limits<double>::infinity();
-    for (const auto& [a, b] : f.loops) {
+    const auto cross = [&](const std::array<Vector2d, 2>& segment) {
+      const auto& [a, b] = segment;
       if ((a.y() > uv.y()) != (b.y() > uv.y())) {
         const double x = a.x() + (uv.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y());
         if (x > uv.x()) inside = !inside;
       }
+    };
+    const auto near = [&](const std::array<Vector2d, 2>& segment) {
+      const auto& [a, b] = segment;
       const Vector2d ab = b - a;
       const double t = std::clamp((uv - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
       nearest = std::min(nearest, (a + t * ab - uv).squaredNorm());
+    };
+    if (f.local_lists) {
+      const auto row = static_cast<std::size_t>(gy);
+      for (std::uint32_t i = f.row_start[row]; i < f.row_start[row + 1]; ++i) {
+        cross(f.loops[f.row_segments[i]]);
+      }
+      const auto at = static_cast<std::size_t>(gx * FaceData::kGrid + gy);
+      for (std::uint32_t i = f.cell_start[at]; i < f.cell_start[at + 1]; ++i) {
+        near(f.loops[f.cell_segments[i]]);
+      }
+    } else {
+      for (const auto& segment : f.loops) {
+        cross(segment);
+        near(segment);
+      }
     }
     const double band = 2 * f.polygon_error + 1e-9 * std::max(f.u1 - f.u0, f.v1 - f.v0);
     if (nearest > band * band) return inside ? Trim::inside : Trim::outside;
@@ -445,6 +565,10 @@ struct BrepModel::Impl {
       }
       return on_edges(face, p, bound);
     }
+    // On the (u,v) box of an untrimmed face: the box is the face's border,
+    // so this is the local minimum over the face; no nearer than the bound
+    // means nothing to gain here (as inside: local minima are trusted).
+    if (f.natural && d >= bound) return std::nullopt;
     // On the (u,v) box: usually an edge, but a pole (degenerate edge) or a
     // seam is no edge of ours, and there the surface point is the answer.
     // It must be a true foot point (p - S along the normal), not a point
@@ -606,6 +730,34 @@ void add_face(BrepModel::Impl& model, const TopoDS_Face& face,
         for (int y = std::max(y0, 0); y <= std::min(y1, g - 1); ++y) touched[x * g + y] = true;
       }
     }
+    // Row and cell lists (CSR), each segment listed one row or cell beyond
+    // its box so rounding at the grid lines loses none.
+    std::vector<std::vector<std::uint32_t>> rows(g), cells(g * g);
+    for (std::size_t i = 0; i < f.loops.size(); ++i) {
+      const auto& [a, b] = f.loops[i];
+      const int x0 = cell_of(std::min(a.x(), b.x()), f.u0, span_u) - 1;
+      const int x1 = cell_of(std::max(a.x(), b.x()), f.u0, span_u) + 1;
+      const int y0 = cell_of(std::min(a.y(), b.y()), f.v0, span_v) - 1;
+      const int y1 = cell_of(std::max(a.y(), b.y()), f.v0, span_v) + 1;
+      for (int y = std::max(y0, 0); y <= std::min(y1, g - 1); ++y) {
+        rows[static_cast<std::size_t>(y)].push_back(static_cast<std::uint32_t>(i));
+        for (int x = std::max(x0, 0); x <= std::min(x1, g - 1); ++x) {
+          cells[static_cast<std::size_t>(x * g + y)].push_back(static_cast<std::uint32_t>(i));
+        }
+      }
+    }
+    const auto flatten = [](const std::vector<std::vector<std::uint32_t>>& lists,
+                            std::vector<std::uint32_t>& start, std::vector<std::uint32_t>& flat) {
+      start.assign(1, 0);
+      for (const auto& list : lists) {
+        flat.insert(flat.end(), list.begin(), list.end());
+        start.push_back(static_cast<std::uint32_t>(flat.size()));
+      }
+    };
+    flatten(rows, f.row_start, f.row_segments);
+    flatten(cells, f.cell_start, f.cell_segments);
+    const double band = 2 * f.polygon_error + 1e-9 * std::max(span_u, span_v);
+    f.local_lists = band < std::min(span_u, span_v) / g;
     f.cells.resize(g * g);
     for (int x = 0; x < g; ++x) {
       for (int y = 0; y < g; ++y) {

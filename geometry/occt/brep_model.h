@@ -11,8 +11,16 @@
 // boundary curves in (u,v), and a point outside it goes to the closest point
 // of the face's edges (edge or vertex contact). Other faces are checked by
 // the BVH with the tessellation's deflection as a safety margin, so the
-// answer is the global closest point, up to one limitation: on the hint's
-// own face a warm start trusts the local minimum it converges to.
+// answer is the global closest point, up to one limitation: on each face
+// Newton's method trusts the local minimum it converges to (from the hint,
+// or from the nearest tessellation triangle). Non-rational B-spline faces
+// are evaluated as one polynomial per knot span (power basis about the
+// span's centre), built at load.
+//
+// Thread safety: everything a query reads is built at load and never
+// changed (no caches filled on demand, no mutable members, no OCCT
+// adaptors with their own caches: surfaces and curves are evaluated through
+// Geom_* objects, whose evaluation in OCCT 7.6 writes no shared state).
 #pragma once
 
 #include <filesystem>

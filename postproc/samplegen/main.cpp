@@ -4,6 +4,7 @@
 //
 //   vcpost-samplegen path PART [options] --gcode F --cl F --truth F
 //   vcpost-samplegen step PART FILE
+//   vcpost-samplegen stl PART FILE [--triangles N]
 //   vcpost-samplegen samples DIR        (regenerates samples/)
 //
 // Exit codes: 0 ok, 2 usage or input error, 3 internal error.
@@ -15,7 +16,9 @@
 #include <numbers>
 
 #include "geometry/occt/sample_parts.h"
+#include "geometry/mesh/stl_reader.h"
 #include "postproc/samplegen/parts.h"
+#include "postproc/samplegen/surface_mesh.h"
 
 namespace {
 
@@ -55,17 +58,23 @@ class OutFile {
 
 Part part_or_throw(const std::string& name) {
   auto p = make_part(name);
-  if (!p) throw UsageError("unknown part '" + name + "' (wavy, cylinder, dome)");
+  if (!p) throw UsageError("unknown part '" + name + "' (wavy, patches, cylinder, dome)");
   return std::move(*p);
 }
 
 void write_step(const Part& part, const fs::path& file) {
-  using vcpost::occt::write_bspline_face_step;
-  if (part.name == "wavy") {
-    const auto& d = dynamic_cast<const WavyBspline&>(*part.surface).data();
-    write_bspline_face_step(
-        file, {d.degree_u, d.degree_v, d.knots_u, d.knots_v, d.count_u, d.count_v, d.poles},
-        "vcpost wavy B-spline mould 120 x 80");
+  if (const auto* wavy = dynamic_cast<const WavyBspline*>(part.surface.get())) {
+    const auto& d = wavy->data();
+    const vcpost::occt::BsplineSurfaceSpec spec{
+        d.degree_u, d.degree_v, d.knots_u, d.knots_v, d.count_u, d.count_v, d.poles};
+    if (part.step_faces_u * part.step_faces_v == 1) {
+      vcpost::occt::write_bspline_face_step(file, spec, "vcpost wavy B-spline mould 120 x 80");
+    } else {
+      vcpost::occt::write_bspline_patches_step(
+          file, spec, part.step_faces_u, part.step_faces_v,
+          "vcpost wavy B-spline mould 120 x 80 in " + std::to_string(part.step_faces_u) + " x " +
+              std::to_string(part.step_faces_v) + " faces");
+    }
   } else if (part.name == "cylinder") {
     const auto& c = dynamic_cast<const SemiCylinder&>(*part.surface);
     // Axis x, reference z: the points (h, -R sin a, R cos a), a in [-pi/2, pi/2].
@@ -109,7 +118,7 @@ int main(int argc, char** argv) {
   int decimals = 6;
   std::vector<double> window;
   std::optional<double> radius;
-  path_cmd->add_option("part", part_name, "wavy | cylinder | dome")->required();
+  path_cmd->add_option("part", part_name, "wavy | patches | cylinder | dome")->required();
   path_cmd->add_option("--pattern", pattern, "raster | iso-u | iso-v")
       ->check(CLI::IsMember({"raster", "iso-u", "iso-v"}));
   path_cmd->add_option("--tool-diameter", diameter, "ball diameter, mm (default: the part's)");
@@ -138,8 +147,16 @@ int main(int argc, char** argv) {
 
   auto* step_cmd = app.add_subcommand("step", "write the STEP file of a part's surface");
   std::string step_part, step_file;
-  step_cmd->add_option("part", step_part, "wavy | cylinder | dome")->required();
+  step_cmd->add_option("part", step_part, "wavy | patches | cylinder | dome")->required();
   step_cmd->add_option("file", step_file, "output .step")->required();
+
+  auto* stl_cmd = app.add_subcommand("stl", "write a binary STL mesh of a part's surface");
+  std::string stl_part, stl_file;
+  std::uint64_t triangles = 100'000;
+  stl_cmd->add_option("part", stl_part, "wavy | patches | cylinder | dome")->required();
+  stl_cmd->add_option("file", stl_file, "output .stl")->required();
+  stl_cmd->add_option("--triangles", triangles, "about this many triangles (grid of square cells)")
+      ->check(CLI::Range(std::uint64_t{2}, std::uint64_t{20'000'000}));
 
   auto* samples_cmd =
       app.add_subcommand("samples", "regenerate the samples/ folder's parts and programs");
@@ -187,6 +204,15 @@ int main(int argc, char** argv) {
       std::cerr << "vcpost-samplegen: " << n << " points\n";
     } else if (*step_cmd) {
       write_step(part_or_throw(step_part), step_file);
+    } else if (*stl_cmd) {
+      const Part part = part_or_throw(stl_part);
+      const vcpost::mesh::StlMesh m = triangulate(*part.surface, triangles);
+      OutFile out(stl_file);
+      const std::string bytes =
+          vcpost::mesh::to_binary_stl(m, "vcpost-samplegen " + part.name + " surface");
+      out.stream()->write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+      out.commit();
+      std::cerr << "vcpost-samplegen: " << m.triangles.size() << " triangles\n";
     } else if (*samples_cmd) {
       fs::create_directories(dir);
       for (const auto& name : part_names())

@@ -37,8 +37,9 @@ std::vector<std::string> part_names() { return {"wavy", "cylinder", "dome"}; }
 std::optional<Part> make_part(const std::string& name) {
   Part p;
   p.name = name;
-  if (name == "wavy") {
+  if (name == "wavy" || name == "patches") {
     p.surface = std::make_unique<WavyBspline>(WavyBspline::mould());
+    if (name == "patches") p.step_faces_u = p.step_faces_v = 10;  // 12 x 8 mm faces
     p.tool_diameter = 10;
     // Slopes stay under 40 deg, so the contact is within 5*sin 40 < 4 mm of
     // the centre's xy: a 10 mm margin keeps it on the patch.

@@ -13,8 +13,12 @@
 namespace vcpost::samplegen {
 
 struct Part {
-  std::string name;  // "wavy", "cylinder", "dome"
+  std::string name;  // "wavy", "patches", "cylinder", "dome"
   std::unique_ptr<SampleSurface> surface;
+  // The STEP model is the surface cut into step_faces_u x step_faces_v
+  // faces at equal steps of (u,v) (1 x 1: one face). The surface, hence the
+  // truth, is the same whatever the cut.
+  int step_faces_u = 1, step_faces_v = 1;
   double tool_diameter = 12;  // mm, the part's default ball
   // Defaults of the windows (see PathSpec): the ball-centre xy box (and
   // disc) of the raster, the (u,v) box of the iso-parametric patterns.
@@ -23,8 +27,11 @@ struct Part {
   Eigen::AlignedBox2d iso_window;
 };
 
-// "wavy" | "cylinder" | "dome"; empty for another name.
+// "wavy" | "patches" | "cylinder" | "dome"; empty for another name.
+// "patches" is the wavy mould with its STEP model cut into 10 x 10 faces
+// (the multi-face model of the scale benchmark; not in samples/).
 std::optional<Part> make_part(const std::string& name);
+// The parts of samples/ (without "patches").
 std::vector<std::string> part_names();
 
 // One program of samples/: which part, the path, the file stem.

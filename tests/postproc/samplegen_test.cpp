@@ -1,10 +1,12 @@
 // The sample generator: its B-spline against an independent de Boor
 // evaluation, its truth against the closed forms (1e-9), the programs read
-// back by the G-code interpreter and the CL reader, and samples/ as the
-// generator writes it today.
+// back by the G-code interpreter and the CL reader, samples/ as the
+// generator writes it today, the 100-face STEP model of "patches" against
+// the truth, and the STL meshes against the surfaces.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -12,9 +14,13 @@
 #include <numbers>
 #include <sstream>
 
+#include "geometry/mesh/stl_reader.h"
+#include "geometry/occt/brep_model.h"
+#include "geometry/occt/sample_parts.h"
 #include "postproc/cldata/cl_reader.h"
 #include "postproc/gcode/interpreter.h"
 #include "postproc/samplegen/parts.h"
+#include "postproc/samplegen/surface_mesh.h"
 #include "postproc/samplegen/surfaces.h"
 #include "postproc/samplegen/toolpath.h"
 
@@ -411,6 +417,155 @@ TEST(SampleGenerator, WindowBeyondTheSurfaceIsRefused) {
   PathSpec spec;
   spec.window = Eigen::AlignedBox2d(Vector2d(0, 0), Vector2d(10, 120));  // y beyond R + r
   EXPECT_THROW(generate(*part->surface, spec, 6, [](const PathPoint&) {}), SurfaceError);
+}
+
+
+// A temporary folder removed at the end of the test.
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    path = fs::temp_directory_path() /
+           ("vcpost_samplegen_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+            "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(path);
+  }
+  ~TempDir() { fs::remove_all(path); }
+};
+
+// "patches" is the wavy mould with the same truth; only its STEP model is
+// cut into 10 x 10 faces.
+TEST(SampleGenerator, PatchesIsTheWavyMouldInTenByTenFaces) {
+  const auto patches = make_part("patches");
+  const auto wavy = make_part("wavy");
+  ASSERT_TRUE(patches && wavy);
+  EXPECT_EQ(patches->step_faces_u, 10);
+  EXPECT_EQ(patches->step_faces_v, 10);
+  EXPECT_EQ(wavy->step_faces_u * wavy->step_faces_v, 1);
+  EXPECT_EQ(patches->raster_window.min(), wavy->raster_window.min());
+  EXPECT_EQ(patches->raster_window.max(), wavy->raster_window.max());
+  for (const Vector2d& uv : {Vector2d(0, 0), Vector2d(37.5, 61.25), Vector2d(120, 80)})
+    EXPECT_EQ(patches->surface->point(uv), wavy->surface->point(uv));
+}
+
+// The STEP model written as `vcpost-samplegen step patches` writes it: 100
+// faces, and every truth CC of a patches program is on it (1e-6 mm) and is
+// the closest point the loaded model finds for the ball centre (1e-6 mm),
+// across the faces' shared edges.
+TEST(SampleGenerator, PatchesStepHoldsTheTruth) {
+  const auto part = make_part("patches");
+  const auto& d = dynamic_cast<const WavyBspline&>(*part->surface).data();
+  const TempDir dir;
+  const fs::path file = dir.path / "patches.step";
+  occt::write_bspline_patches_step(
+      file, {d.degree_u, d.degree_v, d.knots_u, d.knots_v, d.count_u, d.count_v, d.poles},
+      part->step_faces_u, part->step_faces_v, "patches test");
+  const auto model = occt::BrepModel::load_step(file);
+  EXPECT_EQ(model.face_count(), 100);
+  EXPECT_EQ(model.info().faces, 100);
+  // The faces together are the 120 x 80 patch (the model's box is grown by
+  // its tessellation margin, under 0.5 mm here).
+  const Eigen::AlignedBox3d b = model.bounds();
+  EXPECT_LE(b.min().x(), 0);
+  EXPECT_GT(b.min().x(), -0.5);
+  EXPECT_GE(b.max().x(), 120);
+  EXPECT_LT(b.max().x(), 120.5);
+  EXPECT_LE(b.min().y(), 0);
+  EXPECT_GT(b.min().y(), -0.5);
+  EXPECT_GE(b.max().y(), 80);
+  EXPECT_LT(b.max().y(), 80.5);
+
+  PathSpec spec;
+  spec.tool_radius = part->tool_diameter / 2;
+  // Ball centres over x 5..115, y 5..75; the contacts are within 4 mm of
+  // them in xy (slopes under 40 deg), so they reach every one of the
+  // 12 x 8 mm faces and stay on the patch.
+  spec.window = Eigen::AlignedBox2d(Vector2d(5, 5), Vector2d(115, 75));
+  spec.stepover = 2.3;  // not a multiple of the 12 x 8 mm faces: points fall near their edges
+  spec.step = 0.7;
+  std::vector<PathPoint> points;
+  generate(*part->surface, spec, 6, [&](const PathPoint& p) { points.push_back(p); });
+  ASSERT_GT(points.size(), 3000u);
+  geometry::ContactHint hint;
+  std::vector<bool> faces_hit(100, false);
+  double worst_on = 0, worst_closest = 0, worst_normal = 0;
+  for (const auto& p : points) {
+    const auto on = model.closest_point(p.cc, 1.0, nullptr);
+    ASSERT_TRUE(on.has_value());
+    worst_on = std::max(worst_on, on->distance);
+    const auto c = model.closest_point(p.center, 2 * spec.tool_radius, &hint);
+    ASSERT_TRUE(c.has_value());
+    worst_closest = std::max(worst_closest, (c->point - p.cc).norm());
+    worst_normal = std::max(worst_normal, (c->normal - p.normal).norm());
+    faces_hit[static_cast<std::size_t>(c->face)] = true;
+  }
+  EXPECT_LE(worst_on, 1e-6);
+  EXPECT_LE(worst_closest, 1e-6);
+  EXPECT_LE(worst_normal, 1e-6);
+  EXPECT_EQ(std::count(faces_hit.begin(), faces_hit.end(), true), 100);
+}
+
+// The mesh of the wavy mould: about the asked number of triangles, every
+// vertex on the surface (an independent de Boor evaluation, 1e-9 mm), the
+// triangles facing the tool, and the binary STL reads back as the mesh to
+// float precision.
+TEST(SampleGenerator, StlMeshOfTheMouldIsOnTheSurface) {
+  const WavyBspline s = WavyBspline::mould();
+  for (const std::uint64_t n : {std::uint64_t{1000}, std::uint64_t{100000}}) {
+    SCOPED_TRACE(n);
+    const mesh::StlMesh m = triangulate(s, n);
+    EXPECT_NEAR(static_cast<double>(m.triangles.size()), static_cast<double>(n),
+                0.05 * static_cast<double>(n));
+    double worst = 0;
+    for (const auto& v : m.vertices) {
+      ASSERT_GE(v.x(), 0);
+      ASSERT_LE(v.x(), 120);
+      ASSERT_GE(v.y(), 0);
+      ASSERT_LE(v.y(), 80);
+      worst = std::max(worst, std::abs(v.z() - mould_height(s, v.x(), v.y())[0]));
+    }
+    EXPECT_LE(worst, 1e-9);
+    double area = 0;
+    for (const auto& t : m.triangles) {
+      const Vector3d a = m.vertices[t[0]], b = m.vertices[t[1]], c = m.vertices[t[2]];
+      const Vector3d normal = (b - a).cross(c - a);
+      ASSERT_GT(normal.z(), 0);  // graph surface, normal up
+      area += normal.z() / 2;    // projected area
+    }
+    EXPECT_NEAR(area, 120.0 * 80.0, 1e-7);  // the grid covers the domain exactly
+    const mesh::StlMesh r = mesh::parse_stl(mesh::to_binary_stl(m, "test"), "mould.stl");
+    ASSERT_EQ(r.triangles.size(), m.triangles.size());
+    for (std::size_t i = 0; i < m.triangles.size(); i += 97) {
+      for (int k = 0; k < 3; ++k) {
+        const Vector3d a = m.vertices[m.triangles[i][k]], b = r.vertices[r.triangles[i][k]];
+        EXPECT_LE((a - b).cwiseAbs().maxCoeff(), 120 * std::ldexp(1.0, -24)) << i;
+      }
+    }
+  }
+}
+
+// Grid sizes: cells in the ratio of the surface's extents.
+TEST(SampleGenerator, StlGridCellsAreAboutSquare) {
+  const WavyBspline s = WavyBspline::mould();
+  const mesh::StlMesh m = triangulate(s, 100000);
+  // Vertex rows: (cells_u + 1) * (cells_v + 1) vertices; cells_v = vertices
+  // with x == 0 minus one.
+  const auto cells_v = std::count_if(m.vertices.begin(), m.vertices.end(),
+                                     [](const Vector3d& v) { return v.x() == 0; }) - 1;
+  const auto cells_u = static_cast<long>(m.vertices.size()) / (cells_v + 1) - 1;
+  const double ratio = static_cast<double>(cells_u) / static_cast<double>(cells_v);
+  // Along y the middle line x = 60 is 80 mm long plus its waves; along x
+  // (y = 40) 120 mm plus the slope and waves: a ratio near 1.5.
+  EXPECT_GT(ratio, 1.35);
+  EXPECT_LT(ratio, 1.65);
+  // The dome's pole collapses a row of cells: those lose one triangle each.
+  const Dome dome(40, 75 * std::numbers::pi / 180);
+  const mesh::StlMesh dm = triangulate_grid(dome, 36, 10);
+  EXPECT_EQ(dm.triangles.size(), 2u * 36 * 10 - 36);
+  for (const auto& t : dm.triangles) {
+    const Vector3d a = dm.vertices[t[0]], b = dm.vertices[t[1]], c = dm.vertices[t[2]];
+    EXPECT_GT((b - a).cross(c - a).dot((a + b + c) / 3), 0);  // outward, to the tool
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(dm.vertices[t[k]].norm(), 40, 1e-12);
+  }
 }
 
 }  // namespace

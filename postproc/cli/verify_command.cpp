@@ -119,6 +119,7 @@ void run(const Arguments& args) {
   }
   options.tolerance_mm = args.tolerance;
   options.output_decimals = profile.output().decimals;
+  options.output_feed_decimals = profile.output().feed_decimals;
   const std::string input = read_file(args.input), output = read_file(args.output);
   const std::string in_name = args.input == "-" ? "<stdin>" : args.input;
   const std::string out_name = args.output == "-" ? "<stdin>" : args.output;

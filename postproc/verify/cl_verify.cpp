@@ -37,6 +37,15 @@ struct Item {
   std::optional<SfValue> s, f;
 };
 
+std::string number(double v) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.4f", v);
+  std::string text = buffer;
+  while (!text.empty() && text.back() == '0') text.pop_back();
+  if (!text.empty() && text.back() == '.') text.pop_back();
+  return text;
+}
+
 bool is_item(const Event& e) {
   return program::is_motion(e) || std::holds_alternative<program::SpindleOn>(e) ||
          std::holds_alternative<program::SpindleOff>(e) ||
@@ -84,10 +93,11 @@ class GcodeItems {
       while (at_ < events_.size()) {
         const Event& e = events_[at_++];
         const auto src = program::source_of(e);
+        // Only S/F words: a modal change (G94 after G95) also sets a feed.
         if (std::holds_alternative<program::SetSpindleSpeed>(e)) {
-          s_ = word('S', std::get<program::SetSpindleSpeed>(e).rpm, src);
+          if (s_word_) s_ = word('S', std::get<program::SetSpindleSpeed>(e).rpm, src);
         } else if (std::holds_alternative<program::SetFeedRate>(e)) {
-          f_ = word('F', std::get<program::SetFeedRate>(e).rate, src);
+          if (f_word_) f_ = word('F', std::get<program::SetFeedRate>(e).rate, src);
         } else if (is_item(e)) {
           Item item{e, src.line, src.column, std::move(s_), std::move(f_)};
           s_.reset();
@@ -101,9 +111,23 @@ class GcodeItems {
         done_ = true;
         return std::nullopt;
       }
-      for (const auto& w : interpreter_.block().words)
+      bool m5 = false;
+      s_word_.reset();
+      f_word_.reset();
+      for (const auto& w : interpreter_.block().words) {
         if (w.letter == 'S' || w.letter == 'F')
           (w.letter == 'S' ? s_word_ : f_word_) = Span{w.begin, w.end, w.column};
+        m5 = m5 || (w.letter == 'M' && w.value == 5);
+      }
+      // M2/M30 stop the spindle themselves (as rs274 reports it); CL FINI
+      // says nothing of it, so that implied stop is not compared.
+      const bool ends = std::any_of(events_.begin(), events_.end(), [](const Event& e) {
+        return std::holds_alternative<program::ProgramEnd>(e);
+      });
+      if (ends && !m5)
+        std::erase_if(events_, [](const Event& e) {
+          return std::holds_alternative<program::SpindleOff>(e);
+        });
     }
   }
 
@@ -111,31 +135,21 @@ class GcodeItems {
   struct Span {
     std::uint32_t begin = 0, end = 0, column = 0;
   };
+  // The word as written in the current block.
   SfValue word(char letter, double value, const program::SourceRef& src) const {
     const gcode::Block& block = interpreter_.block();
-    const Span& span = letter == 'S' ? s_word_ : f_word_;
-    SfValue v{value, std::string(block.text.substr(span.begin, span.end - span.begin)), src.line,
-              span.column};
-    if (v.text.empty()) v.text = std::string(1, letter);
-    return v;
+    const Span& span = letter == 'S' ? *s_word_ : *f_word_;
+    return SfValue{value, std::string(block.text.substr(span.begin, span.end - span.begin)),
+                   src.line, span.column};
   }
 
   gcode::Interpreter interpreter_;
   std::vector<Event> events_;
   std::size_t at_ = 0;
   bool done_ = false;
-  Span s_word_, f_word_;
+  std::optional<Span> s_word_, f_word_;
   std::optional<SfValue> s_, f_;
 };
-
-std::string number(double v) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.4f", v);
-  std::string text = buffer;
-  while (!text.empty() && text.back() == '0') text.pop_back();
-  if (!text.empty() && text.back() == '.') text.pop_back();
-  return text;
-}
 
 std::string point(const Eigen::Vector3d& p) {
   return "(" + number(p.x()) + ", " + number(p.y()) + ", " + number(p.z()) + ")";
@@ -164,8 +178,9 @@ Eigen::Vector3d end_of(const Event& e) {
 
 class Comparer {
  public:
-  Comparer(double tolerance, Result& result, ViolationSink& sink)
-      : tolerance_(tolerance), result_(result), sink_(sink) {}
+  Comparer(double tolerance, int feed_decimals, Result& result, ViolationSink& sink)
+      : tolerance_(tolerance), feed_step_(std::pow(10.0, -std::clamp(feed_decimals, 0, 9))),
+        result_(result), sink_(sink) {}
 
   // Compares a pair of items; false when the sequences no longer line up.
   bool compare(const Item& cl, const Item& out) {
@@ -244,7 +259,9 @@ class Comparer {
       const auto& o = letter == 'S' ? out.s : out.f;
       const auto& c = letter == 'S' ? cl.s : cl.f;
       if (!o) continue;
-      if (c && std::abs(c->value - o->value) <= 1e-9) continue;
+      // The CL value on the output's grid (integer S, F to its decimals) is no change.
+      const double step = letter == 'S' ? 1.0 : feed_step_;
+      if (c && std::abs(std::round(c->value / step) * step - o->value) <= 1e-6 * step) continue;
       Change change{o->line, o->column, c ? c->line : cl.line, letter,
                     c ? letter + number(c->value) : "", o->text, !c};
       ++(letter == 'S' ? result_.s_changes : result_.f_changes);
@@ -253,6 +270,7 @@ class Comparer {
   }
 
   double tolerance_;
+  double feed_step_;  // mm/min
   Result& result_;
   ViolationSink& sink_;
 };
@@ -266,7 +284,7 @@ Result verify_cl(std::string_view cl_text, std::string_view output, const Option
   result.tolerance_mm =
       std::max(options.tolerance_mm, 0.5 * std::pow(10.0, -std::clamp(options.output_decimals, 0, 9)));
   ViolationSink sink(options.max_violations);
-  Comparer comparer(result.tolerance_mm, result, sink);
+  Comparer comparer(result.tolerance_mm, options.output_feed_decimals, result, sink);
   ClItems cl(cl_text, input_name);
   GcodeItems out(output, options.dialect);
   while (true) {

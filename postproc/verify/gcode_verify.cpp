@@ -114,7 +114,10 @@ class LineComparer {
     auto add = [&](Code code, std::string message) {
       sink.add(code, out.number, column, in.number, std::move(message));
     };
-    const std::string in_col = x ? " (input column " + std::to_string(x->column) + ")" : "";
+    // The input's column, when an added word has shifted it.
+    const std::string in_col = x && x->column != column
+                                   ? " (input column " + std::to_string(x->column) + ")"
+                                   : "";
     if (x && x->is_sf() && !(y && y->kind == TokenKind::word && y->text[0] == x->text[0]) &&
         count_b[letter_index(x->letter())] < count_a[letter_index(x->letter())]) {
       add(Code::sf_removed, quoted(x->text) + " removed" + in_col);
@@ -181,14 +184,18 @@ class LineComparer {
       if (!c.empty() && c.back() == ')') c.remove_suffix(1);
       return c;
     };
-    auto rest = [](std::string_view text, std::vector<Token>& tokens, std::string& out) {
+    // The comment's text without blanks, with or without its S/F words.
+    auto rest = [](std::string_view text, std::vector<Token>& tokens, bool sf, std::string& out) {
       tokenize(text, tokens);
       out.clear();
       for (const auto& t : tokens)
-        if (!t.is_sf() && t.kind != TokenKind::blank) out += t.text;
+        if ((sf || !t.is_sf()) && t.kind != TokenKind::blank) out += t.text;
     };
-    rest(inner(a), ca_, sa_);
-    rest(inner(b), cb_, sb_);
+    rest(inner(a), ca_, true, sa_);
+    rest(inner(b), cb_, true, sb_);
+    if (sa_ == sb_) return false;  // only blanks differ
+    rest(inner(a), ca_, false, sa_);
+    rest(inner(b), cb_, false, sb_);
     return sa_ == sb_;
   }
 

@@ -108,6 +108,9 @@ struct Options {
   // with that many decimals is off by up to that much on each axis.
   double tolerance_mm = 0.0005;
   int output_decimals = 4;
+  // CL only: digits of the output's F (mm/min); S is an integer. A CL value
+  // that the output writes rounded to that grid is no change.
+  int output_feed_decimals = 1;
   std::size_t max_violations = 1000;  // kept in Result::violations (all are counted)
 };
 

@@ -1,0 +1,266 @@
+// verify_gcode on a small hand-written program: a legitimate rewrite (made
+// with the writer, as `vcpost post` makes it) passes with exactly the
+// changes it made, at the columns counted by hand; each hand-made mutation
+// of it is caught with its code at its line, and only there.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "postproc/gcode/writer.h"
+#include "postproc/verify/lexer.h"
+#include "postproc/verify/verify.h"
+
+namespace vcpost::verify {
+namespace {
+
+// Line numbers: 1 %, 2 comment, 5 S word, 7 F word, 8 S word, 9 comment.
+const std::string kInput =
+    "%\n"
+    "(finish pass)\n"
+    "G21 G90 G17 G94\n"
+    "T1 M6\n"
+    "S12000 M3\n"
+    "G0 X0 Y0 Z5\n"
+    "G1 Z-1 F800\n"
+    "G1 X10.5 Y2 S11000\n"
+    "X20 Y4 (edge)\n"
+    "G0 Z5\n"
+    "M5\n"
+    "M30\n"
+    "%\n";
+
+// Byte offset of the first byte of 1-based line `n`.
+std::uint64_t line_offset(const std::string& text, int n) {
+  std::uint64_t at = 0;
+  for (int k = 1; k < n; ++k) at = text.find('\n', at) + 1;
+  return at;
+}
+
+std::string posted(const std::string& input) {
+  const std::vector<gcode::WordPatch> patches = {
+      {line_offset(input, 5), 'S', "9870"},
+      {line_offset(input, 7), 'F', "750"},
+      {line_offset(input, 7), 'S', "9500"},
+      {line_offset(input, 8), 'S', "11000"},  // the same value: no change
+      {line_offset(input, 9), 'S', "9000"},
+  };
+  return gcode::patched(input, patches);
+}
+
+Result run(const std::string& input, const std::string& output) {
+  return verify_gcode(input, output, Options{});
+}
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+// The output with exactly one violation: its code, output line and column.
+void expect_one(const std::string& output, Code code, std::uint32_t line,
+                std::uint32_t column = 0) {
+  const Result r = run(kInput, output);
+  ASSERT_EQ(r.violation_count, 1u) << output << (r.violations.empty() ? "" : format(r.violations[0], "out"));
+  EXPECT_EQ(r.violations[0].code, code) << format(r.violations[0], "out");
+  EXPECT_EQ(r.violations[0].line, line) << format(r.violations[0], "out");
+  if (column) {
+    EXPECT_EQ(r.violations[0].column, column) << format(r.violations[0], "out");
+  }
+  EXPECT_FALSE(r.ok());
+}
+
+TEST(VerifyGcode, TheWritersRewritePassesWithEachChangeAtItsPlace) {
+  const std::string out = posted(kInput);
+  ASSERT_EQ(out.substr(line_offset(out, 7), 18), "G1 Z-1 F750 S9500\n");
+  const Result r = run(kInput, out);
+  EXPECT_TRUE(r.ok());
+  EXPECT_EQ(r.violation_count, 0u);
+  ASSERT_EQ(r.changes.size(), 4u);
+  EXPECT_EQ(r.s_changes, 3u);
+  EXPECT_EQ(r.f_changes, 1u);
+  // line 5 "S9870 M3"
+  EXPECT_EQ(r.changes[0].line, 5u);
+  EXPECT_EQ(r.changes[0].column, 1u);
+  EXPECT_EQ(r.changes[0].old_text, "S12000");
+  EXPECT_EQ(r.changes[0].new_text, "S9870");
+  EXPECT_FALSE(r.changes[0].added);
+  EXPECT_EQ(describe(r.changes[0]), "S12000 -> S9870");
+  // line 7 "G1 Z-1 F750 S9500": F in place, S added after the last word
+  EXPECT_EQ(r.changes[1].line, 7u);
+  EXPECT_EQ(r.changes[1].letter, 'F');
+  EXPECT_EQ(r.changes[1].column, 8u);
+  EXPECT_EQ(describe(r.changes[1]), "F800 -> F750");
+  EXPECT_EQ(r.changes[2].line, 7u);
+  EXPECT_EQ(r.changes[2].letter, 'S');
+  EXPECT_EQ(r.changes[2].column, 13u);
+  EXPECT_TRUE(r.changes[2].added);
+  EXPECT_EQ(describe(r.changes[2]), "+ S9500");
+  // line 9 "X20 Y4 S9000 (edge)": added before the trailing comment
+  EXPECT_EQ(r.changes[3].line, 9u);
+  EXPECT_EQ(r.changes[3].column, 8u);
+  EXPECT_TRUE(r.changes[3].added);
+  // Motions compared by the interpreted proof, counted by hand: lines 6 to 10.
+  EXPECT_EQ(r.motions, 5u);
+}
+
+TEST(VerifyGcode, IdenticalProgramsPassWithNoChange) {
+  const Result r = run(kInput, kInput);
+  EXPECT_TRUE(r.ok());
+  EXPECT_TRUE(r.changes.empty());
+}
+
+TEST(VerifyGcode, ExpressionReplacedByANumberIsAChange) {
+  const std::string input = "#1=6000\nS[#1*2] M3\nG1 X1 F100\nM30\n";
+  const std::string output = gcode::patched(input, std::vector<gcode::WordPatch>{{8, 'S', "9870"}});
+  ASSERT_EQ(output, "#1=6000\nS9870 M3\nG1 X1 F100\nM30\n");
+  const Result r = run(input, output);
+  EXPECT_TRUE(r.ok());
+  ASSERT_EQ(r.changes.size(), 1u);
+  EXPECT_EQ(describe(r.changes[0]), "S[#1*2] -> S9870");
+}
+
+TEST(VerifyGcode, CrlfProgramRewrittenKeepsItsLineEndsAndPasses) {
+  std::string input;
+  for (char c : kInput) input += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  const Result r = run(input, posted(input));
+  EXPECT_TRUE(r.ok());
+  EXPECT_EQ(r.changes.size(), 4u);
+}
+
+TEST(VerifyGcode, CoordinateDigitChanged) {
+  expect_one(replace(posted(kInput), "X10.5", "X10.6"), Code::word_changed, 8, 4);
+}
+
+TEST(VerifyGcode, XWordRemoved) {
+  expect_one(replace(posted(kInput), "G1 X10.5 Y2", "G1 Y2"), Code::token_removed, 8);
+}
+
+TEST(VerifyGcode, G1BecameG0) {
+  expect_one(replace(posted(kInput), "G1 X10.5", "G0 X10.5"), Code::word_changed, 8, 1);
+}
+
+TEST(VerifyGcode, CommentEdited) {
+  expect_one(replace(posted(kInput), "(finish pass)", "(finish  pass)"), Code::comment_changed, 2, 1);
+}
+
+TEST(VerifyGcode, FInsertedIntoAComment) {
+  expect_one(replace(posted(kInput), "(edge)", "(edge F500)"), Code::word_in_comment, 9);
+}
+
+TEST(VerifyGcode, SWordInsideACommentChanged) {
+  const std::string input = "(S1000 rough)\nG1 X1 F100\nM30\n";
+  const Result r = run(input, "(S900 rough)\nG1 X1 F100\nM30\n");
+  ASSERT_EQ(r.violation_count, 1u);
+  EXPECT_EQ(r.violations[0].code, Code::word_in_comment);
+  EXPECT_EQ(r.violations[0].line, 1u);
+}
+
+TEST(VerifyGcode, LineAdded) {
+  const std::string out = posted(kInput);
+  const std::string added = out.substr(0, line_offset(out, 7)) + "G4 P1\n" + out.substr(line_offset(out, 7));
+  const Result r = run(kInput, added);
+  ASSERT_GE(r.violation_count, 1u);
+  EXPECT_EQ(r.violations[0].code, Code::line_count);
+  EXPECT_EQ(r.violations[0].line, 7u);
+  EXPECT_EQ(r.violation_count, 1u) << format(r.violations.back(), "out");
+  // The lines after it still pair up: their changes are found.
+  EXPECT_EQ(r.changes.size(), 4u);
+  EXPECT_EQ(r.changes.back().line, 10u);
+}
+
+TEST(VerifyGcode, LineRemoved) {
+  expect_one(replace(posted(kInput), "G0 Z5\nM5\n", "M5\n"), Code::line_count, 10, 1);
+}
+
+TEST(VerifyGcode, WhitespaceChanged) {
+  expect_one(replace(posted(kInput), "G1 X10.5 Y2", "G1 X10.5  Y2"), Code::whitespace_changed, 8, 9);
+  expect_one(replace(posted(kInput), "G21 G90", "G21\tG90"), Code::whitespace_changed, 3, 4);
+  expect_one(replace(posted(kInput), "M5\n", "M5 \n"), Code::whitespace_changed, 11, 3);
+}
+
+TEST(VerifyGcode, SWordRemoved) {
+  expect_one(replace(posted(kInput), "S9870 M3", "M3"), Code::sf_removed, 5, 1);
+}
+
+TEST(VerifyGcode, SWithANegativeValue) {
+  expect_one(replace(posted(kInput), "S9870 M3", "S-9870 M3"), Code::bad_sf_value, 5, 1);
+}
+
+TEST(VerifyGcode, SWithANonNumericValue) {
+  expect_one(replace(posted(kInput), "S9870 M3", "S#1 M3"), Code::bad_sf_value, 5, 1);
+  expect_one(replace(posted(kInput), "S9870 M3", "S0 M3"), Code::bad_sf_value, 5, 1);
+}
+
+TEST(VerifyGcode, SecondSWordInABlock) {
+  expect_one(replace(posted(kInput), "S9870 M3", "S9870 S9000 M3"), Code::sf_repeated, 5, 7);
+}
+
+TEST(VerifyGcode, CrlfInsteadOfLf) {
+  const std::string out = posted(kInput);
+  std::string crlf;
+  for (char c : out) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  const Result r = run(kInput, crlf);
+  ASSERT_EQ(r.violation_count, 13u);  // every line of 13
+  for (std::uint32_t k = 0; k < 13; ++k) {
+    EXPECT_EQ(r.violations[k].code, Code::line_ending);
+    EXPECT_EQ(r.violations[k].line, k + 1);
+  }
+  EXPECT_EQ(r.violations[1].column, 14u);  // after "(finish pass)"
+}
+
+TEST(VerifyGcode, MissingFinalNewline) {
+  const std::string out = posted(kInput);
+  expect_one(out.substr(0, out.size() - 1), Code::line_ending, 13, 2);
+}
+
+TEST(VerifyGcode, OutputThatDoesNotInterpretButLooksEqualCannotExist) {
+  // The interpreted proof catches what the lexical one would: a word
+  // changed where the second reading agrees (both find line 8 only).
+  const Result r = run(kInput, replace(posted(kInput), "Y2 S11000", "Y3 S11000"));
+  ASSERT_EQ(r.violation_count, 1u);
+  EXPECT_EQ(r.violations[0].line, 8u);
+}
+
+TEST(VerifyGcode, InputThatDoesNotReadIsAnInputError) {
+  EXPECT_THROW(run("G1 X1 F100\nG2 X2\nM30\n", "G1 X1 F100\nG2 X2\nM30\n"), InputError);
+}
+
+TEST(VerifyGcode, EveryCodeIsInTheTable) {
+  for (const auto& entry : code_table()) {
+    EXPECT_EQ(info(entry.code).code, entry.code);
+    EXPECT_EQ(code_id(entry.code).size(), 5u);
+    EXPECT_EQ(code_id(entry.code)[0], 'E');
+  }
+  EXPECT_EQ(code_table().size(), 19u);
+  EXPECT_EQ(code_id(Code::sf_removed), "E7109");
+}
+
+TEST(VerifyLexer, TokensCoverTheLineAndFindWords) {
+  std::vector<Token> tokens;
+  const std::string_view line = "N80G0X53.Y-56.128 S #<rpm> F[#1*2] (S100) #<f1>=2";
+  tokenize(line, tokens);
+  std::string joined;
+  std::vector<std::string> words;
+  for (const auto& t : tokens) {
+    joined += t.text;
+    if (t.kind == TokenKind::word) words.emplace_back(t.text);
+  }
+  EXPECT_EQ(joined, line);
+  EXPECT_EQ(words, (std::vector<std::string>{"N80", "G0", "X53.", "Y-56.128", "S #<rpm>", "F[#1*2]"}));
+  EXPECT_TRUE(is_plain_positive("9870"));
+  EXPECT_TRUE(is_plain_positive("850.5"));
+  EXPECT_TRUE(is_plain_positive(".5"));
+  EXPECT_FALSE(is_plain_positive("0"));
+  EXPECT_FALSE(is_plain_positive("0.0"));
+  EXPECT_FALSE(is_plain_positive("-5"));
+  EXPECT_FALSE(is_plain_positive("+5"));
+  EXPECT_FALSE(is_plain_positive("5.5.5"));
+  EXPECT_FALSE(is_plain_positive("."));
+  EXPECT_FALSE(is_plain_positive("9 870"));
+}
+
+}  // namespace
+}  // namespace vcpost::verify

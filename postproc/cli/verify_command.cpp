@@ -126,6 +126,15 @@ void run(const Arguments& args) {
   if (post::detect_program_kind(output) == post::ProgramKind::cldata)
     throw CommandError("verify: " + out_name + " is APT CL data; OUTPUT must be G-code");
 
+  // Changes stream out (or are only counted); JSON needs them all.
+  if (!args.json) {
+    if (args.changes)
+      options.on_change = [](const verify::Change& c) {
+        std::cout << c.line << ": " << verify::describe(c) << '\n';
+      };
+    else
+      options.on_change = [](const verify::Change&) {};
+  }
   verify::Result result;
   try {
     result = post::detect_program_kind(input) == post::ProgramKind::cldata
@@ -136,9 +145,6 @@ void run(const Arguments& args) {
   }
 
   if (args.json) std::cout << to_json(result).dump(2) << '\n';
-  if (args.changes && !args.json)
-    for (const auto& c : result.changes)
-      std::cout << c.line << ": " << verify::describe(c) << '\n';
   std::cout.flush();
   if (!result.ok()) {
     for (std::size_t k = 0; k < result.violations.size() && k < kShown; ++k)

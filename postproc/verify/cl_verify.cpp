@@ -178,9 +178,10 @@ Eigen::Vector3d end_of(const Event& e) {
 
 class Comparer {
  public:
-  Comparer(double tolerance, int feed_decimals, Result& result, ViolationSink& sink)
+  Comparer(double tolerance, int feed_decimals, Result& result, ChangeSink& changes,
+           ViolationSink& sink)
       : tolerance_(tolerance), feed_step_(std::pow(10.0, -std::clamp(feed_decimals, 0, 9))),
-        result_(result), sink_(sink) {}
+        result_(result), changes_(changes), sink_(sink) {}
 
   // Compares a pair of items; false when the sequences no longer line up.
   bool compare(const Item& cl, const Item& out) {
@@ -262,16 +263,15 @@ class Comparer {
       // The CL value on the output's grid (integer S, F to its decimals) is no change.
       const double step = letter == 'S' ? 1.0 : feed_step_;
       if (c && std::abs(std::round(c->value / step) * step - o->value) <= 1e-6 * step) continue;
-      Change change{o->line, o->column, c ? c->line : cl.line, letter,
-                    c ? letter + number(c->value) : "", o->text, !c};
-      ++(letter == 'S' ? result_.s_changes : result_.f_changes);
-      result_.changes.push_back(std::move(change));
+      changes_.add(Change{o->line, o->column, c ? c->line : cl.line, letter,
+                          c ? letter + number(c->value) : "", o->text, !c});
     }
   }
 
   double tolerance_;
   double feed_step_;  // mm/min
   Result& result_;
+  ChangeSink& changes_;
   ViolationSink& sink_;
 };
 
@@ -284,7 +284,8 @@ Result verify_cl(std::string_view cl_text, std::string_view output, const Option
   result.tolerance_mm =
       std::max(options.tolerance_mm, 0.5 * std::pow(10.0, -std::clamp(options.output_decimals, 0, 9)));
   ViolationSink sink(options.max_violations);
-  Comparer comparer(result.tolerance_mm, options.output_feed_decimals, result, sink);
+  ChangeSink changes(result, options.on_change);
+  Comparer comparer(result.tolerance_mm, options.output_feed_decimals, result, changes, sink);
   ClItems cl(cl_text, input_name);
   GcodeItems out(output, options.dialect);
   while (true) {

@@ -211,27 +211,53 @@ bool equivalent(LineComparer& comparer, const Line& in, const Line& out) {
   return scratch.count() == 0;
 }
 
-void compare_lines(std::string_view input, std::string_view output, Result& result,
+// Streams through both texts line by line (nothing is kept but the
+// current pair).
+void compare_lines(std::string_view input, std::string_view output, ChangeSink& changes,
                    ViolationSink& sink) {
-  const std::vector<Line> a = split_lines(input), b = split_lines(output);
   LineComparer comparer;
-  if (a.size() == b.size()) {
-    for (std::size_t k = 0; k < a.size(); ++k) comparer.compare(a[k], b[k], result.changes, sink);
+  std::vector<Change> buffer;
+  auto record = [&](const Line& x, const Line& y) {
+    buffer.clear();
+    comparer.compare(x, y, buffer, sink);
+    for (auto& c : buffer) changes.add(std::move(c));
+  };
+  const std::uint32_t na = count_lines(input), nb = count_lines(output);
+  std::size_t pa = 0, pb = 0;
+  Line x, y;
+  if (na == nb) {
+    for (std::uint32_t k = 1; k <= na; ++k) {
+      pa = line_at(input, pa, k, x);
+      pb = line_at(output, pb, k, y);
+      record(x, y);
+    }
     return;
   }
   // Lines added or removed: the longest equal head and tail, the rest is
   // what was added, removed or replaced.
-  const std::size_t n = std::min(a.size(), b.size());
-  std::size_t head = 0;
-  while (head < n && equivalent(comparer, a[head], b[head])) ++head;
-  std::size_t tail = 0;
-  while (tail < n - head &&
-         equivalent(comparer, a[a.size() - 1 - tail], b[b.size() - 1 - tail]))
+  const std::uint32_t n = std::min(na, nb);
+  std::uint32_t head = 0;
+  while (head < n) {
+    const std::size_t next_a = line_at(input, pa, head + 1, x);
+    const std::size_t next_b = line_at(output, pb, head + 1, y);
+    if (!equivalent(comparer, x, y)) break;
+    record(x, y);
+    pa = next_a;
+    pb = next_b;
+    ++head;
+  }
+  std::uint32_t tail = 0;
+  std::size_t ea = input.size(), eb = output.size();
+  while (tail < n - head) {
+    const std::size_t start_a = line_before(input, ea, na - tail, x);
+    const std::size_t start_b = line_before(output, eb, nb - tail, y);
+    if (!equivalent(comparer, x, y)) break;
+    ea = start_a;
+    eb = start_b;
     ++tail;
-  for (std::size_t k = 0; k < head; ++k) comparer.compare(a[k], b[k], result.changes, sink);
-  const std::size_t a_mid = a.size() - head - tail, b_mid = b.size() - head - tail;
-  const auto at = static_cast<std::uint32_t>(head + 1);
-  const auto range = [](std::size_t first, std::size_t count) {
+  }
+  const std::uint32_t a_mid = na - head - tail, b_mid = nb - head - tail;
+  const auto range = [](std::uint32_t first, std::uint32_t count) {
     return count == 1 ? "line " + std::to_string(first)
                       : "lines " + std::to_string(first) + ".." + std::to_string(first + count - 1);
   };
@@ -242,11 +268,14 @@ void compare_lines(std::string_view input, std::string_view output, Result& resu
     message = std::to_string(a_mid) + " line(s) removed: input " + range(head + 1, a_mid);
   else
     message = "input " + range(head + 1, a_mid) + " became output " + range(head + 1, b_mid);
-  message += " (the input has " + std::to_string(a.size()) + " lines, the output " +
-             std::to_string(b.size()) + ")";
-  sink.add(Code::line_count, at, 1, at, message);
-  for (std::size_t k = tail; k > 0; --k)
-    comparer.compare(a[a.size() - k], b[b.size() - k], result.changes, sink);
+  message += " (the input has " + std::to_string(na) + " lines, the output " +
+             std::to_string(nb) + ")";
+  sink.add(Code::line_count, head + 1, 1, head + 1, message);
+  for (std::uint32_t k = 1; k <= tail; ++k) {
+    ea = line_at(input, ea, na - tail + k, x);
+    eb = line_at(output, eb, nb - tail + k, y);
+    record(x, y);
+  }
 }
 
 // Events of one program with SetSpindleSpeed/SetFeedRate left out, pulled
@@ -334,7 +363,8 @@ Result verify_gcode(std::string_view input, std::string_view output, const Optio
   Result result;
   result.kind = InputKind::gcode;
   ViolationSink sink(options.max_violations);
-  compare_lines(input, output, result, sink);
+  ChangeSink changes(result, options.on_change);
+  compare_lines(input, output, changes, sink);
   // The interpreted events carry their lines; with lines added or removed
   // only the order of events can be compared.
   const bool same_lines = sink.count_of(Code::line_count) == 0;
@@ -343,7 +373,6 @@ Result verify_gcode(std::string_view input, std::string_view output, const Optio
   // The second proof's finding is news only on a line the first did not flag.
   for (const auto& v : semantic.violations())
     if (!sink.has_line(v.line)) sink.add(v.code, v.line, v.column, v.input_line, v.message);
-  for (const auto& c : result.changes) ++(c.letter == 'S' ? result.s_changes : result.f_changes);
   sink.move_into(result);
   return result;
 }

@@ -52,24 +52,50 @@ std::string_view Token::value() const {
   return text.substr(k);
 }
 
+std::size_t line_at(std::string_view text, std::size_t offset, std::uint32_t number, Line& line) {
+  line.number = number;
+  const std::size_t nl = text.find('\n', offset);
+  if (nl == std::string_view::npos) {
+    line.text = text.substr(offset);
+    line.eol = {};
+    return text.size();
+  }
+  std::size_t end = nl;
+  if (end > offset && text[end - 1] == '\r') --end;
+  line.text = text.substr(offset, end - offset);
+  line.eol = text.substr(end, nl + 1 - end);
+  return nl + 1;
+}
+
+std::size_t line_before(std::string_view text, std::size_t end, std::uint32_t number, Line& line) {
+  line.number = number;
+  const std::size_t nl_end = text[end - 1] == '\n' ? end - 1 : end;
+  std::size_t start = 0;
+  if (nl_end > 0) {
+    const std::size_t previous = text.rfind('\n', nl_end - 1);
+    start = previous == std::string_view::npos ? 0 : previous + 1;
+  }
+  std::size_t content_end = nl_end;
+  if (nl_end < end && content_end > start && text[content_end - 1] == '\r') --content_end;
+  line.text = text.substr(start, content_end - start);
+  line.eol = text.substr(content_end, end - content_end);
+  return start;
+}
+
+std::uint32_t count_lines(std::string_view text) {
+  std::uint32_t n = 0;
+  for (std::size_t at = 0; (at = text.find('\n', at)) != std::string_view::npos; ++at) ++n;
+  if (!text.empty() && text.back() != '\n') ++n;
+  return n;
+}
+
 std::vector<Line> split_lines(std::string_view text) {
   std::vector<Line> lines;
   std::size_t at = 0;
   std::uint32_t number = 0;
   while (at < text.size()) {
-    std::size_t nl = text.find('\n', at);
     Line line;
-    line.number = ++number;
-    if (nl == std::string_view::npos) {
-      line.text = text.substr(at);
-      at = text.size();
-    } else {
-      std::size_t end = nl;
-      if (end > at && text[end - 1] == '\r') --end;
-      line.text = text.substr(at, end - at);
-      line.eol = text.substr(end, nl + 1 - end);
-      at = nl + 1;
-    }
+    at = line_at(text, at, ++number, line);
     lines.push_back(line);
   }
   return lines;

@@ -18,6 +18,17 @@ struct Line {
 // All lines of `text`; a final terminator does not start another line.
 std::vector<Line> split_lines(std::string_view text);
 
+// The number of lines split_lines() gives, without keeping them.
+std::uint32_t count_lines(std::string_view text);
+
+// The line that starts at `offset` (< text.size()), numbered `number`;
+// returns the offset just after it (after its terminator).
+std::size_t line_at(std::string_view text, std::size_t offset, std::uint32_t number, Line& line);
+
+// The line that ends at `end` (> 0: just after its terminator, or
+// text.size()), numbered `number`; returns the offset of its first byte.
+std::size_t line_before(std::string_view text, std::size_t end, std::uint32_t number, Line& line);
+
 enum class TokenKind {
   blank,    // a run of spaces and tabs
   comment,  // "(...)" (to the end of the line when unclosed) or ";..." to the end

@@ -22,6 +22,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -91,7 +92,7 @@ enum class InputKind { gcode, cldata };
 
 struct Result {
   InputKind kind = InputKind::gcode;
-  std::vector<Change> changes;        // in output order
+  std::vector<Change> changes;        // in output order (empty with Options::on_change)
   std::uint64_t s_changes = 0, f_changes = 0;
   std::vector<Violation> violations;  // at most Options::max_violations, in output order
   std::uint64_t violation_count = 0;  // all of them
@@ -112,6 +113,9 @@ struct Options {
   // that the output writes rounded to that grid is no change.
   int output_feed_decimals = 1;
   std::size_t max_violations = 1000;  // kept in Result::violations (all are counted)
+  // When set, each change is handed here, in output order, instead of being
+  // kept in Result::changes (memory stays flat on long programs).
+  std::function<void(const Change&)> on_change;
 };
 
 // A program that cannot be read at all (the input's parse error, a CL

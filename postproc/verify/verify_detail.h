@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <set>
 #include <string>
@@ -31,6 +32,26 @@ class ViolationSink {
   std::vector<Violation> kept_;
   std::map<Code, std::uint64_t> by_code_;
   std::set<std::uint32_t> lines_;
+};
+
+// Hands each change to Options::on_change, or keeps it in the Result;
+// counts them by letter either way.
+class ChangeSink {
+ public:
+  ChangeSink(Result& result, const std::function<void(const Change&)>& callback)
+      : result_(result), callback_(callback) {}
+  void add(Change change) {
+    ++(change.letter == 'S' ? result_.s_changes : result_.f_changes);
+    if (callback_) {
+      callback_(change);
+    } else {
+      result_.changes.push_back(std::move(change));
+    }
+  }
+
+ private:
+  Result& result_;
+  const std::function<void(const Change&)>& callback_;
 };
 
 // Two events equal in every field but their source's offset and column

@@ -238,6 +238,53 @@ TEST(VerifyGcode, EveryCodeIsInTheTable) {
   EXPECT_EQ(code_id(Code::sf_removed), "E7109");
 }
 
+TEST(VerifyGcode, ChangesStreamToTheCallbackInTheSameOrder) {
+  const Result kept = run(kInput, posted(kInput));
+  Options options;
+  std::vector<Change> streamed;
+  options.on_change = [&](const Change& c) { streamed.push_back(c); };
+  const Result r = verify_gcode(kInput, posted(kInput), options);
+  EXPECT_TRUE(r.changes.empty());
+  EXPECT_EQ(r.s_changes, 3u);
+  EXPECT_EQ(r.f_changes, 1u);
+  ASSERT_EQ(streamed.size(), kept.changes.size());
+  for (std::size_t k = 0; k < streamed.size(); ++k) {
+    EXPECT_EQ(streamed[k].line, kept.changes[k].line);
+    EXPECT_EQ(streamed[k].column, kept.changes[k].column);
+    EXPECT_EQ(describe(streamed[k]), describe(kept.changes[k]));
+  }
+}
+
+TEST(VerifyGcode, LineRemovedFromACrlfProgramKeepsTheTailPaired) {
+  std::string input, out;
+  for (char c : kInput) input += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  for (char c : posted(kInput)) out += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  const Result r = run(input, replace(out, "T1 M6\r\n", ""));
+  ASSERT_EQ(r.violation_count, 1u) << format(r.violations.back(), "out");
+  EXPECT_EQ(r.violations[0].code, Code::line_count);
+  EXPECT_EQ(r.violations[0].line, 4u);
+  EXPECT_EQ(r.changes.size(), 4u);
+  EXPECT_EQ(r.changes.front().line, 4u);  // the S12000 line moved up
+}
+
+TEST(VerifyLexer, LinesForwardAndBackwardAgree) {
+  const std::string text = "a\r\n\nb\rc\nlast";
+  const auto lines = split_lines(text);
+  ASSERT_EQ(lines.size(), 4u);
+  EXPECT_EQ(count_lines(text), 4u);
+  EXPECT_EQ(count_lines(text + "\n"), 4u);
+  EXPECT_EQ(count_lines(""), 0u);
+  EXPECT_EQ(lines[2].text, "b\rc");  // a lone CR is no line end
+  std::size_t end = text.size();
+  for (std::uint32_t k = 4; k >= 1; --k) {
+    Line line;
+    end = line_before(text, end, k, line);
+    EXPECT_EQ(line.text, lines[k - 1].text) << k;
+    EXPECT_EQ(line.eol, lines[k - 1].eol) << k;
+  }
+  EXPECT_EQ(end, 0u);
+}
+
 TEST(VerifyLexer, TokensCoverTheLineAndFindWords) {
   std::vector<Token> tokens;
   const std::string_view line = "N80G0X53.Y-56.128 S #<rpm> F[#1*2] (S100) #<f1>=2";

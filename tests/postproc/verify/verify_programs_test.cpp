@@ -140,7 +140,9 @@ TEST(VerifyPrograms, SharedGcodeProgramsPostedVerify) {
       // be refused by verify as an input error in the same way.
       std::printf("%s: not posted (%s)\n", entry.path().filename().string().c_str(), e.what());
       try {
-        const Result r = verify_gcode(input, input, Options{dialect_of(profile)});
+        Options options;
+        options.dialect = dialect_of(profile);
+        const Result r = verify_gcode(input, input, options);
         EXPECT_TRUE(r.ok());
         EXPECT_TRUE(r.changes.empty());
       } catch (const InputError& error) {

@@ -5,8 +5,10 @@
 
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -165,6 +167,7 @@ std::vector<ReportFile> open_reports(const PostArguments& args) {
       if (args.output == path)
         throw CommandError("report '" + path + "' is also the output program");
     }
+    if (path != "-") r.file = std::make_unique<AtomicFile>(path);  // fails before any work
     out.push_back(std::move(r));
   }
   return out;
@@ -332,7 +335,6 @@ JobRun run_job(const PostArguments& args, bool write_program) {
         report_inputs(args, settings, model, profile, post::detect_program_kind(text)));
     for (auto& r : reports) {
       if (r.format != report::ReportFormat::csv) continue;
-      r.file = std::make_unique<AtomicFile>(r.path);
       AtomicFile* out = r.file.get();
       r.csv =
           std::make_unique<report::CsvWriter>([out](std::string_view bytes) { out->write(bytes); });
@@ -368,8 +370,7 @@ JobRun run_job(const PostArguments& args, bool write_program) {
         " points checked): check the work offset and units of the program against the model, "
         "and --cl-point (tip or center)");
   }
-  if (file) file->commit();
-  std::cout << pending << std::flush;
+  std::string to_stdout;  // written after every file is complete
 
   const double run_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
@@ -392,13 +393,20 @@ JobRun run_job(const PostArguments& args, bool write_program) {
         }
       }
       if (r.path == "-") {
-        std::cout << bytes << std::flush;
+        to_stdout += bytes;
       } else {
-        AtomicFile out(r.path);
-        out.write(bytes);
-        out.commit();
+        r.file->write(bytes);
+        r.file->commit();
       }
     }
+  }
+  // The program last: a failed report leaves no posted program behind.
+  if (file) file->commit();
+  errno = 0;
+  std::cout << pending << to_stdout << std::flush;
+  if (!std::cout) {
+    throw CommandError(std::string("cannot write to standard output: ") +
+                       (errno != 0 ? std::strerror(errno) : "write error"));
   }
   return JobRun{summary, settings.point.tool, std::move(model), profile, run_time};
 }

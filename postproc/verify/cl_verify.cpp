@@ -297,7 +297,7 @@ Result verify_cl(std::string_view cl_text, std::string_view output, const Option
       const auto& d = e.diagnostic();
       sink.add(Code::output_unreadable, d.line, d.column, a ? a->line : 0,
                "the output does not interpret: " + gcode::code_id(d.code, d.severity) + " " +
-                   d.message);
+                   d.message + " (is --machine the profile the output was posted for?)");
       break;
     }
     if (!a && !b) break;

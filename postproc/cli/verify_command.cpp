@@ -44,9 +44,14 @@ constexpr const char* kDescription =
     "Exit codes: 0 verified; 1 differences found; 2 usage or input error (unreadable\n"
     "file, INPUT that does not read); 3 internal error.\n"
     "\n"
-    "Example:\n"
+    "Give verify the --machine (or --dialect) given to `vcpost post`; both default to the\n"
+    "generic profile.\n"
+    "\n"
+    "Examples:\n"
     "  vcpost post finish.nc --model part.step --tool ball:10 --vc 120 -o finish.ccs.nc\n"
-    "  vcpost verify finish.nc finish.ccs.nc --changes\n";
+    "  vcpost verify finish.nc finish.ccs.nc --changes\n"
+    "  vcpost post finish.cls --model part.step --machine mazak-3axis -o finish.eia\n"
+    "  vcpost verify finish.cls finish.eia --machine mazak-3axis\n";
 
 struct Arguments {
   std::string input, output;

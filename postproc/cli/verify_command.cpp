@@ -48,9 +48,10 @@ constexpr const char* kDescription =
     "generic profile.\n"
     "\n"
     "Examples:\n"
-    "  vcpost post finish.nc --model part.step --tool ball:10 --vc 120 -o finish.ccs.nc\n"
+    "  vcpost post finish.nc --model part.step --tool ball:10 --vc 120 --ap 0.3 -o finish.ccs.nc\n"
     "  vcpost verify finish.nc finish.ccs.nc --changes\n"
-    "  vcpost post finish.cls --model part.step --machine mazak-3axis -o finish.eia\n"
+    "  vcpost post finish.cls --model part.step --vc 120 --ap 0.3 --machine mazak-3axis \\\n"
+    "              -o finish.eia\n"
     "  vcpost verify finish.cls finish.eia --machine mazak-3axis\n";
 
 struct Arguments {

@@ -680,23 +680,46 @@ void add_face(BrepModel::Impl& model, const TopoDS_Face& face,
     double a = 0, b = 0;
     Handle(Geom2d_Curve) pcurve = BRep_Tool::CurveOnSurface(edge, face, a, b);
     if (pcurve.IsNull()) continue;
-    // A straight pcurve is one segment; others 64, with the chord error
-    // measured at the segment midpoints.
+    // A straight pcurve is one segment; others start as 16 and are halved
+    // where the curve's midpoint is off the chord by more than 1e-7 of the
+    // face's (u,v) span: a tight polygon leaves only a thin band around the
+    // trim for the (slow) exact classifier.
     Handle(Geom2d_Curve) basis = pcurve;
     while (auto trimmed = Handle(Geom2d_TrimmedCurve)::DownCast(basis))
       basis = trimmed->BasisCurve();
-    const int samples = basis->IsKind(STANDARD_TYPE(Geom2d_Line)) ? 1 : 64;
-    Vector2d previous;
-    for (int i = 0; i <= samples; ++i) {
-      const gp_Pnt2d q = pcurve->Value(a + (b - a) * i / samples);
-      const Vector2d current(q.X(), q.Y());
-      if (i > 0) {
-        f.loops.push_back({previous, current});
-        const gp_Pnt2d mid = pcurve->Value(a + (b - a) * (i - 0.5) / samples);
-        f.polygon_error = std::max(f.polygon_error,
-                                   (Vector2d(mid.X(), mid.Y()) - (previous + current) / 2).norm());
+    const auto at = [&](double t) {
+      const gp_Pnt2d q = pcurve->Value(t);
+      return Vector2d(q.X(), q.Y());
+    };
+    if (basis->IsKind(STANDARD_TYPE(Geom2d_Line))) {
+      f.loops.push_back({at(a), at(b)});
+    } else {
+      const double tolerance = 1e-7 * std::max(f.u1 - f.u0, f.v1 - f.v0);
+      constexpr int kStart = 16, kMaxDepth = 10;
+      struct Piece {
+        double t0, t1;
+        Vector2d p0, p1;
+        int depth;
+      };
+      std::vector<Piece> pending;
+      for (int i = kStart - 1; i >= 0; --i) {
+        const double t0 = a + (b - a) * i / kStart, t1 = a + (b - a) * (i + 1) / kStart;
+        pending.push_back({t0, t1, at(t0), at(t1), 0});
       }
-      previous = current;
+      while (!pending.empty()) {
+        const Piece piece = pending.back();
+        pending.pop_back();
+        const double tm = (piece.t0 + piece.t1) / 2;
+        const Vector2d pm = at(tm);
+        const double error = (pm - (piece.p0 + piece.p1) / 2).norm();
+        if (error > tolerance && piece.depth < kMaxDepth) {
+          pending.push_back({tm, piece.t1, pm, piece.p1, piece.depth + 1});
+          pending.push_back({piece.t0, tm, piece.p0, pm, piece.depth + 1});
+        } else {
+          f.loops.push_back({piece.p0, piece.p1});
+          f.polygon_error = std::max(f.polygon_error, error);
+        }
+      }
     }
     if (BRep_Tool::Degenerated(edge) || BRep_Tool::IsClosed(edge, face)) continue;
     const int index = edge_map.FindIndex(edge) - 1;

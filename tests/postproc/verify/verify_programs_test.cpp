@@ -3,8 +3,10 @@
 // summary counts S and F words; the CL samples posted to G-code verify
 // against their CL data; shared CL programs (with arcs) written by the
 // Mazak writer verify, and moving one end point or arc centre by 0.001 mm
-// fails while 0.0001 mm passes (default tolerance 0.0005 mm).
+// fails while 0.0001 mm passes (default tolerance 0.0005 mm); the verdict
+// on a sample agrees with LinuxCNC's rs274 when it is installed.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -224,6 +226,60 @@ TEST(VerifyPrograms, GcodeSamplesPostedVerify) {
     EXPECT_GT(p.summary.s_words, 0u);
     expect_verified_gcode(read(dir / name), p, gcode::rs274ngc_dialect());
   }
+}
+
+std::pair<std::string, std::uint32_t> moved(const std::string& output, const std::string& axis,
+                                            int nth, double delta);
+
+// LinuxCNC's canonical transcript of a program without the spindle-speed
+// and feed-rate calls and the sequence numbers; empty when rs274 fails.
+std::string rs274_motion(const fs::path& dir, const std::string& name, const std::string& text) {
+  std::ofstream(dir / name, std::ios::binary) << text;
+  const std::string command = "rs274 -g '" + (dir / name).string() + "' < /dev/null 2>&1";
+  std::string lines, result;
+  if (FILE* pipe = popen(command.c_str(), "r")) {
+    char buffer[65536];
+    std::size_t n;
+    while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) lines.append(buffer, n);
+    pclose(pipe);
+  }
+  std::istringstream in(lines);
+  std::string line;
+  static const std::regex call(R"([A-Z_]+\(.*)");
+  while (std::getline(in, line)) {
+    std::smatch m;
+    if (!std::regex_search(line, m, call)) continue;
+    const std::string rest = m[0];
+    if (rest.starts_with("SET_SPINDLE_SPEED") || rest.starts_with("SET_FEED_RATE")) continue;
+    result += rest + "\n";
+  }
+  return result;
+}
+
+// The verdict agrees with an independent reader: LinuxCNC's rs274 reads the
+// same motion from a sample and its posted program (verify passes), and
+// another motion once one coordinate digit of a feed block changed (verify
+// fails there).
+TEST(VerifyPrograms, VerdictAgreesWithLinuxcncRs274) {
+  if (std::system("command -v rs274 >/dev/null 2>&1") != 0) GTEST_SKIP() << "rs274 not installed";
+  const auto& posted = post_samples(".nc");
+  ASSERT_FALSE(posted.empty());
+  const auto& [name, p] = posted.front();
+  const fs::path dir = fs::temp_directory_path() / ("vcpost_verify_rs274_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string input = read(fs::path(VCPOST_SOURCE_DIR) / "samples" / name);
+  const std::string a = rs274_motion(dir, "in.ngc", input);
+  EXPECT_GT(std::count(a.begin(), a.end(), '\n'), 500);
+  EXPECT_TRUE(verify_gcode(input, p.output, Options{}).ok());
+  EXPECT_EQ(rs274_motion(dir, "out.ngc", p.output), a);
+  const auto [changed, line] = moved(p.output, "X", 3, 0.001);
+  ASSERT_GT(line, 0u);
+  const Result r = verify_gcode(input, changed, Options{});
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.violations[0].code, Code::word_changed);
+  EXPECT_EQ(r.violations[0].line, line);
+  EXPECT_NE(rs274_motion(dir, "changed.ngc", changed), a);
+  fs::remove_all(dir);
 }
 
 Options mazak_options() {

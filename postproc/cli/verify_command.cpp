@@ -76,9 +76,12 @@ std::string read_file(const std::string& path) {
 
 gcode::Dialect dialect_of(const machines::MachineProfile& profile) {
   switch (profile.dialect()) {
-    case machines::Dialect::fanuc: return gcode::fanuc_dialect();
-    case machines::Dialect::mazak: return gcode::mazak_dialect();
-    case machines::Dialect::rs274ngc: break;
+    case machines::Dialect::fanuc:
+      return gcode::fanuc_dialect();
+    case machines::Dialect::mazak:
+      return gcode::mazak_dialect();
+    case machines::Dialect::rs274ngc:
+      break;
   }
   return gcode::rs274ngc_dialect();
 }
@@ -190,8 +193,9 @@ void add_verify_command(CLI::App& app) {
                   "machine profile (built-in name or TOML file): the dialect, and the output "
                   "decimals for CL input")
       ->capture_default_str();
-  cmd->add_option("--dialect", args->dialect,
-                  "G-code dialect of both programs: rs274ngc, fanuc, mazak (default: the profile's)");
+  cmd->add_option(
+      "--dialect", args->dialect,
+      "G-code dialect of both programs: rs274ngc, fanuc, mazak (default: the profile's)");
   cmd->add_option("--tolerance", args->tolerance,
                   "CL input: largest per-axis distance of an output end point or arc centre from "
                   "the CL's, mm")

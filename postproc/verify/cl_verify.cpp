@@ -54,7 +54,8 @@ bool is_item(const Event& e) {
 
 class ClItems {
  public:
-  ClItems(std::string_view text, const std::string& name) : in_(std::string(text)), reader_(in_, name) {}
+  ClItems(std::string_view text, const std::string& name)
+      : in_(std::string(text)), reader_(in_, name) {}
 
   std::optional<Item> next() {
     try {
@@ -125,9 +126,8 @@ class GcodeItems {
         return std::holds_alternative<program::ProgramEnd>(e);
       });
       if (ends && !m5)
-        std::erase_if(events_, [](const Event& e) {
-          return std::holds_alternative<program::SpindleOff>(e);
-        });
+        std::erase_if(
+            events_, [](const Event& e) { return std::holds_alternative<program::SpindleOff>(e); });
     }
   }
 
@@ -180,8 +180,11 @@ class Comparer {
  public:
   Comparer(double tolerance, int feed_decimals, Result& result, ChangeSink& changes,
            ViolationSink& sink)
-      : tolerance_(tolerance), feed_step_(std::pow(10.0, -std::clamp(feed_decimals, 0, 9))),
-        result_(result), changes_(changes), sink_(sink) {}
+      : tolerance_(tolerance),
+        feed_step_(std::pow(10.0, -std::clamp(feed_decimals, 0, 9))),
+        result_(result),
+        changes_(changes),
+        sink_(sink) {}
 
   // Compares a pair of items; false when the sequences no longer line up.
   bool compare(const Item& cl, const Item& out) {
@@ -250,9 +253,8 @@ class Comparer {
     d[a.plane == program::Plane::xy ? 2 : a.plane == program::Plane::xz ? 1 : 0] = 0;
     if (!(d.maxCoeff() <= tolerance_ + 1e-9))
       add(Code::arc_differs, cl, out,
-          "arc centre " + point(b.centre) + " is " + number_um(d.maxCoeff()) +
-              " from the CL's " + point(a.centre) + " (tolerance " + number_um(tolerance_) +
-              " per axis)");
+          "arc centre " + point(b.centre) + " is " + number_um(d.maxCoeff()) + " from the CL's " +
+              point(a.centre) + " (tolerance " + number_um(tolerance_) + " per axis)");
   }
 
   void changes(const Item& cl, const Item& out) {
@@ -281,8 +283,8 @@ Result verify_cl(std::string_view cl_text, std::string_view output, const Option
                  const std::string& input_name) {
   Result result;
   result.kind = InputKind::cldata;
-  result.tolerance_mm =
-      std::max(options.tolerance_mm, 0.5 * std::pow(10.0, -std::clamp(options.output_decimals, 0, 9)));
+  result.tolerance_mm = std::max(options.tolerance_mm,
+                                 0.5 * std::pow(10.0, -std::clamp(options.output_decimals, 0, 9)));
   ViolationSink sink(options.max_violations);
   ChangeSink changes(result, options.on_change);
   Comparer comparer(result.tolerance_mm, options.output_feed_decimals, result, changes, sink);
@@ -310,8 +312,8 @@ Result verify_cl(std::string_view cl_text, std::string_view output, const Option
         sink.add(Code::motion_count,
                  static_cast<std::uint32_t>(std::count(output.begin(), output.end(), '\n') + 1), 1,
                  a->line,
-                 std::string("the output ends before the CL data's ") + kind_name(a->event) +
-                     " (" + shown(a->event) + ")");
+                 std::string("the output ends before the CL data's ") + kind_name(a->event) + " (" +
+                     shown(a->event) + ")");
       break;
     }
     if (!comparer.compare(*a, *b)) break;

@@ -68,17 +68,17 @@ class LineComparer {
         kept_.pop_back();
       bool& first = seen[letter_index(t.letter())];
       if (first) {
-        sink.add(Code::sf_repeated, out.number, t.column, in.number,
-                 quoted(t.text) + " is a second " + std::string(1, t.letter()) +
-                     " word in this block");
+        sink.add(
+            Code::sf_repeated, out.number, t.column, in.number,
+            quoted(t.text) + " is a second " + std::string(1, t.letter()) + " word in this block");
         continue;
       }
       first = true;
       if (!is_plain_positive(t.value()))
         sink.add(Code::bad_sf_value, out.number, t.column, in.number,
                  "added " + quoted(t.text) + ": the value is not a plain positive number");
-      changes.push_back(Change{out.number, t.column, in.number, t.letter(), "",
-                               std::string(t.text), true});
+      changes.push_back(
+          Change{out.number, t.column, in.number, t.letter(), "", std::string(t.text), true});
     }
 
     std::size_t i = 0, j = 0;
@@ -109,15 +109,13 @@ class LineComparer {
               ViolationSink& sink) {
     const Token* x = i < a_.size() ? &a_[i] : nullptr;
     const Token* y = j < kept_.size() ? &kept_[j] : nullptr;
-    const std::uint32_t column =
-        y ? y->column : static_cast<std::uint32_t>(out.text.size() + 1);
+    const std::uint32_t column = y ? y->column : static_cast<std::uint32_t>(out.text.size() + 1);
     auto add = [&](Code code, std::string message) {
       sink.add(code, out.number, column, in.number, std::move(message));
     };
     // The input's column, when an added word has shifted it.
-    const std::string in_col = x && x->column != column
-                                   ? " (input column " + std::to_string(x->column) + ")"
-                                   : "";
+    const std::string in_col =
+        x && x->column != column ? " (input column " + std::to_string(x->column) + ")" : "";
     if (x && x->is_sf() && !(y && y->kind == TokenKind::word && y->text[0] == x->text[0]) &&
         count_b[letter_index(x->letter())] < count_a[letter_index(x->letter())]) {
       add(Code::sf_removed, quoted(x->text) + " removed" + in_col);
@@ -125,8 +123,8 @@ class LineComparer {
     }
     if (y && y->is_sf() &&
         count_b[letter_index(y->letter())] > count_a[letter_index(y->letter())]) {
-      add(Code::sf_repeated, quoted(y->text) + " is a second " + std::string(1, y->letter()) +
-                                 " word in this block");
+      add(Code::sf_repeated,
+          quoted(y->text) + " is a second " + std::string(1, y->letter()) + " word in this block");
       return;
     }
     if ((x && x->kind == TokenKind::blank) || (y && y->kind == TokenKind::blank)) {
@@ -152,14 +150,15 @@ class LineComparer {
     auto same = [](const std::vector<Token>& v, std::size_t k, const Token* t) {
       return t && k < v.size() && v[k].text == t->text;
     };
-    const bool removed = x && (same(a_, i + 1, y) ||
-                               (i + 1 < a_.size() && a_[i + 1].kind == TokenKind::blank &&
-                                same(a_, i + 2, y)) ||
-                               (!y && i + 1 == a_.size()));
-    const bool added = y && (same(kept_, j + 1, x) ||
-                             (j + 1 < kept_.size() && kept_[j + 1].kind == TokenKind::blank &&
-                              same(kept_, j + 2, x)) ||
-                             (!x && j + 1 == kept_.size()));
+    const bool removed =
+        x && (same(a_, i + 1, y) ||
+              (i + 1 < a_.size() && a_[i + 1].kind == TokenKind::blank && same(a_, i + 2, y)) ||
+              (!y && i + 1 == a_.size()));
+    const bool added =
+        y &&
+        (same(kept_, j + 1, x) ||
+         (j + 1 < kept_.size() && kept_[j + 1].kind == TokenKind::blank && same(kept_, j + 2, x)) ||
+         (!x && j + 1 == kept_.size()));
     const auto what = [](const Token& t) {
       return std::string(t.kind == TokenKind::comment ? "comment " : "") + quoted(t.text);
     };
@@ -170,8 +169,8 @@ class LineComparer {
     } else if (x && y) {
       add(Code::word_changed, quoted(x->text) + " changed to " + quoted(y->text) + in_col);
     } else if (x) {
-      add(Code::token_removed, "the rest of the line " + quoted(in.text.substr(x->column - 1)) +
-                                   " removed" + in_col);
+      add(Code::token_removed,
+          "the rest of the line " + quoted(in.text.substr(x->column - 1)) + " removed" + in_col);
     } else {
       add(Code::token_added, quoted(out.text.substr(y->column - 1)) + " added");
     }
@@ -268,8 +267,8 @@ void compare_lines(std::string_view input, std::string_view output, ChangeSink& 
     message = std::to_string(a_mid) + " line(s) removed: input " + range(head + 1, a_mid);
   else
     message = "input " + range(head + 1, a_mid) + " became output " + range(head + 1, b_mid);
-  message += " (the input has " + std::to_string(na) + " lines, the output " +
-             std::to_string(nb) + ")";
+  message +=
+      " (the input has " + std::to_string(na) + " lines, the output " + std::to_string(nb) + ")";
   sink.add(Code::line_count, head + 1, 1, head + 1, message);
   for (std::uint32_t k = 1; k <= tail; ++k) {
     ea = line_at(input, ea, na - tail + k, x);
@@ -333,8 +332,8 @@ void compare_events(std::string_view input, std::string_view output, const Optio
     } catch (const gcode::GcodeError& e) {
       const auto& d = e.diagnostic();
       sink.add(Code::output_unreadable, d.line, d.column, x ? program::source_of(*x).line : 0,
-               "the output does not interpret where the input does: " + gcode::code_id(d.code, d.severity) +
-                   " " + d.message);
+               "the output does not interpret where the input does: " +
+                   gcode::code_id(d.code, d.severity) + " " + d.message);
       return;
     }
     if (!x && !y) return;

@@ -39,9 +39,9 @@ enum class TokenKind {
 
 struct Token {
   TokenKind kind = TokenKind::other;
-  std::string_view text;     // the token's bytes
-  std::uint32_t column = 0;  // 1-based
-  char letter() const;       // word: upper-case letter; 0 otherwise
+  std::string_view text;           // the token's bytes
+  std::uint32_t column = 0;        // 1-based
+  char letter() const;             // word: upper-case letter; 0 otherwise
   std::string_view value() const;  // word: the bytes after the letter (blanks trimmed in front)
   bool is_sf() const { return letter() == 'S' || letter() == 'F'; }
 };

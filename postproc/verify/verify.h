@@ -48,15 +48,15 @@ enum class Code : std::uint16_t {
   sf_repeated = 7110,         // a second S or F word in one block
   bad_sf_value = 7111,        // a new S/F value that is not a plain positive number
   // 712x: interpreted comparison (G-code in, G-code out)
-  event_differs = 7121,       // a motion or other non-S/F event differs
-  event_count = 7122,         // one program has events the other lacks
-  output_unreadable = 7123,   // the output fails to interpret where the input does not
+  event_differs = 7121,      // a motion or other non-S/F event differs
+  event_count = 7122,        // one program has events the other lacks
+  output_unreadable = 7123,  // the output fails to interpret where the input does not
   // 713x: CL in, G-code out
-  motion_count = 7131,        // a motion (or spindle/tool event) only on one side
-  end_point = 7132,           // a motion's end point beyond the tolerance
-  motion_kind = 7133,         // rapid vs feed vs arc
-  arc_differs = 7134,         // arc centre beyond the tolerance, plane or direction
-  spindle_or_tool = 7135,     // spindle on/off or tool change different or out of order
+  motion_count = 7131,     // a motion (or spindle/tool event) only on one side
+  end_point = 7132,        // a motion's end point beyond the tolerance
+  motion_kind = 7133,      // rapid vs feed vs arc
+  arc_differs = 7134,      // arc centre beyond the tolerance, plane or direction
+  spindle_or_tool = 7135,  // spindle on/off or tool change different or out of order
 };
 
 struct CodeInfo {
@@ -92,7 +92,7 @@ enum class InputKind { gcode, cldata };
 
 struct Result {
   InputKind kind = InputKind::gcode;
-  std::vector<Change> changes;        // in output order (empty with Options::on_change)
+  std::vector<Change> changes;  // in output order (empty with Options::on_change)
   std::uint64_t s_changes = 0, f_changes = 0;
   std::vector<Violation> violations;  // at most Options::max_violations, in output order
   std::uint64_t violation_count = 0;  // all of them

@@ -10,7 +10,8 @@ void ViolationSink::add(Code code, std::uint32_t line, std::uint32_t column,
   ++count_;
   ++by_code_[code];
   lines_.insert(line);
-  if (kept_.size() < keep_) kept_.push_back(Violation{code, line, column, input_line, std::move(message)});
+  if (kept_.size() < keep_)
+    kept_.push_back(Violation{code, line, column, input_line, std::move(message)});
 }
 
 std::uint64_t ViolationSink::count_of(Code code) const {

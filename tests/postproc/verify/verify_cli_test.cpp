@@ -30,7 +30,8 @@ std::string slurp(const fs::path& path) {
 const std::string kInput =
     "(finish)\nG21 G90 G17 G94\nT1 M6\nS12000 M3\nG0 X0 Y0 Z5\nG1 Z-1 F800\nG1 X10.5 Y2\nM5\nM30\n";
 const std::string kOutput =
-    "(finish)\nG21 G90 G17 G94\nT1 M6\nS9870 M3\nG0 X0 Y0 Z5\nG1 Z-1 F750\nG1 X10.5 Y2 S9500\nM5\nM30\n";
+    "(finish)\nG21 G90 G17 G94\nT1 M6\nS9870 M3\nG0 X0 Y0 Z5\nG1 Z-1 F750\nG1 X10.5 Y2 "
+    "S9500\nM5\nM30\n";
 
 class VerifyCli : public ::testing::Test {
  protected:
@@ -130,7 +131,8 @@ TEST_F(VerifyCli, AtMostTwentyDifferencesThenTheRestCounted) {
   const Outcome r = run("verify in.nc out.nc");
   EXPECT_EQ(r.exit_code, 1);
   std::size_t lines = 0;
-  for (std::size_t at = 0; (at = r.err.find("error[E7102]", at)) != std::string::npos; ++at) ++lines;
+  for (std::size_t at = 0; (at = r.err.find("error[E7102]", at)) != std::string::npos; ++at)
+    ++lines;
   EXPECT_EQ(lines, 20u);
   EXPECT_NE(r.err.find("... and 10 more\n"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("out.nc:1:11: error[E7102]: line ends with CRLF where the input has LF"),
@@ -163,8 +165,9 @@ TEST_F(VerifyCli, HelpTeachesTheExitCodes) {
 TEST_F(VerifyCli, ClSamplePostedByTheBinaryVerifies) {
   const fs::path samples = fs::path(VCPOST_SOURCE_DIR) / "samples";
   const std::string cl = (samples / "dome_raster_a0_ae3.cls").string();
-  const Outcome posted = run("post '" + cl + "' --model '" + (samples / "dome.step").string() +
-                             "' --tool ball:10 --vc 120 --ap 0.3 --machine mazak-3axis -o posted.nc");
+  const Outcome posted =
+      run("post '" + cl + "' --model '" + (samples / "dome.step").string() +
+          "' --tool ball:10 --vc 120 --ap 0.3 --machine mazak-3axis -o posted.nc");
   ASSERT_EQ(posted.exit_code, 0) << posted.err;
   const Outcome r = run("verify '" + cl + "' posted.nc --machine mazak-3axis");
   EXPECT_EQ(r.exit_code, 0) << r.err;

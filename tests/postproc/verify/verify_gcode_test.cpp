@@ -63,7 +63,8 @@ std::string replace(std::string text, const std::string& from, const std::string
 void expect_one(const std::string& output, Code code, std::uint32_t line,
                 std::uint32_t column = 0) {
   const Result r = run(kInput, output);
-  ASSERT_EQ(r.violation_count, 1u) << output << (r.violations.empty() ? "" : format(r.violations[0], "out"));
+  ASSERT_EQ(r.violation_count, 1u)
+      << output << (r.violations.empty() ? "" : format(r.violations[0], "out"));
   EXPECT_EQ(r.violations[0].code, code) << format(r.violations[0], "out");
   EXPECT_EQ(r.violations[0].line, line) << format(r.violations[0], "out");
   if (column) {
@@ -143,7 +144,8 @@ TEST(VerifyGcode, G1BecameG0) {
 }
 
 TEST(VerifyGcode, CommentEdited) {
-  expect_one(replace(posted(kInput), "(finish pass)", "(finish  pass)"), Code::comment_changed, 2, 1);
+  expect_one(replace(posted(kInput), "(finish pass)", "(finish  pass)"), Code::comment_changed, 2,
+             1);
 }
 
 TEST(VerifyGcode, FInsertedIntoAComment) {
@@ -160,7 +162,8 @@ TEST(VerifyGcode, SWordInsideACommentChanged) {
 
 TEST(VerifyGcode, LineAdded) {
   const std::string out = posted(kInput);
-  const std::string added = out.substr(0, line_offset(out, 7)) + "G4 P1\n" + out.substr(line_offset(out, 7));
+  const std::string added =
+      out.substr(0, line_offset(out, 7)) + "G4 P1\n" + out.substr(line_offset(out, 7));
   const Result r = run(kInput, added);
   ASSERT_GE(r.violation_count, 1u);
   EXPECT_EQ(r.violations[0].code, Code::line_count);
@@ -176,7 +179,8 @@ TEST(VerifyGcode, LineRemoved) {
 }
 
 TEST(VerifyGcode, WhitespaceChanged) {
-  expect_one(replace(posted(kInput), "G1 X10.5 Y2", "G1 X10.5  Y2"), Code::whitespace_changed, 8, 9);
+  expect_one(replace(posted(kInput), "G1 X10.5 Y2", "G1 X10.5  Y2"), Code::whitespace_changed, 8,
+             9);
   expect_one(replace(posted(kInput), "G21 G90", "G21\tG90"), Code::whitespace_changed, 3, 4);
   expect_one(replace(posted(kInput), "M5\n", "M5 \n"), Code::whitespace_changed, 11, 3);
 }
@@ -296,7 +300,8 @@ TEST(VerifyLexer, TokensCoverTheLineAndFindWords) {
     if (t.kind == TokenKind::word) words.emplace_back(t.text);
   }
   EXPECT_EQ(joined, line);
-  EXPECT_EQ(words, (std::vector<std::string>{"N80", "G0", "X53.", "Y-56.128", "S #<rpm>", "F[#1*2]"}));
+  EXPECT_EQ(words,
+            (std::vector<std::string>{"N80", "G0", "X53.", "Y-56.128", "S #<rpm>", "F[#1*2]"}));
   EXPECT_TRUE(is_plain_positive("9870"));
   EXPECT_TRUE(is_plain_positive("850.5"));
   EXPECT_TRUE(is_plain_positive(".5"));

@@ -16,6 +16,7 @@
 #include <regex>
 #include <sstream>
 
+#include "../dome_program_support.h"
 #include "geometry/analytic_surfaces.h"
 #include "geometry/occt/brep_model.h"
 #include "machines/builtin.h"
@@ -25,7 +26,6 @@
 #include "postproc/post/post_job.h"
 #include "postproc/verify/lexer.h"
 #include "postproc/verify/verify.h"
-#include "../dome_program_support.h"
 
 namespace vcpost::verify {
 namespace {
@@ -55,9 +55,12 @@ Posted post_with(const std::string& input, const std::string& name,
 
 gcode::Dialect dialect_of(const machines::MachineProfile& profile) {
   switch (profile.dialect()) {
-    case machines::Dialect::fanuc: return gcode::fanuc_dialect();
-    case machines::Dialect::mazak: return gcode::mazak_dialect();
-    case machines::Dialect::rs274ngc: break;
+    case machines::Dialect::fanuc:
+      return gcode::fanuc_dialect();
+    case machines::Dialect::mazak:
+      return gcode::mazak_dialect();
+    case machines::Dialect::rs274ngc:
+      break;
   }
   return gcode::rs274ngc_dialect();
 }
@@ -84,7 +87,8 @@ geometry::AnalyticModel floor_under(const std::string& program, const gcode::Dia
   return geometry::AnalyticModel({plane});
 }
 
-void expect_verified_gcode(const std::string& input, const Posted& p, const gcode::Dialect& dialect) {
+void expect_verified_gcode(const std::string& input, const Posted& p,
+                           const gcode::Dialect& dialect) {
   Options options;
   options.dialect = dialect;
   const Result r = verify_gcode(input, p.output, options);
@@ -107,14 +111,13 @@ void expect_verified_gcode(const std::string& input, const Posted& p, const gcod
   EXPECT_LE(r.f_changes, p.summary.f_words);
   EXPECT_GE(r.f_changes + kept[1], p.summary.f_words);
   EXPECT_EQ(r.motions, p.summary.motion_events);
-  std::printf("  %llu S and %llu F words changed (post: %llu S, %llu F written; input words "
-              "kept: %llu S, %llu F), %llu motions compared\n",
-              static_cast<unsigned long long>(r.s_changes),
-              static_cast<unsigned long long>(r.f_changes),
-              static_cast<unsigned long long>(p.summary.s_words),
-              static_cast<unsigned long long>(p.summary.f_words),
-              static_cast<unsigned long long>(kept[0]), static_cast<unsigned long long>(kept[1]),
-              static_cast<unsigned long long>(r.motions));
+  std::printf(
+      "  %llu S and %llu F words changed (post: %llu S, %llu F written; input words "
+      "kept: %llu S, %llu F), %llu motions compared\n",
+      static_cast<unsigned long long>(r.s_changes), static_cast<unsigned long long>(r.f_changes),
+      static_cast<unsigned long long>(p.summary.s_words),
+      static_cast<unsigned long long>(p.summary.f_words), static_cast<unsigned long long>(kept[0]),
+      static_cast<unsigned long long>(kept[1]), static_cast<unsigned long long>(r.motions));
 }
 
 TEST(VerifyPrograms, SharedGcodeProgramsPostedVerify) {
@@ -134,8 +137,8 @@ TEST(VerifyPrograms, SharedGcodeProgramsPostedVerify) {
     settings.point.ap = 0.3;
     std::optional<Posted> p;
     try {
-      p = post_with(input, entry.path().filename().string(), floor_under(input, dialect_of(profile)),
-                    profile, settings);
+      p = post_with(input, entry.path().filename().string(),
+                    floor_under(input, dialect_of(profile)), profile, settings);
     } catch (const std::exception& e) {
       // A program the post refuses (a macro program that reads machine
       // state) cannot be posted; it must still verify against itself, or
@@ -195,17 +198,17 @@ std::vector<std::pair<std::string, Posted>> post_samples_now(const std::string& 
   for (const auto& entry : fs::directory_iterator(dir)) {
     if (entry.path().extension() != extension) continue;
     const Sample s = sample_for(entry.path().filename().string());
-    if (!models.contains(s.model)) models.emplace(s.model, occt::BrepModel::load_step(dir / s.model));
+    if (!models.contains(s.model))
+      models.emplace(s.model, occt::BrepModel::load_step(dir / s.model));
     post::PostSettings settings;
     settings.point.tool = geometry::Tool::ball(s.diameter);
     settings.point.vc = s.vc;
     settings.point.ap = s.ap;
     settings.dialect = gcode::rs274ngc_dialect();
-    out.emplace_back(s.program, post_with(read(entry.path()), s.program, models.at(s.model),
-                                          profile, settings));
+    out.emplace_back(
+        s.program, post_with(read(entry.path()), s.program, models.at(s.model), profile, settings));
   }
-  std::sort(out.begin(), out.end(),
-            [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   return out;
 }
 
@@ -265,7 +268,8 @@ TEST(VerifyPrograms, VerdictAgreesWithLinuxcncRs274) {
   const auto& posted = post_samples(".nc");
   ASSERT_FALSE(posted.empty());
   const auto& [name, p] = posted.front();
-  const fs::path dir = fs::temp_directory_path() / ("vcpost_verify_rs274_" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("vcpost_verify_rs274_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const std::string input = read(fs::path(VCPOST_SOURCE_DIR) / "samples" / name);
   const std::string a = rs274_motion(dir, "in.ngc", input);
@@ -378,7 +382,9 @@ TEST(VerifyPrograms, ClRapidWrittenAsFeedAndMissingMotionAreCaught) {
   ASSERT_NE(g0, std::string::npos);
   std::string as_feed = p.output;
   as_feed[g0 + 2] = '1';
-  const auto g0_line = static_cast<std::uint32_t>(std::count(p.output.begin(), p.output.begin() + static_cast<std::ptrdiff_t>(g0) + 1, '\n') + 1);
+  const auto g0_line = static_cast<std::uint32_t>(
+      std::count(p.output.begin(), p.output.begin() + static_cast<std::ptrdiff_t>(g0) + 1, '\n') +
+      1);
   const Result r = verify_cl(cl, as_feed, mazak_options(), name);
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.violations[0].code, Code::motion_kind);
@@ -390,7 +396,8 @@ TEST(VerifyPrograms, ClRapidWrittenAsFeedAndMissingMotionAreCaught) {
   const auto next = p.output.find('\n', last + 1);
   const std::string shorter = p.output.substr(0, last) + p.output.substr(next);
   const auto last_line = static_cast<std::uint32_t>(
-      std::count(p.output.begin(), p.output.begin() + static_cast<std::ptrdiff_t>(last) + 1, '\n') + 1);
+      std::count(p.output.begin(), p.output.begin() + static_cast<std::ptrdiff_t>(last) + 1, '\n') +
+      1);
   const Result r2 = verify_cl(cl, shorter, mazak_options(), name);
   ASSERT_EQ(r2.violation_count, 1u);
   EXPECT_EQ(r2.violations[0].code, Code::motion_count);

@@ -71,44 +71,6 @@ MeshModel::MeshModel(StlMesh mesh) : mesh_(std::move(mesh)) {
     }
   }
 
-  // Adjacency: faces across each edge (sorted edge keys; an edge used by
-  // exactly two faces links them) and the fan of faces around each vertex.
-  across_.assign(nf, {kNone, kNone, kNone});
-  {
-    struct EdgeUse {
-      std::uint32_t lo, hi, face, k;
-    };
-    std::vector<EdgeUse> uses;
-    uses.reserve(3 * nf);
-    for (std::uint32_t f = 0; f < nf; ++f) {
-      const auto& t = mesh_.triangles[f];
-      for (std::uint32_t k = 0; k < 3; ++k) {
-        const auto key = std::minmax(t[k], t[(k + 1) % 3]);
-        uses.push_back({key.first, key.second, f, k});
-      }
-    }
-    std::sort(uses.begin(), uses.end(), [](const EdgeUse& a, const EdgeUse& b) {
-      return a.lo != b.lo ? a.lo < b.lo : a.hi != b.hi ? a.hi < b.hi : a.face < b.face;
-    });
-    for (std::size_t i = 0; i < uses.size();) {
-      std::size_t j = i;
-      while (j < uses.size() && uses[j].lo == uses[i].lo && uses[j].hi == uses[i].hi) ++j;
-      if (j - i == 2) {
-        across_[uses[i].face][uses[i].k] = uses[i + 1].face;
-        across_[uses[i + 1].face][uses[i + 1].k] = uses[i].face;
-      }
-      i = j;
-    }
-    fan_start_.assign(nv + 1, 0);
-    for (const auto& t : mesh_.triangles)
-      for (auto v : t) ++fan_start_[v + 1];
-    for (std::size_t v = 0; v < nv; ++v) fan_start_[v + 1] += fan_start_[v];
-    fan_.resize(3 * nf);
-    std::vector<std::uint32_t> fill(fan_start_.begin(), fan_start_.end() - 1);
-    for (std::uint32_t f = 0; f < nf; ++f)
-      for (auto v : mesh_.triangles[f]) fan_[fill[v]++] = f;
-  }
-
   // The hierarchy: median split of the centroids along the box's longest axis.
   std::vector<Eigen::Vector3d> centroids(nf);
   slots_.resize(nf);
@@ -304,27 +266,6 @@ std::uint32_t MeshModel::collapse(std::uint32_t binary) {
   return index;
 }
 
-// From the triangle in `best`, moves to any nearer triangle
-// across an edge of the current best or around the vertex it touches,
-// until none is nearer: a local minimum of the distance over the mesh.
-void MeshModel::walk(const Eigen::Vector3d& p, Hit& best) const {
-  std::uint32_t previous = kNone;
-  for (int step = 0; step < 256 && best.face != previous; ++step) {
-    previous = best.face;
-    const std::uint32_t current = best.face;
-    const int feature = best.feature;
-    for (const std::uint32_t next : across_[current]) {
-      if (next != kNone) test_slot(slot_of_face_[next], p, best);
-    }
-    if (feature >= 4) {
-      const std::uint32_t v = mesh_.triangles[current][static_cast<std::size_t>(feature - 4)];
-      for (std::uint32_t i = fan_start_[v]; i < fan_start_[v + 1]; ++i) {
-        if (fan_[i] != current) test_slot(slot_of_face_[fan_[i]], p, best);
-      }
-    }
-  }
-}
-
 // Closest point of one triangle by the Voronoi regions of its corners,
 // edges and interior (the classic region test on the dot products).
 void MeshModel::test_slot(std::uint32_t s, const Eigen::Vector3d& p, Hit& best) const {
@@ -422,21 +363,13 @@ std::optional<geometry::ModelContact> MeshModel::closest_point(const Eigen::Vect
   const double limit = best.d2;
 
   // Warm start: the previous answer's triangle alone gives a bound within a
-  // hair of the answer along a coherent path (its neighbours would only be
-  // tested again by the traversal).
+  // hair of the answer along a coherent path. (Walking on to nearer
+  // neighbours first was tried: the hierarchy tests them again anyway, and
+  // the walk cost more than the tighter bound saved.)
   bool warm = false;
   if (hint != nullptr && hint->face >= 0 && hint->face < face_count()) {
-    const auto start = static_cast<std::uint32_t>(hint->face);
-    // The start triangle counts whatever its distance: the walk needs it
-    // as the current best even beyond max_distance.
-    Hit local;
-    local.d2 = std::numeric_limits<double>::infinity();
-    test_slot(slot_of_face_[start], p, local);
-    walk(p, local);
-    if (local.d2 < limit) {
-      best = local;
-      warm = true;
-    }
+    test_slot(slot_of_face_[hint->face], p, best);
+    warm = best.d2 < limit;
   }
   const double hint_d2 = best.d2;
 
@@ -456,6 +389,10 @@ std::optional<geometry::ModelContact> MeshModel::closest_point(const Eigen::Vect
   int top = 0;
   const auto open = [&](std::uint32_t index) {
     const WideNode& n = wide_[index];
+    // The lanes' float bounds against best.d2 / shrink, rounded up (the
+    // 1e-6 is far above float rounding): a lane is skipped only when its
+    // bound times shrink is at least best.d2.
+    const auto bound = static_cast<float>(best.d2 / shrink * (1 + 1e-6));
     // Four lanes at once (GCC/Clang vector extension: SSE on x86-64).
     using F4 = float __attribute__((vector_size(16)));
     const auto load = [](const float (&a)[4]) {
@@ -463,24 +400,27 @@ std::optional<geometry::ModelContact> MeshModel::closest_point(const Eigen::Vect
       std::memcpy(&v, a, sizeof v);
       return v;
     };
+    using I4 = std::int32_t __attribute__((vector_size(16)));
     const F4 zero = {0, 0, 0, 0};
+    const I4 no_sign = {0x7fffffff, 0x7fffffff, 0x7fffffff, 0x7fffffff};
     F4 d2 = zero;
     for (int k = 0; k < 3; ++k) {
       const F4 along = load(n.axis[k][0]) * px + load(n.axis[k][1]) * py +
                        load(n.axis[k][2]) * pz - load(n.offset[k]);
-      const F4 abs_along = along > zero ? along : -along;
-      F4 e = abs_along - load(n.half[k]) - margin;
+      F4 e = reinterpret_cast<F4>(reinterpret_cast<I4>(along) & no_sign) - load(n.half[k]) -
+             margin;
       e = e > zero ? e : zero;
       d2 += e * e;
     }
+    const I4 within = d2 < bound;
     float lb[4];
     std::memcpy(lb, &d2, sizeof lb);
     // Cold, the nearest lanes go on top of the stack so the bound shrinks
-    // early; warm, the walk's bound is already (nearly) the answer and the
-    // order hardly matters, so they go on as they are.
+    // early; warm, the bound is already (nearly) the answer and the order
+    // hardly matters, so they go on as they are.
     int order[4], m = 0;
     for (int l = 0; l < 4; ++l) {
-      if (static_cast<double>(lb[l]) * shrink < best.d2) {
+      if (within[l]) {
         int i = m++;
         while (!warm && i > 0 && lb[order[i - 1]] < lb[l]) {
           order[i] = order[i - 1];

@@ -1,7 +1,7 @@
 // An STL triangle mesh as a geometry::SurfaceModel: exact closest points on
 // the triangles (inside a face, on an edge, on a vertex) through a bounding
-// volume hierarchy of oriented boxes, warm-started by a walk over the
-// triangles next to the previous answer.
+// volume hierarchy of oriented boxes, warm-started from the previous
+// answer's triangle.
 //
 // Units: mm (read_stl_file converts the file's unit). Faces are triangles:
 // ModelContact::face is the triangle's index in StlMesh::triangles, uv its
@@ -36,12 +36,11 @@ class MeshModel final : public geometry::SurfaceModel {
   explicit MeshModel(StlMesh mesh);
 
   // See geometry::SurfaceModel. A hint with a valid face makes the query
-  // warm: from the hint's triangle a walk moves to whichever neighbour
-  // (across an edge, or around the vertex the contact sits on) is nearer,
-  // until none is; that local answer bounds the search of the hierarchy,
-  // which then only confirms it in the usual case. The answer is always
-  // the global closest point. ContactHint::warm_queries counts the
-  // queries the walk answered, cold_queries the others.
+  // warm: the previous answer's triangle gives an upper bound that prunes
+  // most of the hierarchy from the start; the answer is still the global
+  // closest point (the hierarchy is always searched within that bound).
+  // ContactHint::warm_queries counts the queries the hint's triangle
+  // answered, cold_queries the others.
   std::optional<geometry::ModelContact> closest_point(const Eigen::Vector3d& point,
                                                       double max_distance,
                                                       geometry::ContactHint* hint) const override;
@@ -95,7 +94,6 @@ class MeshModel final : public geometry::SurfaceModel {
   void fit_node(Node& node, std::uint32_t begin, std::uint32_t end) const;
   std::uint32_t collapse(std::uint32_t binary);
   void test_slot(std::uint32_t slot, const Eigen::Vector3d& p, Hit& best) const;
-  void walk(const Eigen::Vector3d& p, Hit& best) const;
   geometry::ModelContact make_contact(const Eigen::Vector3d& p, const Hit& hit) const;
 
   StlMesh mesh_;
@@ -104,12 +102,7 @@ class MeshModel final : public geometry::SurfaceModel {
   std::vector<std::array<Eigen::Vector3d, 3>> edge_normal_;  // per face: edges ab, bc, ca
   std::vector<Eigen::Vector3d> vertex_normal_;               // angle-weighted
   std::vector<std::uint32_t> slot_of_face_;
-  // Adjacency for the walk: the face across edges ab, bc, ca (kNone at a
-  // border or where more than two faces share the edge), and the faces
-  // around each vertex (vertex v: fan_[fan_start_[v] .. fan_start_[v+1])).
-  static constexpr std::uint32_t kNone = 0xffffffffu;
-  std::vector<std::array<std::uint32_t, 3>> across_;
-  std::vector<std::uint32_t> fan_start_, fan_;
+  static constexpr std::uint32_t kNone = 0xffffffffu;  // an empty lane of a WideNode
   std::vector<Slot> slots_;
   std::vector<Node> nodes_;  // build time only
   std::vector<WideNode> wide_;

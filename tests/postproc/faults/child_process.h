@@ -33,6 +33,7 @@ struct ChildOptions {
   std::filesystem::path stdout_file;   // required: where stdout goes
   std::filesystem::path stderr_file;   // required: where stderr goes
   std::filesystem::path stdin_file;    // empty: /dev/null
+  int stdout_fd = -1;                  // >= 0: stdout is this descriptor (e.g. a pipe), not the file
   std::optional<rlim_t> file_size_limit;  // RLIMIT_FSIZE in bytes, set in the child
   std::optional<uid_t> run_as;            // setresuid/setresgid (same id) in the child
   // Called in the parent while the child runs, with its pid; returns when
@@ -102,7 +103,9 @@ inline ChildResult run_child(const ChildOptions& options) {
     sigemptyset(&none);
     ::sigprocmask(SIG_SETMASK, &none, nullptr);
     const int fd_in = ::open(in.c_str(), O_RDONLY);
-    const int fd_out = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0666);
+    const int fd_out = options.stdout_fd >= 0
+                           ? options.stdout_fd
+                           : ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0666);
     const int fd_err = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0666);
     if (fd_in < 0 || fd_out < 0 || fd_err < 0) ::_exit(120);
     ::dup2(fd_in, 0);

@@ -202,6 +202,23 @@ TEST(Faults, StandardOutputFull) {
   EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
 }
 
+TEST(Faults, StandardOutputPipeClosed) {
+  // `-o -` into a pipe nobody reads any more: the final write raises
+  // SIGPIPE; vcpost says so in one line and dies by it (the shell: 141).
+  Folder logs;
+  int fds[2];
+  ASSERT_EQ(::pipe(fds), 0);
+  ::close(fds[0]);
+  const fs::path program = kSamples / "dome_raster_a0_ae3.nc";
+  const ChildResult r = run_vcpost(with(dome_job(program), {"-o", "-"}), logs,
+                                   [&](ChildOptions& o) { o.stdout_fd = fds[1]; });
+  ::close(fds[1]);
+  EXPECT_FALSE(r.exited);
+  EXPECT_EQ(r.signal, SIGPIPE);
+  EXPECT_EQ(r.shell_status(), 141);
+  EXPECT_EQ(r.err, "vcpost: interrupted by SIGPIPE; no output written\n");
+}
+
 TEST(Faults, SmallTmpfsIsFull) {
   // A real full file system: a 1 MB tmpfs in a private mount namespace
   // (needs root and `unshare -m`), the long program (over 6 MB posted).

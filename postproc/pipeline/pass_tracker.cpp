@@ -1,38 +1,128 @@
 #include "postproc/pipeline/pass_tracker.h"
 
+#include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 
 namespace vcpost::pipeline {
 namespace {
 constexpr double parallel_cos = 0.70710678118654752;  // cos 45 deg
+// Runs end after this many entries, or a cell length from their start.
+constexpr std::uint64_t run_points = 32;
+// Candidates nearer than the best by no more than this are ties, mm: a run
+// of a straight pass is skipped once one of its twins gave the same ae.
+constexpr double tie = 1e-10;
+// Cell corners are widened by this when a segment is registered, mm, so a
+// point computed on a cell boundary is not lost to rounding.
+constexpr double cell_margin = 1e-9;
+
+// Cell index of a coordinate; the grid is shifted by an odd fraction of a
+// cell so that round coordinates (a floor at z = 0, a pass at y = 10) do not
+// lie on cell faces, where they would be listed in two cells.
+std::int64_t cell_index(double v, double cell) {
+  return static_cast<std::int64_t>(std::floor(v / cell + 0.3819660112501051));
 }
+
+// Distance from the origin to the 2-D segment p-q.
+double distance_to_segment(double px, double py, double qx, double qy) {
+  const double dx = qx - px, dy = qy - py;
+  const double length2 = dx * dx + dy * dy;
+  double t = length2 > 0 ? -(px * dx + py * dy) / length2 : 0;
+  t = std::clamp(t, 0.0, 1.0);
+  const double x = px + t * dx, y = py + t * dy;
+  return std::sqrt(x * x + y * y);
+}
+}  // namespace
+
+// ---- BlockMap ---------------------------------------------------------------
+
+std::size_t PassTracker::BlockMap::slot(Key key) const {
+  // Fibonacci hashing of the packed cell coordinates.
+  const auto shift = 64 - std::countr_zero(keys_.size());
+  return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ULL) >> shift);
+}
+
+const PassTracker::Block* PassTracker::BlockMap::find(Key key) const {
+  if (keys_.empty()) return nullptr;
+  const std::size_t mask = keys_.size() - 1;
+  for (std::size_t i = slot(key);; i = (i + 1) & mask) {
+    if (keys_[i] == key) return &values_[i];
+    if (keys_[i] == empty) return nullptr;
+  }
+}
+
+void PassTracker::BlockMap::reserve(std::size_t blocks) {
+  std::size_t capacity = 16;
+  while (capacity < 2 * blocks) capacity *= 2;
+  keys_.assign(capacity, empty);
+  values_.assign(capacity, Block{});
+  size_ = 0;
+}
+
+void PassTracker::BlockMap::grow() {
+  std::vector<Key> keys = std::move(keys_);
+  std::vector<Block> values = std::move(values_);
+  reserve(std::max<std::size_t>(16, keys.size()));  // twice the slots
+  const std::size_t mask = keys_.size() - 1;
+  for (std::size_t j = 0; j < keys.size(); ++j) {
+    if (keys[j] == empty) continue;
+    std::size_t i = slot(keys[j]);
+    while (keys_[i] != empty) i = (i + 1) & mask;
+    keys_[i] = keys[j];
+    values_[i] = values[j];
+    ++size_;
+  }
+}
+
+PassTracker::Block& PassTracker::BlockMap::insert(Key key) {
+  if (2 * (size_ + 1) > keys_.size()) grow();  // load factor at most 1/2
+  const std::size_t mask = keys_.size() - 1;
+  std::size_t i = slot(key);
+  for (; keys_[i] != empty; i = (i + 1) & mask) {
+    if (keys_[i] == key) return values_[i];
+  }
+  keys_[i] = key;
+  values_[i].occupied = 0;
+  ++size_;
+  return values_[i];
+}
+
+// ---- PassTracker ------------------------------------------------------------
 
 PassTracker::PassTracker(double search_radius, double min_path_gap, std::size_t memory)
     : radius_(search_radius),
       min_gap_(min_path_gap),
       cell_(search_radius / 16),
       abeam_(0.1 * search_radius),
-      memory_(memory) {
-  ring_.reserve(memory);
+      memory_(std::max<std::size_t>(memory, 1)),
+      mask_(std::bit_ceil(memory_) - 1) {
+  ring_.reserve(std::min<std::size_t>(mask_ + 1, 1 << 16));
+  candidates_.reserve(64);
 }
 
 void PassTracker::break_pass() { pass_open_ = false; }
 
-PassTracker::Key PassTracker::key_of(std::int64_t x, std::int64_t y, std::int64_t z) const {
-  // 21 bits per axis: cells wrap beyond 2^21 cells (kilometres), harmless for a hash.
+PassTracker::Key PassTracker::key_of(std::int64_t x, std::int64_t y, std::int64_t z) {
+  // 21 bits per axis: blocks wrap beyond 2^21 (kilometres); a wrapped block
+  // only adds runs that the distance bounds then reject.
   const auto part = [](std::int64_t v) { return static_cast<std::uint64_t>(v) & 0x1FFFFF; };
   return part(x) | (part(y) << 21) | (part(z) << 42);
 }
 
-PassTracker::Key PassTracker::key_of(const Eigen::Vector3d& p) const {
-  return key_of(static_cast<std::int64_t>(std::floor(p.x() / cell_)),
-                static_cast<std::int64_t>(std::floor(p.y() / cell_)),
-                static_cast<std::int64_t>(std::floor(p.z() / cell_)));
+const PassTracker::Entry* PassTracker::entry(std::uint64_t sequence) const {
+  if (sequence >= next_ || next_ - sequence > kept()) return nullptr;  // forgotten
+  return &ring_[sequence & mask_];
 }
 
-const PassTracker::Entry* PassTracker::entry(std::uint64_t sequence) const {
-  if (sequence >= next_ || next_ - sequence > ring_.size()) return nullptr;  // forgotten
-  return &ring_[sequence % memory_];
+std::uint64_t PassTracker::run_of(std::uint32_t low) const {
+  const std::uint64_t newest = run_next_ - 1;
+  return newest - static_cast<std::uint32_t>(static_cast<std::uint32_t>(newest) - low);
+}
+
+bool PassTracker::run_alive(std::uint64_t sequence) const {
+  if (sequence >= run_next_ || run_next_ - sequence > runs_.size()) return false;  // overwritten
+  return runs_[sequence & mask_].end > oldest();  // its last entry is kept
 }
 
 std::optional<NeighbourPass> PassTracker::step(const Eigen::Vector3d& cc,
@@ -43,11 +133,18 @@ std::optional<NeighbourPass> PassTracker::step(const Eigen::Vector3d& cc,
   if (!pass_open_ || turned) {
     ++pass_;
     pass_open_ = true;
+    pass_start_ = next_;
   }
   Entry current{cc, feed, 0, pass_, false};
   if (last) current.path = last->path + (cc - last->point).norm();
   current.joined = last && last->pass == pass_;
-  if (current.joined) max_segment_ = std::max(max_segment_, (cc - last->point).norm());
+  // Entries of this pass less than the path gap back are no earlier pass;
+  // path length only grows, so that boundary only moves forward.
+  cutoff_ = std::max(cutoff_, pass_start_);
+  for (; cutoff_ < next_; ++cutoff_) {
+    const Entry* e = entry(cutoff_);
+    if (e && !(current.path - e->path > min_gap_)) break;
+  }
   auto found = nearest(current, normal);
   if (found) last_ae_ = found->ae;
   add(current);
@@ -55,79 +152,310 @@ std::optional<NeighbourPass> PassTracker::step(const Eigen::Vector3d& cc,
 }
 
 void PassTracker::add(const Entry& e) {
-  if (ring_.size() < memory_) {
+  // The run first: closing one reads entries that e may overwrite.
+  std::optional<Eigen::Vector3d> before;
+  if (e.joined) before = ring_[(next_ - 1) & mask_].point;
+  extend_run(e, before);
+  if (ring_.size() <= mask_) {
     ring_.push_back(e);
   } else {
-    ring_[next_ % memory_] = e;
+    ring_[next_ & mask_] = e;
   }
-  grid_[key_of(e.point)].push_back(next_++);
-  if (next_ - compacted_at_ >= memory_) compact();
+  ++next_;
+  if (next_ - compacted_at_ >= memory_ && nodes_.size() > 2 * live_nodes_ + 4096) compact();
 }
 
-// Drops forgotten sequence numbers from the grid, so it stays bounded.
-void PassTracker::compact() {
-  for (auto it = grid_.begin(); it != grid_.end();) {
-    auto& cell = it->second;
-    std::erase_if(cell, [&](std::uint64_t s) { return entry(s) == nullptr; });
-    it = cell.empty() ? grid_.erase(it) : std::next(it);
+void PassTracker::extend_run(const Entry& e, const std::optional<Eigen::Vector3d>& before) {
+  const bool fits = run_open_ && e.joined && next_ - run(run_next_ - 1).first < run_points &&
+                    (e.point - run(run_next_ - 1).a).norm() <= cell_;
+  if (!fits) {
+    close_run();
+    Run fresh;
+    fresh.a = before ? *before : e.point;
+    fresh.first = next_;
+    if (runs_.size() <= mask_) {
+      runs_.push_back(fresh);
+    } else {
+      run(run_next_) = fresh;
+    }
+    ++run_next_;
+    run_open_ = true;
   }
+  Run& r = run(run_next_ - 1);
+  r.b = e.point;
+  r.end = next_ + 1;
+  register_segment(before ? *before : e.point, e.point, run_next_ - 1);
+}
+
+// Fixes the capsule of the open run: the largest distance of its points
+// from the axis a-b (segments between them lie inside: it is convex).
+void PassTracker::close_run() {
+  if (!run_open_) return;
+  run_open_ = false;
+  Run& r = run(run_next_ - 1);
+  const Eigen::Vector3d axis = r.b - r.a;
+  const double length2 = axis.squaredNorm();
+  double radius = 0;
+  for (std::uint64_t s = std::max(r.first, oldest()); s < r.end; ++s) {
+    const Eigen::Vector3d d = ring_[s & mask_].point - r.a;
+    const double t = length2 > 0 ? std::clamp(d.dot(axis) / length2, 0.0, 1.0) : 0.0;
+    radius = std::max(radius, (d - t * axis).norm());
+  }
+  r.radius = radius * (1 + 1e-12) + 1e-12;  // rounding of the distances above
+}
+
+// Registers `run` in every cell the segment p-q passes through: the segment
+// is cut into pieces no longer than a cell along any axis, and each piece
+// marks the cells of its bounding box (at most 2 x 2 x 2).
+void PassTracker::register_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& q,
+                                   std::uint64_t run) {
+  const Eigen::Vector3d d = q - p;
+  const double longest = d.cwiseAbs().maxCoeff();
+  const auto pieces =
+      std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(longest / cell_)));
+  if (pieces == 1) {
+    // Most steps stay in the cells of the last one: nothing new to list.
+    const Eigen::Vector3d lo = p.cwiseMin(q).array() - cell_margin;
+    const Eigen::Vector3d hi = p.cwiseMax(q).array() + cell_margin;
+    const std::array<std::int64_t, 7> box{cell_index(lo.x(), cell_),     cell_index(lo.y(), cell_),
+                                          cell_index(lo.z(), cell_),     cell_index(hi.x(), cell_),
+                                          cell_index(hi.y(), cell_),     cell_index(hi.z(), cell_),
+                                          static_cast<std::int64_t>(run)};
+    if (box == last_box_) return;
+    last_box_ = box;
+    for (std::int64_t x = box[0]; x <= box[3]; ++x) {
+      for (std::int64_t y = box[1]; y <= box[4]; ++y) {
+        for (std::int64_t z = box[2]; z <= box[5]; ++z) register_cell(x, y, z, run);
+      }
+    }
+    return;
+  }
+  last_box_.back() = -1;
+  Eigen::Vector3d from = p;
+  for (std::int64_t k = 1; k <= pieces; ++k) {
+    const Eigen::Vector3d to =
+        k == pieces
+            ? q
+            : Eigen::Vector3d(p + d * (static_cast<double>(k) / static_cast<double>(pieces)));
+    const Eigen::Vector3d lo = from.cwiseMin(to).array() - cell_margin;
+    const Eigen::Vector3d hi = from.cwiseMax(to).array() + cell_margin;
+    for (std::int64_t x = cell_index(lo.x(), cell_); x <= cell_index(hi.x(), cell_); ++x) {
+      for (std::int64_t y = cell_index(lo.y(), cell_); y <= cell_index(hi.y(), cell_); ++y) {
+        for (std::int64_t z = cell_index(lo.z(), cell_); z <= cell_index(hi.z(), cell_); ++z) {
+          register_cell(x, y, z, run);
+        }
+      }
+    }
+    from = to;
+  }
+}
+
+void PassTracker::register_cell(std::int64_t x, std::int64_t y, std::int64_t z, std::uint64_t run) {
+  Block& block = blocks_.insert(key_of(x >> 2, y >> 2, z >> 2));
+  const auto bit = static_cast<unsigned>((x & 3) | ((y & 3) << 2) | ((z & 3) << 4));
+  std::uint32_t& head = block.heads[bit];
+  const auto low = static_cast<std::uint32_t>(run);
+  if (!(block.occupied >> bit & 1)) {
+    block.occupied |= std::uint64_t{1} << bit;
+    head = none;
+  } else if (nodes_[head].run == low) {
+    return;  // the run is already listed here (a run registers all at once)
+  }
+  nodes_.push_back({low, head});
+  head = static_cast<std::uint32_t>(nodes_.size() - 1);
+}
+
+// Drops forgotten runs from the cell lists (and empty cells and blocks), so
+// the grid stays bounded; lists are newest first, so each is cut at its
+// first forgotten run.
+void PassTracker::compact() {
+  std::vector<std::pair<Key, Block>> kept;
+  std::vector<Node> nodes;
+  nodes.reserve(nodes_.size() / 2);
+  blocks_.for_each([&](Key key, const Block& block) {
+    Block fresh;
+    for (std::uint64_t bits = block.occupied; bits != 0; bits &= bits - 1) {
+      const auto bit = static_cast<unsigned>(std::countr_zero(bits));
+      std::uint32_t* link = &fresh.heads[bit];
+      *link = none;
+      for (std::uint32_t n = block.heads[bit]; n != none; n = nodes_[n].next) {
+        if (!run_alive(run_of(nodes_[n].run))) break;
+        nodes.push_back({nodes_[n].run, none});
+        *link = static_cast<std::uint32_t>(nodes.size() - 1);
+        link = &nodes.back().next;
+      }
+      if (fresh.heads[bit] != none) fresh.occupied |= std::uint64_t{1} << bit;
+    }
+    if (fresh.occupied) kept.emplace_back(key, fresh);
+  });
+  blocks_.reserve(kept.size());
+  for (const auto& [key, block] : kept) blocks_.insert(key) = block;
+  nodes_ = std::move(nodes);
+  live_nodes_ = nodes_.size();
   compacted_at_ = next_;
 }
 
 std::optional<NeighbourPass> PassTracker::nearest(const Entry& current,
-                                                  const Eigen::Vector3d& normal) const {
+                                                  const Eigen::Vector3d& normal) {
+  std::optional<NeighbourPass> best;
+  const std::uint64_t kept = oldest();
+  if (cutoff_ <= kept) return best;  // everything kept belongs to this pass
+  ++search_;
+  const std::uint64_t run_floor = run_next_ - runs_.size();  // older runs are overwritten
+  // Runs from run_cut_ on start at or after the cutoff: this pass, too close behind.
+  run_cut_ = std::max(run_cut_, run_floor);
+  while (run_cut_ < run_next_ && run(run_cut_).first < cutoff_) ++run_cut_;
   const Eigen::Vector3d& cc = current.point;
   const Eigen::Vector3d& feed = current.feed;
   const Eigen::Vector3d left = normal.cross(feed);
-  std::optional<NeighbourPass> best;
+
+  std::uint64_t evaluating = 0, best_run = 0;  // the run being evaluated, the best one's
+  // Returns whether the candidate was compared with the best (it lies
+  // within the search radius and is not CC itself).
   auto consider = [&](const Eigen::Vector3d& p) {
     const Eigen::Vector3d d = p - cc;
     const double across = std::sqrt(std::pow(left.dot(d), 2) + std::pow(normal.dot(d), 2));
-    if (across > radius_ || across <= 1e-9 || (best && across >= best->ae)) return;
-    best = NeighbourPass{across, left.dot(d) >= 0 ? geometry::Side::left : geometry::Side::right, p};
+    if (across > radius_ || across <= 1e-9) return false;
+    if (best && across >= best->ae) return true;
+    best =
+        NeighbourPass{across, left.dot(d) >= 0 ? geometry::Side::left : geometry::Side::right, p};
+    best_run = evaluating;
+    return true;
   };
-  auto scan_cell = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
-    const auto cell = grid_.find(key_of(x, y, z));
-    if (cell == grid_.end()) return;
-    for (const std::uint64_t s : cell->second) {
-      const Entry* e = entry(s);
-      if (!e || std::abs(e->feed.dot(feed)) < parallel_cos) continue;
-      const bool earlier = e->pass != current.pass || current.path - e->path > min_gap_;
-      if (!earlier) continue;
-      // Where that pass crosses the plane across the feed through CC:
-      // on the segment from its previous point, if it crosses there.
-      const Entry* before = e->joined ? entry(s - 1) : nullptr;
-      const double h1 = feed.dot(e->point - cc);
+  // The candidate of an entry of an earlier, roughly parallel pass: where
+  // that pass crosses the plane across the feed through CC, on the segment
+  // from its previous point; or, when the crossing lies on another segment
+  // (or at a pass end), the point itself if almost abeam.
+  // flat: all candidates of the run lie within `tie` of each other across
+  // the feed, so the first one compared stands for all.
+  auto evaluate = [&](std::uint64_t id, bool flat) {
+    const Run& r = run(id);
+    evaluating = id;
+    const std::uint64_t end = std::min(r.end, cutoff_);
+    for (std::uint64_t s = std::max(r.first, kept); s < end; ++s) {
+      const Entry& e = ring_[s & mask_];
+      if (std::abs(e.feed.dot(feed)) < parallel_cos) continue;
+      const Entry* before = e.joined ? entry(s - 1) : nullptr;
+      const double h1 = feed.dot(e.point - cc);
       if (before) {
         const double h0 = feed.dot(before->point - cc);
         if ((h0 <= 0) != (h1 <= 0) || h1 == 0) {
-          const double t = h0 / (h0 - h1);
-          consider(before->point + t * (e->point - before->point));
+          const double t = h0 == h1 ? 1.0 : h0 / (h0 - h1);  // h0 == h1 == 0: lies in the plane
+          if (consider(before->point + t * (e.point - before->point)) && flat) return;
           continue;
         }
       }
-      // A pass end, or the crossing lies on another segment: only a point
-      // almost abeam counts on its own.
-      if (std::abs(h1) <= abeam_) consider(e->point);
+      if (std::abs(h1) <= abeam_ && consider(e.point) && flat) return;
     }
   };
-  // Search outwards: every candidate found within a cube of half-width
-  // r + slack is a point or crossing within r + slack of CC, so once the
-  // best lies within r no farther candidate can beat it. Most points find
-  // their neighbour at about the last width of cut, in a handful of cells.
-  const double slack = std::max(max_segment_, abeam_);
-  for (double r = std::max(cell_, 2 * last_ae_);; r *= 2) {
-    const double reach = std::min(r, radius_) + slack;
-    const auto lo = [&](double v) { return static_cast<std::int64_t>(std::floor((v - reach) / cell_)); };
-    const auto hi = [&](double v) { return static_cast<std::int64_t>(std::floor((v + reach) / cell_)); };
-    best.reset();
-    for (std::int64_t x = lo(cc.x()); x <= hi(cc.x()); ++x) {
-      for (std::int64_t y = lo(cc.y()); y <= hi(cc.y()); ++y) {
-        for (std::int64_t z = lo(cc.z()); z <= hi(cc.z()); ++z) scan_cell(x, y, z);
+  // Bounds of a closed run across the feed (lowest, highest); none when
+  // all of it lies beyond the abeam allowance along the feed.
+  // flat: whether the highest bound lies within `tie` of the lowest. Runs
+  // whose lowest bound is no better than `worst` are left out.
+  auto measure = [&](const Run& r, double worst) -> std::optional<std::pair<double, bool>> {
+    const Eigen::Vector3d da = r.a - cc, db = r.b - cc;
+    const double ha = feed.dot(da), hb = feed.dot(db);
+    if (std::min(ha, hb) - r.radius > abeam_ || std::max(ha, hb) + r.radius < -abeam_) {
+      return std::nullopt;
+    }
+    const double xa = left.dot(da), ya = normal.dot(da), xb = left.dot(db), yb = normal.dot(db);
+    const double low = distance_to_segment(xa, ya, xb, yb) - r.radius;
+    if (low > worst) return std::nullopt;
+    // The distance to a line is convex along the axis: largest at an end.
+    const double high = std::sqrt(std::max(xa * xa + ya * ya, xb * xb + yb * yb)) + r.radius;
+    return std::pair{low, high - low <= tie};
+  };
+  // Collects the runs listed in a cell that may hold a candidate nearer than
+  // the best so far; the open run (no capsule yet) is evaluated at once.
+  auto scan_cell = [&](std::uint32_t head) {
+    for (std::uint32_t n = head; n != none; n = nodes_[n].next) {
+      const std::uint64_t id = run_of(nodes_[n].run);
+      if (id >= run_cut_) continue;  // all of it is this pass, too close behind
+      if (id < run_floor) break;     // overwritten: older ones are too
+      Run& r = run(id);
+      if (r.end <= kept) break;  // forgotten: older ones are too
+      if (r.mark == search_) continue;
+      r.mark = search_;
+      if (r.radius < 0) {
+        evaluate(id, false);
+        continue;
+      }
+      const auto bounds = measure(r, best ? std::min(radius_, best->ae - tie) : radius_);
+      if (bounds) candidates_.push_back({bounds->first, id, bounds->second});
+    }
+  };
+
+  // The run that held the last neighbour most likely holds this one: with
+  // its candidates first, the bounds below skip most other runs at once.
+  // Its neighbours on the path next, while nothing is found (the neighbour
+  // moves on to them along the pass, either way).
+  if (warm_) {
+    for (const std::uint64_t id : {*warm_, *warm_ - 1, *warm_ + 1}) {
+      if (best || id < run_floor || id >= run_cut_ || run(id).end <= kept) continue;
+      Run& r = run(id);
+      if (r.mark == search_) continue;
+      r.mark = search_;
+      if (r.radius < 0) {
+        evaluate(id, false);
+      } else if (const auto bounds = measure(r, radius_)) {
+        evaluate(id, bounds->second);
       }
     }
-    if ((best && best->ae <= r) || r >= radius_) break;
   }
+
+  // Search outwards: a candidate within r of CC across the feed and within
+  // the abeam allowance along it lies in the box below, and so does a cell
+  // listing its run. Once the best lies within r, nothing outside beats it.
+  double r = best ? best->ae : last_ae_ > 0 ? 1.125 * last_ae_ : cell_;
+  for (;;) {
+    const double reach = std::min(r, radius_);
+    std::int64_t lo[3], hi[3];
+    for (int i = 0; i < 3; ++i) {
+      const double f = feed[i];
+      const double half = reach * std::sqrt(std::max(0.0, 1 - f * f)) + abeam_ * std::abs(f);
+      lo[i] = cell_index(cc[i] - half, cell_);
+      hi[i] = cell_index(cc[i] + half, cell_);
+    }
+    for (std::int64_t bx = lo[0] >> 2; bx <= hi[0] >> 2; ++bx) {
+      for (std::int64_t by = lo[1] >> 2; by <= hi[1] >> 2; ++by) {
+        for (std::int64_t bz = lo[2] >> 2; bz <= hi[2] >> 2; ++bz) {
+          const Block* block = blocks_.find(key_of(bx, by, bz));
+          if (!block) continue;
+          // The cells of the box inside this block, as bits of `occupied`.
+          const auto span = [](std::int64_t l, std::int64_t h, std::int64_t base) {
+            const auto from = static_cast<unsigned>(std::max(l, base) - base);
+            const auto to = static_cast<unsigned>(std::min(h, base + 3) - base);
+            return ((1u << (to + 1)) - 1) & ~((1u << from) - 1);  // bits from..to of 4
+          };
+          const unsigned xs = span(lo[0], hi[0], 4 * bx), ys = span(lo[1], hi[1], 4 * by),
+                         zs = span(lo[2], hi[2], 4 * bz);
+          // Spread the y bits 4 apart and the z bits 16 apart: the products
+          // then lay the x bits on every wanted row (no carries).
+          const std::uint64_t y_rows = (ys & 1) | (ys & 2) << 3 | (ys & 4) << 6 | (ys & 8) << 9;
+          const std::uint64_t z_planes = std::uint64_t{zs & 1} | std::uint64_t{zs & 2} << 15 |
+                                         std::uint64_t{zs & 4} << 30 | std::uint64_t{zs & 8} << 45;
+          const std::uint64_t wanted = xs * y_rows * z_planes;
+          for (std::uint64_t bits = block->occupied & wanted; bits != 0; bits &= bits - 1) {
+            scan_cell(block->heads[std::countr_zero(bits)]);
+          }
+        }
+      }
+    }
+    // Nearest bound first: once a run's bound is no better than the best,
+    // neither is any later one.
+    std::sort(candidates_.begin(), candidates_.end(),
+              [](const Candidate& x, const Candidate& y) { return x.low < y.low; });
+    for (const Candidate& c : candidates_) {
+      if (best && c.low > best->ae - tie) break;
+      evaluate(c.run, c.flat);
+    }
+    candidates_.clear();
+    if ((best && best->ae <= reach) || r >= radius_) break;
+    // Nothing at all within r: go to the whole radius at once.
+    r = best ? 2 * r : radius_;
+  }
+  warm_.reset();
+  if (best) warm_ = best_run;
   return best;
 }
 

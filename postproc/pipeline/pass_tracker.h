@@ -7,9 +7,11 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <optional>
-#include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "geometry/engagement.h"
@@ -17,8 +19,8 @@
 namespace vcpost::pipeline {
 
 struct NeighbourPass {
-  double ae = 0;                                  // across the feed, mm
-  geometry::Side side = geometry::Side::left;     // where it lies, looking along F with N up
+  double ae = 0;                                    // across the feed, mm
+  geometry::Side side = geometry::Side::left;       // where it lies, looking along F with N up
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  // the point of that pass abeam of CC
 };
 
@@ -28,12 +30,23 @@ struct NeighbourPass {
 // either belongs to another pass (passes are split by rapids, lost contact
 // and turns of more than 45 deg) or lies more than `min_path_gap` mm back
 // along the path (spirals never turn).
+//
+// The candidates from an earlier pass are where it crosses the plane across
+// the feed through CC, and its points within 0.1 search radius of that plane
+// along the feed whose own segment does not cross it (pass ends); the
+// nearest of them across the feed wins (ties: any one of them).
+//
+// Cost: the grid indexes short runs of consecutive points (about a sixteenth
+// of the search radius long), each with a bounding capsule, so one step looks
+// at a few runs of the nearest passes and the points of about one run,
+// whatever the point spacing. Memory: O(memory) (about 100-200 bytes a point).
 class PassTracker {
  public:
   // search_radius: farthest neighbour considered, mm (a pass farther than
   // the tool diameter removed nothing this pass would cut).
   // memory: how many recent points are kept (older ones are forgotten),
   // so memory does not grow with program length.
+  // REQUIRES: search_radius > 0, min_path_gap >= 0, memory >= 1.
   PassTracker(double search_radius, double min_path_gap, std::size_t memory);
 
   // Starts a new pass (after a rapid, or where contact was lost).
@@ -41,7 +54,7 @@ class PassTracker {
 
   // Records the contact point of the next sample (in path order) and returns
   // the earlier pass nearest across the feed from it, within the search
-  // radius. normal and feed: unit, feed in the tangent plane.
+  // radius. normal and feed: unit and perpendicular, feed in the tangent plane.
   std::optional<NeighbourPass> step(const Eigen::Vector3d& cc, const Eigen::Vector3d& normal,
                                     const Eigen::Vector3d& feed);
 
@@ -49,30 +62,107 @@ class PassTracker {
   struct Entry {
     Eigen::Vector3d point;
     Eigen::Vector3d feed;
-    double path = 0;      // cumulative path length along the contact points, mm
+    double path = 0;  // cumulative path length along the contact points, mm
     std::uint64_t pass = 0;
     bool joined = false;  // continues the previous entry (same pass, consecutive)
   };
+  // Consecutive entries of one pass, at most about a cell long. Every point
+  // of its segments lies within `radius` of the axis a-b (a convex capsule),
+  // which bounds how near across the feed and how far along it they can be.
+  struct Run {
+    Eigen::Vector3d a =
+        Eigen::Vector3d::Zero();  // the entry before the first (joined), or the first
+    Eigen::Vector3d b = Eigen::Vector3d::Zero();  // the last entry
+    double radius = -1;                           // < 0 while the run is open (no capsule yet)
+    std::uint64_t first = 0;                      // sequence of its first entry
+    std::uint64_t end = 0;                        // one past its last entry
+    std::uint64_t mark = 0;                       // the last search that looked at it
+  };
+  // A node of a cell's list of runs, newest first; `run` is the run's
+  // sequence modulo 2^32 (live runs span far fewer).
+  struct Node {
+    std::uint32_t run;
+    std::uint32_t next;
+  };
+  static constexpr std::uint32_t none = ~std::uint32_t{0};
+  // 4 x 4 x 4 cells: which of them hold runs, and the heads of their lists,
+  // so one hash lookup serves 64 cells and empty cells cost a bit test.
+  struct Block {
+    std::uint64_t occupied = 0;
+    std::uint32_t heads[64] = {};
+  };
+  // Open addressing with linear probing: block key -> Block, no allocation
+  // per lookup; keys use 63 bits, so all ones marks an empty slot.
+  class BlockMap {
+   public:
+    using Key = std::uint64_t;
+    static constexpr Key empty = ~Key{0};
+    const Block* find(Key key) const;
+    Block& insert(Key key);  // a new block has no cell occupied
+    std::size_t size() const { return size_; }
+    void reserve(std::size_t blocks);
+    template <class F>
+    void for_each(F&& f) const {
+      for (std::size_t i = 0; i < keys_.size(); ++i) {
+        if (keys_[i] != empty) f(keys_[i], values_[i]);
+      }
+    }
+
+   private:
+    std::size_t slot(Key key) const;
+    void grow();
+    std::vector<Key> keys_;
+    std::vector<Block> values_;
+    std::size_t size_ = 0;
+  };
   using Key = std::uint64_t;
-  Key key_of(const Eigen::Vector3d& p) const;
-  Key key_of(std::int64_t x, std::int64_t y, std::int64_t z) const;
+  static Key key_of(std::int64_t x, std::int64_t y, std::int64_t z);
+
   const Entry* entry(std::uint64_t sequence) const;
-  std::optional<NeighbourPass> nearest(const Entry& current, const Eigen::Vector3d& normal) const;
+  std::uint64_t kept() const { return std::min<std::uint64_t>(next_, memory_); }
+  std::uint64_t oldest() const { return next_ - kept(); }  // oldest kept sequence
+  Run& run(std::uint64_t sequence) { return runs_[sequence & mask_]; }
+  std::uint64_t run_of(std::uint32_t low) const;
+  bool run_alive(std::uint64_t sequence) const;
+
   void add(const Entry& e);
+  void extend_run(const Entry& e, const std::optional<Eigen::Vector3d>& before);
+  void close_run();
+  void register_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& q, std::uint64_t run);
+  void register_cell(std::int64_t x, std::int64_t y, std::int64_t z, std::uint64_t run);
   void compact();
+  std::optional<NeighbourPass> nearest(const Entry& current, const Eigen::Vector3d& normal);
 
   double radius_, min_gap_;
-  double cell_;   // grid cell edge, mm: a sixteenth of the search radius
-  double abeam_;  // how far along the feed a pass end still counts as abeam, mm
-  double max_segment_ = 0;  // longest step between consecutive points of a pass so far
-  double last_ae_ = 0;      // the last width of cut found: where the next search starts
+  double cell_;         // grid cell edge, mm: a sixteenth of the search radius
+  double abeam_;        // how far along the feed a pass end still counts as abeam, mm
+  double last_ae_ = 0;  // the last width of cut found: where the next search starts
   std::size_t memory_;
-  std::vector<Entry> ring_;                // the last `memory` entries, by sequence % memory
-  std::uint64_t next_ = 0;                 // sequence number of the next entry
+  std::size_t mask_;         // ring slots - 1: memory rounded up to a power of two, - 1
+  std::vector<Entry> ring_;  // the last entries, by sequence & mask (the last `memory` count)
+  std::uint64_t next_ = 0;   // sequence number of the next entry
   std::uint64_t pass_ = 0;
+  std::uint64_t pass_start_ = 0;  // first entry of the current pass
+  std::uint64_t cutoff_ = 0;      // entries from here on are not earlier passes
   bool pass_open_ = false;
-  std::unordered_map<Key, std::vector<std::uint64_t>> grid_;  // cell -> sequence numbers
-  std::uint64_t compacted_at_ = 0;
+
+  std::vector<Run> runs_;       // the last runs, by sequence & mask
+  std::uint64_t run_next_ = 0;  // sequence number of the next run
+  bool run_open_ = false;       // run_next_ - 1 still takes entries
+  BlockMap blocks_;
+  std::vector<Node> nodes_;
+  std::size_t live_nodes_ = 0;      // nodes kept by the last compaction
+  std::uint64_t compacted_at_ = 0;  // next_ at the last compaction
+  std::uint64_t search_ = 0;        // number of searches so far (marks runs seen)
+  struct Candidate {
+    double low;  // no candidate of the run lies nearer across the feed
+    std::uint64_t run;
+    bool flat;  // nor farther than low + tie
+  };
+  std::vector<Candidate> candidates_;  // runs to evaluate in a search, reused
+  std::uint64_t run_cut_ = 0;          // runs from here on lie wholly at or after the cutoff
+  std::optional<std::uint64_t> warm_;  // the run that held the last neighbour
+  std::array<std::int64_t, 7> last_box_{0, 0, 0, -1, -1, -1, -1};  // cells and run last listed
 };
 
 }  // namespace vcpost::pipeline

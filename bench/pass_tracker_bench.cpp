@@ -1,0 +1,102 @@
+// The pass tracker's cost per contact point (issue 7: the post job runs it
+// sequentially for every point, so it must stay well under 0.2 us a point,
+// whatever the point density). Same settings as the post job for a 10 mm
+// ball: search radius D, path gap 4 D, memory 2^20 points.
+#include <benchmark/benchmark.h>
+
+#include <Eigen/Core>
+#include <cmath>
+#include <cstddef>
+#include <memory>
+#include <numbers>
+#include <vector>
+
+#include "postproc/pipeline/pass_tracker.h"
+
+namespace {
+
+using Eigen::Vector3d;
+using vcpost::pipeline::PassTracker;
+
+struct Sample {
+  Vector3d cc;
+  Vector3d feed;
+  bool new_pass = false;
+};
+
+// Zig-zag raster on z = 0: passes along x, `along` mm between points,
+// `across` mm between passes, each pass `length` mm long.
+std::vector<Sample> raster(double along, double across, double length, std::size_t points) {
+  std::vector<Sample> out;
+  const auto per_pass = static_cast<int>(std::lround(length / along)) + 1;
+  for (int k = 0; out.size() < points; ++k) {
+    const double sign = k % 2 == 0 ? 1 : -1;
+    for (int i = 0; i < per_pass && out.size() < points; ++i) {
+      const double x = sign > 0 ? along * i : length - along * i;
+      out.push_back({Vector3d(x, across * k, 0), Vector3d(sign, 0, 0), i == 0});
+    }
+  }
+  return out;
+}
+
+// Archimedean spiral on z = 0, `pitch` mm between turns, `along` mm between
+// points; starts one turn out so the first turn is not a point.
+std::vector<Sample> spiral(double along, double pitch, std::size_t points) {
+  std::vector<Sample> out;
+  const double b = pitch / (2 * std::numbers::pi);
+  double theta = 2 * std::numbers::pi;
+  while (out.size() < points) {
+    const double r = b * theta;
+    const Vector3d tangent = Vector3d(b * std::cos(theta) - r * std::sin(theta),
+                                      b * std::sin(theta) + r * std::cos(theta), 0)
+                                 .normalized();
+    out.push_back({Vector3d(r * std::cos(theta), r * std::sin(theta), 0), tangent, out.empty()});
+    theta += along / std::hypot(r, b);
+  }
+  return out;
+}
+
+void run(benchmark::State& state, const std::vector<Sample>& path) {
+  const Vector3d up(0, 0, 1);
+  auto tracker = std::make_unique<PassTracker>(10.0, 40.0, std::size_t{1} << 20);
+  std::size_t i = 0;
+  std::size_t found = 0;
+  for (auto _ : state) {
+    if (i == path.size()) {
+      state.PauseTiming();
+      tracker = std::make_unique<PassTracker>(10.0, 40.0, std::size_t{1} << 20);
+      i = 0;
+      state.ResumeTiming();
+    }
+    const Sample& s = path[i++];
+    if (s.new_pass) tracker->break_pass();
+    const auto neighbour = tracker->step(s.cc, up, s.feed);
+    found += neighbour.has_value();
+    benchmark::DoNotOptimize(neighbour);
+  }
+  state.counters["found"] =
+      benchmark::Counter(static_cast<double>(found), benchmark::Counter::kAvgIterations);
+}
+
+// Dense finishing raster: 0.05 mm along, 0.3 mm across, 50 mm passes.
+void BM_DenseRaster(benchmark::State& state) {
+  static const auto path = raster(0.05, 0.3, 50, 200000);
+  run(state, path);
+}
+BENCHMARK(BM_DenseRaster)->Iterations(200000);
+
+// Sparse raster: 0.5 mm along, 2 mm across, 50 mm passes.
+void BM_SparseRaster(benchmark::State& state) {
+  static const auto path = raster(0.5, 2, 50, 200000);
+  run(state, path);
+}
+BENCHMARK(BM_SparseRaster)->Iterations(200000);
+
+// Spiral: 0.05 mm along, 0.3 mm pitch (never breaks; the path gap decides).
+void BM_Spiral(benchmark::State& state) {
+  static const auto path = spiral(0.05, 0.3, 200000);
+  run(state, path);
+}
+BENCHMARK(BM_Spiral)->Iterations(200000);
+
+}  // namespace

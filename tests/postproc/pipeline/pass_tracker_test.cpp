@@ -1,0 +1,420 @@
+// The pass tracker on paths whose neighbouring pass is known by hand
+// (rasters, spirals, offset contours, Z-levels, mixed point spacing), and
+// against a plain reference that checks every kept point on the sample
+// generator's programs.
+#include "postproc/pipeline/pass_tracker.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <optional>
+#include <vector>
+
+#include "postproc/samplegen/parts.h"
+#include "postproc/samplegen/toolpath.h"
+
+namespace vcpost::pipeline {
+namespace {
+
+using Eigen::Vector3d;
+using geometry::Side;
+constexpr double pi = std::numbers::pi;
+
+// One contact point of a path: where, surface normal, feed (unit, tangent),
+// and whether a new pass starts there (after a rapid).
+struct Point {
+  Vector3d cc;
+  Vector3d normal;
+  Vector3d feed;
+  bool starts_pass = false;
+  int pass = 0;
+};
+
+std::vector<std::optional<NeighbourPass>> track(PassTracker& tracker,
+                                                const std::vector<Point>& path) {
+  std::vector<std::optional<NeighbourPass>> out;
+  out.reserve(path.size());
+  for (const Point& p : path) {
+    if (p.starts_pass) tracker.break_pass();
+    out.push_back(tracker.step(p.cc, p.normal, p.feed));
+  }
+  return out;
+}
+
+// Straight passes along u, `stepover` apart along v = n x u, points
+// `spacing` apart, each pass `length` long, starting at `origin`.
+std::vector<Point> raster(Vector3d origin, Vector3d u, Vector3d n, double stepover, double spacing,
+                          double length, int passes, bool zigzag) {
+  const Vector3d v = n.cross(u);
+  const auto count = static_cast<int>(std::lround(length / spacing));
+  std::vector<Point> path;
+  for (int k = 0; k < passes; ++k) {
+    const bool back = zigzag && k % 2 == 1;
+    for (int i = 0; i <= count; ++i) {
+      const double s = back ? length - spacing * i : spacing * i;
+      path.push_back({origin + s * u + k * stepover * v, n, back ? Vector3d(-u) : u, i == 0, k});
+    }
+  }
+  return path;
+}
+
+TEST(PassTrackerGeometry, ZigZagRasterGivesTheStepoverWithAlternatingSides) {
+  PassTracker tracker(10, 40, 1 << 16);
+  const Vector3d up(0, 0, 1);
+  const auto path = raster({0, 0, 0}, {1, 0, 0}, up, 0.7, 0.1, 30, 6, true);
+  const auto found = track(tracker, path);
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const Point& p = path[i];
+    if (p.pass == 0) {
+      EXPECT_FALSE(found[i]) << i;
+      continue;
+    }
+    ASSERT_TRUE(found[i]) << i;
+    EXPECT_NEAR(found[i]->ae, 0.7, 1e-9) << i;
+    // The previous pass lies at -y. Along +x, left is +y (N x F): right;
+    // along -x it is on the left.
+    EXPECT_EQ(found[i]->side, p.pass % 2 == 0 ? Side::right : Side::left) << i;
+    EXPECT_NEAR(found[i]->point.y(), 0.7 * (p.pass - 1), 1e-9) << i;
+  }
+}
+
+TEST(PassTrackerGeometry, PassesAtThirtyDegreesToTheGridOnARaisedPlane) {
+  // The same raster turned 30 deg about z and lifted to z = 3.1: the grid's
+  // cells no longer line up with the passes.
+  PassTracker tracker(10, 40, 1 << 16);
+  const Vector3d up(0, 0, 1);
+  const Vector3d u(std::cos(pi / 6), std::sin(pi / 6), 0);
+  const auto path = raster({-4, 2, 3.1}, u, up, 0.7, 0.1, 25, 5, true);
+  const auto found = track(tracker, path);
+  int measured = 0;
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    if (path[i].pass == 0) {
+      EXPECT_FALSE(found[i]) << i;
+      continue;
+    }
+    ASSERT_TRUE(found[i]) << i;
+    EXPECT_NEAR(found[i]->ae, 0.7, 1e-9) << i;
+    EXPECT_EQ(found[i]->side, path[i].pass % 2 == 0 ? Side::right : Side::left) << i;
+    ++measured;
+  }
+  EXPECT_EQ(measured, 4 * 251);
+}
+
+TEST(PassTrackerGeometry, OneWayRasterOnATiltedPlaneKeepsThePreviousPassOnTheRight) {
+  const Vector3d n = Vector3d(-0.3, 0.2, 1).normalized();
+  const Vector3d u = Vector3d(1, 0, 0.3).normalized();  // in the plane: u . n = 0
+  ASSERT_NEAR(u.dot(n), 0, 1e-15);
+  PassTracker tracker(10, 40, 1 << 16);
+  const auto path = raster({1, 1, 1}, u, n, 0.7, 0.05, 12, 4, false);
+  const auto found = track(tracker, path);
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    if (path[i].pass == 0) continue;
+    ASSERT_TRUE(found[i]) << i;
+    EXPECT_NEAR(found[i]->ae, 0.7, 1e-9) << i;
+    EXPECT_EQ(found[i]->side, Side::right) << i;
+  }
+}
+
+TEST(PassTrackerGeometry, DensePassBesideASparseOneAndTheOtherWayRound) {
+  const Vector3d up(0, 0, 1), along(1, 0, 0);
+  for (const bool dense_first : {false, true}) {
+    PassTracker tracker(10, 40, 1 << 16);
+    std::vector<Point> path;
+    const auto add_pass = [&](double y, double spacing, int pass) {
+      const auto count = static_cast<int>(std::lround(20 / spacing));
+      for (int i = 0; i <= count; ++i)
+        path.push_back({{spacing * i, y, 0}, up, along, i == 0, pass});
+    };
+    add_pass(0, dense_first ? 0.01 : 2.0, 0);
+    add_pass(0.7, dense_first ? 2.0 : 0.01, 1);
+    const auto found = track(tracker, path);
+    int measured = 0;
+    for (std::size_t i = 0; i < path.size(); ++i) {
+      if (path[i].pass == 0) {
+        EXPECT_FALSE(found[i]);
+        continue;
+      }
+      ASSERT_TRUE(found[i]) << dense_first << " " << i;
+      EXPECT_NEAR(found[i]->ae, 0.7, 1e-9) << dense_first << " " << i;
+      EXPECT_EQ(found[i]->side, Side::right);
+      ++measured;
+    }
+    EXPECT_EQ(measured, dense_first ? 11 : 2001);
+  }
+}
+
+// Archimedean spiral r = b * theta (pitch 2 pi b), outwards and
+// anticlockwise, points `spacing` apart along it.
+struct Spiral {
+  double b;
+  Vector3d at(double t) const { return {b * t * std::cos(t), b * t * std::sin(t), 0}; }
+  Vector3d tangent(double t) const {
+    return Vector3d(b * std::cos(t) - b * t * std::sin(t), b * std::sin(t) + b * t * std::cos(t), 0)
+        .normalized();
+  }
+};
+
+TEST(PassTrackerGeometry, SpiralMeasuresTheTurnInsideAcrossTheFeed) {
+  const double pitch = 0.7;
+  const Spiral spiral{pitch / (2 * pi)};
+  PassTracker tracker(10, 40, 1 << 18);
+  const Vector3d up(0, 0, 1);
+  std::vector<Point> path;
+  std::vector<double> thetas;
+  for (double t = 2 * pi; spiral.b * t < 16;) {
+    path.push_back({spiral.at(t), up, spiral.tangent(t), path.empty(), 0});
+    thetas.push_back(t);
+    t += 0.05 / (spiral.b * std::hypot(t, 1));  // 0.05 mm of arc
+  }
+  const auto found = track(tracker, path);
+  int measured = 0;
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const double t = thetas[i];
+    if (spiral.b * t < 9) continue;  // inner turns are shorter than the path gap (40 mm)
+    // Independent figure: where the turn inside crosses the plane across
+    // the feed, by bisection on the exact curve near t - 2 pi.
+    const Vector3d& cc = path[i].cc;
+    const Vector3d& f = path[i].feed;
+    double lo = t - 2 * pi - 0.3, hi = t - 2 * pi + 0.3;
+    for (int k = 0; k < 100; ++k) {
+      const double mid = (lo + hi) / 2;
+      ((spiral.at(mid) - cc).dot(f) < 0 ? lo : hi) = mid;
+    }
+    const double expected = (spiral.at(lo) - cc).norm();
+    ASSERT_TRUE(found[i]) << i;
+    // The tracker interpolates between points 0.05 mm apart on a turn of
+    // radius >= 9 mm: the chord lies inside the arc by at most
+    // 0.05^2 / (8 * 9) = 3.5e-5 mm.
+    EXPECT_NEAR(found[i]->ae, expected, 4e-5) << i;
+    EXPECT_GT(found[i]->ae, expected - 1e-12) << i;  // the chord bows inwards: away from CC
+    EXPECT_NEAR(found[i]->ae, pitch, 0.01) << i;
+    EXPECT_EQ(found[i]->side, Side::left) << i;  // the turn inside: left of an anticlockwise feed
+    ++measured;
+  }
+  EXPECT_GT(measured, 5000);
+}
+
+// Concentric arcs of 300 deg about the z axis, all anticlockwise, each
+// sampled at the same angles 1 deg apart (so every arc has a point on every
+// radius). Not whole circles: a closed circle longer than the path gap
+// meets its own start, an earlier pass a few micrometres away.
+std::vector<Point> circles(const std::vector<double>& radii, double z_step, Vector3d normal_of_xy) {
+  std::vector<Point> path;
+  for (std::size_t k = 0; k < radii.size(); ++k) {
+    for (int i = 0; i <= 300; ++i) {
+      const double a = i * pi / 180;
+      const Vector3d radial(std::cos(a), std::sin(a), 0);
+      const Vector3d normal = normal_of_xy.z() != 0 ? normal_of_xy : radial;
+      path.push_back({radii[k] * radial + Vector3d(0, 0, -z_step * static_cast<double>(k)), normal,
+                      Vector3d(-std::sin(a), std::cos(a), 0), i == 0, static_cast<int>(k)});
+    }
+  }
+  return path;
+}
+
+TEST(PassTrackerGeometry, OffsetContoursOutwardsMeasureTheOffset) {
+  // Each circle 0.7 outside the previous one: the previous circle curves
+  // away from the feed line, so its crossing (a point on the same radius)
+  // is the nearest candidate.
+  PassTracker tracker(10, 40, 1 << 16);
+  const auto path = circles({10, 10.7, 11.4, 12.1}, 0, {0, 0, 1});
+  const auto found = track(tracker, path);
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    if (path[i].pass == 0) {
+      EXPECT_FALSE(found[i]) << i;
+      continue;
+    }
+    ASSERT_TRUE(found[i]) << i;
+    EXPECT_NEAR(found[i]->ae, 0.7, 1e-9) << i;
+    EXPECT_EQ(found[i]->side, Side::left) << i;  // inside an anticlockwise feed
+  }
+}
+
+TEST(PassTrackerGeometry, OffsetContoursInwardsTakeTheNearestPointWithinTheAbeamAllowance) {
+  // Each circle 0.7 inside the previous one (radius R = r + 0.7): the
+  // previous circle bends towards the feed line, and its points within
+  // 0.1 D = 1 mm along the feed count on their own (the abeam allowance).
+  // The point j deg away lies R sin(j deg) along the feed and
+  // r - R cos(j deg) across; the farthest within 1 mm is j = 2 for R = 20.7
+  // and 20 (R sin 3 deg > 1 > R sin 2 deg), so ae = 0.7 - R (1 - cos 2 deg).
+  PassTracker tracker(10, 40, 1 << 16);
+  const auto path = circles({20.7, 20, 19.3}, 0, {0, 0, 1});
+  const auto found = track(tracker, path);
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    if (path[i].pass == 0) continue;
+    const double outer = path[i].pass == 1 ? 20.7 : 20;
+    ASSERT_GT(outer * std::sin(3 * pi / 180), 1);
+    ASSERT_LT(outer * std::sin(2 * pi / 180), 1);
+    ASSERT_TRUE(found[i]) << i;
+    EXPECT_NEAR(found[i]->ae, 0.7 - outer * (1 - std::cos(2 * pi / 180)), 1e-9) << i;
+    EXPECT_EQ(found[i]->side, Side::right) << i;  // outside an anticlockwise feed
+  }
+}
+
+TEST(PassTrackerGeometry, ZLevelPassesOnACylinderWallMeasureTheStepDown) {
+  // Circles of radius 20 on the outside of a vertical cylinder, 0.7 mm
+  // apart in z, going down: N is radial, N x F = +z, so the level above
+  // lies on the left, 0.7 away (points of that level off the radius are
+  // farther: they add a radial offset).
+  PassTracker tracker(10, 40, 1 << 16);
+  const auto path = circles({20, 20, 20, 20}, 0.7, {0, 0, 0});
+  const auto found = track(tracker, path);
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    if (path[i].pass == 0) {
+      EXPECT_FALSE(found[i]) << i;
+      continue;
+    }
+    ASSERT_TRUE(found[i]) << i;
+    EXPECT_NEAR(found[i]->ae, 0.7, 1e-9) << i;
+    EXPECT_EQ(found[i]->side, Side::left) << i;
+    EXPECT_NEAR(found[i]->point.z(), path[i].cc.z() + 0.7, 1e-9) << i;
+  }
+}
+
+// The tracker's rule written plainly: every kept point, no index.
+class Reference {
+ public:
+  Reference(double radius, double gap, std::size_t memory)
+      : radius_(radius), gap_(gap), memory_(memory) {}
+  void break_pass() { open_ = false; }
+
+  std::optional<NeighbourPass> step(const Vector3d& cc, const Vector3d& n, const Vector3d& f,
+                                    bool search) {
+    const double cos45 = std::sqrt(0.5);
+    const Stored* last = stored_.empty() ? nullptr : &stored_.back();
+    if (!open_ || (last && last->feed.dot(f) < cos45)) {
+      ++pass_;
+      open_ = true;
+    }
+    const Stored current{cc, f, last ? last->path + (cc - last->point).norm() : 0.0, pass_,
+                         last && last->pass == pass_};
+    std::optional<NeighbourPass> best;
+    const std::size_t first = stored_.size() > memory_ ? stored_.size() - memory_ : 0;
+    const Vector3d left = n.cross(f);
+    for (std::size_t i = first; search && i < stored_.size(); ++i) {
+      const Stored& e = stored_[i];
+      if (std::abs(e.feed.dot(f)) < cos45) continue;                   // not parallel
+      if (e.pass == pass_ && current.path - e.path <= gap_) continue;  // this pass, just behind
+      const double h1 = f.dot(e.point - cc);
+      std::optional<Vector3d> candidate;
+      if (e.joined && i > first) {
+        const Vector3d& p0 = stored_[i - 1].point;
+        const double h0 = f.dot(p0 - cc);
+        if ((h0 <= 0) != (h1 <= 0) || h1 == 0) {  // crosses the plane across the feed
+          const double t = h0 == h1 ? 1.0 : h0 / (h0 - h1);
+          candidate = p0 + t * (e.point - p0);
+        }
+      }
+      if (!candidate && std::abs(h1) <= 0.1 * radius_) candidate = e.point;  // almost abeam
+      if (!candidate) continue;
+      const Vector3d d = *candidate - cc;
+      const double across = std::hypot(left.dot(d), n.dot(d));
+      if (across > radius_ || across <= 1e-9 || (best && across >= best->ae)) continue;
+      best = NeighbourPass{across, left.dot(d) >= 0 ? Side::left : Side::right, *candidate};
+    }
+    stored_.push_back(current);
+    return best;
+  }
+
+ private:
+  struct Stored {
+    Vector3d point, feed;
+    double path;
+    int pass;
+    bool joined;
+  };
+  double radius_, gap_;
+  std::size_t memory_;
+  std::vector<Stored> stored_;
+  int pass_ = 0;
+  bool open_ = false;
+};
+
+// The contact points of a sample-generator path, with the feed of the
+// move into each point (out of it at a pass start) on the tangent plane.
+std::vector<Point> sample_path(const samplegen::SampleSurface& surface,
+                               const samplegen::PathSpec& spec) {
+  std::vector<samplegen::PathPoint> points;
+  samplegen::generate(surface, spec, 6,
+                      [&](const samplegen::PathPoint& p) { points.push_back(p); });
+  std::vector<Point> path;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto& p = points[i];
+    const bool starts = p.pass_start || i == 0;
+    Vector3d motion = Vector3d::UnitX();
+    if (!starts) {
+      motion = p.tip - points[i - 1].tip;
+    } else if (i + 1 < points.size()) {
+      motion = points[i + 1].tip - p.tip;
+    }
+    motion -= motion.dot(p.normal) * p.normal;
+    if (motion.norm() < 1e-12) continue;
+    path.push_back({p.cc, p.normal, motion.normalized(), starts, p.pass});
+  }
+  return path;
+}
+
+void expect_same_as_reference(const std::vector<Point>& path, double radius, std::size_t memory,
+                              std::size_t check_every, const std::string& name) {
+  PassTracker tracker(radius, 4 * radius, memory);
+  Reference reference(radius, 4 * radius, memory);
+  std::uint64_t lcg = 12345;  // checks at pseudo-random points, about one in check_every
+  int checked = 0, found = 0;
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const Point& p = path[i];
+    if (p.starts_pass) {
+      tracker.break_pass();
+      reference.break_pass();
+    }
+    lcg = lcg * 6364136223846793005ULL + 1442695040888963407ULL;
+    const bool check = (lcg >> 33) % check_every == 0;
+    const auto got = tracker.step(p.cc, p.normal, p.feed);
+    const auto want = reference.step(p.cc, p.normal, p.feed, check);
+    if (!check) continue;
+    ++checked;
+    ASSERT_EQ(got.has_value(), want.has_value()) << name << " point " << i;
+    if (!want) continue;
+    ++found;
+    EXPECT_NEAR(got->ae, want->ae, 1e-9) << name << " point " << i;
+    EXPECT_EQ(got->side, want->side) << name << " point " << i;
+  }
+  EXPECT_GT(found, checked / 2) << name;  // the paths are mostly passes beside passes
+}
+
+TEST(PassTrackerReference, SameNeighbourAsEveryKeptPointOnTheSamplePrograms) {
+  for (const auto& program : samplegen::sample_programs()) {
+    const auto part = samplegen::make_part(program.part);
+    ASSERT_TRUE(part) << program.part;
+    const auto path = sample_path(*part->surface, program.path);
+    ASSERT_GT(path.size(), 100u) << program.stem;
+    expect_same_as_reference(path, program.program.tool_diameter, 1 << 16, 1, program.stem);
+  }
+}
+
+TEST(PassTrackerReference, SameNeighbourOnADenseWavyRasterWithAShortMemory) {
+  // The wavy raster at 0.1 mm along and 0.35 mm across, about 30 k points:
+  // 2000 points checked, once remembering everything and once only the
+  // last 700 points (about 2.5 passes: older ones are forgotten).
+  const auto part = samplegen::make_part("wavy");
+  ASSERT_TRUE(part);
+  samplegen::PathSpec spec;
+  for (const auto& program : samplegen::sample_programs()) {
+    if (program.part == "wavy" && program.path.pattern == samplegen::Pattern::raster) {
+      spec = program.path;
+    }
+  }
+  spec.stepover = 0.35;
+  spec.step = 0.1;
+  spec.window = Eigen::AlignedBox2d(spec.window.min(), spec.window.min() + Eigen::Vector2d(25, 30));
+  const auto path = sample_path(*part->surface, spec);
+  ASSERT_GT(path.size(), 20000u);
+  const double d = 2 * spec.tool_radius;
+  const auto every = path.size() / 2000;
+  expect_same_as_reference(path, d, 1 << 20, every, "wavy dense");
+  expect_same_as_reference(path, d, 700, every, "wavy dense, memory 700");
+}
+
+}  // namespace
+}  // namespace vcpost::pipeline

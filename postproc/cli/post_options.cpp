@@ -296,6 +296,9 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   const std::string name = args.program == "-" ? "<stdin>" : args.program;
   const post::PostSettings settings = settings_from(args, text, name);
   std::vector<ReportFile> reports = open_reports(args);
+  if (!args.summary_json.empty() && args.summary_json != "-") {
+    AtomicFile probe(args.summary_json);  // its folder fails now, not after the program is written
+  }
   std::string chart_library;
   for (const auto& r : reports) {
     if (r.format == report::ReportFormat::html && chart_library.empty())

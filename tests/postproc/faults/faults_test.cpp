@@ -135,6 +135,20 @@ TEST(Faults, ReportFolderMissingLeavesNoProgramEither) {
   EXPECT_EQ(list_folder(work.path()), std::vector<std::string>{});
 }
 
+TEST(Faults, SummaryFolderMissingLeavesNoProgramEither) {
+  // The same for --summary-json: its folder is checked before any work.
+  Folder work, logs;
+  const fs::path program = kSamples / "dome_raster_a0_ae3.nc";
+  const ChildResult r = run_vcpost(with(dome_job(program), {"-o", (work / "out.nc").string(),
+                                                            "--summary-json",
+                                                            (work / "missing/s.json").string()}),
+                                   logs);
+  EXPECT_EQ(r.shell_status(), 2);
+  EXPECT_NE(one_line(r).find("cannot write '" + (work / "missing/s.json").string() + "'"),
+            std::string::npos);
+  EXPECT_EQ(list_folder(work.path()), std::vector<std::string>{});
+}
+
 // The id the child runs as: root ignores permission bits, so as root the
 // read-only cases run as nobody (65534).
 std::optional<uid_t> unprivileged() {

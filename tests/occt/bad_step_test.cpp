@@ -50,9 +50,9 @@ TEST(BadStep, ExpectedListCoversEveryFile) {
   std::sort(listed.begin(), listed.end());
   std::sort(present.begin(), present.end());
   EXPECT_EQ(listed, present);
-  EXPECT_GE(std::count_if(list.begin(), list.end(),
-                          [](const Entry& e) { return e.code != "ACCEPTED"; }),
-            12);
+  EXPECT_GE(
+      std::count_if(list.begin(), list.end(), [](const Entry& e) { return e.code != "ACCEPTED"; }),
+      12);
 }
 
 TEST(BadStep, LoadStepThrowsTheExpectedCode) {
@@ -106,7 +106,8 @@ std::string without_occt_lines(const std::string& text) {
 
 TEST(BadStep, VcpostPostRefusesEachWithExit2AndNoOutput) {
   namespace t = vcpost::test;
-  const fs::path work = fs::temp_directory_path() / ("vcpost-bad-step-" + std::to_string(::getpid()));
+  const fs::path work =
+      fs::temp_directory_path() / ("vcpost-bad-step-" + std::to_string(::getpid()));
   fs::create_directories(work);
   // A pass over the square's middle, tip on its plane: it would touch a
   // good square.
@@ -118,9 +119,22 @@ TEST(BadStep, VcpostPostRefusesEachWithExit2AndNoOutput) {
     const fs::path model = kBad / e.file;
     const auto before = fs::is_regular_file(model) ? t::file_hash(model) : 0;
     t::ChildOptions o;
-    o.argv = {VCPOST_BINARY, "post",  program.string(), "--model", model.string(), "--tool",
-              "ball:6",      "--vc",  "100",            "--ap",    "0.2",          "--ae",
-              "0.5",         "-q",    "-o",             (work / "out.nc").string()};
+    o.argv = {VCPOST_BINARY,
+              "post",
+              program.string(),
+              "--model",
+              model.string(),
+              "--tool",
+              "ball:6",
+              "--vc",
+              "100",
+              "--ap",
+              "0.2",
+              "--ae",
+              "0.5",
+              "-q",
+              "-o",
+              (work / "out.nc").string()};
     o.stdout_file = work / "stdout.txt";
     o.stderr_file = work / "stderr.txt";
     const t::ChildResult r = t::run_child(o);

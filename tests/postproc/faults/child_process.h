@@ -29,11 +29,11 @@
 namespace vcpost::test {
 
 struct ChildOptions {
-  std::vector<std::string> argv;       // argv[0] is the program's path
-  std::filesystem::path stdout_file;   // required: where stdout goes
-  std::filesystem::path stderr_file;   // required: where stderr goes
-  std::filesystem::path stdin_file;    // empty: /dev/null
-  int stdout_fd = -1;                  // >= 0: stdout is this descriptor (e.g. a pipe), not the file
+  std::vector<std::string> argv;      // argv[0] is the program's path
+  std::filesystem::path stdout_file;  // required: where stdout goes
+  std::filesystem::path stderr_file;  // required: where stderr goes
+  std::filesystem::path stdin_file;   // empty: /dev/null
+  int stdout_fd = -1;                 // >= 0: stdout is this descriptor (e.g. a pipe), not the file
   std::optional<rlim_t> file_size_limit;  // RLIMIT_FSIZE in bytes, set in the child
   std::optional<uid_t> run_as;            // setresuid/setresgid (same id) in the child
   // Called in the parent while the child runs, with its pid; returns when

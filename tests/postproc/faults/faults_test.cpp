@@ -44,9 +44,20 @@ class Folder {
 
 // The post job's options for the dome sample (D10 ball, 120 m/min).
 std::vector<std::string> dome_job(const fs::path& program) {
-  return {kVcpost,  "post",   program.string(), "--model", (kSamples / "dome.step").string(),
-          "--tool", "ball:10", "--vc",          "120",     "--ap",
-          "0.3",    "--ae",    "3",             "-q"};
+  return {kVcpost,
+          "post",
+          program.string(),
+          "--model",
+          (kSamples / "dome.step").string(),
+          "--tool",
+          "ball:10",
+          "--vc",
+          "120",
+          "--ap",
+          "0.3",
+          "--ae",
+          "3",
+          "-q"};
 }
 
 // A long G-code program (about 300,000 points on the wavy sample; posted
@@ -56,29 +67,43 @@ const fs::path& long_program() {
   static const fs::path path = [] {
     const fs::path generator =
         fs::path(kVcpost).parent_path().parent_path() / "samplegen" / "vcpost-samplegen";
-    const fs::path out = fs::temp_directory_path() /
-                         ("vcpost-faults-wavy-" + std::to_string(::getpid()) + ".nc");
+    const fs::path out =
+        fs::temp_directory_path() / ("vcpost-faults-wavy-" + std::to_string(::getpid()) + ".nc");
     if (!fs::exists(generator)) return fs::path();
     ChildOptions o;
-    o.argv = {generator.string(), "path",   "wavy",          "--points",
-              "300000",           "--gcode", out.string()};
+    o.argv = {generator.string(), "path", "wavy", "--points", "300000", "--gcode", out.string()};
     o.stdout_file = out.string() + ".out";
     o.stderr_file = out.string() + ".err";
     const ChildResult r = run_child(o);
     fs::remove(o.stdout_file);
     fs::remove(o.stderr_file);
     if (!r.exited || r.exit_code != 0) return fs::path();
-    std::atexit([] { fs::remove(fs::temp_directory_path() / ("vcpost-faults-wavy-" +
-                                                             std::to_string(::getpid()) + ".nc")); });
+    std::atexit([] {
+      fs::remove(fs::temp_directory_path() /
+                 ("vcpost-faults-wavy-" + std::to_string(::getpid()) + ".nc"));
+    });
     return out;
   }();
   return path;
 }
 
 std::vector<std::string> wavy_job(const fs::path& program) {
-  return {kVcpost,  "post",   program.string(), "--model", (kSamples / "wavy.step").string(),
-          "--tool", "ball:10", "--vc",          "120",     "--ap",
-          "0.3",    "--ae",    "0.5",           "--spacing", "0.05", "-q"};
+  return {kVcpost,
+          "post",
+          program.string(),
+          "--model",
+          (kSamples / "wavy.step").string(),
+          "--tool",
+          "ball:10",
+          "--vc",
+          "120",
+          "--ap",
+          "0.3",
+          "--ae",
+          "0.5",
+          "--spacing",
+          "0.05",
+          "-q"};
 }
 
 // Runs vcpost with `args` + extra, stdout/stderr into files of `logs`.
@@ -125,10 +150,10 @@ TEST(Faults, ReportFolderMissingLeavesNoProgramEither) {
   // 2) and the posted program must not be left behind on its own either.
   Folder work, logs;
   const fs::path program = kSamples / "dome_raster_a0_ae3.nc";
-  const ChildResult r = run_vcpost(with(dome_job(program), {"-o", (work / "out.nc").string(),
-                                                            "--report",
-                                                            (work / "missing/r.html").string()}),
-                                   logs);
+  const ChildResult r = run_vcpost(
+      with(dome_job(program),
+           {"-o", (work / "out.nc").string(), "--report", (work / "missing/r.html").string()}),
+      logs);
   EXPECT_EQ(r.shell_status(), 2);
   EXPECT_NE(one_line(r).find("cannot write '" + (work / "missing/r.html").string() + "'"),
             std::string::npos);
@@ -139,10 +164,10 @@ TEST(Faults, SummaryFolderMissingLeavesNoProgramEither) {
   // The same for --summary-json: its folder is checked before any work.
   Folder work, logs;
   const fs::path program = kSamples / "dome_raster_a0_ae3.nc";
-  const ChildResult r = run_vcpost(with(dome_job(program), {"-o", (work / "out.nc").string(),
-                                                            "--summary-json",
-                                                            (work / "missing/s.json").string()}),
-                                   logs);
+  const ChildResult r =
+      run_vcpost(with(dome_job(program), {"-o", (work / "out.nc").string(), "--summary-json",
+                                          (work / "missing/s.json").string()}),
+                 logs);
   EXPECT_EQ(r.shell_status(), 2);
   EXPECT_NE(one_line(r).find("cannot write '" + (work / "missing/s.json").string() + "'"),
             std::string::npos);
@@ -193,9 +218,8 @@ TEST(Faults, FileSizeLimitIsADiskFullError) {
   const fs::path program = kSamples / "dome_raster_a0_ae3.nc";
   ASSERT_GT(fs::file_size(program), 8192u);
   const auto before = file_hash(program);
-  const ChildResult r =
-      run_vcpost(with(dome_job(program), {"-o", (work / "out.nc").string()}), logs,
-                 [](ChildOptions& o) { o.file_size_limit = 4096; });
+  const ChildResult r = run_vcpost(with(dome_job(program), {"-o", (work / "out.nc").string()}),
+                                   logs, [](ChildOptions& o) { o.file_size_limit = 4096; });
   EXPECT_EQ(r.shell_status(), 2) << r.err;
   EXPECT_EQ(one_line(r), "vcpost: error: cannot write '" + (work / "out.nc").string() +
                              "': File too large (nothing written: free some space or raise the "
@@ -378,8 +402,7 @@ TEST(Faults, ProgramHalfBesideTheModel) {
       shifted_program(work, 500, line_count(kSamples / "dome_raster_a0_ae3.nc") / 2);
   auto args = dome_job(program);
   args.erase(std::find(args.begin(), args.end(), "-q"));
-  const ChildResult lenient =
-      run_vcpost(with(args, {"-o", (work / "lenient.nc").string()}), logs);
+  const ChildResult lenient = run_vcpost(with(args, {"-o", (work / "lenient.nc").string()}), logs);
   EXPECT_EQ(lenient.shell_status(), 0) << lenient.err;
   static const std::regex warning(
       R"(vcpost: warning: ([0-9]+) cutting points do not touch the model)");

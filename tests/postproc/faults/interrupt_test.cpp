@@ -3,6 +3,8 @@
 // clean-up, a file-size limit as a write error, and signals arriving while
 // threads create and commit files (in a forked child, so the test process
 // keeps its own handlers).
+#include "postproc/cli/interrupt.h"
+
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -10,7 +12,6 @@
 
 #include "postproc/cli/atomic_file.h"
 #include "postproc/cli/commands.h"
-#include "postproc/cli/interrupt.h"
 #include "tests/postproc/faults/child_process.h"
 
 namespace vcpost::cli {

@@ -68,7 +68,7 @@ run() {
   else
     t_ok=0
     failed=1
-    echo "scale.sh: $name failed (exit $rc): $*" >&2
+    echo "scale.sh: $name failed (exit $rc after $t_wall s, CPU $t_cpu s, peak RSS $t_rss MB): $*" >&2
     tail -n 5 "$work/$name.log" | sed 's/^/    /' >&2
   fi
 }

@@ -425,6 +425,14 @@ MachineProfile profile_from_toml(std::string_view text, const std::string& file)
         r.fail(codes::bad_source, node.source(),
                "'sources.\"" + k + "\"' needs the document or the reason after the colon");
       }
+      // Notes are printed as one-line comments, where no control character
+      // may stand (a line break would even end the comment).
+      if (std::any_of(n.text.begin(), n.text.end(), [](char c) {
+            return (static_cast<unsigned char>(c) < 0x20 && c != '\t') || c == 0x7f;
+          })) {
+        r.fail(codes::bad_source, node.source(),
+               "'sources.\"" + k + "\"' must be one line of text without control characters");
+      }
       p.sources_.push_back(std::move(n));
     }
   }

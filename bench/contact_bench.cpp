@@ -6,6 +6,7 @@
 // (load time, warm and cold queries on the same path); after the Google
 // Benchmark runs, a summary prints microseconds per point and the ratios.
 #include <benchmark/benchmark.h>
+#include <unistd.h>
 
 #include <BRep_Tool.hxx>
 #include <Extrema_GenLocateExtPS.hxx>
@@ -14,8 +15,6 @@
 #include <GeomAdaptor_Surface.hxx>
 #include <GeomLProp_SLProps.hxx>
 #include <Geom_Surface.hxx>
-#include <unistd.h>
-
 #include <chrono>
 #include <cstdio>
 #include <ctime>
@@ -124,8 +123,7 @@ struct Patches {
     const double cpu0 = cpu_seconds();
     const auto start = std::chrono::steady_clock::now();
     model.emplace(BrepModel::load_step(file));
-    load_wall_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    load_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     load_cpu_s = cpu_seconds() - cpu0;
     std::filesystem::remove_all(dir);
   }
@@ -370,11 +368,12 @@ void print_summary() {
     const std::string name = "100 faces warm, " +
                              std::to_string(0.02 * static_cast<double>(stride)).substr(0, 4) +
                              " mm";
-    row(face_name.c_str(), per_point([&] { return strided_warm_run(s.model, s.path, stride); }, m, 3));
+    row(face_name.c_str(),
+        per_point([&] { return strided_warm_run(s.model, s.path, stride); }, m, 3));
     row(name.c_str(), per_point([&] { return strided_warm_run(*p.model, s.path, stride); }, m, 3));
   }
-  row("100 faces cold", per_point([&] { return cold_run(*p.model, s.scattered); },
-                                  s.scattered.size(), 2));
+  row("100 faces cold",
+      per_point([&] { return cold_run(*p.model, s.scattered); }, s.scattered.size(), 2));
   {
     // Same surface, same points: the two models must give the same CC.
     ContactHint patch_hint;

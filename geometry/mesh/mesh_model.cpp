@@ -250,8 +250,7 @@ std::uint32_t MeshModel::collapse(std::uint32_t binary) {
       const double moved = std::abs(static_cast<double>(offset[k]) - exact);
       // Grown by the rounding of offset and by the query's float error on
       // the offset's side (1e-6 |offset|, see closest_point).
-      half[k] = round_up(static_cast<double>(n.half[k]) + moved + 1e-6 * std::abs(exact) +
-                         1e-12);
+      half[k] = round_up(static_cast<double>(n.half[k]) + moved + 1e-6 * std::abs(exact) + 1e-12);
     }
     const std::uint32_t child = n.count > 0 ? n.first : collapse(lanes[l]);
     WideNode& w = wide_[index];  // collapse may have moved the array
@@ -395,7 +394,7 @@ std::optional<geometry::ModelContact> MeshModel::closest_point(const Eigen::Vect
     const auto bound = static_cast<float>(best.d2 / shrink * (1 + 1e-6));
     // Four lanes at once (GCC/Clang vector extension: SSE on x86-64).
     using F4 = float __attribute__((vector_size(16)));
-    const auto load = [](const float (&a)[4]) {
+    const auto load = [](const float(&a)[4]) {
       F4 v;
       std::memcpy(&v, a, sizeof v);
       return v;
@@ -405,10 +404,9 @@ std::optional<geometry::ModelContact> MeshModel::closest_point(const Eigen::Vect
     const I4 no_sign = {0x7fffffff, 0x7fffffff, 0x7fffffff, 0x7fffffff};
     F4 d2 = zero;
     for (int k = 0; k < 3; ++k) {
-      const F4 along = load(n.axis[k][0]) * px + load(n.axis[k][1]) * py +
-                       load(n.axis[k][2]) * pz - load(n.offset[k]);
-      F4 e = reinterpret_cast<F4>(reinterpret_cast<I4>(along) & no_sign) - load(n.half[k]) -
-             margin;
+      const F4 along = load(n.axis[k][0]) * px + load(n.axis[k][1]) * py + load(n.axis[k][2]) * pz -
+                       load(n.offset[k]);
+      F4 e = reinterpret_cast<F4>(reinterpret_cast<I4>(along) & no_sign) - load(n.half[k]) - margin;
       e = e > zero ? e : zero;
       d2 += e * e;
     }

@@ -64,8 +64,8 @@ struct PolynomialSpan {
     const int nv = degree_v + 1;
     // Horner in x over columns Q_a(y) and their y-derivatives.
     Vector3d p0 = Vector3d::Zero(), p1 = p0, p2 = p0;  // P, dP/dx, d2P/dx2 / 2
-    Vector3d y0 = p0, y1 = p0;                          // dP/dy and its x-derivative
-    Vector3d yy = p0;                                   // d2P/dy2 / 2
+    Vector3d y0 = p0, y1 = p0;                         // dP/dy and its x-derivative
+    Vector3d yy = p0;                                  // d2P/dy2 / 2
     for (int a = degree_u; a >= 0; --a) {
       const Vector3d* col = &c[static_cast<std::size_t>(a * nv)];
       Vector3d q0 = col[degree_v], q1 = Vector3d::Zero(), q2 = Vector3d::Zero();
@@ -132,9 +132,8 @@ class SurfaceEval {
             double fb = 1;  // b!
             for (int b = 0; b <= dv; ++b) {
               if (b > 0) fb *= b;
-              const Vector3d d =
-                  a + b == 0 ? to_eigen(bspline_->Value(span.um, span.vm).XYZ())
-                             : to_eigen(bspline_->DN(span.um, span.vm, a, b).XYZ());
+              const Vector3d d = a + b == 0 ? to_eigen(bspline_->Value(span.um, span.vm).XYZ())
+                                            : to_eigen(bspline_->DN(span.um, span.vm, a, b).XYZ());
               span.c[static_cast<std::size_t>(a * (dv + 1) + b)] =
                   d * (std::pow(hu, a) * std::pow(hv, b) / (fa * fb));
             }

@@ -93,8 +93,8 @@ TopoDS_Face make_face(const Handle(Geom_Surface) & surface, double u0, double u1
   return maker.Face();
 }
 
-Handle(Geom_BSplineSurface) make_bspline(const std::filesystem::path& path,
-                                         const BsplineSurfaceSpec& s) {
+Handle(Geom_BSplineSurface)
+    make_bspline(const std::filesystem::path& path, const BsplineSurfaceSpec& s) {
   if (s.count_u * s.count_v != static_cast<int>(s.poles.size())) {
     throw std::runtime_error(path.string() + ": B-spline pole count does not match its grid");
   }
@@ -128,8 +128,10 @@ TopoDS_Shape bspline_patches(const Handle(Geom_BSplineSurface) & surface, int nu
     BRepBuilderAPI_Sewing sewing(1e-6);
     for (int i = 0; i < nu; ++i) {
       for (int j = 0; j < nv; ++j) {
-        const double a = u0 + (u1 - u0) * i / nu, b = i + 1 == nu ? u1 : u0 + (u1 - u0) * (i + 1) / nu;
-        const double c = v0 + (v1 - v0) * j / nv, d = j + 1 == nv ? v1 : v0 + (v1 - v0) * (j + 1) / nv;
+        const double a = u0 + (u1 - u0) * i / nu,
+                     b = i + 1 == nu ? u1 : u0 + (u1 - u0) * (i + 1) / nu;
+        const double c = v0 + (v1 - v0) * j / nv,
+                     d = j + 1 == nv ? v1 : v0 + (v1 - v0) * (j + 1) / nv;
         Handle(Geom_BSplineSurface) piece = Handle(Geom_BSplineSurface)::DownCast(surface->Copy());
         piece->Segment(a, b, c, d);
         BRepBuilderAPI_MakeFace maker(piece, 1e-9);

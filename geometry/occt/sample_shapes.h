@@ -28,8 +28,8 @@ TopoDS_Shape bspline_patches(const Handle(Geom_BSplineSurface) & surface, int nu
 
 // wavy_bspline_face's surface as nu x nv sewn faces (bspline_patches): the
 // multi-face benchmark and test model (10 x 10: 100 faces).
-TopoDS_Shape wavy_patches(int nu, int nv, double size = 100, int poles = 12,
-                          double amplitude = 5, double wavelength = 60);
+TopoDS_Shape wavy_patches(int nu, int nv, double size = 100, int poles = 12, double amplitude = 5,
+                          double wavelength = 60);
 
 // Writes any shape as an AP214 STEP file in mm (through a temporary file
 // renamed when complete; OCCT's transfer statistics silenced). Defined in

@@ -343,7 +343,6 @@ TEST(StlReader, SharedDataPairsLoad) {
   }
 }
 
-
 // The wavy mould z = 5 sin(2 pi x / 60) cos(2 pi y / 60) over [0, 100]^2 as
 // a 224 x 224 grid of split quads: 100,352 triangles (as in mesh_bench).
 StlMesh wavy_mesh() {

@@ -197,9 +197,9 @@ bool same_bits(const ModelContact& a, const ModelContact& b) {
   return eq(a.point, b.point) && eq(a.normal, b.normal) && eq(a.distance, b.distance) &&
          a.face == b.face && eq(a.uv, b.uv) && a.type == b.type &&
          a.curvature.has_value() == b.curvature.has_value() &&
-         (!a.curvature || (eq(a.curvature->k1, b.curvature->k1) &&
-                           eq(a.curvature->k2, b.curvature->k2) &&
-                           eq(a.curvature->d1, b.curvature->d1)));
+         (!a.curvature ||
+          (eq(a.curvature->k1, b.curvature->k1) && eq(a.curvature->k2, b.curvature->k2) &&
+           eq(a.curvature->d1, b.curvature->d1)));
 }
 
 // The same 20 000 warm queries on two threads at once, each with its own
@@ -209,7 +209,8 @@ void expect_threads_bitwise_equal(const BrepModel& model) {
   const auto run = [&](std::vector<ModelContact>& out) {
     ContactHint hint;
     out.resize(walk.size());
-    for (std::size_t i = 0; i < walk.size(); ++i) out[i] = *model.closest_point(walk[i], 1e9, &hint);
+    for (std::size_t i = 0; i < walk.size(); ++i)
+      out[i] = *model.closest_point(walk[i], 1e9, &hint);
   };
   std::vector<ModelContact> one, a, b;
   run(one);

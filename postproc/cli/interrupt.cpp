@@ -162,7 +162,13 @@ void install_signal_handlers() {
     if (previous.sa_handler == SIG_IGN) continue;
     ::sigaction(sig, &action, nullptr);
   }
-  for (int sig : kFaults) ::sigaction(sig, &action, nullptr);
+  for (int sig : kFaults) {
+    // A handler already there (a sanitizer's, a debugger's) reports better.
+    struct sigaction previous {};
+    ::sigaction(sig, nullptr, &previous);
+    if (previous.sa_handler != SIG_DFL) continue;
+    ::sigaction(sig, &action, nullptr);
+  }
   struct sigaction ignore {};
   ignore.sa_handler = SIG_IGN;
   sigemptyset(&ignore.sa_mask);

@@ -14,7 +14,8 @@
 //
 // A crash (SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT) gets the same clean-up
 // and "vcpost: internal error: crashed with SIGSEGV; ..." before its usual
-// end (core dump included).
+// end (core dump included), unless a handler was already installed for it
+// (AddressSanitizer's, say), which is then left in place.
 //
 // This is the CLI's only process-wide state; the core libraries never see it.
 #pragma once

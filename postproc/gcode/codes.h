@@ -104,6 +104,8 @@ inline constexpr std::array kMCodes{
 template <std::size_t N>
 constexpr std::optional<CodeEntry> find_code(const std::array<CodeEntry, N>& table, double value) {
   const double tenths = value * 10.0;
+  // No code is that large; casting a larger value (or NaN) would be undefined.
+  if (!(tenths > -1e9 && tenths < 1e9)) return std::nullopt;
   const long rounded = static_cast<long>(tenths + (tenths < 0 ? -0.5 : 0.5));
   if (tenths - static_cast<double>(rounded) > 1e-6 || static_cast<double>(rounded) - tenths > 1e-6)
     return std::nullopt;
@@ -114,5 +116,6 @@ constexpr std::optional<CodeEntry> find_code(const std::array<CodeEntry, N>& tab
 
 static_assert(find_code(kGCodes, 61.1)->group == Group::path_control);
 static_assert(!find_code(kGCodes, 1.5).has_value());
+static_assert(!find_code(kGCodes, 1e300).has_value());
 
 }  // namespace vcpost::gcode

@@ -16,6 +16,9 @@ using program::Event;
 namespace {
 
 constexpr double kInch = 25.4;
+// A whole number in [0, 1e9]: T, H and arc turns, which become ints (a
+// larger value would not fit, and its conversion would be undefined).
+bool whole_number(double v) { return v >= 0 && v <= 1e9 && v == std::floor(v); }
 // Arc end-radius check, as LinuxCNC: an error only when both the absolute
 // (mm) and the relative difference are exceeded.
 constexpr double kArcAbsoluteTolerance = 0.002;
@@ -455,8 +458,8 @@ void Interpreter::execute(std::vector<Event>& events) {
     emit(program::SetSpindleSpeed{sw->value, source(b, sw->column)});
   }
   if (const Word* t = W('T')) {
-    if (t->value < 0 || t->value != std::floor(t->value))
-      fail(Code::bad_word_value, t->column, "tool number must be a whole number >= 0");
+    if (!whole_number(t->value))
+      fail(Code::bad_word_value, t->column, "tool number must be a whole number from 0 to 1e9");
     s.selected_tool = static_cast<int>(t->value);
     emit(program::SelectTool{s.selected_tool, source(b, t->column)});
   }
@@ -514,8 +517,14 @@ void Interpreter::execute(std::vector<Event>& events) {
   }
   if (const Word* g = G(Group::tool_length)) {
     program::ToolLengthOffset t{Gc(Group::tool_length) == 430, std::nullopt, source(b, g->column)};
-    if (const Word* h = W('H')) t.register_number = static_cast<int>(h->value);
-    else if (t.enabled) t.register_number = s.tool_in_spindle;
+    if (const Word* h = W('H')) {
+      if (!whole_number(h->value))
+        fail(Code::bad_word_value, h->column,
+             "H (offset register) must be a whole number from 0 to 1e9");
+      t.register_number = static_cast<int>(h->value);
+    } else if (t.enabled) {
+      t.register_number = s.tool_in_spindle;
+    }
     emit(t);
   }
   if (const Word* g = G(Group::coordinate)) {
@@ -660,8 +669,9 @@ void Interpreter::execute(std::vector<Event>& events) {
         }
         int turns = 1;
         if (const Word* p = W('P'); p && dialect_.kind == DialectKind::rs274ngc) {
-          if (p->value < 1 || p->value != std::floor(p->value))
-            fail(Code::bad_word_value, p->column, "P (turns) of an arc must be a whole number >= 1");
+          if (p->value < 1 || !whole_number(p->value))
+            fail(Code::bad_word_value, p->column,
+                 "P (turns) of an arc must be a whole number from 1 to 1e9");
           turns = static_cast<int>(p->value);
         }
         const program::ArcFeed arc{s.position, end, centre, s.plane, cw ? -turns : turns, src};

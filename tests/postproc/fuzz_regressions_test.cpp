@@ -1,0 +1,84 @@
+// Inputs the fuzzers found (fuzz/regressions/gcode_fuzz/, cldata_fuzz/),
+// replayed through the ordinary build with the same drivers as the fuzz
+// targets (fuzz/*_driver.h): each must give its documented outcome, a stable
+// error code or "ok", and never a crash, a sanitizer report or another
+// exception type. The expected outcomes are worked out from the input by
+// hand (the comment of each case says how).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <set>
+#include <string>
+
+#include "fuzz/cldata_driver.h"
+#include "fuzz/gcode_driver.h"
+
+namespace vcpost::fuzz {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kRegressions = fs::path(VCPOST_SOURCE_DIR) / "fuzz" / "regressions";
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::set<std::string> files_in(const fs::path& folder) {
+  std::set<std::string> names;
+  if (fs::is_directory(folder))
+    for (const auto& entry : fs::directory_iterator(folder))
+      if (entry.is_regular_file()) names.insert(entry.path().filename().string());
+  return names;
+}
+
+// Outcome per dialect: "rs274ngc:<code> fanuc:<code> mazak:<code>".
+const std::map<std::string, std::string> kGcodeCases = {
+    // G with a 70-digit number (8.9e66): its conversion to a code number
+    // overflowed a long (UBSan). No such code: E1401 in every dialect.
+    {"huge_g_code.ngc", "rs274ngc:E1401 fanuc:E1401 mazak:E1401"},
+    // T1e20 overflowed the int tool number: now E1511 (0..1e9).
+    {"huge_tool_number.ngc", "rs274ngc:E1511 fanuc:E1511 mazak:E1511"},
+    // G43 H1e20 overflowed the int register: E1511.
+    {"huge_h_register.ngc", "rs274ngc:E1511 fanuc:E1511 mazak:E1511"},
+    // G43 H-3.5 was silently truncated to register -3: E1511 as for T.
+    {"fractional_negative_h.ngc", "rs274ngc:E1511 fanuc:E1511 mazak:E1511"},
+    // G2 X1 I0.5 P1e20: P (turns, RS274NGC only) overflowed an int: E1511.
+    // Fanuc/Mazak take no turns word; X1 is 1 increment (0.001 mm), so the
+    // end radius 0.499 mm is within 0.002 mm of the start radius 0.5: ok.
+    {"huge_arc_turns.ngc", "rs274ngc:E1511 fanuc:ok mazak:ok"},
+};
+
+// Outcome of the CL reader.
+const std::map<std::string, std::string> kClCases = {};
+
+TEST(FuzzRegressions, GcodeInputsGiveTheirDocumentedOutcome) {
+  for (const auto& [name, expected] : kGcodeCases) {
+    const fs::path path = kRegressions / "gcode_fuzz" / name;
+    ASSERT_TRUE(fs::is_regular_file(path)) << path;
+    EXPECT_EQ(run_gcode_all_dialects(read_file(path)), expected) << name;
+  }
+}
+
+TEST(FuzzRegressions, ClInputsGiveTheirDocumentedOutcome) {
+  for (const auto& [name, expected] : kClCases) {
+    const fs::path path = kRegressions / "cldata_fuzz" / name;
+    ASSERT_TRUE(fs::is_regular_file(path)) << path;
+    EXPECT_EQ(run_cldata(read_file(path)), expected) << name;
+  }
+}
+
+// A saved input without an expected outcome would never be checked.
+TEST(FuzzRegressions, EverySavedInputHasACase) {
+  for (const auto& name : files_in(kRegressions / "gcode_fuzz"))
+    EXPECT_TRUE(kGcodeCases.contains(name)) << "gcode_fuzz/" << name << " has no case";
+  for (const auto& name : files_in(kRegressions / "cldata_fuzz"))
+    EXPECT_TRUE(kClCases.contains(name)) << "cldata_fuzz/" << name << " has no case";
+}
+
+}  // namespace
+}  // namespace vcpost::fuzz

@@ -20,6 +20,7 @@
 #include "postproc/cldata/cl_codes.h"
 #include "postproc/cli/atomic_file.h"
 #include "postproc/cli/commands.h"
+#include "postproc/cli/program_text.h"
 #include "postproc/gcode/diagnostics.h"
 #include "postproc/output/mazak_writer.h"
 #include "postproc/program/timing.h"
@@ -29,17 +30,6 @@
 
 namespace vcpost::cli {
 namespace {
-
-std::string read_program(const std::string& path) {
-  if (path == "-") {
-    return {std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>()};
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw CommandError("'" + path + "': cannot open the program");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 nlohmann::json vc_json(const std::optional<post::VcStatistics>& s) {
   if (!s) return nullptr;
@@ -131,6 +121,7 @@ post::PostSettings settings_from(const PostArguments& args, std::string_view tex
                           : args.policy == "mean"  ? pipeline::DiameterPolicy::mean
                                                    : pipeline::DiameterPolicy::max;
   settings.sample_spacing_mm = args.spacing;
+  settings.threads = args.threads;
   settings.adjust_feed = args.adjust_feed;
   settings.fz_mm = args.fz;
   settings.teeth = args.teeth;
@@ -281,6 +272,10 @@ void add_job_options(CLI::App& command, PostArguments& args) {
                      "G-code dialect: rs274ngc, fanuc, mazak (default: the profile's)");
   command.add_option("--summary-json", args.summary_json,
                      "write the job's JSON summary to this file ('-': standard error)");
+  command.add_option("--threads", args.threads,
+                     "worker threads for contact and engagement (default 0: one per core); "
+                     "the output does not depend on it")
+      ->check(CLI::Range(0, 256));
   command.add_flag("-q,--quiet", args.quiet, "print nothing but errors");
   command.add_flag("--strict", args.strict,
                    "exit 1 when there were warnings (gouges, points without contact)");
@@ -292,7 +287,8 @@ JobRun run_job(const PostArguments& args, bool write_program) {
       same_file(args.program, args.output)) {
     throw CommandError("-o: '" + args.output + "' is the input program; it is never overwritten");
   }
-  const std::string text = read_program(args.program);
+  ProgramText program(args.program);
+  const std::string_view text = program.view();
   const std::string name = args.program == "-" ? "<stdin>" : args.program;
   const post::PostSettings settings = settings_from(args, text, name);
   std::vector<ReportFile> reports = open_reports(args);
@@ -354,7 +350,8 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   post::PostSummary summary;
   try {
     summary =
-        post::post_program(text, name, *model.model, profile, settings, sink, progress, points);
+        post::post_program(text, name, *model.model, profile, settings, sink, progress, points,
+                           [&program](std::uint64_t offset) { program.release_before(offset); });
   } catch (const gcode::GcodeError& e) {
     throw CommandError(e.what());
   } catch (const cldata::ClError& e) {

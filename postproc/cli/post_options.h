@@ -20,6 +20,7 @@ struct PostArguments {
   double vc = 0, ap = 0, spacing = 0.5, tolerance = 0.01;
   std::optional<double> ae, fz;
   std::optional<int> teeth;
+  int threads = 0;  // 0: one per core
   bool ae_override = false, adjust_feed = false, quiet = false, strict = false;
   std::vector<std::string> reports;  // report files; the format follows the extension
 };

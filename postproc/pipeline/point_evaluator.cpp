@@ -7,18 +7,24 @@ namespace vcpost::pipeline {
 
 std::string_view to_string(DiameterPolicy policy) {
   switch (policy) {
-    case DiameterPolicy::max: return "max";
-    case DiameterPolicy::tangent: return "tangent";
-    case DiameterPolicy::mean: return "mean";
+    case DiameterPolicy::max:
+      return "max";
+    case DiameterPolicy::tangent:
+      return "tangent";
+    case DiameterPolicy::mean:
+      return "mean";
   }
   return "?";
 }
 
 std::string_view to_string(AeSource source) {
   switch (source) {
-    case AeSource::measured: return "measured";
-    case AeSource::given: return "given";
-    case AeSource::first_pass: return "first_pass";
+    case AeSource::measured:
+      return "measured";
+    case AeSource::given:
+      return "given";
+    case AeSource::first_pass:
+      return "first_pass";
   }
   return "?";
 }
@@ -35,18 +41,33 @@ PointEvaluator::PointEvaluator(const geometry::SurfaceModel& model, PointSetting
       tracker_(settings.tool.diameter, 4 * settings.tool.diameter, tracker_memory) {}
 
 PointResult PointEvaluator::evaluate(const PathSample& sample) {
-  using geometry::BallStatus;
-  const double radius = settings_.tool.radius();
   PointResult out;
+  out.contact = contact(sample, hint_);
+  place(sample, out);
+  engage(sample, out);
+  return out;
+}
+
+geometry::BallContact PointEvaluator::contact(const PathSample& sample,
+                                              geometry::ContactHint& hint) const {
+  const double radius = settings_.tool.radius();
   const Eigen::Vector3d center = geometry::ball_center(sample.point, radius, settings_.cl_point);
-  out.contact = geometry::ball_contact(model_, center, radius, settings_.contact_tolerance,
-                                       settings_.tool.diameter, &hint_);
-  const bool cuts = out.contact.status == BallStatus::touching ||
-                    out.contact.status == BallStatus::gouging;
-  if (!cuts) {
+  return geometry::ball_contact(model_, center, radius, settings_.contact_tolerance,
+                                settings_.tool.diameter, &hint);
+}
+
+namespace {
+bool cuts(const geometry::BallContact& contact) {
+  return contact.status == geometry::BallStatus::touching ||
+         contact.status == geometry::BallStatus::gouging;
+}
+}  // namespace
+
+void PointEvaluator::place(const PathSample& sample, PointResult& out) {
+  if (!cuts(out.contact)) {
     if (had_contact_) tracker_.break_pass();
     had_contact_ = false;
-    return out;
+    return;
   }
   had_contact_ = true;
 
@@ -67,23 +88,29 @@ PointResult PointEvaluator::evaluate(const PathSample& sample) {
     out.ae_source = AeSource::first_pass;
   }
   if (neighbour) out.side = neighbour->side;
+}
 
-  const geometry::CutSetup setup{settings_.ap, out.ae, n,
+void PointEvaluator::engage(const PathSample& sample, PointResult& out) const {
+  if (!cuts(out.contact)) return;
+  const geometry::CutSetup setup{settings_.ap, out.ae, out.contact.normal,
                                  out.feed.isZero() ? sample.direction : out.feed, out.side};
   out.engagement = geometry::evaluate_engagement(settings_.tool, setup);
   const auto& e = *out.engagement;
   switch (settings_.policy) {
-    case DiameterPolicy::max: out.d_ref = e.d_max; break;
+    case DiameterPolicy::max:
+      out.d_ref = e.d_max;
+      break;
     case DiameterPolicy::tangent:
       if (e.points && e.d_max) out.d_ref = e.points->cut.diameter;
       break;
-    case DiameterPolicy::mean: out.d_ref = geometry::engaged_mean_diameter(settings_.tool, setup); break;
+    case DiameterPolicy::mean:
+      out.d_ref = geometry::engaged_mean_diameter(settings_.tool, setup);
+      break;
   }
   if (out.d_ref) {
     out.target_rpm = *out.d_ref > 0 ? geometry::spindle_speed_for(settings_.vc, *out.d_ref)
                                     : std::numeric_limits<double>::infinity();
   }
-  return out;
 }
 
 }  // namespace vcpost::pipeline

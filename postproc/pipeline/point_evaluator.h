@@ -31,13 +31,13 @@ std::string_view to_string(AeSource source);
 
 struct PointSettings {
   geometry::Tool tool = geometry::Tool::ball(10);
-  double ap = 0.3;                                  // mm
-  std::optional<double> ae;                         // mm; see ae_override
-  bool ae_override = false;                         // use `ae` everywhere instead of measuring
+  double ap = 0.3;           // mm
+  std::optional<double> ae;  // mm; see ae_override
+  bool ae_override = false;  // use `ae` everywhere instead of measuring
   geometry::ClPoint cl_point = geometry::ClPoint::tip;
-  double contact_tolerance = 0.01;                  // mm: |distance error| counted as touching
+  double contact_tolerance = 0.01;  // mm: |distance error| counted as touching
   DiameterPolicy policy = DiameterPolicy::max;
-  double vc = 120;                                  // nominal cutting speed, m/min
+  double vc = 120;  // nominal cutting speed, m/min
 };
 
 struct PointResult {
@@ -60,6 +60,17 @@ class PointEvaluator {
   PointEvaluator(const geometry::SurfaceModel& model, PointSettings settings);
 
   PointResult evaluate(const PathSample& sample);
+
+  // evaluate() in its three stages, so the first and the last can run on
+  // other threads: contact() and engage() are const and thread-safe (each
+  // caller with its own hint); place() must see the samples in path order.
+  // Results do not depend on the hint (it only makes queries warm).
+  geometry::BallContact contact(const PathSample& sample, geometry::ContactHint& hint) const;
+  // Feed on the tangent plane, the neighbouring pass, ae and side; leaves
+  // the engagement empty (and the tool not cutting stays so).
+  void place(const PathSample& sample, PointResult& result);
+  // Engagement, d_ref and target of a placed result that cuts.
+  void engage(const PathSample& sample, PointResult& result) const;
 
   // Call after a rapid: the next contact point starts a new pass.
   void break_pass() { tracker_.break_pass(); }

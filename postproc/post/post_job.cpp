@@ -1,288 +1,241 @@
 #include "postproc/post/post_job.h"
 
+#include <tbb/parallel_pipeline.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+#include <deque>
 #include <istream>
 #include <limits>
-#include <sstream>
-#include <streambuf>
-#include <variant>
+#include <memory>
+#include <mutex>
+#include <thread>
 #include <vector>
 
 #include "postproc/cldata/cl_reader.h"
-#include "postproc/gcode/interpreter.h"
-#include "postproc/gcode/writer.h"
-#include "postproc/output/mazak_writer.h"
-#include "postproc/pipeline/path_sampler.h"
-#include "postproc/program/timing.h"
+#include "postproc/plan/streaming_plan.h"
+#include "postproc/post/path_reader.h"
+#include "postproc/post/program_writer.h"
 
 namespace vcpost::post {
 namespace {
 
-using program::Event;
+// Big enough to mean "no finite limit" to the planner (d_ref = 0).
+constexpr double unbounded_rpm = 1e12;
 
-// An istream over text held elsewhere, without copying it.
-class ViewBuffer : public std::streambuf {
- public:
-  explicit ViewBuffer(std::string_view text) {
-    char* begin = const_cast<char*>(text.data());  // read only: the get area is never written
-    setg(begin, begin, begin + text.size());
-  }
-};
-
-// Reads the events of either kind of program, one batch at a time.
-class EventSource {
- public:
-  EventSource(std::string_view text, const std::string& file_name, ProgramKind kind,
-              const gcode::Dialect& dialect)
-      : kind_(kind), buffer_(text) {
-    if (kind == ProgramKind::gcode) {
-      gcode_.emplace(text, dialect);
-    } else {
-      stream_.emplace(&buffer_);
-      cl_.emplace(*stream_, file_name);
-    }
-  }
-  bool next(std::vector<Event>& out) {
-    if (gcode_) return gcode_->next(out);
-    auto event = cl_->next();
-    if (!event) return false;
-    out.push_back(std::move(*event));
-    return true;
-  }
-
- private:
-  ProgramKind kind_;
-  ViewBuffer buffer_;
-  std::optional<std::istream> stream_;
-  std::optional<gcode::Interpreter> gcode_;
-  std::optional<cldata::ClReader> cl_;
-};
+// Path samples per chunk: the unit of work of the threads. Contact queries
+// start cold at every chunk (so results do not depend on the number of
+// threads), which costs little at this size.
+constexpr std::size_t chunk_samples = 2048;
 
 gcode::Dialect dialect_of(const machines::MachineProfile& profile) {
   switch (profile.dialect()) {
-    case machines::Dialect::fanuc: return gcode::fanuc_dialect();
-    case machines::Dialect::mazak: return gcode::mazak_dialect();
-    case machines::Dialect::rs274ngc: break;
+    case machines::Dialect::fanuc:
+      return gcode::fanuc_dialect();
+    case machines::Dialect::mazak:
+      return gcode::mazak_dialect();
+    case machines::Dialect::rs274ngc:
+      break;
   }
   return gcode::rs274ngc_dialect();
 }
 
-// Numbers the blocks of a program as both passes see them: a G-code block
-// is a line (its events share a source offset); in CL data every motion
-// starts a block, and what comes before the first motion is block 0.
-class BlockCounter {
+// Cutting-speed statistics, accumulated sample by sample.
+class VcAccumulator {
  public:
-  explicit BlockCounter(ProgramKind kind) : kind_(kind) {}
-  // The block of `event`, and whether it starts a new one.
-  std::pair<std::size_t, bool> on(const Event& event) {
-    const program::SourceRef ref = program::source_of(event);
-    const bool fresh = kind_ == ProgramKind::gcode ? ref.offset != last_offset_ || !started_
-                                                   : program::is_motion(event) || !started_;
-    if (fresh && started_) ++block_;
-    started_ = true;
-    last_offset_ = ref.offset;
-    return {block_, fresh};
+  explicit VcAccumulator(double vc_nominal) : nominal_(vc_nominal) {}
+  void add(double d_ref, double weight_s, double rpm) {
+    if (std::isnan(d_ref) || weight_s <= 0) return;
+    const double vc = geometry::cutting_speed(d_ref, rpm);
+    out_.min = std::min(out_.min, vc);
+    out_.max = std::max(out_.max, vc);
+    out_.mean += weight_s * vc;
+    const double deviation = std::abs(vc / nominal_ - 1);
+    if (deviation <= 0.05 + 1e-12) out_.within_5_percent += weight_s;
+    if (deviation <= 0.10 + 1e-12) out_.within_10_percent += weight_s;
+    weight_ += weight_s;
+  }
+  std::optional<VcStatistics> result() const {
+    if (weight_ <= 0) return std::nullopt;
+    VcStatistics r = out_;
+    r.mean /= weight_;
+    r.within_5_percent /= weight_;
+    r.within_10_percent /= weight_;
+    return r;
   }
 
  private:
-  ProgramKind kind_;
-  bool started_ = false;
-  std::size_t block_ = 0;
-  std::uint64_t last_offset_ = 0;
+  double nominal_;
+  VcStatistics out_{INFINITY, -INFINITY, 0, 0, 0};
+  double weight_ = 0;
 };
 
-// What the job remembers of each block of the program.
-struct BlockInfo {
-  std::uint64_t offset = 0;   // first byte (G-code) / record (CL)
-  bool has_s = false, has_f = false;
-  double program_s = 0, program_f = 0;  // in effect on the block
+// What the last stage keeps of an evaluated sample until its block is final.
+struct HeldSample {
+  float d_ref = NAN;  // mm; NaN where the tool does not cut
+  float weight_s = 0;
+  std::size_t block = 0;
+  double time_s = 0;
+};
+// ... and for the points sink, the whole point.
+struct HeldPoint {
+  pipeline::PathSample sample;
+  pipeline::PointResult result;
 };
 
-// What it remembers of each evaluated sample, for the statistics.
-struct SampleInfo {
-  float d_ref = NAN;     // mm; NaN where the tool does not cut
-  float weight_s = 0;    // cutting time this sample stands for
-  std::uint32_t block = 0;
-};
-
-// Big enough to mean "no finite limit" to the planner (d_ref = 0).
-constexpr double unbounded_rpm = 1e12;
-
-struct Collected {
-  std::vector<BlockInfo> blocks;
-  std::vector<plan::Sample> timeline;
-  std::vector<SampleInfo> samples;
-  PostSummary summary;
-};
-
-// Sees every evaluated point during collection, with its block and time.
-using Observer = std::function<void(const pipeline::PathSample&, const pipeline::PointResult&,
-                                    std::size_t block, double time_s, double weight_s)>;
-
-Collected collect(EventSource& source, std::string_view text, ProgramKind kind,
-                  const geometry::SurfaceModel& model, const machines::MachineProfile& profile,
-                  const PostSettings& settings, const Progress& progress,
-                  const Observer& observer = {}) {
-  Collected c;
-  c.summary.kind = kind;
-  program::PathClock clock({profile.feed().rapid_mm_per_min, profile.control().block_time_s});
-  pipeline::PathSampler sampler(settings.sample_spacing_mm);
-  pipeline::PointEvaluator evaluator(model, settings.point);
-  std::vector<Event> events;
-  std::vector<pipeline::PathSample> path;
-  plan::SpindleState spindle = plan::SpindleState::off;
-  program::SpindleDirection direction = program::SpindleDirection::clockwise;
-  double program_s = 0, program_f = 0;
-  bool tool_change = false;
-  std::optional<double> last_target;  // of the last sample evaluated
-  bool last_air = true;
-  double next_report = 0.01;
-
-  BlockCounter counter(kind);
-  auto spindle_state = [&] {
-    if (spindle == plan::SpindleState::off || program_s <= 0) return plan::SpindleState::off;
-    return direction == program::SpindleDirection::clockwise ? plan::SpindleState::cw
-                                                             : plan::SpindleState::ccw;
-  };
-
-  while (source.next(events)) {
-    for (const Event& event : events) {
-      const bool motion = program::is_motion(event);
-      const auto [block_index, fresh] = counter.on(event);
-      if (fresh) c.blocks.push_back({program::source_of(event).offset, false, false, program_s, program_f});
-      BlockInfo& block = c.blocks.back();
-      const program::EventTime time = clock.advance(event);
-      if (const auto* s = std::get_if<program::SetSpindleSpeed>(&event)) {
-        program_s = block.program_s = s->rpm;
-        block.has_s = true;
-        if (s->rpm <= 0) spindle = plan::SpindleState::off;
-      } else if (const auto* on = std::get_if<program::SpindleOn>(&event)) {
-        direction = on->direction;
-        spindle = plan::SpindleState::cw;  // direction applied in spindle_state()
-      } else if (std::holds_alternative<program::SpindleOff>(event)) {
-        spindle = plan::SpindleState::off;
-      } else if (const auto* f = std::get_if<program::SetFeedRate>(&event)) {
-        program_f = block.program_f = f->rate;
-        block.has_f = true;
-      } else if (std::holds_alternative<program::ChangeTool>(event)) {
-        tool_change = true;
-        evaluator.break_pass();
-      }
-      if (!motion) continue;
-      ++c.summary.motion_events;
-      c.summary.program_time_s = time.end();
-      if (std::holds_alternative<program::StraightTraverse>(event)) {
-        c.timeline.push_back({time.start, block_index, std::nullopt, true, tool_change,
-                              spindle_state(), program_s});
-        tool_change = false;
-        last_target.reset();
-        last_air = true;
-        evaluator.break_pass();
-        sampler.add(event, c.summary.motion_events - 1, path);
-        continue;
-      }
-      path.clear();
-      sampler.add(event, c.summary.motion_events - 1, path);
-      c.summary.cutting_time_s += time.duration;
-      const float weight = path.empty() ? 0.0f
-                                        : static_cast<float>(time.duration / static_cast<double>(path.size()));
-      // The planner holds a block's S from its first sample on: a move that
-      // continues the cut starts where the last one ended, at its target.
-      if (!path.empty() && path.front().fraction > 0) {
-        c.timeline.push_back({time.start, block_index, last_target, last_air, tool_change,
-                              spindle_state(), program_s});
-      }
-      for (const auto& sample : path) {
-        const auto r = evaluator.evaluate(sample);
-        ++c.summary.samples;
-        switch (r.contact.status) {
-          case geometry::BallStatus::touching: ++c.summary.touching; break;
-          case geometry::BallStatus::lifted: ++c.summary.lifted; break;
-          case geometry::BallStatus::gouging: ++c.summary.gouging; break;
-          case geometry::BallStatus::missed: ++c.summary.missed; break;
-        }
-        if (r.engagement) {
-          switch (r.ae_source) {
-            case pipeline::AeSource::measured: ++c.summary.ae_measured; break;
-            case pipeline::AeSource::given: ++c.summary.ae_given; break;
-            case pipeline::AeSource::first_pass: ++c.summary.ae_first_pass; break;
-          }
-        }
-        std::optional<double> target = r.target_rpm;
-        if (target && !std::isfinite(*target)) target = unbounded_rpm;
-        // No vc to keep near the part (lifted in the air on an approach or a
-        // link, or a plunge along the normal): like a rapid. Missed (far
-        // from the model) keeps the program's S: not this finishing cut.
-        const bool air = !target && r.contact.status != geometry::BallStatus::missed;
-        c.timeline.push_back({time.start + time.duration * sample.fraction, block_index, target,
-                              air, tool_change, spindle_state(), program_s});
-        last_target = target;
-        last_air = air;
-        tool_change = false;
-        c.samples.push_back({r.d_ref ? static_cast<float>(*r.d_ref) : NAN, weight,
-                             static_cast<std::uint32_t>(block_index)});
-        if (observer) {
-          observer(sample, r, block_index, time.start + time.duration * sample.fraction, weight);
-        }
-      }
-    }
-    events.clear();
-    if (progress && kind == ProgramKind::gcode && !c.blocks.empty() && !text.empty()) {
-      const double done = static_cast<double>(c.blocks.back().offset) / static_cast<double>(text.size());
-      if (done >= next_report) {
-        progress(done);
-        next_report = done + 0.01;
-      }
+// The last, serial stage: counts, feeds the planner, and as blocks become
+// final writes them, accumulates the statistics and hands out the points.
+class Finisher {
+ public:
+  Finisher(const machines::MachineProfile& profile, const PostSettings& settings,
+           ProgramWriter& writer, const PointSink& points, PostSummary& summary)
+      : settings_(settings),
+        planner_(profile.spindle()),
+        writer_(writer),
+        points_(points),
+        summary_(summary),
+        before_(settings.point.vc),
+        after_(settings.point.vc) {
+    if (settings.adjust_feed) {
+      feeds_.emplace(settings.fz_mm, settings.teeth.value_or(profile.tool().default_teeth),
+                     profile.feed(), std::pow(10.0, -profile.output().feed_decimals));
     }
   }
-  c.summary.blocks = c.blocks.size();
-  return c;
-}
 
-std::optional<VcStatistics> vc_statistics(const std::vector<SampleInfo>& samples,
-                                          const std::function<double(const SampleInfo&)>& rpm,
-                                          double vc_nominal) {
-  VcStatistics out{INFINITY, -INFINITY, 0, 0, 0};
-  double weight = 0;
-  for (const auto& s : samples) {
-    if (std::isnan(s.d_ref) || s.weight_s <= 0) continue;
-    const double vc = geometry::cutting_speed(s.d_ref, rpm(s));
-    out.min = std::min(out.min, vc);
-    out.max = std::max(out.max, vc);
-    out.mean += s.weight_s * vc;
-    const double deviation = std::abs(vc / vc_nominal - 1);
-    if (deviation <= 0.05 + 1e-12) out.within_5_percent += s.weight_s;
-    if (deviation <= 0.10 + 1e-12) out.within_10_percent += s.weight_s;
-    weight += s.weight_s;
+  void take(Chunk& chunk) {
+    writer_.add(chunk);
+    for (Slot& slot : chunk.slots) {
+      switch (slot.kind) {
+        case SlotKind::rapid:
+          last_target_.reset();
+          last_air_ = true;
+          break;
+        case SlotKind::resume:
+          slot.plan.target_rpm = last_target_;
+          slot.plan.rapid = last_air_;
+          break;
+        case SlotKind::sample:
+          sample(slot);
+          break;
+      }
+      planner_.push(slot.plan);
+    }
+    planner_.take_final(final_);
+    emit();
   }
-  if (weight <= 0) return std::nullopt;
-  out.mean /= weight;
-  out.within_5_percent /= weight;
-  out.within_10_percent /= weight;
-  return out;
-}
 
-// S or F on the control's grid, rounded down so vc (or the feed per tooth)
-// never exceeds the planned value.
-double on_grid(double value, double step) { return std::floor(value / step + 1e-9) * step; }
-
-// The number written for S or F.
-std::string format_word(double value, double step, int decimals) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, on_grid(value, step));
-  return buffer;
-}
-
-int decimals_of(double step) {
-  int decimals = 0;
-  while (decimals < 6 && std::abs(step * std::pow(10.0, decimals) -
-                                  std::round(step * std::pow(10.0, decimals))) > 1e-9) {
-    ++decimals;
+  void finish() {
+    planner_.finish();
+    planner_.take_final(final_);
+    emit();
+    writer_.finish();
+    summary_.before = before_.result();
+    summary_.after = after_.result();
   }
-  return decimals;
-}
+
+ private:
+  void sample(Slot& slot) {
+    const pipeline::PointResult& r = slot.result;
+    ++summary_.samples;
+    switch (r.contact.status) {
+      case geometry::BallStatus::touching:
+        ++summary_.touching;
+        break;
+      case geometry::BallStatus::lifted:
+        ++summary_.lifted;
+        break;
+      case geometry::BallStatus::gouging:
+        ++summary_.gouging;
+        break;
+      case geometry::BallStatus::missed:
+        ++summary_.missed;
+        break;
+    }
+    if (r.engagement) {
+      switch (r.ae_source) {
+        case pipeline::AeSource::measured:
+          ++summary_.ae_measured;
+          break;
+        case pipeline::AeSource::given:
+          ++summary_.ae_given;
+          break;
+        case pipeline::AeSource::first_pass:
+          ++summary_.ae_first_pass;
+          break;
+      }
+    }
+    std::optional<double> target = r.target_rpm;
+    if (target && !std::isfinite(*target)) target = unbounded_rpm;
+    // No vc to keep near the part (lifted in the air on an approach or a
+    // link, or a plunge along the normal): like a rapid. Missed (far from
+    // the model) keeps the program's S: not this finishing cut.
+    const bool air = !target && r.contact.status != geometry::BallStatus::missed;
+    slot.plan.target_rpm = target;
+    slot.plan.rapid = air;
+    last_target_ = target;
+    last_air_ = air;
+    held_.push_back({r.d_ref ? static_cast<float>(*r.d_ref) : NAN, slot.weight_s, slot.plan.block,
+                     slot.plan.time_s});
+    if (points_) held_points_.push_back({slot.sample, std::move(slot.result)});
+  }
+
+  void emit() {
+    for (const plan::BlockPlan& block : final_) {
+      std::optional<plan::BlockFeed> feed;
+      if (feeds_) {
+        const BlockInfo& info = writer_.block(block.block);
+        feed = feeds_->next(block, {info.program_f, info.program_s});
+      }
+      const double program_s = writer_.block(block.block).program_s;
+      while (!held_.empty() && held_.front().block <= block.block) {
+        HeldSample& h = held_.front();
+        before_.add(h.d_ref, h.weight_s, program_s);
+        after_.add(h.d_ref, h.weight_s, block.planned_rpm);
+        if (points_) {
+          const HeldPoint& p = held_points_.front();
+          points_(p.sample, p.result,
+                  PointRecord{p.sample.source.line, h.time_s, h.weight_s, program_s,
+                              block.planned_rpm, block.bound});
+          held_points_.pop_front();
+        }
+        held_.pop_front();
+      }
+      const double duration = block.end_s - block.start_s;
+      switch (block.bound) {
+        case plan::Bound::n_max:
+          summary_.time_clamped_max_s += duration;
+          break;
+        case plan::Bound::n_min:
+          summary_.time_clamped_min_s += duration;
+          break;
+        case plan::Bound::slew:
+          summary_.time_slew_s += duration;
+          break;
+        case plan::Bound::rate:
+          summary_.time_rate_s += duration;
+          break;
+        default:
+          break;
+      }
+      writer_.on_final(block, feed);
+    }
+    final_.clear();
+  }
+
+  const PostSettings& settings_;
+  plan::StreamingPlanner planner_;
+  std::optional<plan::StreamingFeedPlanner> feeds_;
+  ProgramWriter& writer_;
+  const PointSink& points_;
+  PostSummary& summary_;
+  VcAccumulator before_, after_;
+  std::vector<plan::BlockPlan> final_;
+  std::deque<HeldSample> held_;
+  std::deque<HeldPoint> held_points_;
+  std::optional<double> last_target_;  // of the last sample evaluated
+  bool last_air_ = true;
+};
 
 }  // namespace
 
@@ -305,7 +258,8 @@ ProgramKind detect_program_kind(std::string_view text) {
       word += static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
     }
     const std::string_view rest = line.substr(word.size());
-    const bool statement = word.size() >= 3 && rest.find_first_not_of(' ') != std::string_view::npos &&
+    const bool statement = word.size() >= 3 &&
+                           rest.find_first_not_of(' ') != std::string_view::npos &&
                            rest[rest.find_first_not_of(' ')] == '/';
     if (statement || word == "PARTNO" || word == "FINI" || word == "TOOL" || word == "END") {
       return ProgramKind::cldata;
@@ -315,7 +269,8 @@ ProgramKind detect_program_kind(std::string_view text) {
   return ProgramKind::gcode;
 }
 
-std::optional<geometry::Tool> tool_from_program(std::string_view text, const std::string& file_name) {
+std::optional<geometry::Tool> tool_from_program(std::string_view text,
+                                                const std::string& file_name) {
   if (detect_program_kind(text) != ProgramKind::cldata) return std::nullopt;
   ViewBuffer buffer(text);
   std::istream in(&buffer);
@@ -338,152 +293,100 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
                          const geometry::SurfaceModel& model,
                          const machines::MachineProfile& profile, const PostSettings& settings,
                          const std::function<void(std::string_view)>& sink,
-                         const Progress& progress, const PointSink& points) {
+                         const Progress& progress, const PointSink& points,
+                         const std::function<void(std::uint64_t)>& consumed) {
   const ProgramKind kind = detect_program_kind(text);
   const gcode::Dialect dialect = settings.dialect.value_or(dialect_of(profile));
-  EventSource source(text, file_name, kind, dialect);
-  Collected c = collect(source, text, kind, model, profile, settings, progress);
-  PostSummary summary = c.summary;
+  PostSummary summary;
+  summary.kind = kind;
 
-  const plan::SpindlePlan plan = plan_spindle(c.timeline, profile.spindle());
-  // The plan block of each program block, and of the next block that has one.
-  std::vector<int> own(c.blocks.size(), -1), next(c.blocks.size() + 1, -1);
-  for (std::size_t i = 0; i < plan.blocks.size(); ++i) own[plan.blocks[i].block] = static_cast<int>(i);
-  for (std::size_t b = c.blocks.size(); b-- > 0;) next[b] = own[b] >= 0 ? own[b] : next[b + 1];
+  PathReader reader(text, file_name, kind, dialect, profile, settings.sample_spacing_mm,
+                    kind == ProgramKind::cldata);
+  // The writer releases G-code text behind it; CL text is done with once read.
+  ProgramWriter writer(
+      text, kind, profile, settings.adjust_feed, sink,
+      kind == ProgramKind::gcode ? consumed : std::function<void(std::uint64_t)>{});
+  pipeline::PointEvaluator evaluator(model, settings.point);
+  Finisher finisher(profile, settings, writer, points, summary);
 
-  std::vector<plan::BlockFeed> feeds;
-  if (settings.adjust_feed) {
-    std::vector<plan::BlockFeedInput> inputs;
-    for (const auto& block : plan.blocks) {
-      inputs.push_back({c.blocks[block.block].program_f, c.blocks[block.block].program_s});
-    }
-    const double f_step = std::pow(10.0, -profile.output().feed_decimals);
-    feeds = plan::plan_feeds(plan, inputs, settings.fz_mm,
-                             settings.teeth.value_or(profile.tool().default_teeth), profile.feed(),
-                             f_step);
+  const int threads = settings.threads > 0
+                          ? settings.threads
+                          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  // Chunks in flight: enough to keep every thread busy, few enough to bound memory.
+  const auto tokens = static_cast<std::size_t>(2 * threads + 2);
+  // Every chunk in flight holds a token, so `tokens` chunks suffice; they
+  // are reused, and their vectors keep their capacity.
+  std::vector<std::unique_ptr<Chunk>> chunks;
+  std::vector<Chunk*> free_chunks;
+  for (std::size_t i = 0; i < tokens; ++i) {
+    chunks.push_back(std::make_unique<Chunk>());
+    free_chunks.push_back(chunks.back().get());
   }
-  const double s_step = profile.spindle().s_resolution_rpm;
-  const int s_decimals = decimals_of(s_step);
-  const int f_decimals = profile.output().feed_decimals;
-  const double f_step = std::pow(10.0, -f_decimals);
+  std::mutex free_mutex;
+  double next_report = 0.01;
 
-  // S (F) in effect from block b on, when the plan changes it there: the
-  // block's own S word if planned, else the next planned block's S for a
-  // block that already carries an S word of the program.
-  auto s_for = [&](std::size_t b) -> std::optional<double> {
-    const int own_plan = own[b];
-    if (own_plan >= 0 && plan.blocks[static_cast<std::size_t>(own_plan)].s_word) {
-      return plan.blocks[static_cast<std::size_t>(own_plan)].planned_rpm;
+  auto read = [&](tbb::flow_control& control) -> Chunk* {
+    Chunk* chunk = nullptr;
+    {
+      std::lock_guard lock(free_mutex);
+      chunk = free_chunks.back();
+      free_chunks.pop_back();
     }
-    if (!c.blocks[b].has_s || c.blocks[b].program_s <= 0 || next[b] < 0) return std::nullopt;
-    const auto& target = plan.blocks[static_cast<std::size_t>(next[b])];
-    if (target.bound == plan::Bound::off) return std::nullopt;
-    return target.planned_rpm;
+    if (!reader.read(*chunk, chunk_samples)) {
+      control.stop();
+      return nullptr;
+    }
+    if (kind == ProgramKind::cldata && consumed) consumed(chunk->read_bytes);
+    return chunk;
   };
-  auto f_for = [&](std::size_t b) -> std::optional<double> {
-    if (feeds.empty()) return std::nullopt;
-    const int own_plan = own[b];
-    if (own_plan >= 0 && plan.blocks[static_cast<std::size_t>(own_plan)].bound == plan::Bound::rapid) {
-      return std::nullopt;  // rapids do not use F
+  auto contact = [&](Chunk* chunk) -> Chunk* {
+    geometry::ContactHint hint;  // cold at the chunk's start
+    for (Slot& slot : chunk->slots) {
+      if (slot.kind == SlotKind::sample) slot.result.contact = evaluator.contact(slot.sample, hint);
     }
-    if (own_plan >= 0 && feeds[static_cast<std::size_t>(own_plan)].f_word) {
-      return feeds[static_cast<std::size_t>(own_plan)].f_mm_per_min;
+    return chunk;
+  };
+  auto place = [&](Chunk* chunk) -> Chunk* {
+    for (Slot& slot : chunk->slots) {
+      if (slot.break_pass) evaluator.break_pass();
+      if (slot.kind == SlotKind::sample) evaluator.place(slot.sample, slot.result);
     }
-    if (!c.blocks[b].has_f || next[b] < 0) return std::nullopt;
-    const auto& target = plan.blocks[static_cast<std::size_t>(next[b])];
-    if (target.bound == plan::Bound::off || target.bound == plan::Bound::rapid) return std::nullopt;
-    return feeds[static_cast<std::size_t>(next[b])].f_mm_per_min;
+    return chunk;
+  };
+  auto engage = [&](Chunk* chunk) -> Chunk* {
+    for (Slot& slot : chunk->slots) {
+      if (slot.kind == SlotKind::sample) evaluator.engage(slot.sample, slot.result);
+    }
+    return chunk;
+  };
+  auto finish = [&](Chunk* chunk) {
+    finisher.take(*chunk);
+    if (progress && chunk->read_fraction >= next_report) {
+      progress(std::min(chunk->read_fraction, 1.0));
+      next_report = chunk->read_fraction + 0.01;
+    }
+    std::lock_guard lock(free_mutex);
+    free_chunks.push_back(chunk);
   };
 
-  if (!sink) {
-    // A dry run: nothing written.
-  } else if (kind == ProgramKind::gcode) {
-    std::vector<gcode::WordPatch> patches;
-    for (std::size_t b = 0; b < c.blocks.size(); ++b) {
-      if (const auto s = s_for(b)) {
-        patches.push_back({c.blocks[b].offset, 'S', format_word(*s, s_step, s_decimals)});
-        ++summary.s_words;
-      }
-      if (const auto f = f_for(b)) {
-        patches.push_back({c.blocks[b].offset, 'F', format_word(*f, f_step, f_decimals)});
-        ++summary.f_words;
-      }
-    }
-    gcode::write_patched(text, patches, sink);
-  } else {
-    // CL: read again and write G-code in the profile's format, with the
-    // planned S (F) before the motion of each block that changes it.
-    std::ostringstream buffer;
-    output::MazakFormat format;
-    const auto& o = profile.output();
-    format.program_number = o.program_number;
-    format.high_speed_mode = o.high_speed_mode;
-    format.geometry_compensation = o.geometry_compensation;
-    format.work_offset = o.work_offset;
-    format.decimals = o.decimals;
-    format.feed_decimals = o.feed_decimals;
-    format.line_numbers = o.line_numbers;
-    output::MazakWriter writer(buffer, format);
-    EventSource again(text, file_name, kind, dialect);
-    BlockCounter counter(kind);
-    std::vector<Event> events;
-    while (again.next(events)) {
-      for (Event& event : events) {
-        const std::size_t block = counter.on(event).first;
-        if (program::is_motion(event)) {
-          if (const auto s = s_for(block); s && !c.blocks[block].has_s) {
-            writer.write(program::SetSpindleSpeed{on_grid(*s, s_step), {}});
-            ++summary.s_words;
-          }
-          if (const auto f = f_for(block); f && !c.blocks[block].has_f) {
-            writer.write(program::SetFeedRate{on_grid(*f, f_step), program::FeedMode::per_minute, {}, std::nullopt});
-            ++summary.f_words;
-          }
-        } else if (auto* s = std::get_if<program::SetSpindleSpeed>(&event)) {
-          if (const auto planned = s_for(block)) s->rpm = on_grid(*planned, s_step);
-        }
-        writer.write(event);
-      }
-      events.clear();
-      const std::string chunk = buffer.str();
-      if (!chunk.empty()) sink(chunk);
-      buffer.str({});
-    }
-    writer.finish();
-    if (!buffer.str().empty()) sink(buffer.str());
-  }
+  tbb::task_arena arena(threads);
+  arena.execute([&] {
+    tbb::parallel_pipeline(
+        tokens, tbb::make_filter<void, Chunk*>(tbb::filter_mode::serial_in_order, read) &
+                    tbb::make_filter<Chunk*, Chunk*>(tbb::filter_mode::parallel, contact) &
+                    tbb::make_filter<Chunk*, Chunk*>(tbb::filter_mode::serial_in_order, place) &
+                    tbb::make_filter<Chunk*, Chunk*>(tbb::filter_mode::parallel, engage) &
+                    tbb::make_filter<Chunk*, void>(tbb::filter_mode::serial_in_order, finish));
+  });
+  finisher.finish();
 
-  for (const auto& block : plan.blocks) {
-    const double duration = block.end_s - block.start_s;
-    switch (block.bound) {
-      case plan::Bound::n_max: summary.time_clamped_max_s += duration; break;
-      case plan::Bound::n_min: summary.time_clamped_min_s += duration; break;
-      case plan::Bound::slew: summary.time_slew_s += duration; break;
-      case plan::Bound::rate: summary.time_rate_s += duration; break;
-      default: break;
-    }
-  }
-  // The S in effect on a block after the rewrite: its plan's, else the program's.
-  auto after = [&](std::size_t b) {
-    const int p = own[b];
-    return p >= 0 ? plan.blocks[static_cast<std::size_t>(p)].planned_rpm : c.blocks[b].program_s;
-  };
-  const double vc = settings.point.vc;
-  summary.before = vc_statistics(c.samples, [&](const SampleInfo& s) { return c.blocks[s.block].program_s; }, vc);
-  summary.after = vc_statistics(c.samples, [&](const SampleInfo& s) { return after(s.block); }, vc);
-  if (points) {
-    EventSource again(text, file_name, kind, dialect);
-    collect(again, text, kind, model, profile, settings, {},
-            [&](const pipeline::PathSample& sample, const pipeline::PointResult& result,
-                std::size_t block, double time_s, double weight_s) {
-              const int p = own[block];
-              points(sample, result,
-                     PointRecord{sample.source.line, time_s, weight_s, c.blocks[block].program_s,
-                                 after(block),
-                                 p >= 0 ? plan.blocks[static_cast<std::size_t>(p)].bound
-                                        : plan::Bound::program});
-            });
-  }
+  const ReadTotals& totals = reader.totals();
+  summary.blocks = totals.blocks;
+  summary.motion_events = totals.motion_events;
+  summary.program_time_s = totals.program_time_s;
+  summary.cutting_time_s = totals.cutting_time_s;
+  summary.s_words = writer.s_words();
+  summary.f_words = writer.f_words();
   if (progress) progress(1.0);
   return summary;
 }

@@ -28,15 +28,17 @@ ProgramKind detect_program_kind(std::string_view text);
 // tool, for when the command line gives none; empty for G-code, or when the
 // CL data define no cutter before their first motion. Throws PostError when
 // that cutter is not a shape vcpost models (a drill point, a taper).
-std::optional<geometry::Tool> tool_from_program(std::string_view text, const std::string& file_name);
+std::optional<geometry::Tool> tool_from_program(std::string_view text,
+                                                const std::string& file_name);
 
 struct PostSettings {
   pipeline::PointSettings point;
-  double sample_spacing_mm = 0.5;   // largest distance between evaluated points
+  double sample_spacing_mm = 0.5;         // largest distance between evaluated points
   std::optional<gcode::Dialect> dialect;  // G-code input; default: the profile's
-  bool adjust_feed = false;          // couple F = fz * z * n
-  std::optional<double> fz_mm;       // feed per tooth; default: the program's F at its S
-  std::optional<int> teeth;          // default: the profile's
+  bool adjust_feed = false;               // couple F = fz * z * n
+  std::optional<double> fz_mm;            // feed per tooth; default: the program's F at its S
+  std::optional<int> teeth;               // default: the profile's
+  int threads = 0;                        // worker threads; 0: one per core
 };
 
 // Statistics of the cutting speed over the cutting samples, weighted by
@@ -62,10 +64,10 @@ struct PostSummary {
 // One evaluated point of the path with the spindle speed before (the
 // program's) and after (the plan's), for reports.
 struct PointRecord {
-  std::uint32_t line = 0;      // NC line (CL record) of the block
-  double time_s = 0;           // from program start
-  double weight_s = 0;         // cutting time the point stands for
-  double s_before = 0, s_after = 0;  // rpm in effect
+  std::uint32_t line = 0;                 // NC line (CL record) of the block
+  double time_s = 0;                      // from program start
+  double weight_s = 0;                    // cutting time the point stands for
+  double s_before = 0, s_after = 0;       // rpm in effect
   plan::Bound bound = plan::Bound::none;  // what decided s_after
 };
 using PointSink = std::function<void(const pipeline::PathSample&, const pipeline::PointResult&,
@@ -85,12 +87,21 @@ class PostError : public std::runtime_error {
 // Posts `text` (the whole program; `file_name` for messages). Writes the
 // output program to `sink` in pieces (nothing when `sink` is empty: a dry
 // run): for G-code input the input with only S/F words changed; for CL
-// input G-code in the profile's format. With `points`, a second pass
-// evaluates the path again and hands every point to it, in path order.
+// input G-code in the profile's format. `points` receives every evaluated
+// point in path order, once its block's plan is final.
+//
+// The job streams: it reads, evaluates, plans and writes through bounded
+// windows (memory does not grow with the program, but for the text the
+// caller holds), and calls `consumed(offset)` when it will not read the
+// text before `offset` again, so the caller may release it. Contact and
+// engagement run on `settings.threads` threads, chunk by chunk; the result
+// does not depend on the number of threads. Callbacks are called from one
+// thread at a time, not always the caller's.
 PostSummary post_program(std::string_view text, const std::string& file_name,
                          const geometry::SurfaceModel& model,
                          const machines::MachineProfile& profile, const PostSettings& settings,
                          const std::function<void(std::string_view)>& sink,
-                         const Progress& progress = {}, const PointSink& points = {});
+                         const Progress& progress = {}, const PointSink& points = {},
+                         const std::function<void(std::uint64_t)>& consumed = {});
 
 }  // namespace vcpost::post

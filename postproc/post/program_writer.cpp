@@ -1,0 +1,174 @@
+#include "postproc/post/program_writer.h"
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <variant>
+
+#include "postproc/output/mazak_writer.h"
+
+namespace vcpost::post {
+namespace {
+
+// The number written for S or F.
+std::string format_word(double value, double step, int decimals) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, on_grid(value, step));
+  return buffer;
+}
+
+int decimals_of(double step) {
+  int decimals = 0;
+  while (decimals < 6 && std::abs(step * std::pow(10.0, decimals) -
+                                  std::round(step * std::pow(10.0, decimals))) > 1e-9) {
+    ++decimals;
+  }
+  return decimals;
+}
+
+output::MazakFormat format_of(const machines::OutputSpec& o) {
+  output::MazakFormat format;
+  format.program_number = o.program_number;
+  format.high_speed_mode = o.high_speed_mode;
+  format.geometry_compensation = o.geometry_compensation;
+  format.work_offset = o.work_offset;
+  format.decimals = o.decimals;
+  format.feed_decimals = o.feed_decimals;
+  format.line_numbers = o.line_numbers;
+  return format;
+}
+
+}  // namespace
+
+double on_grid(double value, double step) { return std::floor(value / step + 1e-9) * step; }
+
+ProgramWriter::ProgramWriter(std::string_view text, ProgramKind kind,
+                             const machines::MachineProfile& profile, bool adjust_feed,
+                             std::function<void(std::string_view)> sink,
+                             std::function<void(std::uint64_t)> consumed)
+    : text_(text),
+      kind_(kind),
+      adjust_feed_(adjust_feed),
+      s_step_(profile.spindle().s_resolution_rpm),
+      f_step_(std::pow(10.0, -profile.output().feed_decimals)),
+      s_decimals_(decimals_of(profile.spindle().s_resolution_rpm)),
+      f_decimals_(profile.output().feed_decimals),
+      sink_(std::move(sink)),
+      consumed_(std::move(consumed)) {
+  if (kind_ == ProgramKind::cldata) {
+    cl_writer_ = std::make_unique<output::MazakWriter>(cl_buffer_, format_of(profile.output()));
+  }
+}
+
+ProgramWriter::~ProgramWriter() = default;
+
+void ProgramWriter::add(const Chunk& chunk) {
+  if (first_pending_ + pending_.size() != chunk.first_block)
+    throw std::logic_error("ProgramWriter: chunks out of order");
+  pending_.insert(pending_.end(), chunk.blocks.begin(), chunk.blocks.end());
+  events_.insert(events_.end(), chunk.events.begin(), chunk.events.end());
+}
+
+const BlockInfo& ProgramWriter::block(std::size_t index) const {
+  return pending_.at(index - first_pending_);
+}
+
+void ProgramWriter::on_final(const plan::BlockPlan& plan,
+                             const std::optional<plan::BlockFeed>& feed) {
+  if (plan.block < first_pending_ || plan.block >= first_pending_ + pending_.size())
+    throw std::logic_error("ProgramWriter: a final block that is not held");
+  const Planned planned{&plan, feed ? &*feed : nullptr};
+  while (first_pending_ < plan.block) resolve_front({}, planned);
+  resolve_front(planned, planned);
+  if (kind_ == ProgramKind::gcode) {
+    if (!pending_.empty()) write_text_until(pending_.front().offset);
+  } else {
+    flush_cl();
+  }
+}
+
+void ProgramWriter::finish() {
+  while (!pending_.empty()) resolve_front({}, {});
+  if (kind_ == ProgramKind::gcode) {
+    write_text_until(text_.size());
+  } else {
+    cl_writer_->finish();
+    flush_cl();
+  }
+}
+
+void ProgramWriter::resolve_front(Planned own, Planned next) {
+  const BlockInfo block = pending_.front();
+  const std::size_t index = first_pending_;
+  pending_.pop_front();
+  ++first_pending_;
+
+  // S (F) in effect from this block on, when the plan changes it here: the
+  // block's own S word if planned, else the next planned block's S for a
+  // block that already carries an S word of the program.
+  std::optional<double> s, f;
+  if (own.plan && own.plan->s_word) {
+    s = own.plan->planned_rpm;
+  } else if (block.has_s && block.program_s > 0 && next.plan &&
+             next.plan->bound != plan::Bound::off) {
+    s = next.plan->planned_rpm;
+  }
+  if (adjust_feed_ && !(own.plan && own.plan->bound == plan::Bound::rapid)) {  // rapids use no F
+    if (own.feed && own.feed->f_word) {
+      f = own.feed->f_mm_per_min;
+    } else if (block.has_f && next.feed && next.plan->bound != plan::Bound::off &&
+               next.plan->bound != plan::Bound::rapid) {
+      f = next.feed->f_mm_per_min;
+    }
+  }
+  if (kind_ == ProgramKind::gcode) {
+    if (s) {
+      patches_.push_back({block.offset, 'S', format_word(*s, s_step_, s_decimals_)});
+      ++s_words_;
+    }
+    if (f) {
+      patches_.push_back({block.offset, 'F', format_word(*f, f_step_, f_decimals_)});
+      ++f_words_;
+    }
+    return;
+  }
+  // CL: the planned S (F) before the motion of a block that changes it (a
+  // new word), or in the block's own S record.
+  while (!events_.empty() && events_.front().second <= index) {
+    program::Event& event = events_.front().first;
+    if (events_.front().second == index) {
+      if (program::is_motion(event)) {
+        if (s && !block.has_s) {
+          cl_writer_->write(program::SetSpindleSpeed{on_grid(*s, s_step_), {}});
+          ++s_words_;
+        }
+        if (f && !block.has_f) {
+          cl_writer_->write(program::SetFeedRate{
+              on_grid(*f, f_step_), program::FeedMode::per_minute, {}, std::nullopt});
+          ++f_words_;
+        }
+      } else if (auto* speed = std::get_if<program::SetSpindleSpeed>(&event)) {
+        if (s) speed->rpm = on_grid(*s, s_step_);
+      }
+    }
+    cl_writer_->write(event);
+    events_.pop_front();
+  }
+}
+
+void ProgramWriter::write_text_until(std::uint64_t offset) {
+  if (offset <= written_) return;
+  for (auto& patch : patches_) patch.block_offset -= written_;
+  if (sink_) gcode::write_patched(text_.substr(written_, offset - written_), patches_, sink_);
+  patches_.clear();
+  written_ = offset;
+  if (consumed_) consumed_(written_);
+}
+
+void ProgramWriter::flush_cl() {
+  const std::string chunk = cl_buffer_.str();
+  if (!chunk.empty() && sink_) sink_(chunk);
+  cl_buffer_.str({});
+}
+
+}  // namespace vcpost::post

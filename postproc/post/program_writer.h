@@ -1,0 +1,85 @@
+// The last stage of the post job: writes the output program block by block
+// as the planner declares blocks final. G-code input: the input text with
+// only S/F words changed; CL input: G-code in the profile's format from the
+// CL events. Internal to the post module.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <sstream>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "machines/profile.h"
+#include "postproc/gcode/writer.h"
+#include "postproc/plan/spindle_plan.h"
+#include "postproc/post/path_reader.h"
+
+namespace vcpost::output {
+class MazakWriter;
+}
+
+namespace vcpost::post {
+
+// S or F on the control's grid, rounded down so vc (or the feed per tooth)
+// never exceeds the planned value.
+double on_grid(double value, double step);
+
+class ProgramWriter {
+ public:
+  // `sink` receives the output in pieces (empty: count the words only).
+  // `consumed(offset)`: the writer will not read the text before `offset`
+  // again (G-code input), so the caller may release it.
+  ProgramWriter(std::string_view text, ProgramKind kind, const machines::MachineProfile& profile,
+                bool adjust_feed, std::function<void(std::string_view)> sink,
+                std::function<void(std::uint64_t)> consumed);
+  ~ProgramWriter();
+
+  // The blocks (and for CL the events) of a chunk, in program order.
+  void add(const Chunk& chunk);
+  // The next final plan block, in order, with its coupled feed (when the
+  // feed is adjusted): writes every block up to it.
+  void on_final(const plan::BlockPlan& plan, const std::optional<plan::BlockFeed>& feed);
+  // After the last final block: writes the rest.
+  void finish();
+
+  // The program's S and F in effect on a block still held (not yet written).
+  const BlockInfo& block(std::size_t index) const;
+
+  std::uint64_t s_words() const { return s_words_; }
+  std::uint64_t f_words() const { return f_words_; }
+
+ private:
+  struct Planned {
+    const plan::BlockPlan* plan = nullptr;
+    const plan::BlockFeed* feed = nullptr;
+  };
+  // Decides and writes the front block, whose own plan is `own` (or none)
+  // and whose next planned block is `next` (or none).
+  void resolve_front(Planned own, Planned next);
+  void write_text_until(std::uint64_t offset);
+  void flush_cl();
+
+  std::string_view text_;
+  ProgramKind kind_;
+  bool adjust_feed_;
+  double s_step_, f_step_;
+  int s_decimals_, f_decimals_;
+  std::function<void(std::string_view)> sink_;
+  std::function<void(std::uint64_t)> consumed_;
+  std::deque<BlockInfo> pending_;
+  std::size_t first_pending_ = 0;                              // program index of pending_.front()
+  std::deque<std::pair<program::Event, std::size_t>> events_;  // CL
+  std::vector<gcode::WordPatch> patches_;  // decided, not yet written (offsets absolute)
+  std::uint64_t written_ = 0;              // G-code: text written up to here
+  std::ostringstream cl_buffer_;
+  std::unique_ptr<output::MazakWriter> cl_writer_;
+  std::uint64_t s_words_ = 0, f_words_ = 0;
+};
+
+}  // namespace vcpost::post

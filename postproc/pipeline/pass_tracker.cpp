@@ -276,13 +276,15 @@ void PassTracker::compact() {
     Block fresh;
     for (std::uint64_t bits = block.occupied; bits != 0; bits &= bits - 1) {
       const auto bit = static_cast<unsigned>(std::countr_zero(bits));
-      std::uint32_t* link = &fresh.heads[bit];
-      *link = none;
+      // Links by index: push_back may move `nodes`, so no pointer into it.
+      fresh.heads[bit] = none;
+      std::uint32_t last = none;
       for (std::uint32_t n = block.heads[bit]; n != none; n = nodes_[n].next) {
         if (!run_alive(run_of(nodes_[n].run))) break;
         nodes.push_back({nodes_[n].run, none});
-        *link = static_cast<std::uint32_t>(nodes.size() - 1);
-        link = &nodes.back().next;
+        const auto added = static_cast<std::uint32_t>(nodes.size() - 1);
+        (last == none ? fresh.heads[bit] : nodes[last].next) = added;
+        last = added;
       }
       if (fresh.heads[bit] != none) fresh.occupied |= std::uint64_t{1} << bit;
     }

@@ -34,12 +34,13 @@ struct NeighbourPass {
 // The candidates from an earlier pass are where it crosses the plane across
 // the feed through CC, and its points within 0.1 search radius of that plane
 // along the feed whose own segment does not cross it (pass ends); the
-// nearest of them across the feed wins (ties: any one of them).
+// nearest of them across the feed wins (ties within 1e-10 mm: any one).
 //
-// Cost: the grid indexes short runs of consecutive points (about a sixteenth
-// of the search radius long), each with a bounding capsule, so one step looks
-// at a few runs of the nearest passes and the points of about one run,
-// whatever the point spacing. Memory: O(memory) (about 100-200 bytes a point).
+// Cost: the grid indexes short runs of consecutive points (at most 32, and
+// a sixteenth of the search radius long), each with a bounding capsule, so a
+// step looks at a few runs of the nearest passes and not at points one by
+// one: on a straight pass one point of one run decides; on a curved one the
+// points of one or two runs. Memory: O(memory), about 100-200 bytes a point.
 class PassTracker {
  public:
   // search_radius: farthest neighbour considered, mm (a pass farther than

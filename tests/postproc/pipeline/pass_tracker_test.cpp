@@ -416,5 +416,25 @@ TEST(PassTrackerReference, SameNeighbourOnADenseWavyRasterWithAShortMemory) {
   expect_same_as_reference(path, d, 700, every, "wavy dense, memory 700");
 }
 
+TEST(PassTrackerReference, SameNeighbourWhileTheGridIsCompactedManyTimes) {
+  // A sparse wavy raster (1 mm along, 0.6 mm across: most steps list their
+  // run in two or three cells) through a memory of 4000 points: the grid
+  // drops forgotten runs every few passes, the first time with almost all
+  // of its nodes alive.
+  const auto part = samplegen::make_part("wavy");
+  ASSERT_TRUE(part);
+  samplegen::PathSpec spec;
+  for (const auto& program : samplegen::sample_programs()) {
+    if (program.part == "wavy" && program.path.pattern == samplegen::Pattern::raster) {
+      spec = program.path;
+    }
+  }
+  spec.stepover = 0.6;
+  spec.step = 1.0;
+  const auto path = sample_path(*part->surface, spec);
+  ASSERT_GT(path.size(), 9000u);
+  expect_same_as_reference(path, 2 * spec.tool_radius, 4000, path.size() / 2000, "wavy sparse");
+}
+
 }  // namespace
 }  // namespace vcpost::pipeline

@@ -42,6 +42,7 @@ std::string quote(std::string_view text) {
 
 // Shortest text that reads back to the same double.
 std::string number(double v) {
+  if (v == 0) return "0";  // -0.0 would print "-0", which reads back as the integer 0
   char buf[40];
   if (v == std::floor(v) && std::abs(v) < 1e15) {
     std::snprintf(buf, sizeof buf, "%.0f", v);

@@ -38,6 +38,9 @@ const std::map<std::string, std::string> kCases = {
     // A description with DEL ("\u007F"), valid TOML: it was written back
     // unescaped, which TOML forbids. Loads, and now round-trips: ok.
     {"description_del.toml", "ok"},
+    // block_time_s = -0.0 (>= 0, valid) was written back as "-0", which
+    // TOML reads as the integer 0, written "0": the text changed. ok now.
+    {"negative_zero.toml", "ok"},
 };
 
 TEST(FuzzRegressions, ProfilesGiveTheirDocumentedOutcome) {
@@ -70,6 +73,16 @@ TEST(FuzzRegressions, DescriptionKeepsItsDelCharacter) {
   const std::string text = machines::profile_to_toml(profile);
   EXPECT_NE(text.find(R"(description = "cautious\u007flimits")"), std::string::npos) << text;
   EXPECT_EQ(machines::profile_from_toml(text, "again.toml").description(), "cautious\x7flimits");
+}
+
+// Negative zero is written as "0" and reads back as zero.
+TEST(FuzzRegressions, NegativeZeroIsWrittenAsZero) {
+  const auto profile =
+      machines::profile_from_toml(read_file(kFolder / "negative_zero.toml"), "p.toml");
+  EXPECT_EQ(profile.control().block_time_s, 0.0);
+  const std::string text = machines::profile_to_toml(profile);
+  EXPECT_NE(text.find("block_time_s = 0 "), std::string::npos) << text;
+  EXPECT_EQ(text.find("-0"), std::string::npos) << text;
 }
 
 // A saved input without an expected outcome would never be checked.

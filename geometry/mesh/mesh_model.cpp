@@ -11,7 +11,7 @@
 namespace vcpost::mesh {
 namespace {
 
-constexpr std::uint32_t leaf_size = 4;
+constexpr std::uint32_t leaf_size = 2;
 constexpr int max_stack = 128;
 
 float round_up(double v) {

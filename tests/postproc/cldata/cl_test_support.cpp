@@ -1,5 +1,6 @@
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <unistd.h>
@@ -53,7 +54,12 @@ std::optional<std::string> run_rs274(const std::string& path) {
     std::ofstream t(table);
     for (int i = 1; i <= 99; ++i) t << 'T' << i << " P" << i << " Z0 D6\n";
   }
-  const std::string command = "/usr/bin/rs274 -t '" + table + "' -g '" + path + "' 2>&1";
+  // In the program's own folder, with no terminal: rs274 keeps its parameter
+  // file in the working folder, which parallel tests would otherwise share.
+  const std::string folder = std::filesystem::path(path).parent_path().string();
+  const std::string command = "cd '" + (folder.empty() ? std::string(".") : folder) +
+                              "' && /usr/bin/rs274 -t '" + table + "' -g '" + path +
+                              "' < /dev/null 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return std::nullopt;
   std::string out;

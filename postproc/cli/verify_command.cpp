@@ -74,18 +74,6 @@ std::string read_file(const std::string& path) {
   return text.str();
 }
 
-gcode::Dialect dialect_of(const machines::MachineProfile& profile) {
-  switch (profile.dialect()) {
-    case machines::Dialect::fanuc:
-      return gcode::fanuc_dialect();
-    case machines::Dialect::mazak:
-      return gcode::mazak_dialect();
-    case machines::Dialect::rs274ngc:
-      break;
-  }
-  return gcode::rs274ngc_dialect();
-}
-
 nlohmann::json to_json(const verify::Result& r) {
   nlohmann::json changes = nlohmann::json::array();
   for (const auto& c : r.changes)
@@ -120,7 +108,7 @@ void run(const Arguments& args) {
     throw CommandError("verify: INPUT and OUTPUT cannot both be '-'");
   const machines::MachineProfile profile = load_machine(args.machine);
   verify::Options options;
-  options.dialect = dialect_of(profile);
+  options.dialect = post::dialect_of(profile);
   if (!args.dialect.empty()) {
     const auto d = gcode::dialect_from_name(args.dialect);
     if (!d) throw CommandError("verify: --dialect: unknown dialect '" + args.dialect + "'");

@@ -29,18 +29,6 @@ constexpr double unbounded_rpm = 1e12;
 // threads), which costs little at this size.
 constexpr std::size_t chunk_samples = 2048;
 
-gcode::Dialect dialect_of(const machines::MachineProfile& profile) {
-  switch (profile.dialect()) {
-    case machines::Dialect::fanuc:
-      return gcode::fanuc_dialect();
-    case machines::Dialect::mazak:
-      return gcode::mazak_dialect();
-    case machines::Dialect::rs274ngc:
-      break;
-  }
-  return gcode::rs274ngc_dialect();
-}
-
 // Cutting-speed statistics, accumulated sample by sample.
 class VcAccumulator {
  public:
@@ -238,6 +226,18 @@ class Finisher {
 };
 
 }  // namespace
+
+gcode::Dialect dialect_of(const machines::MachineProfile& profile) {
+  switch (profile.dialect()) {
+    case machines::Dialect::fanuc:
+      return gcode::fanuc_dialect();
+    case machines::Dialect::mazak:
+      return gcode::mazak_dialect();
+    case machines::Dialect::rs274ngc:
+      break;
+  }
+  return gcode::rs274ngc_dialect();
+}
 
 ProgramKind detect_program_kind(std::string_view text) {
   // The first statement that is not blank or a comment decides.

@@ -20,6 +20,9 @@ namespace vcpost::post {
 
 enum class ProgramKind { gcode, cldata };
 
+// The G-code dialect a machine profile reads.
+gcode::Dialect dialect_of(const machines::MachineProfile& profile);
+
 // G-code or APT CL data, recognised by content: CL records are `WORD/...`
 // statements (GOTO/, FEDRAT/, CUTTER/ ...) or bare PARTNO/FINI lines.
 ProgramKind detect_program_kind(std::string_view text);

@@ -53,18 +53,6 @@ Posted post_with(const std::string& input, const std::string& name,
   return p;
 }
 
-gcode::Dialect dialect_of(const machines::MachineProfile& profile) {
-  switch (profile.dialect()) {
-    case machines::Dialect::fanuc:
-      return gcode::fanuc_dialect();
-    case machines::Dialect::mazak:
-      return gcode::mazak_dialect();
-    case machines::Dialect::rs274ngc:
-      break;
-  }
-  return gcode::rs274ngc_dialect();
-}
-
 // A plane under the program's lowest feed move, as wide as its feed moves:
 // the tool touches it wherever the program cuts deepest.
 geometry::AnalyticModel floor_under(const std::string& program, const gcode::Dialect& dialect) {
@@ -138,7 +126,7 @@ TEST(VerifyPrograms, SharedGcodeProgramsPostedVerify) {
     std::optional<Posted> p;
     try {
       p = post_with(input, entry.path().filename().string(),
-                    floor_under(input, dialect_of(profile)), profile, settings);
+                    floor_under(input, post::dialect_of(profile)), profile, settings);
     } catch (const std::exception& e) {
       // A program the post refuses (a macro program that reads machine
       // state) cannot be posted; it must still verify against itself, or
@@ -146,7 +134,7 @@ TEST(VerifyPrograms, SharedGcodeProgramsPostedVerify) {
       std::printf("%s: not posted (%s)\n", entry.path().filename().string().c_str(), e.what());
       try {
         Options options;
-        options.dialect = dialect_of(profile);
+        options.dialect = post::dialect_of(profile);
         const Result r = verify_gcode(input, input, options);
         EXPECT_TRUE(r.ok());
         EXPECT_TRUE(r.changes.empty());
@@ -157,7 +145,7 @@ TEST(VerifyPrograms, SharedGcodeProgramsPostedVerify) {
     }
     std::printf("%s:\n", entry.path().filename().string().c_str());
     EXPECT_GT(p->summary.s_words, 0u);
-    expect_verified_gcode(input, *p, dialect_of(profile));
+    expect_verified_gcode(input, *p, post::dialect_of(profile));
     ++posted;
   }
   EXPECT_GE(posted, 4);

@@ -78,8 +78,7 @@ class Finisher {
  public:
   Finisher(const machines::MachineProfile& profile, const PostSettings& settings,
            ProgramWriter& writer, const PointSink& points, PostSummary& summary)
-      : settings_(settings),
-        planner_(profile.spindle()),
+      : planner_(profile.spindle()),
         writer_(writer),
         points_(points),
         summary_(summary),
@@ -211,7 +210,6 @@ class Finisher {
     final_.clear();
   }
 
-  const PostSettings& settings_;
   plan::StreamingPlanner planner_;
   std::optional<plan::StreamingFeedPlanner> feeds_;
   ProgramWriter& writer_;

@@ -3,6 +3,8 @@
 // with the warning for warning files; a 10 MB line is refused the same way;
 // --time prints the programmed time.
 #include <gtest/gtest.h>
+
+#include "../cli_run_support.h"
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -16,16 +18,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using Outcome = vcpost::testing::CliOutcome;
+using vcpost::testing::slurp;
 
 class MovesCli : public ::testing::Test {
  protected:
@@ -36,15 +30,7 @@ class MovesCli : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
 
   Outcome run(const std::string& arguments) const {
-    const std::string command = std::string("'") + VCPOST_BINARY + "' moves " + arguments + " > '" +
-                                (dir_ / "out").string() + "' 2> '" + (dir_ / "err").string() +
-                                "' < /dev/null";
-    const int status = std::system(command.c_str());
-    Outcome r;
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(dir_ / "out");
-    r.err = slurp(dir_ / "err");
-    return r;
+    return vcpost::testing::run_vcpost("moves " + arguments, dir_);
   }
 
   fs::path dir_;

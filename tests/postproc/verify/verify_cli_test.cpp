@@ -3,6 +3,8 @@
 // E71xx diagnostics (at most 20, then "... and K more"), exit 2 for input
 // errors; a CL sample posted by `vcpost post` verifies.
 #include <gtest/gtest.h>
+
+#include "../cli_run_support.h"
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -16,16 +18,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using Outcome = vcpost::testing::CliOutcome;
+using vcpost::testing::slurp;
 
 const std::string kInput =
     "(finish)\nG21 G90 G17 G94\nT1 M6\nS12000 M3\nG0 X0 Y0 Z5\nG1 Z-1 F800\nG1 X10.5 Y2\nM5\nM30\n";
@@ -47,14 +41,7 @@ class VerifyCli : public ::testing::Test {
   }
 
   Outcome run(const std::string& arguments) const {
-    const std::string command = std::string("cd '") + dir_.string() + "' && '" + VCPOST_BINARY +
-                                "' " + arguments + " > out.txt 2> err.txt < /dev/null";
-    const int status = std::system(command.c_str());
-    Outcome r;
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(dir_ / "out.txt");
-    r.err = slurp(dir_ / "err.txt");
-    return r;
+    return vcpost::testing::run_vcpost(arguments, dir_);
   }
 
   fs::path dir_;

@@ -17,6 +17,7 @@
 #include "machines/builtin.h"
 #include "postproc/gcode/interpreter.h"
 #include "../dome_program_support.h"
+#include "../rs274_support.h"
 #include "postproc/post/post_job.h"
 #include "postproc/program/timing.h"
 
@@ -200,27 +201,7 @@ TEST(PostJob, Rs274ReadsTheSameMotionFromInputAndOutput) {
   const auto dir = std::filesystem::temp_directory_path() / "vcpost_post_job_test";
   std::filesystem::create_directories(dir);
   auto transcript = [&](const std::string& name, const std::string& text) {
-    std::ofstream(dir / name) << text;
-    const std::string command = "rs274 -g '" + (dir / name).string() + "' < /dev/null 2>&1";
-    std::string lines, result;
-    if (FILE* pipe = popen(command.c_str(), "r")) {
-      char buffer[65536];
-      std::size_t n;
-      while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) lines.append(buffer, n);
-      pclose(pipe);
-    }
-    std::istringstream in(lines);
-    std::string line;
-    while (std::getline(in, line)) {
-      // Drop the sequence number and the spindle and feed calls.
-      static const std::regex call(R"([A-Z_]+\(.*)");
-      std::smatch m;
-      if (!std::regex_search(line, m, call)) continue;
-      const std::string rest = m[0];
-      if (rest.starts_with("SET_SPINDLE_SPEED") || rest.starts_with("SET_FEED_RATE")) continue;
-      result += rest + "\n";
-    }
-    return result;
+    return testing::rs274_motion(dir, name, text);
   };
   const std::string a = transcript("in.ngc", input), b = transcript("out.ngc", output);
   EXPECT_GT(std::count(a.begin(), a.end(), '\n'), 400);

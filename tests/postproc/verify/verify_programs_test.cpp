@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "../dome_program_support.h"
+#include "../rs274_support.h"
 #include "geometry/analytic_surfaces.h"
 #include "geometry/occt/brep_model.h"
 #include "machines/builtin.h"
@@ -222,30 +223,7 @@ TEST(VerifyPrograms, GcodeSamplesPostedVerify) {
 std::pair<std::string, std::uint32_t> moved(const std::string& output, const std::string& axis,
                                             int nth, double delta);
 
-// LinuxCNC's canonical transcript of a program without the spindle-speed
-// and feed-rate calls and the sequence numbers; empty when rs274 fails.
-std::string rs274_motion(const fs::path& dir, const std::string& name, const std::string& text) {
-  std::ofstream(dir / name, std::ios::binary) << text;
-  const std::string command = "rs274 -g '" + (dir / name).string() + "' < /dev/null 2>&1";
-  std::string lines, result;
-  if (FILE* pipe = popen(command.c_str(), "r")) {
-    char buffer[65536];
-    std::size_t n;
-    while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) lines.append(buffer, n);
-    pclose(pipe);
-  }
-  std::istringstream in(lines);
-  std::string line;
-  static const std::regex call(R"([A-Z_]+\(.*)");
-  while (std::getline(in, line)) {
-    std::smatch m;
-    if (!std::regex_search(line, m, call)) continue;
-    const std::string rest = m[0];
-    if (rest.starts_with("SET_SPINDLE_SPEED") || rest.starts_with("SET_FEED_RATE")) continue;
-    result += rest + "\n";
-  }
-  return result;
-}
+using testing::rs274_motion;
 
 // The verdict agrees with an independent reader: LinuxCNC's rs274 reads the
 // same motion from a sample and its posted program (verify passes), and

@@ -154,35 +154,33 @@ void StreamingPlanner::add_point(const Sample& s, std::size_t block, bool first)
   points_.push_back(p);
   if (s.rapid) return;  // its E waits for the next cut
   const double e = clamp(s.target_rpm ? *s.target_rpm : s.program_rpm);
-  auto forward = [this](Point& q) {
-    q.forward = last_forward_
-                    ? std::min(q.ceiling, *last_forward_ + spec_.acceleration_rpm_per_s *
-                                                               (q.time_s - last_forward_time_))
-                    : q.ceiling;
-    last_forward_ = q.forward;
-    last_forward_time_ = q.time_s;
-  };
   // The rapids since the last cut take the larger neighbouring ceiling.
   for (std::size_t i = known_; i + 1 < points_.size(); ++i) {
     points_[i].ceiling = std::max(last_cut_ceiling_.value_or(0.0), e);
-    forward(points_[i]);
+    step_forward(points_[i]);
   }
   points_.back().ceiling = e;
-  forward(points_.back());
+  step_forward(points_.back());
   last_cut_ceiling_ = e;
   known_ = points_.size();
+}
+
+// The forward pass at one more point: the curve rises at most at the
+// spindle's acceleration from the last point, and stays under the ceiling.
+void StreamingPlanner::step_forward(Point& q) {
+  q.forward = last_forward_
+                  ? std::min(q.ceiling, *last_forward_ + spec_.acceleration_rpm_per_s *
+                                                             (q.time_s - last_forward_time_))
+                  : q.ceiling;
+  last_forward_ = q.forward;
+  last_forward_time_ = q.time_s;
 }
 
 void StreamingPlanner::settle_ceilings_at_run_end() {
   for (std::size_t i = known_; i < points_.size(); ++i) {
     auto& q = points_[i];
     q.ceiling = last_cut_ceiling_ ? *last_cut_ceiling_ : clamp(q.program_rpm);
-    q.forward = last_forward_
-                    ? std::min(q.ceiling, *last_forward_ + spec_.acceleration_rpm_per_s *
-                                                               (q.time_s - last_forward_time_))
-                    : q.ceiling;
-    last_forward_ = q.forward;
-    last_forward_time_ = q.time_s;
+    step_forward(q);
   }
   known_ = points_.size();
 }

@@ -121,6 +121,7 @@ class StreamingPlanner {
   void start_run(SpindleState direction, std::size_t first_block);
   void end_run();
   void add_point(const Sample& s, std::size_t block, bool first);
+  void step_forward(Point& q);
   void settle_ceilings_at_run_end();
   bool settle_curve(bool run_end);
   void fold(const Point& p);

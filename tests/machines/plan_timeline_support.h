@@ -21,4 +21,21 @@ machines::SpindleSpec property_spec(int round, std::mt19937& rng);
 std::vector<Sample> random_timeline(const machines::SpindleSpec& spec, std::mt19937& rng,
                                     double time_scale = 1.0);
 
+// One sample per block at its start, blocks of `dt` seconds, targets
+// target(t) in rpm.
+template <class F>
+std::vector<Sample> uniform(std::size_t blocks, double dt, F target, double program_rpm = 8000) {
+  std::vector<Sample> out;
+  out.reserve(blocks);
+  for (std::size_t k = 0; k < blocks; ++k) {
+    Sample s;
+    s.time_s = static_cast<double>(k) * dt;
+    s.block = k;
+    s.target_rpm = target(s.time_s);
+    s.program_rpm = program_rpm;
+    out.push_back(s);
+  }
+  return out;
+}
+
 }  // namespace vcpost::plan::testing

@@ -23,20 +23,7 @@ constexpr double kTol = 1e-6;  // rpm; the planner works on a grid of >= 0.001 r
 
 SpindleSpec mazak() { return machines::builtin_profile("mazak-3axis").spindle(); }
 
-// One sample per block at its start, blocks of `dt` seconds, targets from f.
-template <class F>
-std::vector<Sample> uniform(std::size_t blocks, double dt, F target, double program_rpm = 8000) {
-  std::vector<Sample> out;
-  for (std::size_t k = 0; k < blocks; ++k) {
-    Sample s;
-    s.time_s = static_cast<double>(k) * dt;
-    s.block = k;
-    s.target_rpm = target(s.time_s);
-    s.program_rpm = program_rpm;
-    out.push_back(s);
-  }
-  return out;
-}
+using testing::uniform;
 
 double grid_ceil(const SpindleSpec& spec, double x) {
   return std::ceil(x / spec.s_resolution_rpm - 1e-9) * spec.s_resolution_rpm;

@@ -91,21 +91,7 @@ void expect_same(const SpindlePlan& streamed, const SpindlePlan& whole) {
   }
 }
 
-// One sample per block at its start, blocks of `dt` seconds, targets from f.
-template <class F>
-std::vector<Sample> uniform(std::size_t blocks, double dt, F target, double program_rpm = 8000) {
-  std::vector<Sample> out;
-  out.reserve(blocks);
-  for (std::size_t k = 0; k < blocks; ++k) {
-    Sample s;
-    s.time_s = static_cast<double>(k) * dt;
-    s.block = k;
-    s.target_rpm = target(s.time_s);
-    s.program_rpm = program_rpm;
-    out.push_back(s);
-  }
-  return out;
-}
+using testing::uniform;
 
 // 360 random timelines: the property test's generator (tool changes, M5/S0,
 // direction changes, rapids, air moves, targets out of range) on shipped

@@ -7,11 +7,16 @@
 
 namespace vcpost::testing {
 
+std::string rs274_command(const std::string& arguments) {
+  return "flock /tmp/vcpost-rs274.lock rs274 " + arguments;
+}
+
 std::string rs274_motion(const std::filesystem::path& dir, const std::string& name,
                          const std::string& text) {
   std::ofstream(dir / name, std::ios::binary) << text;
-  const std::string command =
-      "cd '" + dir.string() + "' && rs274 -g '" + (dir / name).string() + "' < /dev/null 2>&1";
+  const std::string command = "cd '" + dir.string() + "' && " +
+                              rs274_command("-g '" + (dir / name).string() + "'") +
+                              " < /dev/null 2>&1";
   std::string lines, result;
   if (FILE* pipe = popen(command.c_str(), "r")) {
     char buffer[65536];

@@ -23,6 +23,7 @@
 #include "postproc/samplegen/surface_mesh.h"
 #include "postproc/samplegen/surfaces.h"
 #include "postproc/samplegen/toolpath.h"
+#include "tests/postproc/rs274_support.h"
 
 namespace vcpost::samplegen {
 namespace {
@@ -371,7 +372,8 @@ TEST(SampleGenerator, Rs274ReadsTheSamplePrograms) {
     SCOPED_TRACE(s.stem);
     const Written w = write(s);
     const std::string command =
-        "/usr/bin/rs274 -g '" + (dir / (s.stem + ".nc")).string() + "' < /dev/null 2>&1";
+        vcpost::testing::rs274_command("-g '" + (dir / (s.stem + ".nc")).string() + "'") +
+        " < /dev/null 2>&1";
     FILE* pipe = popen(command.c_str(), "r");
     ASSERT_NE(pipe, nullptr);
     std::string out;
@@ -419,14 +421,14 @@ TEST(SampleGenerator, WindowBeyondTheSurfaceIsRefused) {
   EXPECT_THROW(generate(*part->surface, spec, 6, [](const PathPoint&) {}), SurfaceError);
 }
 
-
 // A temporary folder removed at the end of the test.
 struct TempDir {
   fs::path path;
   TempDir() {
     path = fs::temp_directory_path() /
-           ("vcpost_samplegen_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-            "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+           ("vcpost_samplegen_test_" +
+            std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::create_directories(path);
   }
   ~TempDir() { fs::remove_all(path); }
@@ -550,7 +552,8 @@ TEST(SampleGenerator, StlGridCellsAreAboutSquare) {
   // Vertex rows: (cells_u + 1) * (cells_v + 1) vertices; cells_v = vertices
   // with x == 0 minus one.
   const auto cells_v = std::count_if(m.vertices.begin(), m.vertices.end(),
-                                     [](const Vector3d& v) { return v.x() == 0; }) - 1;
+                                     [](const Vector3d& v) { return v.x() == 0; }) -
+                       1;
   const auto cells_u = static_cast<long>(m.vertices.size()) / (cells_v + 1) - 1;
   const double ratio = static_cast<double>(cells_u) / static_cast<double>(cells_v);
   // Along y the middle line x = 60 is 80 mm long plus its waves; along x

@@ -1,11 +1,13 @@
+#include <unistd.h>
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <unistd.h>
 
 #include "tests/postproc/cldata/cl_support.h"
+#include "tests/postproc/rs274_support.h"
 
 namespace vcpost::cldata::testing {
 
@@ -57,9 +59,9 @@ std::optional<std::string> run_rs274(const std::string& path) {
   // In the program's own folder, with no terminal: rs274 keeps its parameter
   // file in the working folder, which parallel tests would otherwise share.
   const std::string folder = std::filesystem::path(path).parent_path().string();
-  const std::string command = "cd '" + (folder.empty() ? std::string(".") : folder) +
-                              "' && /usr/bin/rs274 -t '" + table + "' -g '" + path +
-                              "' < /dev/null 2>&1";
+  const std::string command =
+      "cd '" + (folder.empty() ? std::string(".") : folder) + "' && " +
+      vcpost::testing::rs274_command("-t '" + table + "' -g '" + path + "'") + " < /dev/null 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return std::nullopt;
   std::string out;

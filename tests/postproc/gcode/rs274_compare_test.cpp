@@ -22,6 +22,7 @@
 
 #include "postproc/gcode/interpreter.h"
 #include "postproc/program/transcript.h"
+#include "tests/postproc/rs274_support.h"
 
 namespace vcpost::gcode {
 namespace {
@@ -72,7 +73,8 @@ std::vector<Call> parse(const std::string& text) {
 }
 
 std::string run_rs274(const fs::path& file) {
-  const std::string command = "rs274 -g '" + file.string() + "' < /dev/null 2>&1";
+  const std::string command =
+      vcpost::testing::rs274_command("-g '" + file.string() + "'") + " < /dev/null 2>&1";
   std::string out;
   if (FILE* pipe = popen(command.c_str(), "r")) {
     char buffer[65536];

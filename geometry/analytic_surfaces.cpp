@@ -191,6 +191,7 @@ std::optional<ModelContact> AnalyticModel::closest_point(const Eigen::Vector3d& 
       best = c;
     }
   }
+  if (best && hint && !hint->curvature) best->curvature.reset();
   if (hint) {
     ++hint->warm_queries;
     if (best) {

@@ -37,7 +37,8 @@ struct ModelContact {
   Eigen::Vector3d normal =
       Eigen::Vector3d::UnitZ();                  // unit surface normal at CC, out of the material
   double distance = 0;                           // |query - CC| >= 0, mm
-  std::optional<PrincipalCurvatures> curvature;  // of the owning face at CC; empty for meshes
+  // Of the owning face at CC; empty for meshes and when the hint asks for none.
+  std::optional<PrincipalCurvatures> curvature;
   int face = -1;                                 // index of the owning face, [0, face_count())
   Eigen::Vector2d uv = Eigen::Vector2d::Zero();  // parameters on that face (model-specific)
   ContactType type = ContactType::face;
@@ -49,6 +50,9 @@ struct ModelContact {
 struct ContactHint {
   int face = -1;
   Eigen::Vector2d uv = Eigen::Vector2d::Zero();
+  // Whether answers carry curvatures (only reports read them; leaving them
+  // out saves the second fundamental form on every query).
+  bool curvature = true;
   // Counters, for reports and benchmarks only.
   std::uint64_t warm_queries = 0;  // answered from the hint
   std::uint64_t cold_queries = 0;  // went through the spatial index

@@ -477,8 +477,9 @@ struct BrepModel::Impl {
     return state == TopAbs_IN ? Trim::inside : state == TopAbs_OUT ? Trim::outside : Trim::boundary;
   }
 
+  // curvature: whether to fill ModelContact::curvature (only reports read it).
   ModelContact make_contact(int face, const Vector3d& p, const Vector2d& uv, const SurfacePoint& s,
-                            ContactType type, const Vector3d& point) const {
+                            ContactType type, const Vector3d& point, bool curvature) const {
     const FaceData& f = faces[static_cast<std::size_t>(face)];
     ModelContact c;
     c.point = point;
@@ -488,7 +489,7 @@ struct BrepModel::Impl {
     if (f.reversed) n = -n;
     c.normal = n;
     c.distance = (p - point).norm();
-    c.curvature = curvature_at(s, n);
+    if (curvature) c.curvature = curvature_at(s, n);
     c.face = face;
     c.uv = uv;
     c.type = type;
@@ -497,7 +498,8 @@ struct BrepModel::Impl {
 
   // Closest point of the face's boundary edges (seams and degenerate edges
   // excluded), nearer than `bound`.
-  std::optional<ModelContact> on_edges(int face, const Vector3d& p, double bound) const {
+  std::optional<ModelContact> on_edges(int face, const Vector3d& p, double bound,
+                                       bool curvature) const {
     const FaceData& f = faces[static_cast<std::size_t>(face)];
     double best = bound;
     const FaceEdge* best_edge = nullptr;
@@ -546,13 +548,13 @@ struct BrepModel::Impl {
     const SurfacePoint s = f.eval.d2(uv.x(), uv.y());
     const ContactType type =
         (!e.closed && (best_t <= e.t0 || best_t >= e.t1)) ? ContactType::vertex : ContactType::edge;
-    return make_contact(face, p, uv, s, type, best_point);
+    return make_contact(face, p, uv, s, type, best_point, curvature);
   }
 
   // The exact closest point of one face from a start (u,v): Newton on the
   // surface, then the trim; outside it, the face's edges.
   std::optional<ModelContact> refine(int face, const Vector3d& p, const Vector2d& start,
-                                     double bound) const {
+                                     double bound, bool curvature) const {
     const FaceData& f = faces[static_cast<std::size_t>(face)];
     const std::optional<Local> local = newton(f, p, start);
     if (!local) return std::nullopt;
@@ -560,9 +562,9 @@ struct BrepModel::Impl {
     if (!local->on_box_bound) {
       if (classify(f, local->uv) == Trim::inside) {
         if (d >= bound) return std::nullopt;
-        return face_contact(face, p, local->uv, local->s);
+        return face_contact(face, p, local->uv, local->s, curvature);
       }
-      return on_edges(face, p, bound);
+      return on_edges(face, p, bound, curvature);
     }
     // On the (u,v) box of an untrimmed face: the box is the face's border,
     // so this is the local minimum over the face; no nearer than the bound
@@ -572,10 +574,10 @@ struct BrepModel::Impl {
     // seam is no edge of ours, and there the surface point is the answer.
     // It must be a true foot point (p - S along the normal), not a point
     // where the box merely stopped Newton's method.
-    std::optional<ModelContact> edge = on_edges(face, p, bound);
+    std::optional<ModelContact> edge = on_edges(face, p, bound, curvature);
     const bool on_face = f.natural || classify(f, local->uv) != Trim::outside;
     if (on_face && d < bound && (!edge || d < edge->distance - 1e-9)) {
-      ModelContact c = face_contact(face, p, local->uv, local->s);
+      ModelContact c = face_contact(face, p, local->uv, local->s, curvature);
       if ((p - c.point).cross(c.normal).norm() <= 1e-7 * std::max(1.0, d)) return c;
     }
     return edge;
@@ -584,16 +586,17 @@ struct BrepModel::Impl {
   // A contact inside a face; where the parametrisation is singular (a
   // pole: first fundamental form degenerate) normal and curvatures come
   // from a point a hair inside the (u,v) box.
-  ModelContact face_contact(int face, const Vector3d& p, const Vector2d& uv,
-                            const SurfacePoint& s) const {
+  ModelContact face_contact(int face, const Vector3d& p, const Vector2d& uv, const SurfacePoint& s,
+                            bool curvature) const {
     const FaceData& f = faces[static_cast<std::size_t>(face)];
     const double area = s.su.cross(s.sv).norm();
     if (area > 1e-10 * std::max(1.0, s.su.squaredNorm() + s.sv.squaredNorm())) {
-      return make_contact(face, p, uv, s, ContactType::face, s.p);
+      return make_contact(face, p, uv, s, ContactType::face, s.p, curvature);
     }
     const Vector2d centre((f.u0 + f.u1) / 2, (f.v0 + f.v1) / 2);
     const Vector2d nudged = uv + 1e-9 * (centre - uv);
-    return make_contact(face, p, uv, f.eval.d2(nudged.x(), nudged.y()), ContactType::face, s.p);
+    return make_contact(face, p, uv, f.eval.d2(nudged.x(), nudged.y()), ContactType::face, s.p,
+                        curvature);
   }
 
   // Nearest tessellation triangle of a face within `bound`: its distance
@@ -623,8 +626,9 @@ struct BrepModel::Impl {
     std::optional<ModelContact> best;
     double bound = max_distance;
     int done = -1;
+    const bool curvature = !hint || hint->curvature;
     if (hint && hint->face >= 0 && hint->face < static_cast<int>(faces.size())) {
-      best = refine(hint->face, p, hint->uv, std::numeric_limits<double>::infinity());
+      best = refine(hint->face, p, hint->uv, std::numeric_limits<double>::infinity(), curvature);
       if (best && best->distance > bound) best.reset();
       // A failed warm start leaves the face to the global search below.
       if (best) {
@@ -641,7 +645,7 @@ struct BrepModel::Impl {
         const FaceData& f = faces[static_cast<std::size_t>(index)];
         const auto tri = nearest_triangle(f, p, bound + f.slack);
         if (tri) {
-          auto c = refine(index, p, tri->second, bound);
+          auto c = refine(index, p, tri->second, bound, curvature);
           if (c && c->distance < bound) {
             best = c;
             bound = c->distance;

@@ -339,6 +339,7 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
   };
   auto contact = [&](Chunk* chunk) -> Chunk* {
     geometry::ContactHint hint;  // cold at the chunk's start
+    hint.curvature = static_cast<bool>(points);  // only the report's points read curvatures
     for (Slot& slot : chunk->slots) {
       if (slot.kind == SlotKind::sample) slot.result.contact = evaluator.contact(slot.sample, hint);
     }

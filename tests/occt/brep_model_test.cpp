@@ -235,6 +235,27 @@ TEST_F(WavyFace, WarmAndColdAgreeAlongAPath) {
   }
 }
 
+// A hint that asks for no curvatures gets the same answers without them
+// (the post job without a report); one that asks gets them as a cold query.
+TEST_F(WavyFace, CurvaturesOnlyWhenTheHintAsksForThem) {
+  ContactHint without, with;
+  without.curvature = false;
+  for (int i = 0; i <= 100; ++i) {
+    const Vector3d p(2 + 96.0 * i / 100, 30 + 20 * std::sin(i / 20.0), 6);
+    const auto bare = model_->closest_point(p, 1e9, &without);
+    const auto full = model_->closest_point(p, 1e9, &with);
+    const auto cold = model_->closest_point(p, 1e9, nullptr);
+    ASSERT_TRUE(bare && full && cold);
+    EXPECT_FALSE(bare->curvature) << i;
+    ASSERT_TRUE(full->curvature && cold->curvature) << i;
+    EXPECT_EQ(bare->point, full->point) << i;
+    EXPECT_EQ(bare->normal, full->normal) << i;
+    EXPECT_EQ(bare->uv, full->uv) << i;
+    EXPECT_NEAR(full->curvature->k1, cold->curvature->k1, 1e-9) << i;
+    EXPECT_NEAR(full->curvature->k2, cold->curvature->k2, 1e-9) << i;
+  }
+}
+
 TEST_F(WavyFace, OutsideTheFaceTheEdgeOrCornerIsTheContact) {
   // Beyond x = 100 the boundary curve at u = 1 is nearest; beyond both
   // x = 100 and y = 0, the corner pole (100, 0, z).

@@ -26,6 +26,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include "geometry/angle_set.h"
 #include "geometry/quadrature.h"
@@ -182,10 +183,15 @@ struct EdgeCurve {
     return ball.up.x() * ball.ae / a(w) - ball.sigma * ball.up.y() -
            branch * ball.up.z() * w / sqrt0(ball.R * ball.R - w * w);
   }
-  double d2z(double w) const {
-    const double aw = a(w), h = ball.R * ball.R - w * w;
-    return -ball.up.x() * ball.ae * ball.ae / (aw * aw * aw) -
-           branch * ball.up.z() * ball.R * ball.R / (h * std::sqrt(h));
+  // dz and d2z together, sharing the square roots (the Newton step needs
+  // both at one w; same arithmetic as dz, and as d2z for w <= R).
+  std::pair<double, double> dz_d2z(double w) const {
+    const double aw = a(w), h = ball.R * ball.R - w * w, root = sqrt0(h);
+    const double dz = ball.up.x() * ball.ae / aw - ball.sigma * ball.up.y() -
+                      branch * ball.up.z() * w / root;
+    const double d2z = -ball.up.x() * ball.ae * ball.ae / (aw * aw * aw) -
+                       branch * ball.up.z() * ball.R * ball.R / (h * root);
+    return {dz, d2z};
   }
 };
 
@@ -200,11 +206,11 @@ void add_monotone_stationary(const EdgeCurve& curve, double lo, double hi, Extre
   const double tolerance = 1e-8 * curve.ball.R;
   double w = 0.5 * (lo + hi);
   for (int iteration = 0; iteration < 100; ++iteration) {
-    const double g = curve.dz(w);
+    const auto [g, dg] = curve.dz_d2z(w);
     if (g == 0) break;
     (std::signbit(g) == std::signbit(g_lo) ? lo : hi) = w;
     if (hi - lo <= tolerance) break;
-    const double newton = w - g / curve.d2z(w);
+    const double newton = w - g / dg;
     const bool inside = newton > lo && newton < hi;
     const double next = inside ? newton : 0.5 * (lo + hi);
     const bool converged = inside && std::abs(next - w) <= tolerance;

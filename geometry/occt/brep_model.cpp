@@ -928,6 +928,8 @@ std::string_view code_of(ModelErrorCode code) {
       return "E4105";
     case ModelErrorCode::kernel_failure:
       return "E4106";
+    case ModelErrorCode::bad_values:
+      return "E4107";
   }
   return "E4100";
 }

@@ -41,6 +41,7 @@ enum class ModelErrorCode {
   not_step,         // E4104: not a STEP file, or the reader refused it
   no_faces,         // E4105: read, but holds no face to touch
   kernel_failure,   // E4106: OpenCASCADE failed during transfer or meshing
+  bad_values,       // E4107: a number or unit no model can hold (not finite; not a length)
 };
 
 std::string_view code_of(ModelErrorCode code);  // "E4101" ...

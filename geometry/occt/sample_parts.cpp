@@ -7,9 +7,6 @@
 #include <Geom_SphericalSurface.hxx>
 #include <IFSelect_ReturnStatus.hxx>
 #include <Interface_Static.hxx>
-#include <Message.hxx>
-#include <Message_Messenger.hxx>
-#include <Message_Printer.hxx>
 #include <STEPControl_Writer.hxx>
 #include <Standard_Failure.hxx>
 #include <TColStd_Array1OfInteger.hxx>
@@ -19,6 +16,7 @@
 #include <gp_Ax3.hxx>
 #include <stdexcept>
 
+#include "geometry/occt/quiet_messenger.h"
 #include "geometry/occt/sample_shapes.h"
 
 namespace vcpost::occt {
@@ -48,25 +46,10 @@ void split_knots(const std::vector<double>& full, TColStd_Array1OfReal& knots,
   }
 }
 
-// OCCT's STEP writer prints transfer statistics on stdout; silence its
-// messenger while writing and give the printers back afterwards.
-class QuietMessenger {
- public:
-  QuietMessenger() : printers_(Message::DefaultMessenger()->Printers()) {
-    Message::DefaultMessenger()->ChangePrinters().Clear();
-  }
-  ~QuietMessenger() { Message::DefaultMessenger()->ChangePrinters() = printers_; }
-  QuietMessenger(const QuietMessenger&) = delete;
-  QuietMessenger& operator=(const QuietMessenger&) = delete;
-
- private:
-  Message_SequenceOfPrinters printers_;
-};
-
 void write_shape(const std::filesystem::path& path, const TopoDS_Shape& shape,
                  const std::string& name) {
   const std::filesystem::path temporary = path.string() + ".partial";
-  const QuietMessenger quiet;
+  const QuietMessenger quiet;  // the writer prints transfer statistics on stdout
   try {
     Interface_Static::SetCVal("write.step.unit", "MM");
     Interface_Static::SetCVal("write.step.schema", "AP214IS");

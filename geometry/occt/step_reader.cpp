@@ -3,15 +3,22 @@
 #include <IFSelect_ReturnStatus.hxx>
 #include <Interface_Static.hxx>
 #include <STEPControl_Reader.hxx>
+#include <Interface_Check.hxx>
 #include <Standard_Failure.hxx>
+#include <StepBasic_SiUnitAndLengthUnit.hxx>
 #include <StepData_StepModel.hxx>
+#include <StepGeom_CartesianPoint.hxx>
+#include <StepGeom_Direction.hxx>
 #include <TColStd_SequenceOfAsciiString.hxx>
 #include <TopoDS_Shape.hxx>
+#include <cmath>
 #include <fstream>
 #include <mutex>
 #include <system_error>
+#include <vector>
 
 #include "geometry/occt/brep_model.h"
+#include "geometry/occt/quiet_messenger.h"
 #include "geometry/occt/shape_model.h"
 
 namespace vcpost::occt {
@@ -53,6 +60,65 @@ void check_file(const std::filesystem::path& path) {
   }
 }
 
+// What OpenCASCADE reads without complaint but then loads wrongly: an
+// entity it could not parse or resolve (it drops it and transfers the rest:
+// a face without its boundary becomes an infinite plane, and a malformed
+// EDGE_LOOP has crashed the transfer), a number that is not finite (1.E400
+// reads as infinity, and meshing it never ends), a length unit that is not
+// a length (SI_UNIT(.MILLI.,.GRAM.) comes back as "milli", read as mm).
+void check_entities(const StepData_StepModel& model, const std::string& name) {
+  // Errors that lose entities refuse the file; an ident defined twice (OCCT
+  // keeps the first; found in real exports) does not.
+  const Handle(Interface_Check) global = model.GlobalCheck();
+  std::vector<std::string> errors;
+  for (int k = 1; k <= global->NbFails(); ++k) {
+    std::string fail = global->CFail(k);
+    if (fail.rfind("Ident defined SEVERAL TIMES", 0) == 0) continue;
+    const std::string prefix = "Undefined Parsing: ";  // OCCT's words for a syntax error
+    if (fail.rfind(prefix, 0) == 0) fail.erase(0, prefix.size());
+    // OCCT counts the line where its scanner stood: the error's, or the next.
+    if (fail.rfind("Line ", 0) == 0) fail.replace(0, 5, "near line ");
+    errors.push_back(fail);
+  }
+  if (!errors.empty()) {
+    const std::size_t more = errors.size() - 1;
+    throw ModelError(ModelErrorCode::not_step, name,
+                     "the STEP reader found errors (" + errors.front() +
+                         (more > 0 ? "; and " + std::to_string(more) + " more" : "") +
+                         "); OpenCASCADE would leave those entities out and load a different "
+                         "shape: mend the file or export it again");
+  }
+  const auto label = [&](const Handle(Standard_Transient)& entity) {
+    return "#" + std::to_string(model.IdentLabel(entity));
+  };
+  for (int i = 1; i <= model.NbEntities(); ++i) {
+    const Handle(Standard_Transient)& entity = model.Value(i);
+    if (const auto point = Handle(StepGeom_CartesianPoint)::DownCast(entity)) {
+      for (int k = 1; k <= point->NbCoordinates(); ++k) {
+        if (!std::isfinite(point->CoordinatesValue(k))) {
+          throw ModelError(ModelErrorCode::bad_values, name,
+                           label(entity) + " CARTESIAN_POINT has a coordinate that is not a "
+                                           "finite number (beyond about 1.8E308)");
+        }
+      }
+    } else if (const auto direction = Handle(StepGeom_Direction)::DownCast(entity)) {
+      for (int k = 1; k <= direction->NbDirectionRatios(); ++k) {
+        if (!std::isfinite(direction->DirectionRatiosValue(k))) {
+          throw ModelError(ModelErrorCode::bad_values, name,
+                           label(entity) + " DIRECTION has a ratio that is not a finite number");
+        }
+      }
+    } else if (const auto unit = Handle(StepBasic_SiUnitAndLengthUnit)::DownCast(entity)) {
+      if (unit->Name() != StepBasic_sunMetre) {
+        throw ModelError(ModelErrorCode::bad_values, name,
+                         label(entity) + " LENGTH_UNIT is an SI unit other than the metre: "
+                                         "lengths in this file cannot be read (export in mm "
+                                         "or inches)");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 BrepModel BrepModel::load_step(const std::filesystem::path& path, const BrepOptions& options) {
@@ -62,6 +128,7 @@ BrepModel BrepModel::load_step(const std::filesystem::path& path, const BrepOpti
   std::string unit;
   try {
     const std::lock_guard<std::mutex> lock(reader_mutex());
+    const QuietMessenger quiet;  // the reader prints on stdout; errors get our own words
     // Lengths come out of the transfer in this unit, whatever the file says.
     Interface_Static::SetCVal("xstep.cascade.unit", "MM");
     STEPControl_Reader reader;
@@ -70,6 +137,7 @@ BrepModel BrepModel::load_step(const std::filesystem::path& path, const BrepOpti
                        "the STEP reader refused the file (syntax errors or an unsupported "
                        "schema; AP203, AP214 and AP242 are read)");
     }
+    check_entities(*reader.StepModel(), name);
     // OCCT 7.6 scales to the model's local length unit (mm per unit).
     reader.StepModel()->SetLocalLengthUnit(1.0);
     TColStd_SequenceOfAsciiString lengths, angles, solid_angles;

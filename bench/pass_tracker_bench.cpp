@@ -22,6 +22,7 @@ struct Sample {
   Vector3d cc;
   Vector3d feed;
   bool new_pass = false;
+  Vector3d normal = Vector3d::UnitZ();
 };
 
 // Zig-zag raster on z = 0: passes along x, `along` mm between points,
@@ -56,8 +57,32 @@ std::vector<Sample> spiral(double along, double pitch, std::size_t points) {
   return out;
 }
 
+// Zig-zag raster over z = 4 sin(2 pi x / 40) cos(2 pi y / 55) (waves of
+// several mm, like the sample generator's wavy part): passes along x seen
+// from above, `along` mm between points and `across` mm between passes,
+// each `length` mm long; the true surface normal, the feed tangent to the
+// surface.
+std::vector<Sample> wavy_raster(double along, double across, double length, std::size_t points) {
+  constexpr double kx = 2 * std::numbers::pi / 40, ky = 2 * std::numbers::pi / 55;
+  std::vector<Sample> out;
+  const auto per_pass = static_cast<int>(std::lround(length / along)) + 1;
+  for (int k = 0; out.size() < points; ++k) {
+    const double sign = k % 2 == 0 ? 1 : -1;
+    const double y = across * k;
+    for (int i = 0; i < per_pass && out.size() < points; ++i) {
+      const double x = sign > 0 ? along * i : length - along * i;
+      const double z = 4 * std::sin(kx * x) * std::cos(ky * y);
+      const double zx = 4 * kx * std::cos(kx * x) * std::cos(ky * y);
+      const double zy = -4 * ky * std::sin(kx * x) * std::sin(ky * y);
+      const Vector3d normal = Vector3d(-zx, -zy, 1).normalized();
+      const Vector3d feed = (sign * Vector3d(1, 0, zx)).normalized();  // normal . feed = 0
+      out.push_back({Vector3d(x, y, z), feed, i == 0, normal});
+    }
+  }
+  return out;
+}
+
 void run(benchmark::State& state, const std::vector<Sample>& path) {
-  const Vector3d up(0, 0, 1);
   auto tracker = std::make_unique<PassTracker>(10.0, 40.0, std::size_t{1} << 20);
   std::size_t i = 0;
   std::size_t found = 0;
@@ -70,7 +95,7 @@ void run(benchmark::State& state, const std::vector<Sample>& path) {
     }
     const Sample& s = path[i++];
     if (s.new_pass) tracker->break_pass();
-    const auto neighbour = tracker->step(s.cc, up, s.feed);
+    const auto neighbour = tracker->step(s.cc, s.normal, s.feed);
     found += neighbour.has_value();
     benchmark::DoNotOptimize(neighbour);
   }
@@ -84,6 +109,21 @@ void BM_DenseRaster(benchmark::State& state) {
   run(state, path);
 }
 BENCHMARK(BM_DenseRaster)->Iterations(200000);
+
+// Fine raster like the sample generator's: 0.0775 mm along and across, 100 mm passes.
+void BM_FineRaster(benchmark::State& state) {
+  static const auto path = raster(0.0775, 0.0775, 100, 200000);
+  run(state, path);
+}
+BENCHMARK(BM_FineRaster)->Iterations(200000);
+
+// The fine raster over the wavy surface: what `vcpost post` meets on the
+// sample generator's wavy part (curved passes: no run is flat).
+void BM_WavyFineRaster(benchmark::State& state) {
+  static const auto path = wavy_raster(0.0775, 0.0775, 100, 200000);
+  run(state, path);
+}
+BENCHMARK(BM_WavyFineRaster)->Iterations(200000);
 
 // Sparse raster: 0.5 mm along, 2 mm across, 50 mm passes.
 void BM_SparseRaster(benchmark::State& state) {

@@ -20,6 +20,7 @@
 #include "postproc/cldata/cl_codes.h"
 #include "postproc/cli/atomic_file.h"
 #include "postproc/cli/commands.h"
+#include "postproc/cli/held_output.h"
 #include "postproc/cli/program_text.h"
 #include "postproc/gcode/diagnostics.h"
 #include "postproc/output/mazak_writer.h"
@@ -312,7 +313,7 @@ JobRun run_job(const PostArguments& args, bool write_program) {
 
   std::optional<AtomicFile> file;
   if (write_program && args.output != "-") file.emplace(args.output);
-  std::string pending;  // stdout is written only once the job has succeeded
+  HeldOutput pending;  // stdout is written only once the job has succeeded
   // A dry run still writes the program, to nowhere, so the report can say
   // how many S and F words the rewrite would change.
   std::function<void(std::string_view)> sink = [](std::string_view) {};
@@ -403,7 +404,7 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   // The program last: a failed report leaves no posted program behind.
   if (file) file->commit();
   errno = 0;
-  std::cout << pending << to_stdout << std::flush;
+  if (pending.write_to(std::cout)) std::cout << to_stdout << std::flush;
   if (!std::cout) {
     throw CommandError(std::string("cannot write to standard output: ") +
                        (errno != 0 ? std::strerror(errno) : "write error"));

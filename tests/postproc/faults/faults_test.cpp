@@ -19,29 +19,6 @@ namespace fs = std::filesystem;
 const fs::path kSamples = fs::path(VCPOST_SOURCE_DIR) / "samples";
 const std::string kVcpost = VCPOST_BINARY;
 
-// A private folder per test, removed at the end (also when read-only).
-class Folder {
- public:
-  Folder() {
-    std::string pattern = (fs::temp_directory_path() / "vcpost-faults-XXXXXX").string();
-    path_ = ::mkdtemp(pattern.data());
-    fs::permissions(path_, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
-                               fs::perms::others_read | fs::perms::others_exec);
-  }
-  ~Folder() {
-    std::error_code error;
-    for (const auto& entry : fs::recursive_directory_iterator(path_, error)) {
-      fs::permissions(entry.path(), fs::perms::owner_all, fs::perm_options::add, error);
-    }
-    fs::remove_all(path_, error);
-  }
-  const fs::path& path() const { return path_; }
-  fs::path operator/(const std::string& name) const { return path_ / name; }
-
- private:
-  fs::path path_;
-};
-
 // The post job's options for the dome sample (D10 ball, 120 m/min).
 std::vector<std::string> dome_job(const fs::path& program) {
   return {kVcpost,

@@ -1,5 +1,6 @@
 #include "postproc/post/post_job.h"
 
+#include <tbb/global_control.h>
 #include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
 
@@ -10,6 +11,7 @@
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <vector>
 
@@ -307,9 +309,12 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
   pipeline::PointEvaluator evaluator(model, settings.point);
   Finisher finisher(profile, settings, writer, points, summary);
 
-  const int threads = settings.threads > 0
-                          ? settings.threads
-                          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int threads = settings.threads > 0 ? settings.threads : cores;
+  // More threads than cores: oneTBB caps its workers at the core count by
+  // default (and warns on stderr); lift the cap for this run.
+  std::optional<tbb::global_control> parallelism;
+  if (threads > cores) parallelism.emplace(tbb::global_control::max_allowed_parallelism, threads);
   // Chunks in flight: enough to keep every thread busy, few enough to bound memory.
   const auto tokens = static_cast<std::size_t>(2 * threads + 2);
   // Every chunk in flight holds a token, so `tokens` chunks suffice; they

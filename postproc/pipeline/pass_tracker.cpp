@@ -24,6 +24,32 @@ std::int64_t cell_index(double v, double cell) {
   return static_cast<std::int64_t>(std::floor(v / cell + 0.3819660112501051));
 }
 
+// A step whose box reaches at most this many cells across the feed takes
+// its runs from a list of the runs near an earlier step (when it still
+// covers it); a new list reaches this much farther across (a fraction of
+// the reach) and along the feed (a fraction of the abeam allowance, or
+// this many steps of the path if longer).
+constexpr double nearby_reach = 2;
+constexpr double nearby_across = 0.5;
+constexpr double nearby_along = 0.5;
+constexpr double nearby_steps = 6;
+// Room for rounding in the bounds from the list's copies, mm (their
+// differences are taken in another order than in measure()).
+constexpr double nearby_slack = 1e-9;
+
+// The cells of the box around the points within `across` of cc across the
+// unit `feed` and within `along` of it along the feed.
+void cells_around(const Eigen::Vector3d& cc, const Eigen::Vector3d& feed, double across,
+                  double along, double cell, std::array<std::int64_t, 3>& lo,
+                  std::array<std::int64_t, 3>& hi) {
+  for (int i = 0; i < 3; ++i) {
+    const double f = feed[i];
+    const double half = across * std::sqrt(std::max(0.0, 1 - f * f)) + along * std::abs(f);
+    lo[static_cast<std::size_t>(i)] = cell_index(cc[i] - half, cell);
+    hi[static_cast<std::size_t>(i)] = cell_index(cc[i] + half, cell);
+  }
+}
+
 // Distance from the origin to the 2-D segment p-q.
 double distance_to_segment(double px, double py, double qx, double qy) {
   const double dx = qx - px, dy = qy - py;
@@ -297,6 +323,117 @@ void PassTracker::compact() {
   compacted_at_ = next_;
 }
 
+// Walks the lists of the cells lo..hi (inclusive cell indices): calls
+// on_list(head) for each occupied cell.
+template <class F>
+void PassTracker::for_each_list(const std::array<std::int64_t, 3>& lo,
+                                const std::array<std::int64_t, 3>& hi, F&& on_list) const {
+  for (std::int64_t bx = lo[0] >> 2; bx <= hi[0] >> 2; ++bx) {
+    for (std::int64_t by = lo[1] >> 2; by <= hi[1] >> 2; ++by) {
+      for (std::int64_t bz = lo[2] >> 2; bz <= hi[2] >> 2; ++bz) {
+        const Block* block = blocks_.find(key_of(bx, by, bz));
+        if (!block) continue;
+        // The cells of the box inside this block, as bits of `occupied`.
+        const auto span = [](std::int64_t l, std::int64_t h, std::int64_t base) {
+          const auto from = static_cast<unsigned>(std::max(l, base) - base);
+          const auto to = static_cast<unsigned>(std::min(h, base + 3) - base);
+          return ((1u << (to + 1)) - 1) & ~((1u << from) - 1);  // bits from..to of 4
+        };
+        const unsigned xs = span(lo[0], hi[0], 4 * bx), ys = span(lo[1], hi[1], 4 * by),
+                       zs = span(lo[2], hi[2], 4 * bz);
+        // Spread the y bits 4 apart and the z bits 16 apart: the products
+        // then lay the x bits on every wanted row (no carries).
+        const std::uint64_t y_rows = (ys & 1) | (ys & 2) << 3 | (ys & 4) << 6 | (ys & 8) << 9;
+        const std::uint64_t z_planes = std::uint64_t{zs & 1} | std::uint64_t{zs & 2} << 15 |
+                                       std::uint64_t{zs & 4} << 30 | std::uint64_t{zs & 8} << 45;
+        const std::uint64_t wanted = xs * y_rows * z_planes;
+        for (std::uint64_t bits = block->occupied & wanted; bits != 0; bits &= bits - 1) {
+          on_list(block->heads[std::countr_zero(bits)]);
+        }
+      }
+    }
+  }
+}
+
+// Lists the closed runs that may come within `across` of cc across the
+// feed and within `along` along it, once each, with copies of their
+// capsules side by side, for the searches of the next steps.
+void PassTracker::fill_nearby(const Eigen::Vector3d& cc, const Eigen::Vector3d& normal,
+                              const Eigen::Vector3d& feed, double across, double along) {
+  ++listing_;
+  nearby_.clear();
+  const std::uint64_t kept = oldest();
+  const std::uint64_t run_floor = run_next_ - runs_.size();
+  const std::uint64_t open = run_open_ ? run_next_ - 1 : run_next_;
+  const Eigen::Vector3d left = normal.cross(feed);
+  std::array<std::int64_t, 3> lo{}, hi{};
+  cells_around(cc, feed, across, along, cell_, lo, hi);
+  for_each_list(lo, hi, [&](std::uint32_t head) {
+    for (std::uint32_t n = head; n != none; n = nodes_[n].next) {
+      const std::uint64_t id = run_of(nodes_[n].run);
+      if (id >= open) continue;   // still growing: looked at directly
+      if (id < run_floor) break;  // overwritten: older ones are too
+      Run& r = run(id);
+      if (r.end <= kept) break;  // forgotten: older ones are too
+      if (r.listed == listing_) continue;
+      r.listed = listing_;
+      // measure()'s bounds, for the list's reach.
+      const Eigen::Vector3d da = r.a - cc, db = r.b - cc;
+      const double ha = feed.dot(da), hb = feed.dot(db);
+      const double radius = r.radius + nearby_slack;
+      if (std::min(ha, hb) - radius > along || std::max(ha, hb) + radius < -along) continue;
+      const double xa = left.dot(da), xb = left.dot(db), ya = normal.dot(da), yb = normal.dot(db);
+      if (std::min(xa, xb) - radius > across || std::max(xa, xb) + radius < -across ||
+          std::min(ya, yb) - radius > across || std::max(ya, yb) + radius < -across) {
+        continue;
+      }
+      nearby_.push(id, r);
+    }
+  });
+  nearby_cc_ = cc;
+  nearby_feed_ = feed;
+  nearby_across_ = across;
+  nearby_along_ = along;
+  nearby_from_ = open;
+  nearby_valid_ = true;
+}
+
+// Whether every point within `across` of cc across the feed and within
+// `along` along it lies within the list's reach of its step. With f' and
+// P' the list's feed and the projection across it, D = |f - f'| and such a
+// point p = cc + a f + u (|a| <= along, u across f, |u| <= across):
+// |P'f| <= D and |f'.u| = |(f' - f).u| <= D across, so
+//   |P'(p - cc')| <= across + D along + |P'(cc - cc')|,
+//   |f'.(p - cc')| <= along + D across + |f'.(cc - cc')|.
+bool PassTracker::nearby_covers(const Eigen::Vector3d& cc, const Eigen::Vector3d& feed,
+                                double across, double along) const {
+  if (!nearby_valid_) return false;
+  const double turn = (feed - nearby_feed_).norm();
+  const Eigen::Vector3d moved = cc - nearby_cc_;
+  const double ahead = nearby_feed_.dot(moved);
+  const double aside = (moved - ahead * nearby_feed_).norm();
+  return across + turn * along + aside + nearby_slack <= nearby_across_ &&
+         along + turn * across + std::abs(ahead) + nearby_slack <= nearby_along_;
+}
+
+void PassTracker::Nearby::clear() {
+  id.clear();
+  end.clear();
+  for (auto& v : a) v.clear();
+  for (auto& v : b) v.clear();
+  radius.clear();
+}
+
+void PassTracker::Nearby::push(std::uint64_t run_id, const Run& r) {
+  id.push_back(run_id);
+  end.push_back(r.end);
+  for (int i = 0; i < 3; ++i) {
+    a[i].push_back(r.a[i]);
+    b[i].push_back(r.b[i]);
+  }
+  radius.push_back(r.radius);
+}
+
 std::optional<NeighbourPass> PassTracker::nearest(const Entry& current,
                                                   const Eigen::Vector3d& normal) {
   std::optional<NeighbourPass> best;
@@ -312,6 +449,10 @@ std::optional<NeighbourPass> PassTracker::nearest(const Entry& current,
   const Eigen::Vector3d left = normal.cross(feed);
 
   std::uint64_t evaluating = 0, best_run = 0;  // the run being evaluated, the best one's
+  // Squared distance across beyond which a candidate cannot be the best:
+  // a little more than the best's square (or the radius's), so that what
+  // passes it is compared exactly and nothing nearer is lost to rounding.
+  double limit2 = radius_ * radius_ * (1 + 1e-15);
   // Returns whether the candidate was compared with the best (it lies
   // within the search radius and is not CC itself).
   auto consider = [&](const Eigen::Vector3d& p) {
@@ -322,6 +463,7 @@ std::optional<NeighbourPass> PassTracker::nearest(const Entry& current,
     best =
         NeighbourPass{across, left.dot(d) >= 0 ? geometry::Side::left : geometry::Side::right, p};
     best_run = evaluating;
+    limit2 = across * across * (1 + 1e-15);
     return true;
   };
   // The candidate of an entry of an earlier, roughly parallel pass: where
@@ -334,20 +476,33 @@ std::optional<NeighbourPass> PassTracker::nearest(const Entry& current,
     const Run& r = run(id);
     evaluating = id;
     const std::uint64_t end = std::min(r.end, cutoff_);
-    for (std::uint64_t s = std::max(r.first, kept); s < end; ++s) {
+    std::uint64_t s = std::max(r.first, kept);
+    // h of the entry before: the same expression as h1 of that entry, so
+    // it is carried from one entry to the next.
+    double h0 = s > kept && s < end ? feed.dot(ring_[(s - 1) & mask_].point - cc) : 0.0;
+    for (; s < end; ++s) {
       const Entry& e = ring_[s & mask_];
-      if (std::abs(e.feed.dot(feed)) < parallel_cos) continue;
-      const Entry* before = e.joined ? entry(s - 1) : nullptr;
       const double h1 = feed.dot(e.point - cc);
-      if (before) {
-        const double h0 = feed.dot(before->point - cc);
-        if ((h0 <= 0) != (h1 <= 0) || h1 == 0) {
-          const double t = h0 == h1 ? 1.0 : h0 / (h0 - h1);  // h0 == h1 == 0: lies in the plane
-          if (consider(before->point + t * (e.point - before->point)) && flat) return;
+      const double h_before = h0;
+      h0 = h1;
+      if (std::abs(e.feed.dot(feed)) < parallel_cos) continue;
+      if (e.joined && s > kept) {  // the entry before is kept
+        if ((h_before <= 0) != (h1 <= 0) || h1 == 0) {
+          const Eigen::Vector3d& before = ring_[(s - 1) & mask_].point;
+          // h0 == h1 == 0: the segment lies in the plane
+          const double t = h_before == h1 ? 1.0 : h_before / (h_before - h1);
+          if (consider(before + t * (e.point - before)) && flat) return;
           continue;
         }
       }
-      if (std::abs(h1) <= abeam_ && consider(e.point) && flat) return;
+      if (std::abs(h1) > abeam_) continue;
+      if (!flat) {
+        // Only a nearer candidate matters here, and most are not.
+        const Eigen::Vector3d d = e.point - cc;
+        const double x = left.dot(d), y = normal.dot(d);
+        if (x * x + y * y > limit2) continue;
+      }
+      if (consider(e.point) && flat) return;
     }
   };
   // Bounds of a closed run across the feed (lowest, highest); none when
@@ -361,14 +516,30 @@ std::optional<NeighbourPass> PassTracker::nearest(const Entry& current,
       return std::nullopt;
     }
     const double xa = left.dot(da), ya = normal.dot(da), xb = left.dot(db), yb = normal.dot(db);
+    // Each coordinate across bounds the distance: no division, no root.
+    if (std::min(xa, xb) - r.radius > worst || std::max(xa, xb) + r.radius < -worst ||
+        std::min(ya, yb) - r.radius > worst || std::max(ya, yb) + r.radius < -worst) {
+      return std::nullopt;
+    }
     const double low = distance_to_segment(xa, ya, xb, yb) - r.radius;
     if (low > worst) return std::nullopt;
     // The distance to a line is convex along the axis: largest at an end.
     const double high = std::sqrt(std::max(xa * xa + ya * ya, xb * xb + yb * yb)) + r.radius;
     return std::pair{low, high - low <= tie};
   };
-  // Collects the runs listed in a cell that may hold a candidate nearer than
-  // the best so far; the open run (no capsule yet) is evaluated at once.
+  auto worst = [&] { return best ? std::min(radius_, best->ae - tie) : radius_; };
+  // A run that may hold a candidate nearer than the best so far: the open
+  // run (no capsule yet) is evaluated at once, a closed one collected.
+  auto look_at = [&](std::uint64_t id, Run& r) {
+    if (r.mark == search_) return;
+    r.mark = search_;
+    if (r.radius < 0) {
+      evaluate(id, false);
+      return;
+    }
+    const auto bounds = measure(r, worst());
+    if (bounds) candidates_.push_back({bounds->first, id, bounds->second});
+  };
   auto scan_cell = [&](std::uint32_t head) {
     for (std::uint32_t n = head; n != none; n = nodes_[n].next) {
       const std::uint64_t id = run_of(nodes_[n].run);
@@ -376,14 +547,38 @@ std::optional<NeighbourPass> PassTracker::nearest(const Entry& current,
       if (id < run_floor) break;     // overwritten: older ones are too
       Run& r = run(id);
       if (r.end <= kept) break;  // forgotten: older ones are too
-      if (r.mark == search_) continue;
-      r.mark = search_;
-      if (r.radius < 0) {
-        evaluate(id, false);
-        continue;
-      }
-      const auto bounds = measure(r, best ? std::min(radius_, best->ae - tie) : radius_);
-      if (bounds) candidates_.push_back({bounds->first, id, bounds->second});
+      look_at(id, r);
+    }
+  };
+  // The runs listed near the last searches: the same bounds as measure's,
+  // from the copies side by side, before a run itself is read (with room
+  // for rounding: the copies are exact, the differences are taken
+  // differently); then the runs begun since they were listed.
+  auto scan_nearby = [&] {
+    const double fc = feed.dot(cc), lc = left.dot(cc), nc = normal.dot(cc);
+    const std::size_t count = nearby_.id.size();
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::uint64_t id = nearby_.id[i];
+      if (id >= run_cut_ || nearby_.end[i] <= kept) continue;
+      const double ax = nearby_.a[0][i], ay = nearby_.a[1][i], az = nearby_.a[2][i];
+      const double bx = nearby_.b[0][i], by = nearby_.b[1][i], bz = nearby_.b[2][i];
+      const double rad = nearby_.radius[i] + nearby_slack;
+      const double ha = feed.x() * ax + feed.y() * ay + feed.z() * az - fc;
+      const double hb = feed.x() * bx + feed.y() * by + feed.z() * bz - fc;
+      if (std::min(ha, hb) - rad > abeam_ || std::max(ha, hb) + rad < -abeam_) continue;
+      const double w = worst();
+      const double xa = left.x() * ax + left.y() * ay + left.z() * az - lc;
+      const double xb = left.x() * bx + left.y() * by + left.z() * bz - lc;
+      if (std::min(xa, xb) - rad > w || std::max(xa, xb) + rad < -w) continue;
+      const double ya = normal.x() * ax + normal.y() * ay + normal.z() * az - nc;
+      const double yb = normal.x() * bx + normal.y() * by + normal.z() * bz - nc;
+      if (std::min(ya, yb) - rad > w || std::max(ya, yb) + rad < -w) continue;
+      look_at(id, run(id));
+    }
+    for (std::uint64_t id = std::max(nearby_from_, run_floor); id < run_next_ && id < run_cut_;
+         ++id) {
+      Run& r = run(id);
+      if (r.end > kept) look_at(id, r);
     }
   };
 
@@ -409,39 +604,25 @@ std::optional<NeighbourPass> PassTracker::nearest(const Entry& current,
   // the abeam allowance along it lies in the box below, and so does a cell
   // listing its run. Once the best lies within r, nothing outside beats it.
   double r = best ? best->ae : last_ae_ > 0 ? 1.125 * last_ae_ : cell_;
-  for (;;) {
+  for (bool first = true;; first = false) {
     const double reach = std::min(r, radius_);
-    std::int64_t lo[3], hi[3];
-    for (int i = 0; i < 3; ++i) {
-      const double f = feed[i];
-      const double half = reach * std::sqrt(std::max(0.0, 1 - f * f)) + abeam_ * std::abs(f);
-      lo[i] = cell_index(cc[i] - half, cell_);
-      hi[i] = cell_index(cc[i] + half, cell_);
+    // The first search of a step looks at the runs listed for an earlier
+    // step while they cover its reach; a new list reaches a little farther
+    // across and along the feed, so the next steps can use it too.
+    bool listed = first && nearby_covers(cc, feed, reach, abeam_);
+    if (first && !listed && reach <= nearby_reach * cell_) {
+      const Entry* last = next_ > 0 ? entry(next_ - 1) : nullptr;
+      const double step = last && current.joined ? current.path - last->path : 0.0;
+      fill_nearby(cc, normal, feed, reach * (1 + nearby_across),
+                  abeam_ + std::max(nearby_along * abeam_, nearby_steps * step));
+      listed = true;
     }
-    for (std::int64_t bx = lo[0] >> 2; bx <= hi[0] >> 2; ++bx) {
-      for (std::int64_t by = lo[1] >> 2; by <= hi[1] >> 2; ++by) {
-        for (std::int64_t bz = lo[2] >> 2; bz <= hi[2] >> 2; ++bz) {
-          const Block* block = blocks_.find(key_of(bx, by, bz));
-          if (!block) continue;
-          // The cells of the box inside this block, as bits of `occupied`.
-          const auto span = [](std::int64_t l, std::int64_t h, std::int64_t base) {
-            const auto from = static_cast<unsigned>(std::max(l, base) - base);
-            const auto to = static_cast<unsigned>(std::min(h, base + 3) - base);
-            return ((1u << (to + 1)) - 1) & ~((1u << from) - 1);  // bits from..to of 4
-          };
-          const unsigned xs = span(lo[0], hi[0], 4 * bx), ys = span(lo[1], hi[1], 4 * by),
-                         zs = span(lo[2], hi[2], 4 * bz);
-          // Spread the y bits 4 apart and the z bits 16 apart: the products
-          // then lay the x bits on every wanted row (no carries).
-          const std::uint64_t y_rows = (ys & 1) | (ys & 2) << 3 | (ys & 4) << 6 | (ys & 8) << 9;
-          const std::uint64_t z_planes = std::uint64_t{zs & 1} | std::uint64_t{zs & 2} << 15 |
-                                         std::uint64_t{zs & 4} << 30 | std::uint64_t{zs & 8} << 45;
-          const std::uint64_t wanted = xs * y_rows * z_planes;
-          for (std::uint64_t bits = block->occupied & wanted; bits != 0; bits &= bits - 1) {
-            scan_cell(block->heads[std::countr_zero(bits)]);
-          }
-        }
-      }
+    if (listed) {
+      scan_nearby();
+    } else {
+      std::array<std::int64_t, 3> lo{}, hi{};
+      cells_around(cc, feed, reach, abeam_, cell_, lo, hi);
+      for_each_list(lo, hi, scan_cell);
     }
     // Nearest bound first: once a run's bound is no better than the best,
     // neither is any later one.

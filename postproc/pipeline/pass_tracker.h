@@ -78,6 +78,19 @@ class PassTracker {
     std::uint64_t first = 0;                      // sequence of its first entry
     std::uint64_t end = 0;                        // one past its last entry
     std::uint64_t mark = 0;                       // the last search that looked at it
+    std::uint64_t listed = 0;                     // the last listing of nearby runs with it
+  };
+  // Closed runs listed in the cells near the last searches, once each, with
+  // copies of their capsules side by side (a closed run's capsule does not
+  // change): a step whose box lies inside those cells bounds them from here
+  // before reading any run.
+  struct Nearby {
+    std::vector<std::uint64_t> id;
+    std::vector<std::uint64_t> end;  // one past the last entry of the run
+    std::array<std::vector<double>, 3> a, b;
+    std::vector<double> radius;
+    void clear();
+    void push(std::uint64_t run_id, const Run& r);
   };
   // A node of a cell's list of runs, newest first; `run` is the run's
   // sequence modulo 2^32 (live runs span far fewer).
@@ -132,6 +145,13 @@ class PassTracker {
   void register_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& q, std::uint64_t run);
   void register_cell(std::int64_t x, std::int64_t y, std::int64_t z, std::uint64_t run);
   void compact();
+  template <class F>
+  void for_each_list(const std::array<std::int64_t, 3>& lo, const std::array<std::int64_t, 3>& hi,
+                     F&& on_list) const;
+  void fill_nearby(const Eigen::Vector3d& cc, const Eigen::Vector3d& normal,
+                   const Eigen::Vector3d& feed, double across, double along);
+  bool nearby_covers(const Eigen::Vector3d& cc, const Eigen::Vector3d& feed, double across,
+                     double along) const;
   std::optional<NeighbourPass> nearest(const Entry& current, const Eigen::Vector3d& normal);
 
   double radius_, min_gap_;
@@ -164,6 +184,13 @@ class PassTracker {
   std::uint64_t run_cut_ = 0;          // runs from here on lie wholly at or after the cutoff
   std::optional<std::uint64_t> warm_;  // the run that held the last neighbour
   std::array<std::int64_t, 7> last_box_{0, 0, 0, -1, -1, -1, -1};  // cells and run last listed
+  Nearby nearby_;
+  Eigen::Vector3d nearby_cc_ = Eigen::Vector3d::Zero();  // the step it was listed for
+  Eigen::Vector3d nearby_feed_ = Eigen::Vector3d::UnitX();
+  double nearby_across_ = 0, nearby_along_ = 0;  // its reach across and along that feed, mm
+  std::uint64_t nearby_from_ = 0;  // runs from here on were open or new: looked at directly
+  std::uint64_t listing_ = 0;      // number of listings so far (marks runs listed)
+  bool nearby_valid_ = false;
 };
 
 }  // namespace vcpost::pipeline

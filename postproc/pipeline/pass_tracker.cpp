@@ -59,6 +59,17 @@ double distance_to_segment(double px, double py, double qx, double qy) {
   const double x = px + t * dx, y = py + t * dy;
   return std::sqrt(x * x + y * y);
 }
+// The range of v . o over the offsets o of the box low..high.
+std::pair<double, double> spread(const Eigen::Vector3d& v, const Eigen::Vector3d& low,
+                                 const Eigen::Vector3d& high) {
+  double from = 0, to = 0;
+  for (int i = 0; i < 3; ++i) {
+    const double p = v[i] * low[i], q = v[i] * high[i];
+    from += std::min(p, q);
+    to += std::max(p, q);
+  }
+  return {from, to};
+}
 }  // namespace
 
 // ---- BlockMap ---------------------------------------------------------------
@@ -222,12 +233,19 @@ void PassTracker::close_run() {
   const Eigen::Vector3d axis = r.b - r.a;
   const double length2 = axis.squaredNorm();
   double radius = 0;
+  Eigen::Vector3d low = Eigen::Vector3d::Zero(), high = Eigen::Vector3d::Zero();
   for (std::uint64_t s = std::max(r.first, oldest()); s < r.end; ++s) {
     const Eigen::Vector3d d = ring_[s & mask_].point - r.a;
     const double t = length2 > 0 ? std::clamp(d.dot(axis) / length2, 0.0, 1.0) : 0.0;
-    radius = std::max(radius, (d - t * axis).norm());
+    const Eigen::Vector3d offset = d - t * axis;
+    radius = std::max(radius, offset.norm());
+    low = low.cwiseMin(offset);
+    high = high.cwiseMax(offset);
   }
-  r.radius = radius * (1 + 1e-12) + 1e-12;  // rounding of the distances above
+  const double rounding = radius * 1e-12 + 1e-12;  // of the distances above
+  r.radius = radius + rounding;
+  r.offset_low = low.array() - rounding;
+  r.offset_high = high.array() + rounding;
 }
 
 // Registers `run` in every cell the segment p-q passes through: the segment
@@ -521,7 +539,16 @@ std::optional<NeighbourPass> PassTracker::nearest(const Entry& current,
         std::min(ya, yb) - r.radius > worst || std::max(ya, yb) + r.radius < -worst) {
       return std::nullopt;
     }
-    const double low = distance_to_segment(xa, ya, xb, yb) - r.radius;
+    // The same with the box of offsets instead of the ball: on a curved
+    // pass the points leave the axis mostly along the normal, which
+    // changes the distance across little where the pass lies beside CC.
+    const auto [xl, xh] = spread(left, r.offset_low, r.offset_high);
+    const auto [yl, yh] = spread(normal, r.offset_low, r.offset_high);
+    const double gap_x = std::max({0.0, std::min(xa, xb) + xl, -(std::max(xa, xb) + xh)});
+    const double gap_y = std::max({0.0, std::min(ya, yb) + yl, -(std::max(ya, yb) + yh)});
+    const double boxed = std::sqrt(gap_x * gap_x + gap_y * gap_y);
+    if (boxed > worst) return std::nullopt;
+    const double low = std::max(boxed, distance_to_segment(xa, ya, xb, yb) - r.radius);
     if (low > worst) return std::nullopt;
     // The distance to a line is convex along the axis: largest at an end.
     const double high = std::sqrt(std::max(xa * xa + ya * ya, xb * xb + yb * yb)) + r.radius;

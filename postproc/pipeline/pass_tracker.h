@@ -68,13 +68,18 @@ class PassTracker {
     bool joined = false;  // continues the previous entry (same pass, consecutive)
   };
   // Consecutive entries of one pass, at most about a cell long. Every point
-  // of its segments lies within `radius` of the axis a-b (a convex capsule),
-  // which bounds how near across the feed and how far along it they can be.
+  // of its segments lies within `radius` of the axis a-b (a convex capsule)
+  // and within a box of offsets from it, which bound how near across the
+  // feed and how far along it they can be.
   struct Run {
     Eigen::Vector3d a =
         Eigen::Vector3d::Zero();  // the entry before the first (joined), or the first
     Eigen::Vector3d b = Eigen::Vector3d::Zero();  // the last entry
     double radius = -1;                           // < 0 while the run is open (no capsule yet)
+    // Every point of its segments is a + t (b - a) + o, 0 <= t <= 1, with
+    // the offset o in the box offset_low..offset_high (and |o| <= radius).
+    Eigen::Vector3d offset_low = Eigen::Vector3d::Zero();
+    Eigen::Vector3d offset_high = Eigen::Vector3d::Zero();
     std::uint64_t first = 0;                      // sequence of its first entry
     std::uint64_t end = 0;                        // one past its last entry
     std::uint64_t mark = 0;                       // the last search that looked at it

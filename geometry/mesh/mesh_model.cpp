@@ -1,26 +1,223 @@
 #include "geometry/mesh/mesh_model.h"
 
+#include <oneapi/tbb/blocked_range.h>
+#include <oneapi/tbb/parallel_for.h>
+#include <oneapi/tbb/parallel_invoke.h>
+
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <map>
+#include <memory>
 #include <stdexcept>
+#include <utility>
 
 namespace vcpost::mesh {
 namespace {
 
 constexpr std::uint32_t leaf_size = 2;
 constexpr int max_stack = 128;
+// Subtrees at least this big are built as tasks of their own (a few
+// hundred microseconds of work: far above a task's cost).
+constexpr std::uint32_t task_size = 2048;
+// Faces per task for the per-face loops.
+constexpr std::size_t face_grain = 4096;
 
-float round_up(double v) {
-  float f = static_cast<float>(v);
-  if (static_cast<double>(f) < v) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+// x rounded to float. The empty asm hides the float from the optimizer:
+// GCC 12 at -O3 was seen to use x itself where a later expression reads the
+// rounded float back as a double (two lanes of a vectorised conversion),
+// which changes the boxes; the build relies on that rounding.
+float to_float(double x) {
+  float f = static_cast<float>(x);
+  __asm__ volatile("" : "+m"(f));
   return f;
 }
 
+float round_up(double v) {
+  float f = to_float(v);
+  if (static_cast<double>(f) < v) {
+    // std::nextafter(f, +infinity) for a finite f, without the library call
+    // (the build rounds a few hundred thousand of these).
+    if (f == 0) return std::numeric_limits<float>::denorm_min();
+    std::uint32_t bits;
+    std::memcpy(&bits, &f, sizeof bits);
+    bits = f > 0 ? bits + 1 : bits - 1;
+    std::memcpy(&f, &bits, sizeof f);
+  }
+  return f;
+}
+
+// The products of the build, summed in a fixed order: the order GCC 12 and
+// Eigen 3.4 gave `axes * x` (rows 0 and 1 left to right, row 2 its last two
+// terms first) and `axes.transpose() * x` (left to right) when the boxes were
+// first fitted, so the index stays the same bit for bit; spelled out, the
+// order no longer depends on how the compiler happens to lay out a call.
+Eigen::Vector3d times(const Eigen::Matrix3d& a, const Eigen::Vector3d& x) {
+  return {(a(0, 0) * x[0] + a(0, 1) * x[1]) + a(0, 2) * x[2],
+          (a(1, 0) * x[0] + a(1, 1) * x[1]) + a(1, 2) * x[2],
+          a(2, 0) * x[0] + (a(2, 1) * x[1] + a(2, 2) * x[2])};
+}
+Eigen::Vector3d transpose_times(const Eigen::Matrix3d& a, const Eigen::Vector3d& x) {
+  return {(a(0, 0) * x[0] + a(1, 0) * x[1]) + a(2, 0) * x[2],
+          (a(0, 1) * x[0] + a(1, 1) * x[1]) + a(2, 1) * x[2],
+          (a(0, 2) * x[0] + a(1, 2) * x[1]) + a(2, 2) * x[2]};
+}
+
+// Build-time binary hierarchy node, an oriented box: |axis[k].(x -
+// centre)| <= half[k] for every corner x of the node's triangles (axes:
+// a principal frame of the corners, or x, y, z when that box is smaller).
+// Along a smooth surface the principal frame hugs the patch, so a ball
+// resting on it reaches far fewer boxes than with axis-aligned ones.
+struct Node {
+  float centre[3];
+  float axis[3][3];
+  float half[3];
+  std::uint32_t first;  // leaf: first triangle slot; inner: index of the right child
+  std::uint32_t count;  // leaf: number of triangles (> 0); inner: 0 (left child = this + 1)
+};
+
+// (N(n), N(n + 1)), N(n) = the nodes of a subtree over n >= 1 triangles.
+// The median split makes N depend on n alone, so every subtree's place in
+// the node array is known before it is built (and the halves can be built
+// at once). N(n) = 1 for n <= leaf_size, else 1 + N(n / 2) + N(n - n / 2).
+std::pair<std::uint32_t, std::uint32_t> node_counts(std::uint32_t n) {
+  if (n < leaf_size) return {1, 1};
+  if (n == leaf_size) return {1, 3};
+  const auto [a, b] = node_counts(n / 2);  // N(k), N(k + 1) for k = n / 2
+  if (n % 2 == 0) return {1 + 2 * a, 1 + a + b};
+  return {1 + a + b, 1 + 2 * b};
+}
+
+// Sums and extents of corners, taken in slot order.
+struct Moments {
+  double sum[3] = {0, 0, 0};
+  double lo[3] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                  std::numeric_limits<double>::infinity()};
+  double hi[3] = {-lo[0], -lo[1], -lo[2]};
+  Eigen::AlignedBox3d centroids;  // of the triangles
+  Moments() { centroids.setEmpty(); }
+  void add(const Eigen::Vector3d& x) {
+    for (int k = 0; k < 3; ++k) {
+      sum[k] += x[k];
+      lo[k] = std::min(lo[k], x[k]);
+      hi[k] = std::max(hi[k], x[k]);
+    }
+  }
+};
+
+// The lanes of the wide node over a binary node of `size` triangles at
+// `binary`: its children, or grandchildren where there is room (up to four
+// lanes; a leaf stays one lane). Returns the number of lanes.
+std::size_t lanes_of(const Node* nodes, std::uint32_t binary, std::uint32_t size,
+                     std::uint32_t (&lane)[4], std::uint32_t (&lane_size)[4]) {
+  if (size <= leaf_size) {
+    lane[0] = binary;
+    lane_size[0] = size;
+    return 1;
+  }
+  std::size_t used = 2;
+  lane[0] = binary + 1;
+  lane_size[0] = size / 2;
+  lane[1] = nodes == nullptr ? 0 : nodes[binary].first;
+  lane_size[1] = size - size / 2;
+  for (std::size_t i = 0; i < used && used < 4;) {
+    if (lane_size[i] > leaf_size) {
+      const std::uint32_t n = lane_size[i];
+      std::copy_backward(lane + i + 1, lane + used, lane + used + 1);
+      std::copy_backward(lane_size + i + 1, lane_size + used, lane_size + used + 1);
+      lane[i + 1] = nodes == nullptr ? 0 : nodes[lane[i]].first;
+      lane[i] = lane[i] + 1;
+      lane_size[i] = n / 2;
+      lane_size[i + 1] = n - n / 2;
+      ++used;
+      i += 2;
+    } else {
+      ++i;
+    }
+  }
+  return used;
+}
+
+// lo, hi = the extents of the corners (xs, ys, zs)[0, n) along the rows of
+// `axes`: axes * x summed as Eigen sums that product (rows 0 and 1 left to
+// right, row 2 its last two terms first), so the extents are the ones the
+// Eigen expression gives. Two corners at a time (GCC/Clang vector
+// extension); a zero extent, whose sign depends on the order the minimum
+// is taken in, is measured again one corner at a time.
+void project(const double* xs, const double* ys, const double* zs, std::size_t n,
+             const Eigen::Matrix3d& axes, Eigen::Vector3d& lo, Eigen::Vector3d& hi) {
+  using D2 = double __attribute__((vector_size(16)));
+  const auto load = [](const double* p) {
+    D2 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+  };
+  const double a00 = axes(0, 0), a01 = axes(0, 1), a02 = axes(0, 2);
+  const double a10 = axes(1, 0), a11 = axes(1, 1), a12 = axes(1, 2);
+  const double a20 = axes(2, 0), a21 = axes(2, 1), a22 = axes(2, 2);
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  D2 lo0 = {inf, inf}, lo1 = lo0, lo2 = lo0, hi0 = -lo0, hi1 = hi0, hi2 = hi0;
+  std::size_t i = 0;
+  for (; i + 2 <= n; i += 2) {
+    const D2 x = load(xs + i), y = load(ys + i), z = load(zs + i);
+    const D2 q0 = (a00 * x + a01 * y) + a02 * z;
+    const D2 q1 = (a10 * x + a11 * y) + a12 * z;
+    const D2 q2 = a20 * x + (a21 * y + a22 * z);
+    lo0 = q0 < lo0 ? q0 : lo0;
+    lo1 = q1 < lo1 ? q1 : lo1;
+    lo2 = q2 < lo2 ? q2 : lo2;
+    hi0 = q0 > hi0 ? q0 : hi0;
+    hi1 = q1 > hi1 ? q1 : hi1;
+    hi2 = q2 > hi2 ? q2 : hi2;
+  }
+  lo = {std::min(lo0[0], lo0[1]), std::min(lo1[0], lo1[1]), std::min(lo2[0], lo2[1])};
+  hi = {std::max(hi0[0], hi0[1]), std::max(hi1[0], hi1[1]), std::max(hi2[0], hi2[1])};
+  const auto one = [&](std::size_t k) {
+    const double x = xs[k], y = ys[k], z = zs[k];
+    const double q0 = (a00 * x + a01 * y) + a02 * z;
+    const double q1 = (a10 * x + a11 * y) + a12 * z;
+    const double q2 = a20 * x + (a21 * y + a22 * z);
+    lo = {std::min(lo[0], q0), std::min(lo[1], q1), std::min(lo[2], q2)};
+    hi = {std::max(hi[0], q0), std::max(hi[1], q1), std::max(hi[2], q2)};
+  };
+  for (; i < n; ++i) one(i);
+  if ((lo.array() == 0).any() || (hi.array() == 0).any()) {
+    lo.setConstant(inf);
+    hi.setConstant(-inf);
+    for (std::size_t k = 0; k < n; ++k) one(k);
+  }
+}
+
 }  // namespace
+
+// The index is built in a fixed order of floating-point operations, the
+// same whatever the number of threads: the boxes (and so the order in which
+// queries visit triangles, which decides ties) do not depend on it.
+struct MeshModel::Builder {
+  struct Item {
+    Eigen::Vector3d centroid;
+    std::uint32_t face;
+  };
+
+  MeshModel& m;
+  std::unique_ptr<Item[]> items;         // in slot order
+  std::unique_ptr<double[]> corners[3];  // x, y, z of three per item, in slot order
+  std::unique_ptr<Node[]> nodes;
+  std::map<std::uint32_t, std::uint32_t> wide_counts;  // by subtree size
+
+  explicit Builder(MeshModel& model) : m(model) {}
+
+  void normals();
+  void tree();
+  void slots();
+  void gather(std::uint32_t begin, std::uint32_t end, Moments& moments);
+  void build(std::uint32_t index, std::uint32_t begin, std::uint32_t end, const Moments& moments);
+  void fit_node(Node& node, std::uint32_t begin, std::uint32_t end, const Moments& moments) const;
+  std::uint32_t count_wide(std::uint32_t size);
+  void collapse(std::uint32_t binary, std::uint32_t size, std::uint32_t index);
+};
 
 MeshModel::MeshModel(StlMesh mesh) : mesh_(std::move(mesh)) {
   const std::size_t nf = mesh_.triangles.size();
@@ -28,6 +225,8 @@ MeshModel::MeshModel(StlMesh mesh) : mesh_(std::move(mesh)) {
   if (nf == 0) throw std::invalid_argument("MeshModel: the mesh has no triangles");
   if (nf >= std::numeric_limits<std::uint32_t>::max() / 2)
     throw std::invalid_argument("MeshModel: too many triangles");
+  if (nv >= std::numeric_limits<std::uint32_t>::max())
+    throw std::invalid_argument("MeshModel: too many vertices");
   for (const auto& t : mesh_.triangles)
     for (auto i : t)
       if (i >= nv) throw std::invalid_argument("MeshModel: corner index out of range");
@@ -35,96 +234,190 @@ MeshModel::MeshModel(StlMesh mesh) : mesh_(std::move(mesh)) {
   bounds_.setEmpty();
   for (const auto& p : mesh_.vertices) bounds_.extend(p);
 
-  // Normals: facets, then the pseudo-normals that tell inside from outside
-  // at edges (sum of the faces sharing the edge) and vertices (angle-weighted).
-  facet_normal_.resize(nf);
-  edge_normal_.resize(nf);
-  vertex_normal_.assign(nv, Eigen::Vector3d::Zero());
-  std::map<std::pair<std::uint32_t, std::uint32_t>, Eigen::Vector3d> edge_sum;
-  for (std::size_t f = 0; f < nf; ++f) {
-    const auto& t = mesh_.triangles[f];
-    Eigen::Vector3d n = (mesh_.vertices[t[1]] - mesh_.vertices[t[0]])
-                            .cross(mesh_.vertices[t[2]] - mesh_.vertices[t[0]]);
-    const double len = n.norm();
-    facet_normal_[f] = len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::UnitZ();
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d e1 = mesh_.vertices[t[(k + 1) % 3]] - mesh_.vertices[t[k]];
-      const Eigen::Vector3d e2 = mesh_.vertices[t[(k + 2) % 3]] - mesh_.vertices[t[k]];
-      const double angle = std::atan2(e1.cross(e2).norm(), e1.dot(e2));
-      vertex_normal_[t[k]] += angle * facet_normal_[f];
-      const auto key = std::minmax(t[k], t[(k + 1) % 3]);
-      auto [it, inserted] = edge_sum.try_emplace({key.first, key.second}, Eigen::Vector3d::Zero());
-      it->second += facet_normal_[f];
+  // The normals and the tree are independent; the slots need both.
+  Builder builder(*this);
+  tbb::parallel_invoke([&] { builder.normals(); }, [&] { builder.tree(); });
+  builder.slots();
+}
+
+// Normals: facets, then the pseudo-normals that tell inside from outside
+// at edges (sum of the faces sharing the edge) and vertices (angle-weighted).
+// The sums are taken in face order, corner by corner: their rounding
+// depends on the order.
+void MeshModel::Builder::normals() {
+  const auto& vertices = m.mesh_.vertices;
+  const auto& triangles = m.mesh_.triangles;
+  const std::size_t nf = triangles.size();
+  const std::size_t nv = vertices.size();
+  m.facet_normal_.resize(nf);
+  m.edge_normal_.resize(nf);
+  m.vertex_normal_.assign(nv, Eigen::Vector3d::Zero());
+  std::vector<std::array<double, 3>> angles(nf);  // of each corner
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nf, face_grain), [&](const auto& range) {
+    for (std::size_t f = range.begin(); f < range.end(); ++f) {
+      const auto& t = triangles[f];
+      Eigen::Vector3d n = (vertices[t[1]] - vertices[t[0]]).cross(vertices[t[2]] - vertices[t[0]]);
+      const double len = n.norm();
+      m.facet_normal_[f] = len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::UnitZ();
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector3d e1 = vertices[t[(k + 1) % 3]] - vertices[t[k]];
+        const Eigen::Vector3d e2 = vertices[t[(k + 2) % 3]] - vertices[t[k]];
+        angles[f][k] = std::atan2(e1.cross(e2).norm(), e1.dot(e2));
+      }
     }
-  }
-  for (auto& n : vertex_normal_) {
+  });
+  for (std::size_t f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k)
+      m.vertex_normal_[triangles[f][k]] += angles[f][k] * m.facet_normal_[f];
+  for (auto& n : m.vertex_normal_) {
     const double len = n.norm();
     n = len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::UnitZ();
   }
-  for (std::size_t f = 0; f < nf; ++f) {
-    const auto& t = mesh_.triangles[f];
-    for (int k = 0; k < 3; ++k) {
-      const auto key = std::minmax(t[k], t[(k + 1) % 3]);
-      const Eigen::Vector3d& s = edge_sum.at({key.first, key.second});
-      const double len = s.norm();
-      edge_normal_[f][k] = len > 0 ? Eigen::Vector3d(s / len) : facet_normal_[f];
+
+  // Edges: the face sides grouped by their lower vertex (a counting sort,
+  // which keeps face order), then each group sorted by upper vertex, face
+  // and side: a run of equal upper vertices is one edge, in face order.
+  struct Side {
+    std::uint32_t upper, face, k;
+  };
+  std::vector<std::uint32_t> start(nv + 1, 0);
+  for (const auto& t : triangles)
+    for (int k = 0; k < 3; ++k) ++start[std::min(t[k], t[(k + 1) % 3]) + 1];
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<Side> sides(3 * nf);
+  {
+    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+    for (std::size_t f = 0; f < nf; ++f) {
+      const auto& t = triangles[f];
+      for (std::uint32_t k = 0; k < 3; ++k) {
+        const auto [lo, hi] = std::minmax(t[k], t[(k + 1) % 3]);
+        sides[next[lo]++] = {hi, static_cast<std::uint32_t>(f), k};
+      }
     }
   }
-
-  // The hierarchy: median split of the centroids along the box's longest axis.
-  std::vector<Eigen::Vector3d> centroids(nf);
-  slots_.resize(nf);
-  for (std::uint32_t f = 0; f < nf; ++f) {
-    const auto& t = mesh_.triangles[f];
-    centroids[f] = (mesh_.vertices[t[0]] + mesh_.vertices[t[1]] + mesh_.vertices[t[2]]) / 3.0;
-    slots_[f].face = f;
-  }
-  nodes_.reserve(2 * nf / leaf_size + 2);
-  build(0, static_cast<std::uint32_t>(nf), centroids);
-  wide_.reserve(nodes_.size() / 3 + 1);
-  collapse(0);
-  nodes_.clear();
-  nodes_.shrink_to_fit();
-  slot_of_face_.resize(nf);
-  for (std::uint32_t s = 0; s < nf; ++s) {
-    Slot& slot = slots_[s];
-    const auto& t = mesh_.triangles[slot.face];
-    slot.a = mesh_.vertices[t[0]];
-    slot.ab = mesh_.vertices[t[1]] - slot.a;
-    slot.ac = mesh_.vertices[t[2]] - slot.a;
-    slot.normal = facet_normal_[slot.face];
-    slot.abab = slot.ab.squaredNorm();
-    slot.abac = slot.ab.dot(slot.ac);
-    slot.acac = slot.ac.squaredNorm();
-    slot_of_face_[slot.face] = s;
-  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, face_grain), [&](const auto& range) {
+    for (std::size_t v = range.begin(); v < range.end(); ++v) {
+      const auto first = sides.begin() + start[v], last = sides.begin() + start[v + 1];
+      std::sort(first, last, [](const Side& x, const Side& y) {
+        return std::tie(x.upper, x.face, x.k) < std::tie(y.upper, y.face, y.k);
+      });
+      for (auto run = first; run != last;) {
+        auto end = run;
+        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+        for (; end != last && end->upper == run->upper; ++end) sum += m.facet_normal_[end->face];
+        const double len = sum.norm();
+        for (; run != end; ++run)
+          m.edge_normal_[run->face][run->k] =
+              len > 0 ? Eigen::Vector3d(sum / len) : m.facet_normal_[run->face];
+      }
+    }
+  });
 }
 
-std::uint32_t MeshModel::build(std::uint32_t begin, std::uint32_t end,
-                               std::vector<Eigen::Vector3d>& centroids) {
-  const auto index = static_cast<std::uint32_t>(nodes_.size());
-  nodes_.push_back({});
-  Eigen::AlignedBox3d centre_box;
-  centre_box.setEmpty();
-  for (std::uint32_t s = begin; s < end; ++s) centre_box.extend(centroids[slots_[s].face]);
-  fit_node(nodes_[index], begin, end);
+// The hierarchy: median split of the centroids along the box's longest axis.
+void MeshModel::Builder::tree() {
+  const auto& vertices = m.mesh_.vertices;
+  const auto& triangles = m.mesh_.triangles;
+  const auto nf = static_cast<std::uint32_t>(triangles.size());
+  items.reset(new Item[nf]);
+  for (auto& c : corners) c.reset(new double[3 * std::size_t{nf}]);
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, nf, face_grain), [&](const auto& range) {
+    for (std::uint32_t f = range.begin(); f < range.end(); ++f) {
+      const auto& t = triangles[f];
+      items[f].centroid = (vertices[t[0]] + vertices[t[1]] + vertices[t[2]]) / 3.0;
+      items[f].face = f;
+    }
+  });
+  Moments all;
+  gather(0, nf, all);
+  nodes.reset(new Node[node_counts(nf).first]);
+  build(0, 0, nf, all);
+  m.wide_.resize(count_wide(nf));
+  collapse(0, nf, 0);
+}
+
+// Triangles as the query reads them, in hierarchy order.
+void MeshModel::Builder::slots() {
+  const auto& vertices = m.mesh_.vertices;
+  const auto& triangles = m.mesh_.triangles;
+  const auto nf = static_cast<std::uint32_t>(triangles.size());
+  m.slots_.resize(nf);
+  m.slot_of_face_.resize(nf);
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, nf, face_grain), [&](const auto& range) {
+    for (std::uint32_t s = range.begin(); s < range.end(); ++s) {
+      Slot& slot = m.slots_[s];
+      slot.face = items[s].face;
+      const auto& t = triangles[slot.face];
+      slot.a = vertices[t[0]];
+      slot.ab = vertices[t[1]] - slot.a;
+      slot.ac = vertices[t[2]] - slot.a;
+      slot.normal = m.facet_normal_[slot.face];
+      slot.abab = slot.ab.squaredNorm();
+      slot.abac = slot.ab.dot(slot.ac);
+      slot.acac = slot.ac.squaredNorm();
+      m.slot_of_face_[slot.face] = s;
+    }
+  });
+}
+
+// The corners of slots [begin, end) copied side by side in slot order,
+// with their moments.
+void MeshModel::Builder::gather(std::uint32_t begin, std::uint32_t end, Moments& moments) {
+  // Locals throughout: stores through the outputs could alias anything else.
+  const Eigen::Vector3d* const vertices = m.mesh_.vertices.data();
+  const std::array<std::uint32_t, 3>* const triangles = m.mesh_.triangles.data();
+  const Item* const item = items.get();
+  const std::size_t first = 3 * std::size_t{begin};
+  double* const x = corners[0].get() + first;
+  double* const y = corners[1].get() + first;
+  double* const z = corners[2].get() + first;
+  Moments local = moments;
+  std::size_t j = 0;
+  for (std::uint32_t s = begin; s < end; ++s) {
+    local.centroids.extend(item[s].centroid);
+    for (auto i : triangles[item[s].face]) {
+      const Eigen::Vector3d p = vertices[i];
+      x[j] = p[0];
+      y[j] = p[1];
+      z[j] = p[2];
+      ++j;
+      local.add(p);
+    }
+  }
+  moments = local;
+}
+
+// Node `index` over slots [begin, end), whose corners are in place with
+// their moments; its subtree takes the next N(end - begin) nodes.
+void MeshModel::Builder::build(std::uint32_t index, std::uint32_t begin, std::uint32_t end,
+                               const Moments& moments) {
+  Node& node = nodes[index];
+  fit_node(node, begin, end, moments);
   if (end - begin <= leaf_size) {
-    nodes_[index].first = begin;
-    nodes_[index].count = end - begin;
-    return index;
+    node.first = begin;
+    node.count = end - begin;
+    return;
   }
   int axis = 0;
-  centre_box.sizes().maxCoeff(&axis);
+  moments.centroids.sizes().maxCoeff(&axis);
   const std::uint32_t mid = begin + (end - begin) / 2;
-  std::nth_element(slots_.begin() + begin, slots_.begin() + mid, slots_.begin() + end,
-                   [&](const Slot& x, const Slot& y) {
-                     return centroids[x.face][axis] < centroids[y.face][axis];
+  std::nth_element(items.get() + begin, items.get() + mid, items.get() + end,
+                   [axis](const Item& x, const Item& y) {
+                     return x.centroid[axis] < y.centroid[axis];
                    });
-  build(begin, mid, centroids);
-  const std::uint32_t right = build(mid, end, centroids);
-  nodes_[index].first = right;
-  nodes_[index].count = 0;
-  return index;
+  Moments left, right;
+  gather(begin, mid, left);
+  gather(mid, end, right);
+  const std::uint32_t right_index = index + 1 + node_counts(mid - begin).first;
+  node.first = right_index;
+  node.count = 0;
+  if (end - begin >= task_size) {
+    tbb::parallel_invoke([&] { build(index + 1, begin, mid, left); },
+                         [&] { build(right_index, mid, end, right); });
+  } else {
+    build(index + 1, begin, mid, left);
+    build(right_index, mid, end, right);
+  }
 }
 
 // The box of the corners of slots [begin, end): in the principal frame of
@@ -133,53 +426,60 @@ std::uint32_t MeshModel::build(std::uint32_t begin, std::uint32_t end,
 // extents measured in that rounded frame, then rounded up, so the box holds
 // every corner exactly; node_distance_squared allows for the rounded frame
 // being orthonormal only to float precision.
-void MeshModel::fit_node(Node& node, std::uint32_t begin, std::uint32_t end) const {
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  Eigen::AlignedBox3d box;
-  box.setEmpty();
-  std::size_t corners = 0;
-  for (std::uint32_t s = begin; s < end; ++s) {
-    for (auto i : mesh_.triangles[slots_[s].face]) {
-      mean += mesh_.vertices[i];
-      box.extend(mesh_.vertices[i]);
-      ++corners;
-    }
+void MeshModel::Builder::fit_node(Node& node, std::uint32_t begin, std::uint32_t end,
+                                  const Moments& moments) const {
+  const std::size_t first = 3 * std::size_t{begin}, n = 3 * std::size_t{end - begin};
+  const double* const xs = corners[0].get() + first;
+  const double* const ys = corners[1].get() + first;
+  const double* const zs = corners[2].get() + first;
+  Eigen::Vector3d mean(moments.sum[0], moments.sum[1], moments.sum[2]);
+  mean /= static_cast<double>(n);
+  // Entry by entry, as `covariance += d * d.transpose()` adds them (written
+  // out: Eigen's temporary outer product stalls on store forwarding).
+  double c00 = 0, c01 = 0, c02 = 0, c11 = 0, c12 = 0, c22 = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double d0 = xs[i] - mean[0], d1 = ys[i] - mean[1], d2 = zs[i] - mean[2];
+    c00 += d0 * d0;
+    c01 += d0 * d1;
+    c02 += d0 * d2;
+    c11 += d1 * d1;
+    c12 += d1 * d2;
+    c22 += d2 * d2;
   }
-  mean /= static_cast<double>(corners);
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (std::uint32_t s = begin; s < end; ++s) {
-    for (auto i : mesh_.triangles[slots_[s].face]) {
-      const Eigen::Vector3d d = mesh_.vertices[i] - mean;
-      covariance += d * d.transpose();
-    }
-  }
+  Eigen::Matrix3d covariance;
+  covariance << c00, c01, c02, c01, c11, c12, c02, c12, c22;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+  const Eigen::Vector3d box_lo(moments.lo[0], moments.lo[1], moments.lo[2]);
+  const Eigen::Vector3d box_hi(moments.hi[0], moments.hi[1], moments.hi[2]);
+  const Eigen::AlignedBox3d box(box_lo, box_hi);
   const double floor = 1e-3 * std::max(box.diagonal().norm(), 1e-9);
-  const auto fit = [&](const Eigen::Matrix3d& frame, Node& out) {
-    // Rows of `frame` are the axes; returns the floored volume.
+  // Rows of `frame` are the axes; [lo, hi] the corners' extents along the
+  // float-rounded axes, measured when not given. Returns the floored volume.
+  const auto fit = [&](const Eigen::Matrix3d& frame, Node& out, const Eigen::Vector3d* given_lo,
+                       const Eigen::Vector3d* given_hi) {
     Eigen::Matrix3d axes;
     for (int k = 0; k < 3; ++k)
       for (int j = 0; j < 3; ++j) {
-        out.axis[k][j] = static_cast<float>(frame(k, j));
-        axes(k, j) = static_cast<double>(out.axis[k][j]);
+        const float a = to_float(frame(k, j));
+        out.axis[k][j] = a;
+        axes(k, j) = static_cast<double>(a);
       }
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-    Eigen::Vector3d hi = -lo;
-    for (std::uint32_t s = begin; s < end; ++s) {
-      for (auto i : mesh_.triangles[slots_[s].face]) {
-        const Eigen::Vector3d q = axes * mesh_.vertices[i];
-        lo = lo.cwiseMin(q);
-        hi = hi.cwiseMax(q);
-      }
+    Eigen::Vector3d lo, hi;
+    if (given_lo != nullptr) {
+      lo = *given_lo;
+      hi = *given_hi;
+    } else {
+      project(xs, ys, zs, n, axes, lo, hi);
     }
     // The centre in world coordinates, rounded to float; the extents about it.
-    const Eigen::Vector3d mid = axes.transpose() * ((lo + hi) / 2);
+    const Eigen::Vector3d mid = transpose_times(axes, (lo + hi) / 2);
     Eigen::Vector3d centre;
     for (int j = 0; j < 3; ++j) {
-      out.centre[j] = static_cast<float>(mid[j]);
-      centre[j] = static_cast<double>(out.centre[j]);
+      const float f = to_float(mid[j]);
+      out.centre[j] = f;
+      centre[j] = static_cast<double>(f);
     }
-    const Eigen::Vector3d c = axes * centre;
+    const Eigen::Vector3d c = times(axes, centre);
     double volume = 1;
     for (int k = 0; k < 3; ++k) {
       const double h = std::max(hi[k] - c[k], c[k] - lo[k]);
@@ -190,9 +490,14 @@ void MeshModel::fit_node(Node& node, std::uint32_t begin, std::uint32_t end) con
     }
     return volume;
   };
-  Node principal = node, aligned = node;
-  const double v_principal = fit(solver.eigenvectors().transpose(), principal);
-  const double v_aligned = fit(Eigen::Matrix3d::Identity(), aligned);
+  Node principal{}, aligned{};
+  const double v_principal = fit(solver.eigenvectors().transpose(), principal, nullptr, nullptr);
+  // In x, y, z the projections are the coordinates themselves (1 x + 0 y +
+  // 0 z), so the extents are the box's: exactly, zeros apart (whose sign
+  // the projection may flip; those boxes are measured as in any frame).
+  const bool zero = (box_lo.array() == 0).any() || (box_hi.array() == 0).any();
+  const double v_aligned = zero ? fit(Eigen::Matrix3d::Identity(), aligned, nullptr, nullptr)
+                                : fit(Eigen::Matrix3d::Identity(), aligned, &box_lo, &box_hi);
   const Node& chosen = v_principal < v_aligned ? principal : aligned;
   std::copy(std::begin(chosen.centre), std::end(chosen.centre), node.centre);
   for (int k = 0; k < 3; ++k) {
@@ -201,33 +506,29 @@ void MeshModel::fit_node(Node& node, std::uint32_t begin, std::uint32_t end) con
   std::copy(std::begin(chosen.half), std::end(chosen.half), node.half);
 }
 
-// A wide node over binary node `binary`: its children, or grandchildren
-// where there is room (up to four lanes; a leaf stays one lane). Each lane
-// keeps its binary node's frame, with the centre turned into per-axis
-// offsets rounded to float and the half extents grown by that rounding.
-std::uint32_t MeshModel::collapse(std::uint32_t binary) {
-  std::vector<std::uint32_t> lanes;
-  const Node& top = nodes_[binary];
-  if (top.count > 0) {
-    lanes.push_back(binary);
-  } else {
-    lanes = {binary + 1, top.first};
-    for (std::size_t i = 0; i < lanes.size() && lanes.size() < 4;) {
-      const Node& n = nodes_[lanes[i]];
-      if (n.count == 0) {
-        const std::uint32_t left = lanes[i] + 1, right = n.first;
-        lanes[i] = left;
-        lanes.insert(lanes.begin() + static_cast<std::ptrdiff_t>(i) + 1, right);
-        i += 2;
-      } else {
-        ++i;
-      }
-    }
-  }
-  const auto index = static_cast<std::uint32_t>(wide_.size());
-  wide_.emplace_back();
-  for (int l = 0; l < 4; ++l) {
-    WideNode& w = wide_[index];
+// Wide nodes over a binary subtree of `size` triangles: like N, a function
+// of the size alone, so each wide subtree's place is known in advance too.
+std::uint32_t MeshModel::Builder::count_wide(std::uint32_t size) {
+  if (const auto it = wide_counts.find(size); it != wide_counts.end()) return it->second;
+  std::uint32_t lane[4], lane_size[4];
+  const std::size_t used = lanes_of(nullptr, 0, size, lane, lane_size);
+  std::uint32_t count = 1;
+  for (std::size_t l = 0; l < used; ++l)
+    if (lane_size[l] > leaf_size) count += count_wide(lane_size[l]);
+  wide_counts[size] = count;
+  return count;
+}
+
+// Wide node `index` over binary node `binary` (of `size` triangles), its
+// subtree in preorder after it. Each lane keeps its binary node's frame,
+// with the centre turned into per-axis offsets rounded to float and the
+// half extents grown by that rounding.
+void MeshModel::Builder::collapse(std::uint32_t binary, std::uint32_t size, std::uint32_t index) {
+  std::uint32_t lane[4], lane_size[4], lane_wide[4];
+  const std::size_t used = lanes_of(nodes.get(), binary, size, lane, lane_size);
+  WideNode& w = m.wide_[index];
+  std::uint32_t next = index + 1;
+  for (std::size_t l = 0; l < 4; ++l) {
     w.child[l] = kNone;
     w.count[l] = 0;
     for (int k = 0; k < 3; ++k) {
@@ -236,33 +537,38 @@ std::uint32_t MeshModel::collapse(std::uint32_t binary) {
       w.offset[k][l] = std::numeric_limits<float>::max();
       w.half[k][l] = 0;
     }
-  }
-  for (std::size_t l = 0; l < lanes.size(); ++l) {
-    const Node n = nodes_[lanes[l]];
-    float axis[3][3], offset[3], half[3];
+    if (l >= used) continue;
+    const Node& n = nodes[lane[l]];
     for (int k = 0; k < 3; ++k) {
       double exact = 0;
       for (int j = 0; j < 3; ++j) {
-        axis[k][j] = n.axis[k][j];
+        w.axis[k][j][l] = n.axis[k][j];
         exact += static_cast<double>(n.axis[k][j]) * static_cast<double>(n.centre[j]);
       }
-      offset[k] = static_cast<float>(exact);
-      const double moved = std::abs(static_cast<double>(offset[k]) - exact);
+      const float offset = to_float(exact);
+      w.offset[k][l] = offset;
+      const double moved = std::abs(static_cast<double>(offset) - exact);
       // Grown by the rounding of offset and by the query's float error on
       // the offset's side (1e-6 |offset|, see closest_point).
-      half[k] = round_up(static_cast<double>(n.half[k]) + moved + 1e-6 * std::abs(exact) + 1e-12);
+      w.half[k][l] =
+          round_up(static_cast<double>(n.half[k]) + moved + 1e-6 * std::abs(exact) + 1e-12);
     }
-    const std::uint32_t child = n.count > 0 ? n.first : collapse(lanes[l]);
-    WideNode& w = wide_[index];  // collapse may have moved the array
-    for (int k = 0; k < 3; ++k) {
-      for (int j = 0; j < 3; ++j) w.axis[k][j][l] = axis[k][j];
-      w.offset[k][l] = offset[k];
-      w.half[k][l] = half[k];
-    }
-    w.child[l] = child;
     w.count[l] = n.count;
+    if (n.count > 0) {
+      w.child[l] = n.first;
+    } else {
+      w.child[l] = lane_wide[l] = next;
+      next += wide_counts.at(lane_size[l]);
+    }
   }
-  return index;
+  const auto descend = [&](std::size_t l) {
+    if (lane_size[l] > leaf_size) collapse(lane[l], lane_size[l], lane_wide[l]);
+  };
+  if (size >= task_size) {
+    tbb::parallel_for(std::size_t{0}, used, descend);
+  } else {
+    for (std::size_t l = 0; l < used; ++l) descend(l);
+  }
 }
 
 // Closest point of one triangle by the Voronoi regions of its corners,

@@ -31,8 +31,10 @@ namespace vcpost::mesh {
 
 class MeshModel final : public geometry::SurfaceModel {
  public:
-  // Builds the index (O(n log n)). Throws std::invalid_argument for a mesh
-  // without triangles or with a corner index out of range.
+  // Builds the index (O(n log n)), on oneTBB's threads: the index, and so
+  // every answer, is the same bit for bit whatever their number. Throws
+  // std::invalid_argument for a mesh without triangles or with a corner
+  // index out of range.
   explicit MeshModel(StlMesh mesh);
 
   // See geometry::SurfaceModel. A hint with a valid face makes the query
@@ -52,18 +54,6 @@ class MeshModel final : public geometry::SurfaceModel {
   const Eigen::Vector3d& facet_normal(int face) const { return facet_normal_[face]; }
 
  private:
-  // Build-time binary hierarchy node, an oriented box: |axis[k].(x -
-  // centre)| <= half[k] for every corner x of the node's triangles (axes:
-  // a principal frame of the corners, or x, y, z when that box is smaller).
-  // Along a smooth surface the principal frame hugs the patch, so a ball
-  // resting on it reaches far fewer boxes than with axis-aligned ones.
-  struct Node {
-    float centre[3];
-    float axis[3][3];
-    float half[3];
-    std::uint32_t first;  // leaf: first triangle slot; inner: index of the right child
-    std::uint32_t count;  // leaf: number of triangles (> 0); inner: 0 (left child = this + 1)
-  };
   // The query hierarchy: the binary one collapsed to four children per
   // node, their boxes side by side in single precision (structure of
   // arrays), so one pass over the four lanes bounds all children at once.
@@ -89,10 +79,8 @@ class MeshModel final : public geometry::SurfaceModel {
     std::uint32_t face = 0;
   };
 
-  std::uint32_t build(std::uint32_t begin, std::uint32_t end,
-                      std::vector<Eigen::Vector3d>& centroids);
-  void fit_node(Node& node, std::uint32_t begin, std::uint32_t end) const;
-  std::uint32_t collapse(std::uint32_t binary);
+  // Builds the normals and the hierarchy (mesh_model.cpp).
+  struct Builder;
   void test_slot(std::uint32_t slot, const Eigen::Vector3d& p, Hit& best) const;
   geometry::ModelContact make_contact(const Eigen::Vector3d& p, const Hit& hit) const;
 
@@ -104,7 +92,6 @@ class MeshModel final : public geometry::SurfaceModel {
   std::vector<std::uint32_t> slot_of_face_;
   static constexpr std::uint32_t kNone = 0xffffffffu;  // an empty lane of a WideNode
   std::vector<Slot> slots_;
-  std::vector<Node> nodes_;  // build time only
   std::vector<WideNode> wide_;
 };
 

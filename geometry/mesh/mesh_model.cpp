@@ -98,13 +98,6 @@ struct Moments {
   double hi[3] = {-lo[0], -lo[1], -lo[2]};
   Eigen::AlignedBox3d centroids;  // of the triangles
   Moments() { centroids.setEmpty(); }
-  void add(const Eigen::Vector3d& x) {
-    for (int k = 0; k < 3; ++k) {
-      sum[k] += x[k];
-      lo[k] = std::min(lo[k], x[k]);
-      hi[k] = std::max(hi[k], x[k]);
-    }
-  }
 };
 
 // The lanes of the wide node over a binary node of `size` triangles at
@@ -172,22 +165,30 @@ void project(const double* xs, const double* ys, const double* zs, std::size_t n
     hi1 = q1 > hi1 ? q1 : hi1;
     hi2 = q2 > hi2 ? q2 : hi2;
   }
-  lo = {std::min(lo0[0], lo0[1]), std::min(lo1[0], lo1[1]), std::min(lo2[0], lo2[1])};
-  hi = {std::max(hi0[0], hi0[1]), std::max(hi1[0], hi1[1]), std::max(hi2[0], hi2[1])};
+  // The rest in scalars (locals: writing through lo and hi on every corner
+  // stalls on store forwarding).
+  double l0 = std::min(lo0[0], lo0[1]), l1 = std::min(lo1[0], lo1[1]), l2 = std::min(lo2[0], lo2[1]);
+  double h0 = std::max(hi0[0], hi0[1]), h1 = std::max(hi1[0], hi1[1]), h2 = std::max(hi2[0], hi2[1]);
   const auto one = [&](std::size_t k) {
     const double x = xs[k], y = ys[k], z = zs[k];
     const double q0 = (a00 * x + a01 * y) + a02 * z;
     const double q1 = (a10 * x + a11 * y) + a12 * z;
     const double q2 = a20 * x + (a21 * y + a22 * z);
-    lo = {std::min(lo[0], q0), std::min(lo[1], q1), std::min(lo[2], q2)};
-    hi = {std::max(hi[0], q0), std::max(hi[1], q1), std::max(hi[2], q2)};
+    l0 = std::min(l0, q0);
+    l1 = std::min(l1, q1);
+    l2 = std::min(l2, q2);
+    h0 = std::max(h0, q0);
+    h1 = std::max(h1, q1);
+    h2 = std::max(h2, q2);
   };
   for (; i < n; ++i) one(i);
-  if ((lo.array() == 0).any() || (hi.array() == 0).any()) {
-    lo.setConstant(inf);
-    hi.setConstant(-inf);
+  if (l0 == 0 || l1 == 0 || l2 == 0 || h0 == 0 || h1 == 0 || h2 == 0) {
+    l0 = l1 = l2 = inf;
+    h0 = h1 = h2 = -inf;
     for (std::size_t k = 0; k < n; ++k) one(k);
   }
+  lo = {l0, l1, l2};
+  hi = {h0, h1, h2};
 }
 
 }  // namespace
@@ -212,8 +213,9 @@ struct MeshModel::Builder {
   void normals();
   void tree();
   void slots();
-  void gather(std::uint32_t begin, std::uint32_t end, Moments& moments);
-  void build(std::uint32_t index, std::uint32_t begin, std::uint32_t end, const Moments& moments);
+  void gather(std::uint32_t begin, std::uint32_t end, bool copy, Moments& moments);
+  void build(std::uint32_t index, std::uint32_t begin, std::uint32_t end, const Moments& moments,
+             bool fit, bool top);
   void fit_node(Node& node, std::uint32_t begin, std::uint32_t end, const Moments& moments) const;
   std::uint32_t count_wide(std::uint32_t size);
   void collapse(std::uint32_t binary, std::uint32_t size, std::uint32_t index);
@@ -329,9 +331,9 @@ void MeshModel::Builder::tree() {
     }
   });
   Moments all;
-  gather(0, nf, all);
+  gather(0, nf, nf <= leaf_size, all);
   nodes.reset(new Node[node_counts(nf).first]);
-  build(0, 0, nf, all);
+  build(0, 0, nf, all, nf <= leaf_size, true);
   m.wide_.resize(count_wide(nf));
   collapse(0, nf, 0);
 }
@@ -362,37 +364,74 @@ void MeshModel::Builder::slots() {
 
 // The corners of slots [begin, end) copied side by side in slot order,
 // with their moments.
-void MeshModel::Builder::gather(std::uint32_t begin, std::uint32_t end, Moments& moments) {
+void MeshModel::Builder::gather(std::uint32_t begin, std::uint32_t end, bool copy,
+                                Moments& moments) {
   // Locals throughout: stores through the outputs could alias anything else.
   const Eigen::Vector3d* const vertices = m.mesh_.vertices.data();
   const std::array<std::uint32_t, 3>* const triangles = m.mesh_.triangles.data();
   const Item* const item = items.get();
   const std::size_t first = 3 * std::size_t{begin};
-  double* const x = corners[0].get() + first;
-  double* const y = corners[1].get() + first;
-  double* const z = corners[2].get() + first;
-  Moments local = moments;
+  double* const xs = corners[0].get() + first;
+  double* const ys = corners[1].get() + first;
+  double* const zs = corners[2].get() + first;
+  double s0 = moments.sum[0], s1 = moments.sum[1], s2 = moments.sum[2];
+  double l0 = moments.lo[0], l1 = moments.lo[1], l2 = moments.lo[2];
+  double h0 = moments.hi[0], h1 = moments.hi[1], h2 = moments.hi[2];
+  Eigen::Vector3d cl = moments.centroids.min(), ch = moments.centroids.max();
+  if (!copy) {
+    for (std::uint32_t s = begin; s < end; ++s) {
+      cl = cl.cwiseMin(item[s].centroid);
+      ch = ch.cwiseMax(item[s].centroid);
+    }
+    moments.centroids = Eigen::AlignedBox3d(cl, ch);
+    return;
+  }
   std::size_t j = 0;
   for (std::uint32_t s = begin; s < end; ++s) {
-    local.centroids.extend(item[s].centroid);
-    for (auto i : triangles[item[s].face]) {
-      const Eigen::Vector3d p = vertices[i];
-      x[j] = p[0];
-      y[j] = p[1];
-      z[j] = p[2];
+    const Item& it = item[s];
+    cl = cl.cwiseMin(it.centroid);
+    ch = ch.cwiseMax(it.centroid);
+    for (auto i : triangles[it.face]) {
+      const double* v = vertices[i].data();
+      const double x = v[0], y = v[1], z = v[2];
+      xs[j] = x;
+      ys[j] = y;
+      zs[j] = z;
       ++j;
-      local.add(p);
+      s0 += x;
+      s1 += y;
+      s2 += z;
+      l0 = std::min(l0, x);
+      l1 = std::min(l1, y);
+      l2 = std::min(l2, z);
+      h0 = std::max(h0, x);
+      h1 = std::max(h1, y);
+      h2 = std::max(h2, z);
     }
   }
-  moments = local;
+  moments.sum[0] = s0;
+  moments.sum[1] = s1;
+  moments.sum[2] = s2;
+  moments.lo[0] = l0;
+  moments.lo[1] = l1;
+  moments.lo[2] = l2;
+  moments.hi[0] = h0;
+  moments.hi[1] = h1;
+  moments.hi[2] = h2;
+  moments.centroids = Eigen::AlignedBox3d(cl, ch);
 }
 
-// Node `index` over slots [begin, end), whose corners are in place with
-// their moments; its subtree takes the next N(end - begin) nodes.
+// Node `index` over slots [begin, end); its subtree takes the next
+// N(end - begin) nodes. Only the nodes that become lanes of the wide
+// hierarchy keep a box (see collapse): a leaf child of the root or of a
+// lane, and every child of a node in neither place. The others (about a
+// third) are not fitted, nor are their corners gathered. fit: this node is
+// a lane (its corners are in place with their moments); top: it is the root
+// or an inner lane, whose inner children become grandchild lanes.
 void MeshModel::Builder::build(std::uint32_t index, std::uint32_t begin, std::uint32_t end,
-                               const Moments& moments) {
+                               const Moments& moments, bool fit, bool top) {
   Node& node = nodes[index];
-  fit_node(node, begin, end, moments);
+  if (fit) fit_node(node, begin, end, moments);
   if (end - begin <= leaf_size) {
     node.first = begin;
     node.count = end - begin;
@@ -405,18 +444,21 @@ void MeshModel::Builder::build(std::uint32_t index, std::uint32_t begin, std::ui
                    [axis](const Item& x, const Item& y) {
                      return x.centroid[axis] < y.centroid[axis];
                    });
+  const bool fit_left = !top || mid - begin <= leaf_size;
+  const bool fit_right = !top || end - mid <= leaf_size;
   Moments left, right;
-  gather(begin, mid, left);
-  gather(mid, end, right);
+  gather(begin, mid, fit_left, left);
+  gather(mid, end, fit_right, right);
   const std::uint32_t right_index = index + 1 + node_counts(mid - begin).first;
   node.first = right_index;
   node.count = 0;
+  const auto build_left = [&] { build(index + 1, begin, mid, left, fit_left, !top); };
+  const auto build_right = [&] { build(right_index, mid, end, right, fit_right, !top); };
   if (end - begin >= task_size) {
-    tbb::parallel_invoke([&] { build(index + 1, begin, mid, left); },
-                         [&] { build(right_index, mid, end, right); });
+    tbb::parallel_invoke(build_left, build_right);
   } else {
-    build(index + 1, begin, mid, left);
-    build(right_index, mid, end, right);
+    build_left();
+    build_right();
   }
 }
 

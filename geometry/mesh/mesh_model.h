@@ -63,6 +63,9 @@ class MeshModel final : public geometry::SurfaceModel {
     float half[3][4];        // half extents along the axes
     std::uint32_t child[4];  // inner: wide node index; leaf: first slot; empty lane: kNone
     std::uint32_t count[4];  // leaf: number of triangles (> 0); inner or empty: 0
+    // Left unset: the build fills every field (on its threads; zeroing a
+    // few megabytes first would be serial).
+    WideNode() {}
   };
   // A triangle as the query reads it, in hierarchy order.
   struct Slot {
@@ -70,6 +73,7 @@ class MeshModel final : public geometry::SurfaceModel {
     Eigen::Vector3d normal;   // unit facet normal: |normal.(p - a)| bounds the distance from below
     double abab, abac, acac;  // Gram matrix of the edges
     std::uint32_t face;
+    Slot() {}  // left unset, as WideNode
   };
   struct Hit {
     double d2 = 0;

@@ -26,9 +26,10 @@ std::int64_t cell_index(double v, double cell) {
 
 // A step whose box reaches at most this many cells across the feed takes
 // its runs from a list of the runs near an earlier step (when it still
-// covers it); a new list reaches this much farther across (a fraction of
-// the reach) and along the feed (a fraction of the abeam allowance, or
-// this many steps of the path if longer).
+// covers it); a new list reaches farther across by this fraction of the
+// reach, or of the step along the path if longer (contact points wander
+// across the feed by about that much), and along the feed by this fraction
+// of the abeam allowance (or this many steps of the path if longer).
 constexpr double nearby_reach = 2;
 constexpr double nearby_across = 0.5;
 constexpr double nearby_along = 0.5;
@@ -640,7 +641,7 @@ std::optional<NeighbourPass> PassTracker::nearest(const Entry& current,
     if (first && !listed && reach <= nearby_reach * cell_) {
       const Entry* last = next_ > 0 ? entry(next_ - 1) : nullptr;
       const double step = last && current.joined ? current.path - last->path : 0.0;
-      fill_nearby(cc, normal, feed, reach * (1 + nearby_across),
+      fill_nearby(cc, normal, feed, reach + nearby_across * std::max(reach, step),
                   abeam_ + std::max(nearby_along * abeam_, nearby_steps * step));
       listed = true;
     }

@@ -37,10 +37,14 @@ struct NeighbourPass {
 // nearest of them across the feed wins (ties within 1e-10 mm: any one).
 //
 // Cost: the grid indexes short runs of consecutive points (at most 32, and
-// a sixteenth of the search radius long), each with a bounding capsule, so a
-// step looks at a few runs of the nearest passes and not at points one by
-// one: on a straight pass one point of one run decides; on a curved one the
-// points of one or two runs. Memory: O(memory), about 100-200 bytes a point.
+// a sixteenth of the search radius long), each with a bounding capsule and
+// a box of offsets from its axis, so a step looks at a few runs of the
+// nearest passes and not at points one by one: on a straight pass one
+// point of one run decides; on a curved one the points of a few runs. The
+// runs near a step are listed once for the next several steps (while the
+// list provably covers their reach, bounded by how far the feed turned and
+// CC moved), so most steps do not walk the grid at all.
+// Memory: O(memory), about 100-250 bytes a point.
 class PassTracker {
  public:
   // search_radius: farthest neighbour considered, mm (a pass farther than

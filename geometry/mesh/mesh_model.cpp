@@ -65,30 +65,16 @@ Eigen::Vector3d transpose_times(const Eigen::Matrix3d& a, const Eigen::Vector3d&
           (a(0, 2) * x[0] + a(1, 2) * x[1]) + a(2, 2) * x[2]};
 }
 
-// Build-time binary hierarchy node, an oriented box: |axis[k].(x -
-// centre)| <= half[k] for every corner x of the node's triangles (axes:
-// a principal frame of the corners, or x, y, z when that box is smaller).
-// Along a smooth surface the principal frame hugs the patch, so a ball
-// resting on it reaches far fewer boxes than with axis-aligned ones.
+// The box of a binary hierarchy node, oriented: |axis[k].(x - centre)| <=
+// half[k] for every corner x of the node's triangles (axes: a principal
+// frame of the corners, or x, y, z when that box is smaller). Along a
+// smooth surface the principal frame hugs the patch, so a ball resting on
+// it reaches far fewer boxes than with axis-aligned ones.
 struct Node {
   float centre[3];
   float axis[3][3];
   float half[3];
-  std::uint32_t first;  // leaf: first triangle slot; inner: index of the right child
-  std::uint32_t count;  // leaf: number of triangles (> 0); inner: 0 (left child = this + 1)
 };
-
-// (N(n), N(n + 1)), N(n) = the nodes of a subtree over n >= 1 triangles.
-// The median split makes N depend on n alone, so every subtree's place in
-// the node array is known before it is built (and the halves can be built
-// at once). N(n) = 1 for n <= leaf_size, else 1 + N(n / 2) + N(n - n / 2).
-std::pair<std::uint32_t, std::uint32_t> node_counts(std::uint32_t n) {
-  if (n < leaf_size) return {1, 1};
-  if (n == leaf_size) return {1, 3};
-  const auto [a, b] = node_counts(n / 2);  // N(k), N(k + 1) for k = n / 2
-  if (n % 2 == 0) return {1 + 2 * a, 1 + a + b};
-  return {1 + a + b, 1 + 2 * b};
-}
 
 // Sums and extents of corners, taken in slot order.
 struct Moments {
@@ -99,39 +85,6 @@ struct Moments {
   Eigen::AlignedBox3d centroids;  // of the triangles
   Moments() { centroids.setEmpty(); }
 };
-
-// The lanes of the wide node over a binary node of `size` triangles at
-// `binary`: its children, or grandchildren where there is room (up to four
-// lanes; a leaf stays one lane). Returns the number of lanes.
-std::size_t lanes_of(const Node* nodes, std::uint32_t binary, std::uint32_t size,
-                     std::uint32_t (&lane)[4], std::uint32_t (&lane_size)[4]) {
-  if (size <= leaf_size) {
-    lane[0] = binary;
-    lane_size[0] = size;
-    return 1;
-  }
-  std::size_t used = 2;
-  lane[0] = binary + 1;
-  lane_size[0] = size / 2;
-  lane[1] = nodes == nullptr ? 0 : nodes[binary].first;
-  lane_size[1] = size - size / 2;
-  for (std::size_t i = 0; i < used && used < 4;) {
-    if (lane_size[i] > leaf_size) {
-      const std::uint32_t n = lane_size[i];
-      std::copy_backward(lane + i + 1, lane + used, lane + used + 1);
-      std::copy_backward(lane_size + i + 1, lane_size + used, lane_size + used + 1);
-      lane[i + 1] = nodes == nullptr ? 0 : nodes[lane[i]].first;
-      lane[i] = lane[i] + 1;
-      lane_size[i] = n / 2;
-      lane_size[i + 1] = n - n / 2;
-      ++used;
-      i += 2;
-    } else {
-      ++i;
-    }
-  }
-  return used;
-}
 
 // lo, hi = the extents of the corners (xs, ys, zs)[0, n) along the rows of
 // `axes`: axes * x summed as Eigen sums that product (rows 0 and 1 left to
@@ -205,8 +158,7 @@ struct MeshModel::Builder {
   MeshModel& m;
   std::unique_ptr<Item[]> items;         // in slot order
   std::unique_ptr<double[]> corners[3];  // x, y, z of three per item, in slot order
-  std::unique_ptr<Node[]> nodes;
-  std::map<std::uint32_t, std::uint32_t> wide_counts;  // by subtree size
+  std::map<std::uint32_t, std::uint32_t> wide_counts;  // by subtree size; read only in build
 
   explicit Builder(MeshModel& model) : m(model) {}
 
@@ -214,11 +166,17 @@ struct MeshModel::Builder {
   void tree();
   void slots();
   void gather(std::uint32_t begin, std::uint32_t end, bool copy, Moments& moments);
-  void build(std::uint32_t index, std::uint32_t begin, std::uint32_t end, const Moments& moments,
-             bool fit, bool top);
+  std::uint32_t split(std::uint32_t begin, std::uint32_t end, const Moments& moments);
+  void top(std::uint32_t begin, std::uint32_t end, const Moments& moments, std::uint32_t own);
+  void expanded(std::uint32_t begin, std::uint32_t end, const Moments& moments, std::uint32_t wide,
+                int lane, std::uint32_t own_left, std::uint32_t own_right);
+  void lane(std::uint32_t begin, std::uint32_t end, const Moments& moments, std::uint32_t wide,
+            int lane, std::uint32_t own);
   void fit_node(Node& node, std::uint32_t begin, std::uint32_t end, const Moments& moments) const;
   std::uint32_t count_wide(std::uint32_t size);
-  void collapse(std::uint32_t binary, std::uint32_t size, std::uint32_t index);
+  void clear_lanes(std::uint32_t wide);
+  void set_lane(std::uint32_t wide, int lane, const Node& box, std::uint32_t child,
+                std::uint32_t count);
 };
 
 MeshModel::MeshModel(StlMesh mesh) : mesh_(std::move(mesh)) {
@@ -330,12 +288,16 @@ void MeshModel::Builder::tree() {
       items[f].face = f;
     }
   });
-  Moments all;
-  gather(0, nf, nf <= leaf_size, all);
-  nodes.reset(new Node[node_counts(nf).first]);
-  build(0, 0, nf, all, nf <= leaf_size, true);
   m.wide_.resize(count_wide(nf));
-  collapse(0, nf, 0);
+  Moments all;
+  if (nf <= leaf_size) {
+    gather(0, nf, true, all);
+    clear_lanes(0);
+    lane(0, nf, all, 0, 0, 0);
+  } else {
+    gather(0, nf, false, all);
+    top(0, nf, all, 0);
+  }
 }
 
 // Triangles as the query reads them, in hierarchy order.
@@ -421,22 +383,17 @@ void MeshModel::Builder::gather(std::uint32_t begin, std::uint32_t end, bool cop
   moments.centroids = Eigen::AlignedBox3d(cl, ch);
 }
 
-// Node `index` over slots [begin, end); its subtree takes the next
-// N(end - begin) nodes. Only the nodes that become lanes of the wide
-// hierarchy keep a box (see collapse): a leaf child of the root or of a
-// lane, and every child of a node in neither place. The others (about a
-// third) are not fitted, nor are their corners gathered. fit: this node is
-// a lane (its corners are in place with their moments); top: it is the root
-// or an inner lane, whose inner children become grandchild lanes.
-void MeshModel::Builder::build(std::uint32_t index, std::uint32_t begin, std::uint32_t end,
-                               const Moments& moments, bool fit, bool top) {
-  Node& node = nodes[index];
-  if (fit) fit_node(node, begin, end, moments);
-  if (end - begin <= leaf_size) {
-    node.first = begin;
-    node.count = end - begin;
-    return;
-  }
+// The hierarchy is built straight into its wide form (four lanes a node):
+// the wide node over a binary node ("top": the root or an inner lane) has
+// for lanes its children, each inner child replaced by its two children
+// (see lane_sizes). Those replaced children and the root are never fitted,
+// nor are their corners gathered; the lanes' places are known in advance
+// from the subtree sizes, so the halves are built as tasks of their own.
+
+// Splits slots [begin, end) at the median centroid along the longest side
+// of the centroids' box; returns the middle.
+std::uint32_t MeshModel::Builder::split(std::uint32_t begin, std::uint32_t end,
+                                        const Moments& moments) {
   int axis = 0;
   moments.centroids.sizes().maxCoeff(&axis);
   const std::uint32_t mid = begin + (end - begin) / 2;
@@ -444,21 +401,88 @@ void MeshModel::Builder::build(std::uint32_t index, std::uint32_t begin, std::ui
                    [axis](const Item& x, const Item& y) {
                      return x.centroid[axis] < y.centroid[axis];
                    });
-  const bool fit_left = !top || mid - begin <= leaf_size;
-  const bool fit_right = !top || end - mid <= leaf_size;
-  Moments left, right;
-  gather(begin, mid, fit_left, left);
-  gather(mid, end, fit_right, right);
-  const std::uint32_t right_index = index + 1 + node_counts(mid - begin).first;
-  node.first = right_index;
-  node.count = 0;
-  const auto build_left = [&] { build(index + 1, begin, mid, left, fit_left, !top); };
-  const auto build_right = [&] { build(right_index, mid, end, right, fit_right, !top); };
-  if (end - begin >= task_size) {
-    tbb::parallel_invoke(build_left, build_right);
+  return mid;
+}
+
+// Runs a and b, as two tasks when the range is big enough to pay for them.
+template <class A, class B>
+void both(std::uint32_t size, const A& a, const B& b) {
+  if (size >= task_size) {
+    tbb::parallel_invoke(a, b);
   } else {
-    build_left();
-    build_right();
+    a();
+    b();
+  }
+}
+
+// Top node over slots [begin, end) (more than a leaf), its lanes in wide
+// node `own` and their subtrees' wide nodes after it.
+void MeshModel::Builder::top(std::uint32_t begin, std::uint32_t end, const Moments& moments,
+                             std::uint32_t own) {
+  clear_lanes(own);
+  const std::uint32_t mid = split(begin, end, moments);
+  std::uint32_t next = own + 1;
+  int next_lane = 0;
+  struct Child {
+    std::uint32_t begin, end;
+    int lane;
+    std::uint32_t own[2];  // an inner child's children: their wide nodes
+    Moments moments;
+  };
+  Child children[2] = {{begin, mid, 0, {0, 0}, {}}, {mid, end, 0, {0, 0}, {}}};
+  for (Child& c : children) {
+    const std::uint32_t size = c.end - c.begin;
+    c.lane = next_lane;
+    if (size <= leaf_size) {
+      next_lane += 1;
+    } else {
+      next_lane += 2;
+      const std::uint32_t halves[2] = {size / 2, size - size / 2};
+      for (int h = 0; h < 2; ++h) {
+        if (halves[h] > leaf_size) {
+          c.own[h] = next;
+          next += wide_counts.at(halves[h]);
+        }
+      }
+    }
+    gather(c.begin, c.end, size <= leaf_size, c.moments);
+  }
+  const auto run = [&](const Child& c) {
+    if (c.end - c.begin <= leaf_size) {
+      lane(c.begin, c.end, c.moments, own, c.lane, 0);
+    } else {
+      expanded(c.begin, c.end, c.moments, own, c.lane, c.own[0], c.own[1]);
+    }
+  };
+  both(end - begin, [&] { run(children[0]); }, [&] { run(children[1]); });
+}
+
+// An inner child of a top node, replaced by its children: lanes `lane`
+// and `lane` + 1 of wide node `wide`.
+void MeshModel::Builder::expanded(std::uint32_t begin, std::uint32_t end, const Moments& moments,
+                                  std::uint32_t wide, int lane_index, std::uint32_t own_left,
+                                  std::uint32_t own_right) {
+  const std::uint32_t mid = split(begin, end, moments);
+  Moments left, right;
+  gather(begin, mid, true, left);
+  gather(mid, end, true, right);
+  both(
+      end - begin, [&] { lane(begin, mid, left, wide, lane_index, own_left); },
+      [&] { lane(mid, end, right, wide, lane_index + 1, own_right); });
+}
+
+// Lane `lane` of wide node `wide`: the box of slots [begin, end), whose
+// corners are in place with their moments; an inner lane is the top of
+// wide node `own`.
+void MeshModel::Builder::lane(std::uint32_t begin, std::uint32_t end, const Moments& moments,
+                              std::uint32_t wide, int lane_index, std::uint32_t own) {
+  Node box;
+  fit_node(box, begin, end, moments);
+  if (end - begin <= leaf_size) {
+    set_lane(wide, lane_index, box, begin, end - begin);
+  } else {
+    set_lane(wide, lane_index, box, own, 0);
+    top(begin, end, moments, own);
   }
 }
 
@@ -548,69 +572,61 @@ void MeshModel::Builder::fit_node(Node& node, std::uint32_t begin, std::uint32_t
   std::copy(std::begin(chosen.half), std::end(chosen.half), node.half);
 }
 
-// Wide nodes over a binary subtree of `size` triangles: like N, a function
-// of the size alone, so each wide subtree's place is known in advance too.
+// Wide nodes over a binary subtree of `size` triangles: a function of the
+// size alone (the median split), so each wide subtree's place is known in
+// advance. Sizes of a top's lanes: its children's, an inner child's
+// replaced by its children's.
 std::uint32_t MeshModel::Builder::count_wide(std::uint32_t size) {
   if (const auto it = wide_counts.find(size); it != wide_counts.end()) return it->second;
-  std::uint32_t lane[4], lane_size[4];
-  const std::size_t used = lanes_of(nullptr, 0, size, lane, lane_size);
   std::uint32_t count = 1;
-  for (std::size_t l = 0; l < used; ++l)
-    if (lane_size[l] > leaf_size) count += count_wide(lane_size[l]);
+  if (size > leaf_size) {
+    for (const std::uint32_t child : {size / 2, size - size / 2}) {
+      if (child <= leaf_size) continue;
+      for (const std::uint32_t lane_size : {child / 2, child - child / 2})
+        if (lane_size > leaf_size) count += count_wide(lane_size);
+    }
+  }
   wide_counts[size] = count;
   return count;
 }
 
-// Wide node `index` over binary node `binary` (of `size` triangles), its
-// subtree in preorder after it. Each lane keeps its binary node's frame,
-// with the centre turned into per-axis offsets rounded to float and the
-// half extents grown by that rounding.
-void MeshModel::Builder::collapse(std::uint32_t binary, std::uint32_t size, std::uint32_t index) {
-  std::uint32_t lane[4], lane_size[4], lane_wide[4];
-  const std::size_t used = lanes_of(nodes.get(), binary, size, lane, lane_size);
-  WideNode& w = m.wide_[index];
-  std::uint32_t next = index + 1;
-  for (std::size_t l = 0; l < 4; ++l) {
+// All four lanes of a wide node empty (unreachable: beyond any point).
+void MeshModel::Builder::clear_lanes(std::uint32_t wide) {
+  WideNode& w = m.wide_[wide];
+  for (int l = 0; l < 4; ++l) {
     w.child[l] = kNone;
     w.count[l] = 0;
     for (int k = 0; k < 3; ++k) {
       for (int j = 0; j < 3; ++j) w.axis[k][j][l] = 0;
-      // An empty lane is unreachable: its box is beyond any point.
       w.offset[k][l] = std::numeric_limits<float>::max();
       w.half[k][l] = 0;
     }
-    if (l >= used) continue;
-    const Node& n = nodes[lane[l]];
-    for (int k = 0; k < 3; ++k) {
-      double exact = 0;
-      for (int j = 0; j < 3; ++j) {
-        w.axis[k][j][l] = n.axis[k][j];
-        exact += static_cast<double>(n.axis[k][j]) * static_cast<double>(n.centre[j]);
-      }
-      const float offset = to_float(exact);
-      w.offset[k][l] = offset;
-      const double moved = std::abs(static_cast<double>(offset) - exact);
-      // Grown by the rounding of offset and by the query's float error on
-      // the offset's side (1e-6 |offset|, see closest_point).
-      w.half[k][l] =
-          round_up(static_cast<double>(n.half[k]) + moved + 1e-6 * std::abs(exact) + 1e-12);
-    }
-    w.count[l] = n.count;
-    if (n.count > 0) {
-      w.child[l] = n.first;
-    } else {
-      w.child[l] = lane_wide[l] = next;
-      next += wide_counts.at(lane_size[l]);
-    }
   }
-  const auto descend = [&](std::size_t l) {
-    if (lane_size[l] > leaf_size) collapse(lane[l], lane_size[l], lane_wide[l]);
-  };
-  if (size >= task_size) {
-    tbb::parallel_for(std::size_t{0}, used, descend);
-  } else {
-    for (std::size_t l = 0; l < used; ++l) descend(l);
+}
+
+// Lane `lane` of wide node `wide` from a fitted box: its frame, with the
+// centre turned into per-axis offsets rounded to float and the half extents
+// grown by that rounding.
+void MeshModel::Builder::set_lane(std::uint32_t wide, int lane_index, const Node& box,
+                                  std::uint32_t child, std::uint32_t count) {
+  WideNode& w = m.wide_[wide];
+  const auto l = static_cast<std::size_t>(lane_index);
+  for (int k = 0; k < 3; ++k) {
+    double exact = 0;
+    for (int j = 0; j < 3; ++j) {
+      w.axis[k][j][l] = box.axis[k][j];
+      exact += static_cast<double>(box.axis[k][j]) * static_cast<double>(box.centre[j]);
+    }
+    const float offset = to_float(exact);
+    w.offset[k][l] = offset;
+    const double moved = std::abs(static_cast<double>(offset) - exact);
+    // Grown by the rounding of offset and by the query's float error on
+    // the offset's side (1e-6 |offset|, see closest_point).
+    w.half[k][l] =
+        round_up(static_cast<double>(box.half[k]) + moved + 1e-6 * std::abs(exact) + 1e-12);
   }
+  w.child[l] = child;
+  w.count[l] = count;
 }
 
 // Closest point of one triangle by the Voronoi regions of its corners,

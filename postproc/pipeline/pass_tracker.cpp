@@ -26,14 +26,16 @@ std::int64_t cell_index(double v, double cell) {
 
 // A step whose box reaches at most this many cells across the feed takes
 // its runs from a list of the runs near an earlier step (when it still
-// covers it); a new list reaches farther across by this fraction of the
+// covers it). A new list reaches farther across by this fraction of the
 // reach, or of the step along the path if longer (contact points wander
-// across the feed by about that much), and along the feed by this fraction
-// of the abeam allowance (or this many steps of the path if longer).
+// across the feed by about that much); ahead along the feed (where the
+// path goes) by this fraction of the abeam allowance, or this many steps
+// of the path if longer; behind by a little only.
 constexpr double nearby_reach = 2;
 constexpr double nearby_across = 0.5;
-constexpr double nearby_along = 0.5;
-constexpr double nearby_steps = 6;
+constexpr double nearby_ahead = 1;
+constexpr double nearby_steps = 12;
+constexpr double nearby_behind = 0.05;
 // Room for rounding in the bounds from the list's copies, mm (their
 // differences are taken in another order than in measure()).
 constexpr double nearby_slack = 1e-9;
@@ -375,10 +377,12 @@ void PassTracker::for_each_list(const std::array<std::int64_t, 3>& lo,
 }
 
 // Lists the closed runs that may come within `across` of cc across the
-// feed and within `along` along it, once each, with copies of their
-// capsules side by side, for the searches of the next steps.
+// feed and from `behind` back to `ahead` on along it, once each, with
+// copies of their capsules side by side, for the searches of the next
+// steps.
 void PassTracker::fill_nearby(const Eigen::Vector3d& cc, const Eigen::Vector3d& normal,
-                              const Eigen::Vector3d& feed, double across, double along) {
+                              const Eigen::Vector3d& feed, double across, double behind,
+                              double ahead) {
   ++listing_;
   nearby_.clear();
   const std::uint64_t kept = oldest();
@@ -386,7 +390,8 @@ void PassTracker::fill_nearby(const Eigen::Vector3d& cc, const Eigen::Vector3d& 
   const std::uint64_t open = run_open_ ? run_next_ - 1 : run_next_;
   const Eigen::Vector3d left = normal.cross(feed);
   std::array<std::int64_t, 3> lo{}, hi{};
-  cells_around(cc, feed, across, along, cell_, lo, hi);
+  cells_around(cc + 0.5 * (ahead - behind) * feed, feed, across, 0.5 * (ahead + behind), cell_, lo,
+               hi);
   for_each_list(lo, hi, [&](std::uint32_t head) {
     for (std::uint32_t n = head; n != none; n = nodes_[n].next) {
       const std::uint64_t id = run_of(nodes_[n].run);
@@ -400,7 +405,7 @@ void PassTracker::fill_nearby(const Eigen::Vector3d& cc, const Eigen::Vector3d& 
       const Eigen::Vector3d da = r.a - cc, db = r.b - cc;
       const double ha = feed.dot(da), hb = feed.dot(db);
       const double radius = r.radius + nearby_slack;
-      if (std::min(ha, hb) - radius > along || std::max(ha, hb) + radius < -along) continue;
+      if (std::min(ha, hb) - radius > ahead || std::max(ha, hb) + radius < -behind) continue;
       const double xa = left.dot(da), xb = left.dot(db), ya = normal.dot(da), yb = normal.dot(db);
       if (std::min(xa, xb) - radius > across || std::max(xa, xb) + radius < -across ||
           std::min(ya, yb) - radius > across || std::max(ya, yb) + radius < -across) {
@@ -412,7 +417,8 @@ void PassTracker::fill_nearby(const Eigen::Vector3d& cc, const Eigen::Vector3d& 
   nearby_cc_ = cc;
   nearby_feed_ = feed;
   nearby_across_ = across;
-  nearby_along_ = along;
+  nearby_behind_ = behind;
+  nearby_ahead_ = ahead;
   nearby_from_ = open;
   nearby_valid_ = true;
 }
@@ -431,8 +437,9 @@ bool PassTracker::nearby_covers(const Eigen::Vector3d& cc, const Eigen::Vector3d
   const Eigen::Vector3d moved = cc - nearby_cc_;
   const double ahead = nearby_feed_.dot(moved);
   const double aside = (moved - ahead * nearby_feed_).norm();
+  const double reach_along = along + turn * across + nearby_slack;
   return across + turn * along + aside + nearby_slack <= nearby_across_ &&
-         along + turn * across + std::abs(ahead) + nearby_slack <= nearby_along_;
+         ahead + reach_along <= nearby_ahead_ && ahead - reach_along >= -nearby_behind_;
 }
 
 void PassTracker::Nearby::clear() {
@@ -642,7 +649,8 @@ std::optional<NeighbourPass> PassTracker::nearest(const Entry& current,
       const Entry* last = next_ > 0 ? entry(next_ - 1) : nullptr;
       const double step = last && current.joined ? current.path - last->path : 0.0;
       fill_nearby(cc, normal, feed, reach + nearby_across * std::max(reach, step),
-                  abeam_ + std::max(nearby_along * abeam_, nearby_steps * step));
+                  abeam_ * (1 + nearby_behind),
+                  abeam_ + std::max(nearby_ahead * abeam_, nearby_steps * step));
       listed = true;
     }
     if (listed) {

@@ -158,7 +158,7 @@ class PassTracker {
   void for_each_list(const std::array<std::int64_t, 3>& lo, const std::array<std::int64_t, 3>& hi,
                      F&& on_list) const;
   void fill_nearby(const Eigen::Vector3d& cc, const Eigen::Vector3d& normal,
-                   const Eigen::Vector3d& feed, double across, double along);
+                   const Eigen::Vector3d& feed, double across, double behind, double ahead);
   bool nearby_covers(const Eigen::Vector3d& cc, const Eigen::Vector3d& feed, double across,
                      double along) const;
   std::optional<NeighbourPass> nearest(const Entry& current, const Eigen::Vector3d& normal);
@@ -196,7 +196,8 @@ class PassTracker {
   Nearby nearby_;
   Eigen::Vector3d nearby_cc_ = Eigen::Vector3d::Zero();  // the step it was listed for
   Eigen::Vector3d nearby_feed_ = Eigen::Vector3d::UnitX();
-  double nearby_across_ = 0, nearby_along_ = 0;  // its reach across and along that feed, mm
+  double nearby_across_ = 0;  // its reach across that feed, mm
+  double nearby_behind_ = 0, nearby_ahead_ = 0;  // and along it, back and forth, mm
   std::uint64_t nearby_from_ = 0;  // runs from here on were open or new: looked at directly
   std::uint64_t listing_ = 0;      // number of listings so far (marks runs listed)
   bool nearby_valid_ = false;

@@ -556,20 +556,22 @@ void MeshModel::Builder::fit_node(Node& node, std::uint32_t begin, std::uint32_t
     }
     return volume;
   };
-  Node principal{}, aligned{};
-  const double v_principal = fit(solver.eigenvectors().transpose(), principal, nullptr, nullptr);
+  const double v_principal = fit(solver.eigenvectors().transpose(), node, nullptr, nullptr);
+  // The x, y, z box is almost never the smaller one; it is fitted only when
+  // this lower bound of its floored volume does not already lose: each half
+  // extent is at least half the box's side (the 1e-12 covers the rounding
+  // of that side), and rounded sums and products are monotonic.
+  double lower = 1;
+  for (int k = 0; k < 3; ++k) lower *= (box_hi[k] - box_lo[k]) * (0.5 * (1 - 1e-12)) + floor;
+  if (v_principal < lower) return;
   // In x, y, z the projections are the coordinates themselves (1 x + 0 y +
   // 0 z), so the extents are the box's: exactly, zeros apart (whose sign
   // the projection may flip; those boxes are measured as in any frame).
+  Node aligned{};
   const bool zero = (box_lo.array() == 0).any() || (box_hi.array() == 0).any();
   const double v_aligned = zero ? fit(Eigen::Matrix3d::Identity(), aligned, nullptr, nullptr)
                                 : fit(Eigen::Matrix3d::Identity(), aligned, &box_lo, &box_hi);
-  const Node& chosen = v_principal < v_aligned ? principal : aligned;
-  std::copy(std::begin(chosen.centre), std::end(chosen.centre), node.centre);
-  for (int k = 0; k < 3; ++k) {
-    std::copy(std::begin(chosen.axis[k]), std::end(chosen.axis[k]), node.axis[k]);
-  }
-  std::copy(std::begin(chosen.half), std::end(chosen.half), node.half);
+  if (!(v_principal < v_aligned)) node = aligned;
 }
 
 // Wide nodes over a binary subtree of `size` triangles: a function of the

@@ -493,6 +493,29 @@ TEST(PassTrackerReference, SameNeighbourOnASpiralOverAWavySurface) {
   expect_same_as_reference(path, 6, 3000, 1, "wavy spiral, memory 3000");
 }
 
+TEST(PassTrackerReference, SameNeighbourOnTightArcsWhileTheFeedTurns) {
+  // Arcs of 300 deg about z, from 3 mm radius inwards 0.1 mm apart, points
+  // 0.02 mm apart: the feed turns 0.4 deg a step, and the nearest points of
+  // the arc outside lie near the abeam allowance (1 mm along the feed),
+  // where a turn of the feed moves them across it most. A list of nearby
+  // runs that forgot the turn would miss them within a few steps.
+  std::vector<Point> path;
+  for (int k = 0; k < 10; ++k) {
+    const double r = 3 - 0.1 * k;
+    const auto n = static_cast<int>(std::lround(300 * pi / 180 * r / 0.02));
+    for (int i = 0; i <= n; ++i) {
+      const double a = 300 * pi / 180 * i / n;
+      path.push_back({{r * std::cos(a), r * std::sin(a), 0},
+                      {0, 0, 1},
+                      {-std::sin(a), std::cos(a), 0},
+                      i == 0,
+                      k});
+    }
+  }
+  ASSERT_GT(path.size(), 6000u);
+  expect_same_as_reference(path, 10, 1 << 20, 1, "tight arcs");
+}
+
 TEST(PassTrackerReference, SameNeighbourWhileTheGridIsCompactedManyTimes) {
   // A sparse wavy raster (1 mm along, 0.6 mm across: most steps list their
   // run in two or three cells) through a memory of 4000 points: the grid

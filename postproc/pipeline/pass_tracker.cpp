@@ -550,12 +550,15 @@ std::optional<NeighbourPass> PassTracker::nearest(const Entry& current,
     // The same with the box of offsets instead of the ball: on a curved
     // pass the points leave the axis mostly along the normal, which
     // changes the distance across little where the pass lies beside CC.
-    const auto [xl, xh] = spread(left, r.offset_low, r.offset_high);
-    const auto [yl, yh] = spread(normal, r.offset_low, r.offset_high);
-    const double gap_x = std::max({0.0, std::min(xa, xb) + xl, -(std::max(xa, xb) + xh)});
-    const double gap_y = std::max({0.0, std::min(ya, yb) + yl, -(std::max(ya, yb) + yh)});
-    const double boxed = std::sqrt(gap_x * gap_x + gap_y * gap_y);
-    if (boxed > worst) return std::nullopt;
+    double boxed = 0;  // (on a straight run the ball is as tight)
+    if (r.radius > tie) {
+      const auto [xl, xh] = spread(left, r.offset_low, r.offset_high);
+      const auto [yl, yh] = spread(normal, r.offset_low, r.offset_high);
+      const double gap_x = std::max({0.0, std::min(xa, xb) + xl, -(std::max(xa, xb) + xh)});
+      const double gap_y = std::max({0.0, std::min(ya, yb) + yl, -(std::max(ya, yb) + yh)});
+      boxed = std::sqrt(gap_x * gap_x + gap_y * gap_y);
+      if (boxed > worst) return std::nullopt;
+    }
     const double low = std::max(boxed, distance_to_segment(xa, ya, xb, yb) - r.radius);
     if (low > worst) return std::nullopt;
     // The distance to a line is convex along the axis: largest at an end.
@@ -627,7 +630,9 @@ std::optional<NeighbourPass> PassTracker::nearest(const Entry& current,
       Run& r = run(id);
       if (r.mark == search_) continue;
       r.mark = search_;
-      if (r.radius < 0) {
+      // A run whose points leave its axis by more than the tie is not flat
+      // (measure() would only say so): its candidates are looked at anyway.
+      if (r.radius < 0 || r.radius > tie) {
         evaluate(id, false);
       } else if (const auto bounds = measure(r, radius_)) {
         evaluate(id, bounds->second);

@@ -1,5 +1,5 @@
-// STL mesh model: reading a 100 k-triangle binary STL, building the index,
-// and closest-point queries along a coherent finishing path (warm: the hint
+// STL mesh model: reading a 100 k-triangle binary STL, building the index
+// (on one and on two of oneTBB's threads), and closest-point queries along a coherent finishing path (warm: the hint
 // of the previous point; cold: no hint; two threads with a hint each).
 //
 // The mesh is the sample wavy mould (postproc/samplegen) tessellated on a

@@ -12,6 +12,7 @@
 #include <map>
 #include <memory>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 
 namespace vcpost::mesh {
@@ -240,13 +241,13 @@ void MeshModel::Builder::normals() {
   struct Side {
     std::uint32_t upper, face, k;
   };
-  std::vector<std::uint32_t> start(nv + 1, 0);
+  std::vector<std::size_t> start(nv + 1, 0);
   for (const auto& t : triangles)
     for (int k = 0; k < 3; ++k) ++start[std::min(t[k], t[(k + 1) % 3]) + 1];
   for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
   std::vector<Side> sides(3 * nf);
   {
-    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+    std::vector<std::size_t> next(start.begin(), start.end() - 1);
     for (std::size_t f = 0; f < nf; ++f) {
       const auto& t = triangles[f];
       for (std::uint32_t k = 0; k < 3; ++k) {

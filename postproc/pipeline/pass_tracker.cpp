@@ -42,7 +42,7 @@ constexpr double nearby_slack = 1e-9;
 
 // The cells of the box around the points within `across` of cc across the
 // unit `feed` and within `along` of it along the feed.
-void cells_around(const Eigen::Vector3d& cc, const Eigen::Vector3d& feed, double across,
+inline void cells_around(const Eigen::Vector3d& cc, const Eigen::Vector3d& feed, double across,
                   double along, double cell, std::array<std::int64_t, 3>& lo,
                   std::array<std::int64_t, 3>& hi) {
   for (int i = 0; i < 3; ++i) {
@@ -62,12 +62,17 @@ double distance_to_segment(double px, double py, double qx, double qy) {
   const double x = px + t * dx, y = py + t * dy;
   return std::sqrt(x * x + y * y);
 }
+// A float at or below v, and one at or above it: moved away by more than
+// the rounding to float (half a float ulp, under 6e-8 of |v|) first.
+float down(double v) { return static_cast<float>(v - std::abs(v) * 2.4e-7); }
+float up(double v) { return static_cast<float>(v + std::abs(v) * 2.4e-7); }
+
 // The range of v . o over the offsets o of the box low..high.
-std::pair<double, double> spread(const Eigen::Vector3d& v, const Eigen::Vector3d& low,
-                                 const Eigen::Vector3d& high) {
+std::pair<double, double> spread(const Eigen::Vector3d& v, const Eigen::Vector3f& low,
+                                 const Eigen::Vector3f& high) {
   double from = 0, to = 0;
   for (int i = 0; i < 3; ++i) {
-    const double p = v[i] * low[i], q = v[i] * high[i];
+    const double p = v[i] * double{low[i]}, q = v[i] * double{high[i]};
     from += std::min(p, q);
     to += std::max(p, q);
   }
@@ -247,8 +252,10 @@ void PassTracker::close_run() {
   }
   const double rounding = radius * 1e-12 + 1e-12;  // of the distances above
   r.radius = radius + rounding;
-  r.offset_low = low.array() - rounding;
-  r.offset_high = high.array() + rounding;
+  for (int i = 0; i < 3; ++i) {
+    r.offset_low[i] = down(low[i] - rounding);
+    r.offset_high[i] = up(high[i] + rounding);
+  }
 }
 
 // Registers `run` in every cell the segment p-q passes through: the segment
@@ -383,7 +390,9 @@ void PassTracker::for_each_list(const std::array<std::int64_t, 3>& lo,
 void PassTracker::fill_nearby(const Eigen::Vector3d& cc, const Eigen::Vector3d& normal,
                               const Eigen::Vector3d& feed, double across, double behind,
                               double ahead) {
-  ++listing_;
+  // Marks the runs listed with a number of its own, as if a search: the
+  // search that asked for the list takes another one after it.
+  const std::uint64_t listing = ++search_;
   nearby_.clear();
   const std::uint64_t kept = oldest();
   const std::uint64_t run_floor = run_next_ - runs_.size();
@@ -399,8 +408,8 @@ void PassTracker::fill_nearby(const Eigen::Vector3d& cc, const Eigen::Vector3d& 
       if (id < run_floor) break;  // overwritten: older ones are too
       Run& r = run(id);
       if (r.end <= kept) break;  // forgotten: older ones are too
-      if (r.listed == listing_) continue;
-      r.listed = listing_;
+      if (r.mark == listing) continue;
+      r.mark = listing;
       // measure()'s bounds, for the list's reach.
       const Eigen::Vector3d da = r.a - cc, db = r.b - cc;
       const double ha = feed.dot(da), hb = feed.dot(db);
@@ -649,13 +658,17 @@ std::optional<NeighbourPass> PassTracker::nearest(const Entry& current,
     // The first search of a step looks at the runs listed for an earlier
     // step while they cover its reach; a new list reaches a little farther
     // across and along the feed, so the next steps can use it too.
-    bool listed = first && nearby_covers(cc, feed, reach, abeam_);
-    if (first && !listed && reach <= nearby_reach * cell_) {
+    const bool small = first && reach <= nearby_reach * cell_;
+    bool listed = small && nearby_covers(cc, feed, reach, abeam_);
+    if (small && !listed) {
       const Entry* last = next_ > 0 ? entry(next_ - 1) : nullptr;
       const double step = last && current.joined ? current.path - last->path : 0.0;
       fill_nearby(cc, normal, feed, reach + nearby_across * std::max(reach, step),
                   abeam_ * (1 + nearby_behind),
                   abeam_ + std::max(nearby_ahead * abeam_, nearby_steps * step));
+      // (the runs looked at before count as not looked at: the warm ones
+      // may be looked at again, to no effect)
+      ++search_;
       listed = true;
     }
     if (listed) {

@@ -43,8 +43,8 @@ constexpr double nearby_slack = 1e-9;
 // The cells of the box around the points within `across` of cc across the
 // unit `feed` and within `along` of it along the feed.
 inline void cells_around(const Eigen::Vector3d& cc, const Eigen::Vector3d& feed, double across,
-                  double along, double cell, std::array<std::int64_t, 3>& lo,
-                  std::array<std::int64_t, 3>& hi) {
+                         double along, double cell, std::array<std::int64_t, 3>& lo,
+                         std::array<std::int64_t, 3>& hi) {
   for (int i = 0; i < 3; ++i) {
     const double f = feed[i];
     const double half = across * std::sqrt(std::max(0.0, 1 - f * f)) + along * std::abs(f);

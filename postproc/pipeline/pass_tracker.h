@@ -81,18 +81,19 @@ class PassTracker {
     Eigen::Vector3d b = Eigen::Vector3d::Zero();  // the last entry
     double radius = -1;                           // < 0 while the run is open (no capsule yet)
     std::uint64_t end = 0;                        // one past its last entry
-    std::uint64_t mark = 0;  // the last search (or listing of nearby runs) that looked at it
-    std::uint64_t first = 0;                      // sequence of its first entry
+    std::uint64_t mark = 0;   // the last search (or listing of nearby runs) that looked at it
+    std::uint64_t first = 0;  // sequence of its first entry
     // Every point of its segments is a + t (b - a) + o, 0 <= t <= 1, with
     // the offset o in the box offset_low..offset_high (and |o| <= radius);
     // floats rounded outwards (runs are many: memory and cache).
     Eigen::Vector3f offset_low = Eigen::Vector3f::Zero();
     Eigen::Vector3f offset_high = Eigen::Vector3f::Zero();
   };
-  // Closed runs listed in the cells near the last searches, once each, with
-  // copies of their capsules side by side (a closed run's capsule does not
-  // change): a step whose box lies inside those cells bounds them from here
-  // before reading any run.
+  // The closed runs that may come within reach of an earlier step (a little
+  // farther than its own), once each, with copies of their capsules side by
+  // side (a closed run's capsule does not change): a later step whose reach
+  // the list covers (nearby_covers) bounds them from here before reading
+  // any run.
   struct Nearby {
     std::vector<std::uint64_t> id;
     std::vector<std::uint64_t> end;  // one past the last entry of the run
@@ -183,7 +184,7 @@ class PassTracker {
   std::vector<Node> nodes_;
   std::size_t live_nodes_ = 0;      // nodes kept by the last compaction
   std::uint64_t compacted_at_ = 0;  // next_ at the last compaction
-  std::uint64_t search_ = 0;  // number of searches and listings so far (marks runs seen)
+  std::uint64_t search_ = 0;        // number of searches and listings so far (marks runs seen)
   struct Candidate {
     double low;  // no candidate of the run lies nearer across the feed
     std::uint64_t run;
@@ -196,7 +197,7 @@ class PassTracker {
   Nearby nearby_;
   Eigen::Vector3d nearby_cc_ = Eigen::Vector3d::Zero();  // the step it was listed for
   Eigen::Vector3d nearby_feed_ = Eigen::Vector3d::UnitX();
-  double nearby_across_ = 0;  // its reach across that feed, mm
+  double nearby_across_ = 0;                     // its reach across that feed, mm
   double nearby_behind_ = 0, nearby_ahead_ = 0;  // and along it, back and forth, mm
   std::uint64_t nearby_from_ = 0;  // runs from here on were open or new: looked at directly
   bool nearby_valid_ = false;

@@ -473,8 +473,10 @@ TEST(PassTrackerReference, SameNeighbourOnASpiralOverAWavySurface) {
   constexpr double kx = 2 * pi / 40, ky = 2 * pi / 55, kd = 2 * pi / 17;
   const auto lift = [&](double x, double y) {
     const double z = 4 * std::sin(kx * x) * std::cos(ky * y) + 2 * std::sin(kd * (x + y));
-    const double zx = 4 * kx * std::cos(kx * x) * std::cos(ky * y) + 2 * kd * std::cos(kd * (x + y));
-    const double zy = -4 * ky * std::sin(kx * x) * std::sin(ky * y) + 2 * kd * std::cos(kd * (x + y));
+    const double zx =
+        4 * kx * std::cos(kx * x) * std::cos(ky * y) + 2 * kd * std::cos(kd * (x + y));
+    const double zy =
+        -4 * ky * std::sin(kx * x) * std::sin(ky * y) + 2 * kd * std::cos(kd * (x + y));
     return std::pair{Vector3d(x, y, z), Vector3d(-zx, -zy, 1).normalized()};
   };
   const Spiral spiral{0.3 / (2 * pi)};
@@ -485,7 +487,8 @@ TEST(PassTrackerReference, SameNeighbourOnASpiralOverAWavySurface) {
     // The feed: the curve's tangent lifted onto the tangent plane.
     const Vector3d ahead = spiral.at(t + 1e-6) + Vector3d(3, -2, 0);
     const Vector3d along = lift(ahead.x(), ahead.y()).first - cc;
-    path.push_back({cc, normal, (along - along.dot(normal) * normal).normalized(), path.empty(), 0});
+    path.push_back(
+        {cc, normal, (along - along.dot(normal) * normal).normalized(), path.empty(), 0});
     t += 0.05 / (spiral.b * std::hypot(t, 1));
   }
   ASSERT_GT(path.size(), 5000u);

@@ -483,7 +483,8 @@ std::optional<NeighbourPass> PassTracker::nearest(const Entry& current,
   const Eigen::Vector3d& feed = current.feed;
   const Eigen::Vector3d left = normal.cross(feed);
 
-  std::uint64_t evaluating = 0, best_run = 0;  // the run being evaluated, the best one's
+  std::uint64_t evaluating = 0, best_run = 0;          // the run being evaluated, the best one's
+  std::uint64_t evaluating_entry = 0, best_entry = 0;  // the same for entries
   // Squared distance across beyond which a candidate cannot be the best:
   // a little more than the best's square (or the radius's), so that what
   // passes it is compared exactly and nothing nearer is lost to rounding.
@@ -498,6 +499,7 @@ std::optional<NeighbourPass> PassTracker::nearest(const Entry& current,
     best =
         NeighbourPass{across, left.dot(d) >= 0 ? geometry::Side::left : geometry::Side::right, p};
     best_run = evaluating;
+    best_entry = evaluating_entry;
     limit2 = across * across * (1 + 1e-15);
     return true;
   };
@@ -507,11 +509,9 @@ std::optional<NeighbourPass> PassTracker::nearest(const Entry& current,
   // (or at a pass end), the point itself if almost abeam.
   // flat: all candidates of the run lie within `tie` of each other across
   // the feed, so the first one compared stands for all.
-  auto evaluate = [&](std::uint64_t id, bool flat) {
-    const Run& r = run(id);
+  // Evaluates the entries from..to (sequences) of run id.
+  auto evaluate_range = [&](std::uint64_t id, bool flat, std::uint64_t s, std::uint64_t end) {
     evaluating = id;
-    const std::uint64_t end = std::min(r.end, cutoff_);
-    std::uint64_t s = std::max(r.first, kept);
     // h of the entry before: the same expression as h1 of that entry, so
     // it is carried from one entry to the next.
     double h0 = s > kept && s < end ? feed.dot(ring_[(s - 1) & mask_].point - cc) : 0.0;
@@ -521,12 +521,13 @@ std::optional<NeighbourPass> PassTracker::nearest(const Entry& current,
       const double h_before = h0;
       h0 = h1;
       if (std::abs(e.feed.dot(feed)) < parallel_cos) continue;
+      evaluating_entry = s;
       if (e.joined && s > kept) {  // the entry before is kept
         if ((h_before <= 0) != (h1 <= 0) || h1 == 0) {
           const Eigen::Vector3d& before = ring_[(s - 1) & mask_].point;
           // h0 == h1 == 0: the segment lies in the plane
           const double t = h_before == h1 ? 1.0 : h_before / (h_before - h1);
-          if (consider(before + t * (e.point - before)) && flat) return;
+          if (consider(before + t * (e.point - before)) && flat) return true;
           continue;
         }
       }
@@ -537,7 +538,21 @@ std::optional<NeighbourPass> PassTracker::nearest(const Entry& current,
         const double x = left.dot(d), y = normal.dot(d);
         if (x * x + y * y > limit2) continue;
       }
-      if (consider(e.point) && flat) return;
+      if (consider(e.point) && flat) return true;
+    }
+    return false;
+  };
+  // Evaluates run id, from its entry `start` on first when that lies in it
+  // (where the last neighbour was: the best comes soon, and the bound on
+  // the others is tight from there on).
+  auto evaluate = [&](std::uint64_t id, bool flat, std::uint64_t start = 0) {
+    const Run& r = run(id);
+    const std::uint64_t end = std::min(r.end, cutoff_);
+    const std::uint64_t s = std::max(r.first, kept);
+    if (start <= s || start >= end) {
+      evaluate_range(id, flat, s, end);
+    } else if (!evaluate_range(id, flat, start, end)) {
+      evaluate_range(id, flat, s, start);
     }
   };
   // Bounds of a closed run across the feed (lowest, highest); none when
@@ -642,9 +657,9 @@ std::optional<NeighbourPass> PassTracker::nearest(const Entry& current,
       // A run whose points leave its axis by more than the tie is not flat
       // (measure() would only say so): its candidates are looked at anyway.
       if (r.radius < 0 || r.radius > tie) {
-        evaluate(id, false);
+        evaluate(id, false, warm_entry_);
       } else if (const auto bounds = measure(r, radius_)) {
-        evaluate(id, bounds->second);
+        evaluate(id, bounds->second, warm_entry_);
       }
     }
   }
@@ -692,7 +707,10 @@ std::optional<NeighbourPass> PassTracker::nearest(const Entry& current,
     r = best ? 2 * r : radius_;
   }
   warm_.reset();
-  if (best) warm_ = best_run;
+  if (best) {
+    warm_ = best_run;
+    warm_entry_ = best_entry;
+  }
   return best;
 }
 

@@ -193,6 +193,7 @@ class PassTracker {
   std::vector<Candidate> candidates_;  // runs to evaluate in a search, reused
   std::uint64_t run_cut_ = 0;          // runs from here on lie wholly at or after the cutoff
   std::optional<std::uint64_t> warm_;  // the run that held the last neighbour
+  std::uint64_t warm_entry_ = 0;       // and the entry that gave it
   std::array<std::int64_t, 7> last_box_{0, 0, 0, -1, -1, -1, -1};  // cells and run last listed
   Nearby nearby_;
   Eigen::Vector3d nearby_cc_ = Eigen::Vector3d::Zero();  // the step it was listed for

@@ -419,18 +419,24 @@ TEST(PassTrackerReference, SameNeighbourAsEveryKeptPointOnTheSamplePrograms) {
   }
 }
 
-TEST(PassTrackerReference, SameNeighbourOnADenseWavyRasterWithAShortMemory) {
-  // The wavy raster at 0.1 mm along and 0.35 mm across, about 30 k points:
-  // 2000 points checked, once remembering everything and once only the
-  // last 700 points (about 2.5 passes: older ones are forgotten).
-  const auto part = samplegen::make_part("wavy");
-  ASSERT_TRUE(part);
+// The path of the wavy sample program's raster (tests change its density).
+samplegen::PathSpec wavy_raster_spec() {
   samplegen::PathSpec spec;
   for (const auto& program : samplegen::sample_programs()) {
     if (program.part == "wavy" && program.path.pattern == samplegen::Pattern::raster) {
       spec = program.path;
     }
   }
+  return spec;
+}
+
+TEST(PassTrackerReference, SameNeighbourOnADenseWavyRasterWithAShortMemory) {
+  // The wavy raster at 0.1 mm along and 0.35 mm across, about 30 k points:
+  // 2000 points checked, once remembering everything and once only the
+  // last 700 points (about 2.5 passes: older ones are forgotten).
+  const auto part = samplegen::make_part("wavy");
+  ASSERT_TRUE(part);
+  samplegen::PathSpec spec = wavy_raster_spec();
   spec.stepover = 0.35;
   spec.step = 0.1;
   spec.window = Eigen::AlignedBox2d(spec.window.min(), spec.window.min() + Eigen::Vector2d(25, 30));
@@ -448,12 +454,7 @@ TEST(PassTrackerReference, SameNeighbourOnTheFineWavyRaster) {
   // (no run is flat), a 10 x 7 mm window: about 12 k points, all checked.
   const auto part = samplegen::make_part("wavy");
   ASSERT_TRUE(part);
-  samplegen::PathSpec spec;
-  for (const auto& program : samplegen::sample_programs()) {
-    if (program.part == "wavy" && program.path.pattern == samplegen::Pattern::raster) {
-      spec = program.path;
-    }
-  }
+  samplegen::PathSpec spec = wavy_raster_spec();
   spec.stepover = 0.0775;
   spec.step = 0.0775;
   spec.window = Eigen::AlignedBox2d(spec.window.min() + Eigen::Vector2d(12, 9),
@@ -526,12 +527,7 @@ TEST(PassTrackerReference, SameNeighbourWhileTheGridIsCompactedManyTimes) {
   // of its nodes alive.
   const auto part = samplegen::make_part("wavy");
   ASSERT_TRUE(part);
-  samplegen::PathSpec spec;
-  for (const auto& program : samplegen::sample_programs()) {
-    if (program.part == "wavy" && program.path.pattern == samplegen::Pattern::raster) {
-      spec = program.path;
-    }
-  }
+  samplegen::PathSpec spec = wavy_raster_spec();
   spec.stepover = 0.6;
   spec.step = 1.0;
   const auto path = sample_path(*part->surface, spec);

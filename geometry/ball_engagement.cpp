@@ -400,9 +400,10 @@ CuttingPoints cutting_points(const Ball& ball) {
 
 }  // namespace
 
-void evaluate_ball(double radius, const CutSetup& setup, const CutCheck& check, Engagement& out) {
+void evaluate_ball(double radius, const CutSetup& setup, const CutCheck& check,
+                   CuttingPointsWanted points, Engagement& out) {
   const Ball ball(radius, setup, *check.frame);
-  if (check.rim_exists) out.points = cutting_points(ball);
+  if (check.rim_exists && points == CuttingPointsWanted::yes) out.points = cutting_points(ball);
   if (!check.can_engage) {
     out.flags.set(EngagementFlag::nothing_engaged);
     return;

@@ -9,8 +9,9 @@
 namespace vcpost::geometry {
 
 // REQUIRES: check.frame present (see check_cut). Fills d_max, d_min, the
-// cutting points and shank_engaged / nothing_engaged into `out`.
-void evaluate_ball(double radius, const CutSetup& setup, const CutCheck& check, Engagement& out);
+// cutting points (when wanted) and shank_engaged / nothing_engaged into `out`.
+void evaluate_ball(double radius, const CutSetup& setup, const CutCheck& check,
+                   CuttingPointsWanted points, Engagement& out);
 
 // Area-weighted mean of 2r over the engaged zone (ball and shank).
 // REQUIRES: check.can_engage.

@@ -34,8 +34,14 @@ CutCheck check_cut(const Tool& tool, const CutSetup& setup) {
   return check;
 }
 
-Engagement evaluate_engagement(const Tool& tool, const CutSetup& setup) {
-  if (tool.kind != ToolKind::ball) return evaluate_revolved_engagement(tool, setup);
+Engagement evaluate_engagement(const Tool& tool, const CutSetup& setup,
+                               CuttingPointsWanted points) {
+  if (tool.kind != ToolKind::ball) {
+    // The revolved engine finds the points on its way to D_max: dropped here.
+    Engagement out = evaluate_revolved_engagement(tool, setup);
+    if (points == CuttingPointsWanted::no) out.points.reset();
+    return out;
+  }
   const CutCheck check = check_cut(tool, setup);
   Engagement out;
   out.flags = check.flags;
@@ -46,7 +52,7 @@ Engagement evaluate_engagement(const Tool& tool, const CutSetup& setup) {
   out.feed_dir = check.frame->feed;
   out.side_dir = check.frame->side;
   out.normal = check.frame->normal;
-  evaluate_ball(tool.radius(), setup, check, out);
+  evaluate_ball(tool.radius(), setup, check, points, out);
   return out;
 }
 

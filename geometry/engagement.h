@@ -75,10 +75,17 @@ struct Engagement {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
 };
 
-// D_max, D_min and the cutting points, exactly (closed form and 1-D root
-// finding). REQUIRES: tool valid (see parse_tool), |normal| and |feed| > 0.
+// Whether evaluate_engagement computes the cutting points: they cost about
+// a sixth of a ball evaluation, and a post with the D_max policy and no
+// per-point report never reads them.
+enum class CuttingPointsWanted { yes, no };
+
+// D_max, D_min and (unless not wanted: then `points` stays empty) the
+// cutting points, exactly (closed form and 1-D root finding).
+// REQUIRES: tool valid (see parse_tool), |normal| and |feed| > 0.
 // Degenerate set-ups (flags above) return with the flags set, never throw.
-Engagement evaluate_engagement(const Tool& tool, const CutSetup& setup);
+Engagement evaluate_engagement(const Tool& tool, const CutSetup& setup,
+                               CuttingPointsWanted points = CuttingPointsWanted::yes);
 
 // Area-weighted mean of 2r over the engaged zone, by adaptive quadrature
 // (absolute error well under 1e-3 mm); empty when nothing is engaged.

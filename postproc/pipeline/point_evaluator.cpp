@@ -94,7 +94,10 @@ void PointEvaluator::engage(const PathSample& sample, PointResult& out) const {
   if (!cuts(out.contact)) return;
   const geometry::CutSetup setup{settings_.ap, out.ae, out.contact.normal,
                                  out.feed.isZero() ? sample.direction : out.feed, out.side};
-  out.engagement = geometry::evaluate_engagement(settings_.tool, setup);
+  const bool points = settings_.cutting_points || settings_.policy == DiameterPolicy::tangent;
+  out.engagement = geometry::evaluate_engagement(
+      settings_.tool, setup,
+      points ? geometry::CuttingPointsWanted::yes : geometry::CuttingPointsWanted::no);
   const auto& e = *out.engagement;
   switch (settings_.policy) {
     case DiameterPolicy::max:

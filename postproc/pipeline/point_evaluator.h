@@ -38,6 +38,9 @@ struct PointSettings {
   double contact_tolerance = 0.01;  // mm: |distance error| counted as touching
   DiameterPolicy policy = DiameterPolicy::max;
   double vc = 120;  // nominal cutting speed, m/min
+  // Whether results carry the cutting points (the report's d_cut); the
+  // tangent policy computes them whatever this says.
+  bool cutting_points = true;
 };
 
 struct PointResult {

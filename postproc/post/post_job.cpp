@@ -306,7 +306,9 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
   ProgramWriter writer(
       text, kind, profile, settings.adjust_feed, sink,
       kind == ProgramKind::gcode ? consumed : std::function<void(std::uint64_t)>{});
-  pipeline::PointEvaluator evaluator(model, settings.point);
+  pipeline::PointSettings point_settings = settings.point;
+  point_settings.cutting_points = static_cast<bool>(points);  // only the report's points read them
+  pipeline::PointEvaluator evaluator(model, point_settings);
   Finisher finisher(profile, settings, writer, points, summary);
 
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));

@@ -62,6 +62,33 @@ TEST(BallEngagement, HorizontalCuttingPointsByHand) {
   EXPECT_TRUE(right.points->cut.position.isApprox(p.p2.position));
 }
 
+TEST(BallEngagement, WithoutCuttingPointsTheDiametersAreTheSame) {
+  // The hand-checked level cut above (D_max 2 sqrt(0.3 * 9.7)) and a tilted
+  // one, with the points left out: D_max, D_min and the flags do not move
+  // by a bit; only `points` is empty. A bull-nose mill drops them too.
+  for (const CutSetup& s : {setup(0.3, 0.5, {0, 0, 1}, {1, 0, 0}),
+                            setup(0.3, 2, tilted_normal(deg(40)), uphill(deg(40)))}) {
+    const auto all = evaluate_engagement(Tool::ball(10), s);
+    const auto bare = evaluate_engagement(Tool::ball(10), s, CuttingPointsWanted::no);
+    ASSERT_TRUE(all.points && all.d_max && bare.d_max && bare.d_min);
+    EXPECT_FALSE(bare.points);
+    EXPECT_EQ(*bare.d_max, *all.d_max);
+    EXPECT_EQ(*bare.d_min, *all.d_min);
+    EXPECT_EQ(bare.flags.bits, all.flags.bits);
+  }
+  EXPECT_NEAR(*evaluate_engagement(Tool::ball(10), setup(0.3, 0.5, {0, 0, 1}, {1, 0, 0}),
+                                   CuttingPointsWanted::no)
+                   .d_max,
+              2 * std::sqrt(0.3 * 9.7), 1e-12);
+  const Tool bull = Tool::bull_nose(10, 2);
+  const auto bull_all = evaluate_engagement(bull, setup(0.3, 0.5, {0, 0, 1}, {1, 0, 0}));
+  const auto bull_bare =
+      evaluate_engagement(bull, setup(0.3, 0.5, {0, 0, 1}, {1, 0, 0}), CuttingPointsWanted::no);
+  ASSERT_TRUE(bull_all.points && bull_all.d_max && bull_bare.d_max);
+  EXPECT_FALSE(bull_bare.points);
+  EXPECT_EQ(*bull_bare.d_max, *bull_all.d_max);
+}
+
 TEST(BallEngagement, PrimesFallOntoOppositePointPastTheGrooveWidth) {
   const double rho = std::sqrt(0.3 * 9.7);
   const auto e = evaluate_engagement(Tool::ball(10), setup(0.3, 2 * rho + 0.1, {0, 0, 1}, {1, 0, 0}));

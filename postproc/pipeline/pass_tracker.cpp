@@ -142,7 +142,11 @@ PassTracker::PassTracker(double search_radius, double min_path_gap, std::size_t 
       abeam_(0.1 * search_radius),
       memory_(std::max<std::size_t>(memory, 1)),
       mask_(std::bit_ceil(memory_) - 1) {
-  ring_.reserve(std::min<std::size_t>(mask_ + 1, 1 << 16));
+  // The whole ring at once: pages never written cost no memory (the kernel
+  // maps them on first use), while growing by doubling copied every entry
+  // and touched twice the pages.
+  ring_.reserve(mask_ + 1);
+  runs_.reserve(mask_ + 1);
   candidates_.reserve(64);
 }
 

@@ -45,7 +45,7 @@ void StreamingPlanner::push(const Sample& sample) {
 void StreamingPlanner::finish() {
   if (finished_) return;
   finished_ = true;
-  if (!open_.empty()) close_block(std::nullopt);
+  if (!open_.empty()) close_block(open_.back().time_s);
   if (in_run_) end_run();
 }
 
@@ -66,41 +66,40 @@ std::size_t StreamingPlanner::held_samples() const { return open_.size() + point
 
 std::size_t StreamingPlanner::s_words() const { return taken_s_words_; }
 
-// The open block is complete: `next_time` is the first time of the block
-// after it (none at the end). It joins the current run, starts a new one,
-// or is an off block.
-void StreamingPlanner::close_block(std::optional<double> next_time) {
+// The open block is complete: it ends at `end_s`, the first time of the
+// block after it (its own last time at the end of the timeline). It joins
+// the current run, starts a new one, or is an off block.
+void StreamingPlanner::close_block(double end_s) {
   const Sample& first = open_.front();
-  Block b;
-  b.plan.block = first.block;
-  b.plan.start_s = first.time_s;
-  b.plan.end_s = next_time ? *next_time : open_.back().time_s;
+  double target = kInf;  // the smallest (targets are finite)
   bool tool_change = false;
   for (const auto& s : open_) {
-    if (s.target_rpm)
-      b.plan.target_rpm = std::min(b.plan.target_rpm.value_or(*s.target_rpm), *s.target_rpm);
+    if (s.target_rpm) target = std::min(target, *s.target_rpm);
     tool_change = tool_change || s.tool_change;
   }
   const std::size_t index = blocks_base_ + blocks_.size();
-  if (!detail::spindle_on(first)) {
+  const bool on = detail::spindle_on(first);
+  if (!on || !in_run_ || first.spindle != direction_ || tool_change) {
     if (in_run_) end_run();
+    if (on) start_run(first.spindle, index);
+  }
+  // Filled in place: the block is large, and it comes once per block.
+  Block& b = blocks_.emplace_back();
+  b.plan.block = first.block;
+  b.plan.run = run_;
+  b.plan.start_s = first.time_s;
+  b.plan.end_s = end_s;
+  if (target < kInf) b.plan.target_rpm = target;
+  if (!on) {
     b.off = true;
     b.done = true;
     b.plan.planned_rpm = first.program_rpm;
     b.plan.bound = Bound::off;
-    b.plan.run = run_;
-    blocks_.push_back(b);
     assign();
   } else {
-    if (!in_run_ || first.spindle != direction_ || tool_change) {
-      if (in_run_) end_run();
-      start_run(first.spindle, index);
-    }
-    b.plan.run = run_;
     b.own_min = b.span_min = b.ceiling_min = kInf;
-    blocks_.push_back(b);
-    for (std::size_t i = 0; i < open_.size(); ++i) add_point(open_[i], index, i == 0);
     open_time_ = b.plan.end_s;
+    for (std::size_t i = 0; i < open_.size(); ++i) add_point(open_[i], index, i == 0);
     if (settle_curve(false)) {
       greedy(false);
       settle_words(false);
@@ -116,6 +115,7 @@ void StreamingPlanner::start_run(SpindleState direction, std::size_t first_block
   run_first_ = first_block;
   points_.clear();
   known_ = 0;
+  curved_ = 0;
   last_cut_ceiling_.reset();
   last_forward_.reset();
   next_decide_ = first_block;
@@ -144,14 +144,13 @@ void StreamingPlanner::end_run() {
 // ---- Samples: ceiling E and the curve n.
 
 void StreamingPlanner::add_point(const Sample& s, std::size_t block, bool first) {
-  Point p;
+  Point& p = points_.emplace_back();
   p.time_s = s.time_s;
   p.program_rpm = s.program_rpm;
   p.block = block;
   p.rapid = s.rapid;
   p.has_target = s.target_rpm.has_value();
   p.first = first;
-  points_.push_back(p);
   if (s.rapid) return;  // its E waits for the next cut
   const double e = clamp(s.target_rpm ? *s.target_rpm : s.program_rpm);
   // The rapids since the last cut take the larger neighbouring ceiling.
@@ -195,13 +194,19 @@ bool StreamingPlanner::settle_curve(bool run_end) {
   points_[known_ - 1].curve = points_[known_ - 1].forward;
   for (std::size_t i = known_ - 1; i-- > 0;) {
     const double dt = points_[i + 1].time_s - points_[i].time_s;
-    points_[i].curve =
+    const double curve =
         std::min(points_[i].forward, points_[i + 1].curve + spec_.deceleration_rpm_per_s * dt);
+    // Where the pass meets the last one's value, it would give the last
+    // one's values all the way down (same sums of the same numbers): the
+    // points before this one keep them. Halves the work of the pass.
+    if (i < curved_ && curve == points_[i].curve) break;
+    points_[i].curve = curve;
   }
   std::size_t n = 0;
   while (n < known_ && (run_end || t_last - points_[n].time_s >= horizon_)) fold(points_[n++]);
-  points_.erase(points_.begin(), points_.begin() + static_cast<std::ptrdiff_t>(n));
+  points_.pop_front(n);
   known_ -= n;
+  curved_ = known_;
   return n > 0;
 }
 

@@ -51,11 +51,11 @@
 #pragma once
 
 #include <cstddef>
-#include <deque>
 #include <optional>
 #include <vector>
 
 #include "machines/profile.h"
+#include "postproc/plan/ring_queue.h"
 #include "postproc/plan/spindle_plan.h"
 
 namespace vcpost::plan {
@@ -117,7 +117,7 @@ class StreamingPlanner {
     bool lowered = false;
   };
 
-  void close_block(std::optional<double> next_time);
+  void close_block(double end_s);
   void start_run(SpindleState direction, std::size_t first_block);
   void end_run();
   void add_point(const Sample& s, std::size_t block, bool first);
@@ -151,7 +151,7 @@ class StreamingPlanner {
   bool finished_ = false;
 
   // Blocks not taken yet; blocks_base_ is the plan index of the first.
-  std::deque<Block> blocks_;
+  detail::RingQueue<Block> blocks_;
   std::size_t blocks_base_ = 0;
   std::size_t assign_next_ = 0;  // first block not final
   std::size_t taken_s_words_ = 0;
@@ -161,24 +161,25 @@ class StreamingPlanner {
   SpindleState direction_ = SpindleState::cw;
   std::size_t run_ = 0;                     // index of the current (or next) run
   std::size_t run_first_ = 0;               // plan index of its first block
-  std::deque<Point> points_;                // samples whose curve is not final
+  detail::RingQueue<Point> points_;         // samples whose curve is not final
   std::size_t known_ = 0;                   // points_ with E and the forward curve known
+  std::size_t curved_ = 0;                  // points_ with a curve from the last backward pass
   std::optional<double> last_cut_ceiling_;  // E of the last non-rapid sample
   std::optional<double> last_forward_;
   double last_forward_time_ = 0.0;
   double open_time_ = 0.0;  // first time of the block after the accepted ones
 
   // Greedy word choice.
-  std::size_t next_decide_ = 0;     // plan index of the next block to decide
-  std::deque<std::size_t> window_;  // blocks with increasing U
-  std::size_t window_next_ = 0;     // first block not yet in the window
-  double s_ = 0.0;                  // S in effect (as chosen)
+  std::size_t next_decide_ = 0;            // plan index of the next block to decide
+  detail::RingQueue<std::size_t> window_;  // blocks with increasing U
+  std::size_t window_next_ = 0;            // first block not yet in the window
+  double s_ = 0.0;                         // S in effect (as chosen)
   double last_word_time_ = 0.0;
   std::optional<Word> last_forward_word_;       // last word after the forward slew pass
   std::vector<Word> pending_;                   // words whose backward slew may change
   std::vector<Word> optimistic_, pessimistic_;  // scratch
   std::optional<double> kept_s_;                // S of the last word kept
-  std::deque<Word> kept_;                       // kept words not yet given to blocks
+  detail::RingQueue<Word> kept_;                // kept words not yet given to blocks
   double in_effect_ = 0.0;
   bool in_effect_lowered_ = false;
 };

@@ -154,15 +154,21 @@ class Finisher {
           break;
       }
     }
-    std::optional<double> target = r.target_rpm;
-    if (target && !std::isfinite(*target)) target = unbounded_rpm;
     // No vc to keep near the part (lifted in the air on an approach or a
     // link, or a plunge along the normal): like a rapid. Missed (far from
     // the model) keeps the program's S: not this finishing cut.
-    const bool air = !target && r.contact.status != geometry::BallStatus::missed;
-    slot.plan.target_rpm = target;
+    const bool air = !r.target_rpm && r.contact.status != geometry::BallStatus::missed;
+    // Set from the plain value, not copied as an optional: a copy of one
+    // just written stalls the store forwarding, and this runs per sample.
+    if (r.target_rpm) {
+      const double target = std::isfinite(*r.target_rpm) ? *r.target_rpm : unbounded_rpm;
+      slot.plan.target_rpm = target;
+      last_target_ = target;
+    } else {
+      slot.plan.target_rpm.reset();
+      last_target_.reset();
+    }
     slot.plan.rapid = air;
-    last_target_ = target;
     last_air_ = air;
     held_.push_back({r.d_ref ? static_cast<float>(*r.d_ref) : NAN, slot.weight_s, slot.plan.block,
                      slot.plan.time_s});
@@ -171,12 +177,10 @@ class Finisher {
 
   void emit() {
     for (const plan::BlockPlan& block : final_) {
+      const BlockInfo& info = writer_.block(block.block);
       std::optional<plan::BlockFeed> feed;
-      if (feeds_) {
-        const BlockInfo& info = writer_.block(block.block);
-        feed = feeds_->next(block, {info.program_f, info.program_s});
-      }
-      const double program_s = writer_.block(block.block).program_s;
+      if (feeds_) feed = feeds_->next(block, {info.program_f, info.program_s});
+      const double program_s = info.program_s;
       while (!held_.empty() && held_.front().block <= block.block) {
         HeldSample& h = held_.front();
         before_.add(h.d_ref, h.weight_s, program_s);
@@ -209,6 +213,7 @@ class Finisher {
       }
       writer_.on_final(block, feed);
     }
+    writer_.flush();
     final_.clear();
   }
 

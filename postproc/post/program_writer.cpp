@@ -80,6 +80,9 @@ void ProgramWriter::on_final(const plan::BlockPlan& plan,
   const Planned planned{&plan, feed ? &*feed : nullptr};
   while (first_pending_ < plan.block) resolve_front({}, planned);
   resolve_front(planned, planned);
+}
+
+void ProgramWriter::flush() {
   if (kind_ == ProgramKind::gcode) {
     if (!pending_.empty()) write_text_until(pending_.front().offset);
   } else {

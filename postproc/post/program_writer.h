@@ -1,7 +1,8 @@
-// The last stage of the post job: writes the output program block by block
-// as the planner declares blocks final. G-code input: the input text with
-// only S/F words changed; CL input: G-code in the profile's format from the
-// CL events. Internal to the post module.
+// The last stage of the post job: decides the output program block by
+// block as the planner declares blocks final, and writes it batch by batch.
+// G-code input: the input text with only S/F words changed; CL input:
+// G-code in the profile's format from the CL events. Internal to the post
+// module.
 #pragma once
 
 #include <cstdint>
@@ -43,8 +44,11 @@ class ProgramWriter {
   // The blocks (and for CL the events) of a chunk, in program order.
   void add(const Chunk& chunk);
   // The next final plan block, in order, with its coupled feed (when the
-  // feed is adjusted): writes every block up to it.
+  // feed is adjusted): decides every block up to it.
   void on_final(const plan::BlockPlan& plan, const std::optional<plan::BlockFeed>& feed);
+  // Writes the blocks decided so far: once per batch of final blocks, not
+  // per block (a write of one line costs more than deciding it).
+  void flush();
   // After the last final block: writes the rest.
   void finish();
 

@@ -1,9 +1,10 @@
 #include "postproc/gcode/interpreter.h"
 
 #include <array>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <limits>
 #include <numbers>
 
 #include "postproc/gcode/codes.h"
@@ -33,6 +34,24 @@ std::string code_text(char letter, int tenths) {
   }
   return s;
 }
+
+// The code of a G or M word found in its table, x10 (61.1 -> 611), as
+// find_code() matched it.
+int code_of(const Word& w) { return static_cast<int>(std::lround(w.value * 10.0)); }
+
+// The words of one block by letter and by modal group, as positions in
+// Block::words plus one (0: none). Built afresh for every block: byte
+// entries keep clearing it to a few stores (arrays of pointers, cleared
+// with `rep stos`, took a fifth of the reading stage's time).
+struct WordIndex {
+  std::array<std::uint8_t, 26> by_letter{};
+  std::array<std::uint8_t, kGroupCount> g{};
+  std::array<std::uint8_t, kGroupCount> m{};
+};
+// A word is indexed only when none before it was refused: each letter once,
+// one G per group, at most four M; so its position is below this bound.
+inline constexpr std::size_t kMaxIndexedPosition = 26 + kGroupCount + 4;
+static_assert(kMaxIndexedPosition < std::numeric_limits<std::uint8_t>::max());
 
 program::SourceRef source(const Block& b, std::uint32_t column) {
   return program::SourceRef{b.line, column == 0 ? 1u : column, b.offset};
@@ -331,13 +350,13 @@ double Interpreter::length(const Word& w) const {
 
 void Interpreter::execute(std::vector<Event>& events) {
   const Block& b = block_;
-  std::array<const Word*, 26> word{};
-  std::array<const Word*, kGroupCount> g_group{};
-  std::array<const Word*, kGroupCount> m_group{};
-  std::array<int, kGroupCount> g_code{};
-  std::array<int, kGroupCount> m_code{};
+  WordIndex index;
+  auto word_at = [&](std::uint8_t slot) { return slot == 0 ? nullptr : &b.words[slot - 1u]; };
   int m_words = 0;
-  for (const Word& w : b.words) {
+  for (std::size_t k = 0; k < b.words.size(); ++k) {
+    const Word& w = b.words[k];
+    // Stored only for a word that gets indexed: below kMaxIndexedPosition.
+    const auto slot_of_w = static_cast<std::uint8_t>(k + 1);
     if (w.letter == 'G') {
       const auto entry = find_code(kGCodes, w.value);
       if (!entry) {
@@ -351,19 +370,15 @@ void Interpreter::execute(std::vector<Event>& events) {
                  " changes the motion in a way vcpost does not follow; remove it or expand it "
                  "in CAM");
       const auto group = static_cast<std::size_t>(entry->group);
-      if (g_group[group] && entry->group != Group::non_modal)
-        fail(Code::modal_group_conflict, w.column,
-             code_text('G', g_code[group]) + " and " + code_text('G', entry->code) +
-                 " are in the same modal group");
-      if (g_group[group] && entry->group == Group::non_modal) {
+      if (const Word* before = word_at(index.g[group])) {
         // G53 combines with one other non-modal code only in theory; refuse
         // two non-modal codes as LinuxCNC does.
+        const bool non_modal = entry->group == Group::non_modal;
         fail(Code::modal_group_conflict, w.column,
-             code_text('G', g_code[group]) + " and " + code_text('G', entry->code) +
-                 " are both non-modal codes");
+             code_text('G', code_of(*before)) + " and " + code_text('G', entry->code) +
+                 (non_modal ? " are both non-modal codes" : " are in the same modal group"));
       }
-      g_group[group] = &w;
-      g_code[group] = entry->code;
+      index.g[group] = slot_of_w;
     } else if (w.letter == 'M') {
       // LinuxCNC's limit; Fanuc-like controls allow fewer.
       if (++m_words > 4) fail(Code::too_many_m_codes, w.column, "more than four M codes in one block");
@@ -378,28 +393,30 @@ void Interpreter::execute(std::vector<Event>& events) {
         continue;
       }
       const auto group = static_cast<std::size_t>(entry->group);
-      if (m_group[group])
+      if (const Word* before = word_at(index.m[group]))
         fail(Code::modal_group_conflict, w.column,
-             code_text('M', m_code[group]) + " and " + code_text('M', entry->code) +
+             code_text('M', code_of(*before)) + " and " + code_text('M', entry->code) +
                  " are in the same modal group");
-      m_group[group] = &w;
-      m_code[group] = entry->code;
+      index.m[group] = slot_of_w;
     } else {
       const char l = w.letter;
       if (l == 'A' || l == 'B' || l == 'C' || l == 'U' || l == 'V' || l == 'W')
         fail(Code::axis_not_supported, w.column,
              std::string(1, w.letter) + " axis: vcpost reads 3-axis (X Y Z) programs only");
-      auto& slot = word[static_cast<std::size_t>(w.letter - 'A')];
-      if (slot)
+      auto& slot = index.by_letter[static_cast<std::size_t>(w.letter - 'A')];
+      if (slot != 0)
         fail(Code::word_repeated, w.column, std::string(1, w.letter) + " word given twice");
-      slot = &w;
+      slot = slot_of_w;
     }
   }
-  auto W = [&](char letter) { return word[static_cast<std::size_t>(letter - 'A')]; };
-  auto G = [&](Group g) { return g_group[static_cast<std::size_t>(g)]; };
-  auto Gc = [&](Group g) { return g_code[static_cast<std::size_t>(g)]; };
-  auto M = [&](Group g) { return m_group[static_cast<std::size_t>(g)]; };
-  auto Mc = [&](Group g) { return m_code[static_cast<std::size_t>(g)]; };
+  auto W = [&](char letter) {
+    return word_at(index.by_letter[static_cast<std::size_t>(letter - 'A')]);
+  };
+  auto G = [&](Group g) { return word_at(index.g[static_cast<std::size_t>(g)]); };
+  auto M = [&](Group g) { return word_at(index.m[static_cast<std::size_t>(g)]); };
+  // The code of a group's word; only for a group that has one.
+  auto Gc = [&](Group g) { return code_of(*G(g)); };
+  auto Mc = [&](Group g) { return code_of(*M(g)); };
 
   // The transaction: all checks against `s`, committed at the end.
   ModalState s = state_;
@@ -446,10 +463,11 @@ void Interpreter::execute(std::vector<Event>& events) {
       emit(program::SetFeedRate{s.feed, s.feed_mode, source(b, f->column)});
     }
   }
-  auto emit_inverse_f = [&](std::optional<double> path_rate) {
+  // path_rate() costs a square root or an arc length: asked only in G93.
+  auto emit_inverse_f = [&](auto path_rate) {
     if (!inverse_f) return;
-    emit(program::SetFeedRate{s.feed, program::FeedMode::inverse_time,
-                              source(b, inverse_f->column), path_rate});
+    emit(program::SetFeedRate{s.feed, program::FeedMode::inverse_time, source(b, inverse_f->column),
+                              std::optional<double>(path_rate())});
     inverse_f = nullptr;
   };
   if (const Word* sw = W('S')) {
@@ -484,7 +502,7 @@ void Interpreter::execute(std::vector<Event>& events) {
                           source(b, m->column)});
   }
   const Word* nonmodal = G(Group::non_modal);
-  const int nonmodal_code = Gc(Group::non_modal);
+  const int nonmodal_code = nonmodal ? code_of(*nonmodal) : 0;
   if (nonmodal && nonmodal_code == 40) {
     // Dwell: P seconds (RS274NGC); Fanuc: X seconds or P milliseconds.
     double seconds = 0.0;
@@ -494,7 +512,7 @@ void Interpreter::execute(std::vector<Event>& events) {
       seconds = p->value;
     } else if (const Word* x = W('X')) {
       seconds = x->value;
-      word['X' - 'A'] = nullptr;  // a time here, not an axis
+      index.by_letter['X' - 'A'] = 0;  // a time here, not an axis
     } else if (const Word* p = W('P')) {
       seconds = p->decimal_point ? p->value : p->value / 1000.0;
     } else {
@@ -609,7 +627,7 @@ void Interpreter::execute(std::vector<Event>& events) {
       case Motion::linear:
         if (s.feed <= 0.0 || (s.feed_mode == program::FeedMode::inverse_time && !W('F')))
           fail(Code::missing_feed, motion_column, "G1 with no feed rate (F) in effect");
-        emit_inverse_f(s.feed * (end - s.position).norm());
+        emit_inverse_f([&] { return s.feed * (end - s.position).norm(); });
         emit(program::StraightFeed{s.position, end, src});
         break;
       case Motion::arc_cw:
@@ -675,7 +693,7 @@ void Interpreter::execute(std::vector<Event>& events) {
           turns = static_cast<int>(p->value);
         }
         const program::ArcFeed arc{s.position, end, centre, s.plane, cw ? -turns : turns, src};
-        emit_inverse_f(s.feed * program::arc_length(arc));
+        emit_inverse_f([&] { return s.feed * program::arc_length(arc); });
         emit(arc);
         break;
       }
@@ -684,7 +702,7 @@ void Interpreter::execute(std::vector<Event>& events) {
     s.moved = true;
   }
 
-  emit_inverse_f(std::nullopt);
+  emit_inverse_f([] { return std::optional<double>(); });
 
   // Stops and subprogram calls come last.
   bool end_program = false;

@@ -52,7 +52,9 @@ void PathSampler::add(const program::Event& event, std::uint64_t move,
     return arc_tangent(*arc, u);
   };
 
-  const bool continues = after_cut_ && (start - last_end_).norm() <= 1e-9 * (1 + start.norm());
+  // Most moves start exactly where the last one ended: no square roots then.
+  const bool continues =
+      after_cut_ && (start == last_end_ || (start - last_end_).norm() <= 1e-9 * (1 + start.norm()));
   const auto pieces = static_cast<std::uint64_t>(std::max(1.0, std::ceil(length / spacing_)));
   for (std::uint64_t i = continues ? 1 : 0; i <= pieces; ++i) {
     const double u = static_cast<double>(i) / static_cast<double>(pieces);

@@ -46,22 +46,21 @@ class EventSource {
 
 // Numbers the blocks: a G-code block is a line (its events share a source
 // offset); in CL data every motion starts a block, and what comes before
-// the first motion is block 0.
+// the first motion is block 0. Takes each event's source and whether it is
+// a motion, which the reader looks up once per event.
 class BlockCounter {
  public:
   explicit BlockCounter(ProgramKind kind) : kind_(kind) {}
-  bool starts_block(const Event& event) const {
+  bool starts_block(const program::SourceRef& source, bool motion) const {
     if (!started_) return true;
-    return kind_ == ProgramKind::gcode ? program::source_of(event).offset != last_offset_
-                                       : program::is_motion(event);
+    return kind_ == ProgramKind::gcode ? source.offset != last_offset_ : motion;
   }
-  // The block of `event`, and whether it starts a new one.
-  std::pair<std::size_t, bool> on(const Event& event) {
-    const program::SourceRef ref = program::source_of(event);
-    const bool fresh = starts_block(event);
+  // The block of the event, and whether it starts a new one.
+  std::pair<std::size_t, bool> on(const program::SourceRef& source, bool motion) {
+    const bool fresh = starts_block(source, motion);
     if (fresh && started_) ++block_;
     started_ = true;
-    last_offset_ = ref.offset;
+    last_offset_ = source.offset;
     return {block_, fresh};
   }
 
@@ -144,14 +143,14 @@ bool PathReader::read(Chunk& chunk, std::size_t samples) {
     }
     if (!more) break;
     Event& event = s.events[s.next_event];
-    if (chunk.samples >= samples && s.counter.starts_block(event)) break;
+    const program::SourceRef source = program::source_of(event);
+    const bool motion = program::is_motion(event);
+    if (chunk.samples >= samples && s.counter.starts_block(source, motion)) break;
     ++s.next_event;
     any = true;
-    const bool motion = program::is_motion(event);
-    const auto [block_index, fresh] = s.counter.on(event);
+    const auto [block_index, fresh] = s.counter.on(source, motion);
     if (fresh) {
-      chunk.blocks.push_back(
-          {program::source_of(event).offset, false, false, s.program_s, s.program_f});
+      chunk.blocks.push_back({source.offset, false, false, s.program_s, s.program_f});
       ++totals_.blocks;
       s.last_offset = chunk.blocks.back().offset;
     }

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <vector>
 
 namespace {
 
@@ -79,6 +80,22 @@ TEST_F(ReportCli, ReportWritesEveryFormatByItsName) {
       0u);
   EXPECT_EQ(static_cast<std::uint64_t>(std::count(rows.begin(), rows.end(), '\n')),
             j["points"]["total"].get<std::uint64_t>() + 1);
+  // The job computes the cutting points only for a report that takes its
+  // points: every engaged row (d_max, column 15 from 0) has its d_cut (17).
+  std::istringstream lines(rows);
+  std::string line;
+  std::getline(lines, line);  // the header
+  int engaged = 0;
+  while (std::getline(lines, line)) {
+    std::vector<std::string> cells;
+    std::istringstream fields(line);
+    for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
+    ASSERT_GT(cells.size(), 17u) << line;
+    if (cells[15].empty()) continue;
+    ++engaged;
+    EXPECT_FALSE(cells[17].empty()) << line;
+  }
+  EXPECT_GT(engaged, 0);
 
   const std::string page = read(html);
   EXPECT_NE(page.find("Chart.js v3"), std::string::npos);  // the installed library, inlined

@@ -36,7 +36,7 @@ struct NeighbourPass {
 // along the feed whose own segment does not cross it (pass ends); the
 // nearest of them across the feed wins (ties within 1e-10 mm: any one).
 //
-// Cost: the grid indexes short runs of consecutive points (at most 32, and
+// Cost: the grid indexes short runs of consecutive points (at most 16, and
 // a sixteenth of the search radius long), each with a bounding capsule and
 // a box of offsets from its axis, so a step looks at a few runs of the
 // nearest passes and not at points one by one: on a straight pass one

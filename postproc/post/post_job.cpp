@@ -94,6 +94,7 @@ class Finisher {
 
   void take(Chunk& chunk) {
     writer_.add(chunk);
+    std::size_t sample_index = 0;
     for (Slot& slot : chunk.slots) {
       switch (slot.kind) {
         case SlotKind::rapid:
@@ -105,7 +106,7 @@ class Finisher {
           slot.plan.rapid = last_air_;
           break;
         case SlotKind::sample:
-          sample(slot);
+          sample(slot, chunk.results[sample_index++]);
           break;
       }
       planner_.push(slot.plan);
@@ -124,8 +125,7 @@ class Finisher {
   }
 
  private:
-  void sample(Slot& slot) {
-    const pipeline::PointResult& r = slot.result;
+  void sample(Slot& slot, pipeline::PointResult& r) {
     ++summary_.samples;
     switch (r.contact.status) {
       case geometry::BallStatus::touching:
@@ -172,7 +172,7 @@ class Finisher {
     last_air_ = air;
     held_.push_back({r.d_ref ? static_cast<float>(*r.d_ref) : NAN, slot.weight_s, slot.plan.block,
                      slot.plan.time_s});
-    if (points_) held_points_.push_back({slot.sample, std::move(slot.result)});
+    if (points_) held_points_.push_back({slot.sample, std::move(r)});
   }
 
   void emit() {
@@ -352,21 +352,27 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
   auto contact = [&](Chunk* chunk) -> Chunk* {
     geometry::ContactHint hint;  // cold at the chunk's start
     hint.curvature = static_cast<bool>(points);  // only the report's points read curvatures
-    for (Slot& slot : chunk->slots) {
-      if (slot.kind == SlotKind::sample) slot.result.contact = evaluator.contact(slot.sample, hint);
+    chunk->results.clear();  // keeps its capacity
+    for (const Slot& slot : chunk->slots) {
+      if (slot.kind == SlotKind::sample)
+        chunk->results.emplace_back().contact = evaluator.contact(slot.sample, hint);
     }
     return chunk;
   };
   auto place = [&](Chunk* chunk) -> Chunk* {
-    for (Slot& slot : chunk->slots) {
+    std::size_t sample_index = 0;
+    for (const Slot& slot : chunk->slots) {
       if (slot.break_pass) evaluator.break_pass();
-      if (slot.kind == SlotKind::sample) evaluator.place(slot.sample, slot.result);
+      if (slot.kind == SlotKind::sample)
+        evaluator.place(slot.sample, chunk->results[sample_index++]);
     }
     return chunk;
   };
   auto engage = [&](Chunk* chunk) -> Chunk* {
-    for (Slot& slot : chunk->slots) {
-      if (slot.kind == SlotKind::sample) evaluator.engage(slot.sample, slot.result);
+    std::size_t sample_index = 0;
+    for (const Slot& slot : chunk->slots) {
+      if (slot.kind == SlotKind::sample)
+        evaluator.engage(slot.sample, chunk->results[sample_index++]);
     }
     return chunk;
   };

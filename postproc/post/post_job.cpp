@@ -350,9 +350,9 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
     return chunk;
   };
   auto contact = [&](Chunk* chunk) -> Chunk* {
-    geometry::ContactHint hint;  // cold at the chunk's start
+    geometry::ContactHint hint;                  // cold at the chunk's start
     hint.curvature = static_cast<bool>(points);  // only the report's points read curvatures
-    chunk->results.clear();  // keeps its capacity
+    chunk->results.clear();                      // keeps its capacity
     for (const Slot& slot : chunk->slots) {
       if (slot.kind == SlotKind::sample)
         chunk->results.emplace_back().contact = evaluator.contact(slot.sample, hint);

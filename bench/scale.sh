@@ -79,9 +79,9 @@ run() {
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //'), $(awk '/MemTotal/ { printf "%.1f GB", $2 / 1048576 }' /proc/meminfo)"
 echo "load average at start: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "vcpost: $vcpost (repository at $(git -C "$(dirname "$0")/.." rev-parse --short HEAD 2>/dev/null || echo '?'))"
-# How it was built: the figures depend on it (VCPOST_NATIVE: -march=native).
+# How it was built: the figures depend on it.
 cache_value() { sed -n "s/^$1:[A-Z]*=//p" "$build/CMakeCache.txt" 2>/dev/null; }
-echo "build: $(cache_value CMAKE_BUILD_TYPE), VCPOST_NATIVE=$(cache_value VCPOST_NATIVE), $(cache_value CMAKE_CXX_COMPILER | xargs -r basename)"
+echo "build: $(cache_value CMAKE_BUILD_TYPE) $(cache_value CMAKE_CXX_FLAGS), $(cache_value CMAKE_CXX_COMPILER | xargs -r basename)"
 
 # gen LOG ARGS...: the sample generator, its messages in $work/LOG.log
 # (shown, and the script stopped, when it fails).

@@ -24,9 +24,9 @@
 # a whole `vcpost post` on a 10-point program (an upper bound: process start
 # and the tiny job included). At the end the targets are checked
 # (ok / MISSED) on programs of 1 M points and more; below that the fixed
-# start weighs (0.04 s for wavy.step, 0.08 s for the STL), and the rates
-# are printed with and without it;
-# the script exits 1 when a run failed, not when a target is missed.
+# start (the model load above) weighs, and the rates are printed with and
+# without it. The script exits 1 when a run failed, not when a target is
+# missed.
 set -euo pipefail
 
 build=${1:-build/release}

@@ -38,6 +38,9 @@ constexpr std::size_t tracker_memory = 1 << 20;
 PointEvaluator::PointEvaluator(const geometry::SurfaceModel& model, PointSettings settings)
     : model_(model),
       settings_(settings),
+      cutting_points_(settings.cutting_points || settings.policy == DiameterPolicy::tangent
+                          ? geometry::CuttingPointsWanted::yes
+                          : geometry::CuttingPointsWanted::no),
       tracker_(settings.tool.diameter, 4 * settings.tool.diameter, tracker_memory) {}
 
 PointResult PointEvaluator::evaluate(const PathSample& sample) {
@@ -94,10 +97,7 @@ void PointEvaluator::engage(const PathSample& sample, PointResult& out) const {
   if (!cuts(out.contact)) return;
   const geometry::CutSetup setup{settings_.ap, out.ae, out.contact.normal,
                                  out.feed.isZero() ? sample.direction : out.feed, out.side};
-  const bool points = settings_.cutting_points || settings_.policy == DiameterPolicy::tangent;
-  out.engagement = geometry::evaluate_engagement(
-      settings_.tool, setup,
-      points ? geometry::CuttingPointsWanted::yes : geometry::CuttingPointsWanted::no);
+  out.engagement = geometry::evaluate_engagement(settings_.tool, setup, cutting_points_);
   const auto& e = *out.engagement;
   switch (settings_.policy) {
     case DiameterPolicy::max:

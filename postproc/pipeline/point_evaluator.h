@@ -84,6 +84,7 @@ class PointEvaluator {
  private:
   const geometry::SurfaceModel& model_;
   PointSettings settings_;
+  geometry::CuttingPointsWanted cutting_points_;  // decided once from settings_
   geometry::ContactHint hint_;
   PassTracker tracker_;
   bool had_contact_ = false;

@@ -707,6 +707,10 @@ class LineReader {
     const std::size_t key_at = i_;
     const std::string key = read_letters();
     c.kind = o_keyword(key);
+    // "O0001" alone: a program number, as rs274 reads it.
+    if (c.kind == ControlKind::none && key.empty() && !c.name.empty() &&
+        c.name.find_first_not_of("0123456789") == std::string::npos)
+      c.kind = ControlKind::program_number;
     if (c.kind == ControlKind::none)
       fail(Code::unknown_word, key_at, "unknown O-word keyword '" + key + "'");
     switch (c.kind) {

@@ -22,7 +22,14 @@ enum class Group : unsigned char {
   coordinate,     // G54 .. G59.3
   path_control,   // G61 G61.1 G64
   spindle_mode,   // G96 G97
-  high_speed,     // Mazak/Fanuc G5 P2, G5.1, G8
+  high_speed,     // Fanuc/Mazak G5 P2, G5.1, G8
+  lathe_mode,     // G7 G8 (LinuxCNC lathe diameter / radius)
+  scaling,        // Fanuc G50 G51
+  mirror,         // Fanuc G50.1 G51.1
+  rotation,       // Fanuc G68 G69
+  polar,          // Fanuc G15 G16
+  macro_modal,    // Fanuc G66 G67
+  canned_cycle,   // Fanuc: G73 .. G89 and G80, beside G0/G1 (group 09)
   // M groups
   stopping,       // M0 M1 M2 M30 M60 M99
   spindle,        // M3 M4 M5
@@ -37,6 +44,8 @@ inline constexpr std::size_t kGroupCount = static_cast<std::size_t>(Group::overr
 enum class Support : unsigned char {
   followed,  // interpreted
   ignored,   // no effect on motion, S or F: accepted and passed through
+  noted,     // a control's own mode code, no effect on the path: passed
+             // through with one warning naming it (once per program)
   refused,   // changes the motion in a way vcpost does not follow: an error
 };
 
@@ -44,59 +53,163 @@ struct CodeEntry {
   int code;  // x10
   Group group;
   Support support;
+  // refused: what the code does that vcpost cannot follow (for the message)
+  const char* what = nullptr;
 };
 
+using Gr = Group;
+using Su = Support;
+
+// RS274NGC as LinuxCNC reads it (its G-code list is the checklist); the
+// base of every dialect.
 inline constexpr std::array kGCodes{
-    CodeEntry{0, Group::motion, Support::followed},      CodeEntry{10, Group::motion, Support::followed},
-    CodeEntry{20, Group::motion, Support::followed},     CodeEntry{30, Group::motion, Support::followed},
-    CodeEntry{40, Group::non_modal, Support::followed},  CodeEntry{50, Group::high_speed, Support::ignored},
-    CodeEntry{51, Group::high_speed, Support::ignored},  CodeEntry{80, Group::high_speed, Support::ignored},
-    CodeEntry{90, Group::non_modal, Support::ignored},   CodeEntry{100, Group::non_modal, Support::refused},
-    CodeEntry{150, Group::non_modal, Support::refused},  CodeEntry{160, Group::non_modal, Support::refused},
-    CodeEntry{170, Group::plane, Support::followed},     CodeEntry{180, Group::plane, Support::followed},
-    CodeEntry{190, Group::plane, Support::followed},     CodeEntry{200, Group::units, Support::followed},
-    CodeEntry{210, Group::units, Support::followed},     CodeEntry{280, Group::non_modal, Support::followed},
-    CodeEntry{300, Group::non_modal, Support::refused},  CodeEntry{330, Group::motion, Support::refused},
-    CodeEntry{382, Group::motion, Support::refused},     CodeEntry{383, Group::motion, Support::refused},
-    CodeEntry{384, Group::motion, Support::refused},     CodeEntry{385, Group::motion, Support::refused},
-    CodeEntry{400, Group::cutter_comp, Support::followed}, CodeEntry{410, Group::cutter_comp, Support::followed},
-    CodeEntry{420, Group::cutter_comp, Support::followed}, CodeEntry{430, Group::tool_length, Support::followed},
-    CodeEntry{490, Group::tool_length, Support::followed}, CodeEntry{500, Group::non_modal, Support::refused},
-    CodeEntry{510, Group::non_modal, Support::refused},  CodeEntry{520, Group::non_modal, Support::refused},
-    CodeEntry{530, Group::non_modal, Support::followed}, CodeEntry{540, Group::coordinate, Support::followed},
-    CodeEntry{550, Group::coordinate, Support::followed}, CodeEntry{560, Group::coordinate, Support::followed},
-    CodeEntry{570, Group::coordinate, Support::followed}, CodeEntry{580, Group::coordinate, Support::followed},
-    CodeEntry{590, Group::coordinate, Support::followed}, CodeEntry{591, Group::coordinate, Support::followed},
-    CodeEntry{592, Group::coordinate, Support::followed}, CodeEntry{593, Group::coordinate, Support::followed},
-    CodeEntry{610, Group::path_control, Support::ignored}, CodeEntry{611, Group::path_control, Support::ignored},
-    CodeEntry{640, Group::path_control, Support::ignored}, CodeEntry{650, Group::non_modal, Support::refused},
-    CodeEntry{660, Group::non_modal, Support::refused},  CodeEntry{670, Group::non_modal, Support::refused},
-    CodeEntry{680, Group::non_modal, Support::refused},  CodeEntry{690, Group::non_modal, Support::ignored},
-    CodeEntry{730, Group::motion, Support::refused},     CodeEntry{760, Group::motion, Support::refused},
-    CodeEntry{800, Group::motion, Support::followed},    CodeEntry{810, Group::motion, Support::refused},
-    CodeEntry{820, Group::motion, Support::refused},     CodeEntry{830, Group::motion, Support::refused},
-    CodeEntry{840, Group::motion, Support::refused},     CodeEntry{850, Group::motion, Support::refused},
-    CodeEntry{860, Group::motion, Support::refused},     CodeEntry{870, Group::motion, Support::refused},
-    CodeEntry{880, Group::motion, Support::refused},     CodeEntry{890, Group::motion, Support::refused},
-    CodeEntry{900, Group::distance, Support::followed},  CodeEntry{901, Group::arc_distance, Support::followed},
-    CodeEntry{910, Group::distance, Support::followed},  CodeEntry{911, Group::arc_distance, Support::followed},
-    CodeEntry{920, Group::non_modal, Support::refused},  CodeEntry{921, Group::non_modal, Support::refused},
-    CodeEntry{922, Group::non_modal, Support::refused},  CodeEntry{923, Group::non_modal, Support::refused},
-    CodeEntry{930, Group::feed_mode, Support::followed}, CodeEntry{940, Group::feed_mode, Support::followed},
-    CodeEntry{950, Group::feed_mode, Support::followed}, CodeEntry{960, Group::spindle_mode, Support::refused},
-    CodeEntry{970, Group::spindle_mode, Support::ignored}, CodeEntry{980, Group::return_mode, Support::ignored},
-    CodeEntry{990, Group::return_mode, Support::ignored}, CodeEntry{1170, Group::non_modal, Support::ignored},
+    CodeEntry{0, Gr::motion, Su::followed},
+    CodeEntry{10, Gr::motion, Su::followed},
+    CodeEntry{20, Gr::motion, Su::followed},
+    CodeEntry{30, Gr::motion, Su::followed},
+    CodeEntry{40, Gr::non_modal, Su::followed},
+    CodeEntry{50, Gr::motion, Su::refused, "is a cubic spline move"},
+    CodeEntry{51, Gr::motion, Su::refused, "is a quadratic spline move"},
+    CodeEntry{52, Gr::motion, Su::refused, "is a NURBS move"},
+    CodeEntry{53, Gr::motion, Su::refused, "is a NURBS move"},
+    CodeEntry{70, Gr::lathe_mode, Su::refused, "makes X a diameter (lathe mode)"},
+    CodeEntry{80, Gr::lathe_mode, Su::ignored},
+    CodeEntry{100, Gr::non_modal, Su::followed},
+    CodeEntry{170, Gr::plane, Su::followed},
+    CodeEntry{171, Gr::plane, Su::refused, "selects the UV plane"},
+    CodeEntry{180, Gr::plane, Su::followed},
+    CodeEntry{181, Gr::plane, Su::refused, "selects the WU plane"},
+    CodeEntry{190, Gr::plane, Su::followed},
+    CodeEntry{191, Gr::plane, Su::refused, "selects the VW plane"},
+    CodeEntry{200, Gr::units, Su::followed},
+    CodeEntry{210, Gr::units, Su::followed},
+    CodeEntry{280, Gr::non_modal, Su::followed},
+    CodeEntry{281, Gr::non_modal, Su::followed},
+    CodeEntry{300, Gr::non_modal, Su::followed},
+    CodeEntry{301, Gr::non_modal, Su::followed},
+    CodeEntry{330, Gr::motion, Su::refused, "is a spindle-synchronised (threading) move"},
+    CodeEntry{331, Gr::motion, Su::refused, "is rigid tapping synchronised to the spindle"},
+    CodeEntry{382, Gr::motion, Su::refused, "is a probing move that ends where the probe trips"},
+    CodeEntry{383, Gr::motion, Su::refused, "is a probing move that ends where the probe trips"},
+    CodeEntry{384, Gr::motion, Su::refused, "is a probing move that ends where the probe trips"},
+    CodeEntry{385, Gr::motion, Su::refused, "is a probing move that ends where the probe trips"},
+    CodeEntry{400, Gr::cutter_comp, Su::followed},
+    CodeEntry{410, Gr::cutter_comp, Su::followed},
+    CodeEntry{411, Gr::cutter_comp, Su::followed},
+    CodeEntry{420, Gr::cutter_comp, Su::followed},
+    CodeEntry{421, Gr::cutter_comp, Su::followed},
+    CodeEntry{430, Gr::tool_length, Su::followed},
+    CodeEntry{431, Gr::tool_length, Su::followed},
+    CodeEntry{432, Gr::tool_length, Su::followed},
+    CodeEntry{490, Gr::tool_length, Su::followed},
+    CodeEntry{520, Gr::non_modal, Su::followed},
+    CodeEntry{530, Gr::non_modal, Su::followed},
+    CodeEntry{540, Gr::coordinate, Su::followed},
+    CodeEntry{550, Gr::coordinate, Su::followed},
+    CodeEntry{560, Gr::coordinate, Su::followed},
+    CodeEntry{570, Gr::coordinate, Su::followed},
+    CodeEntry{580, Gr::coordinate, Su::followed},
+    CodeEntry{590, Gr::coordinate, Su::followed},
+    CodeEntry{591, Gr::coordinate, Su::followed},
+    CodeEntry{592, Gr::coordinate, Su::followed},
+    CodeEntry{593, Gr::coordinate, Su::followed},
+    CodeEntry{610, Gr::path_control, Su::ignored},
+    CodeEntry{611, Gr::path_control, Su::ignored},
+    CodeEntry{640, Gr::path_control, Su::ignored},
+    CodeEntry{700, Gr::motion, Su::refused, "is a lathe finishing cycle"},
+    CodeEntry{710, Gr::motion, Su::refused, "is a lathe roughing cycle"},
+    CodeEntry{711, Gr::motion, Su::refused, "is a lathe roughing cycle"},
+    CodeEntry{712, Gr::motion, Su::refused, "is a lathe roughing cycle"},
+    CodeEntry{720, Gr::motion, Su::refused, "is a lathe roughing cycle"},
+    CodeEntry{721, Gr::motion, Su::refused, "is a lathe roughing cycle"},
+    CodeEntry{722, Gr::motion, Su::refused, "is a lathe roughing cycle"},
+    CodeEntry{730, Gr::motion, Su::followed},
+    CodeEntry{740, Gr::motion, Su::followed},
+    CodeEntry{760, Gr::motion, Su::refused, "is a lathe threading cycle"},
+    CodeEntry{800, Gr::motion, Su::followed},
+    CodeEntry{810, Gr::motion, Su::followed},
+    CodeEntry{820, Gr::motion, Su::followed},
+    CodeEntry{830, Gr::motion, Su::followed},
+    CodeEntry{840, Gr::motion, Su::followed},
+    CodeEntry{850, Gr::motion, Su::followed},
+    CodeEntry{860, Gr::motion, Su::followed},
+    CodeEntry{870, Gr::motion, Su::followed},
+    CodeEntry{880, Gr::motion, Su::followed},
+    CodeEntry{890, Gr::motion, Su::followed},
+    CodeEntry{900, Gr::distance, Su::followed},
+    CodeEntry{901, Gr::arc_distance, Su::followed},
+    CodeEntry{910, Gr::distance, Su::followed},
+    CodeEntry{911, Gr::arc_distance, Su::followed},
+    CodeEntry{920, Gr::non_modal, Su::followed},
+    CodeEntry{921, Gr::non_modal, Su::followed},
+    CodeEntry{922, Gr::non_modal, Su::followed},
+    CodeEntry{923, Gr::non_modal, Su::followed},
+    CodeEntry{930, Gr::feed_mode, Su::followed},
+    CodeEntry{940, Gr::feed_mode, Su::followed},
+    CodeEntry{950, Gr::feed_mode, Su::followed},
+    CodeEntry{960, Gr::spindle_mode, Su::refused, "makes the spindle speed follow the radius (constant surface speed)"},
+    CodeEntry{970, Gr::spindle_mode, Su::ignored},
+    CodeEntry{980, Gr::return_mode, Su::followed},
+    CodeEntry{990, Gr::return_mode, Su::followed},
+};
+
+// Fanuc-like controls (Fanuc, Haas, Makino, Mazak EIA): where they differ
+// from RS274NGC; looked up before kGCodes.
+inline constexpr std::array kFanucGCodes{
+    CodeEntry{50, Gr::high_speed, Su::noted},   // G05 P10000 / P2: high-speed machining mode
+    CodeEntry{51, Gr::high_speed, Su::noted},   // G05.1 Q1: AI contour control
+    CodeEntry{70, Gr::non_modal, Su::refused, "is a hypothetical-axis (cylindrical) interpolation"},
+    CodeEntry{71, Gr::non_modal, Su::refused, "is cylindrical interpolation"},
+    CodeEntry{80, Gr::high_speed, Su::noted},   // G08 P1: look-ahead control
+    CodeEntry{90, Gr::non_modal, Su::ignored},  // G09 exact stop, this block only
+    CodeEntry{110, Gr::non_modal, Su::ignored}, // G11 data-setting mode off
+    CodeEntry{121, Gr::polar, Su::refused, "is polar coordinate interpolation"},
+    CodeEntry{131, Gr::polar, Su::noted},       // G13.1 polar interpolation off
+    CodeEntry{150, Gr::polar, Su::noted},       // G15 polar coordinates off
+    CodeEntry{160, Gr::polar, Su::refused, "reads X/Y as polar coordinates (radius, angle)"},
+    CodeEntry{220, Gr::non_modal, Su::noted},   // G22/G23 stored stroke check on/off
+    CodeEntry{230, Gr::non_modal, Su::noted},
+    CodeEntry{270, Gr::non_modal, Su::refused, "checks the reference position with a move vcpost cannot place"},
+    CodeEntry{290, Gr::non_modal, Su::refused, "returns from the reference position through an unknown point"},
+    CodeEntry{310, Gr::non_modal, Su::refused, "is a skip move that ends where a signal arrives"},
+    CodeEntry{500, Gr::scaling, Su::noted},     // G50 scaling off
+    CodeEntry{501, Gr::mirror, Su::noted},      // G50.1 programmable mirror image off
+    CodeEntry{510, Gr::scaling, Su::refused, "scales the program (G51)"},
+    CodeEntry{511, Gr::mirror, Su::refused, "mirrors the program (programmable mirror image)"},
+    CodeEntry{541, Gr::coordinate, Su::followed}, // G54.1 Pn additional work offsets
+    CodeEntry{600, Gr::non_modal, Su::refused, "positions from one direction with an overshoot vcpost cannot place"},
+    CodeEntry{630, Gr::path_control, Su::ignored}, // tapping mode
+    CodeEntry{650, Gr::non_modal, Su::followed},   // G65 macro call
+    CodeEntry{660, Gr::macro_modal, Su::refused, "calls a macro after every move (modal macro call)"},
+    CodeEntry{670, Gr::macro_modal, Su::ignored},
+    CodeEntry{680, Gr::rotation, Su::refused, "rotates the coordinate system"},
+    CodeEntry{690, Gr::rotation, Su::noted},    // G69 rotation off
+    CodeEntry{700, Gr::units, Su::refused, "is inch input on old controls; use G20"},
+    CodeEntry{760, Gr::motion, Su::followed},   // fine boring
+    CodeEntry{1030, Gr::non_modal, Su::noted},  // Haas G103 look-ahead limit
+    CodeEntry{1170, Gr::non_modal, Su::ignored}, // Mazak G117 (axis words are a position)
+    CodeEntry{1870, Gr::non_modal, Su::noted},  // Haas G187 smoothness
 };
 
 inline constexpr std::array kMCodes{
-    CodeEntry{0, Group::stopping, Support::followed},   CodeEntry{10, Group::stopping, Support::followed},
-    CodeEntry{20, Group::stopping, Support::followed},  CodeEntry{300, Group::stopping, Support::followed},
-    CodeEntry{30, Group::spindle, Support::followed},   CodeEntry{40, Group::spindle, Support::followed},
-    CodeEntry{50, Group::spindle, Support::followed},   CodeEntry{60, Group::tool_change, Support::followed},
-    CodeEntry{70, Group::coolant, Support::followed},   CodeEntry{80, Group::coolant, Support::followed},
-    CodeEntry{90, Group::coolant, Support::followed},   CodeEntry{480, Group::overrides, Support::ignored},
-    CodeEntry{490, Group::overrides, Support::ignored}, CodeEntry{600, Group::stopping, Support::ignored},
-    CodeEntry{980, Group::subprogram, Support::followed}, CodeEntry{990, Group::stopping, Support::followed},
+    CodeEntry{0, Gr::stopping, Su::followed},   CodeEntry{10, Gr::stopping, Su::followed},
+    CodeEntry{20, Gr::stopping, Su::followed},  CodeEntry{300, Gr::stopping, Su::followed},
+    CodeEntry{30, Gr::spindle, Su::followed},   CodeEntry{40, Gr::spindle, Su::followed},
+    CodeEntry{50, Gr::spindle, Su::followed},   CodeEntry{60, Gr::tool_change, Su::followed},
+    CodeEntry{70, Gr::coolant, Su::followed},   CodeEntry{80, Gr::coolant, Su::followed},
+    CodeEntry{90, Gr::coolant, Su::followed},   CodeEntry{190, Gr::spindle, Su::followed},
+    CodeEntry{480, Gr::overrides, Su::ignored}, CodeEntry{490, Gr::overrides, Su::ignored},
+    CodeEntry{500, Gr::overrides, Su::ignored}, CodeEntry{510, Gr::overrides, Su::ignored},
+    CodeEntry{520, Gr::overrides, Su::ignored}, CodeEntry{530, Gr::overrides, Su::ignored},
+    CodeEntry{600, Gr::stopping, Su::ignored},  CodeEntry{610, Gr::tool_change, Su::ignored},
+    CodeEntry{620, Gr::overrides, Su::ignored}, CodeEntry{630, Gr::overrides, Su::ignored},
+    CodeEntry{640, Gr::overrides, Su::ignored}, CodeEntry{650, Gr::overrides, Su::ignored},
+    CodeEntry{660, Gr::overrides, Su::ignored}, CodeEntry{670, Gr::overrides, Su::ignored},
+    CodeEntry{680, Gr::overrides, Su::ignored}, CodeEntry{700, Gr::overrides, Su::ignored},
+    CodeEntry{710, Gr::overrides, Su::ignored},
+    CodeEntry{720, Gr::overrides, Su::refused, "restores a saved modal state (units, distance mode ...)"},
+    CodeEntry{730, Gr::overrides, Su::refused, "restores a saved modal state at the subroutine's end"},
+    CodeEntry{980, Gr::subprogram, Su::followed}, CodeEntry{990, Gr::stopping, Su::followed},
 };
 
 // The entry of a code given as a word value (61.1 -> 611); nullopt if the
@@ -114,7 +227,16 @@ constexpr std::optional<CodeEntry> find_code(const std::array<CodeEntry, N>& tab
   return std::nullopt;
 }
 
+// The G code of a dialect: Fanuc-like overrides first, then RS274NGC.
+constexpr std::optional<CodeEntry> find_g_code(bool fanuc_like, double value) {
+  if (fanuc_like)
+    if (const auto entry = find_code(kFanucGCodes, value)) return entry;
+  return find_code(kGCodes, value);
+}
+
 static_assert(find_code(kGCodes, 61.1)->group == Group::path_control);
+static_assert(find_g_code(true, 5.1)->support == Support::noted);
+static_assert(find_g_code(false, 5.1)->support == Support::refused);
 static_assert(!find_code(kGCodes, 1.5).has_value());
 static_assert(!find_code(kGCodes, 1e300).has_value());
 

@@ -20,6 +20,8 @@ constexpr std::array kTable{
     CodeInfo{line_too_long, E, "line too long"},
     CodeInfo{unknown_word, E, "unknown word"},
     CodeInfo{word_repeated, E, "word given twice in one block"},
+    CodeInfo{word_without_use, E, "word with no code in its block that uses it"},
+    CodeInfo{dialect_mismatch, E, "the program is written in another dialect"},
     CodeInfo{bad_expression, E, "bad expression"},
     CodeInfo{unknown_parameter, E, "parameter read before it was set"},
     CodeInfo{parameter_out_of_range, E, "parameter number out of range"},
@@ -31,11 +33,13 @@ constexpr std::array kTable{
     CodeInfo{unmatched_control, E, "control word without its opening word"},
     CodeInfo{call_depth, E, "subroutine or loop nesting too deep"},
     CodeInfo{missing_program_end, W, "program ends without M2 or M30"},
+    CodeInfo{external_macro, W, "macro call to a program not in this file"},
     CodeInfo{unknown_g_code, E, "unknown G code"},
     CodeInfo{unknown_m_code, E, "unknown M code"},
     CodeInfo{modal_group_conflict, E, "two codes of one modal group in a block"},
     CodeInfo{unsupported_code, E, "code not supported by vcpost"},
     CodeInfo{too_many_m_codes, E, "too many M codes in a block"},
+    CodeInfo{mode_code_passed, W, "control mode code passed through unchanged"},
     CodeInfo{missing_arc_data, E, "arc without its centre or radius"},
     CodeInfo{arc_radius_mismatch, E, "arc radius to end differs from radius to start"},
     CodeInfo{arc_r_too_small, E, "arc radius too small for the chord"},
@@ -47,6 +51,8 @@ constexpr std::array kTable{
     CodeInfo{machine_coordinates, W, "machine-coordinate move taken with zero offsets"},
     CodeInfo{work_offset_change, E, "work coordinate system changed after motion"},
     CodeInfo{bad_word_value, E, "bad word value"},
+    CodeInfo{frame_change, W, "coordinate frame changed after motion"},
+    CodeInfo{cycle_value, E, "canned cycle word missing or out of range"},
 };
 
 }  // namespace

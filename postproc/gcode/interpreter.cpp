@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "postproc/gcode/codes.h"
+#include "postproc/gcode/cycles.h"
 #include "postproc/program/arc.h"
 
 namespace vcpost::gcode {
@@ -37,7 +38,10 @@ std::string code_text(char letter, int tenths) {
 
 // The code of a G or M word found in its table, x10 (61.1 -> 611), as
 // find_code() matched it.
-int code_of(const Word& w) { return static_cast<int>(std::lround(w.value * 10.0)); }
+int code_of(const Word& w) {
+  const double tenths = w.value * 10.0;
+  return static_cast<int>(tenths + (tenths < 0 ? -0.5 : 0.5));  // as lround: found codes are small
+}
 
 // The words of one block by letter and by modal group, as positions in
 // Block::words plus one (0: none). Built afresh for every block: byte
@@ -60,7 +64,11 @@ program::SourceRef source(const Block& b, std::uint32_t column) {
 }  // namespace
 
 Interpreter::Interpreter(std::string_view text, Dialect dialect, InterpreterLimits limits)
-    : text_(text), dialect_(dialect), limits_(limits), parameters_(dialect_) {}
+    : text_(text), dialect_(dialect), limits_(limits), parameters_(dialect_) {
+  // Canned cycles retract to the R plane (G99) in rs274 at start, to the
+  // initial level (G98) on Fanuc-like controls.
+  state_.retract_to_r = dialect_.kind == DialectKind::rs274ngc;
+}
 
 bool Interpreter::line_at(std::uint64_t offset, std::uint32_t number, Line& line) const {
   if (offset >= text_.size()) return false;
@@ -93,8 +101,8 @@ void Interpreter::fail(Code code, std::uint32_t column, std::string message) con
 void Interpreter::warn(Code code, std::uint32_t column, std::string message) {
   ++warning_count_;
   if (warnings_.size() >= limits_.max_warnings) return;
-  warnings_.push_back(
-      Diagnostic{code, Severity::warning, block_.line, column == 0 ? 1u : column, std::move(message)});
+  warnings_.push_back(Diagnostic{code, Severity::warning, block_.line, column == 0 ? 1u : column,
+                                 std::move(message)});
 }
 
 bool Interpreter::next(std::vector<Event>& events) {
@@ -145,8 +153,8 @@ bool Interpreter::next(std::vector<Event>& events) {
 
 void Interpreter::commit_assignments() {
   for (const auto& a : block_.assignments) {
-    const Access r = a.name.empty() ? parameters_.write(a.number, a.value)
-                                    : parameters_.write(a.name, a.value);
+    const Access r =
+        a.name.empty() ? parameters_.write(a.number, a.value) : parameters_.write(a.name, a.value);
     if (!r.ok) fail(r.code, a.column, r.message);
   }
 }
@@ -195,7 +203,8 @@ std::pair<std::uint64_t, std::uint32_t> Interpreter::find_sub(const std::string&
   }
   if (auto it = subs_.find(key); it != subs_.end()) return it->second;
   fail(Code::unknown_subroutine, block_.control.column,
-       (fanuc ? "program O" : "subroutine o<") + name + (fanuc ? "" : ">") + " not found in this file");
+       (fanuc ? "program O" : "subroutine o<") + name + (fanuc ? "" : ">") +
+           " not found in this file");
 }
 
 void Interpreter::call(const std::string& name, std::vector<double> arguments, bool fanuc,
@@ -257,15 +266,16 @@ bool Interpreter::handle_control(std::vector<Event>& events) {
     case ControlKind::if_: {
       const bool taken = c.condition.value_or(0.0) != 0.0;
       flow_.push_back(Flow{ControlKind::if_, c.name, 0, 0, 0, taken});
-      if (!taken) skip_to(c.name, {ControlKind::elseif, ControlKind::else_, ControlKind::endif}, fanuc);
+      if (!taken)
+        skip_to(c.name, {ControlKind::elseif, ControlKind::else_, ControlKind::endif}, fanuc);
       return true;
     }
     case ControlKind::elseif:
     case ControlKind::else_: {
-      if (!top_is(ControlKind::if_))
-        fail(Code::unmatched_control, c.column, "else without its if");
+      if (!top_is(ControlKind::if_)) fail(Code::unmatched_control, c.column, "else without its if");
       Flow& f = flow_.back();
-      const bool take = !f.taken && (c.kind == ControlKind::else_ || c.condition.value_or(0.0) != 0.0);
+      const bool take =
+          !f.taken && (c.kind == ControlKind::else_ || c.condition.value_or(0.0) != 0.0);
       if (take) {
         f.taken = true;
       } else if (f.taken) {
@@ -348,17 +358,67 @@ double Interpreter::length(const Word& w) const {
   return state_.inches ? v * kInch : v;
 }
 
+void Interpreter::warn_once(char letter, int key, Code code, std::uint32_t column,
+                            std::string message) {
+  for (const auto& k : warned_once_)
+    if (k.first == letter && k.second == key) return;
+  warned_once_.emplace_back(letter, key);
+  warn(code, column, std::move(message) + " (reported once)");
+}
+
+namespace {
+
+bool is_cycle_code(int c) { return c == 730 || c == 740 || c == 760 || (c >= 810 && c <= 890); }
+
+// Codes that take the block's axis words for themselves (no move of their own
+// kind from them): G10, G28, G30, G52, G92.
+bool uses_axis_words(int nonmodal) {
+  return nonmodal == 100 || nonmodal == 280 || nonmodal == 300 || nonmodal == 520 ||
+         nonmodal == 920;
+}
+
+std::size_t work_index(int code) {
+  switch (code) {
+    case 540:
+      return 0;
+    case 550:
+      return 1;
+    case 560:
+      return 2;
+    case 570:
+      return 3;
+    case 580:
+      return 4;
+    case 590:
+      return 5;
+    case 591:
+      return 6;
+    case 592:
+      return 7;
+    case 593:
+      return 8;
+    default:
+      return 9;  // G54.1
+  }
+}
+
+}  // namespace
+
 void Interpreter::execute(std::vector<Event>& events) {
   const Block& b = block_;
+  const bool fanuc_like = dialect_.kind != DialectKind::rs274ngc;
   WordIndex index;
-  auto word_at = [&](std::uint8_t slot) { return slot == 0 ? nullptr : &b.words[slot - 1u]; };
+  auto word_at = [&](std::uint8_t slot) __attribute__((always_inline)) {
+    return slot == 0 ? nullptr : &b.words[slot - 1u];
+  };
   int m_words = 0;
+  bool mist_and_flood = false;
   for (std::size_t k = 0; k < b.words.size(); ++k) {
     const Word& w = b.words[k];
     // Stored only for a word that gets indexed: below kMaxIndexedPosition.
     const auto slot_of_w = static_cast<std::uint8_t>(k + 1);
     if (w.letter == 'G') {
-      const auto entry = find_code(kGCodes, w.value);
+      const auto entry = find_g_code(fanuc_like, w.value);
       if (!entry) {
         char text[32];
         std::snprintf(text, sizeof text, "G%g", w.value);
@@ -367,13 +427,31 @@ void Interpreter::execute(std::vector<Event>& events) {
       if (entry->support == Support::refused)
         fail(Code::unsupported_code, w.column,
              code_text('G', entry->code) +
-                 " changes the motion in a way vcpost does not follow; remove it or expand it "
-                 "in CAM");
-      const auto group = static_cast<std::size_t>(entry->group);
+                 " changes the motion in a way vcpost does not follow (it " +
+                 (entry->what ? entry->what : "is not followed") +
+                 "); remove it or expand it in CAM");
+      if (entry->support == Support::noted)
+        warn_once('G', entry->code, Code::mode_code_passed, w.column,
+                  code_text('G', entry->code) +
+                      " is a mode of the control that does not change the path vcpost reads; "
+                      "passed through unchanged");
+      Group grp = entry->group;
+      // Fanuc: the canned cycles and G80 are a group of their own (09), so
+      // "G00 G80" and "G81 ... " beside a G01 mode are no conflict.
+      if (fanuc_like && grp == Group::motion && (entry->code == 800 || is_cycle_code(entry->code)))
+        grp = Group::canned_cycle;
+      const auto group = static_cast<std::size_t>(grp);
       if (const Word* before = word_at(index.g[group])) {
+        // RS274NGC: G80 beside another motion code gives way to it (rs274
+        // reads "G0 G80" so).
+        if (grp == Group::motion && entry->code == 800) continue;
+        if (grp == Group::motion && code_of(*before) == 800) {
+          index.g[group] = slot_of_w;
+          continue;
+        }
         // G53 combines with one other non-modal code only in theory; refuse
         // two non-modal codes as LinuxCNC does.
-        const bool non_modal = entry->group == Group::non_modal;
+        const bool non_modal = grp == Group::non_modal;
         fail(Code::modal_group_conflict, w.column,
              code_text('G', code_of(*before)) + " and " + code_text('G', entry->code) +
                  (non_modal ? " are both non-modal codes" : " are in the same modal group"));
@@ -381,22 +459,42 @@ void Interpreter::execute(std::vector<Event>& events) {
       index.g[group] = slot_of_w;
     } else if (w.letter == 'M') {
       // LinuxCNC's limit; Fanuc-like controls allow fewer.
-      if (++m_words > 4) fail(Code::too_many_m_codes, w.column, "more than four M codes in one block");
-      const auto entry = find_code(kMCodes, w.value);
+      if (++m_words > 4)
+        fail(Code::too_many_m_codes, w.column, "more than four M codes in one block");
+      auto entry = find_code(kMCodes, w.value);
+      // Fanuc-like controls: beyond the standard M codes, every M is the
+      // machine's own (M50 is no feed override there).
+      if (entry && fanuc_like && entry->group == Group::overrides) entry.reset();
+      if (entry && fanuc_like && (entry->code == 600 || entry->code == 610)) entry.reset();
       if (!entry) {
         char text[32];
         std::snprintf(text, sizeof text, "M%g", w.value);
         if (dialect_.unknown_m_is_error)
           fail(Code::unknown_m_code, w.column, std::string("unknown M code ") + text);
-        warn(Code::unknown_m_code, w.column,
-             std::string("M code ") + text + " is not known to vcpost; passed through unchanged");
+        warn_once(
+            'M', static_cast<int>(std::lround(w.value * 10.0)), Code::unknown_m_code, w.column,
+            std::string("M code ") + text +
+                " is not known to vcpost (a machine's own function); passed through unchanged");
         continue;
       }
+      if (entry->support == Support::refused)
+        fail(Code::unsupported_code, w.column,
+             code_text('M', entry->code) +
+                 " changes the program's state in a way vcpost does not follow (it " + entry->what +
+                 ")");
       const auto group = static_cast<std::size_t>(entry->group);
-      if (const Word* before = word_at(index.m[group]))
+      if (const Word* before = word_at(index.m[group])) {
+        // Fanuc-like controls take mist and flood together (M7 M8).
+        const int pair = code_of(*before) + entry->code;
+        if (fanuc_like && entry->group == Group::coolant && pair == 150 &&
+            entry->code != code_of(*before)) {
+          mist_and_flood = true;
+          continue;
+        }
         fail(Code::modal_group_conflict, w.column,
              code_text('M', code_of(*before)) + " and " + code_text('M', entry->code) +
                  " are in the same modal group");
+      }
       index.m[group] = slot_of_w;
     } else {
       const char l = w.letter;
@@ -420,10 +518,104 @@ void Interpreter::execute(std::vector<Event>& events) {
 
   // The transaction: all checks against `s`, committed at the end.
   ModalState s = state_;
-  const std::size_t first_event = events.size();
   auto emit = [&](auto&& e) { events.emplace_back(std::forward<decltype(e)>(e)); };
 
-  if (b.message) emit(program::Message{*b.message, source(b, b.comments.empty() ? 1 : b.comments.front().column)});
+  const Word* nonmodal = G(Group::non_modal);
+  const int nonmodal_code = nonmodal ? code_of(*nonmodal) : 0;
+  // Fanuc G4 X: seconds, not an axis.
+  const Word* dwell_x = nullptr;
+  if (fanuc_like && nonmodal_code == 40 && W('X')) {
+    dwell_x = W('X');
+    index.by_letter['X' - 'A'] = 0;
+  }
+  const bool has_xyz = W('X') || W('Y') || W('Z');
+  const Word* motion_word = G(Group::motion);
+  const Word* cycle_word = G(Group::canned_cycle);  // Fanuc only
+  const int motion_code = motion_word ? code_of(*motion_word) : -1;
+  if (motion_word && motion_code == 800 && has_xyz && !uses_axis_words(nonmodal_code)) {
+    std::uint32_t col = 0;
+    for (char a : {'X', 'Y', 'Z'})
+      if (const Word* w = W(a)) col = col == 0 ? w->column : std::min(col, w->column);
+    fail(Code::words_without_motion, col,
+         "axis words with G80: without a motion mode (G0/G1/G2/G3)");
+  }
+  if (nonmodal && uses_axis_words(nonmodal_code) && motion_word && motion_code != 800 && has_xyz)
+    fail(Code::modal_group_conflict, nonmodal->column,
+         code_text('G', nonmodal_code) + " and " + code_text('G', motion_code) +
+             " both use the axis words");
+
+  auto has_letter = [&](char l) { return index.by_letter[static_cast<std::size_t>(l - 'A')] != 0; };
+  const bool checked_words = has_letter('D') || has_letter('H') || has_letter('I') ||
+                             has_letter('J') || has_letter('K') || has_letter('L') ||
+                             has_letter('P') || has_letter('Q') || has_letter('R');
+  if (dialect_.kind == DialectKind::rs274ngc && checked_words) {
+    // rs274's check of words that no code of the block uses.
+    int to_be = motion_code;
+    if (to_be < 0 && has_xyz && !uses_axis_words(nonmodal_code)) {
+      to_be = s.cycle != 0                  ? s.cycle
+              : s.motion == Motion::rapid   ? 0
+              : s.motion == Motion::linear  ? 10
+              : s.motion == Motion::arc_cw  ? 20
+              : s.motion == Motion::arc_ccw ? 30
+                                            : -1;
+    }
+    const Word* comp = G(Group::cutter_comp);
+    const int comp_code = comp ? code_of(*comp) : 0;
+    const bool comp_on =
+        comp_code == 410 || comp_code == 411 || comp_code == 420 || comp_code == 421;
+    const Word* tlo = G(Group::tool_length);
+    const int tlo_code = tlo ? code_of(*tlo) : 0;
+    const bool g10 = nonmodal_code == 100;
+    const bool g64 = G(Group::path_control) && Gc(Group::path_control) == 640;
+    const bool arc = to_be == 20 || to_be == 30;
+    const bool cycle = is_cycle_code(to_be);
+    const bool m98 = M(Group::subprogram) != nullptr;
+    // M codes that take words: M50-M53 and M62-M66 (P), M66-M68 (Q, L, E),
+    // M61 (Q), M19 (R, Q, P).
+    const Word* mo = M(Group::overrides);
+    const int moc = mo ? code_of(*mo) : 0;
+    const bool m_p = (moc >= 500 && moc <= 530) || (moc >= 620 && moc <= 660);
+    const bool m_q =
+        (moc >= 660 && moc <= 680) || (M(Group::tool_change) && Mc(Group::tool_change) == 610);
+    const bool m19 = M(Group::spindle) && Mc(Group::spindle) == 190;
+    auto unused = [&](char letter, bool used, const char* users) {
+      if (const Word* w = W(letter); w && !used)
+        fail(Code::word_without_use, w->column,
+             std::string(1, letter) + " word with no " + users + " to use it");
+    };
+    unused('D', comp_on || to_be == 730 || to_be == 830, "G41, G42, G73 or G83");
+    unused('H', tlo_code == 430 || tlo_code == 432, "G43 or G43.2");
+    unused('I', arc || to_be == 870 || g10, "G2, G3, G10 or G87");
+    unused('J', arc || to_be == 870 || g10, "G2, G3, G10 or G87");
+    unused('K', arc || to_be == 870, "G2, G3 or G87");
+    unused('L', cycle || g10 || comp_on || m98 || moc == 660,
+           "G10, cutter compensation, canned cycle or M98");
+    unused('P',
+           g10 || nonmodal_code == 40 || g64 || arc || to_be == 740 || to_be == 820 ||
+               to_be == 840 || to_be == 860 || to_be == 880 || to_be == 890 || m98 || m_p || m19,
+           "G2, G3, G4, G10, G64, G74, G82, G84, G86, G88, G89 or M98");
+    unused('Q', to_be == 730 || to_be == 830 || g10 || g64 || m_q || m19, "G10, G64, G73 or G83");
+    unused('R', arc || cycle || g10 || g64 || m19, "G2, G3, G10, G64 or canned cycle");
+    if (arc) {
+      const char plane_axis = s.plane == program::Plane::xy   ? 'K'
+                              : s.plane == program::Plane::xz ? 'J'
+                                                              : 'I';
+      if (G(Group::plane)) {
+        // the block's own plane decides; checked again below with it
+      } else if (const Word* w = W(plane_axis)) {
+        fail(Code::word_without_use, w->column,
+             std::string(1, plane_axis) + " word given for an arc in the " +
+                 (s.plane == program::Plane::xy   ? "XY"
+                  : s.plane == program::Plane::xz ? "XZ"
+                                                  : "YZ") +
+                 " plane");
+      }
+    }
+  }
+
+  if (b.message)
+    emit(program::Message{*b.message,
+                          source(b, b.comments.empty() ? 1 : b.comments.front().column)});
 
   // Units first: every length of this block is read in the new units.
   if (G(Group::units)) s.inches = Gc(Group::units) == 200;
@@ -470,29 +662,35 @@ void Interpreter::execute(std::vector<Event>& events) {
                               std::optional<double>(path_rate())});
     inverse_f = nullptr;
   };
-  if (const Word* sw = W('S')) {
+  // G65 takes S, T, ... as macro arguments, not as the machine's words.
+  const bool macro_call = nonmodal_code == 650;
+  if (const Word* sw = W('S'); sw && !macro_call) {
     if (sw->value < 0) fail(Code::bad_word_value, sw->column, "negative spindle speed");
     s.spindle_rpm = sw->value;
     emit(program::SetSpindleSpeed{sw->value, source(b, sw->column)});
   }
-  if (const Word* t = W('T')) {
+  if (const Word* t = W('T'); t && !macro_call) {
     if (!whole_number(t->value))
       fail(Code::bad_word_value, t->column, "tool number must be a whole number from 0 to 1e9");
     s.selected_tool = static_cast<int>(t->value);
     emit(program::SelectTool{s.selected_tool, source(b, t->column)});
   }
   if (const Word* m = M(Group::tool_change)) {
-    s.tool_in_spindle = s.selected_tool;
-    emit(program::ChangeTool{s.tool_in_spindle, source(b, m->column)});
+    if (Mc(Group::tool_change) == 60) {
+      s.tool_in_spindle = s.selected_tool;
+      emit(program::ChangeTool{s.tool_in_spindle, source(b, m->column)});
+    }
   }
   if (const Word* m = M(Group::spindle)) {
     const int c = Mc(Group::spindle);
-    if (c == 50)
+    if (c == 50 || c == 190) {
       emit(program::SpindleOff{source(b, m->column)});
-    else
+    } else {
+      s.spindle_ccw = c == 40;
       emit(program::SpindleOn{c == 30 ? program::SpindleDirection::clockwise
                                       : program::SpindleDirection::counterclockwise,
                               source(b, m->column)});
+    }
   }
   if (const Word* m = M(Group::coolant)) {
     const int c = Mc(Group::coolant);
@@ -500,9 +698,11 @@ void Interpreter::execute(std::vector<Event>& events) {
                           : c == 80 ? program::CoolantChange::flood_on
                                     : program::CoolantChange::off,
                           source(b, m->column)});
+    if (mist_and_flood)
+      emit(program::Coolant{
+          c == 70 ? program::CoolantChange::flood_on : program::CoolantChange::mist_on,
+          source(b, m->column)});
   }
-  const Word* nonmodal = G(Group::non_modal);
-  const int nonmodal_code = nonmodal ? code_of(*nonmodal) : 0;
   if (nonmodal && nonmodal_code == 40) {
     // Dwell: P seconds (RS274NGC); Fanuc: X seconds or P milliseconds.
     double seconds = 0.0;
@@ -510,9 +710,8 @@ void Interpreter::execute(std::vector<Event>& events) {
       const Word* p = W('P');
       if (!p) fail(Code::missing_axis_word, nonmodal->column, "G4 needs P (seconds)");
       seconds = p->value;
-    } else if (const Word* x = W('X')) {
-      seconds = x->value;
-      index.by_letter['X' - 'A'] = 0;  // a time here, not an axis
+    } else if (dwell_x) {
+      seconds = dwell_x->value;
     } else if (const Word* p = W('P')) {
       seconds = p->decimal_point ? p->value : p->value / 1000.0;
     } else {
@@ -528,13 +727,13 @@ void Interpreter::execute(std::vector<Event>& events) {
   }
   if (const Word* g = G(Group::cutter_comp)) {
     const int c = Gc(Group::cutter_comp);
-    emit(program::CutterCompensation{c == 400   ? program::CompensationSide::off
-                                     : c == 410 ? program::CompensationSide::left
-                                                : program::CompensationSide::right,
+    emit(program::CutterCompensation{c == 400                 ? program::CompensationSide::off
+                                     : (c == 410 || c == 411) ? program::CompensationSide::left
+                                                              : program::CompensationSide::right,
                                      source(b, g->column)});
   }
   if (const Word* g = G(Group::tool_length)) {
-    program::ToolLengthOffset t{Gc(Group::tool_length) == 430, std::nullopt, source(b, g->column)};
+    program::ToolLengthOffset t{Gc(Group::tool_length) != 490, std::nullopt, source(b, g->column)};
     if (const Word* h = W('H')) {
       if (!whole_number(h->value))
         fail(Code::bad_word_value, h->column,
@@ -545,16 +744,109 @@ void Interpreter::execute(std::vector<Event>& events) {
     }
     emit(t);
   }
-  if (const Word* g = G(Group::coordinate)) {
+
+  // Origins: what the block does to the origin offsets, applied to a copy.
+  // The tool stays where it is on the machine: its program position moves
+  // by the change of the active offset (rs274 does so).
+  std::optional<Origins> origins;
+  auto total_offset = [&](const Origins& f, int system) {
+    return Eigen::Vector3d(f.work[work_index(system)] + f.g92 + f.local);
+  };
+  // Most blocks touch no offset: the sums only where one may change.
+  const bool origin_codes = G(Group::coordinate) || nonmodal_code == 100 || nonmodal_code == 280 ||
+                            nonmodal_code == 281 || nonmodal_code == 300 || nonmodal_code == 301 ||
+                            nonmodal_code == 520 || (nonmodal_code >= 920 && nonmodal_code <= 923);
+  const Eigen::Vector3d offset_before =
+      origin_codes ? total_offset(origins_, s.work_system) : Eigen::Vector3d::Zero();
+  const char* axes = "XYZ";
+  if (G(Group::coordinate)) {
     const int c = Gc(Group::coordinate);
-    if (c != s.work_system && s.moved)
-      fail(Code::work_offset_change, g->column,
-           "switching from " + code_text('G', s.work_system) + " to " + code_text('G', c) +
-               " after motion: vcpost does not know the offsets between them");
+    if (c == 541) {
+      // G54.1 P1..: extended offsets, never set by the program: as G54.1 P1.
+      index.by_letter['P' - 'A'] = 0;
+    }
     s.work_system = c;
+  }
+  if (nonmodal_code == 100) {
+    const Word* l = W('L');
+    const Word* p = W('P');
+    if (!l) fail(Code::missing_axis_word, nonmodal->column, "G10 needs L (what it sets)");
+    const long lv = std::lround(l->value);
+    const bool sets_origin = lv == 2 || (lv == 20 && !fanuc_like);
+    if (sets_origin) {
+      if (!p)
+        fail(Code::missing_axis_word, nonmodal->column, "G10 L2/L20 needs P (coordinate system)");
+      const long pv = std::lround(p->value);
+      if (pv < 0 || pv > 9)
+        fail(Code::bad_word_value, p->column, "G10 P must be 0 (the active system) to 9");
+      if (W('R'))
+        fail(Code::unsupported_code, W('R')->column,
+             "G10 R rotates the coordinate system; vcpost does not follow rotation");
+      static constexpr int kSystems[] = {540, 550, 560, 570, 580, 590, 591, 592, 593};
+      const int system = pv == 0 ? s.work_system : kSystems[pv - 1];
+      origins = origins_;
+      Eigen::Vector3d& o = origins->work[work_index(system)];
+      for (int k = 0; k < 3; ++k) {
+        const Word* w = W(axes[k]);
+        if (!w) continue;
+        if (lv == 2) {
+          o[k] = length(*w);
+        } else {  // L20: the current position becomes the given value
+          const double machine = s.position[k] + offset_before[k];
+          o[k] = machine - origins->g92[k] - origins->local[k] - length(*w);
+        }
+      }
+    } else if (lv == 20 && fanuc_like) {
+      warn_once('L', 20, Code::mode_code_passed, l->column,
+                "G10 L20 sets an extended work offset (G54.1 P..); taken as not changing the "
+                "active frame");
+    }
+    // L1, L10, L11, L12, L13: tool data; lengths are not applied to positions.
+  } else if (nonmodal_code == 920 || nonmodal_code == 520) {
+    origins = origins_;
+    if (nonmodal_code == 920 && !has_xyz)
+      fail(Code::missing_axis_word, nonmodal->column, "G92 needs an axis word");
+    for (int k = 0; k < 3; ++k) {
+      const Word* w = W(axes[k]);
+      if (!w) continue;
+      if (nonmodal_code == 520) {
+        // LinuxCNC keeps G52 in the G92 register; Fanuc has a local system.
+        (fanuc_like ? origins->local : origins->g92)[k] = length(*w);
+      } else {
+        const double machine = s.position[k] + offset_before[k];
+        origins->g92[k] =
+            machine - origins->work[work_index(s.work_system)][k] - origins->local[k] - length(*w);
+      }
+    }
+    if (nonmodal_code == 920) origins->g92_saved = origins->g92;
+  } else if (nonmodal_code == 921 || nonmodal_code == 922) {
+    origins = origins_;
+    origins->g92.setZero();
+    if (nonmodal_code == 921) origins->g92_saved.setZero();
+  } else if (nonmodal_code == 923) {
+    origins = origins_;
+    origins->g92 = origins->g92_saved;
+  } else if (nonmodal_code == 281 || nonmodal_code == 301) {
+    origins = origins_;
+    (nonmodal_code == 281 ? origins->home28 : origins->home30) = s.position + offset_before;
+  }
+  const Eigen::Vector3d offset_after =
+      origin_codes ? total_offset(origins ? *origins : origins_, s.work_system) : offset_before;
+  if (origin_codes && offset_after != offset_before) {
+    s.position += offset_before - offset_after;
+    if (s.moved)
+      warn_once('F', 0, Code::frame_change, nonmodal ? nonmodal->column : 1,
+                "the program's coordinate frame moves here (G10, G52, G92 or another work system); "
+                "positions after it are read in the new frame, as rs274 does");
+  } else if (G(Group::coordinate) && state_.work_system != s.work_system && s.moved) {
+    warn_once('F', 1, Code::frame_change, G(Group::coordinate)->column,
+              "switching from " + code_text('G', state_.work_system) + " to " +
+                  code_text('G', s.work_system) +
+                  " after motion: its offsets are unknown and taken as equal (as rs274 does)");
   }
   if (G(Group::distance)) s.absolute = Gc(Group::distance) == 900;
   if (G(Group::arc_distance)) s.arc_absolute = Gc(Group::arc_distance) == 901;
+  if (G(Group::return_mode)) s.retract_to_r = Gc(Group::return_mode) == 990;
 
   // Mazak G117: M/S/T words output when the axes reach the given position
   // during the next move; its axis words are that position, not a move.
@@ -568,10 +860,13 @@ void Interpreter::execute(std::vector<Event>& events) {
       fail(Code::unsupported_code, m->column,
            "spindle M code in a G117 block acts inside the next move; vcpost cannot place it");
   }
-  const bool has_axis = !g117 && (W('X') || W('Y') || W('Z'));
-  auto target_of = [&](bool absolute) {
+  // G43.1: the axis words are the tool length offset.
+  const bool dynamic_offset = G(Group::tool_length) && Gc(Group::tool_length) == 431;
+  const bool axes_taken = g117 || macro_call || dynamic_offset || nonmodal_code == 100 ||
+                          nonmodal_code == 520 || nonmodal_code == 920;
+  const bool has_axis = !axes_taken && has_xyz;
+  auto target_of = [&](bool absolute) __attribute__((always_inline)) {
     Eigen::Vector3d t = s.position;
-    const char* axes = "XYZ";
     for (int k = 0; k < 3; ++k)
       if (const Word* w = W(axes[k])) t[k] = absolute ? length(*w) : s.position[k] + length(*w);
     return t;
@@ -583,31 +878,161 @@ void Interpreter::execute(std::vector<Event>& events) {
     return col == 0 ? fallback : col;
   };
 
-  if (const Word* g = G(Group::motion)) {
-    const int c = Gc(Group::motion);
-    s.motion = c == 0 ? Motion::rapid : c == 10 ? Motion::linear : c == 20 ? Motion::arc_cw
-               : c == 30 ? Motion::arc_ccw : Motion::none;
-    (void)g;
+  // Motion modes. RS274NGC: one group (a cycle replaces G1, G80 leaves no
+  // mode). Fanuc: G0-G3 stay under a cycle; G80 or a G0-G3 word ends it.
+  if (motion_word) {
+    const int c = motion_code;
+    if (is_cycle_code(c)) {
+      if (s.cycle != c) s.cycle_initial_set = s.cycle_initial_set && s.cycle != 0;
+      s.cycle = c;
+      s.motion = Motion::none;
+    } else {
+      if (c == 800 || s.cycle != 0) s.cycle_initial_set = false;
+      s.cycle = 0;
+      s.motion = c == 0    ? Motion::rapid
+                 : c == 10 ? Motion::linear
+                 : c == 20 ? Motion::arc_cw
+                 : c == 30 ? Motion::arc_ccw
+                           : Motion::none;
+    }
   }
-  const std::uint32_t motion_column =
-      G(Group::motion) ? G(Group::motion)->column : first_axis_column(1);
+  if (cycle_word) {
+    const int c = code_of(*cycle_word);
+    if (c == 800) {
+      s.cycle = 0;
+      s.cycle_initial_set = false;
+    } else {
+      s.cycle = c;
+    }
+  }
+  const std::uint32_t motion_column = motion_word  ? motion_word->column
+                                      : cycle_word ? cycle_word->column
+                                                   : first_axis_column(1);
 
-  if (nonmodal && nonmodal_code == 280) {
-    // G28: through the given intermediate point to the home position, which
-    // rs274 takes as 0 with its default parameters: the offsets are unknown.
+  if (nonmodal && (nonmodal_code == 280 || nonmodal_code == 300)) {
+    // G28/G30: through the given intermediate point to the reference point,
+    // which rs274 takes from parameters 5161-5163 / 5181-5183 (0 in its
+    // default file, and the machine's are unknown to vcpost).
     const Eigen::Vector3d via = target_of(s.absolute);
+    const Eigen::Vector3d reference =
+        (nonmodal_code == 280 ? origins_.home28 : origins_.home30) - offset_after;
     Eigen::Vector3d home = via;
-    const char* axes = "XYZ";
     for (int k = 0; k < 3; ++k)
-      if (!has_axis || W(axes[k])) home[k] = 0.0;
-    warn(Code::machine_coordinates, nonmodal->column,
-         "G28 home position taken as 0 in program coordinates (machine offsets unknown)");
+      if (!has_axis || W(axes[k])) home[k] = reference[k];
+    warn_once('G', nonmodal_code, Code::machine_coordinates, nonmodal->column,
+              code_text('G', nonmodal_code) +
+                  " reference point taken as machine 0 with the program's offsets "
+                  "(rs274's default parameters; the machine's are unknown)");
     if (has_axis) emit(program::StraightTraverse{s.position, via, source(b, nonmodal->column)});
     emit(program::StraightTraverse{via, home, source(b, nonmodal->column)});
     s.position = home;
     s.moved = true;
-  } else if (has_axis || (!g117 && (s.motion == Motion::arc_cw || s.motion == Motion::arc_ccw) &&
-                          (W('I') || W('J') || W('K') || W('R')))) {
+  } else if (macro_call) {
+    const Word* p = W('P');
+    if (!p) fail(Code::missing_axis_word, nonmodal->column, "G65 needs P (program number)");
+    warn_once('G', 650, Code::external_macro, nonmodal->column,
+              "G65 P" + std::to_string(std::lround(p->value)) +
+                  " calls a macro program vcpost does not follow (a machine maker's macro): "
+                  "taken as not moving the tool");
+  } else if (has_axis && s.cycle != 0) {
+    // A canned cycle at the given position (Fanuc: K or L repeats).
+    const int c = s.cycle;
+    if (s.feed <= 0.0)
+      fail(Code::missing_feed, motion_column, "canned cycle with no feed rate (F) in effect");
+    if (s.feed_mode == program::FeedMode::inverse_time)
+      fail(Code::cycle_value, motion_column, "canned cycles cannot run in inverse-time feed (G93)");
+    if (s.plane != program::Plane::xy)
+      fail(Code::unsupported_code, motion_column,
+           "canned cycles are followed in the XY plane (G17) only");
+    const bool same = state_.cycle == c && !motion_word && !cycle_word ? true : state_.cycle == c;
+    CycleCall call;
+    call.code = c;
+    call.fanuc = fanuc_like;
+    call.start = s.position;
+    call.source = source(b, motion_column);
+    call.spindle_cw = !s.spindle_ccw;
+    call.peck_clearance = 0.254;
+    if (!s.cycle_initial_set) {
+      s.cycle_initial = s.position.z();
+      s.cycle_initial_set = true;
+    }
+    const Word* r = W('R');
+    if (!r && !same)
+      fail(Code::cycle_value, motion_column, code_text('G', c) + " needs R (the R plane)");
+    const Word* z = W('Z');
+    if (!z && !same)
+      fail(Code::cycle_value, motion_column, code_text('G', c) + " needs Z (the hole bottom)");
+    const double r_word = r ? length(*r) : s.cycle_r;
+    const double z_word = z ? length(*z) : s.cycle_z;
+    s.cycle_r = r_word;
+    s.cycle_z = z_word;
+    const Word* q = W('Q');
+    if (c == 730 || c == 830) {
+      if (!q && !same)
+        fail(Code::cycle_value, motion_column, code_text('G', c) + " needs Q (the peck depth)");
+      const double qv = q ? length(*q) : s.cycle_q;
+      if (qv <= 0.0)
+        fail(Code::cycle_value, q ? q->column : motion_column,
+             code_text('G', c) + " with a peck depth Q <= 0 (the control alarms too)");
+      s.cycle_q = qv;
+      call.q = qv;
+    }
+    const Word* p = W('P');
+    const bool dwell_needed = c == 820 || c == 860 || c == 880 || c == 890;
+    if (dwell_needed && !p && !same && !fanuc_like)
+      fail(Code::cycle_value, motion_column, code_text('G', c) + " needs P (the dwell)");
+    if (p) s.cycle_p = fanuc_like && !p->decimal_point ? p->value / 1000.0 : p->value;
+    call.dwell = (dwell_needed || c == 740 || c == 840 || c == 760) ? s.cycle_p : 0.0;
+    if (c == 870 && !fanuc_like) {
+      if (!same && (!W('I') || !W('J') || !W('K')))
+        fail(Code::cycle_value, motion_column, "G87 needs I, J and K");
+      if (const Word* w = W('I')) s.cycle_i = length(*w);
+      if (const Word* w = W('J')) s.cycle_j = length(*w);
+      if (const Word* w = W('K')) s.cycle_k = length(*w);
+      call.i = s.cycle_i;
+      call.j = s.cycle_j;
+    }
+    if ((c == 760 || c == 870) && fanuc_like)
+      warn_once('G', c, Code::mode_code_passed, motion_column,
+                code_text('G', c) +
+                    ": the tool's shift at the hole bottom (Q, direction a machine "
+                    "parameter) is not followed; the path is read without it");
+    const Word* l = W('L');
+    const Word* kw = fanuc_like ? W('K') : nullptr;
+    const Word* rep = kw ? kw : l;
+    if (rep && (rep->value < 0 || rep->value > 1e6 || rep->value != std::floor(rep->value)))
+      fail(Code::bad_word_value, rep->column, "cycle repeat count must be a whole number");
+    call.repeats = rep ? static_cast<int>(rep->value) : 1;
+    if (rep && call.repeats == 0 && !fanuc_like)
+      fail(Code::cycle_value, rep->column, "cannot do zero repeats of a canned cycle");
+    const double old_z = s.cycle_initial;
+    if (s.absolute) {
+      call.r = r_word;
+      call.bottom = z_word;
+      call.x = W('X') ? length(*W('X')) : s.position.x();
+      call.y = W('Y') ? length(*W('Y')) : s.position.y();
+    } else {
+      call.r = r_word + old_z;
+      call.bottom = call.r + z_word;
+      call.x = s.position.x();
+      call.y = s.position.y();
+      call.dx = W('X') ? length(*W('X')) : 0.0;
+      call.dy = W('Y') ? length(*W('Y')) : 0.0;
+    }
+    if (c == 870 && !fanuc_like) call.k = s.absolute ? s.cycle_k : call.bottom + s.cycle_k;
+    if (call.r < call.bottom && !(c == 870 && fanuc_like))
+      fail(Code::cycle_value, r ? r->column : motion_column,
+           "R plane below the hole bottom Z in a canned cycle");
+    call.initial = old_z;
+    call.retract_to_r = s.retract_to_r && !(c == 870 && fanuc_like);
+    if (call.repeats > 0) {
+      s.position = expand_cycle(call, events);
+      s.moved = true;
+    }
+    if (s.cycle_initial < call.r) s.cycle_initial = call.r;
+  } else if (has_axis ||
+             (!axes_taken && (s.motion == Motion::arc_cw || s.motion == Motion::arc_ccw) &&
+              (W('I') || W('J') || W('K') || W('R')))) {
     const bool machine = nonmodal && nonmodal_code == 530;
     if (machine) {
       if (s.motion != Motion::rapid && s.motion != Motion::linear)
@@ -721,6 +1146,7 @@ void Interpreter::execute(std::vector<Event>& events) {
       } else {
         restore.armed = false;
         state_ = s;
+        if (origins) origins_ = *origins;
         return_from_sub();
         return;
       }
@@ -735,6 +1161,7 @@ void Interpreter::execute(std::vector<Event>& events) {
   }
   restore.armed = false;
   state_ = s;
+  if (origins) origins_ = *origins;
   if (const Word* m = M(Group::subprogram)) {
     const Word* p = W('P');
     if (!p) fail(Code::missing_axis_word, m->column, "M98 needs P (program number)");
@@ -751,7 +1178,6 @@ void Interpreter::execute(std::vector<Event>& events) {
     std::snprintf(name, sizeof name, "%ld", number);
     call(name, {}, true, count < 1 ? 1 : count);
   }
-  (void)first_event;
 }
 
 }  // namespace vcpost::gcode

@@ -13,7 +13,9 @@
 // rs274's canonical calls.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -38,12 +40,37 @@ struct ModalState {
   bool absolute = true;
   bool arc_absolute = false;  // G90.1; LinuxCNC starts in G91.1
   program::FeedMode feed_mode = program::FeedMode::per_minute;
-  double feed = 0.0;          // mm/min, mm/rev or 1/min as feed_mode says
+  double feed = 0.0;  // mm/min, mm/rev or 1/min as feed_mode says
   double spindle_rpm = 0.0;
   int selected_tool = 0;
   int tool_in_spindle = 0;
-  int work_system = 540;      // G54 x10
-  bool moved = false;         // any motion yet (work system changes refused after)
+  int work_system = 540;  // G54 x10
+  bool moved = false;     // any motion yet (frame changes warned after)
+  // Canned cycles: the active one (x10, 0 none; RS274NGC keeps it in the
+  // motion group, Fanuc in a group of its own beside G0/G1) and what its
+  // blocks leave for the next (R, Z, Q, P, the initial level).
+  int cycle = 0;
+  bool retract_to_r = true;  // G99 (RS274NGC's start), G98 Fanuc's
+  double cycle_r = 0.0, cycle_z = 0.0, cycle_q = 0.0, cycle_p = 0.0;
+  double cycle_i = 0.0, cycle_j = 0.0, cycle_k = 0.0;
+  double cycle_initial = 0.0;
+  bool cycle_initial_set = false;
+  bool spindle_ccw = false;
+};
+
+// Origin offsets (mm, machine = program + offsets), as far as the program
+// sets them; the machine's own are unknown and taken as 0, as rs274 does
+// with its default parameter file.
+struct Origins {
+  std::array<Eigen::Vector3d, 10> work{};  // G54 .. G59.3, G54.1
+  Eigen::Vector3d g92 = Eigen::Vector3d::Zero();
+  Eigen::Vector3d g92_saved = Eigen::Vector3d::Zero();
+  Eigen::Vector3d local = Eigen::Vector3d::Zero();   // Fanuc G52
+  Eigen::Vector3d home28 = Eigen::Vector3d::Zero();  // machine coordinates
+  Eigen::Vector3d home30 = Eigen::Vector3d::Zero();
+  Origins() {
+    for (auto& w : work) w.setZero();
+  }
 };
 
 struct InterpreterLimits {
@@ -106,7 +133,8 @@ class Interpreter {
   void warn(Code code, std::uint32_t column, std::string message);
 
   bool handle_control(std::vector<program::Event>& events);
-  void skip_to(const std::string& name, std::initializer_list<ControlKind> stops, bool fanuc_nesting);
+  void skip_to(const std::string& name, std::initializer_list<ControlKind> stops,
+               bool fanuc_nesting);
   std::pair<std::uint64_t, std::uint32_t> find_sub(const std::string& name, bool fanuc);
   void call(const std::string& name, std::vector<double> arguments, bool fanuc, long repeat);
   bool return_from_sub();
@@ -114,12 +142,16 @@ class Interpreter {
 
   void execute(std::vector<program::Event>& events);
   double length(const Word& w) const;
+  // A warning given once per program for `key` (a code, x10, with its letter).
+  void warn_once(char letter, int key, Code code, std::uint32_t column, std::string message);
 
   std::string_view text_;
   Dialect dialect_;
   InterpreterLimits limits_;
   Parameters parameters_;
   ModalState state_;
+  Origins origins_;
+  std::vector<std::pair<char, int>> warned_once_;
   Block block_;
   std::vector<Diagnostic> warnings_;
   std::vector<Frame> frames_;

@@ -290,3 +290,77 @@ TEST(Tokenizer, ErrorColumnsInsideBlankedWords) {
 
 }  // namespace
 }  // namespace vcpost::gcode
+
+// ---- Fanuc-like posts: safety lines, cycles beside G0/G1, machine codes -----
+
+namespace vcpost::gcode {
+namespace {
+
+TEST(FanucPosts, SafetyLineAndProgramNumberAreRead) {
+  const std::string text =
+      "%\nO0001 (PART)\nN0008 G00 G40 G80 G90 G17 G21\nN1 G00 G17 G21 G40 G49 G80 G90\n"
+      "G0 X1. Y2.\nM30\n%\n";
+  for (const auto& d : {fanuc_dialect(), mazak_dialect(), rs274ngc_dialect()})
+    EXPECT_EQ(moves(text, d), "STRAIGHT_TRAVERSE(1.0000, 2.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n");
+}
+
+TEST(FanucPosts, CycleLeavesTheG01ModeAndG80ReturnsToIt) {
+  // Fanuc: G81 is group 09 beside G01 (group 01); after G80, X10. feeds at
+  // the initial level (G98 retract, Fanuc's default).
+  const std::string text =
+      "G21 G90 G17\nG1 X0 Y0 Z5. F100.\nG81 X5. Y5. Z-1. R1.\nG80 X10.\nM30\n";
+  EXPECT_EQ(moves(text, fanuc_dialect()),
+            "STRAIGHT_FEED(0.0000, 0.0000, 5.0000, 0.0000, 0.0000, 0.0000)\n"
+            "STRAIGHT_TRAVERSE(5.0000, 5.0000, 5.0000, 0.0000, 0.0000, 0.0000)\n"
+            "STRAIGHT_TRAVERSE(5.0000, 5.0000, 1.0000, 0.0000, 0.0000, 0.0000)\n"
+            "STRAIGHT_FEED(5.0000, 5.0000, -1.0000, 0.0000, 0.0000, 0.0000)\n"
+            "STRAIGHT_TRAVERSE(5.0000, 5.0000, 5.0000, 0.0000, 0.0000, 0.0000)\n"
+            "STRAIGHT_FEED(10.0000, 5.0000, 5.0000, 0.0000, 0.0000, 0.0000)\n");
+  // RS274NGC: G80 leaves no motion mode; axis words after it are an error.
+  EXPECT_EQ(error_of(text, rs274ngc_dialect()).code, Code::words_without_motion);
+}
+
+TEST(FanucPosts, MachineCodesWarnOnceAndMistWithFlood) {
+  const std::string text =
+      "G21 G90\nM9026\nG05.1 Q1\nG0 X1.\nM9026\nG05.1 Q0\nM08 M07\nG91 G28 Z0.\nG90\nM30\n";
+  Interpreter interpreter(text, fanuc_dialect());
+  std::vector<program::Event> events;
+  while (interpreter.next(events)) {
+  }
+  // M9026 once, G5.1 once, G28's reference point once.
+  ASSERT_EQ(interpreter.warning_count(), 3u);
+  EXPECT_EQ(interpreter.warnings()[0].code, Code::unknown_m_code);
+  EXPECT_EQ(interpreter.warnings()[1].code, Code::mode_code_passed);
+  EXPECT_EQ(interpreter.warnings()[2].code, Code::machine_coordinates);
+  int coolant = 0;
+  for (const auto& e : events) coolant += std::holds_alternative<program::Coolant>(e);
+  EXPECT_EQ(coolant, 2);
+  // G91 G28 Z0.: through the current point (incremental 0) to Z = 0.
+  EXPECT_EQ(moves(text, fanuc_dialect()),
+            "STRAIGHT_TRAVERSE(1.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n"
+            "STRAIGHT_TRAVERSE(1.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n"
+            "STRAIGHT_TRAVERSE(1.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n");
+}
+
+TEST(FanucPosts, CodesThatMoveTheToolUnknowablyAreRefused) {
+  for (const char* code : {"G68 X0 Y0 R30.", "G51 X0 Y0 P2000", "G51.1 X0", "G16"}) {
+    SCOPED_TRACE(code);
+    const Diagnostic d = error_of(std::string("G21\n") + code + "\nG0 X1.\nM30\n", fanuc_dialect());
+    EXPECT_EQ(d.code, Code::unsupported_code);
+    EXPECT_EQ(d.line, 2u);
+  }
+}
+
+TEST(FanucPosts, PeckCycleWithRepeatsInK) {
+  // G91 G83 with K2: two holes 5 mm apart, pecks of 2 mm back to R, 0.254 mm
+  // back-off (rs274's clearance), retract to the initial level (G98).
+  const std::string text = "G21 G90\nG0 X0 Y0 Z3.\nG91 G83 X5. Z-4. R-2. Q2. K2 F100.\nG90 G80\nM30\n";
+  const std::string m = moves(text, fanuc_dialect());
+  EXPECT_NE(m.find("STRAIGHT_FEED(5.0000, 0.0000, -1.0000"), std::string::npos) << m;
+  EXPECT_NE(m.find("STRAIGHT_TRAVERSE(5.0000, 0.0000, -0.7460"), std::string::npos) << m;
+  EXPECT_NE(m.find("STRAIGHT_FEED(10.0000, 0.0000, -3.0000"), std::string::npos) << m;
+  EXPECT_TRUE(m.ends_with("STRAIGHT_TRAVERSE(10.0000, 0.0000, 3.0000, 0.0000, 0.0000, 0.0000)\n")) << m;
+}
+
+}  // namespace
+}  // namespace vcpost::gcode

@@ -45,10 +45,13 @@ void BM_PathReaderRaster(benchmark::State& state) {
   const auto profile = vcpost::machines::builtin_profile("mazak-3axis");
   const auto dialect = vcpost::post::dialect_of(profile);
   vcpost::post::Chunk chunk;  // reused, as the post reuses its chunks
+  vcpost::tools::ToolChoices tools;  // every tool a D10 ball, as `--tool ball:10`
+  tools.table.add(vcpost::tools::parse_tool_option("ball:10"));
+  tools.vc = 120;
   std::uint64_t blocks = 0;
   for (auto _ : state) {
     vcpost::post::PathReader reader(text, "raster.nc", vcpost::post::ProgramKind::gcode, dialect,
-                                    profile, 0.5, false);
+                                    profile, 0.5, false, tools, 0.3);
     // The post's chunk size and default sample spacing (0.5 mm).
     while (reader.read(chunk, 2048)) benchmark::DoNotOptimize(chunk.slots.data());
     blocks += reader.totals().blocks;

@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -28,6 +29,7 @@
 #include "postproc/report/chart_library.h"
 #include "postproc/report/csv_writer.h"
 #include "postproc/report/report.h"
+#include "postproc/tools/tools_file.h"
 
 namespace vcpost::cli {
 namespace {
@@ -49,8 +51,8 @@ nlohmann::json summary_json(const PostArguments& args, const JobRun& run) {
       {"model",
        {{"file", args.model}, {"kind", run.model.kind}, {"description", run.model.description}}},
       {"machine", run.profile.name()},
-      {"tool", geometry::to_string(run.tool)},
-      {"vc_nominal", args.vc},
+      {"tool", run.tool ? nlohmann::json(geometry::to_string(*run.tool)) : nullptr},
+      {"vc_nominal", run.vc ? nlohmann::json(*run.vc) : nullptr},
       {"ap", args.ap},
       {"ae", args.ae ? nlohmann::json(*args.ae) : nlohmann::json(nullptr)},
       {"policy", args.policy},
@@ -74,47 +76,45 @@ nlohmann::json summary_json(const PostArguments& args, const JobRun& run) {
       {"words_written", {{"s", s.s_words}, {"f", s.f_words}}},
       {"vc_before", vc_json(s.before)},
       {"vc_after", vc_json(s.after)},
+      {"sections", report::tool_sections_json(s)},
+      {"tool_notes", s.tool_notes},
       {"run_time_s", run.run_time_s},
   };
 }
 
-// The tool of --tool, or else the CL program's first cutter.
-geometry::Tool tool_from(const PostArguments& args, std::string_view text,
-                         const std::string& name) {
-  if (args.tool.empty()) {
-    std::optional<geometry::Tool> tool;
-    try {
-      tool = post::tool_from_program(text, name);
-    } catch (const post::PostError& e) {
-      throw CommandError(e.what());
-    } catch (const cldata::ClError& e) {
-      throw CommandError(e.what());
-    }
-    if (!tool)
-      throw CommandError("--tool: required (the program defines no cutter before its first move)");
-    return *tool;
-  }
-  try {
-    return geometry::parse_tool(args.tool);
-  } catch (const std::invalid_argument& e) {
-    throw CommandError(std::string("--tool: ") + e.what());
-  }
+std::string read_text_file(const std::string& path, const std::string& option) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw CommandError(option + ": cannot read '" + path + "'");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
-post::PostSettings settings_from(const PostArguments& args, std::string_view text,
-                                 const std::string& name) {
-  post::PostSettings settings;
-  settings.point.tool = tool_from(args, text, name);
-  if (settings.point.tool.kind != geometry::ToolKind::ball) {
-    throw CommandError("--tool: posting is for ball-end mills (ball:D); use `vcpost deff` for " +
-                       geometry::to_string(settings.point.tool));
+// The tools and speeds of --tool, --tools, --post-tools and --vc.
+tools::ToolChoices tool_choices(const PostArguments& args) {
+  tools::ToolChoices choices;
+  try {
+    for (const std::string& spec : args.tools) choices.table.add(tools::parse_tool_option(spec));
+    if (!args.tools_file.empty()) {
+      tools::ToolTable file;
+      tools::load_tools_file(read_text_file(args.tools_file, "--tools"), args.tools_file, file);
+      for (const tools::ToolEntry& e : file.numbered()) choices.table.add(e);
+    }
+    if (!args.post_tools.empty()) choices.post_tools = tools::parse_tool_list(args.post_tools);
+    for (const std::string& vc : args.vc) tools::add_vc_option(vc, choices);
+  } catch (const tools::ToolTableError& e) {
+    throw CommandError(e.what());
   }
-  if (args.ap >= settings.point.tool.diameter)
-    throw CommandError("--ap: must be below the tool diameter");
+  if (!choices.vc && choices.vc_by_tool.empty()) throw CommandError("--vc: required");
+  return choices;
+}
+
+post::PostSettings settings_from(const PostArguments& args) {
+  post::PostSettings settings;
+  settings.tools = tool_choices(args);
   settings.point.ap = args.ap;
   settings.point.ae = args.ae;
   settings.point.ae_override = args.ae_override;
-  settings.point.vc = args.vc;
   settings.point.contact_tolerance = args.tolerance;
   settings.point.cl_point =
       args.cl_point == "center" ? geometry::ClPoint::center : geometry::ClPoint::tip;
@@ -177,10 +177,22 @@ std::string read_chart_library() {
   return text.str();
 }
 
+// The report is drawn for one tool and vc: the first section the job
+// evaluates (read ahead), or else the plain --tool and --vc.
 report::ReportInputs report_inputs(const PostArguments& args, const post::PostSettings& settings,
                                    const LoadedModel& model,
-                                   const machines::MachineProfile& profile,
-                                   post::ProgramKind kind) {
+                                   const machines::MachineProfile& profile, post::ProgramKind kind,
+                                   const std::optional<post::ToolSection>& first) {
+  geometry::Tool tool = geometry::Tool::ball(10);
+  const tools::ToolChoices& choices = *settings.tools;
+  double vc = choices.vc.value_or(0);
+  if (first) {
+    tool = *first->entry->geometry();
+    vc = first->vc_nominal;
+  } else if (const auto& every = choices.table.every_tool(); every && every->geometry()) {
+    tool = *every->geometry();
+  }
+  if (!(vc > 0)) vc = choices.vc_by_tool.begin()->second;
   report::ReportInputs in;
   in.program = args.program == "-" ? "<stdin>" : args.program;
   in.program_kind = kind == post::ProgramKind::gcode ? "gcode" : "cldata";
@@ -188,11 +200,11 @@ report::ReportInputs report_inputs(const PostArguments& args, const post::PostSe
   in.model_kind = model.kind;
   in.model_description = model.description;
   in.machine = profile.name();
-  in.tool = geometry::to_string(settings.point.tool);
+  in.tool = geometry::to_string(tool);
   in.policy = args.policy;
   in.cl_point = args.cl_point;
-  in.tool_radius_mm = settings.point.tool.diameter / 2;
-  in.vc_nominal = args.vc;
+  in.tool_radius_mm = tool.diameter / 2;
+  in.vc_nominal = vc;
   in.ap_mm = args.ap;
   in.ae_mm = args.ae;
   in.ae_override = args.ae_override;
@@ -222,12 +234,20 @@ void add_job_options(CLI::App& command, PostArguments& args) {
   command
       .add_option("--model", args.model, "finished-surface model: STEP (mm or inch) or STL (mm)")
       ->required();
-  command.add_option(
-      "--tool", args.tool,
-      "ball-end mill, ball:D with D in mm, e.g. ball:10 (default for CL input: its CUTTER)");
-  command.add_option("--vc", args.vc, "nominal cutting speed, m/min")
-      ->required()
-      ->check(CLI::PositiveNumber);
+  command.add_option("--tool", args.tools,
+                     "the tool: ball:D, bull:D:rc, flat:D, drill:D or other (mm), for every tool; "
+                     "T8=ball:14 for tool 8 (repeatable; default: what the program says, CL "
+                     "CUTTER/TLDATA or CAM tool comments)");
+  command.add_option("--tools", args.tools_file,
+                     "tool table, TOML: [[tool]] number, shape, diameter, corner_radius, teeth, "
+                     "name (see postproc/tools/README.md)");
+  command.add_option("--post-tools", args.post_tools,
+                     "post only these tools' sections, e.g. T2,T8 (default: every ball-end mill "
+                     "whose path touches the model)");
+  command
+      .add_option("--vc", args.vc,
+                  "nominal cutting speed, m/min, for every tool; T2=150 for tool 2 (repeatable)")
+      ->required();
   command.add_option("--ap", args.ap, "depth of cut along the surface normal, mm")
       ->required()
       ->check(CLI::PositiveNumber);
@@ -291,7 +311,7 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   ProgramText program(args.program);
   const std::string_view text = program.view();
   const std::string name = args.program == "-" ? "<stdin>" : args.program;
-  const post::PostSettings settings = settings_from(args, text, name);
+  const post::PostSettings settings = settings_from(args);
   std::vector<ReportFile> reports = open_reports(args);
   if (!args.summary_json.empty() && args.summary_json != "-") {
     AtomicFile probe(args.summary_json);  // its folder fails now, not after the program is written
@@ -331,8 +351,20 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   std::optional<report::ReportCollector> collector;
   std::vector<report::CsvWriter*> csv_writers;
   if (!reports.empty()) {
+    std::optional<post::ToolSection> first;
+    try {
+      first = post::first_postable_section(text, name, profile, settings);
+    } catch (const post::PostError& e) {
+      throw CommandError(e.what());
+    } catch (const gcode::GcodeError& e) {
+      throw CommandError(e.what());
+    } catch (const cldata::ClError& e) {
+      throw CommandError(e.what());
+    } catch (const program::TimingError& e) {
+      throw CommandError(name + ":" + std::to_string(e.source().line) + ": " + e.what());
+    }
     collector.emplace(
-        report_inputs(args, settings, model, profile, post::detect_program_kind(text)));
+        report_inputs(args, settings, model, profile, post::detect_program_kind(text), first));
     for (auto& r : reports) {
       if (r.format != report::ReportFormat::csv) continue;
       AtomicFile* out = r.file.get();
@@ -363,8 +395,17 @@ JobRun run_job(const PostArguments& args, bool write_program) {
     throw CommandError(name + ":" + std::to_string(e.source().line) + ": " + e.what());
   } catch (const plan::PlanError& e) {
     throw CommandError(std::string("planning: ") + e.what(), exit_internal);
+  } catch (const post::PostError& e) {
+    throw CommandError(e.what());
   }
   if (show_progress) std::cerr << "\r\x1b[K";
+  if (!summary.sections.empty() &&
+      std::none_of(summary.sections.begin(), summary.sections.end(),
+                   [](const post::ToolSection& s) { return s.entry.has_value(); })) {
+    throw CommandError(
+        "--tool: required (the program names no tool vcpost can read: no CL CUTTER/TLDATA, no "
+        "CAM tool comment); give --tool ball:D, --tool T<n>=ball:D or --tools FILE.toml");
+  }
   if (summary.samples > 0 && summary.touching + summary.gouging == 0) {
     throw CommandError(
         "the toolpath never touches the model (" + std::to_string(summary.samples) +
@@ -409,8 +450,99 @@ JobRun run_job(const PostArguments& args, bool write_program) {
     throw CommandError(std::string("cannot write to standard output: ") +
                        (errno != 0 ? std::strerror(errno) : "write error"));
   }
-  return JobRun{summary, settings.point.tool, std::move(model), profile, run_time};
+  JobRun run{summary, std::nullopt, std::nullopt, std::move(model), profile, run_time};
+  for (const post::ToolSection& section : summary.sections) {
+    if (!section.posted) continue;
+    run.tool = section.entry->geometry();
+    run.vc = section.vc_nominal;
+    break;
+  }
+  return run;
 }
+
+namespace {
+
+std::string mm3(double value) {
+  std::ostringstream out;
+  out.setf(std::ios::fixed);
+  out.precision(3);
+  out << value;
+  return out.str();
+}
+
+std::string section_name(const post::ToolSection& s) {
+  std::string name = s.tool ? "T" + std::to_string(*s.tool) : std::string("(no tool change)");
+  if (s.entry) {
+    name += " " + std::string(tools::to_string(s.entry->shape));
+    if (s.entry->diameter > 0) name += " D" + mm3(s.entry->diameter);
+    name += " (" + std::string(tools::to_string(s.entry->origin)) +
+            (s.entry->where.empty() ? std::string() : " " + s.entry->where) + ")";
+  } else {
+    name += " unknown";
+  }
+  return name;
+}
+
+// The nominal vc of the posted sections: one number, or their range.
+std::string vc_words(const post::PostSummary& summary) {
+  double low = INFINITY, high = -INFINITY;
+  for (const post::ToolSection& s : summary.sections) {
+    if (!s.posted) continue;
+    low = std::min(low, s.vc_nominal);
+    high = std::max(high, s.vc_nominal);
+  }
+  std::ostringstream out;
+  out << low;
+  if (high > low) out << "-" << high;
+  return out.str();
+}
+
+// One line per section, when there is more than one or one is kept.
+void print_sections(const post::PostSummary& summary) {
+  const bool all_posted = std::all_of(summary.sections.begin(), summary.sections.end(),
+                                      [](const post::ToolSection& s) { return s.posted; });
+  if (summary.sections.size() <= 1 && all_posted) return;
+  for (const post::ToolSection& s : summary.sections) {
+    std::cerr << "vcpost:   line " << s.first_line << ": " << section_name(s) << ": ";
+    if (s.posted) {
+      std::cerr << "posted at vc " << s.vc_nominal << " m/min, " << s.points << " points, "
+                << s.s_words << " S words";
+      if (s.before && s.after) {
+        std::cerr << ", within +-10 %: "
+                  << static_cast<int>(std::round(s.before->within_10_percent * 100))
+                  << " % before, " << static_cast<int>(std::round(s.after->within_10_percent * 100))
+                  << " % after";
+      }
+    } else {
+      std::cerr << "kept, " << s.reason << " (" << s.points << " points)";
+    }
+    std::cerr << '\n';
+  }
+}
+
+// Gouge and lift depths of the evaluated sections, and the diagnosis of a
+// path consistently off the model.
+void print_depths(const post::PostSummary& summary) {
+  for (const post::ToolSection& s : summary.sections) {
+    const std::string name = summary.sections.size() > 1 ? section_name(s) + ": " : std::string();
+    for (const auto& [depth, what] :
+         {std::pair{&s.gouge, "gouge depth"}, std::pair{&s.lift, "lift height"}}) {
+      if (depth->points == 0) continue;
+      std::cerr << "vcpost:   " << name << what << " min " << mm3(depth->min) << ", median "
+                << mm3(depth->median) << ", max " << mm3(depth->max) << " mm (" << depth->points
+                << " points)\n";
+    }
+    if (s.offset) {
+      std::cerr << "vcpost: warning: " << name
+                << static_cast<int>(std::round(s.offset->share * 100))
+                << " % of the points near the model sit " << mm3(std::abs(s.offset->offset_mm))
+                << " mm " << (s.offset->offset_mm > 0 ? "above" : "into") << " it: likely "
+                << s.offset->causes << '\n';
+    }
+  }
+}
+
+}  // namespace
 
 void finish_job(const PostArguments& args, const JobRun& run) {
   const post::PostSummary& summary = run.summary;
@@ -429,13 +561,14 @@ void finish_job(const PostArguments& args, const JobRun& run) {
     std::cerr << "vcpost: " << summary.samples << " points, " << summary.s_words << " S words";
     if (args.adjust_feed) std::cerr << ", " << summary.f_words << " F words";
     if (summary.before && summary.after) {
-      std::cerr << "; cutting time within +-10 % of vc " << args.vc << " m/min: "
+      std::cerr << "; cutting time within +-10 % of vc " << vc_words(summary) << " m/min: "
                 << static_cast<int>(std::round(summary.before->within_10_percent * 100))
                 << " % before, "
                 << static_cast<int>(std::round(summary.after->within_10_percent * 100))
                 << " % after";
     }
     std::cerr << '\n';
+    print_sections(summary);
     for (const auto& path : args.reports) {
       if (path != "-") std::cerr << "vcpost: report written to " << path << '\n';
     }
@@ -444,6 +577,15 @@ void finish_job(const PostArguments& args, const JobRun& run) {
     if (summary.lifted + summary.missed > 0) {
       std::cerr << "vcpost: warning: " << summary.lifted + summary.missed
                 << " cutting points do not touch the model (their blocks keep the program's S)\n";
+    }
+    print_depths(summary);
+    for (const std::string& note : summary.tool_notes)
+      std::cerr << "vcpost: note: " << note << '\n';
+    if (!summary.sections.empty() &&
+        std::none_of(summary.sections.begin(), summary.sections.end(),
+                     [](const post::ToolSection& s) { return s.posted; })) {
+      std::cerr << "vcpost: warning: no section is posted (no ball-end mill whose path touches the "
+                   "model): the program keeps its own speeds\n";
     }
   }
   if (warnings && args.strict) throw CommandError("warnings with --strict", exit_warnings);

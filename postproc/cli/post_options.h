@@ -15,9 +15,12 @@
 namespace vcpost::cli {
 
 struct PostArguments {
-  std::string program, model, tool, machine = "generic", output, summary_json;
+  std::string program, model, machine = "generic", output, summary_json;
   std::string policy = "max", cl_point = "tip", dialect;
-  double vc = 0, ap = 0, spacing = 0.5, tolerance = 0.01;
+  std::vector<std::string> tools;      // --tool: "ball:10" (every tool) or "T8=ball:14"
+  std::string tools_file, post_tools;  // --tools FILE.toml, --post-tools T2,T8
+  std::vector<std::string> vc;         // --vc: "120" (every tool) or "T2=150"
+  double ap = 0, spacing = 0.5, tolerance = 0.01;
   std::optional<double> ae, fz;
   std::optional<int> teeth;
   int threads = 0;  // 0: one per core
@@ -32,7 +35,10 @@ void add_job_options(CLI::App& command, PostArguments& args);
 // What one run did, for the command's own output.
 struct JobRun {
   post::PostSummary summary;
-  geometry::Tool tool;  // from --tool or the CL program's cutter
+  // The first posted section's tool and vc (the summary's `tool` and
+  // `vc_nominal`); empty when no section was posted.
+  std::optional<geometry::Tool> tool;
+  std::optional<double> vc;
   LoadedModel model;
   machines::MachineProfile profile;
   double run_time_s = 0;

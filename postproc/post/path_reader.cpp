@@ -2,12 +2,14 @@
 
 #include <istream>
 #include <optional>
+#include <sstream>
 #include <variant>
 
 #include "postproc/cldata/cl_reader.h"
 #include "postproc/gcode/interpreter.h"
 #include "postproc/pipeline/path_sampler.h"
 #include "postproc/program/timing.h"
+#include "postproc/tools/program_tools.h"
 
 namespace vcpost::post {
 namespace {
@@ -19,7 +21,7 @@ class EventSource {
  public:
   EventSource(std::string_view text, const std::string& file_name, ProgramKind kind,
               const gcode::Dialect& dialect)
-      : buffer_(text) {
+      : buffer_(text), file_name_(file_name) {
     if (kind == ProgramKind::gcode) {
       gcode_.emplace(text, dialect);
     } else {
@@ -27,9 +29,21 @@ class EventSource {
       cl_.emplace(*stream_, file_name);
     }
   }
-  bool next(std::vector<Event>& out) {
-    if (gcode_) return gcode_->next(out);
+  // The next batch of events; what the program says of its tools on the
+  // way (G-code comments, CL cutter records) goes to `tools` first.
+  bool next(std::vector<Event>& out, tools::ProgramTools& tools) {
+    if (gcode_) {
+      if (!gcode_->next(out)) return false;
+      const gcode::Block& block = gcode_->block();
+      for (const gcode::Comment& comment : block.comments) {
+        tools.on_comment(comment.text, file_name_ + ":" + std::to_string(block.line),
+                         gcode_->state().inches);
+      }
+      return true;
+    }
     auto event = cl_->next();
+    while (cutters_seen_ < cl_->cutters().size())
+      tools.on_entry(entry_of(cl_->cutters()[cutters_seen_++]));
     if (!event) return false;
     out.push_back(std::move(*event));
     return true;
@@ -42,24 +56,64 @@ class EventSource {
   std::optional<std::istream> stream_;
   std::optional<gcode::Interpreter> gcode_;
   std::optional<cldata::ClReader> cl_;
+  std::string file_name_;
+  std::size_t cutters_seen_ = 0;
+
+  // A CL cutter as a tool-table entry: it names no tool number (the
+  // LOADTL around it does).
+  tools::ToolEntry entry_of(const cldata::ClCutter& cutter) const {
+    tools::ToolEntry e;
+    e.origin = tools::ToolOrigin::cl_record;
+    e.where = file_name_ + ":" + std::to_string(cutter.source.line);
+    e.name = cutter.source_word;
+    for (std::size_t i = 0; i < cutter.params.size(); ++i) {
+      std::ostringstream value;
+      value << cutter.params[i];
+      e.name += (i == 0 ? "/" : ",") + value.str();
+    }
+    e.diameter = cutter.diameter();
+    if (cutter.tool) {
+      switch (cutter.tool->kind) {
+        case geometry::ToolKind::ball:
+          e.shape = tools::ToolShape::ball;
+          break;
+        case geometry::ToolKind::bull_nose:
+          e.shape = tools::ToolShape::bull_nose;
+          break;
+        case geometry::ToolKind::flat:
+          e.shape = tools::ToolShape::flat;
+          break;
+      }
+      e.diameter = cutter.tool->diameter;
+      e.corner_radius = cutter.tool->corner_radius;
+    } else {
+      e.shape = cutter.source_word.starts_with("TLDATA/DRILL") ? tools::ToolShape::drill
+                                                               : tools::ToolShape::other;
+    }
+    return e;
+  }
 };
 
 // Numbers the blocks: a G-code block is a line (its events share a source
-// offset); in CL data every motion starts a block, and what comes before
-// the first motion is block 0. Takes each event's source and whether it is
-// a motion, which the reader looks up once per event.
+// offset); in CL data every motion starts a block, and so does a tool change
+// after the first motion (what follows it belongs to the new tool's
+// section); what comes before the first motion is block 0. Takes each
+// event's source and whether it is a motion or a tool change, which the
+// reader looks up once per event.
 class BlockCounter {
  public:
   explicit BlockCounter(ProgramKind kind) : kind_(kind) {}
-  bool starts_block(const program::SourceRef& source, bool motion) const {
+  bool starts_block(const program::SourceRef& source, bool motion, bool tool_change) const {
     if (!started_) return true;
-    return kind_ == ProgramKind::gcode ? source.offset != last_offset_ : motion;
+    if (kind_ == ProgramKind::gcode) return source.offset != last_offset_;
+    return motion || (tool_change && moved_);
   }
   // The block of the event, and whether it starts a new one.
-  std::pair<std::size_t, bool> on(const program::SourceRef& source, bool motion) {
-    const bool fresh = starts_block(source, motion);
+  std::pair<std::size_t, bool> on(const program::SourceRef& source, bool motion, bool tool_change) {
+    const bool fresh = starts_block(source, motion, tool_change);
     if (fresh && started_) ++block_;
     started_ = true;
+    moved_ = moved_ || motion;
     last_offset_ = source.offset;
     return {block_, fresh};
   }
@@ -67,6 +121,7 @@ class BlockCounter {
  private:
   ProgramKind kind_;
   bool started_ = false;
+  bool moved_ = false;
   std::size_t block_ = 0;
   std::uint64_t last_offset_ = 0;
 };
@@ -76,8 +131,10 @@ class BlockCounter {
 struct PathReader::State {
   State(std::string_view program, const std::string& file_name, ProgramKind program_kind,
         const gcode::Dialect& dialect, const machines::MachineProfile& profile, double spacing,
-        bool keep)
-      : text(program),
+        bool keep, const tools::ToolChoices& tool_choices, double ap)
+      : tools(tool_choices),
+        ap_mm(ap),
+        text(program),
         kind(program_kind),
         source(program, file_name, program_kind, dialect),
         clock({profile.feed().rapid_mm_per_min, profile.control().block_time_s}),
@@ -91,6 +148,12 @@ struct PathReader::State {
                                                              : plan::SpindleState::ccw;
   }
 
+  const tools::ToolChoices& tools;
+  double ap_mm;
+  tools::ProgramTools program_tools;
+  std::uint32_t section = 0;     // of the events read now
+  bool section_decided = false;  // at its first motion
+  bool section_posted = false;   // evaluated (postable)
   std::string_view text;
   ProgramKind kind;
   EventSource source;
@@ -111,11 +174,16 @@ struct PathReader::State {
 
 PathReader::PathReader(std::string_view text, const std::string& file_name, ProgramKind kind,
                        const gcode::Dialect& dialect, const machines::MachineProfile& profile,
-                       double sample_spacing_mm, bool keep_events)
+                       double sample_spacing_mm, bool keep_events, const tools::ToolChoices& tools,
+                       double ap_mm)
     : state_(std::make_unique<State>(text, file_name, kind, dialect, profile, sample_spacing_mm,
-                                     keep_events)) {}
+                                     keep_events, tools, ap_mm)) {}
 
 PathReader::~PathReader() = default;
+
+const std::vector<std::string>& PathReader::tool_notes() const {
+  return state_->program_tools.notes();
+}
 
 bool PathReader::read(Chunk& chunk, std::size_t samples) {
   State& s = *state_;
@@ -123,10 +191,13 @@ bool PathReader::read(Chunk& chunk, std::size_t samples) {
   chunk.blocks.clear();
   chunk.events.clear();
   chunk.samples = 0;
+  chunk.sections.clear();
+  chunk.first_section = s.section;
   chunk.first_block = totals_.blocks;
   auto next_slot = [&]() -> Slot& {
     Slot& slot = chunk.slots.emplace_back();
     slot.break_pass = s.break_pass;
+    slot.section = s.section;
     s.break_pass = false;
     return slot;
   };
@@ -139,22 +210,30 @@ bool PathReader::read(Chunk& chunk, std::size_t samples) {
     while (more && s.next_event == s.events.size()) {  // a block may have no events
       s.events.clear();
       s.next_event = 0;
-      more = s.source.next(s.events);
+      more = s.source.next(s.events, s.program_tools);
     }
     if (!more) break;
     Event& event = s.events[s.next_event];
     const program::SourceRef source = program::source_of(event);
     const bool motion = program::is_motion(event);
-    if (chunk.samples >= samples && s.counter.starts_block(source, motion)) break;
+    const auto* change = std::get_if<program::ChangeTool>(&event);
+    if (chunk.samples >= samples && s.counter.starts_block(source, motion, change)) break;
     ++s.next_event;
     any = true;
-    const auto [block_index, fresh] = s.counter.on(source, motion);
+    if (change) {
+      // A new section: its tool is decided at its first motion.
+      s.program_tools.on_tool_change(change->number);
+      ++s.section;
+      s.section_decided = false;
+    }
+    const auto [block_index, fresh] = s.counter.on(source, motion, change);
     if (fresh) {
-      chunk.blocks.push_back({source.offset, false, false, s.program_s, s.program_f});
+      chunk.blocks.push_back({source.offset, false, false, s.program_s, s.program_f, s.section});
       ++totals_.blocks;
       s.last_offset = chunk.blocks.back().offset;
     }
     BlockInfo& block = chunk.blocks.back();  // a chunk starts with a block
+    if (change) block.section = s.section;   // the tool-change block is the new tool's
     const program::EventTime time = s.clock.advance(event);
     if (const auto* speed = std::get_if<program::SetSpindleSpeed>(&event)) {
       s.program_s = block.program_s = speed->rpm;
@@ -173,6 +252,17 @@ bool PathReader::read(Chunk& chunk, std::size_t samples) {
       s.break_pass = true;
     }
     if (motion) {
+      if (!s.section_decided) {
+        s.program_tools.on_motion();
+        const auto number = s.program_tools.number();
+        const tools::ToolEntry* tool = s.tools.table.resolve(number, s.program_tools.current());
+        chunk.sections.push_back(
+            decide_section(s.section, number, source.line, tool, s.tools, s.ap_mm));
+        s.section_posted = chunk.sections.back().postable;
+        s.section_decided = true;
+      } else {
+        s.program_tools.on_motion();
+      }
       ++totals_.motion_events;
       totals_.program_time_s = time.end();
       s.path.clear();
@@ -200,7 +290,7 @@ bool PathReader::read(Chunk& chunk, std::size_t samples) {
         }
         for (const auto& sample : s.path) {
           Slot& slot = next_slot();
-          slot.kind = SlotKind::sample;
+          slot.kind = s.section_posted ? SlotKind::sample : SlotKind::kept;
           slot.plan = {time.start + time.duration * sample.fraction,
                        block_index,
                        std::nullopt,

@@ -16,7 +16,9 @@
 #include "postproc/pipeline/point_evaluator.h"
 #include "postproc/plan/spindle_plan.h"
 #include "postproc/post/post_job.h"
+#include "postproc/post/tool_sections.h"
 #include "postproc/program/events.h"
+#include "postproc/tools/tool_table.h"
 
 namespace vcpost::post {
 
@@ -35,18 +37,21 @@ struct BlockInfo {
   std::uint64_t offset = 0;  // first byte (G-code) / record (CL)
   bool has_s = false, has_f = false;
   double program_s = 0, program_f = 0;  // in effect on the block
+  std::uint32_t section = 0;            // the tool section it belongs to (ToolSection::index)
 };
 
-enum class SlotKind {
+enum class SlotKind : std::uint8_t {
   sample,  // a path sample: evaluated, then its target set
   rapid,   // a rapid move: no target
   resume,  // the start of a move that continues the cut: the last sample's target
+  kept,    // a path sample of a section the job does not post: not evaluated
 };
 
 // One entry of the planner's timeline.
 struct Slot {
   SlotKind kind = SlotKind::sample;
   bool break_pass = false;  // a rapid or a tool change comes first: a new pass starts
+  std::uint32_t section = 0;  // ToolSection::index
   plan::Sample plan;        // target and air flag of samples and resumes: set later
   float weight_s = 0;       // cutting time a sample stands for, s
   pipeline::PathSample sample;
@@ -62,7 +67,17 @@ struct Chunk {
   std::size_t first_block = 0;    // program index of blocks.front()
   std::vector<BlockInfo> blocks;  // the blocks that start in this chunk
   std::vector<std::pair<program::Event, std::size_t>> events;  // CL input: events, block
-  std::size_t samples = 0;                                     // slots of kind sample
+  std::size_t samples = 0;                                     // slots of kind sample or kept
+  // Sections whose first motion is in this chunk, decided by the reader.
+  std::vector<ToolSection> sections;
+  // The evaluator of each section its slots name, from first_section on
+  // (null for sections not posted): set by the job before the chunk is
+  // evaluated, read by the stages on other threads.
+  std::uint32_t first_section = 0;
+  std::vector<pipeline::PointEvaluator*> evaluators;
+  pipeline::PointEvaluator* evaluator(std::uint32_t section) const {
+    return evaluators[section - first_section];
+  }
   double read_fraction = 0;      // share of the input read when the chunk ends
   std::uint64_t read_bytes = 0;  // bytes of the input read when the chunk ends
 };
@@ -76,10 +91,13 @@ struct ReadTotals {
 class PathReader {
  public:
   // keep_events: also hand out the events (for CL input, whose output is
-  // written from them).
+  // written from them). `tools` decides every section's tool at its first
+  // motion, with what the program says (comments, CL cutters); ap_mm is
+  // checked against each posted tool's diameter.
   PathReader(std::string_view text, const std::string& file_name, ProgramKind kind,
              const gcode::Dialect& dialect, const machines::MachineProfile& profile,
-             double sample_spacing_mm, bool keep_events);
+             double sample_spacing_mm, bool keep_events, const tools::ToolChoices& tools,
+             double ap_mm);
   ~PathReader();
 
   // Fills `chunk` (cleared first) up to about `samples` path samples, whole
@@ -88,6 +106,8 @@ class PathReader {
   bool read(Chunk& chunk, std::size_t samples);
 
   const ReadTotals& totals() const { return totals_; }
+  // Notes on tool comments that could not be read, in file order.
+  const std::vector<std::string>& tool_notes() const;
 
  private:
   struct State;

@@ -17,6 +17,7 @@
 
 #include "postproc/cldata/cl_reader.h"
 #include "postproc/plan/streaming_plan.h"
+#include "postproc/post/offset_diagnosis.h"
 #include "postproc/post/path_reader.h"
 #include "postproc/post/program_writer.h"
 
@@ -34,14 +35,13 @@ constexpr std::size_t chunk_samples = 2048;
 // Cutting-speed statistics, accumulated sample by sample.
 class VcAccumulator {
  public:
-  explicit VcAccumulator(double vc_nominal) : nominal_(vc_nominal) {}
-  void add(double d_ref, double weight_s, double rpm) {
+  void add(double d_ref, double weight_s, double rpm, double nominal) {
     if (std::isnan(d_ref) || weight_s <= 0) return;
     const double vc = geometry::cutting_speed(d_ref, rpm);
     out_.min = std::min(out_.min, vc);
     out_.max = std::max(out_.max, vc);
     out_.mean += weight_s * vc;
-    const double deviation = std::abs(vc / nominal_ - 1);
+    const double deviation = std::abs(vc / nominal - 1);
     if (deviation <= 0.05 + 1e-12) out_.within_5_percent += weight_s;
     if (deviation <= 0.10 + 1e-12) out_.within_10_percent += weight_s;
     weight_ += weight_s;
@@ -56,7 +56,6 @@ class VcAccumulator {
   }
 
  private:
-  double nominal_;
   VcStatistics out_{INFINITY, -INFINITY, 0, 0, 0};
   double weight_ = 0;
 };
@@ -74,6 +73,25 @@ struct HeldPoint {
   pipeline::PointResult result;
 };
 
+// Whether a section's S words are rewritten. A postable section is pending
+// until its first point touches the model (posted) or it ends without one
+// (kept: in the air); its final blocks wait meanwhile, so a section in the
+// air keeps its S byte for byte.
+enum class SectionState : std::uint8_t { kept, pending, posted };
+
+// Blocks a pending section may hold back before it is kept as in the air
+// (memory stays bounded on a long path that never touches).
+constexpr std::size_t max_pending_blocks = 1 << 16;
+
+// A section as the last stage follows it.
+struct SectionLedger {
+  std::size_t summary_index = 0;  // in PostSummary::sections
+  SectionState state = SectionState::kept;
+  VcAccumulator before, after;
+  std::optional<OffsetHistogram> offsets;  // postable sections
+  bool timed = false;                      // start_s set
+};
+
 // The last, serial stage: counts, feeds the planner, and as blocks become
 // final writes them, accumulates the statistics and hands out the points.
 class Finisher {
@@ -84,18 +102,31 @@ class Finisher {
         writer_(writer),
         points_(points),
         summary_(summary),
-        before_(settings.point.vc),
-        after_(settings.point.vc) {
+        tolerance_(settings.point.contact_tolerance) {
     if (settings.adjust_feed) {
       feeds_.emplace(settings.fz_mm, settings.teeth.value_or(profile.tool().default_teeth),
                      profile.feed(), std::pow(10.0, -profile.output().feed_decimals));
     }
   }
 
+  // Whether the writer keeps the blocks of `section` as written.
+  bool keeps(std::uint32_t section) const {
+    return section >= ledgers_.size() || ledgers_[section].state != SectionState::posted;
+  }
+
   void take(Chunk& chunk) {
     writer_.add(chunk);
+    for (ToolSection& section : chunk.sections) open_section(std::move(section));
     std::size_t sample_index = 0;
     for (Slot& slot : chunk.slots) {
+      if (slot.section != current_) switch_section(slot.section);
+      if (slot.section < ledgers_.size() && has_summary_[slot.section]) {
+        SectionLedger& l = ledgers_[slot.section];
+        ToolSection& s = summary_.sections[l.summary_index];
+        if (!l.timed) s.start_s = slot.plan.time_s;
+        l.timed = true;
+        s.end_s = slot.plan.time_s;
+      }
       switch (slot.kind) {
         case SlotKind::rapid:
           last_target_.reset();
@@ -108,6 +139,9 @@ class Finisher {
         case SlotKind::sample:
           sample(slot, chunk.results[sample_index++]);
           break;
+        case SlotKind::kept:
+          kept(slot);
+          break;
       }
       planner_.push(slot.plan);
     }
@@ -116,30 +150,103 @@ class Finisher {
   }
 
   void finish() {
+    switch_section(current_ + 1);  // the last section ends
     planner_.finish();
     planner_.take_final(final_);
     emit();
+    release();
     writer_.finish();
     summary_.before = before_.result();
     summary_.after = after_.result();
+    for (std::size_t i = 0; i < ledgers_.size(); ++i) {
+      SectionLedger& l = ledgers_[i];
+      ToolSection* s = summary_section(static_cast<std::uint32_t>(i));
+      if (!s) continue;
+      s->posted = l.state == SectionState::posted;
+      s->before = l.before.result();
+      s->after = l.after.result();
+      s->s_words = writer_.s_words(static_cast<std::uint32_t>(i));
+      s->f_words = writer_.f_words(static_cast<std::uint32_t>(i));
+      if (l.offsets) {
+        s->gouge = l.offsets->gouge();
+        s->lift = l.offsets->lift();
+        s->offset = l.offsets->diagnosis();
+      }
+    }
   }
 
  private:
+  ToolSection* summary_section(std::uint32_t section) {
+    if (section >= ledgers_.size() || !has_summary_[section]) return nullptr;
+    return &summary_.sections[ledgers_[section].summary_index];
+  }
+
+  void open_section(ToolSection section) {
+    const std::uint32_t index = section.index;
+    if (ledgers_.size() <= index) {
+      ledgers_.resize(index + 1);
+      has_summary_.resize(index + 1, false);
+    }
+    SectionLedger& l = ledgers_[index];
+    l.summary_index = summary_.sections.size();
+    l.state = section.postable ? SectionState::pending : SectionState::kept;
+    if (section.postable && section.entry) {
+      l.offsets.emplace(tolerance_, section.entry->diameter / 2);
+      vc_.resize(std::max<std::size_t>(vc_.size(), index + 1), 0.0);
+      vc_[index] = section.vc_nominal;
+    }
+    has_summary_[index] = true;
+    summary_.sections.push_back(std::move(section));
+  }
+
+  // The path moves on to `next`: a pending section that never touched is in the air.
+  void switch_section(std::uint32_t next) {
+    if (current_ < ledgers_.size() && ledgers_[current_].state == SectionState::pending) {
+      ledgers_[current_].state = SectionState::kept;
+      if (ToolSection* s = summary_section(current_))
+        s->reason = "the path never touches the model: speed kept";
+      release();
+    }
+    current_ = next;
+  }
+
+  void kept(Slot& slot) {
+    if (ToolSection* s = summary_section(slot.section)) ++s->points;
+    slot.plan.target_rpm.reset();
+    slot.plan.rapid = false;
+    last_target_.reset();
+    last_air_ = false;
+  }
+
   void sample(Slot& slot, pipeline::PointResult& r) {
     ++summary_.samples;
+    SectionLedger& ledger = ledgers_[slot.section];
+    ToolSection& section = summary_.sections[ledger.summary_index];
+    ++section.points;
     switch (r.contact.status) {
       case geometry::BallStatus::touching:
         ++summary_.touching;
+        ++section.touching;
         break;
       case geometry::BallStatus::lifted:
         ++summary_.lifted;
+        ++section.lifted;
         break;
       case geometry::BallStatus::gouging:
         ++summary_.gouging;
+        ++section.gouging;
         break;
       case geometry::BallStatus::missed:
         ++summary_.missed;
+        ++section.missed;
         break;
+    }
+    if (r.contact.status != geometry::BallStatus::missed && ledger.offsets)
+      ledger.offsets->add(r.contact.distance_error);
+    if (ledger.state == SectionState::pending &&
+        (r.contact.status == geometry::BallStatus::touching ||
+         r.contact.status == geometry::BallStatus::gouging)) {
+      ledger.state = SectionState::posted;
     }
     if (r.engagement) {
       switch (r.ae_source) {
@@ -175,25 +282,69 @@ class Finisher {
     if (points_) held_points_.push_back({slot.sample, std::move(r)});
   }
 
+  // Final blocks go out in order; those of a pending section wait.
   void emit() {
     for (const plan::BlockPlan& block : final_) {
-      const BlockInfo& info = writer_.block(block.block);
-      std::optional<plan::BlockFeed> feed;
-      if (feeds_) feed = feeds_->next(block, {info.program_f, info.program_s});
-      const double program_s = info.program_s;
-      while (!held_.empty() && held_.front().block <= block.block) {
-        HeldSample& h = held_.front();
-        before_.add(h.d_ref, h.weight_s, program_s);
-        after_.add(h.d_ref, h.weight_s, block.planned_rpm);
-        if (points_) {
-          const HeldPoint& p = held_points_.front();
-          points_(p.sample, p.result,
-                  PointRecord{p.sample.source.line, h.time_s, h.weight_s, program_s,
-                              block.planned_rpm, block.bound});
-          held_points_.pop_front();
-        }
-        held_.pop_front();
+      if (!waiting_.empty() ||
+          state_of(writer_.block(block.block).section) == SectionState::pending) {
+        waiting_.push_back(block);
+        continue;
       }
+      write(block);
+    }
+    final_.clear();
+    if (waiting_.size() > max_pending_blocks) {
+      const std::uint32_t section = writer_.block(waiting_.front().block).section;
+      ledgers_[section].state = SectionState::kept;
+      if (ToolSection* s = summary_section(section)) {
+        s->reason = "no point touches the model in its first " +
+                    std::to_string(max_pending_blocks) + " blocks: speed kept";
+      }
+    }
+    release();
+  }
+
+  // Writes the waiting blocks whose section is decided.
+  void release() {
+    while (!waiting_.empty() &&
+           state_of(writer_.block(waiting_.front().block).section) != SectionState::pending) {
+      write(waiting_.front());
+      waiting_.pop_front();
+    }
+    writer_.flush();
+  }
+
+  SectionState state_of(std::uint32_t section) const {
+    return section < ledgers_.size() ? ledgers_[section].state : SectionState::kept;
+  }
+
+  void write(const plan::BlockPlan& block) {
+    const BlockInfo& info = writer_.block(block.block);
+    std::optional<plan::BlockFeed> feed;
+    if (feeds_) feed = feeds_->next(block, {info.program_f, info.program_s});
+    const double program_s = info.program_s;
+    const bool posted = state_of(info.section) == SectionState::posted;
+    SectionLedger* ledger = info.section < ledgers_.size() ? &ledgers_[info.section] : nullptr;
+    const double nominal = info.section < vc_.size() ? vc_[info.section] : 0.0;
+    while (!held_.empty() && held_.front().block <= block.block) {
+      HeldSample& h = held_.front();
+      if (posted) {
+        before_.add(h.d_ref, h.weight_s, program_s, nominal);
+        after_.add(h.d_ref, h.weight_s, block.planned_rpm, nominal);
+        ledger->before.add(h.d_ref, h.weight_s, program_s, nominal);
+        ledger->after.add(h.d_ref, h.weight_s, block.planned_rpm, nominal);
+      }
+      if (points_) {
+        const HeldPoint& p = held_points_.front();
+        points_(p.sample, p.result,
+                PointRecord{p.sample.source.line, h.time_s, h.weight_s, program_s,
+                            posted ? block.planned_rpm : program_s,
+                            posted ? block.bound : plan::Bound::program, info.section});
+        held_points_.pop_front();
+      }
+      held_.pop_front();
+    }
+    if (posted) {
       const double duration = block.end_s - block.start_s;
       switch (block.bound) {
         case plan::Bound::n_max:
@@ -211,10 +362,8 @@ class Finisher {
         default:
           break;
       }
-      writer_.on_final(block, feed);
     }
-    writer_.flush();
-    final_.clear();
+    writer_.on_final(block, feed);
   }
 
   plan::StreamingPlanner planner_;
@@ -222,8 +371,14 @@ class Finisher {
   ProgramWriter& writer_;
   const PointSink& points_;
   PostSummary& summary_;
+  double tolerance_;
   VcAccumulator before_, after_;
+  std::vector<SectionLedger> ledgers_;  // by section index
+  std::vector<bool> has_summary_;       // by section index: a ToolSection exists
+  std::vector<double> vc_;              // nominal vc by section index (posted ones)
+  std::uint32_t current_ = 0;           // section of the last slot taken
   std::vector<plan::BlockPlan> final_;
+  std::deque<plan::BlockPlan> waiting_;  // final, behind a pending section
   std::deque<HeldSample> held_;
   std::deque<HeldPoint> held_points_;
   std::optional<double> last_target_;  // of the last sample evaluated
@@ -274,24 +429,42 @@ ProgramKind detect_program_kind(std::string_view text) {
   return ProgramKind::gcode;
 }
 
-std::optional<geometry::Tool> tool_from_program(std::string_view text,
-                                                const std::string& file_name) {
-  if (detect_program_kind(text) != ProgramKind::cldata) return std::nullopt;
-  ViewBuffer buffer(text);
-  std::istream in(&buffer);
-  cldata::ClReader reader(in, file_name);
-  for (;;) {
-    const auto event = reader.next();
-    if (!reader.cutters().empty()) break;
-    if (!event || program::is_motion(*event)) return std::nullopt;
+namespace {
+
+// The tools the job follows: settings.tools, or point.tool and point.vc for every tool.
+tools::ToolChoices tools_of(const PostSettings& settings) {
+  if (settings.tools) return *settings.tools;
+  tools::ToolChoices choices;
+  tools::ToolEntry every;
+  const geometry::Tool& t = settings.point.tool;
+  every.shape = t.kind == geometry::ToolKind::ball        ? tools::ToolShape::ball
+                : t.kind == geometry::ToolKind::bull_nose ? tools::ToolShape::bull_nose
+                                                          : tools::ToolShape::flat;
+  every.diameter = t.diameter;
+  every.corner_radius = t.corner_radius;
+  every.name = geometry::to_string(t);
+  choices.table.add(every);
+  choices.vc = settings.point.vc;
+  return choices;
+}
+
+}  // namespace
+
+std::optional<ToolSection> first_postable_section(std::string_view text,
+                                                  const std::string& file_name,
+                                                  const machines::MachineProfile& profile,
+                                                  const PostSettings& settings) {
+  const ProgramKind kind = detect_program_kind(text);
+  const tools::ToolChoices choices = tools_of(settings);
+  PathReader reader(text, file_name, kind, settings.dialect.value_or(dialect_of(profile)), profile,
+                    settings.sample_spacing_mm, false, choices, settings.point.ap);
+  Chunk chunk;
+  while (reader.read(chunk, chunk_samples)) {
+    for (const ToolSection& section : chunk.sections) {
+      if (section.postable) return section;
+    }
   }
-  const auto& cutter = reader.cutters().front();
-  if (!cutter.tool) {
-    throw PostError(file_name + ":" + std::to_string(cutter.source.line) + ": " +
-                    cutter.source_word + " is not a ball, bull-nose or flat mill (" +
-                    cutter.why_not + "); give --tool");
-  }
-  return cutter.tool;
+  return std::nullopt;
 }
 
 PostSummary post_program(std::string_view text, const std::string& file_name,
@@ -305,16 +478,36 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
   PostSummary summary;
   summary.kind = kind;
 
+  const tools::ToolChoices choices = tools_of(settings);
   PathReader reader(text, file_name, kind, dialect, profile, settings.sample_spacing_mm,
-                    kind == ProgramKind::cldata);
+                    kind == ProgramKind::cldata, choices, settings.point.ap);
   // The writer releases G-code text behind it; CL text is done with once read.
-  ProgramWriter writer(
-      text, kind, profile, settings.adjust_feed, sink,
-      kind == ProgramKind::gcode ? consumed : std::function<void(std::uint64_t)>{});
-  pipeline::PointSettings point_settings = settings.point;
-  point_settings.cutting_points = static_cast<bool>(points);  // only the report's points read them
-  pipeline::PointEvaluator evaluator(model, point_settings);
+  const Finisher* decides = nullptr;  // set below: the writer asks it which sections it keeps
+  ProgramWriter writer(text, kind, profile, settings.adjust_feed, sink,
+                       kind == ProgramKind::gcode ? consumed : std::function<void(std::uint64_t)>{},
+                       [&decides](std::uint32_t section) { return decides->keeps(section); });
   Finisher finisher(profile, settings, writer, points, summary);
+  decides = &finisher;
+  // One evaluator per posted section (its own tool, vc and passes), made by
+  // the reading stage; the chunks carry pointers to them to the others.
+  std::vector<std::unique_ptr<pipeline::PointEvaluator>> evaluators;
+  auto add_evaluators = [&](Chunk& chunk) {
+    for (const ToolSection& section : chunk.sections) {
+      if (evaluators.size() <= section.index) evaluators.resize(section.index + 1);
+      if (!section.postable) continue;
+      pipeline::PointSettings point_settings = settings.point;
+      point_settings.tool = *section.entry->geometry();
+      point_settings.vc = section.vc_nominal;
+      point_settings.cutting_points = static_cast<bool>(points);  // only the report reads them
+      evaluators[section.index] = std::make_unique<pipeline::PointEvaluator>(model, point_settings);
+    }
+    std::uint32_t last = chunk.first_section;
+    for (const Slot& slot : chunk.slots) last = std::max(last, slot.section);
+    if (evaluators.size() <= last) evaluators.resize(last + 1);
+    chunk.evaluators.clear();
+    for (std::uint32_t section = chunk.first_section; section <= last; ++section)
+      chunk.evaluators.push_back(evaluators[section].get());
+  };
 
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const int threads = settings.threads > 0 ? settings.threads : cores;
@@ -346,6 +539,7 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
       control.stop();
       return nullptr;
     }
+    add_evaluators(*chunk);
     if (kind == ProgramKind::cldata && consumed) consumed(chunk->read_bytes);
     return chunk;
   };
@@ -354,17 +548,20 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
     hint.curvature = static_cast<bool>(points);  // only the report's points read curvatures
     chunk->results.clear();                      // keeps its capacity
     for (const Slot& slot : chunk->slots) {
-      if (slot.kind == SlotKind::sample)
-        chunk->results.emplace_back().contact = evaluator.contact(slot.sample, hint);
+      if (slot.kind == SlotKind::sample) {
+        chunk->results.emplace_back().contact =
+            chunk->evaluator(slot.section)->contact(slot.sample, hint);
+      }
     }
     return chunk;
   };
   auto place = [&](Chunk* chunk) -> Chunk* {
     std::size_t sample_index = 0;
     for (const Slot& slot : chunk->slots) {
-      if (slot.break_pass) evaluator.break_pass();
+      pipeline::PointEvaluator* evaluator = chunk->evaluator(slot.section);
+      if (slot.break_pass && evaluator) evaluator->break_pass();
       if (slot.kind == SlotKind::sample)
-        evaluator.place(slot.sample, chunk->results[sample_index++]);
+        evaluator->place(slot.sample, chunk->results[sample_index++]);
     }
     return chunk;
   };
@@ -372,7 +569,7 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
     std::size_t sample_index = 0;
     for (const Slot& slot : chunk->slots) {
       if (slot.kind == SlotKind::sample)
-        evaluator.engage(slot.sample, chunk->results[sample_index++]);
+        chunk->evaluator(slot.section)->engage(slot.sample, chunk->results[sample_index++]);
     }
     return chunk;
   };
@@ -404,6 +601,7 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
   summary.cutting_time_s = totals.cutting_time_s;
   summary.s_words = writer.s_words();
   summary.f_words = writer.f_words();
+  summary.tool_notes = reader.tool_notes();
   if (progress) progress(1.0);
   return summary;
 }

@@ -9,12 +9,15 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "geometry/model.h"
 #include "machines/profile.h"
 #include "postproc/gcode/dialect.h"
 #include "postproc/pipeline/point_evaluator.h"
 #include "postproc/plan/spindle_plan.h"
+#include "postproc/post/tool_sections.h"
+#include "postproc/tools/tool_table.h"
 
 namespace vcpost::post {
 
@@ -27,29 +30,18 @@ gcode::Dialect dialect_of(const machines::MachineProfile& profile);
 // statements (GOTO/, FEDRAT/, CUTTER/ ...) or bare PARTNO/FINI lines.
 ProgramKind detect_program_kind(std::string_view text);
 
-// The first cutter an APT CL program defines (CUTTER, TLDATA/MILL) as a
-// tool, for when the command line gives none; empty for G-code, or when the
-// CL data define no cutter before their first motion. Throws PostError when
-// that cutter is not a shape vcpost models (a drill point, a taper).
-std::optional<geometry::Tool> tool_from_program(std::string_view text,
-                                                const std::string& file_name);
-
 struct PostSettings {
+  // Every posted section's settings but its tool and vc, which come from
+  // `tools` section by section. Without `tools`, point.tool is every
+  // tool's and point.vc every tool's vc (the program's own tools unread).
   pipeline::PointSettings point;
+  std::optional<tools::ToolChoices> tools;
   double sample_spacing_mm = 0.5;         // largest distance between evaluated points
   std::optional<gcode::Dialect> dialect;  // G-code input; default: the profile's
   bool adjust_feed = false;               // couple F = fz * z * n
   std::optional<double> fz_mm;            // feed per tooth; default: the program's F at its S
   std::optional<int> teeth;               // default: the profile's
   int threads = 0;                        // worker threads; 0: one per core
-};
-
-// Statistics of the cutting speed over the cutting samples, weighted by
-// cutting time. vc in m/min at the reference diameter.
-struct VcStatistics {
-  double min = 0, max = 0, mean = 0;
-  double within_5_percent = 0;   // share of cutting time with |vc/vc_nom - 1| <= 5 %
-  double within_10_percent = 0;  // ... <= 10 %
 };
 
 struct PostSummary {
@@ -61,7 +53,10 @@ struct PostSummary {
   std::uint64_t s_words = 0, f_words = 0;
   // Cutting time (s) of the blocks whose planned S each bound decided.
   double time_clamped_max_s = 0, time_clamped_min_s = 0, time_slew_s = 0, time_rate_s = 0;
-  std::optional<VcStatistics> before, after;  // empty when no sample cut
+  // Over the posted sections, each at its own nominal vc; empty when no sample cut.
+  std::optional<VcStatistics> before, after;
+  std::vector<ToolSection> sections;    // every section with a motion, in program order
+  std::vector<std::string> tool_notes;  // tool comments that could not be read
 };
 
 // One evaluated point of the path with the spindle speed before (the
@@ -72,12 +67,22 @@ struct PointRecord {
   double weight_s = 0;                    // cutting time the point stands for
   double s_before = 0, s_after = 0;       // rpm in effect
   plan::Bound bound = plan::Bound::none;  // what decided s_after
+  std::uint32_t section = 0;              // ToolSection::index
 };
 using PointSink = std::function<void(const pipeline::PathSample&, const pipeline::PointResult&,
                                      const PointRecord&)>;
 
 // Progress: fraction of the input read, in [0, 1].
 using Progress = std::function<void(double)>;
+
+// The first section the job would evaluate (a postable tool, see
+// tool_sections.h), read ahead without evaluating anything: for what must be
+// known before the run (the report's tool). Empty when no section is postable
+// (then the whole program was read). Throws as post_program's reading does.
+std::optional<ToolSection> first_postable_section(std::string_view text,
+                                                  const std::string& file_name,
+                                                  const machines::MachineProfile& profile,
+                                                  const PostSettings& settings);
 
 // Thrown for input the job cannot post soundly (the message says where and
 // why); readers' own errors (GcodeError, ClError, TimingError, OutputError)

@@ -45,7 +45,8 @@ double on_grid(double value, double step) { return std::floor(value / step + 1e-
 ProgramWriter::ProgramWriter(std::string_view text, ProgramKind kind,
                              const machines::MachineProfile& profile, bool adjust_feed,
                              std::function<void(std::string_view)> sink,
-                             std::function<void(std::uint64_t)> consumed)
+                             std::function<void(std::uint64_t)> consumed,
+                             std::function<bool(std::uint32_t)> keeps)
     : text_(text),
       kind_(kind),
       adjust_feed_(adjust_feed),
@@ -54,13 +55,22 @@ ProgramWriter::ProgramWriter(std::string_view text, ProgramKind kind,
       s_decimals_(decimals_of(profile.spindle().s_resolution_rpm)),
       f_decimals_(profile.output().feed_decimals),
       sink_(std::move(sink)),
-      consumed_(std::move(consumed)) {
+      consumed_(std::move(consumed)),
+      keeps_(std::move(keeps)) {
   if (kind_ == ProgramKind::cldata) {
     cl_writer_ = std::make_unique<output::MazakWriter>(cl_buffer_, format_of(profile.output()));
   }
 }
 
 ProgramWriter::~ProgramWriter() = default;
+
+std::uint64_t ProgramWriter::s_words(std::uint32_t section) const {
+  return section < words_by_section_.size() ? words_by_section_[section].first : 0;
+}
+
+std::uint64_t ProgramWriter::f_words(std::uint32_t section) const {
+  return section < words_by_section_.size() ? words_by_section_[section].second : 0;
+}
 
 void ProgramWriter::add(const Chunk& chunk) {
   if (first_pending_ + pending_.size() != chunk.first_block)
@@ -103,6 +113,11 @@ void ProgramWriter::finish() {
 void ProgramWriter::resolve_front(Planned own, Planned next) {
   const BlockInfo block = pending_.front();
   const std::size_t index = first_pending_;
+  // The next planned block's S and F carry back only within the section:
+  // another section's plan is not this one's.
+  if (next.plan && pending_[next.plan->block - first_pending_].section != block.section) next = {};
+  const bool keep = keeps_ && keeps_(block.section);
+  if (keep) own = next = {};
   pending_.pop_front();
   ++first_pending_;
 
@@ -124,14 +139,18 @@ void ProgramWriter::resolve_front(Planned own, Planned next) {
       f = next.feed->f_mm_per_min;
     }
   }
+  if (words_by_section_.size() <= block.section) words_by_section_.resize(block.section + 1);
+  auto& [section_s, section_f] = words_by_section_[block.section];
   if (kind_ == ProgramKind::gcode) {
     if (s) {
       patches_.push_back({block.offset, 'S', format_word(*s, s_step_, s_decimals_)});
       ++s_words_;
+      ++section_s;
     }
     if (f) {
       patches_.push_back({block.offset, 'F', format_word(*f, f_step_, f_decimals_)});
       ++f_words_;
+      ++section_f;
     }
     return;
   }
@@ -144,11 +163,13 @@ void ProgramWriter::resolve_front(Planned own, Planned next) {
         if (s && !block.has_s) {
           cl_writer_->write(program::SetSpindleSpeed{on_grid(*s, s_step_), {}});
           ++s_words_;
+          ++section_s;
         }
         if (f && !block.has_f) {
           cl_writer_->write(program::SetFeedRate{
               on_grid(*f, f_step_), program::FeedMode::per_minute, {}, std::nullopt});
           ++f_words_;
+          ++section_f;
         }
       } else if (auto* speed = std::get_if<program::SetSpindleSpeed>(&event)) {
         if (s) speed->rpm = on_grid(*s, s_step_);

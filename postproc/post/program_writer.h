@@ -35,10 +35,13 @@ class ProgramWriter {
  public:
   // `sink` receives the output in pieces (empty: count the words only).
   // `consumed(offset)`: the writer will not read the text before `offset`
-  // again (G-code input), so the caller may release it.
+  // again (G-code input), so the caller may release it. `keeps(section)`:
+  // the blocks of that tool section keep their S and F as written; asked
+  // when a block is written, once its section is decided.
   ProgramWriter(std::string_view text, ProgramKind kind, const machines::MachineProfile& profile,
                 bool adjust_feed, std::function<void(std::string_view)> sink,
-                std::function<void(std::uint64_t)> consumed);
+                std::function<void(std::uint64_t)> consumed,
+                std::function<bool(std::uint32_t)> keeps);
   ~ProgramWriter();
 
   // The blocks (and for CL the events) of a chunk, in program order.
@@ -57,6 +60,9 @@ class ProgramWriter {
 
   std::uint64_t s_words() const { return s_words_; }
   std::uint64_t f_words() const { return f_words_; }
+  // ... written in the blocks of one tool section.
+  std::uint64_t s_words(std::uint32_t section) const;
+  std::uint64_t f_words(std::uint32_t section) const;
 
  private:
   struct Planned {
@@ -83,7 +89,9 @@ class ProgramWriter {
   std::uint64_t written_ = 0;              // G-code: text written up to here
   std::ostringstream cl_buffer_;
   std::unique_ptr<output::MazakWriter> cl_writer_;
+  std::function<bool(std::uint32_t)> keeps_;
   std::uint64_t s_words_ = 0, f_words_ = 0;
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> words_by_section_;  // S, F
 };
 
 }  // namespace vcpost::post

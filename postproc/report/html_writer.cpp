@@ -325,13 +325,18 @@ function lineSet(label, data, color, width, dash) {
           borderDash: dash || [], fill: false, spanGaps: true, tension: 0};
 }
 var timeScale = {type: 'linear', title: {display: true, text: 'cutting time, s'}, min: 0, max: tEnd};
+// Tool sections: a vertical line where each one's evaluated points start.
+var marks = (S.section_marks || []).length > 1 ? S.section_marks : [];
+function markSets(lo, hi) {
+  return marks.map(function (m) { return lineSet(m.label, [{x: m.cutting_time_s, y: lo}, {x: m.cutting_time_s, y: hi}], '#6b7280', 1, [2, 2]); });
+}
 function legendFilter(item) { return !/\u00b1/.test(item.text); }
 var vcChart = new Chart(document.getElementById('vcplot'), {
   type: 'line',
   data: {datasets: band(0.9 * VC, 1.1 * VC, '\u00b110 %').concat(band(0.95 * VC, 1.05 * VC, '\u00b15 %'), [
     lineSet('nominal ' + VC + ' m/min', [{x: 0, y: VC}, {x: tEnd, y: VC}], '#2e8b57', 1, [4, 3]),
     lineSet('before (program S)', vcBefore, '#d9822b', 1),
-    lineSet('after (vcpost)', vcAfter, '#1f6fd1', 1.3)])},
+    lineSet('after (vcpost)', vcAfter, '#1f6fd1', 1.3)], markSets(0, 1.5 * VC))},
   options: {responsive: true, maintainAspectRatio: false, parsing: false, normalized: true,
             interaction: {mode: 'nearest', axis: 'x', intersect: false},
             plugins: {legend: {labels: {filter: legendFilter}}, decimation: {enabled: false}},
@@ -344,7 +349,7 @@ var sChart = new Chart(document.getElementById('splot'), {
     lineSet('n_max ' + S.profile.n_max_rpm, [{x: 0, y: S.profile.n_max_rpm}, {x: tEnd, y: S.profile.n_max_rpm}], '#b91c1c', 1, [6, 3]),
     lineSet('n_min ' + S.profile.n_min_rpm, [{x: 0, y: S.profile.n_min_rpm}, {x: tEnd, y: S.profile.n_min_rpm}], '#7c3aed', 1, [6, 3]),
     lineSet('S before', sBefore, '#d9822b', 1),
-    lineSet('S after', sAfter, '#1f6fd1', 1.3)]},
+    lineSet('S after', sAfter, '#1f6fd1', 1.3)].concat(markSets(0, S.profile.n_max_rpm))},
   options: {responsive: true, maintainAspectRatio: false, parsing: false, normalized: true,
             interaction: {mode: 'nearest', axis: 'x', intersect: false},
             scales: {x: JSON.parse(JSON.stringify(timeScale)), y: {title: {display: true, text: 'S, rpm'}, min: 0}}}

@@ -23,6 +23,8 @@ ReportCollector::ReportCollector(ReportInputs inputs, std::size_t plot_buckets, 
 const PointRow& ReportCollector::add(const pipeline::PathSample& sample,
                                      const pipeline::PointResult& result,
                                      const post::PointRecord& record) {
+  if (section_marks_.empty() || section_marks_.back().section != record.section)
+    section_marks_.push_back({record.section, cut_time_s_});
   row_ = make_row(sample, result, record, inputs_);
   statistics_.add(row_);
   // Plots run along cutting time: the middle of the stretch the point stands for.
@@ -65,7 +67,8 @@ ReportData ReportCollector::finish(const post::PostSummary& summary, double run_
                     dev_after_,
                     cusp_,
                     regions_after_.result(),
-                    regions_before_.result()};
+                    regions_before_.result(),
+                    section_marks_};
 }
 
 std::optional<ReportFormat> format_of(std::string_view file_name) {

@@ -17,6 +17,12 @@
 
 namespace vcpost::report {
 
+// Where a tool section's evaluated points start on the cutting-time axis.
+struct SectionMark {
+  std::uint32_t section = 0;  // post::ToolSection::index
+  double cut_time_s = 0;
+};
+
 // Everything the page and the summary need, sized independently of the
 // number of points.
 struct ReportData {
@@ -32,6 +38,7 @@ struct ReportData {
   // Plan-view grids: signed worst deviation (fraction) and the highest cusp (um).
   PlanGrid dev_before, dev_after, cusp;
   std::vector<Region> regions_after, regions_before;
+  std::vector<SectionMark> section_marks;  // one per section with evaluated points
 };
 
 class ReportCollector {
@@ -61,6 +68,7 @@ class ReportCollector {
   DeviationHistogram histogram_;
   PlanGrid dev_before_, dev_after_, cusp_;
   RegionTracker regions_after_, regions_before_;
+  std::vector<SectionMark> section_marks_;
 };
 
 // Regions listed: vc off nominal by more than these shares.
@@ -69,6 +77,10 @@ inline constexpr double kRegionThresholdBefore = 0.10;
 
 // The JSON summary (schema in postproc/report/README.md; keys are stable).
 nlohmann::json summary_json(const ReportData& data);
+
+// The tool sections of a job (the `sections` list of both the report's and
+// `post --summary-json`'s summary; keys in postproc/report/README.md).
+nlohmann::json tool_sections_json(const post::PostSummary& summary);
 
 // The self-contained HTML page. `chart_library` is the charting library's
 // JavaScript (Chart.js 3), inlined as it is. Throws std::invalid_argument

@@ -33,7 +33,79 @@ json speed_json(const SpeedStatistics& s) {
             {"slew", optional_number(s.slew_time_s)}}}};
 }
 
+json vc_json(const std::optional<post::VcStatistics>& s) {
+  if (!s) return nullptr;
+  return {{"min", s->min},
+          {"max", s->max},
+          {"mean", s->mean},
+          {"within_5_percent", s->within_5_percent},
+          {"within_10_percent", s->within_10_percent}};
+}
+
+json depth_json(const post::DepthStatistics& d) {
+  if (d.points == 0) return nullptr;
+  return {{"points", d.points}, {"min", d.min}, {"median", d.median}, {"max", d.max}};
+}
+
+json marks_json(const ReportData& data) {
+  json out = json::array();
+  for (const SectionMark& mark : data.section_marks) {
+    std::string label = "section " + std::to_string(mark.section);
+    for (const post::ToolSection& s : data.summary.sections) {
+      if (s.index != mark.section) continue;
+      label = s.tool ? "T" + std::to_string(*s.tool) : std::string("first tool");
+      if (s.entry) label += " " + std::string(tools::to_string(s.entry->shape));
+      label += s.posted ? " (posted)" : " (kept)";
+    }
+    out.push_back(
+        {{"section", mark.section}, {"cutting_time_s", mark.cut_time_s}, {"label", label}});
+  }
+  return out;
+}
+
 }  // namespace
+
+json tool_sections_json(const post::PostSummary& s) {
+  json out = json::array();
+  for (const post::ToolSection& section : s.sections) {
+    json tool = nullptr;
+    if (section.entry) {
+      const tools::ToolEntry& e = *section.entry;
+      tool = {{"shape", tools::to_string(e.shape)},
+              {"diameter", e.diameter},
+              {"corner_radius", e.corner_radius ? json(*e.corner_radius) : nullptr},
+              {"name", e.name},
+              {"source", tools::to_string(e.origin)},
+              {"where", e.where}};
+    }
+    json offset = nullptr;
+    if (section.offset) {
+      offset = {{"offset", section.offset->offset_mm},
+                {"share", section.offset->share},
+                {"causes", section.offset->causes}};
+    }
+    out.push_back({{"tool_number", section.tool ? json(*section.tool) : nullptr},
+                   {"tool", tool},
+                   {"first_line", section.first_line},
+                   {"posted", section.posted},
+                   {"reason", section.reason},
+                   {"vc_nominal", section.posted ? json(section.vc_nominal) : nullptr},
+                   {"time_s", {{"start", section.start_s}, {"end", section.end_s}}},
+                   {"points", section.points},
+                   {"contact",
+                    {{"touching", section.touching},
+                     {"lifted", section.lifted},
+                     {"gouging", section.gouging},
+                     {"missed", section.missed}}},
+                   {"gouge_depth", depth_json(section.gouge)},
+                   {"lift_height", depth_json(section.lift)},
+                   {"offset", offset},
+                   {"words_written", {{"s", section.s_words}, {"f", section.f_words}}},
+                   {"vc_before", vc_json(section.before)},
+                   {"vc_after", vc_json(section.after)}});
+  }
+  return out;
+}
 
 json summary_json(const ReportData& data) {
   const ReportInputs& in = data.inputs;
@@ -78,6 +150,9 @@ json summary_json(const ReportData& data) {
         {"cusp_um", distribution_json(st.cusp_um)},
         {"ra_um", distribution_json(st.ra_um)},
         {"rz_um", distribution_json(st.rz_um)}}},
+      {"sections", tool_sections_json(job)},
+      {"section_marks", marks_json(data)},
+      {"tool_notes", job.tool_notes},
       {"run_time_s", data.run_time_s},
   };
 }

@@ -187,11 +187,19 @@ TEST(PostJob, AdjustFeedKeepsTheFeedPerTooth) {
 }
 
 TEST(PostJob, ToolComesFromTheClCutterWhenNoneIsGiven) {
-  const auto tool = tool_from_program("PARTNO T\nUNITS/MM\nCUTTER/12.0,6.0\nGOTO/0,0,0\nFINI\n", "t.cls");
-  ASSERT_TRUE(tool);
-  EXPECT_EQ(tool->kind, geometry::ToolKind::ball);
-  EXPECT_DOUBLE_EQ(tool->diameter, 12);
-  EXPECT_FALSE(tool_from_program("G0 X0\nM30\n", "t.ngc"));
+  PostSettings settings;
+  settings.tools.emplace();
+  settings.tools->vc = 120;
+  const auto profile = machines::builtin_profile("generic");
+  const auto section = first_postable_section(
+      "PARTNO T\nUNITS/MM\nCUTTER/12.0,6.0\nGOTO/0,0,0\nFINI\n", "t.cls", profile, settings);
+  ASSERT_TRUE(section);
+  ASSERT_TRUE(section->entry);
+  EXPECT_EQ(section->entry->shape, tools::ToolShape::ball);
+  EXPECT_DOUBLE_EQ(section->entry->diameter, 12);
+  EXPECT_EQ(section->entry->origin, tools::ToolOrigin::cl_record);
+  EXPECT_EQ(section->entry->where, "t.cls:3");
+  EXPECT_FALSE(first_postable_section("G0 X0\nM30\n", "t.ngc", profile, settings));
 }
 
 TEST(PostJob, Rs274ReadsTheSameMotionFromInputAndOutput) {

@@ -1,0 +1,44 @@
+// How far a section's tool sits from the model: gouge and lift depths
+// (min/median/max) and, when most points sit at one offset, the likely
+// causes. Accumulated point by point (memory does not grow with the path:
+// a histogram of 1 um bins). Internal to the post module.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "postproc/post/tool_sections.h"
+
+namespace vcpost::post {
+
+class OffsetHistogram {
+ public:
+  // tolerance: the contact tolerance (mm); radius: the tool's (mm).
+  OffsetHistogram(double tolerance_mm, double radius_mm);
+
+  // A point near the model: its signed distance from the surface minus R
+  // (geometry::BallContact::distance_error), mm.
+  void add(double distance_error_mm);
+
+  DepthStatistics gouge() const;  // over the points deeper than the tolerance
+  DepthStatistics lift() const;   // over the points higher than the tolerance
+  // Set when at least half the points near the model lie within +-0.02 mm
+  // of one offset of at least 0.05 mm and 3 tolerances.
+  std::optional<OffsetDiagnosis> diagnosis() const;
+
+ private:
+  static constexpr double kBin = 0.001;   // mm
+  static constexpr double kRange = 50.0;  // mm either side; beyond, the end bins
+  std::size_t bin_of(double value) const;
+  double value_of(std::size_t bin) const;
+  DepthStatistics depths(bool gouge) const;
+
+  double tolerance_, radius_;
+  std::vector<std::uint32_t> bins_;
+  std::uint64_t points_ = 0;
+  double gouge_min_ = 0, gouge_max_ = 0, lift_min_ = 0, lift_max_ = 0;  // |depth|, mm
+  std::uint64_t gouges_ = 0, lifts_ = 0;
+};
+
+}  // namespace vcpost::post

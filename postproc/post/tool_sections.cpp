@@ -1,0 +1,64 @@
+#include "postproc/post/tool_sections.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "postproc/post/post_job.h"
+
+namespace vcpost::post {
+
+bool posts_shape(tools::ToolShape shape) { return shape == tools::ToolShape::ball; }
+
+ToolSection decide_section(std::uint32_t index, std::optional<int> number, std::uint32_t first_line,
+                           const tools::ToolEntry* tool, const tools::ToolChoices& choices,
+                           double ap_mm) {
+  ToolSection s;
+  s.index = index;
+  s.tool = number;
+  s.first_line = first_line;
+  if (tool) s.entry = *tool;
+  const std::string name = number ? "T" + std::to_string(*number) : std::string("the first tool");
+  const bool chosen = !choices.post_tools ||
+                      (number && std::find(choices.post_tools->begin(), choices.post_tools->end(),
+                                           *number) != choices.post_tools->end());
+  if (!tool) {
+    s.reason = "unknown tool: nothing names " + name + " (give --tool " +
+               (number ? name + "=" : std::string()) + "ball:D or --tools)";
+    return s;
+  }
+  if (!chosen) {
+    s.reason = "not in --post-tools";
+    return s;
+  }
+  if (!posts_shape(tool->shape)) {
+    s.reason = std::string(tools::to_string(tool->shape)) + " mill: speed kept" +
+               (tool->shape == tools::ToolShape::bull_nose || tool->shape == tools::ToolShape::flat
+                    ? " (only ball-end mills are posted)"
+                    : "");
+    if (tool->shape == tools::ToolShape::drill) s.reason = "drill: speed kept";
+    if (tool->shape == tools::ToolShape::other) s.reason = "not a ball-end mill: speed kept";
+    return s;
+  }
+  if (!tool->geometry()) {
+    s.reason = "no usable size for " + name;
+    return s;
+  }
+  const auto vc = choices.vc_of(number);
+  if (!vc) {
+    s.reason = "no --vc for " + name;
+    return s;
+  }
+  if (ap_mm >= tool->diameter) {
+    std::ostringstream message;
+    message << "--ap " << ap_mm << " must be below the diameter of " << name << " ("
+            << tool->describe() << ", from the " << tools::to_string(tool->origin)
+            << (tool->where.empty() ? std::string() : " at " + tool->where) << ")";
+    throw PostError(message.str());
+  }
+  s.postable = true;
+  s.vc_nominal = *vc;
+  s.reason = "ball over the model";
+  return s;
+}
+
+}  // namespace vcpost::post

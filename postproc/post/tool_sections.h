@@ -1,0 +1,71 @@
+// The sections of a program, one per tool change, and which of them the
+// post job rewrites: by default every section whose tool is a shape the job
+// posts (a ball-end mill) and whose path touches the model; `--post-tools`
+// chooses explicitly. Every other section keeps its S and F as written.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "postproc/tools/tool_table.h"
+
+namespace vcpost::post {
+
+// Statistics of the cutting speed over the cutting samples, weighted by
+// cutting time. vc in m/min at the reference diameter.
+struct VcStatistics {
+  double min = 0, max = 0, mean = 0;
+  double within_5_percent = 0;   // share of cutting time with |vc/vc_nom - 1| <= 5 %
+  double within_10_percent = 0;  // ... <= 10 %
+};
+
+// How far the tool sits from the model where it does not touch: the
+// signed distance of the ball from the surface (distance_error of
+// geometry::BallContact) over the points that lift (> 0) or gouge (< 0).
+struct DepthStatistics {
+  std::uint64_t points = 0;
+  double min = 0, median = 0, max = 0;  // mm, of |distance| (depths), empty when points = 0
+};
+
+// A toolpath consistently off the model: most of a section's points at one
+// offset from the surface.
+struct OffsetDiagnosis {
+  double offset_mm = 0;  // signed: > 0 above the surface, < 0 into it
+  double share = 0;      // of the section's points near the model within +-0.02 mm of it
+  std::string causes;    // the likely causes, in words
+};
+
+// One section of the program: from a tool change (or the start) to the next.
+struct ToolSection {
+  std::uint32_t index = 0;  // 0 before the first tool change, then one per tool change
+  std::optional<int> tool;  // T number; empty before any tool change
+  std::optional<tools::ToolEntry> entry;  // what decided the tool; empty: nothing names it
+  std::uint32_t first_line = 0;           // NC line (CL record) of its first motion
+  bool postable = false;                  // a shape the job posts, chosen, with a vc: evaluated
+  bool posted = false;                    // postable and its path touches the model: S rewritten
+  std::string reason;                     // why it is posted or kept, in words
+  double vc_nominal = 0;                  // m/min (posted sections)
+
+  // Filled as the job runs.
+  double start_s = 0, end_s = 0;  // program time of its first and last motion
+  std::uint64_t points = 0;       // path samples (evaluated when postable)
+  std::uint64_t touching = 0, lifted = 0, gouging = 0, missed = 0;
+  std::uint64_t s_words = 0, f_words = 0;  // written in its blocks
+  std::optional<VcStatistics> before, after;
+  DepthStatistics gouge, lift;
+  std::optional<OffsetDiagnosis> offset;
+};
+
+// The shapes the job posts today. Bull-nose and flat end mills join when
+// the pipeline models their contact (issue 21).
+bool posts_shape(tools::ToolShape shape);
+
+// Decides a section at its first motion from the tool the sources give
+// (`tool`: null when nothing names it). Throws PostError for a posted tool
+// whose diameter is not above --ap.
+ToolSection decide_section(std::uint32_t index, std::optional<int> number, std::uint32_t first_line,
+                           const tools::ToolEntry* tool, const tools::ToolChoices& choices,
+                           double ap_mm);
+
+}  // namespace vcpost::post

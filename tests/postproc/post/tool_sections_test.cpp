@@ -5,8 +5,11 @@
 // 360's header comments (or on the command line).
 #include <gtest/gtest.h>
 
+#include <cctype>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <sstream>
 #include <string>
 
 #include "../dome_program_support.h"
@@ -180,6 +183,44 @@ TEST(ToolSections, UnknownToolsAndSectionsInTheAirKeepTheirSpeed) {
   EXPECT_FALSE(out.summary.sections[1].posted);
   EXPECT_EQ(out.summary.sections[1].reason, "the path never touches the model: speed kept");
   EXPECT_EQ(out.summary.s_words, 0u);
+}
+
+// CL data: CUTTER before LOADTL names each tool; the flat T1's SPINDL stays
+// its S, the ball T2's section gets the planned S words.
+TEST(ToolSections, ClCuttersNameTheTools) {
+  std::ostringstream raster;
+  raster.setf(std::ios::fixed);
+  raster.precision(6);
+  for (double y = -20; y <= 20 + 1e-9; y += 2) {
+    for (int i = 0; i <= 80; ++i) {
+      const double x = -20 + i * 0.5;
+      const double z = -20 + std::sqrt(45.0 * 45.0 - x * x - y * y) - testing::dome_ball_radius;
+      raster << "GOTO/" << x << "," << y << "," << z << "\n";
+    }
+  }
+  const std::string input = "PARTNO TWO\nUNITS/MM\nCUTTER/10,0\nLOADTL/1\nSPINDL/5000,RPM,CLW\n"
+                            "FEDRAT/2000,MMPM\n" + raster.str() +
+                            "CUTTER/10,5\nLOADTL/2\nSPINDL/8000,RPM,CLW\n" + raster.str() + "FINI\n";
+  const Posted out = post(input, vc_only(120));
+  ASSERT_EQ(out.summary.sections.size(), 2u);
+  EXPECT_EQ(out.summary.sections[0].tool, 1);
+  EXPECT_EQ(out.summary.sections[0].entry->shape, tools::ToolShape::flat);
+  EXPECT_EQ(out.summary.sections[0].entry->origin, tools::ToolOrigin::cl_record);
+  EXPECT_FALSE(out.summary.sections[0].posted);
+  EXPECT_TRUE(out.summary.sections[1].posted);
+  EXPECT_EQ(out.summary.sections[1].entry->shape, tools::ToolShape::ball);
+  // Between T1 M6 and T2 M6 the only S is the CL's own 5000.
+  const std::size_t t1 = out.text.find("T1 M6"), t2 = out.text.find("T2 M6");
+  ASSERT_NE(t1, std::string::npos);
+  ASSERT_NE(t2, std::string::npos);
+  const std::string first = out.text.substr(t1, t2 - t1);
+  EXPECT_NE(first.find("S5000"), std::string::npos) << first.substr(0, 300);
+  std::size_t s_count = 0;
+  for (std::size_t at = first.find('S'); at != std::string::npos; at = first.find('S', at + 1))
+    s_count += std::isdigit(static_cast<unsigned char>(first[at + 1])) ? 1 : 0;
+  EXPECT_EQ(s_count, 1u);
+  EXPECT_GT(out.summary.sections[1].s_words, 1u);
+  EXPECT_EQ(out.summary.sections[0].s_words, 0u);
 }
 
 }  // namespace

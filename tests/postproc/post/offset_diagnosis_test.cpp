@@ -1,0 +1,59 @@
+// Gouge and lift depths and the diagnosis of a path off the model, on
+// distances whose statistics are known by hand.
+#include "postproc/post/offset_diagnosis.h"
+
+#include <gtest/gtest.h>
+
+namespace vcpost::post {
+namespace {
+
+TEST(OffsetHistogram, DepthsOfGougesAndLifts) {
+  OffsetHistogram h(0.01, 5);
+  for (const double e : {-0.02, -0.04, -0.06, 0.0, 0.005, -0.005, 0.5, 1.5})
+    h.add(e);
+  const DepthStatistics gouge = h.gouge();
+  EXPECT_EQ(gouge.points, 3u);
+  EXPECT_DOUBLE_EQ(gouge.min, 0.02);
+  EXPECT_DOUBLE_EQ(gouge.max, 0.06);
+  EXPECT_NEAR(gouge.median, 0.04, 0.001);  // 1 um bins
+  const DepthStatistics lift = h.lift();
+  EXPECT_EQ(lift.points, 2u);
+  EXPECT_DOUBLE_EQ(lift.min, 0.5);
+  EXPECT_DOUBLE_EQ(lift.max, 1.5);
+  EXPECT_NEAR(lift.median, 0.5, 0.001);  // the lower of two
+  EXPECT_FALSE(h.diagnosis());  // no offset holds half the points
+}
+
+TEST(OffsetHistogram, StockLeftIsNamed) {
+  OffsetHistogram h(0.01, 5);
+  for (int i = 0; i < 900; ++i) h.add(0.3 + 0.01 * ((i % 5) - 2) / 2);  // 0.29 .. 0.31
+  for (int i = 0; i < 100; ++i) h.add(0.0);
+  const auto d = h.diagnosis();
+  ASSERT_TRUE(d);
+  EXPECT_NEAR(d->offset_mm, 0.3, 1e-3);
+  EXPECT_NEAR(d->share, 0.9, 1e-9);
+  EXPECT_NE(d->causes.find("stock to leave in the CAM (0.300 mm)"), std::string::npos) << d->causes;
+}
+
+TEST(OffsetHistogram, TheToolRadiusPointsAtTheClPoint) {
+  OffsetHistogram above(0.01, 5), below(0.01, 5);
+  for (int i = 0; i < 10; ++i) {
+    above.add(5.0);
+    below.add(-5.0);
+  }
+  ASSERT_TRUE(above.diagnosis());
+  EXPECT_NE(above.diagnosis()->causes.find("--cl-point center"), std::string::npos);
+  ASSERT_TRUE(below.diagnosis());
+  EXPECT_NE(below.diagnosis()->causes.find("--cl-point tip"), std::string::npos);
+}
+
+TEST(OffsetHistogram, ChordErrorsAreNotAnOffset) {
+  // A coarse path over a convex surface: gouges spread from 0 to 0.04 mm.
+  OffsetHistogram h(0.01, 5);
+  for (int i = 0; i <= 400; ++i) h.add(-0.0001 * i);
+  EXPECT_FALSE(h.diagnosis());
+  EXPECT_EQ(h.gouge().points, 300u);  // deeper than 0.01 mm: i = 101 .. 400
+}
+
+}  // namespace
+}  // namespace vcpost::post

@@ -24,7 +24,7 @@
 #include "postproc/cli/held_output.h"
 #include "postproc/cli/program_text.h"
 #include "postproc/gcode/diagnostics.h"
-#include "postproc/output/mazak_writer.h"
+#include "postproc/output/gcode_writer.h"
 #include "postproc/program/timing.h"
 #include "postproc/report/chart_library.h"
 #include "postproc/report/csv_writer.h"

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <variant>
 
-#include "postproc/output/mazak_writer.h"
+#include "postproc/output/gcode_writer.h"
 
 namespace vcpost::post {
 namespace {
@@ -24,18 +24,6 @@ int decimals_of(double step) {
     ++decimals;
   }
   return decimals;
-}
-
-output::MazakFormat format_of(const machines::OutputSpec& o) {
-  output::MazakFormat format;
-  format.program_number = o.program_number;
-  format.high_speed_mode = o.high_speed_mode;
-  format.geometry_compensation = o.geometry_compensation;
-  format.work_offset = o.work_offset;
-  format.decimals = o.decimals;
-  format.feed_decimals = o.feed_decimals;
-  format.line_numbers = o.line_numbers;
-  return format;
 }
 
 }  // namespace
@@ -58,7 +46,7 @@ ProgramWriter::ProgramWriter(std::string_view text, ProgramKind kind,
       consumed_(std::move(consumed)),
       keeps_(std::move(keeps)) {
   if (kind_ == ProgramKind::cldata) {
-    cl_writer_ = std::make_unique<output::MazakWriter>(cl_buffer_, format_of(profile.output()));
+    cl_writer_ = std::make_unique<output::GcodeWriter>(cl_buffer_, output::format_for(profile));
   }
 }
 

@@ -22,7 +22,7 @@
 #include "postproc/post/path_reader.h"
 
 namespace vcpost::output {
-class MazakWriter;
+class GcodeWriter;
 }
 
 namespace vcpost::post {
@@ -88,7 +88,7 @@ class ProgramWriter {
   std::vector<gcode::WordPatch> patches_;  // decided, not yet written (offsets absolute)
   std::uint64_t written_ = 0;              // G-code: text written up to here
   std::ostringstream cl_buffer_;
-  std::unique_ptr<output::MazakWriter> cl_writer_;
+  std::unique_ptr<output::GcodeWriter> cl_writer_;
   std::function<bool(std::uint32_t)> keeps_;
   std::uint64_t s_words_ = 0, f_words_ = 0;
   std::vector<std::pair<std::uint64_t, std::uint64_t>> words_by_section_;  // S, F

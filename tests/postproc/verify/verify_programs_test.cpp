@@ -23,7 +23,7 @@
 #include "machines/builtin.h"
 #include "postproc/cldata/cl_reader.h"
 #include "postproc/gcode/interpreter.h"
-#include "postproc/output/mazak_writer.h"
+#include "postproc/output/gcode_writer.h"
 #include "postproc/post/post_job.h"
 #include "postproc/verify/lexer.h"
 #include "postproc/verify/verify.h"
@@ -373,7 +373,7 @@ TEST(VerifyPrograms, ClRapidWrittenAsFeedAndMissingMotionAreCaught) {
 // Shared CL programs written to G-code with the S and F they have: no
 // change, every motion matches, arcs included; an arc centre moved by
 // 0.001 mm is caught.
-TEST(VerifyPrograms, SharedClProgramsWrittenByTheMazakWriterVerify) {
+TEST(VerifyPrograms, SharedClProgramsWrittenByTheGcodeWriterVerify) {
   const fs::path dir = fs::path(VCPOST_SHARED_DATA_DIR) / "cldata";
   if (!fs::is_directory(dir)) GTEST_SKIP() << "no shared data at " << dir;
   int with_arcs = 0;
@@ -388,7 +388,7 @@ TEST(VerifyPrograms, SharedClProgramsWrittenByTheMazakWriterVerify) {
     try {
       std::istringstream in(cl);
       cldata::ClReader reader(in, name);
-      output::MazakWriter writer(out, output::MazakFormat{});
+      output::GcodeWriter writer(out, output::Format{});
       while (auto e = reader.next()) {
         arcs += std::holds_alternative<program::ArcFeed>(*e);
         writer.write(*e);
@@ -399,7 +399,7 @@ TEST(VerifyPrograms, SharedClProgramsWrittenByTheMazakWriterVerify) {
       continue;
     }
     Options options = mazak_options();
-    options.output_feed_decimals = output::MazakFormat{}.feed_decimals;
+    options.output_feed_decimals = output::Format{}.feed_decimals;
     const Result r = verify_cl(cl, out.str(), options, name);
     EXPECT_TRUE(r.ok()) << (r.violations.empty() ? "" : format(r.violations[0], "output"));
     EXPECT_TRUE(r.changes.empty());

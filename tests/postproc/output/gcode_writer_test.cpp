@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "postproc/cldata/cl_reader.h"
-#include "postproc/output/mazak_writer.h"
+#include "postproc/output/gcode_writer.h"
 #include "postproc/program/transcript.h"
 #include "tests/postproc/cldata/cl_support.h"
 
@@ -21,21 +21,21 @@ using cldata::testing::Call;
 using cldata::testing::motion_calls;
 using cldata::testing::read_events;
 
-std::string write_program(const std::vector<Event>& events, const MazakFormat& format) {
+std::string write_program(const std::vector<Event>& events, const Format& format) {
   std::ostringstream out;
-  MazakWriter writer(out, format);
+  GcodeWriter writer(out, format);
   for (const auto& e : events) writer.write(e);
   writer.finish();
   return out.str();
 }
 
-TEST(MazakWriter, SmallProgramInTheDefaultFormat) {
+TEST(GcodeWriter, SmallProgramInTheDefaultFormat) {
   const auto events = read_events(
       "PARTNO/BRACKET (A)\nLOADTL/3\nCOOLNT/FLOOD\nSPINDL/6556.4,RPM,CLW\nRAPID\n"
       "GOTO/-4.360504,-10.464015,25.\nRAPID\nGOTO/-4.360504,-10.464015,2.5\n"
       "FEDRAT/183.202375,MMPM\nGOTO/-4.360504,-10.464015,-6.\nGOTO/5,-10.464015,-6.\n"
       "CIRCLE/5,-5,-6,0,0,1,5.464015\nGOTO/10.464015,-5,-6\nSPINDL/OFF\nFINI\n");
-  MazakFormat format;
+  Format format;
   format.title = "bracket";
   const std::string expected =
       "%\n"
@@ -57,10 +57,10 @@ TEST(MazakWriter, SmallProgramInTheDefaultFormat) {
   EXPECT_EQ(write_program(events, format), expected);
 }
 
-TEST(MazakWriter, HighSpeedModeGeometryCompensationAndLineNumbers) {
+TEST(GcodeWriter, HighSpeedModeGeometryCompensationAndLineNumbers) {
   const auto events =
       read_events("LOADTL/1\nSPINDL/12000\nFEDRAT/1000\nGOTO/1,2,3\nDELAY/0.5\nFINI\n");
-  MazakFormat format;
+  Format format;
   format.high_speed_mode = true;
   format.geometry_compensation = true;
   format.line_numbers = true;
@@ -85,7 +85,7 @@ TEST(MazakWriter, HighSpeedModeGeometryCompensationAndLineNumbers) {
   EXPECT_EQ(write_program(events, format), expected);
 }
 
-TEST(MazakWriter, ArcPlanesAndRefusals) {
+TEST(GcodeWriter, ArcPlanesAndRefusals) {
   ArcFeed xz;
   xz.start = {5, 0, 0};
   xz.end = {0, 0, 5};
@@ -93,7 +93,7 @@ TEST(MazakWriter, ArcPlanesAndRefusals) {
   xz.plane = Plane::xz;
   xz.rotation = -1;
   std::ostringstream out;
-  MazakWriter writer(out, MazakFormat{});
+  GcodeWriter writer(out, Format{});
   writer.write(xz);
   EXPECT_NE(out.str().find("G18 G2 X0. Y0. Z5. I-5. K0."), std::string::npos) << out.str();
   xz.rotation = 2;
@@ -112,7 +112,7 @@ const fs::path data_dir = fs::path(VCPOST_SHARED_DATA_DIR) / "cldata";
 
 // The CL events as transcript calls; rs274's own SET_FEED_RATE(0) of the
 // program start and end (G94, M30) are not in CL data.
-void compare(const std::vector<Call>& cl, const std::vector<Call>& gcode, const MazakFormat& f) {
+void compare(const std::vector<Call>& cl, const std::vector<Call>& gcode, const Format& f) {
   const double position_tol = 1e-4 + 1e-9;
   const double feed_tol = 0.5 * std::pow(10.0, -f.feed_decimals) + 1e-9;
   ASSERT_EQ(cl.size(), gcode.size());
@@ -129,10 +129,10 @@ void compare(const std::vector<Call>& cl, const std::vector<Call>& gcode, const 
   }
 }
 
-TEST(MazakWriter, Rs274ReadsTheSameMotionsAsTheClData) {
+TEST(GcodeWriter, Rs274ReadsTheSameMotionsAsTheClData) {
   if (!cldata::testing::have_rs274()) GTEST_SKIP() << "rs274 (linuxcnc-uspace) not installed";
   if (!fs::is_directory(data_dir)) GTEST_SKIP() << "no CL corpus at " << data_dir;
-  MazakFormat format;
+  Format format;
   format.geometry_compensation = true;  // G61.1: rs274 takes it; G05 P2 it does not
   format.line_numbers = true;
   format.dwell = DwellWord::p_seconds;
@@ -148,7 +148,7 @@ TEST(MazakWriter, Rs274ReadsTheSameMotionsAsTheClData) {
     const fs::path nc = tmp / (std::string(name) + ".nc");
     {
       std::ofstream out(nc, std::ios::binary);
-      MazakWriter writer(out, format);
+      GcodeWriter writer(out, format);
       while (auto e = reader.next()) {
         append_transcript(transcript, *e);
         writer.write(*e);

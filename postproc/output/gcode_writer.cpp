@@ -1,9 +1,11 @@
-#include "postproc/output/mazak_writer.h"
+#include "postproc/output/gcode_writer.h"
 
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <type_traits>
+
+#include "machines/profile.h"
 
 namespace vcpost::output {
 
@@ -39,6 +41,31 @@ std::string word(char letter, std::string_view value) {
 
 }  // namespace
 
+Format format_for(const machines::MachineProfile& profile) {
+  const machines::OutputSpec& o = profile.output();
+  Format format;
+  format.program_number = o.program_number;
+  format.high_speed_mode = o.high_speed_mode;
+  format.geometry_compensation = o.geometry_compensation;
+  format.work_offset = o.work_offset;
+  format.decimals = o.decimals;
+  format.feed_decimals = o.feed_decimals;
+  format.line_numbers = o.line_numbers;
+  switch (profile.output_format()) {
+    case machines::OutputFormat::rs274ngc:
+      // LinuxCNC reads `O1000` as a subroutine keyword and G4 X as no dwell
+      // time: no O line, G4 P in seconds.
+      format.program_number.reset();
+      format.dwell = DwellWord::p_seconds;
+      break;
+    case machines::OutputFormat::fanuc:
+    case machines::OutputFormat::mazak:
+      format.dwell = DwellWord::x_seconds;  // X with a decimal point: seconds
+      break;
+  }
+  return format;
+}
+
 OutputError::OutputError(std::string_view code, const std::string& message,
                          program::SourceRef source)
     : std::runtime_error(std::to_string(source.line) + ":" + std::to_string(source.column) +
@@ -46,18 +73,18 @@ OutputError::OutputError(std::string_view code, const std::string& message,
       code_(code),
       source_(source) {}
 
-MazakWriter::MazakWriter(std::ostream& out, MazakFormat format)
+GcodeWriter::GcodeWriter(std::ostream& out, Format format)
     : out_(out), format_(std::move(format)), next_n_(format_.line_number_start) {}
 
 // Fixed-point with `decimals` digits, trailing zeros dropped, the point
 // kept ("10.", "-0.5", "0."): the Fanuc/Mazak way of marking mm.
-std::string MazakWriter::number(double value, int decimals, const SourceRef& source) const {
+std::string GcodeWriter::number(double value, int decimals, const SourceRef& source) const {
   if (!std::isfinite(value) || std::abs(value) >= 1e9) {
     throw OutputError("E3203", "value cannot be written: " + std::to_string(value), source);
   }
   char buffer[64];
-  const auto r = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed,
-                               decimals);
+  const auto r =
+      std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed, decimals);
   std::string s(buffer, r.ptr);
   if (s.find('.') == std::string::npos) s += '.';
   while (s.back() == '0') s.pop_back();
@@ -65,7 +92,7 @@ std::string MazakWriter::number(double value, int decimals, const SourceRef& sou
   return s;
 }
 
-void MazakWriter::block(std::string_view words) {
+void GcodeWriter::block(std::string_view words) {
   if (format_.line_numbers) {
     out_ << 'N' << next_n_ << ' ';
     next_n_ += format_.line_number_step;
@@ -76,7 +103,7 @@ void MazakWriter::block(std::string_view words) {
   ++blocks_;
 }
 
-void MazakWriter::comment(std::string_view text) {
+void GcodeWriter::comment(std::string_view text) {
   if (!format_.comments) return;
   std::string words = take_pending();
   if (!words.empty()) words += ' ';
@@ -86,28 +113,29 @@ void MazakWriter::comment(std::string_view text) {
   block(words);
 }
 
-std::string MazakWriter::take_pending() {
+std::string GcodeWriter::take_pending() {
   std::string words = std::move(pending_);
   pending_.clear();
   return words;
 }
 
-void MazakWriter::header() {
+void GcodeWriter::header() {
   started_ = true;
   if (format_.percent_lines) out_ << '%' << format_.end_of_line;
-  std::string o = word('O', std::to_string(format_.program_number));
+  std::string o;
+  if (format_.program_number) o = word('O', std::to_string(*format_.program_number));
   if (!format_.title.empty() && format_.comments) {
     o += '(';
     o += clean_comment(format_.title);
     o += ')';
   }
-  out_ << o << format_.end_of_line;
+  if (!o.empty()) out_ << o << format_.end_of_line;
   block("G21 G17 G40 G49 G80 G90 G94");
   block(word('G', std::to_string(format_.work_offset)));
   if (format_.geometry_compensation) block("G61.1");
 }
 
-void MazakWriter::end_program() {
+void GcodeWriter::end_program() {
   std::string words = take_pending();
   if (high_speed_on_) {
     block("G05 P0");
@@ -120,7 +148,7 @@ void MazakWriter::end_program() {
   ended_ = true;
 }
 
-void MazakWriter::append_axis(std::string& words, char axis, double value, std::string& last,
+void GcodeWriter::append_axis(std::string& words, char axis, double value, std::string& last,
                               bool force, const SourceRef& source) {
   std::string text = number(value, format_.decimals, source);
   if (!force && text == last) return;
@@ -130,7 +158,7 @@ void MazakWriter::append_axis(std::string& words, char axis, double value, std::
   last = std::move(text);
 }
 
-void MazakWriter::motion(const Event& event) {
+void GcodeWriter::motion(const Event& event) {
   std::string words;
   const SourceRef source = source_of(event);
   if (pending_g43_) {
@@ -200,7 +228,7 @@ void MazakWriter::motion(const Event& event) {
   block(words);
 }
 
-void MazakWriter::write(const Event& event) {
+void GcodeWriter::write(const Event& event) {
   if (ended_) return;  // nothing follows M30
   if (!started_) header();
   std::visit(
@@ -304,7 +332,7 @@ void MazakWriter::write(const Event& event) {
       event);
 }
 
-void MazakWriter::finish() {
+void GcodeWriter::finish() {
   if (!started_) header();
   if (!ended_) end_program();
   out_.flush();

@@ -1,8 +1,10 @@
-// Motion events -> G-code in a Mazak-like 3-axis format (Mazatrol EIA/ISO,
-// Fanuc-compatible): header, tool change, G43, optional high-speed mode
-// (G05 P2) and geometry compensation (G61.1), integer S, M3/M4, coolant,
-// modal G0/G1/G2/G3 and coordinates, fixed decimal format, optional N
-// numbers, M30.
+// Motion events -> 3-axis G-code in the output format of a machine profile
+// (machine.output_format: rs274ngc, fanuc, mazak, and the [output] keys):
+// header (`%`, the O number where the control takes one), tool change,
+// G43, optional high-speed mode (G05 P2) and geometry compensation
+// (G61.1), integer S, M3/M4, coolant, modal G0/G1/G2/G3 and coordinates,
+// fixed decimal format, optional N numbers, the dwell word the control
+// reads (G4 P seconds in rs274ngc, G4 X seconds on Fanuc and Mazak), M30.
 //
 // Units: events are mm, mm/min (or mm/rev), rpm; the program is written in
 // mm (G21). Positions are written as the events give them (CL points are
@@ -21,6 +23,10 @@
 
 #include "postproc/program/events.h"
 
+namespace vcpost::machines {
+class MachineProfile;
+}
+
 namespace vcpost::output {
 
 enum class DwellWord {
@@ -29,24 +35,30 @@ enum class DwellWord {
   p_milliseconds  // G04 P1500 (Fanuc without a decimal point)
 };
 
-// The output format of a machine profile (a later issue fills it from TOML).
-struct MazakFormat {
-  int program_number = 1000;        // O word, 1..9999
-  std::string title;                // header comment; empty: none
-  bool percent_lines = true;        // '%' first and last line
-  bool high_speed_mode = false;     // G05 P2 after each tool change, G05 P0 before the next / M30
+// The output format of a machine profile (format_for() fills it from one).
+// The defaults are those of the Mazak format.
+struct Format {
+  std::optional<int> program_number = 1000;  // O word, 1..9999; none: no O line (rs274ngc,
+                                             // where O starts a subroutine keyword)
+  std::string title;                         // header comment; empty: none
+  bool percent_lines = true;                 // '%' first and last line
+  bool high_speed_mode = false;  // G05 P2 after each tool change, G05 P0 before the next / M30
   bool geometry_compensation = false;  // G61.1 after the header, G64 at the end
-  int work_offset = 54;             // G54..G59
-  int decimals = 4;                 // digits after the point for X Y Z I J K (mm), 0..6
-  int feed_decimals = 1;            // for F
-  bool line_numbers = false;        // N words (wrapping after N99999)
+  int work_offset = 54;                // G54..G59
+  int decimals = 4;                    // digits after the point for X Y Z I J K (mm), 0..6
+  int feed_decimals = 1;               // for F
+  bool line_numbers = false;           // N words (wrapping after N99999)
   int line_number_start = 10;
   int line_number_step = 10;
-  bool tool_length_offset = true;   // G43 H<tool> on the first move after a tool change
+  bool tool_length_offset = true;  // G43 H<tool> on the first move after a tool change
   DwellWord dwell = DwellWord::x_seconds;
-  bool comments = true;             // messages and notes as ( ) comments
+  bool comments = true;  // messages and notes as ( ) comments
   std::string end_of_line = "\n";
 };
+
+// The format a profile asks for: machine.output_format chooses the header
+// and the dwell word, [output] the rest.
+Format format_for(const machines::MachineProfile& profile);
 
 // Errors: E3201 arc of more than one turn, E3202 inverse-time feed,
 // E3203 number that cannot be written (not finite or too large).
@@ -63,9 +75,9 @@ class OutputError : public std::runtime_error {
 
 // Streams: each write() appends the blocks of one event; memory does not
 // grow with the program. REQUIRES: `out` outlives the writer.
-class MazakWriter {
+class GcodeWriter {
  public:
-  MazakWriter(std::ostream& out, MazakFormat format);
+  GcodeWriter(std::ostream& out, Format format);
 
   // Throws OutputError for an event the format cannot express.
   void write(const program::Event& event);
@@ -80,14 +92,14 @@ class MazakWriter {
   void block(std::string_view words);
   void motion(const program::Event& event);
   std::string number(double value, int decimals, const program::SourceRef& source) const;
-  void append_axis(std::string& words, char axis, double value, std::string& last,
-                   bool force, const program::SourceRef& source);
+  void append_axis(std::string& words, char axis, double value, std::string& last, bool force,
+                   const program::SourceRef& source);
   std::string take_pending();
   void comment(std::string_view text);
   void end_program();
 
   std::ostream& out_;
-  MazakFormat format_;
+  Format format_;
   bool started_ = false;
   bool ended_ = false;
   std::uint64_t blocks_ = 0;
@@ -98,7 +110,7 @@ class MazakWriter {
   bool per_revolution_ = false;
   std::string last_x_, last_y_, last_z_;
   std::optional<double> last_f_;
-  std::string pending_;            // F / S words waiting for the next block
+  std::string pending_;             // F / S words waiting for the next block
   std::optional<int> pending_g43_;  // tool number whose G43 is due
   bool high_speed_on_ = false;
 };

@@ -178,9 +178,13 @@ Eigen::Vector3d end_of(const Event& e) {
 
 class Comparer {
  public:
-  Comparer(double tolerance, int feed_decimals, Result& result, ChangeSink& changes,
-           ViolationSink& sink)
+  // The output writes an arc centre as its start plus I/J/K, each rounded
+  // to the grid: the centre may be off by the end-point tolerance and half
+  // a step more.
+  Comparer(double tolerance, double half_step, int feed_decimals, Result& result,
+           ChangeSink& changes, ViolationSink& sink)
       : tolerance_(tolerance),
+        centre_tolerance_(tolerance + half_step),
         feed_step_(std::pow(10.0, -std::clamp(feed_decimals, 0, 9))),
         result_(result),
         changes_(changes),
@@ -251,10 +255,10 @@ class Comparer {
     // The centre's axis component is not meaningful (events.h).
     Eigen::Vector3d d = (b.centre - a.centre).cwiseAbs();
     d[a.plane == program::Plane::xy ? 2 : a.plane == program::Plane::xz ? 1 : 0] = 0;
-    if (!(d.maxCoeff() <= tolerance_ + 1e-9))
+    if (!(d.maxCoeff() <= centre_tolerance_ + 1e-9))
       add(Code::arc_differs, cl, out,
           "arc centre " + point(b.centre) + " is " + number_um(d.maxCoeff()) + " from the CL's " +
-              point(a.centre) + " (tolerance " + number_um(tolerance_) + " per axis)");
+              point(a.centre) + " (tolerance " + number_um(centre_tolerance_) + " per axis)");
   }
 
   void changes(const Item& cl, const Item& out) {
@@ -271,6 +275,7 @@ class Comparer {
   }
 
   double tolerance_;
+  double centre_tolerance_;
   double feed_step_;  // mm/min
   Result& result_;
   ChangeSink& changes_;
@@ -283,11 +288,12 @@ Result verify_cl(std::string_view cl_text, std::string_view output, const Option
                  const std::string& input_name) {
   Result result;
   result.kind = InputKind::cldata;
-  result.tolerance_mm = std::max(options.tolerance_mm,
-                                 0.5 * std::pow(10.0, -std::clamp(options.output_decimals, 0, 9)));
+  const double half_step = 0.5 * std::pow(10.0, -std::clamp(options.output_decimals, 0, 9));
+  result.tolerance_mm = std::max(options.tolerance_mm, half_step);
   ViolationSink sink(options.max_violations);
   ChangeSink changes(result, options.on_change);
-  Comparer comparer(result.tolerance_mm, options.output_feed_decimals, result, changes, sink);
+  Comparer comparer(result.tolerance_mm, half_step, options.output_feed_decimals, result, changes,
+                    sink);
   ClItems cl(cl_text, input_name);
   GcodeItems out(output, options.dialect);
   while (true) {

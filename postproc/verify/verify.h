@@ -106,7 +106,8 @@ struct Options {
   // CL only: largest per-axis distance of an output end point (arc centre)
   // from the CL's, mm. Raised to half a step of the output's grid
   // (0.5 * 10^-output_decimals) when smaller: a correct output written
-  // with that many decimals is off by up to that much on each axis.
+  // with that many decimals is off by up to that much on each axis. An arc
+  // centre (start + I/J/K, both rounded) is allowed half a step more.
   double tolerance_mm = 0.0005;
   int output_decimals = 4;
   // CL only: digits of the output's F (mm/min); S is an integer. A CL value

@@ -6,7 +6,7 @@ namespace vcpost::cldata {
 
 namespace {
 
-constexpr std::array<ClCodeInfo, 22> table{{
+constexpr std::array<ClCodeInfo, 24> table{{
     {ClCode::line_too_long, "E3101", Severity::error, "line longer than the reader's limit"},
     {ClCode::invalid_byte, "E3102", Severity::error, "control, NUL or non-ASCII byte outside text"},
     {ClCode::bad_number, "E3103", Severity::error, "malformed number"},
@@ -27,12 +27,16 @@ constexpr std::array<ClCodeInfo, 22> table{{
      "SPINDL SMM/SFM without a cutter diameter"},
     {ClCode::bad_units, "E3116", Severity::error, "unknown UNITS"},
     {ClCode::unsupported_record, "E3117", Severity::error, "record that vcpost cannot convert"},
-    {ClCode::unknown_record, "W3150", Severity::warning, "unknown record ignored"},
+    {ClCode::unknown_record, "W3150", Severity::warning, "unknown record ignored (no longer given: E3118)"},
     {ClCode::missing_fini, "W3151", Severity::warning, "no FINI or END-OF-PATH: file may be cut"},
     {ClCode::after_fini, "W3152", Severity::warning, "records after FINI ignored"},
     {ClCode::tool_not_modelled, "W3153", Severity::warning,
      "cutter shape is not a ball, bull-nose or flat mill"},
     {ClCode::ignored_option, "W3154", Severity::warning, "option without effect on motion ignored"},
+    {ClCode::unknown_word, "E3118", Severity::error,
+     "record vcpost does not know: refused, not ignored"},
+    {ClCode::frame_not_identity, "E3119", Severity::error,
+     "CSYS, TRNTYP or ORIGIN that would move the CL points: not applied"},
 }};
 
 }  // namespace

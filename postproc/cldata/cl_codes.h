@@ -32,11 +32,13 @@ enum class ClCode {
   surface_speed_no_tool,  // E3115
   bad_units,              // E3116
   unsupported_record,     // E3117
-  unknown_record,         // W3150
+  unknown_record,         // W3150 (no longer given: unknown records are E3118)
   missing_fini,           // W3151
   after_fini,             // W3152
   tool_not_modelled,      // W3153
   ignored_option,         // W3154
+  unknown_word,           // E3118
+  frame_not_identity,     // E3119
 };
 
 struct ClCodeInfo {

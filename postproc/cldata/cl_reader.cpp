@@ -1,14 +1,14 @@
 #include "postproc/cldata/cl_reader.h"
 
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cmath>
 #include <numbers>
 #include <utility>
-
-#include <Eigen/Geometry>
 
 #include "postproc/cldata/nurbs.h"
 
@@ -20,29 +20,6 @@ using program::SourceRef;
 using Vec = Eigen::Vector3d;
 
 constexpr double mm_per_inch = 25.4;
-
-// Records that carry no motion and no state vcpost uses.
-bool is_ignored(std::string_view m) {
-  static constexpr std::array<std::string_view, 12> words{
-      "PAINT", "MACHIN", "MSYS",  "CSYS", "TRNTYP", "TPRINT",
-      "TOOLNO", "CLRSRF", "END", "MODE", "SEQNO",  "ORIGIN"};
-  for (const auto w : words) {
-    if (m == w) return true;
-  }
-  return false;
-}
-
-// APT part-programming statements: they describe motion by geometry and
-// need an APT processor, they are not cutter locations.
-bool is_apt_source(std::string_view m) {
-  static constexpr std::array<std::string_view, 14> words{
-      "TLON",  "TLLFT", "TLRGT",  "GOFWD",  "GOLFT", "GORGT", "GOBACK",
-      "GOUP",  "GODOWN", "GO",    "INDIRV", "INDIRP", "PSIS",  "AUTOPS"};
-  for (const auto w : words) {
-    if (m == w) return true;
-  }
-  return false;
-}
 
 std::string fixed(double v) {
   char buffer[64];
@@ -186,8 +163,10 @@ void ClReader::process(const ClRecord& r) {
   if (m == "GOTO") {
     in_goto_ = true;
     rapid_active_ = std::exchange(rapid_pending_, false);
-    if (arc_pending_) arc_active_ = std::exchange(arc_pending_, std::nullopt);
-    else arc_active_.reset();
+    if (arc_pending_)
+      arc_active_ = std::exchange(arc_pending_, std::nullopt);
+    else
+      arc_active_.reset();
     process_motion_points(r, false);
     return;
   }
@@ -195,182 +174,374 @@ void ClReader::process(const ClRecord& r) {
   arc_active_.reset();
   rapid_active_ = false;
 
-  if (m == "RAPID") {
-    rapid_pending_ = true;
-  } else if (m == "FEDRAT") {
-    fedrat(r);
-  } else if (m == "CIRCLE" || m == "MOVARC") {
-    circle(r);
-  } else if (m == "FROM") {
-    require_numbers(r);
-    if (r.params.size() != 3 && r.params.size() != 6) {
-      fail(ClCode::wrong_parameters, r, "FROM needs x,y,z or x,y,z,i,j,k");
-    }
+  if (r.separator == '=') apt_source(r);
+  const RecordRule* rule = find_rule(m);
+  if (rule == nullptr) {
+    fail(ClCode::unknown_word, r,
+         "'" + std::string(m) +
+             "' is not a record vcpost knows; it is refused rather than "
+             "ignored, since it may move the tool or change the frame (record: " +
+             std::string(m) + (r.text.empty() ? "" : "/" + std::string(r.text)) + ")");
+  }
+  (this->*(rule->handler))(r);
+}
+
+// --- one handler per record family ------------------------------------------
+
+void ClReader::rapid(const ClRecord&) { rapid_pending_ = true; }
+
+void ClReader::from(const ClRecord& r) {
+  require_numbers(r);
+  if (r.params.size() != 3 && r.params.size() != 6) {
+    fail(ClCode::wrong_parameters, r, "FROM needs x,y,z or x,y,z,i,j,k");
+  }
+  if (r.params.size() == 6) {
+    check_axis(Vec(number(r, 3), number(r, 4), number(r, 5)), r.params[3].line, r.params[3].column);
+  }
+  position_ = unit_ * Vec(number(r, 0), number(r, 1), number(r, 2));
+}
+
+void ClReader::godlta(const ClRecord& r) {
+  require_numbers(r);
+  if (!position_) {
+    fail(ClCode::no_start_position, r, "GODLTA before any FROM or GOTO: no position to move from");
+  }
+  Vec delta;
+  if (r.params.size() == 1) {
+    delta = unit_ * number(r, 0) * Vec::UnitZ();
+  } else if (r.params.size() == 3 || r.params.size() == 6) {
+    delta = unit_ * Vec(number(r, 0), number(r, 1), number(r, 2));
     if (r.params.size() == 6) {
       check_axis(Vec(number(r, 3), number(r, 4), number(r, 5)), r.params[3].line,
                  r.params[3].column);
     }
-    position_ = unit_ * Vec(number(r, 0), number(r, 1), number(r, 2));
-  } else if (m == "GODLTA") {
-    require_numbers(r);
-    if (!position_) {
-      fail(ClCode::no_start_position, r, "GODLTA before any FROM or GOTO: no position to move from");
+  } else {
+    fail(ClCode::wrong_parameters, r, "GODLTA needs d, or dx,dy,dz[,i,j,k]");
+  }
+  rapid_active_ = std::exchange(rapid_pending_, false);
+  if (arc_pending_) {
+    fail(ClCode::arc_without_goto, arc_pending_->source.line, arc_pending_->source.column,
+         "CIRCLE must be followed by GOTO, not GODLTA");
+  }
+  move_to(*position_ + delta, r.source);
+  rapid_active_ = false;
+}
+
+void ClReader::loadtl(const ClRecord& r) {
+  queue_.push_back(program::ChangeTool{integer(r, 0), r.source});
+}
+
+// LOAD/TOOL,n[,ADJUST,h] and SELECT/TOOL,n.
+void ClReader::load_or_select(const ClRecord& r) {
+  const std::string_view m = r.major;
+  if (r.params.empty() || !word_is(r.params[0], "TOOL")) {
+    fail(ClCode::unexpected_word, r,
+         std::string(m) + " is understood only as " + std::string(m) + "/TOOL,n");
+  }
+  if (r.params.size() > 2 &&
+      !(m == "LOAD" && r.params.size() == 4 && word_is(r.params[2], "ADJUST"))) {
+    fail(ClCode::unexpected_word, r.params[2],
+         "'" + std::string(r.params[2].text) + "' after " + std::string(m) +
+             "/TOOL,n is not understood (ADJUST,h is, after LOAD)");
+  }
+  if (r.params.size() == 4) {
+    // The length register: G43 H uses the tool number, which it must equal.
+    if (integer(r, 3) != integer(r, 1)) {
+      fail(ClCode::unexpected_word, r.params[3],
+           "LOAD/TOOL,n,ADJUST,h with h other than n: the output's G43 uses H = the tool number");
     }
-    Vec delta;
-    if (r.params.size() == 1) {
-      delta = unit_ * number(r, 0) * Vec::UnitZ();
-    } else if (r.params.size() == 3 || r.params.size() == 6) {
-      delta = unit_ * Vec(number(r, 0), number(r, 1), number(r, 2));
-      if (r.params.size() == 6) {
-        check_axis(Vec(number(r, 3), number(r, 4), number(r, 5)), r.params[3].line,
-                   r.params[3].column);
-      }
-    } else {
-      fail(ClCode::wrong_parameters, r, "GODLTA needs d, or dx,dy,dz[,i,j,k]");
-    }
-    rapid_active_ = std::exchange(rapid_pending_, false);
-    if (arc_pending_) {
-      fail(ClCode::arc_without_goto, arc_pending_->source.line, arc_pending_->source.column,
-           "CIRCLE must be followed by GOTO, not GODLTA");
-    }
-    move_to(*position_ + delta, r.source);
-    rapid_active_ = false;
-  } else if (m == "SPINDL") {
-    spindl(r);
-  } else if (m == "CUTTER") {
-    cutter(r);
-  } else if (m == "TLDATA") {
-    tldata(r);
-  } else if (m == "LOADTL") {
-    queue_.push_back(program::ChangeTool{integer(r, 0), r.source});
-  } else if (m == "LOAD" || m == "SELECT") {
-    if (r.params.empty() || !word_is(r.params[0], "TOOL")) {
-      fail(ClCode::unexpected_word, r, std::string(m) + " is understood only as " +
-                                           std::string(m) + "/TOOL,n");
-    }
-    if (m == "LOAD") {
-      queue_.push_back(program::ChangeTool{integer(r, 1), r.source});
-    } else {
-      queue_.push_back(program::SelectTool{integer(r, 1), r.source});
-    }
-  } else if (m == "UNITS" || m == "UNIT") {
-    if (r.params.size() != 1) fail(ClCode::bad_units, r, "UNITS needs one word: MM or INCHES");
-    const ClParam& p = r.params[0];
-    if (word_is(p, "MM")) {
-      unit_ = 1.0;
-    } else if (word_is(p, "INCHES") || word_is(p, "INCH") || word_is(p, "IN")) {
-      unit_ = mm_per_inch;
-    } else if (word_is(p, "CM")) {
-      unit_ = 10.0;
-    } else {
-      fail(ClCode::bad_units, p, "unknown units '" + std::string(p.text) + "'");
-    }
-  } else if (m == "COOLNT") {
-    using program::CoolantChange;
-    if (r.params.empty()) fail(ClCode::wrong_parameters, r, "COOLNT needs ON, FLOOD, MIST or OFF");
-    const ClParam& p = r.params[0];
-    CoolantChange change = CoolantChange::flood_on;
-    if (word_is(p, "ON") || word_is(p, "FLOOD")) {
-      change = CoolantChange::flood_on;
-    } else if (word_is(p, "MIST")) {
-      change = CoolantChange::mist_on;
-    } else if (word_is(p, "OFF")) {
-      change = CoolantChange::off;
-    } else if (word_is(p, "THRU") || word_is(p, "AIR") || word_is(p, "TAPKUL")) {
-      warn(ClCode::ignored_option, r.source,
-           "COOLNT/" + std::string(p.text) + " is written as flood coolant");
-    } else {
-      fail(ClCode::unexpected_word, p, "unknown COOLNT word '" + std::string(p.text) + "'");
-    }
-    queue_.push_back(program::Coolant{change, r.source});
-  } else if (m == "CUTCOM") {
-    using program::CompensationSide;
-    if (r.params.empty()) fail(ClCode::wrong_parameters, r, "CUTCOM needs LEFT, RIGHT or OFF");
-    const ClParam& p = r.params[0];
-    CompensationSide side = CompensationSide::off;
-    if (word_is(p, "LEFT")) {
-      side = CompensationSide::left;
-    } else if (word_is(p, "RIGHT")) {
-      side = CompensationSide::right;
-    } else if (!word_is(p, "OFF")) {
-      fail(ClCode::unexpected_word, p, "unknown CUTCOM word '" + std::string(p.text) + "'");
-    }
-    queue_.push_back(program::CutterCompensation{side, r.source});
-  } else if (m == "DELAY") {
-    double seconds = 0;
-    if (!r.params.empty() && word_is(r.params[0], "REV")) {
-      if (!(rpm_ > 0)) fail(ClCode::wrong_parameters, r, "DELAY/REV with the spindle stopped");
-      seconds = number(r, 1) * 60.0 / rpm_;
-    } else {
-      seconds = number(r, 0);
-    }
-    if (seconds < 0) fail(ClCode::wrong_parameters, r, "DELAY must not be negative");
-    queue_.push_back(program::Dwell{seconds, r.source});
-  } else if (m == "STOP") {
-    queue_.push_back(program::ProgramStop{false, r.source});
-  } else if (m == "OPSTOP") {
-    queue_.push_back(program::ProgramStop{true, r.source});
-  } else if (m == "FINI") {
-    if (cycle_) cycle_.reset();
-    queue_.push_back(program::ProgramEnd{r.source});
-    ended_ = true;
-  } else if (m == "END-OF-PATH") {
-    end_of_path_ = true;
-  } else if (m == "PPRINT") {
+  }
+  if (m == "LOAD") {
+    queue_.push_back(program::ChangeTool{integer(r, 1), r.source});
+  } else {
+    queue_.push_back(program::SelectTool{integer(r, 1), r.source});
+  }
+}
+
+void ClReader::units(const ClRecord& r) {
+  if (r.params.size() != 1) fail(ClCode::bad_units, r, "UNITS needs one word: MM or INCHES");
+  const ClParam& p = r.params[0];
+  if (word_is(p, "MM")) {
+    unit_ = 1.0;
+  } else if (word_is(p, "INCHES") || word_is(p, "INCH") || word_is(p, "IN")) {
+    unit_ = mm_per_inch;
+  } else if (word_is(p, "CM")) {
+    unit_ = 10.0;
+  } else {
+    fail(ClCode::bad_units, p, "unknown units '" + std::string(p.text) + "'");
+  }
+}
+
+void ClReader::coolnt(const ClRecord& r) {
+  using program::CoolantChange;
+  if (r.params.empty()) fail(ClCode::wrong_parameters, r, "COOLNT needs ON, FLOOD, MIST or OFF");
+  const ClParam& p = r.params[0];
+  CoolantChange change = CoolantChange::flood_on;
+  if (word_is(p, "ON") || word_is(p, "FLOOD")) {
+    change = CoolantChange::flood_on;
+  } else if (word_is(p, "MIST")) {
+    change = CoolantChange::mist_on;
+  } else if (word_is(p, "OFF")) {
+    change = CoolantChange::off;
+  } else if (word_is(p, "THRU") || word_is(p, "AIR") || word_is(p, "TAPKUL")) {
+    warn(ClCode::ignored_option, r.source,
+         "COOLNT/" + std::string(p.text) + " is written as flood coolant");
+  } else {
+    fail(ClCode::unexpected_word, p, "unknown COOLNT word '" + std::string(p.text) + "'");
+  }
+  queue_.push_back(program::Coolant{change, r.source});
+}
+
+// CUTCOM/LEFT|RIGHT|OFF[,XYPLAN][,register]; CAMWorks' CUTCOM/ON before the side.
+void ClReader::cutcom(const ClRecord& r) {
+  using program::CompensationSide;
+  if (r.params.empty()) fail(ClCode::wrong_parameters, r, "CUTCOM needs LEFT, RIGHT or OFF");
+  const ClParam& p = r.params[0];
+  CompensationSide side = CompensationSide::off;
+  if (word_is(p, "ON")) return;  // CAMWorks: the side follows in its own record
+  if (word_is(p, "LEFT")) {
+    side = CompensationSide::left;
+  } else if (word_is(p, "RIGHT")) {
+    side = CompensationSide::right;
+  } else if (!word_is(p, "OFF")) {
+    fail(ClCode::unexpected_word, p, "unknown CUTCOM word '" + std::string(p.text) + "'");
+  }
+  for (std::size_t i = 1; i < r.params.size(); ++i) {
+    const ClParam& q = r.params[i];
+    if (q.is_number || word_is(q, "XYPLAN")) continue;
+    fail(ClCode::unexpected_word, q,
+         "CUTCOM/" + std::string(p.text) + "," + std::string(q.text) +
+             ": only the XYPLAN plane and a register number are understood");
+  }
+  queue_.push_back(program::CutterCompensation{side, r.source});
+}
+
+void ClReader::delay(const ClRecord& r) {
+  double seconds = 0;
+  if (!r.params.empty() && word_is(r.params[0], "REV")) {
+    if (!(rpm_ > 0)) fail(ClCode::wrong_parameters, r, "DELAY/REV with the spindle stopped");
+    seconds = number(r, 1) * 60.0 / rpm_;
+  } else {
+    seconds = number(r, 0);
+  }
+  if (seconds < 0) fail(ClCode::wrong_parameters, r, "DELAY must not be negative");
+  queue_.push_back(program::Dwell{seconds, r.source});
+}
+
+void ClReader::stop(const ClRecord& r) {
+  queue_.push_back(program::ProgramStop{r.major == "OPSTOP", r.source});
+}
+
+void ClReader::fini(const ClRecord& r) {
+  if (cycle_) cycle_.reset();
+  queue_.push_back(program::ProgramEnd{r.source});
+  ended_ = true;
+}
+
+void ClReader::end_of_path(const ClRecord&) { end_of_path_ = true; }
+
+// Text the output carries as a comment.
+void ClReader::message(const ClRecord& r) {
+  const std::string_view m = r.major;
+  if (m == "PPRINT") {
     queue_.push_back(program::Message{std::string(r.text), r.source});
   } else if (m == "PARTNO" || m == "INSERT") {
     queue_.push_back(program::Message{std::string(m) + " " + std::string(r.text), r.source});
-  } else if (m == "TOOL PATH") {
-    queue_.push_back(program::Message{"TOOL PATH/" + std::string(r.text), r.source});
-  } else if (m == "TLAXIS") {
-    require_numbers(r);
-    if (r.params.size() < 3) fail(ClCode::wrong_parameters, r, "TLAXIS needs i,j,k");
-    check_axis(Vec(number(r, 0), number(r, 1), number(r, 2)), r.params[0].line,
-               r.params[0].column);
-  } else if (m == "MULTAX") {
-    multax_ = r.params.empty() || !word_is(r.params[0], "OFF");
-  } else if (m == "NURBS") {
-    if (!r.params.empty()) {
-      fail(ClCode::bad_nurbs, r, "NURBS/ with parameters is not understood");
-    }
-    if (!position_) fail(ClCode::no_start_position, r, "NURBS before any position");
-    nurbs_active_ = true;
-    nurbs_rapid_ = std::exchange(rapid_pending_, false);
-    nurbs_source_ = r.source;
-    knots_.clear();
-    cntrl_.clear();
-  } else if (m == "KNOT" || m == "CNTRL") {
-    if (!nurbs_active_) fail(ClCode::bad_nurbs, r, std::string(m) + " outside a NURBS/ block");
-    require_numbers(r);
-    if (m == "KNOT") {
-      for (std::size_t i = 0; i < r.params.size(); ++i) knots_.push_back(number(r, i));
-    } else {
-      if (r.params.size() != 3 && r.params.size() != 4) {
-        fail(ClCode::bad_nurbs, r, "CNTRL needs x,y,z or x,y,z,w");
-      }
-      const double w = r.params.size() == 4 ? number(r, 3) : 1.0;
-      const Vec p = unit_ * Vec(number(r, 0), number(r, 1), number(r, 2));
-      cntrl_.emplace_back(w * p.x(), w * p.y(), w * p.z(), w);
-    }
-  } else if (m == "CYCLE") {
-    cycle(r);
-  } else if (m == "TRACUT") {
-    fail(ClCode::unsupported_record, r,
-         "TRACUT transformations are not applied; write the CL file without TRACUT");
-  } else if (r.separator == '=' || is_apt_source(m)) {
-    fail(ClCode::apt_source_statement, r,
-         "'" + std::string(m) +
-             "' is an APT part-programming statement (geometry, not cutter locations); "
-             "give the CAM system's CL output instead");
-  } else if (is_ignored(m)) {
-    // documented as ignored: no motion, no state vcpost needs
   } else {
-    if (unknown_words_.find(m) == unknown_words_.end()) {
-      unknown_words_.emplace(m);
-      warn(ClCode::unknown_record, r.source,
-           "unknown record '" + std::string(m) + "' ignored (reported once)");
+    queue_.push_back(program::Message{std::string(m) + "/" + std::string(r.text), r.source});
+  }
+}
+
+void ClReader::tlaxis(const ClRecord& r) {
+  require_numbers(r);
+  if (r.params.size() < 3) fail(ClCode::wrong_parameters, r, "TLAXIS needs i,j,k");
+  check_axis(Vec(number(r, 0), number(r, 1), number(r, 2)), r.params[0].line, r.params[0].column);
+}
+
+// MULTAX[/ON|OFF]: GOTOs carry i,j,k, each checked to be +Z.
+void ClReader::multax(const ClRecord& r) {
+  multax_ = r.params.empty() || !word_is(r.params[0], "OFF");
+}
+
+void ClReader::nurbs(const ClRecord& r) {
+  if (!r.params.empty()) {
+    fail(ClCode::bad_nurbs, r, "NURBS/ with parameters is not understood");
+  }
+  if (!position_) fail(ClCode::no_start_position, r, "NURBS before any position");
+  nurbs_active_ = true;
+  nurbs_rapid_ = std::exchange(rapid_pending_, false);
+  nurbs_source_ = r.source;
+  knots_.clear();
+  cntrl_.clear();
+}
+
+void ClReader::nurbs_data(const ClRecord& r) {
+  const std::string_view m = r.major;
+  if (!nurbs_active_) fail(ClCode::bad_nurbs, r, std::string(m) + " outside a NURBS/ block");
+  require_numbers(r);
+  if (m == "KNOT") {
+    for (std::size_t i = 0; i < r.params.size(); ++i) knots_.push_back(number(r, i));
+  } else {
+    if (r.params.size() != 3 && r.params.size() != 4) {
+      fail(ClCode::bad_nurbs, r, "CNTRL needs x,y,z or x,y,z,w");
+    }
+    const double w = r.params.size() == 4 ? number(r, 3) : 1.0;
+    const Vec p = unit_ * Vec(number(r, 0), number(r, 1), number(r, 2));
+    cntrl_.emplace_back(w * p.x(), w * p.y(), w * p.z(), w);
+  }
+}
+
+// Frames. The points are posted as written: a frame record is accepted when
+// it leaves them where they are (the identity), refused otherwise.
+// NX's MSYS only says where the output frame lies in the part's: the GOTOs
+// are already in it, so any MSYS is accepted.
+void ClReader::msys(const ClRecord& r) { require_numbers(r); }
+
+// SolidWorks CAM: CSYS/r11,r12,r13,tx,r21,...,tz (GOTOs in world
+// coordinates, TRNTYP/WORLD); CATIA/APT: the 12 values of a 3x4 matrix.
+void ClReader::csys(const ClRecord& r) {
+  require_numbers(r);
+  if (r.params.size() != 12) {
+    fail(ClCode::wrong_parameters, r, "CSYS needs the 12 values of a 3x4 matrix");
+  }
+  for (std::size_t i = 0; i < 12; ++i) {
+    const double identity = (i == 0 || i == 5 || i == 10) ? 1.0 : 0.0;
+    if (std::abs(number(r, i) - identity) > 1e-9) {
+      fail(ClCode::frame_not_identity, r.params[i],
+           "CSYS with a rotation or translation is not applied (the set-up frame differs from "
+           "the CL points' frame); post each set-up from its own CL file");
     }
   }
+}
+
+void ClReader::trntyp(const ClRecord& r) {
+  if (r.params.empty() || !word_is(r.params[0], "WORLD")) {
+    fail(ClCode::frame_not_identity, r, "TRNTYP is understood only as TRNTYP/WORLD,0,0,0");
+  }
+  for (std::size_t i = 1; i < r.params.size(); ++i) {
+    if (number(r, i) != 0) {
+      fail(ClCode::frame_not_identity, r.params[i], "TRNTYP/WORLD with an offset is not applied");
+    }
+  }
+}
+
+void ClReader::origin(const ClRecord& r) {
+  require_numbers(r);
+  for (std::size_t i = 0; i < r.params.size(); ++i) {
+    if (number(r, i) != 0) {
+      fail(ClCode::frame_not_identity, r.params[i],
+           "ORIGIN other than 0,0,0 is not applied: give the CL file in the work frame");
+    }
+  }
+}
+
+// ROTABL/angle,AXIS,...: an indexed table turns the part under a tool axis
+// that is +Z only in the turned frame; a 3-axis machine has no such table.
+void ClReader::rotabl(const ClRecord& r) {
+  for (std::size_t i = 0; i < r.params.size(); ++i) {
+    if (r.params[i].is_number && r.params[i].value != 0) {
+      fail(ClCode::tool_axis_not_z, r.params[i],
+           "ROTABL turns the table by " + std::string(r.params[i].text) +
+               ": an indexed rotary set-up is not 3-axis motion");
+    }
+  }
+}
+
+void ClReader::tracut(const ClRecord& r) {
+  fail(ClCode::unsupported_record, r,
+       "TRACUT transformations are not applied; write the CL file without TRACUT");
+}
+
+void ClReader::gohome(const ClRecord& r) {
+  fail(ClCode::unsupported_record, r,
+       "GOHOME needs the machine's home position, which vcpost does not know; give the CAM "
+       "system's GOTO to the home point instead");
+}
+
+void ClReader::apt_source(const ClRecord& r) {
+  fail(ClCode::apt_source_statement, r,
+       "'" + std::string(r.major) +
+           "' is an APT part-programming statement (geometry, not cutter locations); "
+           "give the CAM system's CL output instead");
+}
+
+// Records with no motion and no state the output needs.
+void ClReader::ignore(const ClRecord&) {}
+
+// The dispatch table, sorted by word (checked at compile time).
+const ClReader::RecordRule* ClReader::find_rule(std::string_view word) {
+  static constexpr RecordRule rules[] = {
+      {"AUTOPS", &ClReader::apt_source},
+      {"BOX", &ClReader::ignore},
+      {"CIRCLE", &ClReader::circle},
+      {"CLRSRF", &ClReader::ignore},
+      {"CNTRL", &ClReader::nurbs_data},
+      {"COOLNT", &ClReader::coolnt},
+      {"CSI_SET_EXTENSION_LENGTH", &ClReader::ignore},
+      {"CSI_SET_FLUTE_LENGTH", &ClReader::ignore},
+      {"CSYS", &ClReader::csys},
+      {"CUTCOM", &ClReader::cutcom},
+      {"CUTTER", &ClReader::cutter},
+      {"CYCLE", &ClReader::cycle},
+      {"DELAY", &ClReader::delay},
+      {"END", &ClReader::ignore},
+      {"END-OF-PATH", &ClReader::end_of_path},
+      {"FEDRAT", &ClReader::fedrat},
+      {"FINI", &ClReader::fini},
+      {"FROM", &ClReader::from},
+      {"GO", &ClReader::apt_source},
+      {"GOBACK", &ClReader::apt_source},
+      {"GODLTA", &ClReader::godlta},
+      {"GODOWN", &ClReader::apt_source},
+      {"GOFWD", &ClReader::apt_source},
+      {"GOHOME", &ClReader::gohome},
+      {"GOLFT", &ClReader::apt_source},
+      {"GORGT", &ClReader::apt_source},
+      {"GOUP", &ClReader::apt_source},
+      {"INDIRP", &ClReader::apt_source},
+      {"INDIRV", &ClReader::apt_source},
+      {"INSERT", &ClReader::message},
+      {"KNOT", &ClReader::nurbs_data},
+      {"LOAD", &ClReader::load_or_select},
+      {"LOADTL", &ClReader::loadtl},
+      {"MACHIN", &ClReader::ignore},
+      {"MFGNO", &ClReader::message},
+      {"MODE", &ClReader::ignore},
+      {"MOVARC", &ClReader::circle},
+      {"MSYS", &ClReader::msys},
+      {"MULTAX", &ClReader::multax},
+      {"NURBS", &ClReader::nurbs},
+      {"OPFEATEND", &ClReader::message},
+      {"OPFEATSTART", &ClReader::message},
+      {"OPSKIP", &ClReader::message},
+      {"OPSTOP", &ClReader::stop},
+      {"ORIGIN", &ClReader::origin},
+      {"PAINT", &ClReader::ignore},
+      {"PARTNO", &ClReader::message},
+      {"PPRINT", &ClReader::message},
+      {"PSIS", &ClReader::apt_source},
+      {"RAPID", &ClReader::rapid},
+      {"ROTABL", &ClReader::rotabl},
+      {"SELECT", &ClReader::load_or_select},
+      {"SEQNO", &ClReader::ignore},
+      {"SPINDL", &ClReader::spindl},
+      {"STOP", &ClReader::stop},
+      {"TLAXIS", &ClReader::tlaxis},
+      {"TLDATA", &ClReader::tldata},
+      {"TLLFT", &ClReader::apt_source},
+      {"TLON", &ClReader::apt_source},
+      {"TLRGT", &ClReader::apt_source},
+      {"TOOL PATH", &ClReader::message},
+      {"TOOLNO", &ClReader::ignore},
+      {"TPRINT", &ClReader::ignore},
+      {"TRACUT", &ClReader::tracut},
+      {"TRNTYP", &ClReader::trntyp},
+      {"UNIT", &ClReader::units},
+      {"UNITS", &ClReader::units},
+  };
+  static_assert(std::ranges::is_sorted(rules, {}, &RecordRule::word));
+  const auto* it = std::ranges::lower_bound(rules, word, {}, &RecordRule::word);
+  return it != std::end(rules) && it->word == word ? it : nullptr;
 }
 
 void ClReader::process_motion_points(const ClRecord& r, bool continuation) {
@@ -384,8 +555,8 @@ void ClReader::process_motion_points(const ClRecord& r, bool continuation) {
   }
   if (count == 0 || count % group != 0) {
     fail(ClCode::wrong_parameters, r,
-         std::string(continuation ? "coordinate line" : "GOTO") + " has " +
-             std::to_string(count) + " values; expected groups of " + std::to_string(group) +
+         std::string(continuation ? "coordinate line" : "GOTO") + " has " + std::to_string(count) +
+             " values; expected groups of " + std::to_string(group) +
              (group == 3 ? " (x,y,z)" : " (x,y,z,i,j,k)"));
   }
   for (std::size_t i = 0; i < count; i += group) {
@@ -443,24 +614,34 @@ void ClReader::emit_arc(const Vec& start, const Vec& end, const Arc& arc, const 
   // Principal axes become ARC_FEED in a plane; rotation sign = direction
   // about the plane's positive normal (rs274: XY about +Z, XZ about +Y,
   // YZ about +X).
+  // NX's TIMES,n: n full turns before the arc itself, each written as a
+  // full circle (every control takes those; not every one takes a P word)
+  // with the axis coordinate rising linearly in the angle over the whole.
+  double partial = std::atan2(s.cross(e).dot(a), s.dot(e));
+  if (partial <= 1e-12) partial += 2 * std::numbers::pi;
+  const double total = partial + 2 * std::numbers::pi * arc.turns;
   for (int k = 0; k < 3; ++k) {
     if (std::abs(std::abs(a[k]) - 1.0) <= options_.axis_tolerance) {
       program::ArcFeed f;
-      f.start = start;
-      f.end = end;
-      f.centre = arc.centre;
-      f.centre[k] = start[k];
       f.plane = k == 2 ? program::Plane::xy : k == 1 ? program::Plane::xz : program::Plane::yz;
       f.rotation = a[k] > 0 ? 1 : -1;
       f.source = src;
-      queue_.push_back(f);
+      f.start = start;
+      for (int turn = 1; turn <= arc.turns + 1; ++turn) {
+        f.end = start;
+        f.end[k] = start[k] + (end[k] - start[k]) * (2 * std::numbers::pi * turn / total);
+        if (turn == arc.turns + 1) f.end = end;
+        f.centre = arc.centre;
+        f.centre[k] = f.start[k];
+        queue_.push_back(f);
+        f.start = f.end;
+      }
       return;
     }
   }
   // Tilted circle: lines within the chord tolerance (helical part linear
   // in the angle).
-  double sweep = std::atan2(s.cross(e).dot(a), s.dot(e));
-  if (sweep <= 1e-12) sweep += 2 * std::numbers::pi;
+  const double sweep = total;
   const double r = std::max(rs, re);
   const double step =
       r > options_.chord_tolerance ? 2 * std::acos(1 - options_.chord_tolerance / r) : sweep;
@@ -479,7 +660,8 @@ void ClReader::emit_arc(const Vec& start, const Vec& end, const Arc& arc, const 
     const double t = static_cast<double>(i) / n;
     const double phi = sweep * t;
     const double radius = rs + (re - rs) * t;
-    Vec p = arc.centre + radius * (std::cos(phi) * u + std::sin(phi) * v) + (h0 + (h1 - h0) * t) * a;
+    Vec p =
+        arc.centre + radius * (std::cos(phi) * u + std::sin(phi) * v) + (h0 + (h1 - h0) * t) * a;
     if (i == n) p = end;
     queue_.push_back(program::StraightFeed{previous, p, src});
     previous = p;
@@ -586,12 +768,14 @@ void ClReader::spindl(const ClRecord& r) {
 }
 
 void ClReader::cutter(const ClRecord& r) {
-  require_numbers(r);
-  if (r.params.empty() || r.params.size() > 7) {
-    fail(ClCode::wrong_parameters, r,
-         "CUTTER needs 1 to 7 values, has " + std::to_string(r.params.size()));
+  // CAMWorks ends the record with a comma: no eighth value.
+  const std::size_t n =
+      r.params.size() - (r.params.size() > 1 && r.params.back().text.empty() ? 1 : 0);
+  for (std::size_t i = 0; i < n; ++i) number(r, i);
+  if (n == 0 || n > 7) {
+    fail(ClCode::wrong_parameters, r, "CUTTER needs 1 to 7 values, has " + std::to_string(n));
   }
-  std::vector<double> v(r.params.size());
+  std::vector<double> v(n);
   for (std::size_t i = 0; i < v.size(); ++i) {
     const bool angle = i == 4 || i == 5;
     v[i] = r.params[i].value * (angle ? 1.0 : unit_);
@@ -660,10 +844,23 @@ void ClReader::creo_cutter_comment(const ClRecord& r) {
 }
 
 void ClReader::circle(const ClRecord& r) {
-  require_numbers(r);
-  const std::size_t n = r.params.size();
+  std::size_t n = r.params.size();
   Arc arc;
   arc.source = r.source;
+  if (n >= 2 && word_is(r.params[n - 2], "TIMES")) {
+    arc.turns = integer(r, n - 1);
+    if (arc.turns > 1000) fail(ClCode::wrong_parameters, r.params[n - 1], "more than 1000 turns");
+    n -= 2;
+  }
+  // CAMWorks names the direction: CLOCKWISE turns the other way about i,j,k.
+  bool clockwise_word = false;
+  if (n >= 1 &&
+      (word_is(r.params[n - 1], "CLOCKWISE") || word_is(r.params[n - 1], "CLW") ||
+       word_is(r.params[n - 1], "COUNTERCLOCKWISE") || word_is(r.params[n - 1], "CCLW"))) {
+    clockwise_word = word_is(r.params[n - 1], "CLOCKWISE") || word_is(r.params[n - 1], "CLW");
+    --n;
+  }
+  for (std::size_t i = 0; i < n; ++i) number(r, i);
   if (n == 4) {
     arc.axis = Vec::UnitZ();
     arc.radius = number(r, 3) * unit_;
@@ -675,6 +872,7 @@ void ClReader::circle(const ClRecord& r) {
     // 270..357 deg the other way. APT, Creo (7 values) and SolidWorks (6)
     // turn counterclockwise (369 + 1026 SolidWorks arcs, Creo full circles).
     if (n >= 8) arc.axis = -arc.axis;
+    if (clockwise_word) arc.axis = -arc.axis;
   } else {
     fail(ClCode::wrong_parameters, r,
          std::string(r.major) + " needs xc,yc,zc,i,j,k[,r,...] (or xc,yc,zc,r), has " +
@@ -684,7 +882,8 @@ void ClReader::circle(const ClRecord& r) {
   if (!(norm > 0)) fail(ClCode::wrong_parameters, r, "circle axis is a zero vector");
   arc.axis /= norm;
   arc.centre = unit_ * Vec(number(r, 0), number(r, 1), number(r, 2));
-  if (arc.radius && !(*arc.radius > 0)) fail(ClCode::wrong_parameters, r, "circle radius must be positive");
+  if (arc.radius && !(*arc.radius > 0))
+    fail(ClCode::wrong_parameters, r, "circle radius must be positive");
   arc_pending_ = arc;
 }
 
@@ -698,90 +897,36 @@ void ClReader::cycle(const ClRecord& r) {
   }
   if (word_is(kind, "INIT")) return;  // SolidWorks' marker before the cycle
   if (word_is(kind, "ON")) {
-    if (!last_cycle_) fail(ClCode::unsupported_cycle, r, "CYCLE/ON without a previous cycle");
-    cycle_ = last_cycle_;
+    // CAMWorks writes CYCLE/ON before the cycle itself: nothing to resume yet.
+    if (last_cycle_) cycle_ = last_cycle_;
     return;
   }
-  if (!word_is(kind, "DRILL")) {
-    fail(ClCode::unsupported_cycle, kind,
-         "CYCLE/" + std::string(kind.text) +
-             " is not expanded (only CYCLE/DRILL with FEDTO, RAPTO, RTRCTO, feed and DWELL "
-             "is); post this operation with another post-processor");
-  }
-  Cycle c;
-  bool has_depth = false, has_rapto = false, has_feed = false;
-  std::size_t i = 1;
-  const auto feed_word = [&](const ClParam& p, double& factor) {
-    if (word_is(p, "MMPM")) { factor = 1.0; c.mode = program::FeedMode::per_minute; return true; }
-    if (word_is(p, "IPM")) { factor = mm_per_inch; c.mode = program::FeedMode::per_minute; return true; }
-    if (word_is(p, "MMPR")) { factor = 1.0; c.mode = program::FeedMode::per_revolution; return true; }
-    if (word_is(p, "IPR")) { factor = mm_per_inch; c.mode = program::FeedMode::per_revolution; return true; }
-    return false;
-  };
-  if (i < r.params.size() && r.params[i].is_number) {
-    // Positional form: CYCLE/DRILL, depth, unit, feed, clearance[, retract].
-    double factor = unit_;
-    c.depth = number(r, 1) * unit_;
-    if (r.params.size() < 5 || !feed_word(r.params[2], factor)) {
-      fail(ClCode::unsupported_cycle, r,
-           "CYCLE/DRILL positional form must be DRILL, depth, MMPM|IPM|MMPR|IPR, feed, "
-           "clearance[, retract]");
-    }
-    c.feed = number(r, 3) * factor;
-    c.rapto = number(r, 4) * unit_;
-    if (r.params.size() > 5) c.rtrcto = number(r, 5) * unit_;
-    if (r.params.size() > 6) fail(ClCode::unsupported_cycle, r.params[6], "extra CYCLE/DRILL value");
-    has_depth = has_rapto = has_feed = true;
-  } else {
-    for (; i < r.params.size(); ++i) {
-      const ClParam& p = r.params[i];
-      double factor = unit_;
-      if (word_is(p, "FEDTO")) {
-        c.depth = number(r, ++i) * unit_;
-        has_depth = true;
-      } else if (word_is(p, "RAPTO")) {
-        c.rapto = number(r, ++i) * unit_;
-        has_rapto = true;
-      } else if (word_is(p, "RTRCTO")) {
-        c.rtrcto = number(r, ++i) * unit_;
-      } else if (word_is(p, "DWELL")) {
-        c.dwell = number(r, ++i);
-      } else if (feed_word(p, factor)) {
-        c.feed = number(r, ++i) * factor;
-        has_feed = true;
-      } else {
-        fail(ClCode::unsupported_cycle, p,
-             "CYCLE/DRILL," + std::string(p.text) +
-                 " is not expanded (peck, chip-break and other variants differ between CAM "
-                 "systems); post this operation with another post-processor");
-      }
-    }
-  }
-  if (!has_depth || !has_rapto || !has_feed) {
-    fail(ClCode::unsupported_cycle, r, "CYCLE/DRILL needs FEDTO, RAPTO and a feed");
-  }
-  if (!(c.feed > 0)) fail(ClCode::wrong_parameters, r, "CYCLE/DRILL feed must be positive");
-  cycle_ = c;
-  last_cycle_ = c;
+  cycle_ = parse_cycle(r, unit_, lexer_.file_name());
+  last_cycle_ = cycle_;
 }
 
-// G81/G82-like: rapid above the hole at the retract height, rapid to the
-// clearance plane, feed to depth, dwell, rapid back to the retract height.
+// The canned cycle's moves at the hole whose top is p; the cycle's feed
+// comes before its first feed move, not before the rapids to the hole.
 void ClReader::drill(const Vec& p, const SourceRef& src) {
-  const Cycle& c = *cycle_;
-  const Vec z = Vec::UnitZ();
-  const double retract = c.rtrcto.value_or(c.rapto);
-  const Vec top = p + retract * z;
-  const Vec clear = p + c.rapto * z;
-  const Vec bottom = p - c.depth * z;
-  const Vec start = position_.value_or(top);
-  queue_.push_back(program::StraightTraverse{start, top, src});
-  if ((clear - top).norm() > 0) queue_.push_back(program::StraightTraverse{top, clear, src});
-  set_feed(Feed{c.feed, c.mode}, src);
-  queue_.push_back(program::StraightFeed{clear, bottom, src});
-  if (c.dwell > 0) queue_.push_back(program::Dwell{c.dwell, src});
-  queue_.push_back(program::StraightTraverse{bottom, top, src});
-  position_ = top;
+  const ClCycle& c = *cycle_;
+  const Vec start = position_.value_or(p + c.retract.value_or(c.clearance) * Vec::UnitZ());
+  const std::size_t first = queue_.size();
+  expand_cycle(c, p, start, direction_, src, queue_);
+  const Feed feed{c.feed, c.mode};
+  if (!machine_feed_ || !(*machine_feed_ == feed)) {
+    auto at = queue_.begin() + static_cast<std::ptrdiff_t>(first);
+    while (at != queue_.end() && !std::holds_alternative<program::StraightFeed>(*at)) ++at;
+    queue_.insert(at, program::SetFeedRate{feed.rate, feed.mode, src});
+    machine_feed_ = feed;
+  }
+  for (auto it = queue_.rbegin(); it != queue_.rend(); ++it) {
+    if (program::is_motion(*it)) {
+      position_ = std::holds_alternative<program::StraightTraverse>(*it)
+                      ? std::get<program::StraightTraverse>(*it).end
+                      : std::get<program::StraightFeed>(*it).end;
+      break;
+    }
+  }
 }
 
 void ClReader::finish_nurbs() {

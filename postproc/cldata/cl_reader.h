@@ -2,7 +2,7 @@
 //
 // Records and what they become (units: the file's UNITS, converted to mm;
 // feeds to mm/min or mm/rev; positions are the CL points as written, in the
-// CL file's output frame: MSYS/CSYS are recorded, not applied):
+// CL file's output frame: no frame record moves them, see below):
 //   GOTO/x,y,z[,i,j,k] (several points per record, and Creo's bare
 //       coordinate lines after it)      StraightFeed, or StraightTraverse
 //                                        after RAPID (one motion record)
@@ -11,7 +11,8 @@
 //   CIRCLE|MOVARC/xc,yc,zc,i,j,k[,r,...] then GOTO: ArcFeed (axis +-X/Y/Z,
 //       counterclockwise about i,j,k in APT/Creo's 7-value and SolidWorks'
 //       6-value forms, clockwise in NX's 11-value form (8 or more values),
-//       xc,yc,zc,r about +Z; a tilted circle becomes lines within
+//       xc,yc,zc,r about +Z; NX's TIMES,n adds n full turns, written as
+//       n full circles before the arc; a tilted circle becomes lines within
 //       chord_tolerance). Start and end must lie on the circle within
 //       arc_tolerance (E3109).
 //   NURBS/ KNOT/ CNTRL/ (NX)             StraightFeeds within chord_tolerance
@@ -22,26 +23,39 @@
 //   CUTTER/1..7 values, TLDATA/MILL, Creo's `$$-> CUTTER / d`
 //                                        cutter() (no event)
 //   LOADTL/n, LOAD/TOOL,n                ChangeTool; SELECT/TOOL,n SelectTool
-//   COOLNT, CUTCOM, DELAY, STOP, OPSTOP  Coolant, CutterCompensation, Dwell,
+//   COOLNT, CUTCOM (LEFT|RIGHT|OFF[,XYPLAN][,register]; CAMWorks' ON),
+//   DELAY (seconds or REV,n), STOP, OPSTOP
+//                                        Coolant, CutterCompensation, Dwell,
 //                                        ProgramStop
-//   PPRINT, PARTNO, INSERT, TOOL PATH    Message (INSERT is not copied to
-//                                        the output program verbatim)
+//   PPRINT, PARTNO, INSERT, TOOL PATH, OPFEATSTART, OPFEATEND, OPSKIP, MFGNO
+//                                        Message (a comment in the output)
 //   FINI (or the end after END-OF-PATH)  ProgramEnd
-//   CYCLE/DRILL with FEDTO, RAPTO, [RTRCTO], feed, [DWELL] (distances
-//       along the tool axis from each GOTO point): expanded to rapid, feed,
-//       dwell, rapid; other cycles (DEEP, TAP, BORE ...) are refused (E3112).
+//   CYCLE/DRILL, FACE, DEEP, DEEP2, PECK, BRKCHP, TAP, BORE, BORE5, BORE6,
+//       BORE9, REAM (cycle.h): each GOTO while a cycle is on is a hole,
+//       expanded into the moves of the matching canned cycle; CYCLE/OFF
+//       ends it (INIT and CAMWorks' ON around it); others refused (E3112).
 //   UNITS|UNIT, TLAXIS, MULTAX           state; any axis other than +Z is
 //                                        refused (E3108): events are 3-axis
-//   PAINT, MACHIN, MSYS, CSYS, TRNTYP, TPRINT, TOOLNO, CLRSRF, END,
-//   END-OF-PATH, $$ comments             ignored
+//   MSYS (NX: the output frame, the GOTOs are in it), CSYS, TRNTYP/WORLD,
+//   ORIGIN that leave the points where they are (identity), ROTABL by 0
+//                                        accepted; a frame that would move
+//                                        the points is refused (E3119), a
+//                                        turned table too (E3108)
+//   PAINT, MACHIN, TPRINT, TOOLNO, CLRSRF, END, MODE, SEQNO, BOX,
+//   CSI_SET_FLUTE_LENGTH, CSI_SET_EXTENSION_LENGTH, END-OF-PATH, $$ comments
+//                                        no motion, no state: ignored
 //   APT source statements (TLON, GOFWD, INDIRV, `X=...` definitions)
-//                                        refused (E3113)
-//   any other record                     ignored with warning W3150 (once
-//                                        per word)
+//                                        refused (E3113); TRACUT, GOHOME
+//                                        refused (E3117)
+//   any other record                     refused (E3118) with its text: a
+//                                        record not understood may move the
+//                                        tool
+// Records are dispatched from one table, word -> handler (find_rule).
 // The position before the first move is unknown unless FROM gives it: the
 // first move's start is then its own end.
 #pragma once
 
+#include <Eigen/Core>
 #include <deque>
 #include <istream>
 #include <optional>
@@ -49,10 +63,9 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Core>
-
 #include "postproc/cldata/cl_codes.h"
 #include "postproc/cldata/cutter.h"
+#include "postproc/cldata/cycle.h"
 #include "postproc/cldata/record_reader.h"
 #include "postproc/program/events.h"
 
@@ -80,23 +93,14 @@ class ClReader {
   const std::vector<ClCutter>& cutters() const { return cutters_; }
   const std::string& file_name() const { return lexer_.file_name(); }
   std::uint64_t record_count() const { return records_; }
-  // MSYS/CSYS seen with a non-identity frame (reported, not applied).
-  bool saw_rotated_frame() const { return rotated_frame_; }
 
  private:
   struct Arc {
     Eigen::Vector3d centre;
     Eigen::Vector3d axis;
     std::optional<double> radius;
+    int turns = 0;  // NX's TIMES,n: full turns before the arc's own sweep
     program::SourceRef source;
-  };
-  struct Cycle {
-    double depth = 0;
-    double rapto = 0;
-    std::optional<double> rtrcto;
-    double feed = 0;
-    program::FeedMode mode = program::FeedMode::per_minute;
-    double dwell = 0;
   };
   struct Feed {
     double rate;
@@ -114,6 +118,39 @@ class ClReader {
   void finish_nurbs();
   void finish_input();
 
+  // One handler per record family, found by the record's word (find_rule).
+  using Handler = void (ClReader::*)(const ClRecord&);
+  struct RecordRule {
+    std::string_view word;
+    Handler handler;
+  };
+  static const RecordRule* find_rule(std::string_view word);
+  void rapid(const ClRecord& r);
+  void from(const ClRecord& r);
+  void godlta(const ClRecord& r);
+  void loadtl(const ClRecord& r);
+  void load_or_select(const ClRecord& r);
+  void units(const ClRecord& r);
+  void coolnt(const ClRecord& r);
+  void cutcom(const ClRecord& r);
+  void delay(const ClRecord& r);
+  void stop(const ClRecord& r);
+  void fini(const ClRecord& r);
+  void end_of_path(const ClRecord& r);
+  void message(const ClRecord& r);
+  void tlaxis(const ClRecord& r);
+  void multax(const ClRecord& r);
+  void nurbs(const ClRecord& r);
+  void nurbs_data(const ClRecord& r);
+  void msys(const ClRecord& r);
+  void csys(const ClRecord& r);
+  void trntyp(const ClRecord& r);
+  void origin(const ClRecord& r);
+  void rotabl(const ClRecord& r);
+  [[noreturn]] void tracut(const ClRecord& r);
+  [[noreturn]] void gohome(const ClRecord& r);
+  [[noreturn]] void apt_source(const ClRecord& r);
+  void ignore(const ClRecord& r);
   void fedrat(const ClRecord& r);
   void spindl(const ClRecord& r);
   void cutter(const ClRecord& r);
@@ -139,13 +176,11 @@ class ClReader {
   std::deque<program::Event> queue_;
   std::vector<ClDiagnostic> warnings_;
   std::vector<ClCutter> cutters_;
-  std::set<std::string, std::less<>> unknown_words_;
   std::uint64_t records_ = 0;
 
   double unit_ = 1.0;  // mm per file length unit
   std::optional<Eigen::Vector3d> position_;
   bool multax_ = false;
-  bool rotated_frame_ = false;
 
   // RAPID and CIRCLE apply to the next GOTO record and its continuation lines.
   bool rapid_pending_ = false;
@@ -158,8 +193,8 @@ class ClReader {
   std::optional<Feed> machine_feed_;  // last SetFeedRate emitted
   double rpm_ = 0;
   program::SpindleDirection direction_ = program::SpindleDirection::clockwise;
-  std::optional<Cycle> cycle_;
-  std::optional<Cycle> last_cycle_;
+  std::optional<ClCycle> cycle_;
+  std::optional<ClCycle> last_cycle_;
 
   bool nurbs_active_ = false;
   bool nurbs_rapid_ = false;
@@ -168,8 +203,8 @@ class ClReader {
   std::vector<Eigen::Vector4d> cntrl_;
   std::vector<Eigen::Vector3d> scratch_;
 
-  bool ended_ = false;           // FINI seen
-  bool end_of_path_ = false;     // the last statement was END-OF-PATH
+  bool ended_ = false;        // FINI seen
+  bool end_of_path_ = false;  // the last statement was END-OF-PATH
   bool input_done_ = false;
   program::SourceRef last_source_;
 };

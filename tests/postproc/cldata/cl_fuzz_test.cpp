@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "postproc/cldata/cl_reader.h"
-#include "postproc/output/mazak_writer.h"
+#include "postproc/output/gcode_writer.h"
 
 namespace vcpost::cldata {
 namespace {
@@ -23,7 +23,7 @@ const char* const seed_text =
     "CNTRL/-254.9779,453.0599,218.2973\nCNTRL/-254.9779,452.9000,221.0096\n"
     "CNTRL/-254.9779,452.8642,221.3100\nCYCLE/DRILL,FEDTO,10.,MMPM,275.59,RAPTO,3.,RTRCTO,25.\n"
     "GOTO/29.06066,116.93934,0\nCYCLE/OFF\nCUTTER/4.,0,2.,1.201721,31.,0,83.\n"
-    "GOTO/1,2,3\nCIRCLE/0,0,3,0,1,1,2.2360680\nGOTO/1,-2,3\nDELAY/1\nCOOLNT/FLOOD\nFINI\n";
+    "GOTO/1,2,3\nCIRCLE/0,0,3,0,1,1,1.7320508\nGOTO/1,-2,3\nDELAY/1\nCOOLNT/FLOOD\nFINI\n";
 
 TEST(ClFuzz, RandomEditsGiveEventsOrClErrorOnly) {
   std::mt19937 rng(20240601);
@@ -47,7 +47,7 @@ TEST(ClFuzz, RandomEditsGiveEventsOrClErrorOnly) {
     std::istringstream in(text);
     ClReader reader(in, "fuzz.cl");
     std::ostringstream out;
-    output::MazakWriter writer(out, output::MazakFormat{});
+    output::GcodeWriter writer(out, output::Format{});
     try {
       while (auto e = reader.next()) writer.write(*e);
       writer.finish();

@@ -1,11 +1,13 @@
 // CL records -> motion events: the semantics of each word, checked by hand.
+#include "postproc/cldata/cl_reader.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <sstream>
 
-#include "postproc/cldata/cl_reader.h"
 #include "postproc/cldata/nurbs.h"
 #include "postproc/program/arc.h"
 #include "tests/postproc/cldata/cl_support.h"
@@ -36,9 +38,9 @@ ClCode code_of(const std::string& text) {
 }
 
 TEST(ClReader, FedratBothWordOrdersAndUnits) {
-  const auto feeds = only<SetFeedRate>(read_events(
-      "FEDRAT/MMPM,250\nFEDRAT/300,MMPM\nFEDRAT/10,IPM\nFEDRAT/0.1,MMPR\nUNITS/INCHES\n"
-      "FEDRAT/20\nFINI\n"));
+  const auto feeds = only<SetFeedRate>(
+      read_events("FEDRAT/MMPM,250\nFEDRAT/300,MMPM\nFEDRAT/10,IPM\nFEDRAT/0.1,MMPR\nUNITS/INCHES\n"
+                  "FEDRAT/20\nFINI\n"));
   ASSERT_EQ(feeds.size(), 5u);
   EXPECT_DOUBLE_EQ(feeds[0].rate, 250.0);
   EXPECT_DOUBLE_EQ(feeds[1].rate, 300.0);
@@ -53,8 +55,8 @@ TEST(ClReader, RepeatedFedratOfTheSameValueIsOneEvent) {
 }
 
 TEST(ClReader, SpindlInAnyOrder) {
-  const auto events = read_events(
-      "SPINDL/3500,RPM,CLW\nSPINDL / RPM, 2000.0,  CCLW\nSPINDL/OFF\nFINI\n");
+  const auto events =
+      read_events("SPINDL/3500,RPM,CLW\nSPINDL / RPM, 2000.0,  CCLW\nSPINDL/OFF\nFINI\n");
   const auto speeds = only<SetSpindleSpeed>(events);
   const auto on = only<SpindleOn>(events);
   ASSERT_EQ(speeds.size(), 2u);
@@ -156,7 +158,8 @@ TEST(ClReader, NxCircleFormTurnsClockwiseAboutItsAxis) {
 }
 
 TEST(ClReader, SideAxisCircleIsAnArcInItsPlaneAndTiltedOneBecomesLines) {
-  const auto yz = only<ArcFeed>(read_events("GOTO/0,5,0\nCIRCLE/0,0,0,1,0,0,5\nGOTO/0,0,5\nFINI\n"));
+  const auto yz =
+      only<ArcFeed>(read_events("GOTO/0,5,0\nCIRCLE/0,0,0,1,0,0,5\nGOTO/0,0,5\nFINI\n"));
   ASSERT_EQ(yz.size(), 1u);
   EXPECT_EQ(yz[0].plane, Plane::yz);
   EXPECT_EQ(yz[0].rotation, 1);  // Y towards Z about +X
@@ -214,9 +217,128 @@ TEST(ClReader, DrillCycleIsExpandedLikeG81WithRetract) {
   ASSERT_EQ(rates.size(), 3u);  // 500, the cycle's 275.59, 500 again after CYCLE/OFF
   EXPECT_DOUBLE_EQ(rates[1].rate, 275.59);
   EXPECT_DOUBLE_EQ(rates[2].rate, 500);
-  EXPECT_EQ(code_of("CYCLE/DRILL,DEEP,RAPTO,3,FEDTO,0,MMPM,250\nFINI\n"),
+  EXPECT_EQ(code_of("CYCLE/DRILL,THRU,RAPTO,3,FEDTO,0,MMPM,250\nFINI\n"),
             ClCode::unsupported_cycle);
-  EXPECT_EQ(code_of("CYCLE/TAP,FEDTO,10,MMPM,100,RAPTO,3\nFINI\n"), ClCode::unsupported_cycle);
+  EXPECT_EQ(code_of("CYCLE/CSINK,10,90,MMPM,100\nFINI\n"), ClCode::unsupported_cycle);
+  EXPECT_EQ(code_of("CYCLE/TAP,FEDTO,10,RAPTO,3\nFINI\n"), ClCode::unsupported_cycle);  // no feed
+}
+
+// The z levels of a hole's moves, in order: 'r' rapid, 'f' feed.
+std::string z_levels(const std::vector<Event>& events) {
+  std::string out;
+  char buffer[32];
+  for (const auto& e : events) {
+    if (const auto* t = std::get_if<StraightTraverse>(&e)) {
+      std::snprintf(buffer, sizeof buffer, "r%.3f ", t->end.z());
+    } else if (const auto* f = std::get_if<StraightFeed>(&e)) {
+      std::snprintf(buffer, sizeof buffer, "f%.3f ", f->end.z());
+    } else if (const auto* on = std::get_if<SpindleOn>(&e)) {
+      std::snprintf(buffer, sizeof buffer, "%s ",
+                    on->direction == SpindleDirection::clockwise ? "M3" : "M4");
+    } else if (std::holds_alternative<SpindleOff>(e)) {
+      std::snprintf(buffer, sizeof buffer, "M5 ");
+    } else if (const auto* d = std::get_if<Dwell>(&e)) {
+      std::snprintf(buffer, sizeof buffer, "d%.1f ", d->seconds);
+    } else {
+      continue;
+    }
+    out += buffer;
+  }
+  return out;
+}
+
+// SolidWorks' DEEP2: the first peck 3 mm below RAPTO, then 2 mm each, back
+// to RAPTO in rapid after each and down again to 0.254 mm above the last
+// bottom (G83 as rs274 makes it), RTRCTO at the end.
+TEST(ClReader, DeepCycleWithFirstAndLaterPecks) {
+  const auto events = read_events(
+      "RAPID\nGOTO/10,20,25\nCYCLE/INIT\n"
+      "CYCLE/DEEP2,FEDTO,7,1STPECK,3.,SUBPECK,2.,MMPM,100,RAPTO,3.,RTRCTO,25.\n"
+      "GOTO/10,20,0\nCYCLE/OFF\nFINI\n");
+  EXPECT_EQ(z_levels(events),
+            "r25.000 r25.000 r3.000 f0.000 r3.000 r0.254 f-2.000 r3.000 r-1.746 f-4.000 r3.000 "
+            "r-3.746 f-6.000 r3.000 r-5.746 f-7.000 r25.000 ");
+  for (const auto& f : only<StraightFeed>(events)) {
+    EXPECT_EQ(f.end.x(), 10);
+    EXPECT_EQ(f.end.y(), 20);
+  }
+  EXPECT_DOUBLE_EQ(only<SetFeedRate>(events).at(0).rate, 100);
+}
+
+// NX's DRILL,BRKCHP with STEP: short back-off of 0.254 mm between pecks;
+// without RTRCTO the tool returns to RAPTO.
+TEST(ClReader, ChipBreakCycleBacksOffBetweenPecks) {
+  const auto events = read_events(
+      "GOTO/0,0,10\nCYCLE/DRILL,BRKCHP,FEDTO,5,STEP,2,RAPTO,2,MMPM,80\nGOTO/0,0,0\n"
+      "CYCLE/OFF\nFINI\n");
+  EXPECT_EQ(z_levels(events),
+            "f10.000 r2.000 f0.000 r0.254 f-2.000 r-1.746 f-4.000 r-3.746 f-5.000 r2.000 ");
+}
+
+// CAMWorks' positional form, CYCLE/ON before it, the retract repeated
+// without a comma: pecks of 5 then 2 mm below RAPTO.
+TEST(ClReader, CamworksPeckingCycle) {
+  const auto events = read_events(
+      "RAPID/\nGOTO/ -30.000000,-15.000000,25.000000\nCYCLE/ ON\n"
+      "CYCLE/ DRILL,G98,6.001610,PECKING,5.000000,2.000000,MMPM,1101.555340,3.000000,"
+      "25.000000 25.000000 DWELL,0.000000\nGOTO/ -30.000000,-15.000000,-0.000000\nCYCLE/ OFF\n"
+      "FINI\n");
+  EXPECT_EQ(z_levels(events),
+            "r25.000 r25.000 r3.000 f-2.000 r3.000 r-1.746 f-4.000 r3.000 r-3.746 f-6.000 r3.000 "
+            "r-5.746 f-6.002 "
+            "r25.000 ");
+  EXPECT_EQ(code_of("CYCLE/ DRILL,G98,6,MMPM,100,3,25,20\nFINI\n"), ClCode::unsupported_cycle);
+}
+
+// Tapping reverses the spindle at the bottom and restores it at the top;
+// BORE6 stops it and leaves in rapid; BORE9 dwells and feeds out.
+TEST(ClReader, TapAndBoreCyclesDriveTheSpindle) {
+  EXPECT_EQ(z_levels(read_events("SPINDL/500,RPM,CLW\nGOTO/0,0,3\n"
+                                 "CYCLE/TAP,FEDTO,10,MMPR,1.5,RAPTO,3\nGOTO/0,0,0\nFINI\n")),
+            "M3 f3.000 r3.000 f-10.000 M4 f3.000 M3 ");
+  const auto tap = read_events("CYCLE/TAP,FEDTO,10,MMPR,1.5,RAPTO,3\nGOTO/0,0,0\nFINI\n");
+  ASSERT_EQ(only<SetFeedRate>(tap).size(), 1u);
+  EXPECT_EQ(only<SetFeedRate>(tap)[0].mode, FeedMode::per_revolution);
+  EXPECT_DOUBLE_EQ(only<SetFeedRate>(tap)[0].rate, 1.5);
+  EXPECT_EQ(z_levels(read_events("SPINDL/500,RPM,CCLW\nGOTO/0,0,20\n"
+                                 "CYCLE/BORE6,FEDTO,4,MMPM,50,RAPTO,1,RTRCTO,20,DWELL,0.5\n"
+                                 "GOTO/0,0,0\nFINI\n")),
+            "M4 f20.000 r20.000 r1.000 f-4.000 d0.5 M5 r20.000 M4 ");
+  EXPECT_EQ(z_levels(read_events("GOTO/0,0,20\nCYCLE/BORE9,FEDTO,4,MMPM,50,RAPTO,1,DWELL,2\n"
+                                 "GOTO/0,0,0\nFINI\n")),
+            "f20.000 r1.000 f-4.000 d2.0 f1.000 ");
+  // A hole below the tool's position: up first, then across.
+  const auto across = only<StraightTraverse>(read_events(
+      "GOTO/5,5,-1\nCYCLE/DRILL,FEDTO,2,MMPM,50,RAPTO,1,RTRCTO,10\nGOTO/0,0,0\nFINI\n"));
+  ASSERT_GE(across.size(), 2u);
+  EXPECT_EQ(across[0].end, Eigen::Vector3d(5, 5, 10));
+  EXPECT_EQ(across[1].end, Eigen::Vector3d(0, 0, 10));
+}
+
+// NX's helical ramp: CIRCLE/...,TIMES,2 turns twice around before the arc
+// of 90 deg itself; z falls linearly over 4.5 pi: 5 - 5 * 4/9 after the
+// first turn, 5 - 5 * 8/9 after the second.
+TEST(ClReader, NxCircleTimesAddsFullTurns) {
+  const auto arcs = only<ArcFeed>(read_events(
+      "GOTO/10,0,5\nCIRCLE/0,0,0,0,0,-1,10,0.06,0.5,40,1,TIMES,2\nGOTO/0,10,0\nFINI\n"));
+  ASSERT_EQ(arcs.size(), 3u);
+  for (const auto& a : arcs) {
+    EXPECT_EQ(a.plane, Plane::xy);
+    EXPECT_EQ(a.rotation, 1);
+    EXPECT_NEAR(a.centre.x(), 0, 1e-12);
+    EXPECT_NEAR(a.centre.y(), 0, 1e-12);
+  }
+  EXPECT_TRUE(arcs[0].end.isApprox(Eigen::Vector3d(10, 0, 5 - 5 * 4.0 / 9)));
+  EXPECT_TRUE(arcs[1].end.isApprox(Eigen::Vector3d(10, 0, 5 - 5 * 8.0 / 9)));
+  EXPECT_TRUE(arcs[2].end.isApprox(Eigen::Vector3d(0, 10, 0)));
+  // CAMWorks names the direction; CLOCKWISE turns the other way about i,j,k.
+  const auto cw = only<ArcFeed>(read_events(
+      "GOTO/10,0,0\nCIRCLE/ 0,0,0,0,0,1,10,CLOCKWISE\nGOTO/0,10,0\nCIRCLE/ 0,0,0,0,0,1,10,"
+      "COUNTERCLOCKWISE\nGOTO/-10,0,0\nCUTTER/ 10.000000,0.000000,5.000000,0,0,0,130.000000,\n"
+      "FINI\n"));
+  ASSERT_EQ(cw.size(), 2u);
+  EXPECT_EQ(cw[0].rotation, -1);
+  EXPECT_EQ(cw[1].rotation, 1);
 }
 
 TEST(ClReader, NurbsBecomesLinesWithinTheTolerance) {
@@ -283,15 +405,51 @@ TEST(ClReader, MessagesToolsCoolantCompensationDelay) {
   EXPECT_EQ(only<ProgramEnd>(events).size(), 1u);
 }
 
-TEST(ClReader, UnknownRecordsWarnOnceAndMissingFiniIsReported) {
-  std::istringstream in("CSI_SET_FLUTE_LENGTH/54.\nCSI_SET_FLUTE_LENGTH/16.\nGOTO/1,2,3\n");
+TEST(ClReader, VendorRecordsAreKnownAndMissingFiniIsReported) {
+  std::istringstream in(
+      "CSI_SET_FLUTE_LENGTH/54.\nCSI_SET_EXTENSION_LENGTH/16.\nBOX/ 0,1.5,0,90,3,55\n"
+      "TRNTYP/WORLD,0,0,0\nCSYS/1.,0,0,0,0,1.,0,0,0,0,1.,0\nGOTO/1,2,3\n");
   ClReader reader(in, "t.cl");
   std::size_t ends = 0;
   while (auto e = reader.next()) ends += std::holds_alternative<ProgramEnd>(*e) ? 1 : 0;
   EXPECT_EQ(ends, 1u);
-  ASSERT_EQ(reader.warnings().size(), 2u);
-  EXPECT_EQ(reader.warnings()[0].code, ClCode::unknown_record);
-  EXPECT_EQ(reader.warnings()[1].code, ClCode::missing_fini);
+  ASSERT_EQ(reader.warnings().size(), 1u);
+  EXPECT_EQ(reader.warnings()[0].code, ClCode::missing_fini);
+}
+
+// Every record is translated or refused: an unknown word is an error (its
+// text in the message), and so is a frame that would move the points.
+TEST(ClReader, UnknownRecordsAndFramesThatMoveThePointsAreRefused) {
+  try {
+    read_events("GOTO/1,2,3\nSPINDLE_WARMUP/5,MIN\nFINI\n");
+    FAIL() << "no error";
+  } catch (const ClError& e) {
+    EXPECT_EQ(e.code(), ClCode::unknown_word);
+    EXPECT_EQ(e.diagnostic().line, 2u);
+    EXPECT_NE(std::string(e.what()).find("SPINDLE_WARMUP/5,MIN"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(code_of("TRNTYP/WORLD,0,0,5\nFINI\n"), ClCode::frame_not_identity);
+  EXPECT_EQ(code_of("TRNTYP/LOCAL\nFINI\n"), ClCode::frame_not_identity);
+  EXPECT_EQ(code_of("CSYS/1,0,0,10,0,1,0,0,0,0,1,0\nFINI\n"), ClCode::frame_not_identity);
+  EXPECT_EQ(code_of("ORIGIN/0,0,-5\nFINI\n"), ClCode::frame_not_identity);
+  EXPECT_EQ(code_of("ROTABL/ 1.570796,AAXIS,TABLE,CCLW\nFINI\n"), ClCode::tool_axis_not_z);
+  EXPECT_EQ(code_of("GOHOME\nFINI\n"), ClCode::unsupported_record);
+  EXPECT_EQ(code_of("CUTCOM/LEFT,YZPLAN\nFINI\n"), ClCode::unexpected_word);
+  EXPECT_EQ(code_of("LOAD/TOOL,3,ADJUST,4\nFINI\n"), ClCode::unexpected_word);
+  // Accepted: identity frames, ROTABL by zero, NX MSYS anywhere, CAMWorks' CUTCOM/ON.
+  const auto events = read_events(
+      "ORIGIN/0,0,0\nROTABL/ -0.000000,BAXIS,TABLE,CCLW\n"
+      "MSYS/10,0,0,1,0,0,0,1,0\nCUTCOM/ ON\nCUTCOM/ LEFT\nCUTCOM/RIGHT,XYPLAN,12\n"
+      "LOAD/TOOL,3,ADJUST,3\nOPFEATSTART/Drill1-Hole1\nOPSKIP/ON\nFINI\n");
+  const auto comp = only<CutterCompensation>(events);
+  ASSERT_EQ(comp.size(), 2u);
+  EXPECT_EQ(comp[0].side, CompensationSide::left);
+  EXPECT_EQ(comp[1].side, CompensationSide::right);
+  ASSERT_EQ(only<ChangeTool>(events).size(), 1u);
+  const auto notes = only<Message>(events);
+  ASSERT_EQ(notes.size(), 2u);
+  EXPECT_EQ(notes[0].text, "OPFEATSTART/Drill1-Hole1");
+  EXPECT_EQ(notes[1].text, "OPSKIP/ON");
 }
 
 TEST(ClReader, CodeTableIsInOrderAndUnique) {

@@ -65,13 +65,12 @@ std::vector<T> only(const std::vector<Event>& events) {
 
 TEST(ClRealFiles, EveryFileIsReadOrRefusedWithItsDocumentedCode) {
   SKIP_WITHOUT_DATA();
-  // Documented refusals: multi-axis tool axes (E3108) and peck drilling
-  // (E3112), at the first record that needs them.
+  // Documented refusals: multi-axis tool axes (E3108), a set-up frame that
+  // would move the points (E3119), at the first record that needs them.
   const std::map<std::string, std::tuple<ClCode, unsigned, unsigned>> refused = {
       {"ust_a.cls", {ClCode::tool_axis_not_z, 11, 32}},
       {"ust_a2.cls", {ClCode::tool_axis_not_z, 11, 32}},
-      {"boss.apt", {ClCode::tool_axis_not_z, 5553, 26}},
-      {"deep_drill.clsf", {ClCode::unsupported_cycle, 7, 13}},
+      {"boss.apt", {ClCode::frame_not_identity, 5551, 6}},  // a second set-up along +X
   };
   int files = 0;
   for (const auto& entry : fs::directory_iterator(data_dir)) {

@@ -1,3 +1,3 @@
-$$ expect: 2:7: error[E3112]: CYCLE/TAP is not expanded (only CYCLE/DRILL with FEDTO, RAPTO, RTRCTO, feed and DWELL is); post this operation with another post-processor
-CYCLE/TAP,FEDTO,10,MMPR,1.5,RAPTO,3
+$$ expect: 2:12: error[E3112]: CYCLE/BORE,BACK (back boring, G87) is not posted: it needs the spindle oriented and the tool shifted, which the CL data do not give
+CYCLE/BORE,BACK,FEDTO,10,MMPM,100,RAPTO,3
 FINI

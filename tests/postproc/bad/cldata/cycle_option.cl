@@ -1,5 +1,5 @@
-$$ expect: 2:13: error[E3112]: CYCLE/DRILL,DEEP is not expanded (peck, chip-break and other variants differ between CAM systems); post this operation with another post-processor
-CYCLE/DRILL,DEEP,RAPTO,3.0000,FEDTO,0.0000,MMPM,250.0000
+$$ expect: 2:13: error[E3112]: CYCLE/DRILL,THRU is not understood (FEDTO, RAPTO, RTRCTO, DWELL, STEP, 1STPECK, SUBPECK and MMPM/IPM/MMPR/IPR are)
+CYCLE/DRILL,THRU,RAPTO,3.0000,FEDTO,0.0000,MMPM,250.0000
 GOTO/66,0,240
 CYCLE/OFF
 FINI

@@ -32,7 +32,7 @@ std::string format(const std::string& code, const std::string& file, std::uint32
 
 ProfileError::ProfileError(std::string code, std::string file, std::uint32_t line,
                            std::uint32_t column, const std::string& message)
-    : std::runtime_error(format(code, file, line, column, message)),
+    : vcpost::Error(code, format(code, file, line, column, message), {file, line, column}),
       code_(std::move(code)),
       file_(std::move(file)),
       line_(line),

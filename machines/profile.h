@@ -21,6 +21,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/error.h"
+
 namespace vcpost::machines {
 
 // The G-code dialect the control reads (same names as `--dialect`).
@@ -88,7 +90,7 @@ class MachineProfile;
 // A profile that failed to load. what() is the whole one-line message:
 // "<file>:<line>:<col>: error[E5xxx]: '<table.key>' <reason>" (no
 // ":<line>:<col>" when no position applies, e.g. an unreadable file).
-class ProfileError : public std::runtime_error {
+class ProfileError : public vcpost::Error {
  public:
   ProfileError(std::string code, std::string file, std::uint32_t line, std::uint32_t column,
                const std::string& message);

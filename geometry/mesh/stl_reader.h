@@ -22,6 +22,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/error.h"
+
 namespace vcpost::mesh {
 
 // Stable codes; never renumber.
@@ -39,9 +41,10 @@ enum class StlCode : std::uint16_t {
 // "E4604"
 std::string code_id(StlCode code);
 
-class StlError : public std::runtime_error {
+class StlError : public vcpost::Error {
  public:
-  StlError(StlCode code, const std::string& message) : std::runtime_error(message), code_(code) {}
+  StlError(StlCode code, const std::string& message)
+      : vcpost::Error(code_id(code), message), code_(code) {}
   StlCode code() const { return code_; }
 
  private:

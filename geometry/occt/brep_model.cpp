@@ -931,11 +931,12 @@ std::string_view code_of(ModelErrorCode code) {
     case ModelErrorCode::bad_values:
       return "E4107";
   }
-  return "E4100";
+  return "E9999";  // unreachable: every enumerator is above
 }
 
 ModelError::ModelError(ModelErrorCode code, const std::string& path, const std::string& message)
-    : std::runtime_error(path + ": error[" + std::string(code_of(code)) + "]: " + message),
+    : vcpost::Error(code_of(code), path + ": error[" + std::string(code_of(code)) + "]: " + message,
+                    {path, 0, 0}),
       code_(code) {}
 
 BrepModel model_from_shape(const TopoDS_Shape& shape, const BrepOptions& options,

@@ -29,6 +29,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/error.h"
 #include "geometry/model.h"
 
 namespace vcpost::occt {
@@ -47,7 +48,7 @@ enum class ModelErrorCode {
 std::string_view code_of(ModelErrorCode code);  // "E4101" ...
 
 // Thrown by the loaders; what() is "<path>: error[E41xx]: <message>".
-class ModelError : public std::runtime_error {
+class ModelError : public vcpost::Error {
  public:
   ModelError(ModelErrorCode code, const std::string& path, const std::string& message);
   ModelErrorCode code() const { return code_; }

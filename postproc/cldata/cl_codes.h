@@ -1,5 +1,6 @@
-// Diagnostics of the APT CL reader: one table of stable codes (E31xx errors,
-// W31xx warnings), the error type it throws and the warnings it collects.
+// Diagnostics of the APT CL reader: its typed codes (E31xx errors, W31xx
+// warnings; summaries and severities in the one code table,
+// core/error_codes.csv), the error type it throws and the warnings it collects.
 // Format of a diagnostic: "file:line:col: error[E3103]: message".
 #pragma once
 
@@ -9,9 +10,11 @@
 #include <string>
 #include <string_view>
 
+#include "core/error.h"
+
 namespace vcpost::cldata {
 
-enum class Severity { error, warning };
+using vcpost::Severity;
 
 // Codes are stable: never renumber, only append.
 enum class ClCode {
@@ -65,10 +68,12 @@ std::string format(const ClDiagnostic& diagnostic, std::string_view file_name);
 
 // Thrown for input the reader cannot convert soundly; what() is the formatted
 // diagnostic with the file name.
-class ClError : public std::runtime_error {
+class ClError : public vcpost::Error {
  public:
   ClError(ClDiagnostic diagnostic, std::string_view file_name)
-      : std::runtime_error(format(diagnostic, file_name)), diagnostic_(std::move(diagnostic)) {}
+      : vcpost::Error(cldata::info(diagnostic.code).id, format(diagnostic, file_name),
+                      {std::string(file_name), diagnostic.line, diagnostic.column}),
+        diagnostic_(std::move(diagnostic)) {}
   const ClDiagnostic& diagnostic() const { return diagnostic_; }
   ClCode code() const { return diagnostic_.code; }
 

@@ -31,7 +31,7 @@ AtomicFile::AtomicFile(std::filesystem::path target) : target_(std::move(target)
   const int fd = registration_.create(pattern);
   if (fd < 0) {
     const int error = errno;
-    throw CommandError("cannot write '" + target_.string() + "': cannot create a file in '" +
+    throw CommandError("E2003", "cannot write '" + target_.string() + "': cannot create a file in '" +
                        (target_.has_parent_path() ? target_.parent_path().string() : ".") +
                        "': " + std::strerror(error));
   }
@@ -61,16 +61,16 @@ void AtomicFile::fail(int error) {
   ::unlink(temporary_.c_str());
   temporary_.clear();
   registration_.release();
-  throw CommandError("cannot write '" + target_.string() + "': " + reason(error));
+  throw CommandError("E2003", "cannot write '" + target_.string() + "': " + reason(error));
 }
 
 void AtomicFile::write(std::string_view bytes) {
-  if (!file_) throw CommandError("cannot write '" + target_.string() + "': already closed");
+  if (!file_) throw CommandError("E2003", "cannot write '" + target_.string() + "': already closed");
   if (std::fwrite(bytes.data(), 1, bytes.size(), file_) != bytes.size()) fail(errno);
 }
 
 void AtomicFile::commit() {
-  if (!file_) throw CommandError("cannot write '" + target_.string() + "': already closed");
+  if (!file_) throw CommandError("E2003", "cannot write '" + target_.string() + "': already closed");
   int error = 0;
   errno = 0;
   if (std::fflush(file_) != 0 || std::ferror(file_) || ::fsync(::fileno(file_)) != 0) {
@@ -85,7 +85,7 @@ void AtomicFile::commit() {
     ::unlink(temporary_.c_str());
     temporary_.clear();
     registration_.release();
-    throw CommandError("cannot create '" + target_.string() + "': " + std::strerror(rename_error));
+    throw CommandError("E2003", "cannot create '" + target_.string() + "': " + std::strerror(rename_error));
   }
   temporary_.clear();
   registration_.committed();

@@ -1,12 +1,16 @@
 // The subcommands of `vcpost`. Each add_* function registers one subcommand
-// on the app; its callback does the work and reports failure by throwing
-// CommandError (or CLI11's own errors for bad arguments).
+// on the app; its callback does the work and reports failure by throwing a
+// vcpost::Error (CommandError for the command's own checks; the libraries'
+// errors pass through with their codes) or CLI11's own errors for bad
+// arguments. main() turns an Error into one line on stderr and the exit
+// status of its code's row in the code table.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <stdexcept>
 #include <string>
 
+#include "core/error.h"
 #include "machines/profile.h"
 
 namespace vcpost::cli {
@@ -15,17 +19,18 @@ namespace vcpost::cli {
 // 2 usage or input error, 3 internal error.
 enum ExitCode : int { exit_ok = 0, exit_warnings = 1, exit_input_error = 2, exit_internal = 3 };
 
-// A failure to report as one line on stderr with the given exit code;
-// the message already names the argument or file:line:col at fault.
-class CommandError : public std::runtime_error {
+// A failure of the command itself (bad usage, an unreadable or unwritable
+// file); the message already names the argument or file:line:col at fault.
+// Without a code it is E2001 (bad command line, exit 2).
+class CommandError : public vcpost::Error {
  public:
-  CommandError(const std::string& message, int exit_code = exit_input_error)
-      : std::runtime_error(message), exit_code_(exit_code) {}
-  int exit_code() const { return exit_code_; }
-
- private:
-  int exit_code_;
+  explicit CommandError(const std::string& message) : vcpost::Error("E2001", message) {}
+  CommandError(std::string_view code, const std::string& message) : vcpost::Error(code, message) {}
 };
+
+// The exit status of an exception that escapes a command: the code table's
+// for a vcpost::Error, exit_internal for anything else.
+int exit_code_of(const std::exception& error);
 
 void add_deff_command(CLI::App& app);
 void add_moves_command(CLI::App& app);
@@ -33,6 +38,7 @@ void add_machines_command(CLI::App& app);
 void add_post_command(CLI::App& app);
 void add_report_command(CLI::App& app);
 void add_verify_command(CLI::App& app);
+void add_explain_command(CLI::App& app);
 
 // The profile of `--machine NAME|FILE`: a shipped profile's name, or a
 // TOML file. Throws CommandError (exit 2) naming file:line:col and the key.

@@ -44,7 +44,7 @@ std::vector<std::string> split_csv_line(const std::string& line) {
     if (i < line.size() && line[i] == '"') {
       ++i;
       for (;;) {
-        if (i >= line.size()) throw InputError("unterminated quoted cell");
+        if (i >= line.size()) throw InputError("unterminated quoted cell", "E2006");
         if (line[i] == '"') {
           if (i + 1 < line.size() && line[i + 1] == '"') {
             cell += '"';
@@ -58,7 +58,7 @@ std::vector<std::string> split_csv_line(const std::string& line) {
       }
       while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
       if (i < line.size() && line[i] != ',') {
-        throw InputError("text after a closing quote in cell " + std::to_string(cells.size() + 1));
+        throw InputError("text after a closing quote in cell " + std::to_string(cells.size() + 1), "E2006");
       }
     } else {
       const std::size_t comma = line.find(',', i);
@@ -76,7 +76,7 @@ BatchReader::BatchReader(std::istream& in, std::string source)
   if (!read_line(header_)) {
     throw InputError(source_ +
                      ": empty input, expected a header row with the columns "
-                     "d,ap,ae,nx,ny,nz,fx,fy,fz,side");
+                     "d,ap,ae,nx,ny,nz,fx,fy,fz,side", "E2006");
   }
   // A byte-order mark is what spreadsheet programs put before the header.
   if (header_.rfind("\xEF\xBB\xBF", 0) == 0) header_.erase(0, 3);
@@ -84,21 +84,21 @@ BatchReader::BatchReader(std::istream& in, std::string source)
   try {
     names = split_csv_line(header_);
   } catch (const InputError& e) {
-    throw InputError(where() + e.what());
+    throw InputError(where() + e.what(), "E2006");
   }
   cell_count_ = names.size();
   for (std::size_t i = 0; i < names.size(); ++i) {
     if (names[i].empty()) {
-      throw InputError(where() + "header cell " + std::to_string(i + 1) + " is empty");
+      throw InputError(where() + "header cell " + std::to_string(i + 1) + " is empty", "E2006");
     }
     if (!columns_.emplace(names[i], i).second) {
-      throw InputError(where() + "column '" + names[i] + "' appears twice");
+      throw InputError(where() + "column '" + names[i] + "' appears twice", "E2006");
     }
   }
   for (const char* name : kRequired) {
     if (!columns_.contains(name)) {
       throw InputError(where() + "missing column '" + name +
-                       "' (the header needs d,ap,ae,nx,ny,nz,fx,fy,fz,side in any order)");
+                       "' (the header needs d,ap,ae,nx,ny,nz,fx,fy,fz,side in any order)", "E2006");
     }
   }
 }
@@ -118,7 +118,7 @@ double BatchReader::number(const std::vector<std::string>& cells, const std::str
   try {
     return parse_number(cells[columns_.at(column)]);
   } catch (const InputError& e) {
-    throw InputError(where() + "column '" + column + "': " + e.what());
+    throw InputError(where() + "column '" + column + "': " + e.what(), "E2006");
   }
 }
 
@@ -129,11 +129,11 @@ bool BatchReader::next(BatchRow& row) {
   try {
     cells = split_csv_line(text);
   } catch (const InputError& e) {
-    throw InputError(where() + e.what());
+    throw InputError(where() + e.what(), "E2006");
   }
   if (cells.size() != cell_count_) {
     throw InputError(where() + "expected " + std::to_string(cell_count_) +
-                     " cells as in the header, found " + std::to_string(cells.size()));
+                     " cells as in the header, found " + std::to_string(cells.size()), "E2006");
   }
 
   const double diameter = number(cells, "d");
@@ -145,12 +145,12 @@ bool BatchReader::next(BatchRow& row) {
   try {
     setup.side = parse_side(cells[columns_.at("side")]);
   } catch (const InputError& e) {
-    throw InputError(where() + "column 'side': " + e.what());
+    throw InputError(where() + "column 'side': " + e.what(), "E2006");
   }
 
   if (!(diameter > 0)) {
     throw InputError(where() + "column 'd': the tool diameter must be > 0 mm, got '" +
-                     cells[columns_.at("d")] + "'");
+                     cells[columns_.at("d")] + "'", "E2006");
   }
   const auto tool_column = columns_.find("tool");
   const std::string kind = tool_column == columns_.end() ? "" : cells[tool_column->second];
@@ -162,28 +162,28 @@ bool BatchReader::next(BatchRow& row) {
       throw InputError(where() +
                        "column 'rc': only a bull tool takes a corner radius, this row's "
                        "tool is " +
-                       (kind.empty() ? std::string("ball") : kind));
+                       (kind.empty() ? std::string("ball") : kind), "E2006");
     }
     tool = kind == "flat" ? geometry::Tool::flat(diameter) : geometry::Tool::ball(diameter);
   } else if (kind == "bull") {
     if (!has_rc) {
-      throw InputError(where() + "column 'rc': a bull tool needs its corner radius");
+      throw InputError(where() + "column 'rc': a bull tool needs its corner radius", "E2006");
     }
     const double corner = number(cells, "rc");
     if (!(corner > 0 && corner < diameter / 2)) {
       throw InputError(where() + "column 'rc': the corner radius must lie in (0, d/2), got '" +
-                       cells[rc_column->second] + "'");
+                       cells[rc_column->second] + "'", "E2006");
     }
     tool = geometry::Tool::bull_nose(diameter, corner);
   } else {
     throw InputError(where() + "column 'tool': unknown tool '" + kind +
-                     "' (expected ball, bull or flat)");
+                     "' (expected ball, bull or flat)", "E2006");
   }
 
   try {
     row.setup = checked_setup(tool, setup);
   } catch (const SetupError& e) {
-    throw InputError(where() + column_label(e.field()) + ": " + e.what());
+    throw InputError(where() + column_label(e.field()) + ": " + e.what(), "E2006");
   }
   row.tool = tool;
   row.line = line_;

@@ -52,7 +52,7 @@ std::string format_value(double value) {
 }
 
 CommandError usage(const std::string& option, const std::string& message) {
-  return CommandError(option + ": " + message, exit_input_error);
+  return CommandError(option + ": " + message);
 }
 
 double number_option(const std::string& option, const std::string& text) {
@@ -187,7 +187,7 @@ void run_batch(const Arguments& args) {
     stream_batch(file, args.batch, args.radius);
   } catch (const InputError& e) {
     std::cout.flush();
-    throw CommandError(e.what(), exit_input_error);
+    throw CommandError(e.code(), e.what());
   }
 }
 

@@ -10,15 +10,18 @@
 #include <string_view>
 #include <vector>
 
+#include "core/error.h"
 #include "geometry/engagement.h"
 #include "geometry/tool.h"
 
 namespace vcpost::cli::deff {
 
 // A value that cannot be used; what() says why, without naming the source.
-class InputError : public std::runtime_error {
+// E2001 (a bad option) unless the reader of a batch file gives E2006.
+class InputError : public vcpost::Error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit InputError(const std::string& message, std::string_view code = "E2001")
+      : vcpost::Error(code, message) {}
 };
 
 // The part of a set-up a SetupError is about, so the caller can name the

@@ -29,7 +29,7 @@ HeldOutput::~HeldOutput() {
 void HeldOutput::fail(const std::string& what, int error) const {
   std::string reason = std::strerror(error);
   if (error == ENOSPC || error == EFBIG || error == EDQUOT) reason += " (free some space there)";
-  throw CommandError("cannot hold the program for standard output: " + what + " in '" +
+  throw CommandError("E2003", "cannot hold the program for standard output: " + what + " in '" +
                      folder_.string() + "': " + reason + " (or write it to a file with -o FILE)");
 }
 

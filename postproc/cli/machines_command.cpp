@@ -14,22 +14,19 @@
 
 namespace vcpost::cli {
 
+// A machines::ProfileError leaves with its own code.
 machines::MachineProfile load_machine(const std::string& name_or_file) {
-  try {
-    if (machines::is_builtin_profile(name_or_file)) return machines::builtin_profile(name_or_file);
-    const std::filesystem::path path(name_or_file);
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) {
-      if (path.extension() != ".toml" && path.parent_path().empty())
-        return machines::builtin_profile(name_or_file);  // throws with the list of names
-      throw CommandError("machine profile " + name_or_file + ": no such file");
-    }
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw CommandError("machine profile " + name_or_file + ": cannot open");
-    return machines::profile_from_stream(in, name_or_file);
-  } catch (const machines::ProfileError& e) {
-    throw CommandError(e.what());
+  if (machines::is_builtin_profile(name_or_file)) return machines::builtin_profile(name_or_file);
+  const std::filesystem::path path(name_or_file);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    if (path.extension() != ".toml" && path.parent_path().empty())
+      return machines::builtin_profile(name_or_file);  // throws with the list of names
+    throw CommandError("E5010", "machine profile " + name_or_file + ": no such file");
   }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw CommandError("E5010", "machine profile " + name_or_file + ": cannot open");
+  return machines::profile_from_stream(in, name_or_file);
 }
 
 namespace {

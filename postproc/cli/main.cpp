@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   add_post_command(app);
   add_report_command(app);
   add_verify_command(app);
+  add_explain_command(app);
 
   try {
     app.parse(argc, argv);
@@ -32,12 +33,12 @@ int main(int argc, char** argv) {
     // CLI11 prints help and usage errors itself; usage errors exit 2.
     const int code = app.exit(e);
     return code == 0 ? exit_ok : exit_input_error;
-  } catch (const CommandError& e) {
-    std::cerr << "vcpost: error: " << e.what() << '\n';
-    return e.exit_code();
   } catch (const std::exception& e) {
-    std::cerr << "vcpost: internal error: " << e.what() << '\n';
-    return exit_internal;
+    // One line: a vcpost::Error is the user's to fix (or a known internal
+    // fault, E9xxx), anything else is an internal error.
+    const bool known = dynamic_cast<const vcpost::Error*>(&e) != nullptr;
+    std::cerr << (known ? "vcpost: error: " : "vcpost: internal error: ") << e.what() << '\n';
+    return exit_code_of(e);
   }
   return exit_ok;
 }

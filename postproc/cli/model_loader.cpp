@@ -34,24 +34,19 @@ LoadedModel load_model(const std::filesystem::path& path) {
   std::error_code error;
   const bool step = named_step(path);
   if (!step && !std::filesystem::is_regular_file(path, error)) {
-    throw CommandError("--model: '" + path.string() + "': no such file");
+    throw CommandError("E4101", "--model: '" + path.string() + "': no such file");
   }
-  try {
-    if (step || looks_like_step(path)) {
-      auto model = std::make_unique<occt::BrepModel>(occt::BrepModel::load_step(path));
-      const auto& info = model->info();
-      std::string description = std::to_string(info.faces) + " faces";
-      if (!info.length_unit.empty()) description += ", unit " + info.length_unit;
-      return {std::move(model), "STEP", description};
-    }
-    auto mesh = mesh::read_stl_file(path);
-    const std::string description = std::to_string(mesh.triangles.size()) + " triangles";
-    return {std::make_unique<mesh::MeshModel>(std::move(mesh)), "STL", description};
-  } catch (const occt::ModelError& e) {
-    throw CommandError(e.what());
-  } catch (const mesh::StlError& e) {
-    throw CommandError(e.what());
+  // An occt::ModelError or mesh::StlError leaves with its own code.
+  if (step || looks_like_step(path)) {
+    auto model = std::make_unique<occt::BrepModel>(occt::BrepModel::load_step(path));
+    const auto& info = model->info();
+    std::string description = std::to_string(info.faces) + " faces";
+    if (!info.length_unit.empty()) description += ", unit " + info.length_unit;
+    return {std::move(model), "STEP", description};
   }
+  auto mesh = mesh::read_stl_file(path);
+  const std::string description = std::to_string(mesh.triangles.size()) + " triangles";
+  return {std::make_unique<mesh::MeshModel>(std::move(mesh)), "STL", description};
 }
 
 }  // namespace vcpost::cli

@@ -34,18 +34,18 @@ class ProgramText {
       return;
     }
     const int fd = ::open(path.c_str(), O_RDONLY);
-    if (fd < 0) throw CommandError("moves: cannot open " + path);
+    if (fd < 0) throw CommandError("E2002", "moves: cannot open " + path);
     struct stat st {};
     if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
       ::close(fd);
-      throw CommandError("moves: " + path + " is not a regular file");
+      throw CommandError("E2002", "moves: " + path + " is not a regular file");
     }
     size_ = static_cast<std::size_t>(st.st_size);
     if (size_ > 0) {
       void* map = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
       if (map == MAP_FAILED) {
         ::close(fd);
-        throw CommandError("moves: cannot read " + path);
+        throw CommandError("E2002", "moves: cannot read " + path);
       }
       ::madvise(map, size_, MADV_SEQUENTIAL);
       map_ = map;
@@ -104,11 +104,12 @@ void print_cl_moves(std::string_view text, const std::string& name,
   } catch (const cldata::ClError& e) {
     std::fwrite(out.data(), 1, out.size(), stdout);
     std::fflush(stdout);
-    throw CommandError(e.what());
+    throw CommandError(e.vcpost::Error::code(), e.what());
   } catch (const program::TimingError& e) {
     std::fwrite(out.data(), 1, out.size(), stdout);
     std::fflush(stdout);
-    throw CommandError(name + ":" + std::to_string(e.source().line) + ": error: " + e.what());
+    throw CommandError(e.code(),
+                       name + ":" + std::to_string(e.source().line) + ": error: " + e.what());
   }
   std::fwrite(out.data(), 1, out.size(), stdout);
   if (options.count) {
@@ -189,13 +190,13 @@ void add_moves_command(CLI::App& app) {
       std::fwrite(out.data(), 1, out.size(), stdout);
       std::fflush(stdout);
       flush_warnings();
-      throw CommandError(name + ":" + std::to_string(e.source().line) + ":" +
+      throw CommandError(e.code(), name + ":" + std::to_string(e.source().line) + ":" +
                          std::to_string(e.source().column) + ": error: " + e.what());
     } catch (const gcode::GcodeError& e) {
       std::fwrite(out.data(), 1, out.size(), stdout);
       std::fflush(stdout);
       flush_warnings();
-      throw CommandError(gcode::format(e.diagnostic(), name));
+      throw CommandError(e.code(), gcode::format(e.diagnostic(), name));
     }
     std::fwrite(out.data(), 1, out.size(), stdout);
     if (options->count)

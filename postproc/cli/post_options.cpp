@@ -84,7 +84,7 @@ nlohmann::json summary_json(const PostArguments& args, const JobRun& run) {
 
 std::string read_text_file(const std::string& path, const std::string& option) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw CommandError(option + ": cannot read '" + path + "'");
+  if (!in) throw CommandError("E2002", option + ": cannot read '" + path + "'");
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
@@ -92,19 +92,15 @@ std::string read_text_file(const std::string& path, const std::string& option) {
 
 // The tools and speeds of --tool, --tools, --post-tools and --vc.
 tools::ToolChoices tool_choices(const PostArguments& args) {
-  tools::ToolChoices choices;
-  try {
-    for (const std::string& spec : args.tools) choices.table.add(tools::parse_tool_option(spec));
-    if (!args.tools_file.empty()) {
-      tools::ToolTable file;
-      tools::load_tools_file(read_text_file(args.tools_file, "--tools"), args.tools_file, file);
-      for (const tools::ToolEntry& e : file.numbered()) choices.table.add(e);
-    }
-    if (!args.post_tools.empty()) choices.post_tools = tools::parse_tool_list(args.post_tools);
-    for (const std::string& vc : args.vc) tools::add_vc_option(vc, choices);
-  } catch (const tools::ToolTableError& e) {
-    throw CommandError(e.what());
+  tools::ToolChoices choices;  // a ToolTableError leaves with its own code
+  for (const std::string& spec : args.tools) choices.table.add(tools::parse_tool_option(spec));
+  if (!args.tools_file.empty()) {
+    tools::ToolTable file;
+    tools::load_tools_file(read_text_file(args.tools_file, "--tools"), args.tools_file, file);
+    for (const tools::ToolEntry& e : file.numbered()) choices.table.add(e);
   }
+  if (!args.post_tools.empty()) choices.post_tools = tools::parse_tool_list(args.post_tools);
+  for (const std::string& vc : args.vc) tools::add_vc_option(vc, choices);
   if (!choices.vc && choices.vc_by_tool.empty()) throw CommandError("--vc: required");
   return choices;
 }
@@ -169,7 +165,7 @@ std::string read_chart_library() {
   const std::string path(report::chart_library_path());
   std::ifstream in(path, std::ios::binary);
   if (!in) {
-    throw CommandError("HTML report: the charting library '" + path + "' is missing; install " +
+    throw CommandError("E2004", "HTML report: the charting library '" + path + "' is missing; install " +
                        std::string(report::kChartLibraryPackage) + " (scripts/setup.sh)");
   }
   std::ostringstream text;
@@ -385,19 +381,13 @@ JobRun run_job(const PostArguments& args, bool write_program) {
     summary =
         post::post_program(text, name, *model.model, profile, settings, sink, progress, points,
                            [&program](std::uint64_t offset) { program.release_before(offset); });
-  } catch (const gcode::GcodeError& e) {
-    throw CommandError(e.what());
-  } catch (const cldata::ClError& e) {
-    throw CommandError(e.what());
   } catch (const program::TimingError& e) {
-    throw CommandError(name + ":" + std::to_string(e.source().line) + ": " + e.what());
+    throw CommandError(e.code(), name + ":" + std::to_string(e.source().line) + ": " + e.what());
   } catch (const output::OutputError& e) {
-    throw CommandError(name + ":" + std::to_string(e.source().line) + ": " + e.what());
+    throw CommandError(e.code(), name + ":" + std::to_string(e.source().line) + ": " + e.what());
   } catch (const plan::PlanError& e) {
-    throw CommandError(std::string("planning: ") + e.what(), exit_internal);
-  } catch (const post::PostError& e) {
-    throw CommandError(e.what());
-  }
+    throw CommandError(e.code(), std::string("planning: ") + e.what());
+  }  // a GcodeError, ClError or PostError leaves with its own code
   if (show_progress) std::cerr << "\r\x1b[K";
   if (!summary.sections.empty() &&
       std::none_of(summary.sections.begin(), summary.sections.end(),
@@ -408,6 +398,7 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   }
   if (summary.samples > 0 && summary.touching + summary.gouging == 0) {
     throw CommandError(
+        "E2005",
         "the toolpath never touches the model (" + std::to_string(summary.samples) +
         " points checked): check the work offset and units of the program against the model, "
         "and --cl-point (tip or center)");
@@ -431,7 +422,7 @@ JobRun run_job(const PostArguments& args, bool write_program) {
         try {
           bytes = report::render_html(data, chart_library);
         } catch (const std::invalid_argument& e) {
-          throw CommandError(std::string("HTML report: ") + e.what());
+          throw CommandError("E2004", std::string("HTML report: ") + e.what());
         }
       }
       if (r.path == "-") {
@@ -447,7 +438,7 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   errno = 0;
   if (pending.write_to(std::cout)) std::cout << to_stdout << std::flush;
   if (!std::cout) {
-    throw CommandError(std::string("cannot write to standard output: ") +
+    throw CommandError("E2003", std::string("cannot write to standard output: ") +
                        (errno != 0 ? std::strerror(errno) : "write error"));
   }
   JobRun run{summary, std::nullopt, std::nullopt, std::move(model), profile, run_time};
@@ -588,7 +579,7 @@ void finish_job(const PostArguments& args, const JobRun& run) {
                    "model): the program keeps its own speeds\n";
     }
   }
-  if (warnings && args.strict) throw CommandError("warnings with --strict", exit_warnings);
+  if (warnings && args.strict) throw CommandError("E2010", "warnings with --strict");
 }
 
 }  // namespace vcpost::cli

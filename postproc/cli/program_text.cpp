@@ -36,12 +36,12 @@ ProgramText::ProgramText(const std::string& path) {
   }
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) {
-    throw CommandError("'" + path + "': cannot open the program: " + std::strerror(errno));
+    throw CommandError("E2002", "'" + path + "': cannot open the program: " + std::strerror(errno));
   }
   struct stat info {};
   if (::fstat(fd, &info) != 0 || S_ISDIR(info.st_mode)) {
     ::close(fd);
-    throw CommandError(
+    throw CommandError("E2002", 
         "'" + path + "': cannot open the program: " +
         (S_ISDIR(info.st_mode) ? std::string("it is a folder") : std::strerror(errno)));
   }
@@ -49,7 +49,7 @@ ProgramText::ProgramText(const std::string& path) {
     // A pipe, a device, or an empty file: read it (mmap cannot map these).
     ::close(fd);
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw CommandError("'" + path + "': cannot open the program");
+    if (!in) throw CommandError("E2002", "'" + path + "': cannot open the program");
     copy_ = read_stream(in);
     view_ = copy_;
     return;
@@ -60,7 +60,7 @@ ProgramText::ProgramText(const std::string& path) {
   ::close(fd);
   if (map_ == MAP_FAILED) {
     map_ = nullptr;
-    throw CommandError("'" + path + "': cannot read the program: " + std::strerror(map_error));
+    throw CommandError("E2002", "'" + path + "': cannot read the program: " + std::strerror(map_error));
   }
   ::madvise(map_, map_size_, MADV_SEQUENTIAL);
   view_ = std::string_view(static_cast<const char*>(map_), map_size_);

@@ -19,7 +19,6 @@ namespace vcpost::cli {
 namespace {
 
 // Exit code when the proof fails (distinct from input errors, 2).
-constexpr int exit_differences = 1;
 // Violations printed on stderr before "... and K more".
 constexpr std::size_t kShown = 20;
 
@@ -67,10 +66,10 @@ std::string read_file(const std::string& path) {
   if (path == "-")
     return std::string(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw CommandError("verify: cannot open " + path);
+  if (!in) throw CommandError("E2002", "verify: cannot open " + path);
   std::ostringstream text;
   text << in.rdbuf();
-  if (in.bad()) throw CommandError("verify: cannot read " + path);
+  if (in.bad()) throw CommandError("E2002", "verify: cannot read " + path);
   return text.str();
 }
 
@@ -138,7 +137,7 @@ void run(const Arguments& args) {
                  ? verify::verify_cl(input, output, options, in_name)
                  : verify::verify_gcode(input, output, options, in_name);
   } catch (const verify::InputError& e) {
-    throw CommandError(e.what());
+    throw CommandError(e.code(), e.what());
   }
 
   if (args.json) std::cout << to_json(result).dump(2) << '\n';
@@ -149,10 +148,9 @@ void run(const Arguments& args) {
     const std::uint64_t shown = std::min<std::uint64_t>(result.violations.size(), kShown);
     if (result.violation_count > shown)
       std::cerr << "... and " << result.violation_count - shown << " more\n";
-    throw CommandError("verify: " + out_name + " differs from " + in_name + " in " +
-                           std::to_string(result.violation_count) +
-                           " place(s) other than S and F words",
-                       exit_differences);
+    throw CommandError("E7199", "verify: " + out_name + " differs from " + in_name + " in " +
+                                    std::to_string(result.violation_count) +
+                                    " place(s) other than S and F words");
   }
   if (!args.json)
     std::cout << "verified: only S and F words differ (" << result.s_changes << " S words, "

@@ -1,5 +1,7 @@
-// Diagnostics of G-code reading: one table of stable codes, messages that
-// name file:line:col, and the exception thrown for a fatal problem.
+// Diagnostics of G-code reading: the typed codes of the reader and
+// interpreter, messages that name file:line:col, and the exception thrown
+// for a fatal problem. Summaries, severities and hints live in the one code
+// table (core/error_codes.csv, docs/errors.md): a new code goes there too.
 //
 // Format: "<file>:<line>:<col>: error[E1203]: <message>" (warning[W....]).
 // Codes are stable: tests and users may match on them; never renumber.
@@ -10,9 +12,11 @@
 #include <string>
 #include <string_view>
 
+#include "core/error.h"
+
 namespace vcpost::gcode {
 
-enum class Severity { warning, error };
+using vcpost::Severity;
 
 enum class Code : std::uint16_t {
   // 1xxx: bytes and words (lexical)
@@ -37,9 +41,10 @@ enum class Code : std::uint16_t {
   unsupported_flow = 1301,  // GOTO, WHILE/DO in Fanuc macros, M98 to another file ...
   unknown_subroutine = 1302,
   unmatched_control = 1303,    // endsub/endif/... without its opening word
-  call_depth = 1304,           // subroutine nesting or loop count beyond the limit
+  call_depth = 1304,           // subroutine nesting beyond the limit
   missing_program_end = 1305,  // file ends without M2/M30/% (warning)
   external_macro = 1306,       // G65 to a macro not in the file: taken as not moving (warning)
+  loop_limit = 1307,           // a loop runs more than the iteration limit
   // 14xx: G/M codes and modal rules
   unknown_g_code = 1401,
   unknown_m_code = 1402,  // error in RS274NGC; warning in Fanuc/Mazak (machine M codes)
@@ -61,6 +66,7 @@ enum class Code : std::uint16_t {
   bad_word_value = 1511,        // negative S, T, non-integer where an integer is required
   frame_change = 1512,          // offsets (G92, G52, G10, G55 ...) changed after motion (warning)
   cycle_value = 1513,           // canned cycle without R/Z/Q/P, R below Z, Q <= 0
+  missing_word = 1514,          // G4 without its time, M98 without P
 };
 
 struct CodeInfo {
@@ -69,8 +75,9 @@ struct CodeInfo {
   std::string_view summary;
 };
 
-// The table entry of a code (all codes are in the table).
-const CodeInfo& info(Code code);
+// The code's entry (severity as usually reported, summary) from the one
+// code table; every enumerator is in it (tested).
+CodeInfo info(Code code);
 
 // "E1502" / "W1509" style identifier.
 std::string code_id(Code code, Severity severity);
@@ -88,7 +95,7 @@ std::string format(const Diagnostic& diagnostic, std::string_view file_name);
 
 // Thrown by the reader/interpreter for an error: the block is not executed
 // and the interpreter stops (what follows would depend on it).
-class GcodeError : public std::runtime_error {
+class GcodeError : public vcpost::Error {
  public:
   explicit GcodeError(Diagnostic diagnostic);
   const Diagnostic& diagnostic() const { return diagnostic_; }

@@ -303,7 +303,7 @@ bool Interpreter::handle_control(std::vector<Event>& events) {
       if (!top_is(ControlKind::while_))
         fail(Code::unmatched_control, c.column, "endwhile without its while");
       if (++loop_iterations_ > limits_.max_loop_iterations)
-        fail(Code::call_depth, c.column, "loop runs more than the iteration limit");
+        fail(Code::loop_limit, c.column, "loop runs more than the iteration limit");
       const Flow f = flow_.back();
       flow_.pop_back();
       jump(f.start_offset, f.start_line);
@@ -323,7 +323,7 @@ bool Interpreter::handle_control(std::vector<Event>& events) {
       if (!top_is(ControlKind::repeat))
         fail(Code::unmatched_control, c.column, "endrepeat without its repeat");
       if (++loop_iterations_ > limits_.max_loop_iterations)
-        fail(Code::call_depth, c.column, "loop runs more than the iteration limit");
+        fail(Code::loop_limit, c.column, "loop runs more than the iteration limit");
       Flow& f = flow_.back();
       if (--f.remaining > 0) {
         jump(f.start_offset, f.start_line);
@@ -708,14 +708,14 @@ void Interpreter::execute(std::vector<Event>& events) {
     double seconds = 0.0;
     if (dialect_.kind == DialectKind::rs274ngc) {
       const Word* p = W('P');
-      if (!p) fail(Code::missing_axis_word, nonmodal->column, "G4 needs P (seconds)");
+      if (!p) fail(Code::missing_word, nonmodal->column, "G4 needs P (seconds)");
       seconds = p->value;
     } else if (dwell_x) {
       seconds = dwell_x->value;
     } else if (const Word* p = W('P')) {
       seconds = p->decimal_point ? p->value : p->value / 1000.0;
     } else {
-      fail(Code::missing_axis_word, nonmodal->column, "G4 needs X (s) or P (ms)");
+      fail(Code::missing_word, nonmodal->column, "G4 needs X (s) or P (ms)");
     }
     if (seconds < 0) fail(Code::bad_word_value, nonmodal->column, "negative dwell");
     emit(program::Dwell{seconds, source(b, nonmodal->column)});
@@ -770,12 +770,12 @@ void Interpreter::execute(std::vector<Event>& events) {
   if (nonmodal_code == 100) {
     const Word* l = W('L');
     const Word* p = W('P');
-    if (!l) fail(Code::missing_axis_word, nonmodal->column, "G10 needs L (what it sets)");
+    if (!l) fail(Code::missing_word, nonmodal->column, "G10 needs L (what it sets)");
     const long lv = std::lround(l->value);
     const bool sets_origin = lv == 2 || (lv == 20 && !fanuc_like);
     if (sets_origin) {
       if (!p)
-        fail(Code::missing_axis_word, nonmodal->column, "G10 L2/L20 needs P (coordinate system)");
+        fail(Code::missing_word, nonmodal->column, "G10 L2/L20 needs P (coordinate system)");
       const long pv = std::lround(p->value);
       if (pv < 0 || pv > 9)
         fail(Code::bad_word_value, p->column, "G10 P must be 0 (the active system) to 9");
@@ -929,7 +929,7 @@ void Interpreter::execute(std::vector<Event>& events) {
     s.moved = true;
   } else if (macro_call) {
     const Word* p = W('P');
-    if (!p) fail(Code::missing_axis_word, nonmodal->column, "G65 needs P (program number)");
+    if (!p) fail(Code::missing_word, nonmodal->column, "G65 needs P (program number)");
     warn_once('G', 650, Code::external_macro, nonmodal->column,
               "G65 P" + std::to_string(std::lround(p->value)) +
                   " calls a macro program vcpost does not follow (a machine maker's macro): "
@@ -1164,7 +1164,7 @@ void Interpreter::execute(std::vector<Event>& events) {
   if (origins) origins_ = *origins;
   if (const Word* m = M(Group::subprogram)) {
     const Word* p = W('P');
-    if (!p) fail(Code::missing_axis_word, m->column, "M98 needs P (program number)");
+    if (!p) fail(Code::missing_word, m->column, "M98 needs P (program number)");
     const Word* l = W('L');
     long number = std::lround(p->value);
     long count = l ? std::lround(l->value) : 1;

@@ -68,9 +68,10 @@ Format format_for(const machines::MachineProfile& profile) {
 
 OutputError::OutputError(std::string_view code, const std::string& message,
                          program::SourceRef source)
-    : std::runtime_error(std::to_string(source.line) + ":" + std::to_string(source.column) +
-                         ": error[" + std::string(code) + "]: " + message),
-      code_(code),
+    : vcpost::Error(code,
+                    std::to_string(source.line) + ":" + std::to_string(source.column) +
+                        ": error[" + std::string(code) + "]: " + message,
+                    {"", source.line, source.column}),
       source_(source) {}
 
 GcodeWriter::GcodeWriter(std::ostream& out, Format format)

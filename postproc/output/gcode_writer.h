@@ -21,6 +21,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/error.h"
 #include "postproc/program/events.h"
 
 namespace vcpost::machines {
@@ -62,14 +63,12 @@ Format format_for(const machines::MachineProfile& profile);
 
 // Errors: E3201 arc of more than one turn, E3202 inverse-time feed,
 // E3203 number that cannot be written (not finite or too large).
-class OutputError : public std::runtime_error {
+class OutputError : public vcpost::Error {
  public:
   OutputError(std::string_view code, const std::string& message, program::SourceRef source);
-  std::string_view code() const { return code_; }
   const program::SourceRef& source() const { return source_; }
 
  private:
-  std::string code_;
   program::SourceRef source_;
 };
 

@@ -48,6 +48,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/error.h"
 #include "machines/profile.h"
 
 namespace vcpost::plan {
@@ -101,10 +102,11 @@ struct SpindlePlan {
 };
 
 // Thrown for a timeline that breaks the contract above (time or block going
-// backwards, a non-finite or non-positive target, negative program S).
-class PlanError : public std::invalid_argument {
+// backwards, a non-finite or non-positive target, negative program S): a
+// caller's bug, not the user's input (E9001, exit 3).
+class PlanError : public vcpost::Error {
  public:
-  using std::invalid_argument::invalid_argument;
+  explicit PlanError(const std::string& message) : vcpost::Error("E9001", message) {}
 };
 
 // Plans the spindle over the whole timeline. The spec must be valid (as a

@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/error.h"
 #include "geometry/model.h"
 #include "machines/profile.h"
 #include "postproc/gcode/dialect.h"
@@ -87,9 +88,9 @@ std::optional<ToolSection> first_postable_section(std::string_view text,
 // Thrown for input the job cannot post soundly (the message says where and
 // why); readers' own errors (GcodeError, ClError, TimingError, OutputError)
 // pass through unchanged.
-class PostError : public std::runtime_error {
+class PostError : public vcpost::Error {
  public:
-  using std::runtime_error::runtime_error;
+  using vcpost::Error::Error;
 };
 
 // Posts `text` (the whole program; `file_name` for messages). Writes the

@@ -53,7 +53,7 @@ ToolSection decide_section(std::uint32_t index, std::optional<int> number, std::
     message << "--ap " << ap_mm << " must be below the diameter of " << name << " ("
             << tool->describe() << ", from the " << tools::to_string(tool->origin)
             << (tool->where.empty() ? std::string() : " at " + tool->where) << ")";
-    throw PostError(message.str());
+    throw PostError("E2001", message.str());
   }
   s.postable = true;
   s.vc_nominal = *vc;

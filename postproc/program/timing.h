@@ -15,6 +15,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/error.h"
 #include "postproc/program/events.h"
 
 namespace vcpost::program {
@@ -42,12 +43,13 @@ struct EventTime {
   double end() const { return start + duration; }
 };
 
-// A feed move whose duration is undefined: no feed rate in effect, or a
-// per-revolution feed while the spindle stands still.
-class TimingError : public std::runtime_error {
+// A feed move whose duration is undefined: no feed rate in effect (E6101,
+// E6102), or a per-revolution feed while the spindle stands still (E6103).
+// what() is the message alone; the caller adds the file and line.
+class TimingError : public vcpost::Error {
  public:
-  TimingError(const std::string& message, SourceRef source)
-      : std::runtime_error(message), source_(source) {}
+  TimingError(std::string_view code, const std::string& message, SourceRef source)
+      : vcpost::Error(code, message, {"", source.line, source.column}), source_(source) {}
   SourceRef source() const { return source_; }
 
  private:

@@ -25,8 +25,8 @@ namespace {
 using namespace vcpost::samplegen;
 namespace fs = std::filesystem;
 
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+struct UsageError : vcpost::Error {
+  explicit UsageError(const std::string& message) : vcpost::Error("E2001", message) {}
 };
 
 // An output file written through a temporary name, renamed on commit().

@@ -17,13 +17,15 @@
 #include <string>
 #include <vector>
 
+#include "core/error.h"
+
 namespace vcpost::samplegen {
 
 // Thrown when a query leaves the patch or Newton's method does not converge
 // (the generator was asked for a window the surface cannot serve).
-class SurfaceError : public std::runtime_error {
+class SurfaceError : public vcpost::Error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit SurfaceError(const std::string& message) : vcpost::Error("E8001", message) {}
 };
 
 class SampleSurface {

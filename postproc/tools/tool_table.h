@@ -21,6 +21,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/error.h"
 #include "geometry/tool.h"
 
 namespace vcpost::tools {
@@ -57,14 +58,10 @@ struct ToolEntry {
 
 // A bad option value or tools-file entry. The message names the option or
 // file:line:col and carries a stable code (E16xx, see tools/README.md).
-class ToolTableError : public std::runtime_error {
+class ToolTableError : public vcpost::Error {
  public:
-  ToolTableError(std::string code, const std::string& message)
-      : std::runtime_error(message), code_(std::move(code)) {}
-  const std::string& code() const { return code_; }
-
- private:
-  std::string code_;
+  ToolTableError(std::string_view code, const std::string& message)
+      : vcpost::Error(code, message) {}
 };
 
 // The user's tools (command line and tools file); the program's own come in

@@ -73,7 +73,7 @@ class ClItems {
         }
       }
     } catch (const cldata::ClError& e) {
-      throw InputError(e.what());
+      throw InputError(e.vcpost::Error::code(), e.what());
     }
     return std::nullopt;
   }

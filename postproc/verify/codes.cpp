@@ -6,27 +6,19 @@
 namespace vcpost::verify {
 
 const std::vector<CodeInfo>& code_table() {
-  static const std::vector<CodeInfo> table = {
-      {Code::line_count, "lines added or removed"},
-      {Code::line_ending, "line terminator changed"},
-      {Code::word_changed, "a word other than S/F changed"},
-      {Code::token_added, "a token only in the output"},
-      {Code::token_removed, "a token missing from the output"},
-      {Code::whitespace_changed, "blanks changed"},
-      {Code::comment_changed, "a comment changed"},
-      {Code::word_in_comment, "an S/F word inside a comment changed"},
-      {Code::sf_removed, "an S or F word removed"},
-      {Code::sf_repeated, "a second S or F word in one block"},
-      {Code::bad_sf_value, "S/F value not a plain positive number"},
-      {Code::event_differs, "an interpreted event differs"},
-      {Code::event_count, "interpreted event counts differ"},
-      {Code::output_unreadable, "the output does not interpret"},
-      {Code::motion_count, "a motion only on one side"},
-      {Code::end_point, "end point beyond the tolerance"},
-      {Code::motion_kind, "rapid, feed or arc differs"},
-      {Code::arc_differs, "arc centre, plane or direction differs"},
-      {Code::spindle_or_tool, "spindle or tool change differs"},
-  };
+  // The findings' codes; their summaries come from the one code table.
+  static const std::vector<CodeInfo> table = [] {
+    std::vector<CodeInfo> rows;
+    for (Code code :
+         {Code::line_count, Code::line_ending, Code::word_changed, Code::token_added,
+          Code::token_removed, Code::whitespace_changed, Code::comment_changed,
+          Code::word_in_comment, Code::sf_removed, Code::sf_repeated, Code::bad_sf_value,
+          Code::event_differs, Code::event_count, Code::output_unreadable, Code::motion_count,
+          Code::end_point, Code::motion_kind, Code::arc_differs, Code::spindle_or_tool}) {
+      rows.push_back({code, vcpost::code_info(code_id(code)).summary});
+    }
+    return rows;
+  }();
   return table;
 }
 

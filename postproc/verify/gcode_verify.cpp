@@ -324,7 +324,7 @@ void compare_events(std::string_view input, std::string_view output, const Optio
     try {
       x = a.next();
     } catch (const gcode::GcodeError& e) {
-      throw InputError(gcode::format(e.diagnostic(), input_name));
+      throw InputError(e.code(), gcode::format(e.diagnostic(), input_name));
     }
     const program::Event* y = nullptr;
     try {

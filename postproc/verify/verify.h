@@ -28,6 +28,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/error.h"
 #include "postproc/gcode/dialect.h"
 
 namespace vcpost::verify {
@@ -120,10 +121,11 @@ struct Options {
 };
 
 // A program that cannot be read at all (the input's parse error, a CL
-// reader error); what() is "file:line:col: error[E....]: message".
-class InputError : public std::runtime_error {
+// reader error) with the reader's code; what() is
+// "file:line:col: error[E....]: message".
+class InputError : public vcpost::Error {
  public:
-  using std::runtime_error::runtime_error;
+  using vcpost::Error::Error;
 };
 
 // G-code input vs G-code output. Throws InputError when the input does not

@@ -16,6 +16,8 @@ packages=(
   libjs-chart.js chromium
   # fuzzing (scripts/fuzz.sh): clang with libFuzzer and its sanitizer runtimes
   clang-14 libclang-rt-14-dev
+  # scripts/format-check.sh and .clang-tidy
+  clang-format-14 clang-tidy-14
 )
 
 missing=()

@@ -35,6 +35,7 @@ class EventSource {
     if (gcode_) {
       if (!gcode_->next(out)) return false;
       const gcode::Block& block = gcode_->block();
+      if (!repeat_from_ && may_run_lines_again(block)) repeat_from_ = block.offset;
       for (const gcode::Comment& comment : block.comments) {
         tools.on_comment(comment.text, file_name_ + ":" + std::to_string(block.line),
                          gcode_->state().inches);
@@ -50,8 +51,39 @@ class EventSource {
   }
   // Bytes of the text read so far (CL; G-code reports its block offsets).
   std::uint64_t consumed() const { return buffer_.consumed(); }
+  // G-code: the program ended without M2/M30 or a closing '%' (cut short?).
+  bool missing_end() const {
+    if (!gcode_) return false;
+    for (const auto& w : gcode_->warnings()) {
+      if (w.code == gcode::Code::missing_program_end) return true;
+    }
+    return false;
+  }
+  // G-code: the line of the first construct after which lines may run
+  // more than once (a subroutine, a loop, a call, M98, GOTO), once read.
+  std::optional<std::uint64_t> repeat_from() const { return repeat_from_; }
 
  private:
+  static bool may_run_lines_again(const gcode::Block& block) {
+    using gcode::ControlKind;
+    switch (block.control.kind) {
+      case ControlKind::sub:
+      case ControlKind::call:
+      case ControlKind::while_:
+      case ControlKind::do_:
+      case ControlKind::repeat:
+      case ControlKind::fanuc_goto:
+        return true;
+      default:
+        break;
+    }
+    for (const auto& word : block.words) {
+      if ((word.letter == 'M' || word.letter == 'm') && word.value == 98) return true;
+    }
+    return false;
+  }
+
+  std::optional<std::uint64_t> repeat_from_;
   ViewBuffer buffer_;
   std::optional<std::istream> stream_;
   std::optional<gcode::Interpreter> gcode_;
@@ -212,7 +244,10 @@ bool PathReader::read(Chunk& chunk, std::size_t samples) {
       s.next_event = 0;
       more = s.source.next(s.events, s.program_tools);
     }
-    if (!more) break;
+    if (!more) {
+      totals_.missing_end = s.source.missing_end();
+      break;
+    }
     Event& event = s.events[s.next_event];
     const program::SourceRef source = program::source_of(event);
     const bool motion = program::is_motion(event);
@@ -308,6 +343,7 @@ bool PathReader::read(Chunk& chunk, std::size_t samples) {
     if (s.keep_events) chunk.events.emplace_back(std::move(event), block_index);
   }
   chunk.read_bytes = s.kind == ProgramKind::gcode ? s.last_offset : s.source.consumed();
+  chunk.repeat_from = s.source.repeat_from();
   chunk.read_fraction =
       s.text.empty() ? 1.0
                      : static_cast<double>(chunk.read_bytes) / static_cast<double>(s.text.size());

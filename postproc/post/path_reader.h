@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <streambuf>
 #include <string>
 #include <string_view>
@@ -80,12 +81,16 @@ struct Chunk {
   }
   double read_fraction = 0;      // share of the input read when the chunk ends
   std::uint64_t read_bytes = 0;  // bytes of the input read when the chunk ends
+  // G-code: from this offset on, lines may run more than once (subroutines,
+  // loops, M98): the writer holds them until every run has its S.
+  std::optional<std::uint64_t> repeat_from;
 };
 
 // Totals the reader counts.
 struct ReadTotals {
   std::uint64_t blocks = 0, motion_events = 0;
   double program_time_s = 0, cutting_time_s = 0;
+  bool missing_end = false;  // G-code without M2/M30 or closing '%'
 };
 
 class PathReader {

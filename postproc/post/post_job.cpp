@@ -602,6 +602,8 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
   summary.s_words = writer.s_words();
   summary.f_words = writer.f_words();
   summary.tool_notes = reader.tool_notes();
+  summary.repeated_lines = writer.repeated_lines();
+  summary.missing_end = totals.missing_end;
   if (progress) progress(1.0);
   return summary;
 }

@@ -52,6 +52,10 @@ struct PostSummary {
   std::uint64_t ae_measured = 0, ae_given = 0, ae_first_pass = 0;
   double program_time_s = 0, cutting_time_s = 0;
   std::uint64_t s_words = 0, f_words = 0;
+  // Lines that ran more than once (subroutines, loops, M98) with an S or F
+  // decided on each run: written once, with the lowest of the values.
+  std::uint64_t repeated_lines = 0;
+  bool missing_end = false;  // G-code: no M2/M30 or closing '%' (a truncated file?)
   // Cutting time (s) of the blocks whose planned S each bound decided.
   double time_clamped_max_s = 0, time_clamped_min_s = 0, time_slew_s = 0, time_rate_s = 0;
   // Over the posted sections, each at its own nominal vc; empty when no sample cut.

@@ -1,7 +1,10 @@
 #include "postproc/post/program_writer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <iterator>
 #include <stdexcept>
 #include <variant>
 
@@ -63,6 +66,7 @@ std::uint64_t ProgramWriter::f_words(std::uint32_t section) const {
 void ProgramWriter::add(const Chunk& chunk) {
   if (first_pending_ + pending_.size() != chunk.first_block)
     throw std::logic_error("ProgramWriter: chunks out of order");
+  if (chunk.repeat_from) hold_from_ = std::min(hold_from_, *chunk.repeat_from);
   pending_.insert(pending_.end(), chunk.blocks.begin(), chunk.blocks.end());
   events_.insert(events_.end(), chunk.events.begin(), chunk.events.end());
 }
@@ -91,6 +95,8 @@ void ProgramWriter::flush() {
 void ProgramWriter::finish() {
   while (!pending_.empty()) resolve_front({}, {});
   if (kind_ == ProgramKind::gcode) {
+    if (hold_from_ != UINT64_MAX) merge_repeated_patches();
+    hold_from_ = UINT64_MAX;
     write_text_until(text_.size());
   } else {
     cl_writer_->finish();
@@ -169,12 +175,46 @@ void ProgramWriter::resolve_front(Planned own, Planned next) {
 }
 
 void ProgramWriter::write_text_until(std::uint64_t offset) {
+  offset = std::min(offset, hold_from_);
   if (offset <= written_) return;
-  for (auto& patch : patches_) patch.block_offset -= written_;
-  if (sink_) gcode::write_patched(text_.substr(written_, offset - written_), patches_, sink_);
-  patches_.clear();
+  // Patches of held lines (at or after hold_from_) stay for later.
+  const auto held = std::stable_partition(
+      patches_.begin(), patches_.end(),
+      [offset](const gcode::WordPatch& patch) { return patch.block_offset < offset; });
+  std::vector<gcode::WordPatch> now(std::make_move_iterator(patches_.begin()),
+                                    std::make_move_iterator(held));
+  patches_.erase(patches_.begin(), held);
+  for (auto& patch : now) patch.block_offset -= written_;
+  if (sink_) gcode::write_patched(text_.substr(written_, offset - written_), now, sink_);
   written_ = offset;
   if (consumed_) consumed_(written_);
+}
+
+void ProgramWriter::merge_repeated_patches() {
+  // In program order, one patch per line and letter: the lowest value of
+  // the line's runs (the one safe for all of them).
+  std::stable_sort(patches_.begin(), patches_.end(),
+                   [](const gcode::WordPatch& a, const gcode::WordPatch& b) {
+                     return a.block_offset != b.block_offset ? a.block_offset < b.block_offset
+                                                             : a.letter < b.letter;
+                   });
+  std::vector<gcode::WordPatch> merged;
+  std::uint64_t last_repeated = UINT64_MAX;
+  for (auto& patch : patches_) {
+    if (!merged.empty() && merged.back().block_offset == patch.block_offset &&
+        merged.back().letter == patch.letter) {
+      if (std::strtod(patch.value.c_str(), nullptr) <
+          std::strtod(merged.back().value.c_str(), nullptr)) {
+        merged.back().value = std::move(patch.value);
+      }
+      (patch.letter == 'S' ? s_words_ : f_words_) -= 1;
+      if (last_repeated != patch.block_offset) ++repeated_lines_;
+      last_repeated = patch.block_offset;
+      continue;
+    }
+    merged.push_back(std::move(patch));
+  }
+  patches_ = std::move(merged);
 }
 
 void ProgramWriter::flush_cl() {

@@ -63,6 +63,10 @@ class ProgramWriter {
   // ... written in the blocks of one tool section.
   std::uint64_t s_words(std::uint32_t section) const;
   std::uint64_t f_words(std::uint32_t section) const;
+  // Lines that ran more than once with an S (F) of their own decided each
+  // time: each is written once, with the lowest of those values (under
+  // policy max no run is then faster than vc).
+  std::uint64_t repeated_lines() const { return repeated_lines_; }
 
  private:
   struct Planned {
@@ -73,6 +77,7 @@ class ProgramWriter {
   // and whose next planned block is `next` (or none).
   void resolve_front(Planned own, Planned next);
   void write_text_until(std::uint64_t offset);
+  void merge_repeated_patches();
   void flush_cl();
 
   std::string_view text_;
@@ -87,6 +92,10 @@ class ProgramWriter {
   std::deque<std::pair<program::Event, std::size_t>> events_;  // CL
   std::vector<gcode::WordPatch> patches_;  // decided, not yet written (offsets absolute)
   std::uint64_t written_ = 0;              // G-code: text written up to here
+  // G-code: lines from here on may run again (Chunk::repeat_from); their
+  // text and patches wait for finish().
+  std::uint64_t hold_from_ = UINT64_MAX;
+  std::uint64_t repeated_lines_ = 0;
   std::ostringstream cl_buffer_;
   std::unique_ptr<output::GcodeWriter> cl_writer_;
   std::function<bool(std::uint32_t)> keeps_;

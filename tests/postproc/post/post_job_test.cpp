@@ -216,5 +216,104 @@ TEST(PostJob, Rs274ReadsTheSameMotionFromInputAndOutput) {
   EXPECT_EQ(a, b);
 }
 
+// One raster pass over the dome at `y` (x from -20 to 20, 1 mm apart):
+// down onto the surface, along it, and up again.
+std::string dome_pass(double y) {
+  std::ostringstream out;
+  out.setf(std::ios::fixed);
+  out.precision(6);
+  auto z_at = [y](double x) { return -20 + std::sqrt(45.0 * 45.0 - x * x - y * y) - ball_radius; };
+  out << "G0 X-20.000000 Y" << y << " Z" << z_at(-20) + 5 << "\nG1 Z" << z_at(-20) << "\n";
+  for (int i = 1; i <= 40; ++i) out << "G1 X" << -20.0 + i << " Z" << z_at(-20.0 + i) << "\n";
+  out << "G0 Z30.\n";
+  return out.str();
+}
+
+// The S value of each line of `text` ("" when it has none).
+std::vector<std::string> s_words(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  static const std::regex s_word(R"(S([0-9.]+))");
+  for (std::string line; std::getline(in, line);) {
+    std::smatch m;
+    out.push_back(std::regex_search(line, m, s_word) ? m[1].str() : "");
+  }
+  return out;
+}
+
+TEST(PostJob, LinesRunTwiceGetTheLowestSOfTheirRuns) {
+  // The pass at y = 0 as a subroutine called after the pass at y = -12 and
+  // again after the pass at y = 15 (used to end in "internal error:
+  // write_patched: patch offset 18446744073709551456"). The oracle is the
+  // same program unrolled: its events are the same, so each run of a body
+  // line gets the S the unrolled copy of that line gets, and the line's one
+  // S must be the lower of the two.
+  const std::string header = "%\nG21 G90 G17 G94\nT1 M6\nS8000 M3\nF2000\n";
+  const std::string tail = "M5\nM30\n%\n";
+  const std::string body = dome_pass(0), before = dome_pass(-12), between = dome_pass(15);
+  const std::string unrolled = header + before + body + between + body + tail;
+  const std::string called = header + "o100 sub\n" + body + "o100 endsub\n" + before +
+                             "o100 call\n" + between + "o100 call\n" + tail;
+  const auto profile = machines::builtin_profile("linuxcnc-3axis");
+  PostSummary unrolled_summary, called_summary;
+  const auto u = s_words(run_post(unrolled, profile, settings_for(120), &unrolled_summary));
+  const auto c = s_words(run_post(called, profile, settings_for(120), &called_summary));
+  const auto lines_of = [](const std::string& t) {
+    return static_cast<std::size_t>(std::count(t.begin(), t.end(), '\n'));
+  };
+  const std::size_t h = lines_of(header), b = lines_of(body), p1 = lines_of(before),
+                    p2 = lines_of(between);
+  ASSERT_EQ(u.size(), h + p1 + b + p2 + b + lines_of(tail));
+  ASSERT_EQ(c.size(), h + 1 + b + 1 + p1 + 1 + p2 + 1 + lines_of(tail));
+  std::size_t both = 0, differ = 0;
+  for (std::size_t i = 0; i < b; ++i) {
+    const std::string& first = u[h + p1 + i];
+    const std::string& second = u[h + p1 + b + p2 + i];
+    std::string expected = first.empty() ? second : first;
+    if (!first.empty() && !second.empty()) {
+      ++both;
+      if (first != second) ++differ;
+      if (std::stod(second) < std::stod(first)) expected = second;
+    }
+    EXPECT_EQ(c[h + 1 + i], expected) << "body line " << i + 1;
+  }
+  // The passes around the calls are the unrolled program's, word for word.
+  for (std::size_t i = 0; i < p1; ++i) EXPECT_EQ(c[h + 1 + b + 1 + i], u[h + i]);
+  for (std::size_t i = 0; i < p2; ++i) EXPECT_EQ(c[h + 1 + b + 1 + p1 + 1 + i], u[h + p1 + b + i]);
+  EXPECT_GT(both, 30u);
+  EXPECT_GT(differ, 0u) << "no body line had two different S: the case proves nothing";
+  EXPECT_EQ(called_summary.repeated_lines, both);
+  EXPECT_EQ(unrolled_summary.repeated_lines, 0u);
+  EXPECT_EQ(called_summary.s_words + both, unrolled_summary.s_words);
+}
+
+TEST(PostJob, RepeatLoopAndFanucM98PostWithOneSPerLine) {
+  // o101 repeat [2] (rs274ngc) and M98 P1000 L2 (Fanuc): the same motion as
+  // the unrolled program, one S word per line, no error.
+  const std::string body = dome_pass(0);
+  const auto profile = machines::builtin_profile("linuxcnc-3axis");
+  PostSummary summary;
+  const std::string repeated = "%\nG21 G90 G17 G94\nT1 M6\nS8000 M3\nF2000\no101 repeat [2]\n" +
+                               body + "o101 endrepeat\nM5\nM30\n%\n";
+  const std::string out = run_post(repeated, profile, settings_for(120), &summary);
+  EXPECT_GT(summary.repeated_lines, 30u);
+  EXPECT_EQ(events_of(out).size(), events_of(repeated).size());
+  std::istringstream lines(out);
+  static const std::regex s_word(R"(S[0-9])");
+  for (std::string line; std::getline(lines, line);) {
+    EXPECT_LE(std::distance(std::sregex_iterator(line.begin(), line.end(), s_word),
+                            std::sregex_iterator()),
+              1)
+        << line;
+  }
+  PostSettings fanuc = settings_for(120);
+  fanuc.dialect = gcode::fanuc_dialect();
+  const std::string called = "%\nO0001\nG21 G90 G17 G94\nT1 M6\nS8000 M3\nF2000.\n"
+                             "M98 P1000 L2\nM5\nM30\nO1000\n" + body + "M99\n%\n";
+  PostSummary fanuc_summary;
+  EXPECT_NO_THROW(run_post(called, machines::builtin_profile("fanuc-3axis"), fanuc, &fanuc_summary));
+  EXPECT_GT(fanuc_summary.repeated_lines, 30u);
+}
+
 }  // namespace
 }  // namespace vcpost::post

@@ -1,5 +1,6 @@
 #include "postproc/cli/atomic_file.h"
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -8,6 +9,7 @@
 #include <cstring>
 
 #include "postproc/cli/commands.h"
+#include "postproc/cli/held_output.h"
 
 namespace vcpost::cli {
 namespace {
@@ -20,26 +22,81 @@ std::string reason(int error) {
   return text;
 }
 
+// Writes all of `bytes` to `fd`, retrying short writes; false with errno set.
+bool write_all(int fd, std::string_view bytes) {
+  while (!bytes.empty()) {
+    const ssize_t n = ::write(fd, bytes.data(), bytes.size());
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return false;
+    }
+    bytes.remove_prefix(static_cast<std::size_t>(n));
+  }
+  return true;
+}
+
 }  // namespace
 
-AtomicFile::AtomicFile(std::filesystem::path target) : target_(std::move(target)) {
+std::filesystem::path follow_links(const std::filesystem::path& path) {
+  std::filesystem::path p = path;
+  for (int hops = 0; hops < 40; ++hops) {
+    struct stat info {};
+    if (::lstat(p.c_str(), &info) != 0 || !S_ISLNK(info.st_mode)) return p;
+    std::error_code error;
+    const std::filesystem::path next = std::filesystem::read_symlink(p, error);
+    if (error) return p;
+    p = next.is_absolute() ? next : p.parent_path() / next;
+  }
+  throw CommandError("E2003", "cannot write '" + path.string() + "': " + std::strerror(ELOOP));
+}
+
+AtomicFile::AtomicFile(std::filesystem::path target)
+    : target_(std::move(target)), written_(follow_links(target_)) {
+  struct stat info {};
+  const bool exists = ::stat(written_.c_str(), &info) == 0;
+  if (exists && S_ISDIR(info.st_mode)) {
+    throw CommandError("E2003", "cannot write '" + target_.string() + "': it is a folder");
+  }
+  if (exists && !S_ISREG(info.st_mode)) {
+    // A device, FIFO or terminal: written in place on commit. Opening a FIFO
+    // now would block, or tell its reader the output ended: check only.
+    if (::access(written_.c_str(), W_OK) != 0) {
+      throw CommandError("E2003", "cannot write '" + target_.string() + "': " + std::strerror(errno));
+    }
+    held_ = std::make_unique<HeldOutput>();
+    return;
+  }
+  if (exists && info.st_nlink > 1) {
+    throw CommandError("E2003", "cannot write '" + target_.string() + "': it has " +
+                       std::to_string(info.st_nlink) +
+                       " hard links and replacing it would split it from the others; remove "
+                       "it first or write elsewhere");
+  }
   std::error_code ignored;
   // Absolute, so the signal handler's unlink does not depend on the working folder.
-  const std::filesystem::path absolute = std::filesystem::absolute(target_, ignored);
+  const std::filesystem::path absolute = std::filesystem::absolute(written_, ignored);
   const std::filesystem::path folder = absolute.parent_path();
-  std::string pattern = (folder / ("." + target_.filename().string() + ".XXXXXX")).string();
+  std::string pattern = (folder / ("." + written_.filename().string() + ".XXXXXX")).string();
   const int fd = registration_.create(pattern);
   if (fd < 0) {
     const int error = errno;
     throw CommandError("E2003", "cannot write '" + target_.string() + "': cannot create a file in '" +
-                       (target_.has_parent_path() ? target_.parent_path().string() : ".") +
+                       (written_.has_parent_path() ? written_.parent_path().string() : ".") +
                        "': " + std::strerror(error));
   }
   temporary_ = pattern;
-  // mkstemp makes the file private; give it the mode a new file would get.
-  const mode_t mask = ::umask(0);
-  ::umask(mask);
-  ::fchmod(fd, 0666 & ~mask);
+  if (exists) {
+    // The output keeps the mode (and, when allowed, the owner) it had.
+    ::fchmod(fd, info.st_mode & 07777);
+    if (::fchown(fd, info.st_uid, info.st_gid) != 0) {
+      // Not permitted for another user's file: it becomes ours, as with any new file.
+    }
+  } else {
+    // mkstemp makes the file private; give it the mode a new file would get.
+    const mode_t mask = ::umask(0);
+    ::umask(mask);
+    ::fchmod(fd, 0666 & ~mask);
+  }
   file_ = ::fdopen(fd, "wb");
   if (!file_) {
     const int error = errno;
@@ -58,18 +115,37 @@ AtomicFile::~AtomicFile() {
 void AtomicFile::fail(int error) {
   if (file_) std::fclose(file_);
   file_ = nullptr;
-  ::unlink(temporary_.c_str());
+  if (!temporary_.empty()) ::unlink(temporary_.c_str());
   temporary_.clear();
   registration_.release();
   throw CommandError("E2003", "cannot write '" + target_.string() + "': " + reason(error));
 }
 
 void AtomicFile::write(std::string_view bytes) {
+  if (held_) {
+    held_->append(bytes);
+    return;
+  }
   if (!file_) throw CommandError("E2003", "cannot write '" + target_.string() + "': already closed");
   if (std::fwrite(bytes.data(), 1, bytes.size(), file_) != bytes.size()) fail(errno);
 }
 
+void AtomicFile::commit_in_place() {
+  const int fd = ::open(written_.c_str(), O_WRONLY | O_CLOEXEC);
+  if (fd < 0) fail(errno);
+  int error = 0;
+  held_->for_each_chunk([&](std::string_view bytes) {
+    if (write_all(fd, bytes)) return true;
+    error = errno;
+    return false;
+  });
+  if (::close(fd) != 0 && error == 0 && errno != EINTR) error = errno;
+  held_.reset();
+  if (error != 0) fail(error);
+}
+
 void AtomicFile::commit() {
+  if (held_) return commit_in_place();
   if (!file_) throw CommandError("E2003", "cannot write '" + target_.string() + "': already closed");
   int error = 0;
   errno = 0;
@@ -80,7 +156,7 @@ void AtomicFile::commit() {
   file_ = nullptr;
   if (error == 0 && !closed) error = errno;
   if (error != 0) fail(error);
-  if (::rename(temporary_.c_str(), target_.c_str()) != 0) {
+  if (::rename(temporary_.c_str(), written_.c_str()) != 0) {
     const int rename_error = errno;
     ::unlink(temporary_.c_str());
     temporary_.clear();

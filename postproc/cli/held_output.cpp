@@ -58,7 +58,7 @@ void HeldOutput::spill() {
   memory_.clear();
 }
 
-bool HeldOutput::write_to(std::ostream& out) {
+bool HeldOutput::for_each_chunk(const std::function<bool(std::string_view)>& take) {
   if (file_) {
     if (std::fflush(file_) != 0) fail("cannot write a temporary file", errno);
     std::rewind(file_);
@@ -67,11 +67,17 @@ bool HeldOutput::write_to(std::ostream& out) {
       const std::size_t want = static_cast<std::size_t>(std::min<std::uint64_t>(left, buffer.size()));
       const std::size_t got = std::fread(buffer.data(), 1, want, file_);
       if (got == 0) fail("cannot read back a temporary file", std::ferror(file_) ? errno : EIO);
-      if (!out.write(buffer.data(), static_cast<std::streamsize>(got))) return false;
+      if (!take(std::string_view(buffer.data(), got))) return false;
       left -= got;
     }
   }
-  return static_cast<bool>(out.write(memory_.data(), static_cast<std::streamsize>(memory_.size())));
+  return memory_.empty() || take(memory_);
+}
+
+bool HeldOutput::write_to(std::ostream& out) {
+  return for_each_chunk([&out](std::string_view bytes) {
+    return static_cast<bool>(out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())));
+  });
 }
 
 }  // namespace vcpost::cli

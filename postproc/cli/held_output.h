@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <ostream>
 #include <string>
 #include <string_view>
@@ -28,6 +29,9 @@ class HeldOutput {
   void append(std::string_view bytes);
   // Everything appended, in order; returns whether `out` took it all.
   bool write_to(std::ostream& out);
+  // Everything appended, in order, in chunks given to `take` until it
+  // returns false; returns whether it took them all.
+  bool for_each_chunk(const std::function<bool(std::string_view)>& take);
 
   std::uint64_t size() const { return spilled_ + memory_.size(); }
   std::size_t memory_bytes() const { return memory_.size(); }  // held in memory now

@@ -371,9 +371,9 @@ TEST(Faults, ProgramBesideTheModel) {
 
 TEST(Faults, ProgramHalfBesideTheModel) {
   // The second half of the lines 500 mm off: the first half touches, the
-  // rest does not. A warning names the points without contact; --strict
-  // makes it exit 1 (the program itself is complete and written: its
-  // blocks without contact keep the program's S).
+  // rest does not. A warning names the points without contact (the program
+  // is complete and written: its blocks without contact keep the program's
+  // S); --strict makes it exit 1 and leaves no file it refused.
   Folder work, logs;
   const fs::path program =
       shifted_program(work, 500, line_count(kSamples / "dome_raster_a0_ae3.nc") / 2);
@@ -389,8 +389,10 @@ TEST(Faults, ProgramHalfBesideTheModel) {
   const ChildResult strict =
       run_vcpost(with(args, {"--strict", "-o", (work / "strict.nc").string()}), logs);
   EXPECT_EQ(strict.shell_status(), 1) << strict.err;
-  EXPECT_NE(strict.err.find("vcpost: error: warnings with --strict"), std::string::npos);
-  EXPECT_EQ(read_file(work / "strict.nc"), read_file(work / "lenient.nc"));
+  EXPECT_NE(strict.err.find("vcpost: error: warnings with --strict; nothing written"),
+            std::string::npos);
+  EXPECT_NE(strict.err.find("cutting points do not touch the model"), std::string::npos);
+  EXPECT_FALSE(fs::exists(work / "strict.nc"));
 }
 
 }  // namespace

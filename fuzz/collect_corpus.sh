@@ -10,7 +10,7 @@ root="$(cd "$(dirname "$0")/.." && pwd)"
 out="${1:?usage: collect_corpus.sh BUILD_DIR}/seeds"
 shared="${VCPOST_SHARED_DATA_DIR:-$root/../shared/data}"
 rm -rf "$out"
-mkdir -p "$out"/{gcode_fuzz,cldata_fuzz,profile_fuzz}
+mkdir -p "$out"/{gcode_fuzz,cldata_fuzz,profile_fuzz,verify_fuzz,stl_fuzz}
 
 # copy TARGET FILE...: each file under a name that keeps its origin.
 copy() {
@@ -31,6 +31,25 @@ copy cldata_fuzz "$root"/tests/postproc/bad/cldata/* "$root"/samples/*.cls \
   "$root"/fuzz/regressions/cldata_fuzz/*
 copy profile_fuzz "$root"/machines/profiles/*.toml "$root"/tests/machines/bad/*.toml \
   "$root"/fuzz/regressions/profile_fuzz/*
+# verify_fuzz: programs alone (checked against themselves patched in S) and
+# each sample with a copy of itself, input and output joined by the separator line
+# of fuzz/verify_driver.h.
+copy verify_fuzz "$root"/samples/*.nc "$root"/tests/postproc/gcode/programs/* \
+  "$root"/fuzz/regressions/verify_fuzz/*
+for original in "$root"/samples/*.nc "$root"/samples/*.cls; do
+  [ -f "$original" ] || continue
+  { head -c 2048 "$original"; printf '\n%%%%vcpost-output%%%%\n'; head -c 2048 "$original"; } \
+    >"$out/verify_fuzz/pair_$(basename "$original")"
+done
+# stl_fuzz: small STL files (binary and ASCII) whole: a cut binary STL is
+# only ever a size error.
+for f in $(find "$root"/tests "$root"/samples "$root"/fuzz/regressions/stl_fuzz -name '*.stl' 2>/dev/null) \
+  "$shared"/stl/*.stl "$shared"/*/*.stl; do
+  [ -f "$f" ] || continue
+  [ "$(stat -c %s "$f")" -le 65536 ] || continue
+  name="${f#"$root"/}"
+  cp "$f" "$out/stl_fuzz/${name//\//_}"
+done
 # Real programs from public projects when the shared data folder is there.
 if [ -d "$shared" ]; then
   copy gcode_fuzz "$shared"/gcode/*.ngc "$shared"/gcode/*.nc "$shared"/gcode/*.gcode \
@@ -38,6 +57,6 @@ if [ -d "$shared" ]; then
   copy cldata_fuzz "$shared"/cldata/*.apt "$shared"/cldata/*.cls "$shared"/cldata/*.clsf \
     "$shared"/cldata/*.ncl
 fi
-for t in gcode_fuzz cldata_fuzz profile_fuzz; do
+for t in gcode_fuzz cldata_fuzz profile_fuzz verify_fuzz stl_fuzz; do
   echo "seeds: $t $(ls "$out/$t" | wc -l) files"
 done

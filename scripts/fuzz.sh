@@ -12,7 +12,7 @@ cd "$(dirname "$0")/.."
 duration="${1:-60}"
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(gcode_fuzz cldata_fuzz profile_fuzz)
+[ ${#targets[@]} -gt 0 ] || targets=(gcode_fuzz cldata_fuzz profile_fuzz verify_fuzz stl_fuzz)
 
 bash scripts/setup.sh
 cmake --preset fuzz >/dev/null

@@ -89,6 +89,23 @@ std::string number_text(double v) {
   return out.str();
 }
 
+// Upper limits of the profile's values: beyond them no machine exists, and
+// a value there is a typo (1e300 for 1e-3) that would turn into NaN or
+// overflow downstream. Lower limits are in the loader (> 0, >= 0).
+constexpr double kMaxSpindleRpm = 200000;    // spindle.n_max_rpm
+constexpr double kMaxSpindleRate = 1000000;  // spindle.*celeration_rpm_per_s, rpm/s
+constexpr double kMaxChangesPerS = 1000;     // spindle.max_changes_per_s
+constexpr double kMaxBlockTimeS = 10;        // control.block_time_s
+constexpr double kMaxFeed = 1000000;         // feed.*_mm_per_min, mm/min
+
+// A range limit in full: 1000000, not 1e+06.
+std::string limit_text(double v) {
+  std::ostringstream out;
+  out.precision(12);
+  out << v;
+  return out.str();
+}
+
 std::string join(std::span<const std::string_view> names) {
   std::string out;
   for (const auto name : names) {
@@ -319,15 +336,21 @@ MachineProfile profile_from_toml(std::string_view text, const std::string& file)
   r.require(s.n_min_rpm > 0, "spindle", "n_min_rpm", "must be > 0 rpm (S0 means spindle off)");
   s.n_max_rpm = *r.number("spindle", "n_max_rpm", true);
   r.require(s.n_max_rpm > 0, "spindle", "n_max_rpm", "must be > 0 rpm");
+  r.require(s.n_max_rpm <= kMaxSpindleRpm, "spindle", "n_max_rpm",
+            cat({"must be at most ", limit_text(kMaxSpindleRpm), " rpm"}));
   r.require(s.n_min_rpm <= s.n_max_rpm, "spindle", "n_min_rpm",
             cat({"(", number_text(s.n_min_rpm), ") is greater than spindle.n_max_rpm (",
                  number_text(s.n_max_rpm), ")"}),
             codes::inconsistent);
   s.acceleration_rpm_per_s = *r.number("spindle", "acceleration_rpm_per_s", true);
   r.require(s.acceleration_rpm_per_s > 0, "spindle", "acceleration_rpm_per_s", "must be > 0 rpm/s");
+  r.require(s.acceleration_rpm_per_s <= kMaxSpindleRate, "spindle", "acceleration_rpm_per_s",
+            cat({"must be at most ", limit_text(kMaxSpindleRate), " rpm/s"}));
   s.deceleration_rpm_per_s = *r.number("spindle", "deceleration_rpm_per_s", true);
   r.require(s.deceleration_rpm_per_s > 0, "spindle", "deceleration_rpm_per_s",
             "must be > 0 rpm/s (a rate, given without sign)");
+  r.require(s.deceleration_rpm_per_s <= kMaxSpindleRate, "spindle", "deceleration_rpm_per_s",
+            cat({"must be at most ", limit_text(kMaxSpindleRate), " rpm/s"}));
   s.s_resolution_rpm = *r.number("spindle", "s_resolution_rpm", true);
   r.require(s.s_resolution_rpm > 0, "spindle", "s_resolution_rpm", "must be > 0 rpm");
   r.require(
@@ -336,11 +359,15 @@ MachineProfile profile_from_toml(std::string_view text, const std::string& file)
       codes::inconsistent);
   s.min_change_rpm = *r.number("spindle", "min_change_rpm", true);
   r.require(s.min_change_rpm >= 0, "spindle", "min_change_rpm", "must be >= 0 rpm");
+  r.require(s.min_change_rpm <= s.n_max_rpm, "spindle", "min_change_rpm",
+            "must be at most spindle.n_max_rpm");
   s.min_change_percent = *r.number("spindle", "min_change_percent", true);
   r.require(s.min_change_percent >= 0 && s.min_change_percent < 100, "spindle",
             "min_change_percent", "must be in [0, 100)");
   s.max_changes_per_s = *r.number("spindle", "max_changes_per_s", true);
   r.require(s.max_changes_per_s > 0, "spindle", "max_changes_per_s", "must be > 0");
+  r.require(s.max_changes_per_s <= kMaxChangesPerS, "spindle", "max_changes_per_s",
+            cat({"must be at most ", limit_text(kMaxChangesPerS)}));
   s.change_in_motion = r.choice("spindle", "change_in_motion", kInMotion);
   s.change_code = r.string("spindle", "change_code", false).value_or("");
   if (s.change_in_motion == SChangeInMotion::code) {
@@ -355,10 +382,14 @@ MachineProfile profile_from_toml(std::string_view text, const std::string& file)
 
   p.control_.block_time_s = *r.number("control", "block_time_s", true);
   r.require(p.control_.block_time_s >= 0, "control", "block_time_s", "must be >= 0 s");
+  r.require(p.control_.block_time_s <= kMaxBlockTimeS, "control", "block_time_s",
+            cat({"must be at most ", limit_text(kMaxBlockTimeS), " s"}));
 
   auto& f = p.feed_;
   f.f_min_mm_per_min = *r.number("feed", "f_min_mm_per_min", true);
   r.require(f.f_min_mm_per_min > 0, "feed", "f_min_mm_per_min", "must be > 0 mm/min");
+  r.require(f.f_min_mm_per_min <= kMaxFeed, "feed", "f_min_mm_per_min",
+            cat({"must be at most ", limit_text(kMaxFeed), " mm/min"}));
   f.f_max_mm_per_min = *r.number("feed", "f_max_mm_per_min", true);
   r.require(f.f_min_mm_per_min <= f.f_max_mm_per_min, "feed", "f_min_mm_per_min",
             cat({"(", number_text(f.f_min_mm_per_min), ") is greater than feed.f_max_mm_per_min (",
@@ -366,6 +397,10 @@ MachineProfile profile_from_toml(std::string_view text, const std::string& file)
             codes::inconsistent);
   f.rapid_mm_per_min = *r.number("feed", "rapid_mm_per_min", true);
   r.require(f.rapid_mm_per_min > 0, "feed", "rapid_mm_per_min", "must be > 0 mm/min");
+  r.require(f.f_max_mm_per_min <= kMaxFeed, "feed", "f_max_mm_per_min",
+            cat({"must be at most ", limit_text(kMaxFeed), " mm/min"}));
+  r.require(f.rapid_mm_per_min <= kMaxFeed, "feed", "rapid_mm_per_min",
+            cat({"must be at most ", limit_text(kMaxFeed), " mm/min"}));
 
   const auto teeth = *r.integer("tool", "default_teeth", true);
   r.require(teeth >= 1 && teeth <= 100, "tool", "default_teeth", "must be in 1..100");

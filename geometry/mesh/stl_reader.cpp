@@ -110,6 +110,16 @@ StlMesh parse_binary(std::string_view bytes, const std::string& file, double uni
                                            std::to_string(complete) + " complete triangles)");
   }
   mesh.trailing_bytes = bytes.size() - need;
+  if (mesh.trailing_bytes >= 50) {
+    // More whole triangles than the count says: reading up to the count
+    // would silently drop part of the model.
+    throw StlError(StlCode::count_mismatch,
+                   at_offset(file, need, StlCode::count_mismatch) + "binary STL header announces " +
+                       std::to_string(count) + " triangles but the file holds " +
+                       std::to_string((bytes.size() - 84) / 50) +
+                       " whole triangle records; the count is wrong (a damaged or concatenated "
+                       "file): export the model again");
+  }
   MeshBuilder builder(mesh);
   mesh.triangles.reserve(count);
   mesh.vertices.reserve(count / 2 + 3);

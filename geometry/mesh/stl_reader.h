@@ -36,6 +36,7 @@ enum class StlCode : std::uint16_t {
   no_triangles = 4606,  // a valid file with no (non-degenerate) triangle
   syntax = 4607,        // ASCII: a keyword other than the one expected
   bad_unit = 4608,      // unit_mm not a positive finite number
+  count_mismatch = 4609,  // binary: whole triangles past the count (the count is wrong)
 };
 
 // "E4604"
@@ -67,7 +68,7 @@ struct StlMesh {
   StlFormat format = StlFormat::binary;
   std::string solid_name;  // ASCII "solid <name>", or the binary header text
   std::uint64_t degenerate_dropped = 0;
-  std::uint64_t trailing_bytes = 0;  // binary: bytes after the last triangle (ignored)
+  std::uint64_t trailing_bytes = 0;  // binary: bytes after the last triangle (< 50: ignored)
 };
 
 // Parses STL bytes already in memory. file_name is used in messages only.

@@ -26,6 +26,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <vector>
 
 #include "geometry/occt/box_tree.h"
@@ -954,10 +955,25 @@ BrepModel model_from_shape(const TopoDS_Shape& shape, const BrepOptions& options
     }
     Bnd_Box box;
     BRepBndLib::Add(shape, box);
+    if (!box.IsVoid()) {
+      // Checked before meshing: a pole at 1E300 would mesh for hours.
+      double x0, y0, z0, x1, y1, z1;
+      box.Get(x0, y0, z0, x1, y1, z1);
+      const double reach = std::max({std::abs(x0), std::abs(y0), std::abs(z0), std::abs(x1),
+                                     std::abs(y1), std::abs(z1)});
+      if (!(reach <= kMaxModelReachMm)) {
+        std::ostringstream text;
+        text << "the model reaches " << reach << " mm from the origin; parts within "
+             << kMaxModelReachMm << " mm (100 m) of it are read (a stray point or a wrong unit?)";
+        throw ModelError(ModelErrorCode::bad_values, source, text.str());
+      }
+    }
     double deflection = options.deflection;
     if (deflection <= 0) {
       const double diagonal = box.IsVoid() ? 100 : std::sqrt(box.SquareExtent());
-      deflection = std::clamp(diagonal / 1000, 0.002, 0.2);
+      // Over 4 m of diagonal the chord grows with the model, so the number
+      // of triangles (the meshing effort) stays bounded.
+      deflection = std::max(std::clamp(diagonal / 1000, 0.002, 0.2), diagonal / 20000);
     }
     BRepMesh_IncrementalMesh mesher(shape, deflection, false, 0.2, false);
     TopTools_IndexedMapOfShape solids;

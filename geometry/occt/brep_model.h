@@ -57,9 +57,14 @@ class ModelError : public vcpost::Error {
   ModelErrorCode code_;
 };
 
+// The farthest a model's point may lie from the origin, mm: the part must
+// fit a machine. Beyond it the model is refused (E4107) before meshing.
+inline constexpr double kMaxModelReachMm = 1e5;
+
 struct BrepOptions {
   // Largest chord deviation of the tessellation that feeds the BVH, mm;
-  // <= 0: 1/1000 of the model's box diagonal, within [0.002, 0.2] mm. It
+  // <= 0: 1/1000 of the model's box diagonal, within [0.002, 0.2] mm (and
+  // at least 1/20000 of it, which only models over 4 m reach). It
   // only steers the search: answers are exact on the faces.
   double deflection = 0;
   // A model without solids (open faces or shells, as surface models often

@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "core/error.h"
 #include "machines/profile.h"
@@ -39,6 +40,19 @@ void add_post_command(CLI::App& app);
 void add_report_command(CLI::App& app);
 void add_verify_command(CLI::App& app);
 void add_explain_command(CLI::App& app);
+
+// `text` with control bytes (CR, NUL, ESC ...) and DEL shown as \xNN: a
+// message quoting a file's bytes must not move the cursor or hide itself.
+std::string printable(std::string_view text);
+
+// Writes to stdout; throws CommandError (exit 2) with the system's reason
+// when the bytes are not taken (the rest of the output would be lost too).
+void write_standard_output(std::string_view bytes);
+
+// Flushes stdout (C and C++ streams) and throws CommandError (exit 2) when
+// anything written to it was lost (a full disk, /dev/full, a closed pipe
+// with SIGPIPE ignored): a command's output that did not arrive is no success.
+void finish_standard_output();
 
 // The profile of `--machine NAME|FILE`: a shipped profile's name, or a
 // TOML file. Throws CommandError (exit 2) naming file:line:col and the key.

@@ -38,6 +38,9 @@ std::atomic<int> g_creating{0};
 std::atomic<int> g_handling{0};
 // Outputs renamed into place so far (for an honest message).
 std::atomic<int> g_committed{0};
+// Standard output has delivered bytes: a SIGPIPE now is a reader that has
+// seen enough (`| head`), not a failure worth a message.
+std::atomic<int> g_delivered{0};
 
 static_assert(std::atomic<int>::is_always_lock_free, "the handler needs lock-free atomics");
 
@@ -133,7 +136,9 @@ void on_signal(int sig) {
     append(line, sizeof line, &used, " written before");
   }
   line[used++] = '\n';
-  [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, line, used);
+  if (!(sig == SIGPIPE && g_delivered.load() != 0)) {
+    [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, line, used);
+  }
 
   // Die by the signal itself, so the parent sees how the run ended.
   struct sigaction default_action {};
@@ -174,6 +179,8 @@ void install_signal_handlers() {
   sigemptyset(&ignore.sa_mask);
   ::sigaction(SIGXFSZ, &ignore, nullptr);
 }
+
+void standard_output_delivered() { g_delivered.store(1); }
 
 int TemporaryRegistration::create(std::string& pattern) {
   if (slot_ >= 0) {

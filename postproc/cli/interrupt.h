@@ -31,6 +31,11 @@ namespace vcpost::cli {
 // shell meant. Call once, early in main, before any thread starts.
 void install_signal_handlers();
 
+// Standard output has delivered some of its bytes: a SIGPIPE from now on is
+// a reader that stopped reading (`vcpost post ... -o - | head`), which ends
+// the process by the signal as before but without a message.
+void standard_output_delivered();
+
 // A temporary file that the signal handler removes, from its creation until
 // release(). Create the file through this object so that no signal can fall
 // between the file's creation and its registration. Not copyable.

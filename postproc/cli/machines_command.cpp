@@ -14,6 +14,32 @@
 
 namespace vcpost::cli {
 
+namespace {
+
+// A model or program given by mistake (`--machine part.step`) is named for
+// what it is, not parsed as TOML into a confusing syntax error.
+void refuse_non_toml(std::istream& in, const std::string& name) {
+  std::string head(4096, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  in.clear();
+  in.seekg(0);
+  std::string what;
+  if (head.find("ISO-10303-21") != std::string::npos) {
+    what = "a STEP file";
+  } else if (head.find('\0') != std::string::npos) {
+    what = "binary data (an STL model?)";
+  } else if (head.rfind("solid", 0) == 0) {
+    what = "an STL model";
+  }
+  if (!what.empty()) {
+    throw CommandError("E5010", "machine profile " + name + ": this is " + what +
+                       ", not a TOML profile (--machine takes a built-in name or a .toml file)");
+  }
+}
+
+}  // namespace
+
 // A machines::ProfileError leaves with its own code.
 machines::MachineProfile load_machine(const std::string& name_or_file) {
   if (machines::is_builtin_profile(name_or_file)) return machines::builtin_profile(name_or_file);
@@ -26,6 +52,7 @@ machines::MachineProfile load_machine(const std::string& name_or_file) {
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw CommandError("E5010", "machine profile " + name_or_file + ": cannot open");
+  refuse_non_toml(in, name_or_file);
   return machines::profile_from_stream(in, name_or_file);
 }
 

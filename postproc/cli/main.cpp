@@ -27,8 +27,17 @@ int main(int argc, char** argv) {
   add_verify_command(app);
   add_explain_command(app);
 
+  const CLI::App& commands = app;
+  if (argc > 1 && argv[1][0] != '-' &&
+      commands.get_subcommands([&](const CLI::App* command) { return command->get_name() == argv[1]; })
+          .empty()) {
+    std::cerr << "vcpost: error: unknown command '" << printable(argv[1])
+              << "'; the commands are deff, machines, moves, post, report, verify (vcpost --help)\n";
+    return exit_input_error;
+  }
   try {
     app.parse(argc, argv);
+    finish_standard_output();
   } catch (const CLI::ParseError& e) {
     // CLI11 prints help and usage errors itself; usage errors exit 2.
     const int code = app.exit(e);
@@ -37,7 +46,7 @@ int main(int argc, char** argv) {
     // One line: a vcpost::Error is the user's to fix (or a known internal
     // fault, E9xxx), anything else is an internal error.
     const bool known = dynamic_cast<const vcpost::Error*>(&e) != nullptr;
-    std::cerr << (known ? "vcpost: error: " : "vcpost: internal error: ") << e.what() << '\n';
+    std::cerr << (known ? "vcpost: error: " : "vcpost: internal error: ") << printable(e.what()) << '\n';
     return exit_code_of(e);
   }
   return exit_ok;

@@ -33,7 +33,15 @@ bool named_step(const std::filesystem::path& path) {
 LoadedModel load_model(const std::filesystem::path& path) {
   std::error_code error;
   const bool step = named_step(path);
-  if (!step && !std::filesystem::is_regular_file(path, error)) {
+  const auto status = std::filesystem::status(path, error);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status) &&
+      !std::filesystem::is_directory(status)) {
+    // A FIFO or device cannot be sniffed and then read again: its bytes
+    // would be gone (or the second open would wait forever for a writer).
+    throw CommandError("E4101", "--model: '" + path.string() +
+                                    "' is not a regular file (a FIFO or a device); give the model as a file");
+  }
+  if (!step && !std::filesystem::is_regular_file(status)) {
     throw CommandError("E4101", "--model: '" + path.string() + "': no such file");
   }
   // An occt::ModelError or mesh::StlError leaves with its own code.
@@ -45,6 +53,13 @@ LoadedModel load_model(const std::filesystem::path& path) {
     return {std::move(model), "STEP", description};
   }
   auto mesh = mesh::read_stl_file(path);
+  for (const auto& v : mesh.vertices) {
+    if (!(v.cwiseAbs().maxCoeff() <= occt::kMaxModelReachMm)) {
+      throw CommandError("E4107", "--model: '" + path.string() +
+                                      "': the model reaches beyond 100000 mm (100 m) from the origin; parts "
+                                      "within it are read (a stray point or a wrong unit?)");
+    }
+  }
   const std::string description = std::to_string(mesh.triangles.size()) + " triangles";
   return {std::make_unique<mesh::MeshModel>(std::move(mesh)), "STL", description};
 }

@@ -1,10 +1,5 @@
 // `vcpost moves PROGRAM`: the interpreted motion events, one per line, in
 // the vocabulary of rs274's canonical transcript (see program/transcript.h).
-#include <fcntl.h>
-#include <sys/mman.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <cstdio>
 #include <iostream>
 #include <iterator>
@@ -14,75 +9,14 @@
 
 #include "postproc/cldata/cl_reader.h"
 #include "postproc/cli/commands.h"
+#include "postproc/cli/number_options.h"
+#include "postproc/cli/program_text.h"
 #include "postproc/post/post_job.h"
 #include "postproc/gcode/interpreter.h"
 #include "postproc/program/timing.h"
 #include "postproc/program/transcript.h"
 
 namespace vcpost::cli {
-
-namespace {
-
-// The program text: a read-only memory map of the file (the interpreter
-// streams through it; nothing is copied), or stdin read whole for "-".
-class ProgramText {
- public:
-  explicit ProgramText(const std::string& path) {
-    if (path == "-") {
-      buffer_.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
-      view_ = buffer_;
-      return;
-    }
-    const int fd = ::open(path.c_str(), O_RDONLY);
-    if (fd < 0) throw CommandError("E2002", "moves: cannot open " + path);
-    struct stat st {};
-    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-      ::close(fd);
-      throw CommandError("E2002", "moves: " + path + " is not a regular file");
-    }
-    size_ = static_cast<std::size_t>(st.st_size);
-    if (size_ > 0) {
-      void* map = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
-      if (map == MAP_FAILED) {
-        ::close(fd);
-        throw CommandError("E2002", "moves: cannot read " + path);
-      }
-      ::madvise(map, size_, MADV_SEQUENTIAL);
-      map_ = map;
-      view_ = std::string_view(static_cast<const char*>(map), size_);
-    }
-    ::close(fd);
-  }
-  ProgramText(const ProgramText&) = delete;
-  ProgramText& operator=(const ProgramText&) = delete;
-  ~ProgramText() {
-    if (map_) ::munmap(map_, size_);
-  }
-  std::string_view view() const { return view_; }
-
-  // Gives back the mapped pages wholly before `offset`: the interpreter has
-  // read them, and a later jump back (subroutine call, loop) faults them in
-  // again from the page cache. Keeps the resident size flat however long the
-  // file is.
-  void release_before(std::uint64_t offset) {
-    if (!map_) return;
-    const std::uint64_t end = offset / page_ * page_;
-    if (end <= released_ + kReleaseStep) return;
-    ::madvise(static_cast<char*>(map_) + released_, end - released_, MADV_DONTNEED);
-    released_ = end;
-  }
-
- private:
-  static constexpr std::uint64_t kReleaseStep = 1u << 20;
-  std::string buffer_;
-  std::uint64_t released_ = 0;
-  std::uint64_t page_ = static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
-  void* map_ = nullptr;
-  std::size_t size_ = 0;
-  std::string_view view_;
-};
-
-}  // namespace
 
 // APT CL data: the same events from the CL reader, printed the same way.
 template <class Options>
@@ -102,16 +36,16 @@ void print_cl_moves(std::string_view text, const std::string& name,
       if (!options.count) program::append_transcript(out, *event, print);
     }
   } catch (const cldata::ClError& e) {
-    std::fwrite(out.data(), 1, out.size(), stdout);
+    write_standard_output(out);
     std::fflush(stdout);
     throw CommandError(e.vcpost::Error::code(), e.what());
   } catch (const program::TimingError& e) {
-    std::fwrite(out.data(), 1, out.size(), stdout);
+    write_standard_output(out);
     std::fflush(stdout);
     throw CommandError(e.code(),
                        name + ":" + std::to_string(e.source().line) + ": error: " + e.what());
   }
-  std::fwrite(out.data(), 1, out.size(), stdout);
+  write_standard_output(out);
   if (options.count) {
     std::printf("records %llu events %llu\n", static_cast<unsigned long long>(reader.record_count()),
                 static_cast<unsigned long long>(events));
@@ -145,7 +79,7 @@ void add_moves_command(CLI::App& app) {
                 "acceleration)");
   cmd->add_option("--rapid-rate", options->rapid_rate, "rapid traverse rate for --time, mm/min")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->callback([options] {
     const auto dialect = gcode::dialect_from_name(options->dialect);
     if (!dialect) throw CommandError("moves: unknown dialect '" + options->dialect + "'");
@@ -164,7 +98,7 @@ void add_moves_command(CLI::App& app) {
     auto flush_warnings = [&] {
       const auto& w = interpreter.warnings();
       for (; warnings_shown < w.size(); ++warnings_shown)
-        std::cerr << gcode::format(w[warnings_shown], name) << '\n';
+        std::cerr << printable(gcode::format(w[warnings_shown], name)) << '\n';
       if (interpreter.warning_count() > w.size())
         std::cerr << name << ": " << interpreter.warning_count() - w.size()
                   << " more warnings not shown\n";
@@ -180,25 +114,25 @@ void add_moves_command(CLI::App& app) {
         if (!options->count) {
           for (const auto& e : events) program::append_transcript(out, e, print);
           if (out.size() > (1u << 16)) {
-            std::fwrite(out.data(), 1, out.size(), stdout);
+            write_standard_output(out);
             out.clear();
           }
         }
         events.clear();
       }
     } catch (const program::TimingError& e) {
-      std::fwrite(out.data(), 1, out.size(), stdout);
+      write_standard_output(out);
       std::fflush(stdout);
       flush_warnings();
       throw CommandError(e.code(), name + ":" + std::to_string(e.source().line) + ":" +
                          std::to_string(e.source().column) + ": error: " + e.what());
     } catch (const gcode::GcodeError& e) {
-      std::fwrite(out.data(), 1, out.size(), stdout);
+      write_standard_output(out);
       std::fflush(stdout);
       flush_warnings();
       throw CommandError(e.code(), gcode::format(e.diagnostic(), name));
     }
-    std::fwrite(out.data(), 1, out.size(), stdout);
+    write_standard_output(out);
     if (options->count)
       std::printf("lines %llu events %llu\n",
                   static_cast<unsigned long long>(interpreter.lines_read()),
@@ -206,7 +140,7 @@ void add_moves_command(CLI::App& app) {
     if (options->time)
       std::printf("# program time %.4f s (rapids at %.0f mm/min)\n", clock.elapsed(),
                   options->rapid_rate);
-    std::fflush(stdout);
+    finish_standard_output();
     flush_warnings();
   });
 }

@@ -18,10 +18,14 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "machines/builtin.h"
 #include "postproc/cldata/cl_codes.h"
 #include "postproc/cli/atomic_file.h"
 #include "postproc/cli/commands.h"
+#include "postproc/cli/distinct_files.h"
 #include "postproc/cli/held_output.h"
+#include "postproc/cli/interrupt.h"
+#include "postproc/cli/number_options.h"
 #include "postproc/cli/program_text.h"
 #include "postproc/gcode/diagnostics.h"
 #include "postproc/output/gcode_writer.h"
@@ -73,7 +77,7 @@ nlohmann::json summary_json(const PostArguments& args, const JobRun& run) {
         {"clamped_min", s.time_clamped_min_s},
         {"slew", s.time_slew_s},
         {"rate", s.time_rate_s}}},
-      {"words_written", {{"s", s.s_words}, {"f", s.f_words}}},
+      {"words_written", {{"s", s.s_words}, {"f", s.f_words}, {"repeated_lines", s.repeated_lines}}},
       {"vc_before", vc_json(s.before)},
       {"vc_after", vc_json(s.after)},
       {"sections", report::tool_sections_json(s)},
@@ -149,11 +153,6 @@ std::vector<ReportFile> open_reports(const PostArguments& args) {
                            "': unknown format; name the file .json, .csv or .html");
       }
       r.format = *format;
-      if (args.program != "-" && same_file(args.program, path)) {
-        throw CommandError("report '" + path + "' is the input program; it is never overwritten");
-      }
-      if (args.output == path)
-        throw CommandError("report '" + path + "' is also the output program");
     }
     if (path != "-") r.file = std::make_unique<AtomicFile>(path);  // fails before any work
     out.push_back(std::move(r));
@@ -171,6 +170,60 @@ std::string read_chart_library() {
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+std::vector<NamedFile> job_inputs(const PostArguments& args) {
+  std::vector<NamedFile> inputs{{"program", args.program}, {"--model", args.model}};
+  if (!machines::is_builtin_profile(args.machine)) inputs.push_back({"--machine", args.machine});
+  return inputs;
+}
+
+std::vector<NamedFile> job_outputs(const PostArguments& args, bool write_program) {
+  std::vector<NamedFile> outputs;
+  if (write_program) outputs.push_back({"-o", args.output});
+  outputs.push_back({"--summary-json", args.summary_json});
+  for (const auto& r : args.reports) outputs.push_back({write_program ? "--report" : "-o", r});
+  return outputs;
+}
+
+bool has_warnings(const post::PostSummary& summary) {
+  return summary.gouging > 0 || summary.lifted + summary.missed > 0 || summary.missing_end;
+}
+
+void print_warnings(const post::PostSummary& summary) {
+  if (summary.missing_end) {
+    std::cerr << "vcpost: warning: the program ends without M2, M30 or a closing '%': is the "
+                 "file complete?\n";
+  }
+  if (summary.gouging > 0)
+    std::cerr << "vcpost: warning: " << summary.gouging << " points gouge the model\n";
+  if (summary.lifted + summary.missed > 0) {
+    std::cerr << "vcpost: warning: " << summary.lifted + summary.missed
+              << " cutting points do not touch the model (their blocks keep the program's S)\n";
+  }
+}
+
+// Writes the held program to `out` in pieces the size of a pipe's buffer;
+// once one has gone through, a reader leaving early (`| head`) is no
+// failure worth a message (interrupt.h). False when `out` failed.
+bool deliver(HeldOutput& held, std::ostream& out) {
+  constexpr std::size_t piece = 65536;
+  return held.for_each_chunk([&out](std::string_view bytes) {
+    for (std::size_t at = 0; at < bytes.size(); at += piece) {
+      const std::string_view part = bytes.substr(at, piece);
+      if (!out.write(part.data(), static_cast<std::streamsize>(part.size())).flush()) return false;
+      standard_output_delivered();
+    }
+    return true;
+  });
+}
+
+// "X is a symbolic link" notes for the end-of-run lines.
+void note_links(const AtomicFile& file, const std::string& name, std::vector<std::string>& notes) {
+  if (file.through_link()) {
+    notes.push_back("'" + name + "' is a symbolic link: wrote its target '" +
+                    file.written().string() + "'");
+  }
 }
 
 // The report is drawn for one tool and vc: the first section the job
@@ -246,11 +299,11 @@ void add_job_options(CLI::App& command, PostArguments& args) {
       ->required();
   command.add_option("--ap", args.ap, "depth of cut along the surface normal, mm")
       ->required()
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   command
       .add_option("--ae", args.ae,
                   "width of cut, mm: used where the toolpath shows no neighbouring pass")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   command.add_flag("--ae-override", args.ae_override,
                    "use --ae everywhere instead of measuring it from the toolpath");
   command
@@ -267,23 +320,26 @@ void add_job_options(CLI::App& command, PostArguments& args) {
   command
       .add_option("--fz", args.fz,
                   "feed per tooth for --adjust-feed, mm (default: the program's F at its S)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   command
       .add_option("--teeth", args.teeth,
                   "number of teeth for --adjust-feed (default: the profile's)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, 1000));
   command
       .add_option("--cl-point", args.cl_point,
                   "what the program's points are: the tool tip or the ball centre")
       ->check(CLI::IsMember({"tip", "center"}))
       ->capture_default_str();
-  command.add_option("--spacing", args.spacing, "largest distance between evaluated points, mm")
-      ->check(CLI::PositiveNumber)
+  command
+      .add_option("--spacing", args.spacing,
+                  "largest distance between evaluated points, mm (at least " +
+                      shown(kMinSpacingMm) + ")")
+      ->check(positive_number(kMinSpacingMm, 1e6))
       ->capture_default_str();
   command
       .add_option("--contact-tolerance", args.tolerance,
                   "distance error still counted as contact, mm")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   command.add_option("--dialect", args.dialect,
                      "G-code dialect: rs274ngc, fanuc, mazak (default: the profile's)");
@@ -300,10 +356,7 @@ void add_job_options(CLI::App& command, PostArguments& args) {
 
 JobRun run_job(const PostArguments& args, bool write_program) {
   const auto started = std::chrono::steady_clock::now();
-  if (write_program && args.output != "-" && args.program != "-" &&
-      same_file(args.program, args.output)) {
-    throw CommandError("-o: '" + args.output + "' is the input program; it is never overwritten");
-  }
+  require_distinct_files(job_inputs(args), job_outputs(args, write_program));
   ProgramText program(args.program);
   const std::string_view text = program.view();
   const std::string name = args.program == "-" ? "<stdin>" : args.program;
@@ -381,6 +434,8 @@ JobRun run_job(const PostArguments& args, bool write_program) {
     summary =
         post::post_program(text, name, *model.model, profile, settings, sink, progress, points,
                            [&program](std::uint64_t offset) { program.release_before(offset); });
+  } catch (const gcode::GcodeError& e) {
+    throw CommandError(e.code(), gcode::format(e.diagnostic(), name));
   } catch (const program::TimingError& e) {
     throw CommandError(e.code(), name + ":" + std::to_string(e.source().line) + ": " + e.what());
   } catch (const output::OutputError& e) {
@@ -389,6 +444,11 @@ JobRun run_job(const PostArguments& args, bool write_program) {
     throw CommandError(e.code(), std::string("planning: ") + e.what());
   }  // a GcodeError, ClError or PostError leaves with its own code
   if (show_progress) std::cerr << "\r\x1b[K";
+  if (summary.motion_events == 0) {
+    throw CommandError("'" + name +
+                       "': the program has no motion (empty, comments only, or cut short before "
+                       "its first move): nothing to post");
+  }
   if (!summary.sections.empty() &&
       std::none_of(summary.sections.begin(), summary.sections.end(),
                    [](const post::ToolSection& s) { return s.entry.has_value(); })) {
@@ -402,6 +462,21 @@ JobRun run_job(const PostArguments& args, bool write_program) {
         "the toolpath never touches the model (" + std::to_string(summary.samples) +
         " points checked): check the work offset and units of the program against the model, "
         "and --cl-point (tip or center)");
+  }
+  if (summary.samples > 0 && summary.touching * 100 <= summary.samples &&
+      summary.gouging * 2 >= summary.samples) {
+    // Not a few gouges to warn about: the program and the model disagree.
+    throw CommandError(
+        "the toolpath gouges the model at " + std::to_string(summary.gouging) + " of " +
+        std::to_string(summary.samples) + " points and touches it at only " +
+        std::to_string(summary.touching) +
+        ": the program does not match the model; check the work offset (Z) and units of the "
+        "program against the model, --cl-point (tip or center) and the tool's diameter");
+  }
+  if (args.strict && has_warnings(summary)) {
+    // Refused before anything is committed: --strict leaves no file it refused.
+    if (!args.quiet) print_warnings(summary);
+    throw CommandError("E2010", "warnings with --strict; nothing written");
   }
   std::string to_stdout;  // written after every file is complete
 
@@ -435,8 +510,13 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   }
   // The program last: a failed report leaves no posted program behind.
   if (file) file->commit();
+  std::vector<std::string> notes;
+  for (const auto& r : reports) {
+    if (r.file) note_links(*r.file, r.path, notes);
+  }
+  if (file) note_links(*file, args.output, notes);
   errno = 0;
-  if (pending.write_to(std::cout)) std::cout << to_stdout << std::flush;
+  if (deliver(pending, std::cout)) std::cout << to_stdout << std::flush;
   if (!std::cout) {
     throw CommandError("E2003", std::string("cannot write to standard output: ") +
                        (errno != 0 ? std::strerror(errno) : "write error"));
@@ -448,6 +528,7 @@ JobRun run_job(const PostArguments& args, bool write_program) {
     run.vc = section.vc_nominal;
     break;
   }
+  run.notes = notes;
   return run;
 }
 
@@ -537,6 +618,7 @@ void print_depths(const post::PostSummary& summary) {
 
 void finish_job(const PostArguments& args, const JobRun& run) {
   const post::PostSummary& summary = run.summary;
+  std::vector<std::string> notes = run.notes;
   if (!args.summary_json.empty()) {
     const std::string json = summary_json(args, run).dump(2) + "\n";
     if (args.summary_json == "-") {
@@ -545,9 +627,9 @@ void finish_job(const PostArguments& args, const JobRun& run) {
       AtomicFile out(args.summary_json);
       out.write(json);
       out.commit();
+      note_links(out, args.summary_json, notes);
     }
   }
-  const bool warnings = summary.gouging > 0 || summary.lifted + summary.missed > 0;
   if (!args.quiet) {
     std::cerr << "vcpost: " << summary.samples << " points, " << summary.s_words << " S words";
     if (args.adjust_feed) std::cerr << ", " << summary.f_words << " F words";
@@ -563,11 +645,11 @@ void finish_job(const PostArguments& args, const JobRun& run) {
     for (const auto& path : args.reports) {
       if (path != "-") std::cerr << "vcpost: report written to " << path << '\n';
     }
-    if (summary.gouging > 0)
-      std::cerr << "vcpost: warning: " << summary.gouging << " points gouge the model\n";
-    if (summary.lifted + summary.missed > 0) {
-      std::cerr << "vcpost: warning: " << summary.lifted + summary.missed
-                << " cutting points do not touch the model (their blocks keep the program's S)\n";
+    for (const auto& note : notes) std::cerr << "vcpost: " << note << '\n';
+    if (summary.repeated_lines > 0) {
+      std::cerr << "vcpost: " << summary.repeated_lines
+                << " lines run more than once (subroutines, loops): each has the lowest S (F) "
+                   "of its runs\n";
     }
     print_depths(summary);
     for (const std::string& note : summary.tool_notes)
@@ -578,8 +660,8 @@ void finish_job(const PostArguments& args, const JobRun& run) {
       std::cerr << "vcpost: warning: no section is posted (no ball-end mill whose path touches the "
                    "model): the program keeps its own speeds\n";
     }
+    print_warnings(summary);
   }
-  if (warnings && args.strict) throw CommandError("E2010", "warnings with --strict");
 }
 
 }  // namespace vcpost::cli

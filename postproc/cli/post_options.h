@@ -14,6 +14,10 @@
 
 namespace vcpost::cli {
 
+// The smallest --spacing: 1 um, far below any surface finish a ball-end
+// mill leaves, and above which a 1 m move is at most a million points.
+inline constexpr double kMinSpacingMm = 0.001;
+
 struct PostArguments {
   std::string program, model, machine = "generic", output, summary_json;
   std::string policy = "max", cl_point = "tip", dialect;
@@ -42,18 +46,20 @@ struct JobRun {
   LoadedModel model;
   machines::MachineProfile profile;
   double run_time_s = 0;
+  std::vector<std::string> notes;  // e.g. an output written through a symbolic link
 };
 
 // Runs the job: posts (writing the program to args.output when
 // `write_program`, atomically, '-' = standard output) and writes every
 // report file of args.reports. Checks all outputs before any work; throws
 // CommandError (exit 2) for bad options, unreadable input, unknown report
-// formats or a toolpath that never touches the model; nothing is left
-// half-written.
+// formats, an output that is an input or another output, or a toolpath that
+// never touches the model; nothing is left half-written.
 JobRun run_job(const PostArguments& args, bool write_program);
 
-// The end-of-run lines on stderr (unless --quiet), the --summary-json file,
-// and exit 1 for warnings with --strict.
+// The end-of-run lines on stderr (unless --quiet) and the --summary-json
+// file. (Warnings with --strict end run_job with exit 1 before any output
+// is committed.)
 void finish_job(const PostArguments& args, const JobRun& run);
 
 }  // namespace vcpost::cli

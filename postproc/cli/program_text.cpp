@@ -5,65 +5,144 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
-#include <fstream>
-#include <iostream>
-#include <iterator>
-#include <sstream>
+#include <vector>
 
 #include "postproc/cli/commands.h"
 
 namespace vcpost::cli {
 namespace {
 
-// Pages are released in steps of this many bytes: one madvise call per step.
+// Pages are scanned and released in steps of this many bytes.
 constexpr std::uint64_t release_step = std::uint64_t{16} << 20;
 
-std::string read_stream(std::istream& in) {
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+std::string temporary_folder() {
+  const char* tmpdir = std::getenv("TMPDIR");
+  return tmpdir != nullptr && *tmpdir != '\0' ? tmpdir : "/tmp";
+}
+
+[[noreturn]] void binary_input(const std::string& name, std::string_view before_nul) {
+  const auto line = 1 + std::count(before_nul.begin(), before_nul.end(), '\n');
+  const std::size_t last_nl = before_nul.rfind('\n');
+  const std::size_t column =
+      before_nul.size() - (last_nl == std::string_view::npos ? 0 : last_nl + 1) + 1;
+  throw CommandError(name + ":" + std::to_string(line) + ":" + std::to_string(column) +
+                     ": a NUL byte: this is no text program (binary data?); nothing read past it");
 }
 
 }  // namespace
 
 ProgramText::ProgramText(const std::string& path) {
-  if (path == "-") {
-    copy_ = read_stream(std::cin);
-    view_ = copy_;
-    return;
-  }
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) {
-    throw CommandError("E2002", "'" + path + "': cannot open the program: " + std::strerror(errno));
+  const std::string name = path == "-" ? "<stdin>" : path;
+  int fd = STDIN_FILENO;
+  if (path != "-") {
+    fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) {
+      throw CommandError("E2002", "'" + path + "': cannot open the program: " + std::strerror(errno));
+    }
   }
   struct stat info {};
   if (::fstat(fd, &info) != 0 || S_ISDIR(info.st_mode)) {
-    ::close(fd);
-    throw CommandError("E2002", 
-        "'" + path + "': cannot open the program: " +
-        (S_ISDIR(info.st_mode) ? std::string("it is a folder") : std::strerror(errno)));
+    const int error = errno;
+    if (fd != STDIN_FILENO) ::close(fd);
+    throw CommandError("E2002",
+        "'" + name + "': cannot open the program: " +
+        (S_ISDIR(info.st_mode) ? std::string("it is a folder") : std::strerror(error)));
   }
-  if (!S_ISREG(info.st_mode) || info.st_size == 0) {
-    // A pipe, a device, or an empty file: read it (mmap cannot map these).
+  if (S_ISREG(info.st_mode) && path != "-") {
+    const auto size = static_cast<std::size_t>(info.st_size);
+    if (size > 0) map(fd, size, name);
     ::close(fd);
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw CommandError("E2002", "'" + path + "': cannot open the program");
-    copy_ = read_stream(in);
-    view_ = copy_;
+    if (map_) refuse_binary(name);
     return;
   }
-  map_size_ = static_cast<std::size_t>(info.st_size);
+  // A pipe, a terminal, a device: copied as it comes into an unlinked file.
+  std::string pattern = temporary_folder() + "/vcpost-input.XXXXXX";
+  const int copy = ::mkostemp(pattern.data(), O_CLOEXEC);
+  if (copy < 0) {
+    const int error = errno;
+    if (fd != STDIN_FILENO) ::close(fd);
+    throw CommandError("E2002", "'" + name + "': cannot hold the program in '" + temporary_folder() +
+                       "': " + std::strerror(error));
+  }
+  ::unlink(pattern.c_str());
+  std::vector<char> buffer(std::size_t{1} << 20);
+  std::uint64_t total = 0;
+  std::uint64_t newlines = 0;
+  std::size_t column = 1;
+  for (;;) {
+    const ssize_t got = ::read(fd, buffer.data(), buffer.size());
+    if (got == 0) break;
+    if (got < 0) {
+      if (errno == EINTR) continue;
+      const int error = errno;
+      ::close(copy);
+      if (fd != STDIN_FILENO) ::close(fd);
+      throw CommandError("E2002", "'" + name + "': cannot read the program: " + std::strerror(error));
+    }
+    const std::string_view piece(buffer.data(), static_cast<std::size_t>(got));
+    if (const std::size_t nul = piece.find('\0'); nul != std::string_view::npos) {
+      ::close(copy);
+      if (fd != STDIN_FILENO) ::close(fd);
+      const std::string_view before = piece.substr(0, nul);
+      const auto lines = newlines + static_cast<std::uint64_t>(
+                                        std::count(before.begin(), before.end(), '\n'));
+      const std::size_t last_nl = before.rfind('\n');
+      const std::size_t col = last_nl == std::string_view::npos ? column + nul : nul - last_nl;
+      throw CommandError(name + ":" + std::to_string(lines + 1) + ":" + std::to_string(col) +
+                         ": a NUL byte: this is no text program (binary data?); nothing read "
+                         "past it");
+    }
+    newlines += static_cast<std::uint64_t>(std::count(piece.begin(), piece.end(), '\n'));
+    const std::size_t last_nl = piece.rfind('\n');
+    column = last_nl == std::string_view::npos ? column + piece.size() : piece.size() - last_nl;
+    for (std::size_t done = 0; done < piece.size();) {
+      const ssize_t put = ::write(copy, piece.data() + done, piece.size() - done);
+      if (put < 0) {
+        if (errno == EINTR) continue;
+        const int error = errno;
+        ::close(copy);
+        if (fd != STDIN_FILENO) ::close(fd);
+        throw CommandError("E2002", "'" + name + "': cannot hold the program in '" + temporary_folder() +
+                           "': " + std::strerror(error));
+      }
+      done += static_cast<std::size_t>(put);
+    }
+    total += static_cast<std::uint64_t>(got);
+  }
+  if (fd != STDIN_FILENO) ::close(fd);
+  if (total > 0) map(copy, static_cast<std::size_t>(total), name);
+  ::close(copy);
+}
+
+void ProgramText::map(int fd, std::size_t size, const std::string& name) {
+  map_size_ = size;
   map_ = ::mmap(nullptr, map_size_, PROT_READ, MAP_PRIVATE, fd, 0);
-  const int map_error = errno;
-  ::close(fd);
   if (map_ == MAP_FAILED) {
+    const int error = errno;
     map_ = nullptr;
-    throw CommandError("E2002", "'" + path + "': cannot read the program: " + std::strerror(map_error));
+    throw CommandError("E2002", "'" + name + "': cannot read the program: " + std::strerror(error));
   }
   ::madvise(map_, map_size_, MADV_SEQUENTIAL);
   view_ = std::string_view(static_cast<const char*>(map_), map_size_);
+}
+
+void ProgramText::refuse_binary(const std::string& name) const {
+  // Window by window, each dropped after its scan: the resident size stays
+  // one window whatever the file's size.
+  const auto page = static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
+  for (std::uint64_t at = 0; at < map_size_; at += release_step) {
+    const std::size_t length = static_cast<std::size_t>(std::min<std::uint64_t>(release_step, map_size_ - at));
+    if (std::memchr(view_.data() + at, '\0', length) != nullptr) {
+      const std::size_t nul = view_.find('\0', at);
+      binary_input(name, view_.substr(0, nul));
+    }
+    const std::uint64_t end = (at + length) / page * page;
+    if (end > at) ::madvise(static_cast<char*>(map_) + at, end - at, MADV_DONTNEED);
+  }
 }
 
 ProgramText::~ProgramText() {

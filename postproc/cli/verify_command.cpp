@@ -11,6 +11,8 @@
 #include <string>
 
 #include "postproc/cli/commands.h"
+#include "postproc/cli/number_options.h"
+#include "postproc/cli/program_text.h"
 #include "postproc/gcode/dialect.h"
 #include "postproc/post/post_job.h"
 #include "postproc/verify/verify.h"
@@ -62,17 +64,6 @@ struct Arguments {
   double tolerance = 0.0005;
 };
 
-std::string read_file(const std::string& path) {
-  if (path == "-")
-    return std::string(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw CommandError("E2002", "verify: cannot open " + path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw CommandError("E2002", "verify: cannot read " + path);
-  return text.str();
-}
-
 nlohmann::json to_json(const verify::Result& r) {
   nlohmann::json changes = nlohmann::json::array();
   for (const auto& c : r.changes)
@@ -116,7 +107,8 @@ void run(const Arguments& args) {
   options.tolerance_mm = args.tolerance;
   options.output_decimals = profile.output().decimals;
   options.output_feed_decimals = profile.output().feed_decimals;
-  const std::string input = read_file(args.input), output = read_file(args.output);
+  const ProgramText input_text(args.input), output_text(args.output);
+  const std::string_view input = input_text.view(), output = output_text.view();
   const std::string in_name = args.input == "-" ? "<stdin>" : args.input;
   const std::string out_name = args.output == "-" ? "<stdin>" : args.output;
   if (post::detect_program_kind(output) == post::ProgramKind::cldata)
@@ -141,10 +133,10 @@ void run(const Arguments& args) {
   }
 
   if (args.json) std::cout << to_json(result).dump(2) << '\n';
-  std::cout.flush();
+  finish_standard_output();
   if (!result.ok()) {
     for (std::size_t k = 0; k < result.violations.size() && k < kShown; ++k)
-      std::cerr << verify::format(result.violations[k], out_name) << '\n';
+      std::cerr << printable(verify::format(result.violations[k], out_name)) << '\n';
     const std::uint64_t shown = std::min<std::uint64_t>(result.violations.size(), kShown);
     if (result.violation_count > shown)
       std::cerr << "... and " << result.violation_count - shown << " more\n";
@@ -186,7 +178,7 @@ void add_verify_command(CLI::App& app) {
                   "CL input: largest per-axis distance of an output end point or arc centre from "
                   "the CL's, mm")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->callback([args] { run(*args); });
 }
 

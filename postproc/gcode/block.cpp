@@ -821,9 +821,8 @@ void read_block(std::string_view line, std::uint32_t line_number, std::uint64_t 
   out.offset = offset;
   if (line.size() > kMaxLineLength)
     throw GcodeError(Diagnostic{Code::line_too_long, Severity::error, line_number, 1,
-                                "line of " + std::to_string(line.size()) +
-                                    " bytes; the reader accepts at most " +
-                                    std::to_string(kMaxLineLength)});
+                                "line longer than " + std::to_string(kMaxLineLength) +
+                                    " bytes, the reader's limit"});
   LineReader reader(line, line_number, dialect, &parameters);
   reader.read(out);
 }

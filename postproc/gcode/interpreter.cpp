@@ -1,5 +1,6 @@
 #include "postproc/gcode/interpreter.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -74,8 +75,11 @@ bool Interpreter::line_at(std::uint64_t offset, std::uint32_t number, Line& line
   if (offset >= text_.size()) return false;
   const char* begin = text_.data() + offset;
   const std::size_t rest = text_.size() - offset;
-  const void* nl = std::memchr(begin, '\n', rest);
-  std::size_t length = nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - begin) : rest;
+  // Looks no further than just past the longest line the reader accepts: a
+  // line without end (a huge file of one line) costs no more than that.
+  const std::size_t scan = std::min(rest, kMaxLineLength + 2);
+  const void* nl = std::memchr(begin, '\n', scan);
+  std::size_t length = nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - begin) : scan;
   std::size_t eol_length = nl ? 1 : 0;
   if (length > 0 && begin[length - 1] == '\r') {
     --length;

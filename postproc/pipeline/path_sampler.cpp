@@ -1,5 +1,6 @@
 #include "postproc/pipeline/path_sampler.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "postproc/program/arc.h"
@@ -7,6 +8,11 @@
 namespace vcpost::pipeline {
 
 namespace {
+
+// A move is cut into at most this many pieces, so one move never holds more
+// than that many samples in memory whatever the spacing (longer moves get
+// proportionally wider spacing: over 100 m at 1 um, over 50 km at 0.5 mm).
+constexpr std::uint64_t kMaxPiecesPerMove = 100'000;
 
 // d/du of program::arc_point: angle, radius and axis coordinate are linear in u.
 Eigen::Vector3d arc_tangent(const program::ArcFeed& arc, double u) {
@@ -55,7 +61,8 @@ void PathSampler::add(const program::Event& event, std::uint64_t move,
   // Most moves start exactly where the last one ended: no square roots then.
   const bool continues =
       after_cut_ && (start == last_end_ || (start - last_end_).norm() <= 1e-9 * (1 + start.norm()));
-  const auto pieces = static_cast<std::uint64_t>(std::max(1.0, std::ceil(length / spacing_)));
+  const auto pieces = static_cast<std::uint64_t>(
+      std::clamp(std::ceil(length / spacing_), 1.0, static_cast<double>(kMaxPiecesPerMove)));
   for (std::uint64_t i = continues ? 1 : 0; i <= pieces; ++i) {
     const double u = static_cast<double>(i) / static_cast<double>(pieces);
     out.push_back({point_at(u), direction_at(u), move, u, source});

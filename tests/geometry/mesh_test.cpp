@@ -271,6 +271,27 @@ TEST(StlReader, AsciiVariantsAndUnits) {
   EXPECT_EQ(r.degenerate_dropped, 1u);
 }
 
+TEST(StlReader, BinaryCountBelowTheRecordsIsRefused) {
+  // The cube's 12 triangles with the header's count set to 6: reading up to
+  // the count dropped half the mesh silently; now E4609 at the first record
+  // past the count. Fewer than 50 extra bytes (no whole record) stay ignored.
+  std::string bytes = to_binary_stl(cube(), "");
+  bytes[80] = 6;
+  try {
+    parse_stl(bytes, "c.stl");
+    ADD_FAILURE() << "accepted";
+  } catch (const StlError& e) {
+    EXPECT_EQ(e.code(), StlCode::count_mismatch);
+    EXPECT_NE(std::string(e.what()).find(
+                  "c.stl: offset 384: error[E4609]: binary STL header announces 6 triangles but "
+                  "the file holds 12 whole triangle records"),
+              std::string::npos)
+        << e.what();
+  }
+  std::string padded = to_binary_stl(cube(), "") + std::string(49, '\0');
+  EXPECT_EQ(parse_stl(padded, "c.stl").triangles.size(), 12u);
+}
+
 TEST(StlReader, BadFilesGiveTheirMessages) {
   const fs::path dir = fs::path(VCPOST_SOURCE_DIR) / "tests/geometry/bad/stl";
   std::ifstream list(dir / "expected.txt");

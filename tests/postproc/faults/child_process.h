@@ -35,6 +35,10 @@ struct ChildOptions {
   std::filesystem::path stdin_file;   // empty: /dev/null
   int stdout_fd = -1;                 // >= 0: stdout is this descriptor (e.g. a pipe), not the file
   std::optional<rlim_t> file_size_limit;  // RLIMIT_FSIZE in bytes, set in the child
+  std::optional<rlim_t> memory_limit;     // RLIMIT_AS in bytes, set in the child
+  // Killed (SIGKILL) when still running after this many seconds: a hang
+  // fails the test instead of stopping the suite.
+  std::optional<double> timeout_s;
   std::optional<uid_t> run_as;            // setresuid/setresgid (same id) in the child
   // Called in the parent while the child runs, with its pid; returns when
   // the child may be left to finish (e.g. after sending it a signal).
@@ -142,6 +146,10 @@ inline ChildResult run_child(const ChildOptions& options) {
       const rlimit limit{*options.file_size_limit, *options.file_size_limit};
       if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) ::_exit(121);
     }
+    if (options.memory_limit) {
+      const rlimit limit{*options.memory_limit, *options.memory_limit};
+      if (::setrlimit(RLIMIT_AS, &limit) != 0) ::_exit(123);
+    }
     if (options.run_as) {
       const uid_t id = *options.run_as;
       if (::setgroups(0, nullptr) != 0 || ::setresgid(id, id, id) != 0 ||
@@ -153,6 +161,21 @@ inline ChildResult run_child(const ChildOptions& options) {
     ::_exit(127);
   }
   if (options.while_running) options.while_running(pid);
+  if (options.timeout_s) {
+    const auto end = started + std::chrono::duration<double>(*options.timeout_s);
+    for (;;) {
+      siginfo_t info{};
+      if (::waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOHANG | WNOWAIT) != 0 ||
+          info.si_pid != 0) {
+        break;  // ended (not reaped yet)
+      }
+      if (std::chrono::steady_clock::now() > end) {
+        ::kill(pid, SIGKILL);
+        break;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+  }
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }

@@ -1,0 +1,357 @@
+// Hostile input against the real `vcpost` binary (issue 18): binary and
+// endless input, NaN options, absurd profiles, programs without motion or
+// end, lines run more than once, failing standard output, and the words of
+// the messages. Each case has a time limit (a hang fails, it does not stop
+// the suite) and, where memory was the problem, an address-space limit.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <regex>
+
+#include "tests/postproc/faults/child_process.h"
+
+namespace vcpost::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kSamples = fs::path(VCPOST_SOURCE_DIR) / "samples";
+const std::string kVcpost = VCPOST_BINARY;
+const std::string kDome = (kSamples / "dome_raster_a0_ae3.nc").string();
+
+std::vector<std::string> dome_job(const std::string& program, std::vector<std::string> extra) {
+  std::vector<std::string> a{kVcpost, "post",  program, "--model", (kSamples / "dome.step").string(),
+                             "--tool", "ball:10", "--vc", "120",  "--ap",
+                             "0.3",    "--ae",    "3"};
+  a.insert(a.end(), extra.begin(), extra.end());
+  return a;
+}
+
+ChildResult run(std::vector<std::string> args, const Folder& logs,
+                const std::function<void(ChildOptions&)>& adjust = {}) {
+  ChildOptions o;
+  o.argv = std::move(args);
+  o.stdout_file = logs / "stdout.txt";
+  o.stderr_file = logs / "stderr.txt";
+  o.timeout_s = 60;
+  if (adjust) adjust(o);
+  return run_child(o);
+}
+
+void write(const fs::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+// --- crashes and hangs -----------------------------------------------------
+
+TEST(HostileInput, NulFileStopsAtTheFirstNulInBoundedMemory) {
+  // 100 MB of NUL bytes (sparse): `verify z z` took 11 GB, `post` and
+  // `moves` read it all to report a "line of 2147483648 bytes". Now each
+  // stops at byte 1 with its position, under a 1 GB address-space limit.
+  Folder work, logs;
+  const fs::path z = work / "z.nc";
+  {
+    std::ofstream out(z, std::ios::binary);
+  }
+  fs::resize_file(z, 100u << 20);
+  const auto limited = [](ChildOptions& o) {
+    o.memory_limit = rlim_t{1} << 30;
+    o.timeout_s = 20;
+  };
+  for (const auto& args :
+       {std::vector<std::string>{kVcpost, "verify", z.string(), z.string()},
+        std::vector<std::string>{kVcpost, "moves", z.string()}, dome_job(z.string(), {"-o", "-"})}) {
+    const ChildResult r = run(args, logs, limited);
+    EXPECT_EQ(r.shell_status(), 2) << args[1] << ": " << r.err;
+    EXPECT_NE(r.err.find(z.string() + ":1:1: a NUL byte: this is no text program"),
+              std::string::npos)
+        << args[1] << ": " << r.err;
+  }
+}
+
+TEST(HostileInput, NulAfterTextGivesItsLineAndColumn) {
+  Folder work, logs;
+  const fs::path p = work / "p.nc";
+  write(p, "G21 G90\nG0 X1\nG1 X2 F100\nM2 " + std::string(1, '\0') + "\n");
+  const ChildResult r = run({kVcpost, "moves", p.string()}, logs);
+  EXPECT_EQ(r.shell_status(), 2);
+  EXPECT_EQ(r.err, "vcpost: error: " + p.string() +
+                       ":4:4: a NUL byte: this is no text program (binary data?); nothing read "
+                       "past it\n");
+}
+
+TEST(HostileInput, RandomBytesAreRefusedAtOnce) {
+  // /dev/urandom as the program, and on standard input: no answer in 60 s
+  // and memory growing to an OOM kill; now refused at its first NUL byte.
+  Folder logs;
+  for (const bool on_stdin : {false, true}) {
+    const ChildResult r =
+        run(dome_job(on_stdin ? "-" : "/dev/urandom", {"-o", "-"}), logs, [&](ChildOptions& o) {
+          if (on_stdin) o.stdin_file = "/dev/urandom";
+          o.memory_limit = rlim_t{1} << 30;
+          o.timeout_s = 20;
+        });
+    EXPECT_EQ(r.shell_status(), 2) << r.err;
+    EXPECT_NE(r.err.find("a NUL byte: this is no text program"), std::string::npos) << r.err;
+    EXPECT_LT(r.seconds, 10);
+  }
+}
+
+TEST(HostileInput, StandardInputIsStillRead) {
+  // The dome program on standard input posts as from the file.
+  Folder work, logs;
+  const ChildResult file = run(dome_job(kDome, {"-q", "-o", "-"}), logs);
+  ASSERT_EQ(file.shell_status(), 0) << file.err;
+  const ChildResult piped = run(dome_job("-", {"-q", "-o", "-"}), logs,
+                                [](ChildOptions& o) { o.stdin_file = kDome; });
+  EXPECT_EQ(piped.shell_status(), 0) << piped.err;
+  EXPECT_EQ(piped.out, file.out);
+}
+
+TEST(HostileInput, FifoModelIsRefusedNotWaitedFor) {
+  // A FIFO as the model blocked forever (its format was sniffed by one
+  // open, then read by a second one). Now refused with a message.
+  Folder work, logs;
+  const fs::path fifo = work / "model.stl";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  auto args = dome_job(kDome, {"-o", (work / "out.nc").string()});
+  args[4] = fifo.string();
+  const ChildResult r = run(args, logs, [](ChildOptions& o) { o.timeout_s = 20; });
+  EXPECT_EQ(r.shell_status(), 2) << r.err;
+  EXPECT_NE(r.err.find("is not a regular file (a FIFO or a device)"), std::string::npos) << r.err;
+}
+
+TEST(HostileInput, SpacingHasAFloor) {
+  // --spacing 1e-6 was OOM-killed at 24 GB, 1e-300 ended in "time is not
+  // finite" (exit 3): below the documented floor of 0.001 mm it is a usage
+  // error; at the floor the job runs.
+  Folder work, logs;
+  for (const char* spacing : {"1e-6", "1e-300", "0.0009"}) {
+    const ChildResult r = run(dome_job(kDome, {"-q", "--spacing", spacing, "-o", "-"}), logs);
+    EXPECT_EQ(r.shell_status(), 2) << spacing << ": " << r.err;
+    EXPECT_NE(r.err.find("--spacing: must be between 0.001 and 1000000, got"), std::string::npos)
+        << r.err;
+  }
+}
+
+TEST(HostileInput, LinesRunTwiceArePosted) {
+  // A subroutine called twice (o100 sub / o100 call): "internal error:
+  // write_patched: patch offset 18446744073709551456" (exit 3). Now posted,
+  // verified, and the summary counts the lines run more than once.
+  Folder work, logs;
+  // Header: the dome program's first 6 lines; body: its next 60 (the
+  // rapid down and the first passes), then back up.
+  std::istringstream lines(read_file(kDome));
+  std::string header, body, line;
+  for (int n = 1; n <= 66 && std::getline(lines, line); ++n) (n <= 6 ? header : body) += line + "\n";
+  const fs::path p = work / "sub.ngc";
+  write(p, header + "o100 sub\n" + body + "G0 Z50\no100 endsub\no100 call\no100 call\nM5\nM30\n");
+  const fs::path out = work / "out.ngc";
+  auto args = dome_job(p.string(), {"-o", out.string(), "--summary-json", (work / "s.json").string()});
+  const ChildResult r = run(args, logs);
+  ASSERT_EQ(r.shell_status(), 0) << r.err;
+  EXPECT_NE(r.err.find("lines run more than once (subroutines, loops): each has the lowest S"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(read_file(work / "s.json").find("\"repeated_lines\": "), std::string::npos);
+  const ChildResult v = run({kVcpost, "verify", p.string(), out.string()}, logs);
+  EXPECT_EQ(v.shell_status(), 0) << v.err << v.out;
+}
+
+// --- wrong results ---------------------------------------------------------
+
+TEST(HostileInput, NonFiniteNumbersAreUsageErrors) {
+  Folder work, logs;
+  const std::vector<std::vector<std::string>> cases = {
+      dome_job(kDome, {"--vc", "nan", "-o", "-"}),
+      dome_job(kDome, {"--ap", "inf", "-o", "-"}),
+      dome_job(kDome, {"--ae", "nan", "-o", "-"}),
+      dome_job(kDome, {"--spacing", "nan", "-o", "-"}),
+      dome_job(kDome, {"--contact-tolerance=-inf", "-o", "-"}),
+      dome_job(kDome, {"--adjust-feed", "--fz", "nan", "-o", "-"}),
+      {kVcpost, "verify", kDome, kDome, "--tolerance", "nan"},
+      {kVcpost, "moves", "--time", "--rapid-rate", "nan", kDome},
+      {kVcpost, "report", kDome, "--model", (kSamples / "dome.step").string(), "--tool", "ball:10",
+       "--vc", "NaN", "--ap", "0.3", "-o", "-"}};
+  for (const auto& args : cases) {
+    const ChildResult r = run(args, logs);
+    EXPECT_EQ(r.shell_status(), 2) << joined(args) << ": " << r.err;
+    EXPECT_NE(r.err.find("is not a finite number"), std::string::npos) << r.err;
+    EXPECT_EQ(r.out, "");
+  }
+}
+
+TEST(HostileInput, RangeErrorsAreShort) {
+  // "Value 0 not in range 0.000000 to 179769313486231570..." before.
+  Folder logs;
+  const ChildResult r = run(dome_job(kDome, {"--vc", "0", "-o", "-"}), logs);
+  EXPECT_EQ(r.shell_status(), 2);
+  EXPECT_NE(r.err.find("--vc: must be positive, got 0"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("1797693"), std::string::npos) << r.err;
+}
+
+TEST(HostileInput, AbsurdProfileValuesAreRefused) {
+  // block_time_s = 1e300 printed "-2147483648 % after" and NaN in the JSON.
+  Folder work, logs;
+  std::string profile =
+      read_file(fs::path(VCPOST_SOURCE_DIR) / "machines/profiles/generic.toml");
+  const std::regex key(R"(block_time_s *= *[0-9.eE+-]+)");
+  ASSERT_TRUE(std::regex_search(profile, key));
+  write(work / "m.toml", std::regex_replace(profile, key, "block_time_s = 1e300"));
+  const ChildResult r =
+      run(dome_job(kDome, {"--machine", (work / "m.toml").string(), "-o", "-"}), logs);
+  EXPECT_EQ(r.shell_status(), 2) << r.err;
+  EXPECT_NE(r.err.find("block_time_s"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("must be at most 10 s"), std::string::npos) << r.err;
+}
+
+TEST(HostileInput, ModelFiveMillimetresHigherIsAnError) {
+  // Every Z of the program 5 mm down (the model "5 mm higher"): no point
+  // touches, nearly all gouge. Exit 0 with rewritten S before; now exit 2
+  // with the diagnosis, and no output file.
+  Folder work, logs;
+  std::string text = read_file(kDome);
+  std::string shifted;
+  static const std::regex z_word(R"(Z(-?[0-9]+\.?[0-9]*))");
+  auto last = text.cbegin();
+  for (std::sregex_iterator m(text.begin(), text.end(), z_word), end; m != end; ++m) {
+    shifted.append(last, (*m)[0].first);
+    char number[32];
+    std::snprintf(number, sizeof number, "Z%.3f", std::stod((*m)[1].str()) - 5);
+    shifted += number;
+    last = (*m)[0].second;
+  }
+  shifted.append(last, text.cend());
+  write(work / "low.nc", shifted);
+  const ChildResult r = run(dome_job((work / "low.nc").string(), {"-o", (work / "out.nc").string()}), logs);
+  EXPECT_EQ(r.shell_status(), 2) << r.err;
+  EXPECT_NE(r.err.find("the toolpath gouges the model at "), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(work / "out.nc"));
+}
+
+TEST(HostileInput, ProgramWithoutMotionIsRefusedWithoutEndWarned) {
+  Folder work, logs;
+  write(work / "empty.nc", "");
+  write(work / "comments.nc", "(only a comment)\n; and another\n");
+  for (const char* name : {"empty.nc", "comments.nc"}) {
+    const ChildResult r = run(dome_job((work / name).string(), {"-o", "-"}), logs);
+    EXPECT_EQ(r.shell_status(), 2) << name << ": " << r.err;
+    EXPECT_NE(r.err.find("the program has no motion"), std::string::npos) << r.err;
+  }
+  // The dome program cut in the middle of a number: posted, with a warning.
+  std::string text = read_file(kDome);
+  text.resize(text.size() / 2);
+  text.resize(text.find_last_of("0123456789"));
+  write(work / "cut.nc", text);
+  const ChildResult r = run(dome_job((work / "cut.nc").string(), {"-o", "-"}), logs);
+  EXPECT_EQ(r.shell_status(), 0) << r.err;
+  EXPECT_NE(r.err.find("vcpost: warning: the program ends without M2, M30 or a closing '%'"),
+            std::string::npos)
+      << r.err;
+}
+
+TEST(HostileInput, FailingStandardOutputIsExit2) {
+  // `> /dev/full`: exit 0 before for all of these; the help promises 2.
+  Folder logs;
+  const std::vector<std::vector<std::string>> cases = {
+      {kVcpost, "moves", kDome},
+      {kVcpost, "verify", "--changes", kDome, kDome},
+      {kVcpost, "deff", "--tool", "ball:10", "--ap", "1", "--ae", "1", "--tilt", "25", "--azimuth",
+       "35", "--sweep", "feed-angle=0:360:15"},
+      {kVcpost, "machines", "list"}};
+  for (const auto& args : cases) {
+    const ChildResult ok = run(args, logs);
+    ASSERT_EQ(ok.shell_status(), 0) << joined(args) << ": " << ok.err;
+    ASSERT_FALSE(ok.out.empty()) << joined(args);
+    const ChildResult r = run(args, logs, [](ChildOptions& o) { o.stdout_file = "/dev/full"; });
+    EXPECT_EQ(r.shell_status(), 2) << joined(args) << ": " << r.err;
+    EXPECT_NE(r.err.find("cannot write to standard output: No space left on device"),
+              std::string::npos)
+        << r.err;
+  }
+}
+
+// --- messages --------------------------------------------------------------
+
+TEST(HostileInput, ProgramErrorsNameTheFile) {
+  // "vcpost: error: :4:21: ..." before.
+  Folder work, logs;
+  write(work / "bad.nc", "G21 G90\nS8000 M3\nG0 X0 Y0 Z30\nG1 X1 Y1 Z20 F1000 G2 Q\nM30\n");
+  for (const char* command : {"post", "report"}) {
+    auto args = dome_job((work / "bad.nc").string(), {"-o", "-"});
+    args[1] = command;
+    if (std::string(command) == "report") args.back() = (work / "r.json").string();
+    const ChildResult r = run(args, logs);
+    EXPECT_EQ(r.shell_status(), 2) << r.err;
+    EXPECT_EQ(r.err.rfind("vcpost: error: " + (work / "bad.nc").string() + ":4:", 0), 0u)
+        << command << ": " << r.err;
+  }
+}
+
+TEST(HostileInput, ControlBytesInMessagesAreEscaped) {
+  Folder work, logs;
+  write(work / "cr.nc", std::string("G21 G90\nG0 X1\nG1 X2 F100 \x1b[2J\x07\nM2\n"));
+  const ChildResult r = run({kVcpost, "moves", (work / "cr.nc").string()}, logs);
+  EXPECT_EQ(r.shell_status(), 2) << r.err;
+  EXPECT_EQ(r.err.find('\x1b'), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find('\x07'), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("\\x1b"), std::string::npos) << r.err;
+}
+
+TEST(HostileInput, UnknownCommandIsNamed) {
+  Folder logs;
+  const ChildResult r = run({kVcpost, "bogus"}, logs);
+  EXPECT_EQ(r.shell_status(), 2);
+  EXPECT_EQ(r.err,
+            "vcpost: error: unknown command 'bogus'; the commands are deff, machines, moves, post, "
+            "report, verify (vcpost --help)\n");
+}
+
+TEST(HostileInput, StepFileAsMachineIsNamedForWhatItIs) {
+  Folder logs;
+  const ChildResult r =
+      run(dome_job(kDome, {"--machine", (kSamples / "dome.step").string(), "-o", "-"}), logs);
+  EXPECT_EQ(r.shell_status(), 2);
+  EXPECT_NE(r.err.find("this is a STEP file, not a TOML profile"), std::string::npos) << r.err;
+}
+
+TEST(HostileInput, ReaderLeavingEarlyIsNoFailureMessage) {
+  // `vcpost post ... -o - | head`: the reader leaves after some bytes; the
+  // run ends by SIGPIPE as before, but without "no output written" (bytes
+  // were delivered). A program over 64 KB posted (the pipe's buffer).
+  Folder work, logs;
+  std::ostringstream big;
+  big.setf(std::ios::fixed);
+  big.precision(4);
+  big << "%\nG21 G90 G17 G94\nT1 M6\nS8000 M3\nF2000\n";
+  for (double y = -20; y <= 20; y += 0.5) {
+    auto z_at = [y](double x) { return -20 + std::sqrt(45.0 * 45.0 - x * x - y * y) - 5; };
+    big << "G0 X-20 Y" << y << " Z" << z_at(-20) + 5 << "\nG1 Z" << z_at(-20) << "\n";
+    for (double x = -19.5; x <= 20; x += 0.5) big << "G1 X" << x << " Z" << z_at(x) << "\n";
+    big << "G0 Z30\n";
+  }
+  big << "M5\nM30\n%\n";
+  write(work / "big.nc", big.str());
+  ASSERT_GT(big.str().size(), 200000u);
+  int fds[2];
+  ASSERT_EQ(::pipe(fds), 0);
+  std::string got;
+  const ChildResult r = run(dome_job((work / "big.nc").string(), {"-q", "-o", "-"}), logs,
+                            [&](ChildOptions& o) {
+                              o.stdout_fd = fds[1];
+                              o.while_running = [&](pid_t) {
+                                ::close(fds[1]);
+                                char buffer[4096];
+                                const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
+                                if (n > 0) got.assign(buffer, static_cast<std::size_t>(n));
+                                ::close(fds[0]);  // `head` has seen enough
+                              };
+                            });
+  EXPECT_FALSE(got.empty());
+  EXPECT_FALSE(r.exited);
+  EXPECT_EQ(r.signal, SIGPIPE);
+  EXPECT_EQ(r.err, "");
+}
+
+}  // namespace
+}  // namespace vcpost::test

@@ -20,6 +20,26 @@ namespace vcpost::fuzz {
 // and the program `post` wrote.
 inline constexpr std::string_view kVerifySeparator = "\n%%vcpost-output%%\n";
 
+// Whether `text` runs to its end (or to a reader's error) within the
+// fuzzing budget: 10,000 loop iterations and 200,000 blocks. A longer run
+// is a legal program (a loop of a million turns) that verify would read
+// twice more, too slow to fuzz under the sanitizers: not a finding.
+inline bool within_budget(std::string_view text, const gcode::Dialect& dialect) {
+  gcode::InterpreterLimits limits;
+  limits.max_loop_iterations = 10'000;
+  gcode::Interpreter interpreter(text, dialect, limits);
+  std::vector<program::Event> events;
+  try {
+    for (std::uint64_t blocks = 0; interpreter.next(events); ++blocks) {
+      events.clear();
+      if (blocks > 200'000) return false;
+    }
+  } catch (const gcode::GcodeError& e) {
+    return e.diagnostic().code != gcode::Code::call_depth;
+  }
+  return true;
+}
+
 // With the separator: verifies the two halves as G-code and as CL in /
 // G-code out; any Result or a documented InputError is fine. Without it:
 // the output is the input with an S word patched into (at most 64 of) the
@@ -32,6 +52,9 @@ inline std::string run_verify(std::string_view data) {
   if (split != std::string_view::npos) {
     const std::string_view input = data.substr(0, split);
     const std::string_view output = data.substr(split + kVerifySeparator.size());
+    if (!within_budget(input, options.dialect) || !within_budget(output, options.dialect)) {
+      return "budget";
+    }
     std::string outcome;
     try {
       outcome = verify::verify_gcode(input, output, options).ok() ? "gcode:ok" : "gcode:differs";
@@ -45,9 +68,8 @@ inline std::string run_verify(std::string_view data) {
     }
     return outcome;
   }
-  gcode::InterpreterLimits limits;
-  limits.max_loop_iterations = 100'000;
-  gcode::Interpreter interpreter(data, gcode::rs274ngc_dialect(), limits);
+  if (!within_budget(data, gcode::rs274ngc_dialect())) return "budget";
+  gcode::Interpreter interpreter(data, gcode::rs274ngc_dialect());
   std::vector<program::Event> events;
   std::vector<std::uint64_t> offsets;
   try {

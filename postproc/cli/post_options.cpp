@@ -203,18 +203,20 @@ void print_warnings(const post::PostSummary& summary) {
   }
 }
 
-// Writes the held program to `out` in pieces the size of a pipe's buffer;
-// once one has gone through, a reader leaving early (`| head`) is no
-// failure worth a message (interrupt.h). False when `out` failed.
+// Writes the held program to `out`: its first 4 KB alone, so that once they
+// have gone through, a reader leaving early (`| head`) is no failure worth
+// a message (interrupt.h). False when `out` failed.
 bool deliver(HeldOutput& held, std::ostream& out) {
-  constexpr std::size_t piece = 65536;
-  return held.for_each_chunk([&out](std::string_view bytes) {
-    for (std::size_t at = 0; at < bytes.size(); at += piece) {
-      const std::string_view part = bytes.substr(at, piece);
-      if (!out.write(part.data(), static_cast<std::streamsize>(part.size())).flush()) return false;
+  bool first = true;
+  return held.for_each_chunk([&](std::string_view bytes) {
+    if (first) {
+      first = false;
+      const std::string_view head = bytes.substr(0, 4096);
+      if (!out.write(head.data(), static_cast<std::streamsize>(head.size())).flush()) return false;
       standard_output_delivered();
+      bytes.remove_prefix(head.size());
     }
-    return true;
+    return static_cast<bool>(out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())));
   });
 }
 

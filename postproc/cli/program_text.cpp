@@ -30,7 +30,7 @@ std::string temporary_folder() {
   const std::size_t column =
       before_nul.size() - (last_nl == std::string_view::npos ? 0 : last_nl + 1) + 1;
   throw CommandError(name + ":" + std::to_string(line) + ":" + std::to_string(column) +
-                     ": a NUL byte: this is no text program (binary data?); nothing read past it");
+                     ": error[E1002]: NUL byte: this is no text program (binary data?); nothing read past it");
 }
 
 }  // namespace
@@ -93,8 +93,8 @@ ProgramText::ProgramText(const std::string& path) {
       const std::size_t last_nl = before.rfind('\n');
       const std::size_t col = last_nl == std::string_view::npos ? column + nul : nul - last_nl;
       throw CommandError(name + ":" + std::to_string(lines + 1) + ":" + std::to_string(col) +
-                         ": a NUL byte: this is no text program (binary data?); nothing read "
-                         "past it");
+                         ": error[E1002]: NUL byte: this is no text program (binary data?); "
+                         "nothing read past it");
     }
     newlines += static_cast<std::uint64_t>(std::count(piece.begin(), piece.end(), '\n'));
     const std::size_t last_nl = piece.rfind('\n');

@@ -51,14 +51,6 @@ class EventSource {
   }
   // Bytes of the text read so far (CL; G-code reports its block offsets).
   std::uint64_t consumed() const { return buffer_.consumed(); }
-  // G-code: the program ended without M2/M30 or a closing '%' (cut short?).
-  bool missing_end() const {
-    if (!gcode_) return false;
-    for (const auto& w : gcode_->warnings()) {
-      if (w.code == gcode::Code::missing_program_end) return true;
-    }
-    return false;
-  }
   // G-code: the line of the first construct after which lines may run
   // more than once (a subroutine, a loop, a call, M98, GOTO), once read.
   std::optional<std::uint64_t> repeat_from() const { return repeat_from_; }
@@ -125,6 +117,18 @@ class EventSource {
     return e;
   }
 };
+
+// Whether the last line that is not blank is a '%' (the tape end that
+// closes a program as M2/M30 do).
+bool ends_with_percent(std::string_view text) {
+  const std::size_t last = text.find_last_not_of(" \t\r\n");
+  if (last == std::string_view::npos || text[last] != '%') return false;
+  const std::size_t line_start = text.find_last_of('\n', last);
+  const std::string_view line =
+      text.substr(line_start == std::string_view::npos ? 0 : line_start + 1,
+                  last + 1 - (line_start == std::string_view::npos ? 0 : line_start + 1));
+  return line.find_first_not_of(" \t") == line.size() - 1;
+}
 
 // Numbers the blocks: a G-code block is a line (its events share a source
 // offset); in CL data every motion starts a block, and so does a tool change
@@ -202,6 +206,7 @@ struct PathReader::State {
   bool break_pass = false;     // since the last slot
   std::size_t next_event = 0;  // of `events`, not yet taken
   std::uint64_t last_offset = 0;
+  bool program_end = false;  // M2/M30 (a ProgramEnd event) read
 };
 
 PathReader::PathReader(std::string_view text, const std::string& file_name, ProgramKind kind,
@@ -245,7 +250,7 @@ bool PathReader::read(Chunk& chunk, std::size_t samples) {
       more = s.source.next(s.events, s.program_tools);
     }
     if (!more) {
-      totals_.missing_end = s.source.missing_end();
+      totals_.missing_end = s.kind == ProgramKind::gcode && !s.program_end && !ends_with_percent(s.text);
       break;
     }
     Event& event = s.events[s.next_event];
@@ -282,6 +287,8 @@ bool PathReader::read(Chunk& chunk, std::size_t samples) {
     } else if (const auto* feed = std::get_if<program::SetFeedRate>(&event)) {
       s.program_f = block.program_f = feed->rate;
       block.has_f = true;
+    } else if (std::holds_alternative<program::ProgramEnd>(event)) {
+      s.program_end = true;
     } else if (std::holds_alternative<program::ChangeTool>(event)) {
       s.tool_change = true;
       s.break_pass = true;

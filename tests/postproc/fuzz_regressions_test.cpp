@@ -15,6 +15,7 @@
 
 #include "fuzz/cldata_driver.h"
 #include "fuzz/gcode_driver.h"
+#include "fuzz/verify_driver.h"
 
 namespace vcpost::fuzz {
 namespace {
@@ -72,12 +73,31 @@ TEST(FuzzRegressions, ClInputsGiveTheirDocumentedOutcome) {
   }
 }
 
+// Outcome of the verify driver.
+const std::map<std::string, std::string> kVerifyCases = {
+    // A while loop whose counter is set to #1 + 1 = 3 < 4 on every turn:
+    // endless. Its 10,000 turns ran past the 5 s limit under the sanitizers
+    // on a loaded machine; the driver now gives up past its budget of
+    // 10,000 loop turns (a legal program, too slow to fuzz): "budget".
+    {"endless_while_loop.ngc", "budget"},
+};
+
+TEST(FuzzRegressions, VerifyInputsGiveTheirDocumentedOutcome) {
+  for (const auto& [name, expected] : kVerifyCases) {
+    const fs::path path = kRegressions / "verify_fuzz" / name;
+    ASSERT_TRUE(fs::is_regular_file(path)) << path;
+    EXPECT_EQ(run_verify(read_file(path)), expected) << name;
+  }
+}
+
 // A saved input without an expected outcome would never be checked.
 TEST(FuzzRegressions, EverySavedInputHasACase) {
   for (const auto& name : files_in(kRegressions / "gcode_fuzz"))
     EXPECT_TRUE(kGcodeCases.contains(name)) << "gcode_fuzz/" << name << " has no case";
   for (const auto& name : files_in(kRegressions / "cldata_fuzz"))
     EXPECT_TRUE(kClCases.contains(name)) << "cldata_fuzz/" << name << " has no case";
+  for (const auto& name : files_in(kRegressions / "verify_fuzz"))
+    EXPECT_TRUE(kVerifyCases.contains(name)) << "verify_fuzz/" << name << " has no case";
 }
 
 }  // namespace

@@ -64,9 +64,10 @@ TEST_P(OutputClash, IsRefusedBeforeAnyWork) {
   // every input byte-identical.
   Folder work, logs;
   const DomeJob job(work.path());
+  const auto outputs = GetParam().outputs(job, work.path());  // may make links
   const auto before = job.hashes();
   const auto listed = list_folder(work.path());
-  const ChildResult r = run(job.args(GetParam().outputs(job, work.path())), logs);
+  const ChildResult r = run(job.args(outputs), logs);
   EXPECT_EQ(r.shell_status(), 2) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_NE(r.err.find(GetParam().message), std::string::npos) << r.err;
@@ -114,7 +115,7 @@ INSTANTIATE_TEST_SUITE_P(
                                                 (w / "s.json").string(), "--summary-json",
                                                 (w / "s.json").string()};
               },
-              "is the same file as --report"},
+              "is the same file as --summary-json"},
         Clash{"OutputIsAFolder",
               [](const DomeJob&, const fs::path& w) {
                 return std::vector<std::string>{"-o", w.string()};

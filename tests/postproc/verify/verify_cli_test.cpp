@@ -131,7 +131,7 @@ TEST_F(VerifyCli, InputErrorsExitTwo) {
   write("in.nc", kInput);
   Outcome r = run("verify in.nc missing.nc");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("cannot open missing.nc"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("'missing.nc': cannot open the program"), std::string::npos) << r.err;
   write("arc.nc", "G1 X1 F100\nG2 X2\nM30\n");
   r = run("verify arc.nc arc.nc");
   EXPECT_EQ(r.exit_code, 2);

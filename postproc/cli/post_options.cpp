@@ -408,7 +408,7 @@ JobRun run_job(const PostArguments& args, bool write_program) {
     } catch (const post::PostError& e) {
       throw CommandError(e.what());
     } catch (const gcode::GcodeError& e) {
-      throw CommandError(e.what());
+      throw CommandError(gcode::format(e.diagnostic(), name));
     } catch (const cldata::ClError& e) {
       throw CommandError(e.what());
     } catch (const program::TimingError& e) {

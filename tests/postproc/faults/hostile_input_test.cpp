@@ -186,7 +186,7 @@ TEST(HostileInput, RangeErrorsAreShort) {
   Folder logs;
   const ChildResult r = run(dome_job(kDome, {"--vc", "0", "-o", "-"}), logs);
   EXPECT_EQ(r.shell_status(), 2);
-  EXPECT_NE(r.err.find("--vc: must be positive, got 0"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--vc '0': must be > 0 m/min"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("1797693"), std::string::npos) << r.err;
 }
 

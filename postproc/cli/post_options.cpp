@@ -523,14 +523,13 @@ JobRun run_job(const PostArguments& args, bool write_program) {
     throw CommandError("E2003", std::string("cannot write to standard output: ") +
                        (errno != 0 ? std::strerror(errno) : "write error"));
   }
-  JobRun run{summary, std::nullopt, std::nullopt, std::move(model), profile, run_time};
+  JobRun run{summary, std::nullopt, std::nullopt, std::move(model), profile, run_time, notes};
   for (const post::ToolSection& section : summary.sections) {
     if (!section.posted) continue;
     run.tool = section.entry->geometry();
     run.vc = section.vc_nominal;
     break;
   }
-  run.notes = notes;
   return run;
 }
 

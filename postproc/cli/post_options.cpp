@@ -38,15 +38,6 @@
 namespace vcpost::cli {
 namespace {
 
-nlohmann::json vc_json(const std::optional<post::VcStatistics>& s) {
-  if (!s) return nullptr;
-  return {{"min", s->min},
-          {"max", s->max},
-          {"mean", s->mean},
-          {"within_5_percent", s->within_5_percent},
-          {"within_10_percent", s->within_10_percent}};
-}
-
 nlohmann::json summary_json(const PostArguments& args, const JobRun& run) {
   const post::PostSummary& s = run.summary;
   return {
@@ -78,8 +69,8 @@ nlohmann::json summary_json(const PostArguments& args, const JobRun& run) {
         {"slew", s.time_slew_s},
         {"rate", s.time_rate_s}}},
       {"words_written", {{"s", s.s_words}, {"f", s.f_words}, {"repeated_lines", s.repeated_lines}}},
-      {"vc_before", vc_json(s.before)},
-      {"vc_after", vc_json(s.after)},
+      {"vc_before", report::vc_json(s.before)},
+      {"vc_after", report::vc_json(s.after)},
       {"sections", report::tool_sections_json(s)},
       {"tool_notes", s.tool_notes},
       {"run_time_s", run.run_time_s},

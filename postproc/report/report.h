@@ -78,6 +78,10 @@ inline constexpr double kRegionThresholdBefore = 0.10;
 // The JSON summary (schema in postproc/report/README.md; keys are stable).
 nlohmann::json summary_json(const ReportData& data);
 
+// vc statistics as {min, max, mean, within_5_percent, within_10_percent}, or null:
+// the one form of the post summary and the report.
+nlohmann::json vc_json(const std::optional<post::VcStatistics>& s);
+
 // The tool sections of a job (the `sections` list of both the report's and
 // `post --summary-json`'s summary; keys in postproc/report/README.md).
 nlohmann::json tool_sections_json(const post::PostSummary& summary);

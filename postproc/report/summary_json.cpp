@@ -33,15 +33,6 @@ json speed_json(const SpeedStatistics& s) {
             {"slew", optional_number(s.slew_time_s)}}}};
 }
 
-json vc_json(const std::optional<post::VcStatistics>& s) {
-  if (!s) return nullptr;
-  return {{"min", s->min},
-          {"max", s->max},
-          {"mean", s->mean},
-          {"within_5_percent", s->within_5_percent},
-          {"within_10_percent", s->within_10_percent}};
-}
-
 json depth_json(const post::DepthStatistics& d) {
   if (d.points == 0) return nullptr;
   return {{"points", d.points}, {"min", d.min}, {"median", d.median}, {"max", d.max}};
@@ -64,6 +55,15 @@ json marks_json(const ReportData& data) {
 }
 
 }  // namespace
+
+json vc_json(const std::optional<post::VcStatistics>& s) {
+  if (!s) return nullptr;
+  return {{"min", s->min},
+          {"max", s->max},
+          {"mean", s->mean},
+          {"within_5_percent", s->within_5_percent},
+          {"within_10_percent", s->within_10_percent}};
+}
 
 json tool_sections_json(const post::PostSummary& s) {
   json out = json::array();

@@ -18,6 +18,7 @@
 #include "postproc/gcode/interpreter.h"
 #include "../dome_program_support.h"
 #include "../rs274_support.h"
+#include "../temp_folder.h"
 #include "postproc/post/post_job.h"
 #include "postproc/program/timing.h"
 
@@ -206,10 +207,9 @@ TEST(PostJob, Rs274ReadsTheSameMotionFromInputAndOutput) {
   if (std::system("command -v rs274 >/dev/null 2>&1") != 0) GTEST_SKIP() << "rs274 not installed";
   const std::string input = dome_raster(2.0, 0.5, 8000);
   const auto output = run_post(input, machines::builtin_profile("linuxcnc-3axis"), settings_for(120));
-  const auto dir = std::filesystem::temp_directory_path() / "vcpost_post_job_test";
-  std::filesystem::create_directories(dir);
+  const testing::Folder dir;
   auto transcript = [&](const std::string& name, const std::string& text) {
-    return testing::rs274_motion(dir, name, text);
+    return testing::rs274_motion(dir.path(), name, text);
   };
   const std::string a = transcript("in.ngc", input), b = transcript("out.ngc", output);
   EXPECT_GT(std::count(a.begin(), a.end(), '\n'), 400);

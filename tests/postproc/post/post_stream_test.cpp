@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "../dome_program_support.h"
+#include "../temp_folder.h"
 #include "machines/builtin.h"
 #include "postproc/cli/program_text.h"
 #include "postproc/post/post_job.h"
@@ -106,7 +107,8 @@ TEST(PostStream, TextIsReleasedInOrderUpToTheEnd) {
 }
 
 TEST(ProgramText, MappedFileStaysReadableAfterItsPagesAreReleased) {
-  const auto path = std::filesystem::temp_directory_path() / "vcpost_program_text_test.nc";
+  const testing::Folder dir;
+  const auto path = dir / "program.nc";
   std::string text;
   for (int i = 0; i < 2'000'000; ++i) text += "G1 X" + std::to_string(i) + "\n";  // ~24 MB
   std::ofstream(path, std::ios::binary) << text;

@@ -14,6 +14,7 @@
 
 #include "../dome_program_support.h"
 #include "../rs274_support.h"
+#include "../temp_folder.h"
 #include "machines/builtin.h"
 #include "postproc/post/post_job.h"
 
@@ -98,10 +99,9 @@ void expect_flat_kept_ball_posted(const std::string& input, const Posted& out) {
   EXPECT_LE(flat.end_s, ball.start_s);
 
   if (std::system("command -v rs274 >/dev/null 2>&1") != 0) return;
-  const auto dir = std::filesystem::temp_directory_path() / "vcpost_two_tools";
-  std::filesystem::create_directories(dir);
-  const std::string before = testing::rs274_motion(dir, "in.ngc", input);
-  const std::string after = testing::rs274_motion(dir, "out.ngc", out.text);
+  const testing::Folder dir;
+  const std::string before = testing::rs274_motion(dir.path(), "in.ngc", input);
+  const std::string after = testing::rs274_motion(dir.path(), "out.ngc", out.text);
   EXPECT_FALSE(before.empty());
   EXPECT_EQ(before, after);
 }

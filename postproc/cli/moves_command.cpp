@@ -11,8 +11,8 @@
 #include "postproc/cli/commands.h"
 #include "postproc/cli/number_options.h"
 #include "postproc/cli/program_text.h"
-#include "postproc/post/post_job.h"
 #include "postproc/gcode/interpreter.h"
+#include "postproc/post/post_job.h"
 #include "postproc/program/timing.h"
 #include "postproc/program/transcript.h"
 
@@ -25,8 +25,7 @@ void print_cl_moves(std::string_view text, const std::string& name,
   std::string copy(text);
   std::istringstream in(copy);
   cldata::ClReader reader(in, name);
-  program::PathClock clock(
-      program::TimingSettings{options.rapid_rate, 0.0, program::BlockTimeMode::added});
+  program::PathClock clock(program::TimingSettings{options.rapid_rate, 0.0});
   std::string out;
   std::uint64_t events = 0;
   try {
@@ -47,11 +46,13 @@ void print_cl_moves(std::string_view text, const std::string& name,
   }
   write_standard_output(out);
   if (options.count) {
-    std::printf("records %llu events %llu\n", static_cast<unsigned long long>(reader.record_count()),
+    std::printf("records %llu events %llu\n",
+                static_cast<unsigned long long>(reader.record_count()),
                 static_cast<unsigned long long>(events));
   }
   if (options.time) {
-    std::printf("# program time %.4f s (rapids at %.0f mm/min)\n", clock.elapsed(), options.rapid_rate);
+    std::printf("# program time %.4f s (rapids at %.0f mm/min)\n", clock.elapsed(),
+                options.rapid_rate);
   }
   for (const auto& w : reader.warnings()) std::cerr << cldata::format(w, name) << '\n';
 }
@@ -68,7 +69,8 @@ void add_moves_command(CLI::App& app) {
     double rapid_rate = program::TimingSettings{}.rapid_mm_per_min;
   };
   auto options = std::make_shared<Options>();
-  cmd->add_option("PROGRAM", options->program, "G-code or APT CL program ('-' for stdin)")->required();
+  cmd->add_option("PROGRAM", options->program, "G-code or APT CL program ('-' for stdin)")
+      ->required();
   cmd->add_option("--dialect", options->dialect, "rs274ngc | fanuc (iso) | mazak (eia)")
       ->capture_default_str();
   cmd->add_flag("--source", options->source, "append file:line:col to every line");
@@ -103,8 +105,7 @@ void add_moves_command(CLI::App& app) {
         std::cerr << name << ": " << interpreter.warning_count() - w.size()
                   << " more warnings not shown\n";
     };
-    program::PathClock clock(
-        program::TimingSettings{options->rapid_rate, 0.0, program::BlockTimeMode::added});
+    program::PathClock clock(program::TimingSettings{options->rapid_rate, 0.0});
     try {
       while (interpreter.next(events)) {
         event_count += events.size();

@@ -63,12 +63,7 @@ EventTime PathClock::advance(const Event& event) {
         }
       },
       event);
-  if (motion) {
-    if (settings_.block_mode == BlockTimeMode::added)
-      seconds += settings_.block_seconds;
-    else
-      seconds = std::max(seconds, settings_.block_seconds);
-  }
+  if (motion) seconds = std::max(seconds, settings_.block_seconds);
   const EventTime t{elapsed_, seconds};
   elapsed_ += seconds;
   return t;

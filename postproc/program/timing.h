@@ -3,8 +3,12 @@
 //
 // The model is the programmed one, without acceleration: a feed move takes
 // its path length over its feed rate, a rapid its length over the rapid
-// rate, a dwell its seconds, everything else no time. Units: seconds, mm,
-// mm/min, rpm (program/events.h).
+// rate, a dwell its seconds, everything else no time. A motion block lasts
+// at least the control's block processing time: max(t, block time), not
+// t + block time, since a control with look-ahead reads the next blocks
+// while it moves, and only blocks shorter than its processing time slow the
+// path (MODELS.md section 4). Units: seconds, mm, mm/min, rpm
+// (program/events.h).
 //   G94 (per_minute):     t = L / F                      [min]
 //   G93 (inverse_time):   t = 1 / F                      [min], whatever L
 //   G95 (per_revolution): t = L / (F * S)                [min], S the
@@ -20,20 +24,13 @@
 
 namespace vcpost::program {
 
-// How the per-block processing time of the control counts.
-enum class BlockTimeMode {
-  added,    // every motion block costs block_seconds more (exact stop between blocks)
-  minimum,  // a motion block takes at least block_seconds (look-ahead controls whose
-            // block rate limits short segments)
-};
-
 struct TimingSettings {
   // Path speed of rapids, mm/min, > 0. The machine profile supplies it; the
   // default is a typical small machining centre's.
   double rapid_mm_per_min = 10'000.0;
-  // Per motion block processing time of the control, s, >= 0 (0 = none).
+  // Per motion block processing time of the control, s, >= 0 (0 = none):
+  // the shortest time a motion block takes.
   double block_seconds = 0.0;
-  BlockTimeMode block_mode = BlockTimeMode::added;
 };
 
 // When an event starts (seconds from program start) and how long it takes.
@@ -66,7 +63,7 @@ class PathClock {
   explicit PathClock(TimingSettings settings = {});
 
   // The time of `event`, which must be the next event of the program.
-  // A zero-length move takes no time (plus the block time). Throws
+  // A zero-length move takes the block time. Throws
   // TimingError for a feed move of non-zero length whose time is undefined.
   EventTime advance(const Event& event);
 

@@ -36,7 +36,7 @@ TEST(PathClock, RapidsAtTheSettingsRate) {
   PathClock clock;
   EXPECT_NEAR(clock.advance(StraightTraverse{{0, 0, 0}, {0, 0, 100}, {}}).duration, 0.6, kTol);
   // A profile's 5,000 mm/min: 3-4-12 diagonal = 13 mm -> 0.156 s.
-  PathClock slow(TimingSettings{5000.0, 0.0, BlockTimeMode::added});
+  PathClock slow(TimingSettings{5000.0, 0.0});
   EXPECT_NEAR(slow.advance(StraightTraverse{{0, 0, 0}, {3, 4, 12}, {}}).duration, 0.156, kTol);
   // Rapids need no feed rate.
   EXPECT_NEAR(slow.elapsed(), 0.156, kTol);
@@ -111,29 +111,40 @@ TEST(PathClock, DwellAndZeroLengthAndUndefinedFeed) {
   EXPECT_NEAR(clock.elapsed(), 2.5, kTol);
 }
 
-TEST(PathClock, BlockProcessingTime) {
-  // Added: three 5 s moves and 10 ms per block = 15.03 s.
-  PathClock added(TimingSettings{10'000.0, 0.01, BlockTimeMode::added});
-  added.advance(SetFeedRate{600.0, FeedMode::per_minute, {}});
-  for (int i = 0; i < 3; ++i) added.advance(StraightFeed{{0, 0, 0}, {50, 0, 0}, {}});
-  EXPECT_NEAR(added.elapsed(), 15.03, kTol);
-  // Minimum: 0.01 mm at 600 mm/min is 1 ms of feed, but the control needs 4 ms a block;
-  // a 1 mm move (0.1 s) is not slowed.
-  PathClock minimum(TimingSettings{10'000.0, 0.004, BlockTimeMode::minimum});
-  minimum.advance(SetFeedRate{600.0, FeedMode::per_minute, {}});
-  EXPECT_NEAR(minimum.advance(StraightFeed{{0, 0, 0}, {0.01, 0, 0}, {}}).duration, 0.004, kTol);
-  EXPECT_NEAR(minimum.advance(StraightFeed{{0, 0, 0}, {1, 0, 0}, {}}).duration, 0.1, kTol);
-  // The block time applies to motions only, not to dwells.
-  EXPECT_NEAR(minimum.advance(Dwell{0.001, {}}).duration, 0.001, kTol);
+TEST(PathClock, BlockLastsTheLongerOfItsMoveAndTheBlockTime) {
+  // MODELS.md 4: a block lasts max(L / F, block time), not L / F + block time.
+  // Three 50 mm moves at 600 mm/min (5 s each) with 10 ms per block: 15 s,
+  // not 15.03 s (the control reads ahead while it moves).
+  PathClock look_ahead(TimingSettings{10'000.0, 0.01});
+  look_ahead.advance(SetFeedRate{600.0, FeedMode::per_minute, {}});
+  for (int i = 0; i < 3; ++i) look_ahead.advance(StraightFeed{{0, 0, 0}, {50, 0, 0}, {}});
+  EXPECT_NEAR(look_ahead.elapsed(), 15.0, kTol);
+  // 0.01 mm at 600 mm/min is 1 ms of feed, but the control needs 4 ms a
+  // block: 4 ms. A 1 mm move (0.1 s) is not slowed. 0.04 mm is exactly 4 ms.
+  PathClock clock(TimingSettings{10'000.0, 0.004});
+  clock.advance(SetFeedRate{600.0, FeedMode::per_minute, {}});
+  EXPECT_NEAR(clock.advance(StraightFeed{{0, 0, 0}, {0.01, 0, 0}, {}}).duration, 0.004, kTol);
+  EXPECT_NEAR(clock.advance(StraightFeed{{0, 0, 0}, {1, 0, 0}, {}}).duration, 0.1, kTol);
+  EXPECT_NEAR(clock.advance(StraightFeed{{0, 0, 0}, {0.04, 0, 0}, {}}).duration, 0.004, kTol);
+  // Rapids too: 0.5 mm at 10,000 mm/min = 3 ms -> 4 ms; 1 mm = 6 ms stays.
+  EXPECT_NEAR(clock.advance(StraightTraverse{{0, 0, 0}, {0.5, 0, 0}, {}}).duration, 0.004, kTol);
+  EXPECT_NEAR(clock.advance(StraightTraverse{{0, 0, 0}, {1, 0, 0}, {}}).duration, 0.006, kTol);
+  // The block time applies to motions only, not to dwells or settings.
+  EXPECT_NEAR(clock.advance(Dwell{0.001, {}}).duration, 0.001, kTol);
+  EXPECT_NEAR(clock.advance(SetSpindleSpeed{1000.0, {}}).duration, 0.0, kTol);
+  // 200 moves of 0.5 mm at F1500 (20 ms each) with 1 ms per block: 4.0 s
+  // (the stream of the LinuxCNC measurement, ../shared/tools/linuxcnc-sim).
+  PathClock stream(TimingSettings{10'000.0, 0.001});
+  stream.advance(SetFeedRate{1500.0, FeedMode::per_minute, {}});
+  for (int i = 0; i < 200; ++i) stream.advance(StraightFeed{{0, 0, 0}, {0.5, 0, 0}, {}});
+  EXPECT_NEAR(stream.elapsed(), 4.0, kTol);
 }
 
 TEST(PathClock, RefusesBadSettings) {
-  EXPECT_THROW(PathClock(TimingSettings{0.0, 0.0, BlockTimeMode::added}), std::invalid_argument);
-  EXPECT_THROW(PathClock(TimingSettings{-5.0, 0.0, BlockTimeMode::added}), std::invalid_argument);
-  EXPECT_THROW(PathClock(TimingSettings{1000.0, -1.0, BlockTimeMode::added}),
-               std::invalid_argument);
-  EXPECT_THROW(PathClock(TimingSettings{std::nan(""), 0.0, BlockTimeMode::added}),
-               std::invalid_argument);
+  EXPECT_THROW(PathClock(TimingSettings{0.0, 0.0}), std::invalid_argument);
+  EXPECT_THROW(PathClock(TimingSettings{-5.0, 0.0}), std::invalid_argument);
+  EXPECT_THROW(PathClock(TimingSettings{1000.0, -1.0}), std::invalid_argument);
+  EXPECT_THROW(PathClock(TimingSettings{std::nan(""), 0.0}), std::invalid_argument);
 }
 
 // A G-code program through the interpreter and the clock; every duration by hand.

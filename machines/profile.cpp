@@ -41,7 +41,7 @@ ProfileError::ProfileError(std::string code, std::string file, std::uint32_t lin
 namespace {
 
 // The schema: every table and its keys. Anything else in a file is an error.
-constexpr std::array<std::string_view, 27> kSchemaKeys = {
+constexpr std::array<std::string_view, 29> kSchemaKeys = {
     "machine.name",
     "machine.description",
     "machine.dialect",
@@ -57,6 +57,8 @@ constexpr std::array<std::string_view, 27> kSchemaKeys = {
     "spindle.change_in_motion",
     "spindle.change_code",
     "spindle.stops_path_on_change",
+    "spindle.stop_cost_s",
+    "spindle.at_speed_window_percent",
     "control.block_time_s",
     "feed.f_min_mm_per_min",
     "feed.f_max_mm_per_min",
@@ -379,6 +381,15 @@ MachineProfile profile_from_toml(std::string_view text, const std::string& file)
               "is only meaningful with change_in_motion = \"code\"", codes::inconsistent);
   }
   s.stops_path_on_change = *r.boolean("spindle", "stops_path_on_change", true);
+  if (const auto v = r.number("spindle", "stop_cost_s", false)) {
+    r.require(*v >= 0 && *v <= 10, "spindle", "stop_cost_s", "must be in [0, 10] s");
+    s.stop_cost_s = *v;
+  }
+  if (const auto v = r.number("spindle", "at_speed_window_percent", false)) {
+    r.require(*v >= 0 && *v < 100, "spindle", "at_speed_window_percent",
+              "must be in [0, 100) (0: the control does not wait for the spindle)");
+    s.at_speed_window_percent = *v;
+  }
 
   p.control_.block_time_s = *r.number("control", "block_time_s", true);
   r.require(p.control_.block_time_s >= 0, "control", "block_time_s", "must be >= 0 s");

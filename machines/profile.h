@@ -49,8 +49,19 @@ struct SpindleSpec {
   double min_change_percent = 1.0;  // 0 <= p < 100
   double max_changes_per_s = 10.0;  // most S words per second, > 0: words at least 1/this apart
   SChangeInMotion change_in_motion = SChangeInMotion::inline_word;
-  std::string change_code;            // e.g. "G117"; non-empty iff change_in_motion == code
-  bool stops_path_on_change = false;  // the control halts the path on an S change
+  std::string change_code;  // e.g. "G117"; non-empty iff change_in_motion == code
+  // How the control takes an S word in motion: false ("inline"): the path
+  // keeps its speed, so S words may go on any block; true ("stops path"): the
+  // path stops at every S word (LinuxCNC, grbl, Fanuc with the speed arrival
+  // check, Sinumerik with acknowledgement before motion), so the planner puts
+  // S words only where the path stops or leaves the material anyway.
+  bool stops_path_on_change = false;
+  // Path time one S word in motion costs where it stops the path (braking,
+  // the stop, speeding up again), s, 0..10 (0 when inline).
+  double stop_cost_s = 0.0;
+  // The control holds the path after an S change until the spindle is within
+  // this share of the new speed, percent, 0 <= w < 100; 0: it does not wait.
+  double at_speed_window_percent = 0.0;
 };
 
 struct FeedSpec {

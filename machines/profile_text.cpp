@@ -137,6 +137,8 @@ std::string profile_to_toml(const MachineProfile& p) {
   w.key("change_in_motion", quote(to_string(s.change_in_motion)));
   if (!s.change_code.empty()) w.key("change_code", quote(s.change_code));
   w.key("stops_path_on_change", boolean(s.stops_path_on_change));
+  w.key("stop_cost_s", number(s.stop_cost_s));
+  w.key("at_speed_window_percent", number(s.at_speed_window_percent));
 
   w.table("control");
   w.key("block_time_s", number(p.control().block_time_s));

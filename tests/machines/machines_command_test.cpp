@@ -49,6 +49,8 @@ void expect_same(const MachineProfile& a, const MachineProfile& b) {
   EXPECT_EQ(s.change_in_motion, t.change_in_motion);
   EXPECT_EQ(s.change_code, t.change_code);
   EXPECT_EQ(s.stops_path_on_change, t.stops_path_on_change);
+  EXPECT_EQ(s.stop_cost_s, t.stop_cost_s);
+  EXPECT_EQ(s.at_speed_window_percent, t.at_speed_window_percent);
   EXPECT_EQ(a.control().block_time_s, b.control().block_time_s);
   EXPECT_EQ(a.feed().f_min_mm_per_min, b.feed().f_min_mm_per_min);
   EXPECT_EQ(a.feed().f_max_mm_per_min, b.feed().f_max_mm_per_min);
@@ -126,8 +128,8 @@ TEST(MachinesCommand, ShowPrintsALoadableProfileWithItsSources) {
   const auto r = run("machines show mazak-3axis");
   EXPECT_EQ(r.exit_code, 0) << r.out;
   expect_same(builtin_profile("mazak-3axis"), profile_from_toml(r.out, "shown.toml"));
-  // 27 keys, all with an "assumed" note in the shipped file.
-  EXPECT_NE(r.out.find("27 keys: 27 assumed"), std::string::npos) << r.out;
+  // 29 keys, all with an "assumed" note in the shipped file.
+  EXPECT_NE(r.out.find("29 keys: 29 assumed"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("n_max_rpm = 12000"), std::string::npos);
   EXPECT_NE(r.out.find("change_code = \"G117\""), std::string::npos);
 }

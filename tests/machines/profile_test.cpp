@@ -18,6 +18,32 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The smallest valid profile.
+constexpr const char* kMinimal = R"([machine]
+name = "tiny"
+dialect = "rs274ngc"
+output_format = "rs274ngc"
+[spindle]
+n_min_rpm = 500
+n_max_rpm = 500
+acceleration_rpm_per_s = 1
+deceleration_rpm_per_s = 2
+s_resolution_rpm = 0.5
+min_change_rpm = 0
+min_change_percent = 0
+max_changes_per_s = 1
+change_in_motion = "own_block"
+stops_path_on_change = true
+[control]
+block_time_s = 0
+[feed]
+f_min_mm_per_min = 10
+f_max_mm_per_min = 10
+rapid_mm_per_min = 100
+[tool]
+default_teeth = 4
+)";
+
 std::string read(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream text;
@@ -25,7 +51,7 @@ std::string read(const fs::path& path) {
   return text.str();
 }
 
-TEST(BuiltinProfiles, AllFourAreShippedAndLoad) {
+TEST(BuiltinProfiles, AllAreShippedAndLoad) {
   std::vector<std::string> names;
   for (const auto& p : builtin_profiles()) {
     SCOPED_TRACE(std::string(p.name));
@@ -34,8 +60,71 @@ TEST(BuiltinProfiles, AllFourAreShippedAndLoad) {
     EXPECT_EQ(profile.name(), p.name);  // the file's name is the profile's
     EXPECT_EQ(profile.origin(), p.path);
   }
-  EXPECT_EQ(names,
-            (std::vector<std::string>{"fanuc-3axis", "generic", "linuxcnc-3axis", "mazak-3axis"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"fanuc-3axis-sar", "fanuc-3axis", "generic", "grbl",
+                                             "linuxcnc-3axis", "mazak-3axis",
+                                             "sinumerik-840d"}));  // by file name
+}
+
+// Issue 17: how each control takes an S word in motion, and what a stop costs.
+TEST(BuiltinProfiles, HowEachControlTakesAnSWordInMotion) {
+  struct Expected {
+    const char* name;
+    bool stops;
+    double stop_cost_s;
+    double window_percent;
+    bool vendor_note;  // the stop behaviour is taken from a document or a measurement
+  };
+  for (const Expected& e :
+       {Expected{"linuxcnc-3axis", true, 0.021, 0, true}, Expected{"grbl", true, 0.05, 0, true},
+        Expected{"fanuc-3axis", false, 0, 0, false},
+        Expected{"fanuc-3axis-sar", true, 0.1, 10, true},
+        Expected{"sinumerik-840d", false, 0, 0, true}, Expected{"mazak-3axis", false, 0, 0, false},
+        Expected{"generic", false, 0, 0, false}}) {
+    SCOPED_TRACE(e.name);
+    const auto p = builtin_profile(e.name);
+    EXPECT_EQ(p.spindle().stops_path_on_change, e.stops);
+    EXPECT_DOUBLE_EQ(p.spindle().stop_cost_s, e.stop_cost_s);
+    EXPECT_DOUBLE_EQ(p.spindle().at_speed_window_percent, e.window_percent);
+    const auto* note = p.source_of("spindle.stops_path_on_change");
+    ASSERT_NE(note, nullptr);
+    EXPECT_EQ(note->vendor, e.vendor_note) << note->text;
+  }
+  // The measured LinuxCNC figure: +1.07 s for 50 S words.
+  EXPECT_NE(builtin_profile("linuxcnc-3axis").source_of("spindle.stop_cost_s")->text.find("1.07 s"),
+            std::string::npos);
+  // Sinumerik's note names the machine data that decide it.
+  const auto& sinumerik =
+      builtin_profile("sinumerik-840d").source_of("spindle.stops_path_on_change")->text;
+  EXPECT_NE(sinumerik.find("MD22210 $MC_AUXFU_S_SYNC_TYPE"), std::string::npos);
+  EXPECT_NE(sinumerik.find("MD22080"), std::string::npos);
+}
+
+TEST(ProfileLoading, StopCostAndAtSpeedWindowAreOptionalAndRangeChecked) {
+  const std::string base = std::string(kMinimal);
+  const auto p = profile_from_toml(base, "min.toml");
+  EXPECT_DOUBLE_EQ(p.spindle().stop_cost_s, 0.0);
+  EXPECT_DOUBLE_EQ(p.spindle().at_speed_window_percent, 0.0);
+  auto with = [&](const std::string& line) {
+    std::string text = base;
+    text.insert(text.find("stops_path_on_change"), line + "\n");
+    return text;
+  };
+  EXPECT_DOUBLE_EQ(profile_from_toml(with("stop_cost_s = 0.021"), "a.toml").spindle().stop_cost_s,
+                   0.021);
+  EXPECT_DOUBLE_EQ(profile_from_toml(with("at_speed_window_percent = 1"), "a.toml")
+                       .spindle()
+                       .at_speed_window_percent,
+                   1.0);
+  for (const char* bad : {"stop_cost_s = -0.1", "stop_cost_s = 11", "at_speed_window_percent = -1",
+                          "at_speed_window_percent = 100"}) {
+    SCOPED_TRACE(bad);
+    try {
+      profile_from_toml(with(bad), "a.toml");
+      ADD_FAILURE() << "accepted";
+    } catch (const ProfileError& e) {
+      EXPECT_EQ(e.code(), "E5005") << e.what();
+    }
+  }
 }
 
 TEST(BuiltinProfiles, EmbeddedBytesEqualTheFiles) {
@@ -110,30 +199,7 @@ TEST(BuiltinProfiles, UnknownNameListsTheShippedOnes) {
 
 TEST(ProfileLoading, OptionalKeysTakeTheirDefaults) {
   // The smallest valid profile: [output] and the description may be absent.
-  const std::string text = R"([machine]
-name = "tiny"
-dialect = "rs274ngc"
-output_format = "rs274ngc"
-[spindle]
-n_min_rpm = 500
-n_max_rpm = 500
-acceleration_rpm_per_s = 1
-deceleration_rpm_per_s = 2
-s_resolution_rpm = 0.5
-min_change_rpm = 0
-min_change_percent = 0
-max_changes_per_s = 1
-change_in_motion = "own_block"
-stops_path_on_change = true
-[control]
-block_time_s = 0
-[feed]
-f_min_mm_per_min = 10
-f_max_mm_per_min = 10
-rapid_mm_per_min = 100
-[tool]
-default_teeth = 4
-)";
+  const std::string text = kMinimal;
   const auto p = profile_from_toml(text, "tiny.toml");
   EXPECT_EQ(p.description(), "");
   EXPECT_EQ(p.output().program_number, 1000);

@@ -69,6 +69,7 @@ nlohmann::json summary_json(const PostArguments& args, const JobRun& run) {
         {"slew", s.time_slew_s},
         {"rate", s.time_rate_s}}},
       {"words_written", {{"s", s.s_words}, {"f", s.f_words}, {"repeated_lines", s.repeated_lines}}},
+      {"s_placement", report::s_placement_json(s.s_placement)},
       {"vc_before", report::vc_json(s.before)},
       {"vc_after", report::vc_json(s.after)},
       {"sections", report::tool_sections_json(s)},
@@ -338,9 +339,10 @@ void add_job_options(CLI::App& command, PostArguments& args) {
                      "G-code dialect: rs274ngc, fanuc, mazak (default: the profile's)");
   command.add_option("--summary-json", args.summary_json,
                      "write the job's JSON summary to this file ('-': standard error)");
-  command.add_option("--threads", args.threads,
-                     "worker threads for contact and engagement (default 0: one per core); "
-                     "the output does not depend on it")
+  command
+      .add_option("--threads", args.threads,
+                  "worker threads for contact and engagement (default 0: one per core); "
+                  "the output does not depend on it")
       ->check(CLI::Range(0, 256));
   command.add_flag("-q,--quiet", args.quiet, "print nothing but errors");
   command.add_flag("--strict", args.strict,

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "postproc/plan/plan_rules.h"
+#include "postproc/plan/stop_aware_plan.h"
 #include "postproc/plan/streaming_plan.h"
 
 namespace vcpost::plan {
@@ -26,6 +27,8 @@ std::string_view to_string(Bound b) {
       return "slew";
     case Bound::rate:
       return "rate";
+    case Bound::stretch:
+      return "stretch";
     case Bound::program:
       return "program";
     case Bound::rapid:
@@ -81,16 +84,23 @@ Bound classify_bound(const machines::SpindleSpec& spec, double g_min, double g_m
 
 }  // namespace detail
 
-// The streaming planner fed the whole timeline (streaming_plan.cpp holds
-// the passes).
-SpindlePlan plan_spindle(std::span<const Sample> samples, const machines::SpindleSpec& spec) {
-  StreamingPlanner planner(spec);
+namespace {
+template <class Planner>
+SpindlePlan run_planner(Planner planner, std::span<const Sample> samples) {
   for (const auto& s : samples) planner.push(s);
   planner.finish();
   SpindlePlan plan;
   planner.take_final(plan.blocks);
   plan.s_words = planner.s_words();
   return plan;
+}
+}  // namespace
+
+// A streaming planner fed the whole timeline (streaming_plan.cpp and
+// stop_aware_plan.cpp hold the passes).
+SpindlePlan plan_spindle(std::span<const Sample> samples, const machines::SpindleSpec& spec) {
+  if (spec.stops_path_on_change) return run_planner(StopAwarePlanner(spec), samples);
+  return run_planner(StreamingPlanner(spec), samples);
 }
 
 CoupledFeed coupled_feed(double fz_mm, int teeth, double n_rpm, const machines::FeedSpec& feed) {

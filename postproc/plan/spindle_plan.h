@@ -63,6 +63,10 @@ struct Sample {
   std::optional<double> target_rpm;
   bool rapid = false;        // G0 move
   bool tool_change = false;  // a tool change precedes this sample: the plan restarts
+  // The path stops here anyway (a sharp reversal, a dwell or a program stop
+  // before it): on a control whose path stops at an S word, an S word here
+  // costs no stop of its own (stop_aware_plan.h). Set on a block's first sample.
+  bool path_stops = false;
   SpindleState spindle = SpindleState::cw;
   double program_rpm = 0.0;  // the program's own S in effect here (0 = off)
 };
@@ -77,6 +81,8 @@ enum class Bound {
   // Beyond the band, the larger share of the shortfall names the limit:
   slew,     // acceleration/deceleration: S starts changing early or follows late
   rate,     // the S-word rate (one S per block, words 1/rate apart) held S lower
+  stretch,  // one S holds the stretch between two stops (stop_aware_plan.h): a lower need elsewhere
+            // in it
   program,  // no target (no contact): the program's S is the ceiling
   rapid,    // rapid move: no vc requirement
   off,      // spindle off (M5/S0): untouched
@@ -94,6 +100,10 @@ struct BlockPlan {
   double planned_rpm = 0.0;  // S in effect on the block (the program's S when off)
   bool s_word = false;       // a new S word starts on this block
   Bound bound = Bound::none;
+  // An S word here costs no stop of its own where S stops the path: the
+  // path stops or leaves the material anyway (s_word_allowed() of
+  // stop_aware_plan.h), or a run starts.
+  bool stop_place = false;
 };
 
 struct SpindlePlan {
@@ -111,7 +121,10 @@ class PlanError : public vcpost::Error {
 
 // Plans the spindle over the whole timeline. The spec must be valid (as a
 // loaded profile's is). Throws PlanError. (It feeds StreamingPlanner of
-// streaming_plan.h, which gives the same blocks with bounded memory.)
+// streaming_plan.h, which gives the same blocks with bounded memory, or,
+// when spec.stops_path_on_change, StopAwarePlanner of stop_aware_plan.h,
+// whose contract replaces the S-word placement above: S words only where
+// the path stops anyway.)
 SpindlePlan plan_spindle(std::span<const Sample> samples, const machines::SpindleSpec& spec);
 
 // The hysteresis threshold at the current speed s (rpm).

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "postproc/plan/plan_rules.h"
+#include "postproc/plan/stop_aware_plan.h"
 
 namespace vcpost::plan {
 
@@ -89,6 +90,7 @@ void StreamingPlanner::close_block(double end_s) {
   b.plan.run = run_;
   b.plan.start_s = first.time_s;
   b.plan.end_s = end_s;
+  b.plan.stop_place = index == run_first_ || s_word_allowed(first);
   if (target < kInf) b.plan.target_rpm = target;
   if (!on) {
     b.off = true;

@@ -8,6 +8,7 @@
 #include "postproc/cldata/cl_reader.h"
 #include "postproc/gcode/interpreter.h"
 #include "postproc/pipeline/path_sampler.h"
+#include "postproc/program/arc.h"
 #include "postproc/program/timing.h"
 #include "postproc/tools/program_tools.h"
 
@@ -162,6 +163,45 @@ class BlockCounter {
   std::uint64_t last_offset_ = 0;
 };
 
+// A junction where the path turns by more than this is a reversal: the
+// control must bring the path to rest there whatever its look-ahead
+// (cos 170 deg; a 90 deg corner of a zig-zag step-over is blended).
+constexpr double kReversalCos = -0.984807753012208;
+
+// Unit directions of a motion at its start and its end; nullopt for a
+// move of no length.
+std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> motion_directions(const Event& event) {
+  auto unit = [](const Eigen::Vector3d& v) -> std::optional<Eigen::Vector3d> {
+    const double n = v.norm();
+    if (!(n > 1e-12)) return std::nullopt;
+    return v / n;
+  };
+  if (const auto* arc = std::get_if<program::ArcFeed>(&event)) {
+    constexpr double du = 1e-6;
+    const auto a = unit(program::arc_point(*arc, du) - arc->start);
+    const auto b = unit(arc->end - program::arc_point(*arc, 1 - du));
+    if (a && b) return std::pair{*a, *b};
+    return std::nullopt;
+  }
+  Eigen::Vector3d d = Eigen::Vector3d::Zero();
+  if (const auto* f = std::get_if<program::StraightFeed>(&event)) d = f->end - f->start;
+  if (const auto* r = std::get_if<program::StraightTraverse>(&event)) d = r->end - r->start;
+  if (const auto u = unit(d)) return std::pair{*u, *u};
+  return std::nullopt;
+}
+
+// Events after which the control has brought the path to rest before the
+// next motion: a dwell, a program stop, a spindle command (an S word stops
+// the path on the controls where this matters), a tool change.
+bool stops_path(const Event& event) {
+  return std::holds_alternative<program::Dwell>(event) ||
+         std::holds_alternative<program::ProgramStop>(event) ||
+         std::holds_alternative<program::SetSpindleSpeed>(event) ||
+         std::holds_alternative<program::SpindleOn>(event) ||
+         std::holds_alternative<program::SpindleOff>(event) ||
+         std::holds_alternative<program::ChangeTool>(event);
+}
+
 }  // namespace
 
 struct PathReader::State {
@@ -204,6 +244,8 @@ struct PathReader::State {
   double program_s = 0, program_f = 0;
   bool tool_change = false;    // since the last timeline entry
   bool break_pass = false;     // since the last slot
+  bool path_stops = false;     // the path stops before the next slot (Sample::path_stops)
+  std::optional<Eigen::Vector3d> last_direction;  // of the last motion of non-zero length
   std::size_t next_event = 0;  // of `events`, not yet taken
   std::uint64_t last_offset = 0;
   bool program_end = false;  // M2/M30 (a ProgramEnd event) read
@@ -237,6 +279,11 @@ bool PathReader::read(Chunk& chunk, std::size_t samples) {
     slot.section = s.section;
     s.break_pass = false;
     return slot;
+  };
+  // The first slot after a stop of the path carries it.
+  auto take_stop = [&](Slot& slot) {
+    slot.plan.path_stops = s.path_stops;
+    s.path_stops = false;
   };
 
   // A chunk holds whole blocks: it ends before the first event of a block
@@ -275,6 +322,7 @@ bool PathReader::read(Chunk& chunk, std::size_t samples) {
     BlockInfo& block = chunk.blocks.back();  // a chunk starts with a block
     if (change) block.section = s.section;   // the tool-change block is the new tool's
     const program::EventTime time = s.clock.advance(event);
+    if (stops_path(event)) s.path_stops = true;
     if (const auto* speed = std::get_if<program::SetSpindleSpeed>(&event)) {
       s.program_s = block.program_s = speed->rpm;
       block.has_s = true;
@@ -294,6 +342,11 @@ bool PathReader::read(Chunk& chunk, std::size_t samples) {
       s.break_pass = true;
     }
     if (motion) {
+      if (const auto directions = motion_directions(event)) {
+        if (s.last_direction && s.last_direction->dot(directions->first) < kReversalCos)
+          s.path_stops = true;
+        s.last_direction = directions->second;
+      }
       if (!s.section_decided) {
         s.program_tools.on_motion();
         const auto number = s.program_tools.number();
@@ -314,7 +367,8 @@ bool PathReader::read(Chunk& chunk, std::size_t samples) {
         slot.kind = SlotKind::rapid;
         slot.break_pass = true;
         slot.plan = {time.start,    block_index,       std::nullopt, true,
-                     s.tool_change, s.spindle_state(), s.program_s};
+                     s.tool_change, false,             s.spindle_state(), s.program_s};
+        take_stop(slot);
         s.tool_change = false;
       } else {
         totals_.cutting_time_s += time.duration;
@@ -327,7 +381,8 @@ bool PathReader::read(Chunk& chunk, std::size_t samples) {
           Slot& slot = next_slot();
           slot.kind = SlotKind::resume;
           slot.plan = {time.start,    block_index,       std::nullopt, false,
-                       s.tool_change, s.spindle_state(), s.program_s};
+                       s.tool_change, false,             s.spindle_state(), s.program_s};
+          take_stop(slot);
           s.tool_change = false;
         }
         for (const auto& sample : s.path) {
@@ -338,8 +393,10 @@ bool PathReader::read(Chunk& chunk, std::size_t samples) {
                        std::nullopt,
                        false,
                        s.tool_change,
+                       false,
                        s.spindle_state(),
                        s.program_s};
+          take_stop(slot);
           slot.weight_s = weight;
           slot.sample = sample;
           s.tool_change = false;

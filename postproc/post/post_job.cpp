@@ -13,9 +13,11 @@
 #include <mutex>
 #include <optional>
 #include <thread>
+#include <variant>
 #include <vector>
 
 #include "postproc/cldata/cl_reader.h"
+#include "postproc/plan/stop_aware_plan.h"
 #include "postproc/plan/streaming_plan.h"
 #include "postproc/post/offset_diagnosis.h"
 #include "postproc/post/path_reader.h"
@@ -92,6 +94,30 @@ struct SectionLedger {
   bool timed = false;                      // start_s set
 };
 
+// The planner the profile's control calls for: S words anywhere (inline), or
+// only where the path stops anyway (spindle.stops_path_on_change).
+class SpindlePlanner {
+ public:
+  explicit SpindlePlanner(const machines::SpindleSpec& spec) : planner_(make(spec)) {}
+  void push(const plan::Sample& sample) {
+    std::visit([&](auto& p) { p.push(sample); }, planner_);
+  }
+  void finish() {
+    std::visit([](auto& p) { p.finish(); }, planner_);
+  }
+  void take_final(std::vector<plan::BlockPlan>& out) {
+    std::visit([&](auto& p) { p.take_final(out); }, planner_);
+  }
+
+ private:
+  using Any = std::variant<plan::StreamingPlanner, plan::StopAwarePlanner>;
+  static Any make(const machines::SpindleSpec& spec) {
+    if (spec.stops_path_on_change) return Any(std::in_place_type<plan::StopAwarePlanner>, spec);
+    return Any(std::in_place_type<plan::StreamingPlanner>, spec);
+  }
+  Any planner_;
+};
+
 // The last, serial stage: counts, feeds the planner, and as blocks become
 // final writes them, accumulates the statistics and hands out the points.
 class Finisher {
@@ -99,6 +125,7 @@ class Finisher {
   Finisher(const machines::MachineProfile& profile, const PostSettings& settings,
            ProgramWriter& writer, const PointSink& points, PostSummary& summary)
       : planner_(profile.spindle()),
+        spindle_(profile.spindle()),
         writer_(writer),
         points_(points),
         summary_(summary),
@@ -158,6 +185,16 @@ class Finisher {
     writer_.finish();
     summary_.before = before_.result();
     summary_.after = after_.result();
+    close_placement();
+    SPlacement& placement = summary_.s_placement;
+    placement.at_stops = spindle_.stops_path_on_change;
+    placement.stop_cost_s = spindle_.stop_cost_s;
+    for (const auto& section : placement.sections) {
+      placement.s_words += section.s_words;
+      placement.in_feed += section.in_feed;
+      placement.stops += section.stops;
+      placement.time_cost_s += section.time_cost_s;
+    }
     for (std::size_t i = 0; i < ledgers_.size(); ++i) {
       SectionLedger& l = ledgers_[i];
       ToolSection* s = summary_section(static_cast<std::uint32_t>(i));
@@ -318,7 +355,35 @@ class Finisher {
     return section < ledgers_.size() ? ledgers_[section].state : SectionState::kept;
   }
 
+  // The placement section of a block's run (off blocks belong to none).
+  void count_placement(const plan::BlockPlan& block) {
+    if (block.bound == plan::Bound::off) return;
+    if (!placement_ || placement_->placement.run != block.run) {
+      close_placement();
+      placement_.emplace();
+      placement_->placement.run = block.run;
+      placement_->placement.start_s = block.start_s;
+    }
+    if (!block.s_word) return;
+    ++placement_->placement.s_words;
+    if (!block.stop_place) ++placement_->placement.in_feed;
+    // Every S word stops the path on such a control (LinuxCNC stops even
+    // on an unchanged one); at a stop place the path stopped anyway, but
+    // the word still costs its stop time there.
+    if (spindle_.stops_path_on_change) ++placement_->placement.stops;
+  }
+  void close_placement() {
+    if (!placement_) return;
+    SectionPlacement& p = placement_->placement;
+    p.time_cost_s = static_cast<double>(p.stops) * spindle_.stop_cost_s;
+    p.before = placement_->before.result();
+    p.after = placement_->after.result();
+    summary_.s_placement.sections.push_back(p);
+    placement_.reset();
+  }
+
   void write(const plan::BlockPlan& block) {
+    count_placement(block);
     const BlockInfo& info = writer_.block(block.block);
     std::optional<plan::BlockFeed> feed;
     if (feeds_) feed = feeds_->next(block, {info.program_f, info.program_s});
@@ -333,6 +398,11 @@ class Finisher {
         after_.add(h.d_ref, h.weight_s, block.planned_rpm, nominal);
         ledger->before.add(h.d_ref, h.weight_s, program_s, nominal);
         ledger->after.add(h.d_ref, h.weight_s, block.planned_rpm, nominal);
+        if (placement_) {
+          placement_->before.add(h.d_ref, h.weight_s, program_s, nominal);
+          placement_->after.add(h.d_ref, h.weight_s, block.planned_rpm, nominal);
+          if (!std::isnan(h.d_ref)) placement_->placement.cutting_time_s += h.weight_s;
+        }
       }
       if (points_) {
         const HeldPoint& p = held_points_.front();
@@ -366,7 +436,14 @@ class Finisher {
     writer_.on_final(block, feed);
   }
 
-  plan::StreamingPlanner planner_;
+  struct Placement {
+    SectionPlacement placement;
+    VcAccumulator before, after;
+  };
+
+  SpindlePlanner planner_;
+  machines::SpindleSpec spindle_;
+  std::optional<Placement> placement_;
   std::optional<plan::StreamingFeedPlanner> feeds_;
   ProgramWriter& writer_;
   const PointSink& points_;

@@ -45,6 +45,28 @@ struct PostSettings {
   int threads = 0;                        // worker threads; 0: one per core
 };
 
+// How the S words sit on this machine's control, per section of the
+// program (a run of the spindle: from a start, a tool change or a reversal
+// of the spindle to the next), and what they cost in path time.
+struct SectionPlacement {
+  std::size_t run = 0;        // the planner's run index
+  double start_s = 0;         // program time of its first block
+  double cutting_time_s = 0;  // cutting time of its evaluated points
+  std::uint64_t s_words = 0;  // S words the plan placed
+  std::uint64_t in_feed = 0;  // of them inside a feed stream (not where the path stops anyway)
+  std::uint64_t stops = 0;    // of them that stop the path on this control
+  double time_cost_s = 0;     // stops x the profile's stop cost
+  std::optional<VcStatistics> before, after;
+};
+
+struct SPlacement {
+  bool at_stops = false;   // the control stops the path at an S word: words only at stops
+  double stop_cost_s = 0;  // the profile's cost of one stop
+  std::uint64_t s_words = 0, in_feed = 0, stops = 0;
+  double time_cost_s = 0;
+  std::vector<SectionPlacement> sections;
+};
+
 struct PostSummary {
   ProgramKind kind = ProgramKind::gcode;
   std::uint64_t blocks = 0, motion_events = 0, samples = 0;
@@ -62,6 +84,7 @@ struct PostSummary {
   std::optional<VcStatistics> before, after;
   std::vector<ToolSection> sections;    // every section with a motion, in program order
   std::vector<std::string> tool_notes;  // tool comments that could not be read
+  SPlacement s_placement;  // how the S words sit on the control and what they cost
 };
 
 // One evaluated point of the path with the spindle speed before (the

@@ -64,6 +64,8 @@ std::string_view bound_text(plan::Bound bound) {
       return "slew limit";
     case plan::Bound::rate:
       return "S-word rate";
+    case plan::Bound::stretch:
+      return "one S per stretch between stops";
     case plan::Bound::program:
       return "program's S";
     case plan::Bound::rapid:
@@ -306,6 +308,14 @@ card('Clamped at n_max', fmt(A.time_s.clamped_n_max, 1) + ' s', 'after; ' + pct(
 card('Slew limit binds', fmt(A.time_s.slew, 1) + ' s', 'spindle acceleration', A.time_s.slew > 0.05 * S.time_s.cutting ? 'warn' : '');
 card('No contact / gouge', S.points.no_contact + ' / ' + S.points.gouge, 'of ' + S.points.total + ' points', S.points.gouge > 0 ? 'bad' : (S.points.no_contact > 0 ? 'warn' : 'good'));
 card('S words written', String(S.words_written.s), S.inputs.adjust_feed ? (S.words_written.f + ' F words') : 'F unchanged');
+var P = S.s_placement, placed = P.mode === 'at_stops' ? 'at stops' : 'inline';
+card('S words placed ' + placed, String(P.s_words), P.in_feed + ' inside feed streams; ' + P.stops + ' path stops \u00d7 ' +
+     fmt(P.stop_cost_s, 3) + ' s = ' + fmt(P.time_cost_s, 2) + ' s on this control', P.mode === 'at_stops' && P.in_feed > 0 ? 'warn' : '');
+P.sections.slice(0, 8).forEach(function (q, i) {
+  card('Section ' + (i + 1) + ' from ' + fmt(q.start_s, 1) + ' s: S ' + placed, q.s_words + ' words',
+       q.in_feed + ' in feed, ' + fmt(q.time_cost_s, 2) + ' s; within \u00b110 % of vc ' + pct(q.within_10_percent_before) +
+       ' \u2192 ' + pct(q.within_10_percent_after));
+});
 card('Cusp height', fmt(S.surface.cusp_um && S.surface.cusp_um.mean, 2), 'um mean, max ' + fmt(S.surface.cusp_um && S.surface.cusp_um.max, 2));
 card('Ra / Rz (across the feed)', fmt(S.surface.ra_um && S.surface.ra_um.mean, 2) + ' / ' + fmt(S.surface.rz_um && S.surface.rz_um.mean, 2), 'um, means');
 card('Cutting time', fmt(S.time_s.cutting, 1) + ' s', 'program ' + fmt(S.time_s.program, 1) + ' s');

@@ -9,7 +9,7 @@
 namespace vcpost::report {
 namespace {
 
-constexpr std::array<std::pair<PointFlag, std::string_view>, 13> kFlagNames{{
+constexpr std::array<std::pair<PointFlag, std::string_view>, 14> kFlagNames{{
     {PointFlag::no_contact, "no_contact"},
     {PointFlag::gouge, "gouge"},
     {PointFlag::no_cut, "no_cut"},
@@ -23,6 +23,7 @@ constexpr std::array<std::pair<PointFlag, std::string_view>, 13> kFlagNames{{
     {PointFlag::first_pass, "first_pass"},
     {PointFlag::before_over_max, "before_over_max"},
     {PointFlag::before_under_min, "before_under_min"},
+    {PointFlag::stretch, "stretch"},
 }};
 
 // Below this |k| (1/mm, a radius of 1 km) a surface counts as flat.
@@ -115,6 +116,9 @@ PointRow make_row(const pipeline::PathSample& sample, const pipeline::PointResul
       break;
     case plan::Bound::off:
       set(PointFlag::spindle_off);
+      break;
+    case plan::Bound::stretch:
+      set(PointFlag::stretch);
       break;
     default:
       break;

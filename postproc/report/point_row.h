@@ -50,6 +50,7 @@ enum class PointFlag : std::uint32_t {
   first_pass = 1u << 10,        // no neighbouring pass and no --ae: full-width groove
   before_over_max = 1u << 11,   // the program's S is above n_max (the machine clamps it)
   before_under_min = 1u << 12,  // the program's S is below n_min
+  stretch = 1u << 13,           // one S holds the stretch between two stops (stop-aware plan)
 };
 
 // "no_contact|clamped_max|slew"; empty when no flag is set.

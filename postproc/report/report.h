@@ -86,6 +86,11 @@ nlohmann::json vc_json(const std::optional<post::VcStatistics>& s);
 // `post --summary-json`'s summary; keys in postproc/report/README.md).
 nlohmann::json tool_sections_json(const post::PostSummary& summary);
 
+// How the S words sit on the profile's control and what they cost, per
+// run of the spindle: the `s_placement` object of both summaries (report
+// and `post --summary-json`).
+nlohmann::json s_placement_json(const post::SPlacement& placement);
+
 // The self-contained HTML page. `chart_library` is the charting library's
 // JavaScript (Chart.js 3), inlined as it is. Throws std::invalid_argument
 // when it would end the inline script early (contains "</script").

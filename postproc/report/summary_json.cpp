@@ -54,6 +54,10 @@ json marks_json(const ReportData& data) {
   return out;
 }
 
+json within_10(const std::optional<post::VcStatistics>& v) {
+  return v ? json(v->within_10_percent) : json(nullptr);
+}
+
 }  // namespace
 
 json vc_json(const std::optional<post::VcStatistics>& s) {
@@ -107,6 +111,27 @@ json tool_sections_json(const post::PostSummary& s) {
   return out;
 }
 
+json s_placement_json(const post::SPlacement& p) {
+  json sections = json::array();
+  for (const auto& s : p.sections) {
+    sections.push_back({{"start_s", s.start_s},
+                        {"cutting_s", s.cutting_time_s},
+                        {"s_words", s.s_words},
+                        {"in_feed", s.in_feed},
+                        {"stops", s.stops},
+                        {"time_cost_s", s.time_cost_s},
+                        {"within_10_percent_before", within_10(s.before)},
+                        {"within_10_percent_after", within_10(s.after)}});
+  }
+  return {{"mode", p.at_stops ? "at_stops" : "inline"},
+          {"s_words", p.s_words},
+          {"in_feed", p.in_feed},
+          {"stops", p.stops},
+          {"stop_cost_s", p.stop_cost_s},
+          {"time_cost_s", p.time_cost_s},
+          {"sections", sections}};
+}
+
 json summary_json(const ReportData& data) {
   const ReportInputs& in = data.inputs;
   const ReportStatistics& st = data.statistics;
@@ -145,6 +170,7 @@ json summary_json(const ReportData& data) {
       {"before", speed_json(st.before)},
       {"after", speed_json(st.after)},
       {"words_written", {{"s", job.s_words}, {"f", job.f_words}}},
+      {"s_placement", s_placement_json(job.s_placement)},
       {"surface",
        {{"points", st.surface_points},
         {"cusp_um", distribution_json(st.cusp_um)},

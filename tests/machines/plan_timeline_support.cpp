@@ -10,9 +10,11 @@ machines::SpindleSpec property_spec(int round, std::mt19937& rng) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   const auto shipped = machines::builtin_profiles();
   if (round % 2 == 0) {
-    return machines::builtin_profile(
-               shipped[static_cast<std::size_t>(round / 2) % shipped.size()].name)
-        .spindle();
+    auto spec = machines::builtin_profile(
+                    shipped[static_cast<std::size_t>(round / 2) % shipped.size()].name)
+                    .spindle();
+    spec.stops_path_on_change = false;  // the per-block planner's figures
+    return spec;
   }
   machines::SpindleSpec spec;
   spec.n_min_rpm = 10 + 2000 * u(rng);

@@ -11,7 +11,8 @@
 namespace vcpost::plan::testing {
 
 // Round `round`'s spec: a shipped profile on even rounds, a random one
-// (coarse resolutions, slow spindles, tight rates) on odd ones.
+// (coarse resolutions, slow spindles, tight rates) on odd ones; always with
+// stops_path_on_change false (the per-block planner of streaming_plan.h).
 machines::SpindleSpec property_spec(int round, std::mt19937& rng);
 
 // Blocks of random length with 1..4 samples, targets as a random walk with

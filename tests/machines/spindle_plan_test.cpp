@@ -425,6 +425,7 @@ TEST(SpindlePlan, WithinTwoPercentWhereNoLimitBindsOnEveryShippedProfile) {
   for (const auto& bp : machines::builtin_profiles()) {
     SCOPED_TRACE(std::string(bp.name));
     const auto spec = machines::builtin_profile(bp.name).spindle();
+    if (spec.stops_path_on_change) continue;  // one S per stretch: stop_aware_plan_test.cpp
     const auto samples =
         uniform(2000, 0.1, [](double t) { return 4000.0 + 1000.0 * std::sin(0.05 * t); });
     const auto plan = plan_spindle(samples, spec);

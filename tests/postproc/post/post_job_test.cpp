@@ -109,13 +109,19 @@ TEST(PostJob, EverySpindleSpeedIsWithinTheMachinesRangeAndSlewLimit) {
     const auto profile = machines::builtin_profile(name);
     const std::string output = run_post(dome_raster(1.0, 0.5, 8000), profile, settings_for(120));
     const auto words = s_words(output, profile);
-    ASSERT_GT(words.size(), 2u);
     const auto& spindle = profile.spindle();
+    // The raster has no rapid between its passes: where the path stops at
+    // an S word, the header S and the run's first S are all there is.
+    ASSERT_GT(words.size(), spindle.stops_path_on_change ? 1u : 2u);
     for (std::size_t i = 0; i < words.size(); ++i) {
       EXPECT_GE(words[i].rpm, spindle.n_min_rpm);
       EXPECT_LE(words[i].rpm, spindle.n_max_rpm);
       EXPECT_NEAR(std::fmod(words[i].rpm, spindle.s_resolution_rpm), 0, 1e-6);
       if (i < 2) continue;  // the header S and the run's first S stand before the cut
+      // One S per stretch between stops (linuxcnc-3axis): a rise lags, and
+      // the slow-down is planned against the samples, not word to word
+      // (stop_aware_plan_test.cpp simulates the spindle).
+      if (spindle.stops_path_on_change) continue;
       const double dt = words[i].time_s - words[i - 1].time_s, ds = words[i].rpm - words[i - 1].rpm;
       EXPECT_LE(ds, spindle.acceleration_rpm_per_s * dt + 1e-6) << i;
       EXPECT_LE(-ds, spindle.deceleration_rpm_per_s * dt + 1e-6) << i;

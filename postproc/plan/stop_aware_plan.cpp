@@ -1,0 +1,217 @@
+#include "postproc/plan/stop_aware_plan.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "postproc/plan/plan_rules.h"
+#include "postproc/plan/streaming_plan.h"
+
+namespace vcpost::plan {
+
+using detail::Grid;
+using detail::kEps;
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+}  // namespace
+
+bool s_word_allowed(const Sample& first) {
+  return first.rapid || first.path_stops || first.tool_change;
+}
+
+StopAwarePlanner::StopAwarePlanner(const machines::SpindleSpec& spec)
+    : spec_(spec),
+      g_min_(Grid{spec.s_resolution_rpm}.ceil(spec.n_min_rpm)),
+      g_max_(Grid{spec.s_resolution_rpm}.floor(spec.n_max_rpm)),
+      hold_(1.0 / spec.max_changes_per_s - 1e-9),
+      horizon_(StreamingPlanner::horizon_s(spec)) {}
+
+void StopAwarePlanner::push(const Sample& sample) {
+  if (finished_)
+    throw PlanError("sample " + std::to_string(pushed_) + ": pushed after the end of the timeline");
+  detail::check_sample(pushed_, sample, open_.empty() ? nullptr : &open_.back());
+  if (!open_.empty() && sample.block != open_.back().block) close_block(sample.time_s);
+  open_.push_back(sample);
+  ++pushed_;
+}
+
+void StopAwarePlanner::finish() {
+  if (finished_) return;
+  finished_ = true;
+  if (!open_.empty()) close_block(open_.back().time_s);
+  if (in_run_) end_run();
+}
+
+std::size_t StopAwarePlanner::take_final(std::vector<BlockPlan>& out) {
+  std::size_t n = 0;
+  while (!blocks_.empty() && blocks_.front().done) {
+    out.push_back(blocks_.front().plan);
+    taken_s_words_ += blocks_.front().plan.s_word ? 1 : 0;
+    blocks_.pop_front();
+    ++n;
+  }
+  assign_from_ -= std::min(assign_from_, n);
+  return n;
+}
+
+void StopAwarePlanner::start_run(SpindleState direction) {
+  in_run_ = true;
+  direction_ = direction;
+  s_.reset();
+}
+
+void StopAwarePlanner::end_run() {
+  Stretch& last = stretches_q_.back();
+  last.run_last = true;
+  last.closed = true;
+  decide(true);
+  assign();
+  ++run_;
+  in_run_ = false;
+}
+
+void StopAwarePlanner::open_stretch(double start_s, double program_rpm, bool run_first) {
+  Stretch& st = stretches_q_.emplace_back();
+  st.start_s = start_s;
+  st.program_rpm = program_rpm;
+  st.run_first = run_first;
+}
+
+void StopAwarePlanner::close_block(double end_s) {
+  const Sample& first = open_.front();
+  double target = kInf;
+  bool tool_change = false;
+  for (const auto& s : open_) {
+    if (s.target_rpm) target = std::min(target, *s.target_rpm);
+    tool_change = tool_change || s.tool_change;
+  }
+  const bool on = detail::spindle_on(first);
+  if (!on || !in_run_ || first.spindle != direction_ || tool_change) {
+    if (in_run_) end_run();
+    if (on) start_run(first.spindle);
+  }
+  Block& b = blocks_.emplace_back();
+  b.plan.block = first.block;
+  b.plan.run = run_;
+  b.plan.start_s = first.time_s;
+  b.plan.end_s = end_s;
+  if (target < kInf) b.plan.target_rpm = target;
+  if (!on) {
+    b.off = b.done = true;
+    b.plan.planned_rpm = first.program_rpm;
+    b.plan.bound = Bound::off;
+    open_.clear();
+    return;
+  }
+  const bool allowed = s_word_allowed(first);
+  b.plan.stop_place = allowed || stretches_q_.empty();
+  if (stretches_q_.empty()) {
+    open_stretch(first.time_s, first.program_rpm, true);
+  } else {
+    Stretch& current = stretches_q_.back();
+    if (allowed && current.has_stream && first.time_s - current.start_s >= hold_) {
+      current.end_s = first.time_s;
+      current.closed = true;
+      open_stretch(first.time_s, first.program_rpm, false);
+    }
+  }
+  Stretch& st = stretches_q_.back();
+  b.stretch = stretch_base_ + stretches_q_.size() - 1;
+  if (!allowed) st.has_stream = true;
+  b.ceiling_min = kInf;
+  for (const auto& s : open_) {
+    b.any_target = b.any_target || s.target_rpm.has_value();
+    b.all_rapid = b.all_rapid && s.rapid;
+    if (s.rapid) continue;  // no vc to keep: no ceiling
+    const double e = std::clamp(s.target_rpm ? *s.target_rpm : s.program_rpm, g_min_, g_max_);
+    Need& need = s.target_rpm ? st.cut : st.far;
+    need.own = std::min(need.own, e);
+    need.fall = std::min(need.fall, e + spec_.deceleration_rpm_per_s * (s.time_s - st.start_s));
+    if (s.target_rpm) b.ceiling_min = std::min(b.ceiling_min, e);
+  }
+  open_.clear();
+  decide(false);
+  assign();
+}
+
+// Decides the stretches whose S no later sample can change: those whose end
+// lies more than H before the start of the open stretch (a ceiling that
+// late is out of the spindle's reach: E + deceleration * H >= g_max), and
+// all of them at the run's end.
+void StopAwarePlanner::decide(bool run_end) {
+  const std::size_t n = stretches_q_.size();
+  if (n == 0) return;
+  const double t_open = stretches_q_.back().start_s;
+  if (!run_end && (n < 2 || t_open - stretches_q_.front().end_s <= horizon_)) return;
+  // reach[m]: the highest S that may be in effect at stretch m's start, so
+  // that the spindle slowing from it stays under every ceiling from there on.
+  reach_.assign(n, kInf);
+  reach_[n - 1] = stretches_q_[n - 1].need().fall;
+  for (std::size_t m = n - 1; m-- > 0;) {
+    const double dt = stretches_q_[m + 1].start_s - stretches_q_[m].start_s;
+    reach_[m] =
+        std::min(stretches_q_[m].need().fall, reach_[m + 1] + spec_.deceleration_rpm_per_s * dt);
+  }
+  const Grid grid{spec_.s_resolution_rpm};
+  std::size_t k = 0;
+  for (; k < n; ++k) {
+    const Stretch& st = stretches_q_[k];
+    const bool last = k + 1 == n;
+    if (!run_end && (last || t_open - st.end_s <= horizon_)) break;
+    double need = st.need().own;
+    bool lowered = false;
+    if (!last && reach_[k + 1] < need) {
+      need = reach_[k + 1];
+      lowered = true;
+    }
+    Decision d;
+    d.stretch = stretch_base_ + k;
+    double v = 0.0;
+    if (need < kInf) {
+      v = std::max(g_min_, grid.floor(std::min(need, g_max_)));
+    } else if (st.run_first || !s_) {
+      v = std::max(g_min_, grid.floor(std::clamp(st.program_rpm, g_min_, g_max_)));
+    } else {
+      v = *s_;  // no ceiling anywhere ahead in the run: keep the S in effect
+    }
+    if (!s_ || st.run_first) {
+      d.word = true;
+    } else if (v < *s_ - kEps) {
+      d.word = true;  // forced: a lower ceiling or the slow-down for one
+    } else {
+      d.word = v - *s_ >= change_threshold(spec_, *s_) - kEps;
+    }
+    if (d.word) s_ = v;
+    d.s = *s_;
+    d.lowered = d.word && lowered;
+    decisions_.push_back(d);
+    ++stretches_;
+  }
+  stretches_q_.erase(stretches_q_.begin(), stretches_q_.begin() + static_cast<std::ptrdiff_t>(k));
+  stretch_base_ += k;
+}
+
+// Blocks of decided stretches get their S and bound; the first block of a
+// stretch carries its word.
+void StopAwarePlanner::assign() {
+  for (; assign_from_ < blocks_.size(); ++assign_from_) {
+    Block& b = blocks_[assign_from_];
+    if (b.done) continue;  // off
+    while (!decisions_.empty() && decisions_.front().stretch < b.stretch) decisions_.pop_front();
+    if (decisions_.empty() || decisions_.front().stretch != b.stretch) break;
+    const Decision& d = decisions_.front();
+    b.plan.s_word = d.word && last_assigned_ != b.stretch;
+    last_assigned_ = b.stretch;
+    b.plan.planned_rpm = d.s;
+    const detail::BlockFacts facts{b.any_target, b.all_rapid, b.ceiling_min, b.ceiling_min};
+    Bound bound =
+        detail::classify_bound(spec_, g_min_, g_max_, facts, b.plan.target_rpm, d.s, false);
+    if (bound == Bound::rate) bound = d.lowered ? Bound::slew : Bound::stretch;
+    b.plan.bound = bound;
+    b.done = true;
+  }
+}
+
+}  // namespace vcpost::plan

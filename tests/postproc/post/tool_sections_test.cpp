@@ -49,7 +49,7 @@ Posted post(const std::string& program, const tools::ToolChoices& choices) {
   settings.tools = choices;
   Posted out;
   const auto model = testing::dome();
-  out.summary = post_program(program, "two.ngc", model, machines::builtin_profile("linuxcnc-3axis"),
+  out.summary = post_program(program, "two.ngc", model, machines::builtin_profile("generic"),
                              settings, [&](std::string_view bytes) { out.text.append(bytes); });
   return out;
 }

@@ -262,7 +262,9 @@ TEST(PostJob, LinesRunTwiceGetTheLowestSOfTheirRuns) {
   const std::string unrolled = header + before + body + between + body + tail;
   const std::string called = header + "o100 sub\n" + body + "o100 endsub\n" + before +
                              "o100 call\n" + between + "o100 call\n" + tail;
-  const auto profile = machines::builtin_profile("linuxcnc-3axis");
+  // An inline control: linuxcnc-3axis stops at every S word, and its plan
+  // keeps one S per stretch between stops, none inside a pass.
+  const auto profile = machines::builtin_profile("generic");
   PostSummary unrolled_summary, called_summary;
   const auto u = s_words(run_post(unrolled, profile, settings_for(60), &unrolled_summary));
   const auto c = s_words(run_post(called, profile, settings_for(60), &called_summary));
@@ -300,7 +302,7 @@ TEST(PostJob, RepeatLoopAndFanucM98PostWithOneSPerLine) {
   // o101 repeat [2] (rs274ngc) and M98 P1000 L2 (Fanuc): the same motion as
   // the unrolled program, one S word per line, no error.
   const std::string body = dome_pass(0);
-  const auto profile = machines::builtin_profile("linuxcnc-3axis");
+  const auto profile = machines::builtin_profile("generic");  // inline: S words inside the pass
   PostSummary summary;
   const std::string repeated = "%\nG21 G90 G17 G94\nT1 M6\nS4000 M3\nF300\no101 repeat [2]\n" +
                                body + "o101 endrepeat\nM5\nM30\n%\n";

@@ -267,8 +267,11 @@ class Reader {
   const std::string& file_;
 };
 
-constexpr std::array<std::pair<std::string_view, Dialect>, 3> kDialects = {
-    {{"rs274ngc", Dialect::rs274ngc}, {"fanuc", Dialect::fanuc}, {"mazak", Dialect::mazak}}};
+constexpr std::array<std::pair<std::string_view, Dialect>, 4> kDialects = {
+    {{"rs274ngc", Dialect::rs274ngc},
+     {"fanuc", Dialect::fanuc},
+     {"mazak", Dialect::mazak},
+     {"sinumerik", Dialect::sinumerik}}};
 constexpr std::array<std::pair<std::string_view, OutputFormat>, 3> kFormats = {
     {{"rs274ngc", OutputFormat::rs274ngc},
      {"fanuc", OutputFormat::fanuc},

@@ -26,7 +26,7 @@
 namespace vcpost::machines {
 
 // The G-code dialect the control reads (same names as `--dialect`).
-enum class Dialect { rs274ngc, fanuc, mazak };
+enum class Dialect { rs274ngc, fanuc, mazak, sinumerik };
 // The format of G-code written from CL data for this machine.
 enum class OutputFormat { rs274ngc, fanuc, mazak };
 // How an S change in a motion block reaches the spindle:

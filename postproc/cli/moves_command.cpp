@@ -71,7 +71,8 @@ void add_moves_command(CLI::App& app) {
   auto options = std::make_shared<Options>();
   cmd->add_option("PROGRAM", options->program, "G-code or APT CL program ('-' for stdin)")
       ->required();
-  cmd->add_option("--dialect", options->dialect, "rs274ngc | fanuc (iso) | mazak (eia)")
+  cmd->add_option("--dialect", options->dialect,
+                  "rs274ngc | fanuc (iso) | mazak (eia) | sinumerik (840d)")
       ->capture_default_str();
   cmd->add_flag("--source", options->source, "append file:line:col to every line");
   cmd->add_flag("--count", options->count,

@@ -336,7 +336,7 @@ void add_job_options(CLI::App& command, PostArguments& args) {
       ->check(positive_number())
       ->capture_default_str();
   command.add_option("--dialect", args.dialect,
-                     "G-code dialect: rs274ngc, fanuc, mazak (default: the profile's)");
+                     "G-code dialect: rs274ngc, fanuc, mazak, sinumerik (default: the profile's)");
   command.add_option("--summary-json", args.summary_json,
                      "write the job's JSON summary to this file ('-': standard error)");
   command

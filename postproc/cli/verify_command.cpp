@@ -173,7 +173,7 @@ void add_verify_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option(
       "--dialect", args->dialect,
-      "G-code dialect of both programs: rs274ngc, fanuc, mazak (default: the profile's)");
+      "G-code dialect of both programs: rs274ngc, fanuc, mazak, sinumerik (default: the profile's)");
   cmd->add_option("--tolerance", args->tolerance,
                   "CL input: largest per-axis distance of an output end point or arc centre from "
                   "the CL's, mm")

@@ -28,6 +28,9 @@ void Block::clear() {
   control.column = 0;
   control.condition.reset();
   control.arguments.clear();
+  siemens_cycle.kind = SiemensCycle::Kind::none;
+  siemens_cycle.args.clear();
+  noted_keywords.clear();
 }
 
 const Word* Block::find(char letter) const {
@@ -134,8 +137,234 @@ class LineReader {
   std::uint32_t line_;
   const Dialect& d_;
   const Parameters* p_;  // null when only peeking (nothing is evaluated)
+  bool ac_seen_ = false;  // AC(..) read in the current word's expression
 
   bool at_end() const { return i_ >= s_.size(); }
+  bool siemens() const { return d_.kind == DialectKind::sinumerik; }
+
+  // A Sinumerik statement at i_: MSG( MCALL CYCLE8x( CR=.
+  bool looks_siemens() const {
+    std::string key;
+    for (std::size_t k = i_; k < s_.size() && key.size() < 8 && (is_alpha(s_[k]) || is_digit(s_[k])); ++k)
+      key += upper(s_[k]);
+    std::size_t k = i_ + key.size();
+    while (k < s_.size() && is_blank(s_[k])) ++k;
+    const char next = k < s_.size() ? s_[k] : '\0';
+    return (key == "MSG" && next == '(') || key == "MCALL" || (key.rfind("CYCLE", 0) == 0 && next == '(') ||
+           (key == "CR" && next == '=');
+  }
+
+  // ---- Sinumerik 840D statements ---------------------------------------
+
+  // "R12 = ..." at i_ (an R parameter assignment, not an R word).
+  bool r_assignment_follows() const {
+    std::size_t k = i_ + 1;
+    if (k >= s_.size() || !is_digit(s_[k])) return false;
+    while (k < s_.size() && is_digit(s_[k])) ++k;
+    while (k < s_.size() && is_blank(s_[k])) ++k;
+    return k < s_.size() && s_[k] == '=';
+  }
+
+  void read_r_assignment(Block& out) {
+    const std::size_t start = i_;
+    ++i_;
+    int number = 0;
+    while (!at_end() && is_digit(s_[i_]) && number < 100000) number = number * 10 + (s_[i_++] - '0');
+    skip_blanks();
+    ++i_;  // '='
+    const Value v = binary(0, start);
+    out.assignments.push_back(Assignment{0, "_r" + std::to_string(number), v.number,
+                                         static_cast<std::uint32_t>(start + 1)});
+  }
+
+  // A quoted string after '(' (MSG("...")): its text; i_ after the ')'.
+  std::string read_quoted_call(std::size_t start, const std::string& key) {
+    skip_blanks();
+    if (at_end() || s_[i_] != '(') fail(Code::bad_expression, start, key + " needs (\"text\")");
+    ++i_;
+    skip_blanks();
+    std::string text;
+    if (!at_end() && s_[i_] == '"') {
+      ++i_;
+      while (!at_end() && s_[i_] != '"') text += s_[i_++];
+      if (at_end()) fail(Code::bad_expression, start, "string not closed with '\"'");
+      ++i_;
+    }
+    skip_blanks();
+    if (at_end() || s_[i_] != ')') fail(Code::bad_expression, start, key + "( not closed with ')'");
+    ++i_;
+    return text;
+  }
+
+  // Arguments "(a, , c)" of a cycle call; empty ones are nullopt.
+  std::vector<std::optional<double>> read_call_arguments(std::size_t start, const std::string& key) {
+    std::vector<std::optional<double>> args;
+    skip_blanks();
+    if (at_end() || s_[i_] != '(') fail(Code::bad_expression, start, key + " needs its arguments in ( )");
+    ++i_;
+    while (true) {
+      skip_blanks();
+      if (at_end()) fail(Code::bad_expression, start, key + "( not closed with ')'");
+      if (s_[i_] == ')') {
+        if (!args.empty()) args.emplace_back();  // "a,)" : a trailing empty argument
+        ++i_;
+        break;
+      }
+      if (s_[i_] == ',') {
+        args.emplace_back();
+        ++i_;
+        continue;
+      }
+      args.emplace_back(binary(0, start).number);
+      skip_blanks();
+      if (!at_end() && s_[i_] == ',') {
+        ++i_;
+        skip_blanks();
+        if (!at_end() && s_[i_] == ')') {
+          args.emplace_back();
+          ++i_;
+          break;
+        }
+        continue;
+      }
+      if (!at_end() && s_[i_] == ')') {
+        ++i_;
+        break;
+      }
+      fail(Code::bad_expression, i_, "',' or ')' expected in the arguments of " + key);
+    }
+    return args;
+  }
+
+  void skip_parenthesised() {
+    skip_blanks();
+    if (at_end() || s_[i_] != '(') return;
+    int depth = 0;
+    for (; !at_end(); ++i_) {
+      if (s_[i_] == '"') {
+        while (++i_ < s_.size() && s_[i_] != '"') {
+        }
+        continue;
+      }
+      if (s_[i_] == '(') ++depth;
+      if (s_[i_] == ')' && --depth == 0) {
+        ++i_;
+        return;
+      }
+    }
+    fail(Code::bad_expression, i_ == 0 ? 0 : i_ - 1, "'(' not closed with ')'");
+  }
+
+  void read_siemens_keyword(Block& out) {
+    const std::size_t start = i_;
+    std::string key;
+    while (!at_end() && (is_alpha(s_[i_]) || is_digit(s_[i_]) || s_[i_] == '_'))
+      key += upper(s_[i_++]);
+    const auto column = static_cast<std::uint32_t>(start + 1);
+    if (key == "MSG") {
+      out.message = read_quoted_call(start, key);
+      return;
+    }
+    if (key == "CR") {
+      // CR=<radius>: the arc radius (the R word of the other dialects).
+      skip_blanks();
+      if (at_end() || s_[i_] != '=') fail(Code::bad_expression, start, "CR needs '=' and a radius");
+      ++i_;
+      Word w;
+      w.letter = 'R';
+      w.column = column;
+      w.begin = static_cast<std::uint32_t>(start);
+      w.value = binary(0, start).number;
+      w.decimal_point = true;
+      w.computed = true;
+      w.end = static_cast<std::uint32_t>(i_);
+      out.words.push_back(w);
+      return;
+    }
+    if (key == "TURN") {
+      // TURN=n: n full turns more than the helix's end point says; the P
+      // (turns) word of RS274NGC arcs, which counts them all.
+      skip_blanks();
+      if (at_end() || s_[i_] != '=') fail(Code::bad_expression, start, "TURN needs '=' and a count");
+      ++i_;
+      Word w;
+      w.letter = 'P';
+      w.column = column;
+      w.begin = static_cast<std::uint32_t>(start);
+      w.value = binary(0, start).number + 1.0;
+      w.decimal_point = true;
+      w.computed = true;
+      w.end = static_cast<std::uint32_t>(i_);
+      out.words.push_back(w);
+      return;
+    }
+    SiemensCycle& cycle = out.siemens_cycle;
+    if (key == "MCALL") {
+      skip_blanks();
+      cycle.kind = SiemensCycle::Kind::modal_off;
+      cycle.column = column;
+      if (!at_end() && is_alpha(s_[i_])) {
+        const std::size_t at = i_;
+        std::string name;
+        while (!at_end() && (is_alpha(s_[i_]) || is_digit(s_[i_]))) name += upper(s_[i_++]);
+        if (!read_cycle(name, at, cycle))
+          fail(Code::unsupported_code, at, "MCALL " + name + ": vcpost follows MCALL of CYCLE81-CYCLE89 only");
+        cycle.kind = SiemensCycle::Kind::modal_call;
+      }
+      return;
+    }
+    if (read_cycle(key, start, cycle)) {
+      cycle.kind = SiemensCycle::Kind::call;
+      return;
+    }
+    // Modes that leave the path as written: passed through, named once.
+    static constexpr std::string_view kNoted[] = {
+        "SOFT",   "BRISK",   "FFWON",  "FFWOF",   "CFC",     "CFTCP",    "CFIN",     "COMPON",
+        "COMPCURV", "COMPCAD", "COMPOF", "DIAMOF", "TRAFOOF", "UPATH",    "SPATH",    "STOPRE",
+        "CYCLE832", "WORKPIECE", "FGROUP", "G_GROUP", "ORIWKS", "ORIAXES", "ORIVECT",
+        "TOFFON", "TOFFOF", "FNORM",  "FLIN",    "FCUB",    "PTP",      "CP",       "SUPA"};
+    for (const auto noted : kNoted) {
+      if (key == noted) {
+        if (key == "SUPA")
+          fail(Code::unsupported_code, start, "SUPA (machine coordinates without any frame) is not followed; use G53");
+        skip_parenthesised();
+        out.noted_keywords.emplace_back(key, column);
+        return;
+      }
+    }
+    static constexpr std::string_view kFrames[] = {"TRANS", "ATRANS", "ROT",    "AROT",   "SCALE",
+                                                   "ASCALE", "MIRROR", "AMIRROR", "CYCLE800", "TRAORI",
+                                                   "ROTS",  "AROTS"};
+    for (const auto frame : kFrames)
+      if (key == frame)
+        fail(Code::unsupported_code, start,
+             key + " moves, rotates, scales or mirrors the coordinate frame; vcpost does not follow "
+                   "frames: remove it or post without it");
+    static constexpr std::string_view kFlow[] = {"GOTOF", "GOTOB", "GOTO", "GOTOC", "LOOP", "ENDLOOP",
+                                                 "WHILE", "ENDWHILE", "FOR", "ENDFOR", "IF", "ELSE",
+                                                 "ENDIF", "REPEAT", "UNTIL", "CALL", "PCALL", "RET",
+                                                 "DEF", "PROC"};
+    for (const auto flow : kFlow)
+      if (key == flow)
+        fail(Code::unsupported_flow, start,
+             key + ": Sinumerik program flow and subprograms are not followed by vcpost; expand them in CAM");
+    fail(Code::unknown_word, start, "unknown Sinumerik word or statement '" + key + "'");
+  }
+
+  bool read_cycle(const std::string& name, std::size_t start, SiemensCycle& cycle) {
+    static constexpr std::string_view kCycles[] = {"CYCLE81", "CYCLE82", "CYCLE83", "CYCLE84", "CYCLE85",
+                                                   "CYCLE86", "CYCLE89"};
+    for (const auto c : kCycles) {
+      if (name == c) {
+        cycle.number = (name[5] - '0') * 10 + (name[6] - '0');
+        cycle.column = static_cast<std::uint32_t>(start + 1);
+        cycle.args = read_call_arguments(start, name);
+        return true;
+      }
+    }
+    return false;
+  }
+
   void skip_blanks() {
     while (i_ < s_.size() && is_blank(s_[i_])) ++i_;
   }
@@ -288,7 +517,15 @@ class LineReader {
         read_assignment(out);
       } else if (is_alpha(c)) {
         const char letter = upper(c);
-        if (d_.fanuc_macros && i_ + 1 < s_.size() && is_alpha(s_[i_ + 1])) {
+        if (!siemens() && i_ + 1 < s_.size() && is_alpha(s_[i_ + 1]) && looks_siemens())
+          fail(Code::dialect_mismatch, i_,
+               "this is Sinumerik 840D syntax (MSG, MCALL, CYCLE.., CR=): read the program with "
+               "--dialect sinumerik or --machine sinumerik-840d");
+        if (siemens() && i_ + 1 < s_.size() && (is_alpha(s_[i_ + 1]) || s_[i_ + 1] == '_')) {
+          read_siemens_keyword(out);
+        } else if (siemens() && letter == 'R' && r_assignment_follows()) {
+          read_r_assignment(out);
+        } else if (d_.fanuc_macros && i_ + 1 < s_.size() && is_alpha(s_[i_ + 1])) {
           if (!read_macro_statement(out)) return;
         } else if (letter == 'O') {
           read_o_word(out);
@@ -338,6 +575,27 @@ class LineReader {
     w.column = static_cast<std::uint32_t>(start + 1);
     w.begin = static_cast<std::uint32_t>(start);
     if (at_end()) fail(Code::bad_number, start, std::string(1, letter) + " word without a value");
+    if (siemens() && s_[i_] == '=') {
+      ++i_;
+      skip_blanks();
+      if (letter == 'T' && !at_end() && s_[i_] == '"') {
+        // T="name": a tool by name; no number to select.
+        while (++i_ < s_.size() && s_[i_] != '"') {
+        }
+        if (at_end()) fail(Code::bad_expression, start, "tool name not closed with '\"'");
+        ++i_;
+        return;
+      }
+      ac_seen_ = false;
+      w.value = binary(0, start).number;
+      w.absolute = ac_seen_;
+      w.computed = true;
+      w.decimal_point = true;
+      w.end = static_cast<std::uint32_t>(i_);
+      while (w.end > w.begin && is_blank(s_[w.end - 1])) --w.end;
+      out.words.push_back(w);
+      return;
+    }
     const char c = s_[i_];
     if (is_digit(c) || c == '.' || ((c == '-' || c == '+') && literal_follows(i_ + 1))) {
       bool negative = false;
@@ -461,8 +719,28 @@ class LineReader {
       bool point = false;
       return Value{read_number(point, i_, '#'), false};
     }
+    if (siemens() && c == '(') return paren();
+    if (siemens() && upper(c) == 'R' && i_ + 1 < s_.size() && is_digit(s_[i_ + 1])) {
+      // R parameter: 0 until set, as on the control.
+      ++i_;
+      int number = 0;
+      while (!at_end() && is_digit(s_[i_]) && number < 100000) number = number * 10 + (s_[i_++] - '0');
+      const Access a = p_->read("_r" + std::to_string(number));
+      return Value{a.ok ? a.value.number : 0.0, false};
+    }
     if (is_alpha(c)) return function();
     fail(Code::bad_expression, i_, std::string("unexpected '") + c + "' where a value is expected");
+  }
+
+  // Sinumerik: ( expression ).
+  Value paren() {
+    const std::size_t open = i_;
+    ++i_;
+    Value v = binary(0, open);
+    skip_blanks();
+    if (at_end() || s_[i_] != ')') fail(Code::bad_expression, open, "'(' not closed with ')'");
+    ++i_;
+    return v;
   }
 
   Value bracket() {
@@ -593,9 +871,16 @@ class LineReader {
       ++i_;
       return Value{p_->read(key).ok ? 1.0 : 0.0, false};
     }
-    if (at_end() || s_[i_] != '[')
-      fail(Code::bad_expression, start, "unknown word or function '" + name + "'");
-    const double x = bracket().number;
+    const bool round_brackets = siemens() && !at_end() && s_[i_] == '(';
+    if (at_end() || (s_[i_] != '[' && !round_brackets))
+      fail(Code::bad_expression, start, "unknown word or function '" + name + "'" + dialect_hint(name));
+    const double x = round_brackets ? paren().number : bracket().number;
+    if (round_brackets && name == "AC") {
+      ac_seen_ = true;
+      return Value{x, false};
+    }
+    if (round_brackets && name == "IC")
+      fail(Code::unsupported_code, start, "IC() (incremental for one word) is not followed; use G91");
     constexpr double deg = std::numbers::pi / 180.0;
     if (name == "ATAN") {
       skip_blanks();
@@ -630,6 +915,15 @@ class LineReader {
     fail(Code::bad_expression, start, "unknown function '" + name + "'");
   }
 
+  // For a word that is plainly another dialect's: which --dialect reads it.
+  std::string dialect_hint(const std::string& name) const {
+    if (siemens()) return "";
+    if (name == "MSG" || name.rfind("CYCLE", 0) == 0 || name == "CR" || name == "MCALL")
+      return "; this is Sinumerik 840D syntax: read it with --dialect sinumerik or --machine "
+             "sinumerik-840d";
+    return "";
+  }
+
   // After "#<": the normalised name up to '>'.
   std::string read_name() {
     const std::size_t open = i_;
@@ -657,7 +951,9 @@ class LineReader {
     skip_blanks();
     if (!at_end() && s_[i_] == '<') {
       if (!d_.named_parameters)
-        fail(Code::parameters_not_in_dialect, hash, "named parameters are not part of this dialect");
+        fail(Code::parameters_not_in_dialect, hash,
+             "named parameters are not part of this dialect; an RS274NGC (LinuxCNC) program is read "
+             "with --dialect rs274ngc");
       return Ref{0, read_name()};
     }
     if (!d_.numbered_parameters)

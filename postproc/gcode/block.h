@@ -27,6 +27,7 @@ struct Word {
   std::uint32_t end = 0;
   bool decimal_point = false;  // a literal number with '.' (Fanuc integer rule)
   bool computed = false;       // value from a parameter or expression
+  bool absolute = false;       // Sinumerik I=AC(..): an absolute centre
 };
 
 struct Comment {
@@ -60,6 +61,16 @@ struct Control {
   std::vector<double> arguments;    // call arguments, return value
 };
 
+// A Sinumerik drilling cycle statement: CYCLE81(...) runs once where the
+// tool is; MCALL CYCLE81(...) runs it after every later positioning until a
+// bare MCALL. Empty arguments (",,") are nullopt.
+struct SiemensCycle {
+  enum class Kind { none, call, modal_call, modal_off } kind = Kind::none;
+  int number = 0;  // 81 .. 89
+  std::vector<std::optional<double>> args;
+  std::uint32_t column = 0;
+};
+
 struct Block {
   std::string_view text;  // the line, without its terminator
   std::string_view eol;   // "\n", "\r\n", "\r" or "" (last line)
@@ -73,6 +84,9 @@ struct Block {
   std::vector<Assignment> assignments;
   std::optional<std::string> message;  // (MSG, ...)
   Control control;
+  SiemensCycle siemens_cycle;
+  // Sinumerik keywords passed through (SOFT, FFWON, CYCLE832 ...): name, column.
+  std::vector<std::pair<std::string, std::uint32_t>> noted_keywords;
 
   void clear();
   const Word* find(char letter) const;  // first word with this letter

@@ -6,6 +6,8 @@
 #include <array>
 #include <optional>
 
+#include "postproc/gcode/dialect.h"
+
 namespace vcpost::gcode {
 
 enum class Group : unsigned char {
@@ -212,6 +214,39 @@ inline constexpr std::array kMCodes{
     CodeEntry{980, Gr::subprogram, Su::followed}, CodeEntry{990, Gr::stopping, Su::followed},
 };
 
+// Siemens Sinumerik 840D (milling): looked up before the codes it shares
+// with RS274NGC (G0-G3, G4, G17-G19, G40-G42, G53-G57, G90/G91, G93-G97).
+inline constexpr std::array kSinumerikGCodes{
+    CodeEntry{50, Gr::motion, Su::refused, "is a circle through an intermediate point (CIP)"},
+    CodeEntry{90, Gr::non_modal, Su::ignored},       // G9 exact stop, this block
+    CodeEntry{250, Gr::non_modal, Su::noted},        // G25/G26 S..: spindle speed limits
+    CodeEntry{260, Gr::non_modal, Su::noted},
+    CodeEntry{330, Gr::motion, Su::refused, "is a spindle-synchronised (threading) move"},
+    CodeEntry{3310, Gr::motion, Su::refused, "is rigid tapping synchronised to the spindle"},
+    CodeEntry{3320, Gr::motion, Su::refused, "is rigid tapping synchronised to the spindle"},
+    CodeEntry{1100, Gr::non_modal, Su::refused, "sets a pole for polar coordinates"},
+    CodeEntry{1110, Gr::non_modal, Su::refused, "sets a pole for polar coordinates"},
+    CodeEntry{1120, Gr::non_modal, Su::refused, "sets a pole for polar coordinates"},
+    CodeEntry{1530, Gr::non_modal, Su::followed},    // G153: as G53
+    CodeEntry{4500, Gr::path_control, Su::ignored},  // G450/G451: corners under compensation
+    CodeEntry{4510, Gr::path_control, Su::ignored},
+    CodeEntry{5000, Gr::coordinate, Su::followed},   // G500: settable frames off
+    CodeEntry{600, Gr::path_control, Su::ignored},   // G60 exact stop
+    CodeEntry{6010, Gr::path_control, Su::ignored},  // G601-G603 exact-stop windows
+    CodeEntry{6020, Gr::path_control, Su::ignored},
+    CodeEntry{6030, Gr::path_control, Su::ignored},
+    CodeEntry{640, Gr::path_control, Su::ignored},   // G64, G641-G645 continuous path
+    CodeEntry{6410, Gr::path_control, Su::ignored},
+    CodeEntry{6420, Gr::path_control, Su::ignored},
+    CodeEntry{6430, Gr::path_control, Su::ignored},
+    CodeEntry{6440, Gr::path_control, Su::ignored},
+    CodeEntry{6450, Gr::path_control, Su::ignored},
+    CodeEntry{700, Gr::units, Su::followed},         // G70 inch, G71 metric
+    CodeEntry{710, Gr::units, Su::followed},
+    CodeEntry{7000, Gr::units, Su::followed},        // G700/G710: F in the same units too
+    CodeEntry{7100, Gr::units, Su::followed},
+};
+
 // The entry of a code given as a word value (61.1 -> 611); nullopt if the
 // value is no code of the table (including non-tenths such as 1.25).
 template <std::size_t N>
@@ -227,16 +262,27 @@ constexpr std::optional<CodeEntry> find_code(const std::array<CodeEntry, N>& tab
   return std::nullopt;
 }
 
-// The G code of a dialect: Fanuc-like overrides first, then RS274NGC.
-constexpr std::optional<CodeEntry> find_g_code(bool fanuc_like, double value) {
-  if (fanuc_like)
+// The G code of a dialect: its own table first, then RS274NGC's (for
+// Sinumerik only the codes both mean the same).
+constexpr std::optional<CodeEntry> find_g_code(DialectKind kind, double value) {
+  if (kind == DialectKind::sinumerik) {
+    if (const auto entry = find_code(kSinumerikGCodes, value)) return entry;
+    const auto base = find_code(kGCodes, value);
+    if (!base) return base;
+    for (int shared : {0, 10, 20, 30, 40, 170, 180, 190, 400, 410, 420, 530, 540, 550, 560, 570, 900, 910,
+                       930, 940, 950, 960, 970})
+      if (base->code == shared) return base;
+    return std::nullopt;
+  }
+  if (kind != DialectKind::rs274ngc)
     if (const auto entry = find_code(kFanucGCodes, value)) return entry;
   return find_code(kGCodes, value);
 }
 
 static_assert(find_code(kGCodes, 61.1)->group == Group::path_control);
-static_assert(find_g_code(true, 5.1)->support == Support::noted);
-static_assert(find_g_code(false, 5.1)->support == Support::refused);
+static_assert(find_g_code(DialectKind::fanuc, 5.1)->support == Support::noted);
+static_assert(find_g_code(DialectKind::rs274ngc, 5.1)->support == Support::refused);
+static_assert(!find_g_code(DialectKind::sinumerik, 81).has_value());
 static_assert(!find_code(kGCodes, 1.5).has_value());
 static_assert(!find_code(kGCodes, 1e300).has_value());
 

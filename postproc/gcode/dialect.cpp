@@ -25,6 +25,16 @@ Dialect mazak_dialect() {
   return d;
 }
 
+Dialect sinumerik_dialect() {
+  Dialect d;
+  d.kind = DialectKind::sinumerik;
+  d.numbered_parameters = false;  // R parameters instead of #n
+  d.named_parameters = false;
+  d.o_word_control = false;
+  d.unknown_m_is_error = false;
+  return d;
+}
+
 std::optional<Dialect> dialect_from_name(std::string_view name) {
   std::string lower(name);
   std::transform(lower.begin(), lower.end(), lower.begin(),
@@ -32,6 +42,7 @@ std::optional<Dialect> dialect_from_name(std::string_view name) {
   if (lower == "rs274ngc" || lower == "linuxcnc" || lower == "ngc") return rs274ngc_dialect();
   if (lower == "fanuc" || lower == "iso") return fanuc_dialect();
   if (lower == "mazak" || lower == "eia") return mazak_dialect();
+  if (lower == "sinumerik" || lower == "840d" || lower == "siemens") return sinumerik_dialect();
   return std::nullopt;
 }
 

@@ -7,7 +7,7 @@
 
 namespace vcpost::gcode {
 
-enum class DialectKind { rs274ngc, fanuc, mazak };
+enum class DialectKind { rs274ngc, fanuc, mazak, sinumerik };
 
 // What a number without a decimal point means on a length word
 // (X Y Z I J K R): "X1000" = 1000 mm, or 1000 least increments (1.000 mm
@@ -37,9 +37,13 @@ struct Dialect {
 Dialect rs274ngc_dialect();
 Dialect fanuc_dialect();  // ISO/Fanuc: integer lengths are increments
 Dialect mazak_dialect();  // Mazak EIA: Fanuc-like, macros, G05 P2, G61.1
+// Siemens Sinumerik 840D, the 3-axis milling subset CAM posts write:
+// ';' comments, MSG("..."), CR= arcs, R parameters and X=<expression>,
+// G64/G641/G642, T/D, MCALL CYCLE81-CYCLE89 drilling cycles, M30.
+Dialect sinumerik_dialect();
 
 // "rs274ngc" (also "linuxcnc", "ngc"), "fanuc" (also "iso"), "mazak"
-// (also "eia"); nullopt for another name.
+// (also "eia"), "sinumerik" (also "840d", "siemens"); nullopt for another name.
 std::optional<Dialect> dialect_from_name(std::string_view name);
 
 }  // namespace vcpost::gcode

@@ -408,6 +408,83 @@ std::size_t work_index(int code) {
 
 }  // namespace
 
+void Interpreter::run_siemens_cycle(ModalState& s, const SiemensCycle& sc,
+                                    std::vector<Event>& events) {
+  // CYCLE8x(RTP, RFP, SDIS, DP, DPR, ...): retract plane, reference plane,
+  // safety distance, depth (absolute) or depth below RFP; an empty argument
+  // counts 0, as on the control.
+  auto arg = [&](std::size_t k) { return k < sc.args.size() && sc.args[k] ? *sc.args[k] : 0.0; };
+  auto given = [&](std::size_t k) { return k < sc.args.size() && sc.args[k].has_value(); };
+  auto mm = [&](double v) { return s.inches ? v * kInch : v; };
+  if (s.feed <= 0.0)
+    fail(Code::missing_feed, sc.column, "drilling cycle with no feed rate (F) in effect");
+  if (s.plane != program::Plane::xy)
+    fail(Code::unsupported_code, sc.column,
+         "drilling cycles are followed in the XY plane (G17) only");
+  const double rtp = mm(arg(0)), rfp = mm(arg(1)), sdis = mm(std::abs(arg(2)));
+  const double bottom = given(3) ? mm(arg(3)) : rfp - mm(std::abs(arg(4)));
+  CycleCall call;
+  call.fanuc = true;
+  call.start = s.position;
+  call.x = s.position.x();
+  call.y = s.position.y();
+  call.r = rfp + sdis;
+  call.bottom = bottom;
+  call.initial = rtp;
+  call.retract_to_r = false;
+  call.spindle_cw = !s.spindle_ccw;
+  call.source = program::SourceRef{block_.line, sc.column, block_.offset};
+  switch (sc.number) {
+    case 81:
+      call.code = 810;
+      break;
+    case 82:
+      call.code = 820;
+      call.dwell = arg(5);
+      break;
+    case 83: {
+      // FDEP (absolute) or FDPR (below RFP): the first peck; later pecks of
+      // the same depth (the degression DAM is not followed); VARI 0 breaks
+      // the chip with a short back-off, 1 lifts to the R plane.
+      const double first = given(5) ? rfp - mm(arg(5)) : mm(std::abs(arg(6)));
+      if (first <= 0.0)
+        fail(Code::cycle_value, sc.column, "CYCLE83 needs a first drilling depth (FDEP or FDPR)");
+      call.code = arg(11) != 0.0 ? 830 : 730;
+      call.q = first;
+      call.peck_clearance = 1.0;
+      call.dwell = arg(8);
+      break;
+    }
+    case 84:
+      call.code = 840;
+      call.dwell = arg(5);
+      break;
+    case 85:
+      call.code = 850;
+      break;
+    case 86:
+      call.code = 760;
+      call.dwell = arg(5);
+      break;
+    case 89:
+      call.code = 890;
+      call.dwell = arg(5);
+      break;
+    default:
+      fail(Code::unsupported_code, sc.column, "drilling cycle not followed by vcpost");
+  }
+  if (call.r < call.bottom)
+    fail(Code::cycle_value, sc.column, "the cycle's depth lies above its reference plane");
+  const Eigen::Vector3d end = expand_cycle(call, events);
+  // The control ends at the retract plane RTP.
+  if (end.z() != rtp) {
+    events.emplace_back(
+        program::StraightTraverse{end, Eigen::Vector3d(end.x(), end.y(), rtp), call.source});
+  }
+  s.position = Eigen::Vector3d(end.x(), end.y(), rtp);
+  s.moved = true;
+}
+
 void Interpreter::execute(std::vector<Event>& events) {
   const Block& b = block_;
   const bool fanuc_like = dialect_.kind != DialectKind::rs274ngc;
@@ -422,11 +499,17 @@ void Interpreter::execute(std::vector<Event>& events) {
     // Stored only for a word that gets indexed: below kMaxIndexedPosition.
     const auto slot_of_w = static_cast<std::uint8_t>(k + 1);
     if (w.letter == 'G') {
-      const auto entry = find_g_code(fanuc_like, w.value);
+      const auto entry = find_g_code(dialect_.kind, w.value);
       if (!entry) {
         char text[32];
         std::snprintf(text, sizeof text, "G%g", w.value);
-        fail(Code::unknown_g_code, w.column, std::string("unknown G code ") + text);
+        const bool fanuc_code = dialect_.kind == DialectKind::rs274ngc &&
+                                find_g_code(DialectKind::fanuc, w.value).has_value();
+        fail(Code::unknown_g_code, w.column,
+             std::string("unknown G code ") + text +
+                 (fanuc_code ? "; it is a Fanuc-like control's code: read a Fanuc, Haas or Makino "
+                               "program with --dialect fanuc (or its --machine)"
+                             : ""));
       }
       if (entry->support == Support::refused)
         fail(Code::unsupported_code, w.column,
@@ -474,7 +557,10 @@ void Interpreter::execute(std::vector<Event>& events) {
         char text[32];
         std::snprintf(text, sizeof text, "M%g", w.value);
         if (dialect_.unknown_m_is_error)
-          fail(Code::unknown_m_code, w.column, std::string("unknown M code ") + text);
+          fail(Code::unknown_m_code, w.column,
+               std::string("unknown M code ") + text +
+                   "; if it is a machine's own M code of a Fanuc-like program, read it with "
+                   "--dialect fanuc (or its --machine)");
         warn_once(
             'M', static_cast<int>(std::lround(w.value * 10.0)), Code::unknown_m_code, w.column,
             std::string("M code ") + text +
@@ -622,7 +708,10 @@ void Interpreter::execute(std::vector<Event>& events) {
                           source(b, b.comments.empty() ? 1 : b.comments.front().column)});
 
   // Units first: every length of this block is read in the new units.
-  if (G(Group::units)) s.inches = Gc(Group::units) == 200;
+  if (G(Group::units)) {
+    const int c = Gc(Group::units);
+    s.inches = c == 200 || c == 700 || c == 7000;
+  }
   const bool inches_before = state_.inches;
   state_.inches = s.inches;  // length() reads state_; restored on error below
   struct Restore {
@@ -649,7 +738,12 @@ void Interpreter::execute(std::vector<Event>& events) {
   // G93: the F event goes right before its move, with the path speed it
   // gives that move (rs274's order and figure).
   const Word* inverse_f = nullptr;
-  if (const Word* f = W('F')) {
+  // Sinumerik: G4 F.. is the dwell in seconds (S.. in spindle turns), G25/
+  // G26 S.. the spindle's speed limits: neither is a feed or a speed.
+  const bool siemens = dialect_.kind == DialectKind::sinumerik;
+  const bool siemens_dwell = siemens && nonmodal_code == 40;
+  const bool speed_limit = siemens && (nonmodal_code == 250 || nonmodal_code == 260);
+  if (const Word* f = W('F'); f && !siemens_dwell) {
     if (f->value < 0) fail(Code::bad_word_value, f->column, "negative feed rate");
     if (s.feed_mode == program::FeedMode::inverse_time) {
       s.feed = f->value;
@@ -668,7 +762,7 @@ void Interpreter::execute(std::vector<Event>& events) {
   };
   // G65 takes S, T, ... as macro arguments, not as the machine's words.
   const bool macro_call = nonmodal_code == 650;
-  if (const Word* sw = W('S'); sw && !macro_call) {
+  if (const Word* sw = W('S'); sw && !macro_call && !siemens_dwell && !speed_limit) {
     if (sw->value < 0) fail(Code::bad_word_value, sw->column, "negative spindle speed");
     s.spindle_rpm = sw->value;
     emit(program::SetSpindleSpeed{sw->value, source(b, sw->column)});
@@ -714,6 +808,15 @@ void Interpreter::execute(std::vector<Event>& events) {
       const Word* p = W('P');
       if (!p) fail(Code::missing_word, nonmodal->column, "G4 needs P (seconds)");
       seconds = p->value;
+    } else if (siemens_dwell) {
+      if (const Word* f = W('F')) {
+        seconds = f->value;
+      } else if (const Word* sw = W('S'); sw && s.spindle_rpm > 0) {
+        seconds = sw->value / s.spindle_rpm * 60.0;
+      } else {
+        fail(Code::missing_axis_word, nonmodal->column,
+             "G4 needs F (seconds) or S (spindle turns)");
+      }
     } else if (dwell_x) {
       seconds = dwell_x->value;
     } else if (const Word* p = W('P')) {
@@ -1041,8 +1144,8 @@ void Interpreter::execute(std::vector<Event>& events) {
     if (machine) {
       if (s.motion != Motion::rapid && s.motion != Motion::linear)
         fail(Code::unsupported_code, nonmodal->column, "G53 needs G0 or G1");
-      warn(Code::machine_coordinates, nonmodal->column,
-           "G53 machine coordinates taken as program coordinates (offsets unknown)");
+      warn_once('G', 530, Code::machine_coordinates, nonmodal->column,
+                "G53 machine coordinates taken as program coordinates (offsets unknown)");
     }
     const Eigen::Vector3d end = target_of(s.absolute || machine);
     const auto src = source(b, motion_column);
@@ -1097,13 +1200,12 @@ void Interpreter::execute(std::vector<Event>& events) {
             fail(Code::missing_arc_data, motion_column,
                  std::string("arc needs ") + letters[ax[0]] + " or " + letters[ax[1]] +
                      " (centre) or R (radius)");
-          if (s.arc_absolute) {
-            if (off0) centre[ax[0]] = length(*off0);
-            if (off1) centre[ax[1]] = length(*off1);
-          } else {
-            if (off0) centre[ax[0]] += length(*off0);
-            if (off1) centre[ax[1]] += length(*off1);
-          }
+          if (off0)
+            centre[ax[0]] =
+                (s.arc_absolute || off0->absolute ? 0.0 : centre[ax[0]]) + length(*off0);
+          if (off1)
+            centre[ax[1]] =
+                (s.arc_absolute || off1->absolute ? 0.0 : centre[ax[1]]) + length(*off1);
           const double r0 = std::hypot(a0 - centre[ax[0]], b0 - centre[ax[1]]);
           const double r1 = std::hypot(a1 - centre[ax[0]], b1 - centre[ax[1]]);
           if (r0 < 1e-9 || r1 < 1e-9)
@@ -1115,7 +1217,7 @@ void Interpreter::execute(std::vector<Event>& events) {
                      std::to_string(r0) + " mm");
         }
         int turns = 1;
-        if (const Word* p = W('P'); p && dialect_.kind == DialectKind::rs274ngc) {
+        if (const Word* p = W('P'); p && (dialect_.kind == DialectKind::rs274ngc || siemens)) {
           if (p->value < 1 || !whole_number(p->value))
             fail(Code::bad_word_value, p->column,
                  "P (turns) of an arc must be a whole number from 1 to 1e9");
@@ -1132,6 +1234,27 @@ void Interpreter::execute(std::vector<Event>& events) {
   }
 
   emit_inverse_f([] { return std::optional<double>(); });
+
+  if (siemens) {
+    for (const auto& [name, column] : b.noted_keywords) {
+      int key = 0;
+      for (char ch : name) key = key * 31 + ch;
+      warn_once('K', key, Code::mode_code_passed, column,
+                name +
+                    " is a mode of the control that does not change the path vcpost reads; "
+                    "passed through unchanged");
+    }
+    const SiemensCycle& sc = b.siemens_cycle;
+    if (sc.kind == SiemensCycle::Kind::call) {
+      run_siemens_cycle(s, sc, events);
+    } else if (sc.kind == SiemensCycle::Kind::modal_call) {
+      mcall_next_ = sc;
+    } else if (sc.kind == SiemensCycle::Kind::modal_off) {
+      mcall_next_ = SiemensCycle{};
+    } else if (mcall_.kind == SiemensCycle::Kind::modal_call && has_axis) {
+      run_siemens_cycle(s, mcall_, events);
+    }
+  }
 
   // Stops and subprogram calls come last.
   bool end_program = false;
@@ -1166,6 +1289,9 @@ void Interpreter::execute(std::vector<Event>& events) {
   restore.armed = false;
   state_ = s;
   if (origins) origins_ = *origins;
+  if (siemens && b.siemens_cycle.kind != SiemensCycle::Kind::none &&
+      b.siemens_cycle.kind != SiemensCycle::Kind::call)
+    mcall_ = mcall_next_;
   if (const Word* m = M(Group::subprogram)) {
     const Word* p = W('P');
     if (!p) fail(Code::missing_word, m->column, "M98 needs P (program number)");

@@ -142,6 +142,8 @@ class Interpreter {
 
   void execute(std::vector<program::Event>& events);
   double length(const Word& w) const;
+  void run_siemens_cycle(ModalState& s, const SiemensCycle& cycle,
+                         std::vector<program::Event>& events);
   // A warning given once per program for `key` (a code, x10, with its letter).
   void warn_once(char letter, int key, Code code, std::uint32_t column, std::string message);
 
@@ -151,6 +153,8 @@ class Interpreter {
   Parameters parameters_;
   ModalState state_;
   Origins origins_;
+  SiemensCycle mcall_;       // the Sinumerik MCALL cycle in effect
+  SiemensCycle mcall_next_;  // set by the block in execution
   std::vector<std::pair<char, int>> warned_once_;
   Block block_;
   std::vector<Diagnostic> warnings_;

@@ -470,6 +470,8 @@ gcode::Dialect dialect_of(const machines::MachineProfile& profile) {
       return gcode::fanuc_dialect();
     case machines::Dialect::mazak:
       return gcode::mazak_dialect();
+    case machines::Dialect::sinumerik:
+      return gcode::sinumerik_dialect();
     case machines::Dialect::rs274ngc:
       break;
   }

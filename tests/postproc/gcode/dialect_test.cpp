@@ -364,3 +364,78 @@ TEST(FanucPosts, PeckCycleWithRepeatsInK) {
 
 }  // namespace
 }  // namespace vcpost::gcode
+
+// ---- Sinumerik 840D --------------------------------------------------------
+
+namespace vcpost::gcode {
+namespace {
+
+TEST(Sinumerik, MessagesCrArcsRParametersAndToolWords) {
+  const std::string text =
+      "MSG(\"FINISHING\") ; operator message\n"
+      "N10 G54 G40 G90 G17 G71\n"
+      "N20 T1 D1\nN30 M6\n"
+      "R1=2.5\nR2 = R1*2\n"
+      "N40 G0 X=R2 Y0 S900 M3\n"
+      "N50 G1 G642 Z=-R1+0.5 F150\n"
+      "N60 G2 X15 Y0 CR=5 TURN=0\n"
+      "N70 SOFT FFWON\n"
+      "N80 G4 F0.5\n"
+      "N90 M30\n";
+  EXPECT_EQ(moves(text, sinumerik_dialect()),
+            "STRAIGHT_TRAVERSE(5.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n"
+            "STRAIGHT_FEED(5.0000, 0.0000, -2.0000, 0.0000, 0.0000, 0.0000)\n"
+            "ARC_FEED(15.0000, 0.0000, 10.0000, 0.0000, -1, -2.0000, 0.0000, 0.0000, 0.0000)\n");
+  int tools = 0, dwells = 0, messages = 0;
+  for (const auto& e : all_events(text, sinumerik_dialect())) {
+    tools += std::holds_alternative<program::SelectTool>(e) + std::holds_alternative<program::ChangeTool>(e);
+    dwells += std::holds_alternative<program::Dwell>(e);
+    messages += std::holds_alternative<program::Message>(e);
+  }
+  EXPECT_EQ(tools, 2);
+  EXPECT_EQ(dwells, 1);
+  EXPECT_EQ(messages, 1);
+}
+
+TEST(Sinumerik, ModalDrillingCycleRunsAtEveryPositionUntilMcall) {
+  // CYCLE81(RTP 10, RFP 0, SDIS 2, DP -5): rapid to 2, feed to -5, rapid to 10.
+  const std::string text =
+      "G0 G90 G17 X0 Y0 Z20 S1000 M3\n"
+      "MCALL CYCLE81(10,0,2,-5)\n"
+      "X5 F100\n"
+      "X10\n"
+      "MCALL\n"
+      "X20\n"
+      "M30\n";
+  EXPECT_EQ(moves(text, sinumerik_dialect()),
+            "STRAIGHT_TRAVERSE(0.0000, 0.0000, 20.0000, 0.0000, 0.0000, 0.0000)\n"
+            "STRAIGHT_TRAVERSE(5.0000, 0.0000, 20.0000, 0.0000, 0.0000, 0.0000)\n"
+            "STRAIGHT_TRAVERSE(5.0000, 0.0000, 20.0000, 0.0000, 0.0000, 0.0000)\n"
+            "STRAIGHT_TRAVERSE(5.0000, 0.0000, 2.0000, 0.0000, 0.0000, 0.0000)\n"
+            "STRAIGHT_FEED(5.0000, 0.0000, -5.0000, 0.0000, 0.0000, 0.0000)\n"
+            "STRAIGHT_TRAVERSE(5.0000, 0.0000, 10.0000, 0.0000, 0.0000, 0.0000)\n"
+            "STRAIGHT_TRAVERSE(10.0000, 0.0000, 10.0000, 0.0000, 0.0000, 0.0000)\n"
+            "STRAIGHT_TRAVERSE(10.0000, 0.0000, 10.0000, 0.0000, 0.0000, 0.0000)\n"
+            "STRAIGHT_TRAVERSE(10.0000, 0.0000, 2.0000, 0.0000, 0.0000, 0.0000)\n"
+            "STRAIGHT_FEED(10.0000, 0.0000, -5.0000, 0.0000, 0.0000, 0.0000)\n"
+            "STRAIGHT_TRAVERSE(10.0000, 0.0000, 10.0000, 0.0000, 0.0000, 0.0000)\n"
+            "STRAIGHT_TRAVERSE(20.0000, 0.0000, 10.0000, 0.0000, 0.0000, 0.0000)\n");
+}
+
+TEST(Sinumerik, FramesAndFlowAreRefusedAndOtherDialectsNameIt) {
+  for (const char* line : {"ROT Z30", "TRANS X10", "MIRROR X0", "GOTOF LABEL1", "CYCLE800(1,\"TC\")"}) {
+    SCOPED_TRACE(line);
+    const Diagnostic d = error_of(std::string("G0 X0\n") + line + "\nM30\n", sinumerik_dialect());
+    EXPECT_EQ(d.line, 2u);
+    EXPECT_EQ(d.column, 1u);
+  }
+  // The same program read as RS274NGC or Fanuc: the error names the dialect.
+  for (const auto& d : {rs274ngc_dialect(), fanuc_dialect()}) {
+    const Diagnostic e = error_of("MSG(\"X\")\nG0 X1\nM30\n", d);
+    EXPECT_EQ(e.code, Code::dialect_mismatch);
+    EXPECT_NE(e.message.find("--dialect sinumerik"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace vcpost::gcode

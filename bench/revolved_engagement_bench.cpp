@@ -1,53 +1,53 @@
-// One working-diameter evaluation of the bull-nose and the flat end mill
-// (extremes and cutting points), and one area-weighted mean, on a tilted
-// surface with a general feed direction.
+// Time per evaluation of the bull-nose and flat end mills' D_max, D_min
+// and cutting points, and of their area-weighted mean, over the same
+// finishing-like set-ups as engagement_bench.cpp's ball (tilt up to 60 deg,
+// ap 0.1..0.5, ae 0.2..1 mm, D = 10; bull-nose rc = 2).
 #include <benchmark/benchmark.h>
 
 #include <numbers>
+#include <random>
+#include <vector>
 
-#include "geometry/revolved_engagement.h"
+#include "geometry/engagement.h"
 
 namespace {
 
-using vcpost::geometry::CutSetup;
-using vcpost::geometry::Tool;
+using namespace vcpost::geometry;
 
-CutSetup tilted_setup() {
-  CutSetup s;
-  s.ap = 0.4;
-  s.ae = 0.8;
-  s.normal = vcpost::geometry::normal_from_angles(35 * std::numbers::pi / 180, 0.6);
-  s.feed = vcpost::geometry::feed_from_angle(1.9, s.normal);
-  s.side = vcpost::geometry::Side::left;
-  return s;
+std::vector<CutSetup> finishing_setups(int count) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::vector<CutSetup> setups;
+  for (int i = 0; i < count; ++i) {
+    const auto n = normal_from_angles(60 * std::numbers::pi / 180 * unit(rng),
+                                      2 * std::numbers::pi * unit(rng));
+    setups.push_back({0.1 + 0.4 * unit(rng), 0.2 + 0.8 * unit(rng), n,
+                      feed_from_angle(2 * std::numbers::pi * unit(rng), n),
+                      unit(rng) < 0.5 ? Side::left : Side::right});
+  }
+  return setups;
 }
 
-void BM_BullNoseEvaluation(benchmark::State& state) {
-  const Tool tool = Tool::bull_nose(10, 2);
-  const CutSetup s = tilted_setup();
-  for (auto _ : state) benchmark::DoNotOptimize(vcpost::geometry::evaluate_revolved_engagement(tool, s));
-}
-BENCHMARK(BM_BullNoseEvaluation)->Unit(benchmark::kMicrosecond);
+Tool tool_of(int kind) { return kind == 0 ? Tool::bull_nose(10, 2) : Tool::flat(10); }
 
-void BM_FlatEvaluation(benchmark::State& state) {
-  const Tool tool = Tool::flat(10);
-  const CutSetup s = tilted_setup();
-  for (auto _ : state) benchmark::DoNotOptimize(vcpost::geometry::evaluate_revolved_engagement(tool, s));
+void BM_RevolvedEngagement(benchmark::State& state) {
+  const auto setups = finishing_setups(1024);
+  const Tool tool = tool_of(static_cast<int>(state.range(0)));
+  std::size_t i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(evaluate_engagement(tool, setups[i++ & 1023]));
+  state.SetItemsProcessed(state.iterations());
+  state.SetLabel(to_string(tool));
 }
-BENCHMARK(BM_FlatEvaluation)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_RevolvedEngagement)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
-void BM_BullNoseMean(benchmark::State& state) {
-  const Tool tool = Tool::bull_nose(10, 2);
-  const CutSetup s = tilted_setup();
-  for (auto _ : state) benchmark::DoNotOptimize(vcpost::geometry::revolved_mean_diameter(tool, s));
+void BM_RevolvedMeanDiameter(benchmark::State& state) {
+  const auto setups = finishing_setups(256);
+  const Tool tool = tool_of(static_cast<int>(state.range(0)));
+  std::size_t i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(engaged_mean_diameter(tool, setups[i++ & 255]));
+  state.SetItemsProcessed(state.iterations());
+  state.SetLabel(to_string(tool));
 }
-BENCHMARK(BM_BullNoseMean)->Unit(benchmark::kMillisecond);
-
-void BM_FlatMean(benchmark::State& state) {
-  const Tool tool = Tool::flat(10);
-  const CutSetup s = tilted_setup();
-  for (auto _ : state) benchmark::DoNotOptimize(vcpost::geometry::revolved_mean_diameter(tool, s));
-}
-BENCHMARK(BM_FlatMean)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RevolvedMeanDiameter)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

@@ -34,8 +34,17 @@ CutCheck check_cut(const Tool& tool, const CutSetup& setup) {
   return check;
 }
 
-Engagement evaluate_engagement(const Tool& tool, const CutSetup& setup,
+namespace {
+// A bull-nose whose corner fills the radius is a ball: the ball's engine.
+Tool as_engine_sees(const Tool& tool) {
+  const bool ball = tool.kind == ToolKind::bull_nose && tool.corner_radius >= tool.radius();
+  return ball ? Tool::ball(tool.diameter) : tool;
+}
+}  // namespace
+
+Engagement evaluate_engagement(const Tool& given, const CutSetup& setup,
                                CuttingPointsWanted points) {
+  const Tool tool = as_engine_sees(given);
   if (tool.kind != ToolKind::ball) {
     // The revolved engine finds the points on its way to D_max: dropped here.
     Engagement out = evaluate_revolved_engagement(tool, setup);
@@ -56,7 +65,8 @@ Engagement evaluate_engagement(const Tool& tool, const CutSetup& setup,
   return out;
 }
 
-std::optional<double> engaged_mean_diameter(const Tool& tool, const CutSetup& setup) {
+std::optional<double> engaged_mean_diameter(const Tool& given, const CutSetup& setup) {
+  const Tool tool = as_engine_sees(given);
   if (tool.kind != ToolKind::ball) return revolved_mean_diameter(tool, setup);
   const CutCheck check = check_cut(tool, setup);
   if (!check.can_engage) return std::nullopt;

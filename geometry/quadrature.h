@@ -3,8 +3,11 @@
 // scheme for integrands with kinks or steep ends.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
+#include <vector>
 
 namespace vcpost::geometry {
 
@@ -79,6 +82,80 @@ double integrate_panels(const Function& f, double lo, double hi, double toleranc
     sum += detail::adaptive(f, lo + i * width, lo + (i + 1) * width, tolerance / panels, 0);
   }
   return sum;
+}
+
+// Integrals of the N components of f (returning std::array<double, N>) over
+// [lo, hi] by globally adaptive Gauss-Kronrod (7, 15): the panel with the
+// largest error estimate is halved until every component's estimate is
+// within relative * |integral| + absolute, or `max_panels` panels are in
+// use. At most 15 (2 max_panels - 1) evaluations of f, whatever f does.
+template <std::size_t N, class Function>
+std::array<double, N> integrate_capped(const Function& f, double lo, double hi, double relative,
+                                       double absolute, int max_panels) {
+  struct Panel {
+    double lo, hi;
+    std::array<double, N> value, error;
+  };
+  const auto rule = [&](double a, double b) {
+    Panel panel{a, b, {}, {}};
+    const double centre = 0.5 * (a + b), half = 0.5 * (b - a);
+    std::array<double, N> kronrod{}, gauss{};
+    const auto take = [&](const std::array<double, N>& values, double kw, double gw) {
+      for (std::size_t k = 0; k < N; ++k) {
+        kronrod[k] += kw * values[k];
+        gauss[k] += gw * values[k];
+      }
+    };
+    take(f(centre), detail::kronrod_weights[7], detail::gauss_weights[3]);
+    for (std::size_t i = 0; i < 7; ++i) {
+      const double dx = half * detail::kronrod_nodes[i];
+      const double gw = i % 2 == 1 ? detail::gauss_weights[i / 2] : 0.0;
+      take(f(centre - dx), detail::kronrod_weights[i], gw);
+      take(f(centre + dx), detail::kronrod_weights[i], gw);
+    }
+    for (std::size_t k = 0; k < N; ++k) {
+      panel.value[k] = kronrod[k] * half;
+      panel.error[k] = std::abs((kronrod[k] - gauss[k]) * half);
+    }
+    return panel;
+  };
+  std::array<double, N> total{};
+  if (!(hi > lo)) return total;
+  std::vector<Panel> panels{rule(lo, hi)};
+  for (;;) {
+    std::array<double, N> value{}, error{};
+    for (const Panel& p : panels) {
+      for (std::size_t k = 0; k < N; ++k) {
+        value[k] += p.value[k];
+        error[k] += p.error[k];
+      }
+    }
+    bool done = static_cast<int>(panels.size()) >= max_panels;
+    if (!done) {
+      done = true;
+      for (std::size_t k = 0; k < N; ++k) {
+        if (error[k] > relative * std::abs(value[k]) + absolute) done = false;
+      }
+    }
+    if (done) return value;
+    // Halve the panel whose error weighs most against its component's bound.
+    std::size_t worst = 0;
+    double worst_share = -1;
+    for (std::size_t i = 0; i < panels.size(); ++i) {
+      double share = 0;
+      for (std::size_t k = 0; k < N; ++k) {
+        share = std::max(share, panels[i].error[k] / (relative * std::abs(value[k]) + absolute));
+      }
+      if (share > worst_share) {
+        worst_share = share;
+        worst = i;
+      }
+    }
+    const Panel split = panels[worst];
+    const double mid = 0.5 * (split.lo + split.hi);
+    panels[worst] = rule(split.lo, mid);
+    panels.push_back(rule(mid, split.hi));
+  }
 }
 
 }  // namespace vcpost::geometry

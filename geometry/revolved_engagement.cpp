@@ -29,6 +29,9 @@
 #include <tuple>
 #include <utility>
 
+#include "geometry/angle_set.h"
+#include "geometry/quadrature.h"
+
 namespace vcpost::geometry {
 namespace {
 
@@ -101,48 +104,8 @@ double golden_argmin(const Function& f, double lo, double hi, double tolerance) 
   return f1 <= f2 ? x1 : x2;
 }
 
-// Integral of f over [lo, hi] to a relative accuracy of about `relative`:
-// 5-point Gauss-Legendre on each interval against the sum over its halves,
-// bisecting where they disagree (at most 2^18 pieces deep, for kinks).
-template <class Function>
-double integrate(const Function& f, double lo, double hi, double relative) {
-  struct Rule {
-    std::array<double, 5> x, w;
-  };
-  static const Rule rule = [] {
-    const double s = 2 * std::sqrt(10.0 / 7), s70 = 13 * std::sqrt(70.0);
-    const double x1 = std::sqrt(5 - s) / 3, x2 = std::sqrt(5 + s) / 3;
-    const double w1 = (322 + s70) / 900, w2 = (322 - s70) / 900;
-    return Rule{{-x2, -x1, 0, x1, x2}, {w2, w1, 128.0 / 225, w1, w2}};
-  }();
-  const auto gauss = [&](double a, double b) {
-    const double centre = 0.5 * (a + b), half = 0.5 * (b - a);
-    double sum = 0;
-    for (std::size_t i = 0; i < 5; ++i) sum += rule.w[i] * f(centre + half * rule.x[i]);
-    return sum * half;
-  };
-  if (!(hi > lo)) return 0;
-  const auto refine = [&](const auto& self, double a, double b, double whole, double tolerance,
-                          int depth) -> double {
-    const double mid = 0.5 * (a + b);
-    const double left = gauss(a, mid), right = gauss(mid, b);
-    if (std::abs(left + right - whole) <= tolerance || depth >= 18) return left + right;
-    return self(self, a, mid, left, 0.5 * tolerance, depth + 1) +
-           self(self, mid, b, right, 0.5 * tolerance, depth + 1);
-  };
-  const double whole = gauss(lo, hi);
-  return refine(refine, lo, hi, whole, relative * std::abs(whole) + 1e-300, 0);
-}
-
-enum class Part { face, corner, shank };
-
-struct SurfacePoint {
-  Vector3d p;
-  Part part;
-};
-
 // Running extremes of r and of z over the engaged points met so far.
-struct Extremes {
+struct RadiusExtremes {
   double r_min = kInf, r_max = -kInf, z_max = -kInf;
   void add(double r, double z) {
     r_min = std::min(r_min, r);
@@ -332,13 +295,6 @@ class Groove {
     return std::pair{*lo, *hi};
   }
 
-  Part classify(const Vector3d& p) const {
-    const double r = std::hypot(p.x(), p.y());
-    if (p.z() > 1e-9 * radius_) return Part::shank;
-    if (r < flat_radius_ - 1e-9 * radius_) return Part::face;
-    return corner_ > 0 ? Part::corner : Part::shank;
-  }
-
   Vector3d point_at(double b, double c, double t) const {
     return b * side_ + c * normal_ + t * feed_;
   }
@@ -356,17 +312,12 @@ class Groove {
     return points->first;
   }
 
-  // Outward unit normal of the tool at a surface point of the given part.
-  Vector3d surface_normal(const Vector3d& p, Part part) const {
-    if (part == Part::face) return -Vector3d::UnitZ();
-    const double r = std::hypot(p.x(), p.y());
-    const Vector3d radial(p.x() / r, p.y() / r, 0);
-    if (part == Part::shank || corner_ == 0) return radial;
-    return (p - flat_radius_ * radial) / corner_;
-  }
-
-  Extremes extremes() const;
+  RadiusExtremes extremes() const;
   double mean_diameter() const;
+  // Length of the angles of `row` (a circle of the tool) that are not
+  // removed by the previous pass (see mean_diameter).
+  // lowest_left: a lower bound of bL(c) over [c_min, c0].
+  double unremoved_length(const AngleSet& row, double rho, double z, double lowest_left) const;
 
  private:
   // c* = the level below which the groove spans the whole slice (width of Q
@@ -378,16 +329,16 @@ class Groove {
     return root(excess, c_min_, c0_, 1e-13 * radius_);
   }
 
-  void silhouette_extremes(double phi_lo, double phi_hi, Extremes& out) const;
+  void silhouette_extremes(double phi_lo, double phi_hi, RadiusExtremes& out) const;
   struct FaceStretches {
     std::array<std::pair<double, double>, 2> v{};
     int count = 0;
   };
   FaceStretches face_stretches(double u) const;
-  void face_extremes(Extremes& out) const;
+  void face_extremes(RadiusExtremes& out) const;
   template <class Curve>
   void curve_extremes(const Curve& point_at_parameter, double lo, double hi,
-                      Extremes& out) const;
+                      RadiusExtremes& out) const;
 
   double radius_, flat_radius_, corner_, ae_;
   Vector3d feed_, normal_, side_;
@@ -397,9 +348,9 @@ class Groove {
   bool edge_on_ = false;
 };
 
-// Extremes of r over the silhouette arc phi in [phi_lo, phi_hi]: r depends
+// RadiusExtremes of r over the silhouette arc phi in [phi_lo, phi_hi]: r depends
 // on |U_z| only, smallest where |U_z| peaks (phi = omega + pi).
-void Groove::silhouette_extremes(double phi_lo, double phi_hi, Extremes& out) const {
+void Groove::silhouette_extremes(double phi_lo, double phi_hi, RadiusExtremes& out) const {
   for (const double phi : {phi_lo, phi_hi, omega_ + kPi}) {
     if (phi < phi_lo || phi > phi_hi) continue;
     out.add(silhouette_r(phi), silhouette(phi).z());
@@ -412,7 +363,7 @@ void Groove::silhouette_extremes(double phi_lo, double phi_hi, Extremes& out) co
 // of r over u by subdivision and golden-section refinement. In (b, c) the
 // face is a thin ellipse when F is nearly parallel to it, too thin for the
 // boundary curves' subdivision.
-void Groove::face_extremes(Extremes& out) const {
+void Groove::face_extremes(RadiusExtremes& out) const {
   // None of the face is in the stock: nothing to do.
   if (-flat_radius_ * std::hypot(normal_.x(), normal_.y()) - corner_ * normal_.z() > c0_) return;
   constexpr int kSteps = 48;
@@ -496,12 +447,12 @@ Groove::FaceStretches Groove::face_stretches(double u) const {
   return out;
 }
 
-// Extremes of r (both) and z (largest) of the front points along a curve
+// RadiusExtremes of r (both) and z (largest) of the front points along a curve
 // of G's boundary: evaluation on a fixed subdivision to bracket every local
 // extremum, then golden-section refinement of each.
 template <class Curve>
 void Groove::curve_extremes(const Curve& point_at_parameter, double lo, double hi,
-                            Extremes& out) const {
+                            RadiusExtremes& out) const {
   constexpr int kSteps = 24;
   struct Value {
     bool valid = false;
@@ -545,8 +496,8 @@ void Groove::curve_extremes(const Curve& point_at_parameter, double lo, double h
   }
 }
 
-Extremes Groove::extremes() const {
-  Extremes out;
+RadiusExtremes Groove::extremes() const {
+  RadiusExtremes out;
   const BoundaryPoint left_top = boundary(c0_, true);
   // The far silhouette (away from the previous pass), from the bottom to c0.
   silhouette_extremes(left_top.phi, phi_bottom_, out);
@@ -582,61 +533,110 @@ Extremes Groove::extremes() const {
   return out;
 }
 
-// Area-weighted mean of 2r. Off the face: over G in (b, c) with the area
-// element db dc / (n.F) of the front surface, a cosine substitution across
-// each slice for the 1/sqrt growth at the silhouette and c = c_min + (c0 -
-// c_min) s^2 for the rounded bottom. The face (when leading) in its own
-// plane, along lines normal to the feed's horizontal direction, with the
-// integral of 2r along a line in closed form.
+// Area-weighted mean of 2r, circle by circle: the tool surface is a stack
+// of horizontal circles (the face's of radius rho, the corner's at the
+// angle psi of its normal, the shank's at height z), each with a constant
+// r, so the mean needs only the length of the engaged angles on each
+// circle, weighted by its area element. On a circle the stock plane and the
+// leading side are sinusoids (exact angle sets, angle_set.h); the previous
+// pass removes what unremoved_length finds. Capped adaptive quadrature over
+// the circles bounds the work whatever the set-up.
 double Groove::mean_diameter() const {
-  const double span = c0_ - c_min_;
-  // A leading face seen almost edge-on is a tall narrow plateau of 1/(n.F)
-  // in (b, c): integrate it in its own plane instead.
-  const bool face_apart = edge_on_ || (feed_.z() < 0 && feed_.z() > -0.05);
-  // Integrals of (2r, 1) over the part of a slice at level c off the face.
-  const auto slice = [&](double c, bool weighted) {
-    const double b_lo = boundary(c, true).b;
-    const double b_hi = c <= c_star_ ? boundary(c, false).b : b_lo + ae_;
-    const double width = b_hi - b_lo;
-    if (!(width > 0)) return 0.0;
-    const auto f = [&](double v) {
-      const double b = b_lo + width * 0.5 * (1 - std::cos(kPi * v));
-      const std::optional<Vector3d> p = front(b, c);
-      if (!p) return 0.0;
-      const Part part = classify(*p);
-      if (part == Part::face && face_apart) return 0.0;
-      const double along = surface_normal(*p, part).dot(feed_);
-      if (!(along > 0)) return 0.0;
-      const double jacobian = width * 0.5 * kPi * std::sin(kPi * v);
-      return (weighted ? 2 * std::hypot(p->x(), p->y()) : 1.0) * jacobian / along;
-    };
-    return integrate(f, 0.0, 1.0, 1e-7);
+  const double tilt = std::hypot(normal_.x(), normal_.y());
+  // bL is convex in c: its least value up to the stock plane, less a margin
+  // for the search's tolerance.
+  const auto left = [&](double c) { return boundary(c, true).b; };
+  const double lowest_left =
+      left(golden_argmin(left, c_min_, c0_, 1e-9 * radius_)) - 1e-9 * radius_;
+  // Circle of radius rho at height z whose outward normal is (s cos t,
+  // s sin t, nz); weight = area per radian per unit of the stack parameter.
+  const auto circle = [&](double rho, double z, double s, double nz, double weight) {
+    AngleSet set({-kPi, kPi});
+    set.keep_where({rho * normal_.x(), rho * normal_.y(), normal_.z() * z}, c0_);
+    // Leading side F.n >= 0; the face's normal is -z, seen edge-on it leads.
+    set.keep_where({-s * feed_.x(), -s * feed_.y(), -feed_.z() * nz}, s == 0 ? kEdgeOn : 0.0);
+    const double length = set.empty() ? 0 : unremoved_length(set, rho, z, lowest_left);
+    return std::array<double, 2>{weight * length, weight * 2 * rho * length};
   };
-  const auto over_groove = [&](bool weighted) {
-    const auto g = [&](double s) { return slice(c_min_ + span * s * s, weighted) * 2 * span * s; };
-    const double s_star = std::sqrt(std::clamp((c_star_ - c_min_) / span, 0.0, 1.0));
-    return integrate(g, 0.0, s_star, 1e-6) + integrate(g, s_star, 1.0, 1e-6);
+  constexpr double kRelative = 1e-5;
+  constexpr int kPanels = 24;  // per piece: at most 15 (2 kPanels - 1) circles
+  const double absolute = 1e-12 * radius_ * radius_;
+  std::array<double, 2> sum{0, 0};
+  const auto add = [&](const std::array<double, 2>& part) {
+    sum[0] += part[0];
+    sum[1] += part[1];
   };
-  double weighted = over_groove(true), area = over_groove(false);
-
-  if (face_apart) {
-    // Integral of 2 sqrt(u^2 + v^2) dv from 0 to v (signed).
-    const auto chord = [](double u, double v) {
-      return u == 0 ? v * std::abs(v) : v * std::hypot(u, v) + u * u * std::asinh(v / std::abs(u));
-    };
-    const auto line = [&](double u, bool weight) {
-      const FaceStretches stretches = face_stretches(u);
-      double sum = 0;
-      for (int k = 0; k < stretches.count; ++k) {
-        const auto [lo, hi] = stretches.v[k];
-        sum += weight ? chord(u, hi) - chord(u, lo) : hi - lo;
-      }
-      return sum;
-    };
-    weighted += integrate([&](double u) { return line(u, true); }, -flat_radius_, flat_radius_, 1e-6);
-    area += integrate([&](double u) { return line(u, false); }, -flat_radius_, flat_radius_, 1e-6);
+  // The face at z = -rc (its lowest point must reach the stock).
+  if (-flat_radius_ * tilt - corner_ * normal_.z() < c0_ && flat_radius_ > 0) {
+    add(integrate_capped<2>([&](double rho) { return circle(rho, -corner_, 0, -1, rho); }, 0.0,
+                            flat_radius_, kRelative, absolute, kPanels));
   }
-  return area > 0 ? weighted / area : 0.0;
+  if (corner_ > 0) {
+    add(integrate_capped<2>(
+        [&](double psi) {
+          const double s = std::sin(psi), rho = flat_radius_ + corner_ * s;
+          return circle(rho, -corner_ * std::cos(psi), s, -std::cos(psi), corner_ * rho);
+        },
+        0.0, kPi / 2, kRelative, absolute, kPanels));
+  }
+  // The shank, up to the highest level the stock reaches on it.
+  const double top = (c0_ + radius_ * tilt) / normal_.z();
+  if (top > 0) {
+    add(integrate_capped<2>([&](double z) { return circle(radius_, z, 1, 0, radius_); }, 0.0, top,
+                            kRelative, absolute, kPanels));
+  }
+  return sum[0] > 0 ? sum[1] / sum[0] : 0.0;
+}
+
+// The previous pass removes the tool points P strictly inside the tool
+// shifted by ae along e: seen along F, (e.P - ae, N.P) inside Q, i.e.
+// e.P - ae > bL(N.P) above the bottom level (e.P - ae < bR holds on the
+// tool anyway). Its ends on each arc: sign changes bracketed on 16 cells,
+// then regula falsi (a removed stretch narrower than a cell can be missed;
+// it weighs at most a cell's share of the circle).
+double Groove::unremoved_length(const AngleSet& row, double rho, double z,
+                                double lowest_left) const {
+  constexpr int kCells = 16;
+  const double level = 1e-12 * radius_;
+  const auto removal = [&](double t) {
+    const Vector3d p(rho * std::cos(t), rho * std::sin(t), z);
+    const double c = normal_.dot(p);
+    return std::min(side_.dot(p) - ae_ - boundary(c, true).b, c - c_min_ - level);
+  };
+  const Sinusoid b_along{rho * side_.x(), rho * side_.y(), side_.z() * z};
+  const Sinusoid c_along{rho * normal_.x(), rho * normal_.y(), normal_.z() * z};
+  double length = 0;
+  for (int i = 0; i < row.size(); ++i) {
+    const double lo = row[i].lo, hi = row[i].hi;
+    if (!(hi > lo)) continue;
+    // Whole arcs first: never removed when e.P - ae stays at or below the
+    // least bL; wholly removed when it stays above bL over the arc's
+    // levels (bL is convex: its largest value there is at an end).
+    const Extremes lateral = sinusoid_extremes(b_along, row[i]);
+    if (lateral.max - ae_ <= lowest_left) {
+      length += hi - lo;
+      continue;
+    }
+    const Extremes levels = sinusoid_extremes(c_along, row[i]);
+    if (levels.min - c_min_ > level &&
+        lateral.min - ae_ > std::max(boundary(levels.min, true).b, boundary(levels.max, true).b)) {
+      continue;
+    }
+    double t_prev = lo, h_prev = removal(lo);
+    for (int k = 1; k <= kCells; ++k) {
+      const double t = lo + (hi - lo) * k / kCells, h = removal(t);
+      if (h_prev <= 0 && h <= 0) {
+        length += t - t_prev;
+      } else if (h_prev <= 0 || h <= 0) {
+        const auto [a, b] = bracket_root(removal, t_prev, t, h_prev, h, 1e-13 * (hi - lo));
+        const double x = 0.5 * (a + b);
+        length += h_prev <= 0 ? x - t_prev : t - x;
+      }
+      t_prev = t;
+      h_prev = h;
+    }
+  }
+  return length;
 }
 
 struct Prepared {
@@ -721,7 +721,7 @@ Engagement evaluate_revolved_engagement(const Tool& tool, const CutSetup& setup)
     out.flags.set(EngagementFlag::nothing_engaged);
     return out;
   }
-  const Extremes extremes = groove.extremes();
+  const RadiusExtremes extremes = groove.extremes();
   if (!(extremes.r_max >= extremes.r_min)) {
     out.flags.set(EngagementFlag::nothing_engaged);
     return out;

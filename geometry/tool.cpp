@@ -51,10 +51,12 @@ Tool parse_tool(std::string_view spec) {
   if (kind == "ball") return Tool::ball(diameter);
   if (kind == "flat") return Tool::flat(diameter);
   const double corner = parse_size(parts[2], "corner radius", spec);
-  if (corner <= 0 || corner >= diameter / 2) {
+  if (corner <= 0 || corner > diameter / 2) {
     throw std::invalid_argument("tool '" + std::string(spec) +
-                                "': corner radius must lie in (0, D/2)");
+                                "': corner radius must lie in (0, D/2]");
   }
+  // A corner that fills the radius is a ball end.
+  if (corner == diameter / 2) return Tool::ball(diameter);
   return Tool::bull_nose(diameter, corner);
 }
 

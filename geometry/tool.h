@@ -30,7 +30,8 @@ struct Tool {
 
 // Parses "ball:D", "bull:D:rc" and "flat:D" (mm), e.g. "ball:10", "bull:12:2".
 // Throws std::invalid_argument with a message naming the bad part for an
-// unknown kind, a missing or non-numeric size, D <= 0, or rc outside (0, D/2).
+// unknown kind, a missing or non-numeric size, D <= 0, or rc outside (0, D/2].
+// "bull:D:rc" with rc = D/2 is the ball "ball:D".
 Tool parse_tool(std::string_view spec);
 
 // The inverse of parse_tool, e.g. "ball:10".

@@ -170,11 +170,13 @@ bool BatchReader::next(BatchRow& row) {
       throw InputError(where() + "column 'rc': a bull tool needs its corner radius", "E2006");
     }
     const double corner = number(cells, "rc");
-    if (!(corner > 0 && corner < diameter / 2)) {
-      throw InputError(where() + "column 'rc': the corner radius must lie in (0, d/2), got '" +
+    if (!(corner > 0 && corner <= diameter / 2)) {
+      throw InputError(where() + "column 'rc': the corner radius must lie in (0, d/2], got '" +
                        cells[rc_column->second] + "'", "E2006");
     }
-    tool = geometry::Tool::bull_nose(diameter, corner);
+    // A corner that fills the radius is the ball end.
+    tool = corner == diameter / 2 ? geometry::Tool::ball(diameter)
+                                  : geometry::Tool::bull_nose(diameter, corner);
   } else {
     throw InputError(where() + "column 'tool': unknown tool '" + kind +
                      "' (expected ball, bull or flat)", "E2006");

@@ -195,4 +195,53 @@ RevolvedSample sample_revolved(double diameter, double corner_radius, double ap,
   return out;
 }
 
+double mean_by_circles(double diameter, double corner_radius, double ap, double ae,
+                       const Vector3d& normal_in, const Vector3d& feed_in, bool previous_on_left,
+                       int circles, int cells) {
+  const Vector3d n = normal_in.normalized();
+  const Vector3d f = (feed_in - feed_in.dot(n) * n).normalized();
+  const Vector3d offset = (previous_on_left ? ae : -ae) * n.cross(f);
+  const double radius = diameter / 2, flat = radius - corner_radius;
+  const double c0 = -flat * std::hypot(n.x(), n.y()) - corner_radius + ap;
+  const Surface surface{radius, corner_radius, flat,
+                        std::max(0.0, (c0 + radius * std::hypot(n.x(), n.y())) / n.z())};
+  const auto engaged = [&](Piece piece, double u, double theta) {
+    const Vector3d p = surface.point(piece, u, theta);
+    if (n.dot(p) > c0) return false;
+    if (surface.normal(piece, u, theta).dot(f) < -1e-12) return false;
+    return !inside_sweep(diameter, corner_radius, p, offset, f);
+  };
+  double area = 0, moment = 0;
+  for (const Piece piece : {Piece::face, Piece::corner, Piece::shank}) {
+    if (piece == Piece::corner && corner_radius == 0) continue;
+    const double du = surface.u_max(piece) / circles;
+    if (!(du > 0)) continue;
+    for (int i = 0; i < circles; ++i) {
+      const double u = (i + 0.5) * du;
+      const double r = std::hypot(surface.point(piece, u, 0).x(), surface.point(piece, u, 0).y());
+      const double dtheta = 2 * kPi / cells;
+      double length = 0;
+      bool before = engaged(piece, u, 0);
+      for (int j = 0; j < cells; ++j) {
+        const double lo = j * dtheta, hi = lo + dtheta;
+        const bool after = engaged(piece, u, hi);
+        if (before && after) length += dtheta;
+        if (before != after) {
+          double a = lo, b = hi;  // engaged(a) == before
+          while (b - a > 1e-12) {
+            const double m = 0.5 * (a + b);
+            (engaged(piece, u, m) == before ? a : b) = m;
+          }
+          length += before ? a - lo : hi - a;
+        }
+        before = after;
+      }
+      const double weight = surface.area(piece, u) * du * length;
+      area += weight;
+      moment += weight * 2 * r;
+    }
+  }
+  return area > 0 ? moment / area : 0;
+}
+
 }  // namespace vcpost::testing

@@ -26,6 +26,15 @@ RevolvedSample sample_revolved(double diameter, double corner_radius, double ap,
                                const Eigen::Vector3d& normal, const Eigen::Vector3d& feed,
                                bool previous_on_left, int resolution);
 
+// The area-weighted mean of 2r by circles: on each horizontal circle of
+// the tool (face, corner, shank: `circles` of each, midpoint rule) r is
+// constant, and the engaged angles are found on `cells` cells per turn with
+// bisection to 1e-12 rad where the definitions' test changes. 0 when
+// nothing is engaged.
+double mean_by_circles(double diameter, double corner_radius, double ap, double ae,
+                       const Eigen::Vector3d& normal, const Eigen::Vector3d& feed,
+                       bool previous_on_left, int circles, int cells);
+
 // Whether tool point p lies strictly inside the volume the tool sweeps along
 // the line through `offset` parallel to `feed` (unit).
 bool inside_sweep(double diameter, double corner_radius, const Eigen::Vector3d& p,

@@ -53,6 +53,9 @@ struct ContactHint {
   // Whether answers carry curvatures (only reports read them; leaving them
   // out saves the second fundamental form on every query).
   bool curvature = true;
+  // Bull-nose and flat end mills (tool_contact.h): the previous contact's
+  // core disc point, relative to the disc's centre (xy, mm).
+  Eigen::Vector2d rim = Eigen::Vector2d::Zero();
   // Counters, for reports and benchmarks only.
   std::uint64_t warm_queries = 0;  // answered from the hint
   std::uint64_t cold_queries = 0;  // went through the spatial index

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <limits>
 
+#include "geometry/tool_contact.h"
+
 namespace vcpost::pipeline {
 
 std::string_view to_string(DiameterPolicy policy) {
@@ -53,10 +55,10 @@ PointResult PointEvaluator::evaluate(const PathSample& sample) {
 
 geometry::BallContact PointEvaluator::contact(const PathSample& sample,
                                               geometry::ContactHint& hint) const {
-  const double radius = settings_.tool.radius();
-  const Eigen::Vector3d center = geometry::ball_center(sample.point, radius, settings_.cl_point);
-  return geometry::ball_contact(model_, center, radius, settings_.contact_tolerance,
-                                settings_.tool.diameter, &hint);
+  const geometry::Tool& tool = settings_.tool;
+  const Eigen::Vector3d origin = geometry::tool_origin(sample.point, tool, settings_.cl_point);
+  return geometry::tool_contact(model_, tool, origin, settings_.contact_tolerance, tool.diameter,
+                                &hint);
 }
 
 namespace {

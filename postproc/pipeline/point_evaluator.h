@@ -30,10 +30,12 @@ enum class AeSource {
 std::string_view to_string(AeSource source);
 
 struct PointSettings {
-  geometry::Tool tool = geometry::Tool::ball(10);
+  geometry::Tool tool = geometry::Tool::ball(10);  // any shape (tool_contact.h)
   double ap = 0.3;           // mm
   std::optional<double> ae;  // mm; see ae_override
   bool ae_override = false;  // use `ae` everywhere instead of measuring
+  // The tip, or the tool frame's origin (tool_origin): a ball's centre, the
+  // plane of a bull-nose's corner centres, a flat end mill's face.
   geometry::ClPoint cl_point = geometry::ClPoint::tip;
   double contact_tolerance = 0.01;  // mm: |distance error| counted as touching
   DiameterPolicy policy = DiameterPolicy::max;
@@ -49,7 +51,7 @@ struct PointResult {
   double ae = 0;
   AeSource ae_source = AeSource::first_pass;
   geometry::Side side = geometry::Side::left;
-  std::optional<geometry::Engagement> engagement;  // when the ball touches (or gouges)
+  std::optional<geometry::Engagement> engagement;  // when the tool touches (or gouges)
   std::optional<double> d_ref;                     // the policy's diameter, mm
   // 1000 vc / (pi d_ref), rpm; +infinity where d_ref is 0 (the machine caps
   // it); empty where the tool does not cut (no contact, nothing engaged).

@@ -7,7 +7,9 @@
 
 namespace vcpost::post {
 
-bool posts_shape(tools::ToolShape shape) { return shape == tools::ToolShape::ball; }
+bool posts_shape(tools::ToolShape shape) {
+  return shape == tools::ToolShape::ball || shape == tools::ToolShape::bull_nose;
+}
 
 ToolSection decide_section(std::uint32_t index, std::optional<int> number, std::uint32_t first_line,
                            const tools::ToolEntry* tool, const tools::ToolChoices& choices,
@@ -31,10 +33,9 @@ ToolSection decide_section(std::uint32_t index, std::optional<int> number, std::
     return s;
   }
   if (!posts_shape(tool->shape)) {
-    s.reason = std::string(tools::to_string(tool->shape)) + " mill: speed kept" +
-               (tool->shape == tools::ToolShape::bull_nose || tool->shape == tools::ToolShape::flat
-                    ? " (only ball-end mills are posted)"
-                    : "");
+    s.reason =
+        std::string(tools::to_string(tool->shape)) + " mill: speed kept" +
+        (tool->shape == tools::ToolShape::flat ? " (ball and bull-nose mills are posted)" : "");
     if (tool->shape == tools::ToolShape::drill) s.reason = "drill: speed kept";
     if (tool->shape == tools::ToolShape::other) s.reason = "not a ball-end mill: speed kept";
     return s;
@@ -57,7 +58,8 @@ ToolSection decide_section(std::uint32_t index, std::optional<int> number, std::
   }
   s.postable = true;
   s.vc_nominal = *vc;
-  s.reason = "ball over the model";
+  s.reason =
+      tool->shape == tools::ToolShape::ball ? "ball over the model" : "bull-nose over the model";
   return s;
 }
 

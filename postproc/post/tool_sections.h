@@ -57,8 +57,9 @@ struct ToolSection {
   std::optional<OffsetDiagnosis> offset;
 };
 
-// The shapes the job posts today. Bull-nose and flat end mills join when
-// the pipeline models their contact (issue 21).
+// The shapes the job posts: ball and bull-nose end mills (the pipeline
+// models both; a flat end mill's face is usually not a finishing edge and
+// its section keeps its speed).
 bool posts_shape(tools::ToolShape shape);
 
 // Decides a section at its first motion from the tool the sources give

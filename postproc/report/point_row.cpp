@@ -147,8 +147,8 @@ PointRow make_row(const pipeline::PathSample& sample, const pipeline::PointResul
   // feed where the model knows it (exact faces), flat otherwise (meshes).
   // No cusp where no earlier pass lies beside this one (first pass: a full
   // groove) or where the ball is not on the surface.
-  if (result.engagement && result.contact.contact && result.feed.squaredNorm() > 0 &&
-      result.contact.status == geometry::BallStatus::touching &&
+  if (inputs.ball_end && result.engagement && result.contact.contact &&
+      result.feed.squaredNorm() > 0 && result.contact.status == geometry::BallStatus::touching &&
       result.ae_source != pipeline::AeSource::first_pass) {
     const double radius = inputs.tool_radius_mm;
     double k_across = 0;

@@ -24,6 +24,9 @@ struct ReportInputs {
   std::string model, model_kind, model_description;
   std::string machine, tool, policy, cl_point;
   double tool_radius_mm = 5;
+  // The surface-quality columns (MODELS.md section 3) model a ball end:
+  // left empty for the bull-nose and flat end mills.
+  bool ball_end = true;
   double vc_nominal = 120;  // m/min, > 0
   double ap_mm = 0.3;
   std::optional<double> ae_mm;

@@ -20,4 +20,10 @@ geometry::AnalyticModel dome();
 // radius 45), with the program's spindle speed `spindle`.
 std::string dome_raster(double stepover, double spacing, int spindle);
 
+// The same raster for a bull-nose end mill of diameter D and corner radius
+// rc resting on the dome: its core disc (radius R0 = D/2 - rc, rc above
+// the tip) at distance 40 + rc from the sphere's centre.
+std::string bull_nose_dome_raster(double stepover, double spacing, int spindle, double diameter,
+                                  double corner_radius);
+
 }  // namespace vcpost::testing

@@ -330,5 +330,36 @@ TEST(PostJob, RepeatLoopAndFanucM98PostWithOneSPerLine) {
   EXPECT_GT(fanuc_summary.repeated_lines, 0u);
 }
 
+// A bull-nose end mill (D 10, rc 2) on a raster written for it: every point
+// of the cut touches, only S changes (rs274 reads the same motion), every S
+// is within the profile, and vc stays at or under nominal.
+TEST(PostJob, BullNosePostKeepsTheMotionAndTheProfile) {
+  // Passes 1.25 mm apart: the chord of the step between passes stays within
+  // the contact tolerance of the curved surface (1.25^2 / (8 * 38) mm).
+  const std::string input = testing::bull_nose_dome_raster(1.25, 0.5, 8000, 10, 2);
+  PostSettings settings = settings_for(120);
+  settings.point.tool = geometry::Tool::bull_nose(10, 2);
+  settings.sample_spacing_mm = 2;
+  const auto profile = machines::builtin_profile("linuxcnc-3axis");
+  PostSummary summary;
+  const std::string output = run_post(input, profile, settings, &summary);
+  ASSERT_NE(input, output);
+  EXPECT_EQ(summary.touching, summary.samples - summary.lifted);
+  EXPECT_EQ(summary.gouging, 0u);
+  const auto words = s_words(output, profile);
+  ASSERT_GT(words.size(), 2u);
+  for (const SWord& word : words) {
+    EXPECT_GE(word.rpm, profile.spindle().n_min_rpm);
+    EXPECT_LE(word.rpm, profile.spindle().n_max_rpm);
+  }
+  ASSERT_TRUE(summary.after);
+  EXPECT_LE(summary.after->max, 120 * (1 + 1e-9));
+  if (std::system("command -v rs274 >/dev/null 2>&1") != 0) GTEST_SKIP() << "rs274 not installed";
+  const testing::Folder dir;
+  const std::string a = testing::rs274_motion(dir.path(), "in.ngc", input);
+  EXPECT_GT(std::count(a.begin(), a.end(), '\n'), 400);
+  EXPECT_EQ(a, testing::rs274_motion(dir.path(), "out.ngc", output));
+}
+
 }  // namespace
 }  // namespace vcpost::post

@@ -1,0 +1,39 @@
+// Where a ball, bull-nose or flat end mill touches the model.
+//
+// Every tool end is the set of points within rc of its core disc: the disc
+// of radius R0 = R - rc in the plane of the corner circle's centres (the
+// tool frame's z = 0, tool.h). A ball has R0 = 0 (the disc is the ball's
+// centre), a flat end mill rc = 0 (the disc is the end face). The tool's
+// distance to the surface is the core disc's distance minus rc, and the
+// touching point CC is the surface point closest to the disc: on the ball
+// the closest point to the centre (MODELS.md section 1), on the bull-nose
+// the closest point to the torus' core circle or, over a crest, to the
+// disc inside it, on the flat end mill the rim or the face.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "geometry/model.h"
+#include "geometry/tool.h"
+
+namespace vcpost::geometry {
+
+// The tool frame's origin (the core disc's centre) from a CL point: the tip
+// lies rc below it; ClPoint::center gives the origin itself (for a ball its
+// centre, as ball_center).
+Eigen::Vector3d tool_origin(const Eigen::Vector3d& cl_point, const Tool& tool, ClPoint kind);
+
+// The contact of `tool` with its frame's origin at `origin` (axis +z):
+// BallContact's fields for the ball of radius rc at the core disc point
+// closest to the surface (center = that point, normal = from CC to it,
+// distance_error = the tool's signed distance from the surface). For a ball
+// exactly ball_contact. For the others the disc point is found by projected
+// gradient steps on the disc (the gradient of the distance is the normal's
+// horizontal part): at most 16 queries, warm-started from hint->rim; the
+// answer is the best disc point met. The surface is searched up to
+// 2 R0 + rc + search_margin from each disc point.
+// REQUIRES: tool valid, tolerance >= 0, search_margin >= 0.
+BallContact tool_contact(const SurfaceModel& model, const Tool& tool, const Eigen::Vector3d& origin,
+                         double tolerance, double search_margin, ContactHint* hint);
+
+}  // namespace vcpost::geometry

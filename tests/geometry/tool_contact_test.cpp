@@ -1,0 +1,144 @@
+// Contact of the bull-nose and flat end mills with analytic surfaces, against
+// the closed-form truth: the core disc's closest point to a plane is the rim
+// point against the normal's horizontal part, to a solid sphere the disc
+// point nearest its centre, to a bowl (the inside of a sphere) the disc
+// point farthest from its centre.
+#include "geometry/tool_contact.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <random>
+
+#include "geometry/analytic_surfaces.h"
+#include "geometry/engagement.h"
+
+namespace vcpost::geometry {
+namespace {
+
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+
+void expect_near(const Vector3d& actual, const Vector3d& expected, double tolerance) {
+  EXPECT_LE((actual - expected).norm(), tolerance)
+      << "actual " << actual.transpose() << "\nexpected " << expected.transpose();
+}
+
+double disc_radius(const Tool& tool) {
+  return tool.kind == ToolKind::flat ? tool.radius() : tool.flat_radius();
+}
+double corner(const Tool& tool) { return tool.kind == ToolKind::flat ? 0.0 : tool.corner_radius; }
+
+// The disc point nearest to p: p's projection onto the disc's plane, pulled
+// onto the disc.
+Vector3d nearest_disc_point(const Vector3d& origin, double radius, const Vector3d& p) {
+  Vector2d q = (p - origin).head<2>();
+  if (q.norm() > radius) q *= radius / q.norm();
+  return origin + Vector3d(q.x(), q.y(), 0);
+}
+
+struct Expected {
+  Vector3d cc, normal;
+  double error;
+};
+
+void check(const SurfaceModel& model, const Tool& tool, const Vector3d& origin,
+           const Expected& expected, double tolerance = 1e-7) {
+  SCOPED_TRACE(::testing::Message() << to_string(tool) << " origin " << origin.transpose());
+  ContactHint hint;
+  const BallContact contact = tool_contact(model, tool, origin, 0.01, tool.diameter, &hint);
+  ASSERT_TRUE(contact.contact);
+  EXPECT_NEAR(contact.distance_error, expected.error, tolerance);
+  expect_near(contact.contact->point, expected.cc, 1e3 * tolerance);
+  expect_near(contact.normal, expected.normal, 1e3 * tolerance);
+  // Warm from its own answer: the same contact again.
+  const BallContact again = tool_contact(model, tool, origin, 0.01, tool.diameter, &hint);
+  EXPECT_NEAR(again.distance_error, contact.distance_error, 1e-9);
+}
+
+TEST(ToolContact, TiltedPlaneTouchesAtTheRimAgainstTheNormal) {
+  std::mt19937 random(1);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (const Tool& tool : {Tool::bull_nose(10, 2), Tool::bull_nose(16, 0.5), Tool::flat(12)}) {
+    for (int i = 0; i < 20; ++i) {
+      const Vector3d n = normal_from_angles(1.2 * unit(random), 6.3 * unit(random));
+      const Vector3d u = n.unitOrthogonal(), v = n.cross(u);
+      PlanePatch plane;
+      plane.u_axis = u;
+      plane.v_axis = v;
+      plane.u_min = plane.v_min = -100;
+      plane.u_max = plane.v_max = 100;
+      const AnalyticModel model({plane});
+      const Vector3d origin(10 * unit(random) - 5, 10 * unit(random) - 5, 3 * unit(random) - 1);
+      const double radius = disc_radius(tool);
+      const Vector2d away = -n.head<2>().normalized();
+      const Vector3d q = origin + radius * Vector3d(away.x(), away.y(), 0);
+      const double height = n.dot(q);  // signed distance of the disc's lowest point
+      check(model, tool, origin, {q - height * n, n, height - corner(tool)});
+    }
+  }
+}
+
+TEST(ToolContact, SolidSphereTouchesTheDiscPointNearestItsCentre) {
+  SpherePatch sphere;
+  sphere.center = {1, -2, -30};
+  sphere.radius = 25;
+  const AnalyticModel model({sphere});
+  std::mt19937 random(2);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (const Tool& tool : {Tool::bull_nose(10, 2), Tool::bull_nose(20, 3), Tool::flat(12)}) {
+    for (int i = 0; i < 30; ++i) {
+      // Over the crest (the face's inside touches) and down the sides (the rim).
+      const double reach = i < 10 ? 2.0 : 20.0;
+      const Vector3d origin(1 + reach * (2 * unit(random) - 1), -2 + reach * (2 * unit(random) - 1),
+                            -4 + 2 * unit(random));
+      const Vector3d q = nearest_disc_point(origin, disc_radius(tool), sphere.center);
+      const Vector3d n = (q - sphere.center).normalized();
+      check(model, tool, origin,
+            {sphere.center + sphere.radius * n, n,
+             (q - sphere.center).norm() - sphere.radius - corner(tool)});
+    }
+  }
+}
+
+TEST(ToolContact, BowlTouchesTheDiscPointFarthestFromItsCentre) {
+  SpherePatch bowl;
+  bowl.center = {0, 0, 40};
+  bowl.radius = 45;
+  bowl.material_inside = false;
+  const AnalyticModel model({bowl});
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (const Tool& tool : {Tool::bull_nose(10, 2), Tool::flat(8)}) {
+    for (int i = 0; i < 20; ++i) {
+      const Vector3d origin(20 * unit(random) - 10, 20 * unit(random) - 10, -2 + unit(random));
+      const Vector2d away = (origin - bowl.center).head<2>().normalized();
+      const Vector3d q = origin + disc_radius(tool) * Vector3d(away.x(), away.y(), 0);
+      const Vector3d n = (bowl.center - q).normalized();
+      check(model, tool, origin,
+            {bowl.center - bowl.radius * n, n,
+             bowl.radius - (q - bowl.center).norm() - corner(tool)});
+    }
+  }
+}
+
+// The ball goes through ball_contact unchanged; tool_origin puts the tip rc
+// below the origin.
+TEST(ToolContact, BallIsBallContactAndOriginsFromTheTip) {
+  SpherePatch sphere;
+  sphere.radius = 10;
+  const AnalyticModel model({sphere});
+  const Vector3d centre(3, 4, 12);
+  const BallContact ball = tool_contact(model, Tool::ball(6), centre, 0.01, 6, nullptr);
+  const BallContact reference = ball_contact(model, centre, 3, 0.01, 6, nullptr);
+  EXPECT_EQ(ball.distance_error, reference.distance_error);
+  EXPECT_EQ(ball.normal, reference.normal);
+  expect_near(tool_origin({1, 2, 3}, Tool::bull_nose(10, 2), ClPoint::tip), {1, 2, 5}, 0);
+  expect_near(tool_origin({1, 2, 3}, Tool::ball(10), ClPoint::tip), {1, 2, 8}, 0);
+  expect_near(tool_origin({1, 2, 3}, Tool::flat(10), ClPoint::tip), {1, 2, 3}, 0);
+  expect_near(tool_origin({1, 2, 3}, Tool::bull_nose(10, 2), ClPoint::center), {1, 2, 3}, 0);
+}
+
+}  // namespace
+}  // namespace vcpost::geometry

@@ -9,7 +9,8 @@
 # and naive_projection in BUILD:
 #   bash bench/scale.sh [BUILD=build/release] [SIZE ...]   (default sizes: 100000 1000000 10000000)
 # (VCPOST=..., SAMPLEGEN=..., NAIVE=... in the environment take those
-# executables from elsewhere than BUILD.)
+# executables from elsewhere than BUILD; TOOL=bull:10:2 posts with that
+# tool instead of ball:10.)
 #
 # Every figure is one run measured with GNU time: wall seconds, CPU
 # seconds (user + sys) and peak RSS. Points/s = program points / post wall
@@ -95,7 +96,7 @@ gen step step patches "$work/patches.step"
 gen stl stl wavy "$work/wavy.stl" --triangles 100000
 echo "models: wavy.step 1 face, patches.step 100 faces, wavy.stl $(grep -o '[0-9]* triangles' "$work/stl.log")"
 models=(wavy.step patches.step wavy.stl)
-job=(--tool ball:10 --vc 120 --ap 0.3 --machine mazak-3axis -q)
+job=(--tool "${TOOL:-ball:10}" --vc 120 --ap 0.3 --machine mazak-3axis -q)
 
 # STEP load: a whole post of a 10-point program.
 gen gen path wavy --points 10 --gcode "$work/tiny.nc"

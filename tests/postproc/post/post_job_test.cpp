@@ -336,7 +336,7 @@ TEST(PostJob, RepeatLoopAndFanucM98PostWithOneSPerLine) {
 TEST(PostJob, BullNosePostKeepsTheMotionAndTheProfile) {
   // Passes 1.25 mm apart: the chord of the step between passes stays within
   // the contact tolerance of the curved surface (1.25^2 / (8 * 38) mm).
-  const std::string input = testing::bull_nose_dome_raster(1.25, 0.5, 8000, 10, 2);
+  const std::string input = testing::bull_nose_dome_raster(1.25, 1.0, 8000, 10, 2);
   PostSettings settings = settings_for(120);
   settings.point.tool = geometry::Tool::bull_nose(10, 2);
   settings.sample_spacing_mm = 2;

@@ -236,7 +236,7 @@ std::string dome_pass(double y) {
 }
 
 // The S value of each line of `text` ("" when it has none).
-std::vector<std::string> s_words(const std::string& text) {
+std::vector<std::string> s_per_line(const std::string& text) {
   std::vector<std::string> out;
   std::istringstream in(text);
   static const std::regex s_word(R"(S([0-9.]+))");
@@ -266,8 +266,8 @@ TEST(PostJob, LinesRunTwiceGetTheLowestSOfTheirRuns) {
   // keeps one S per stretch between stops, none inside a pass.
   const auto profile = machines::builtin_profile("generic");
   PostSummary unrolled_summary, called_summary;
-  const auto u = s_words(run_post(unrolled, profile, settings_for(60), &unrolled_summary));
-  const auto c = s_words(run_post(called, profile, settings_for(60), &called_summary));
+  const auto u = s_per_line(run_post(unrolled, profile, settings_for(60), &unrolled_summary));
+  const auto c = s_per_line(run_post(called, profile, settings_for(60), &called_summary));
   const auto lines_of = [](const std::string& t) {
     return static_cast<std::size_t>(std::count(t.begin(), t.end(), '\n'));
   };
@@ -340,7 +340,7 @@ TEST(PostJob, BullNosePostKeepsTheMotionAndTheProfile) {
   PostSettings settings = settings_for(120);
   settings.point.tool = geometry::Tool::bull_nose(10, 2);
   settings.sample_spacing_mm = 2;
-  const auto profile = machines::builtin_profile("linuxcnc-3axis");
+  const auto profile = machines::builtin_profile("generic");  // inline: S words along the passes
   PostSummary summary;
   const std::string output = run_post(input, profile, settings, &summary);
   ASSERT_NE(input, output);

@@ -1,13 +1,32 @@
 #include "geometry/engagement.h"
 
+#include <array>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include "geometry/ball_engagement.h"
 #include "geometry/cut_frame.h"
 #include "geometry/revolved_engagement.h"
 
 namespace vcpost::geometry {
+
+std::vector<std::string> flag_names(EngagementFlags flags) {
+  static constexpr std::array<std::pair<EngagementFlag, const char*>, 7> kNames = {{
+      {EngagementFlag::nothing_engaged, "nothing_engaged"},
+      {EngagementFlag::shank_engaged, "shank_engaged"},
+      {EngagementFlag::zero_ae, "zero_ae"},
+      {EngagementFlag::zero_ap, "zero_ap"},
+      {EngagementFlag::ap_exceeds_d, "ap_exceeds_d"},
+      {EngagementFlag::undercut, "undercut"},
+      {EngagementFlag::feed_along_normal, "feed_along_normal"},
+  }};
+  std::vector<std::string> names;
+  for (const auto& [flag, name] : kNames) {
+    if (flags.has(flag)) names.emplace_back(name);
+  }
+  return names;
+}
 
 CutCheck check_cut(const Tool& tool, const CutSetup& setup) {
   CutCheck check;

@@ -7,6 +7,8 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "geometry/tool.h"
 
@@ -44,6 +46,10 @@ struct EngagementFlags {
   bool has(EngagementFlag flag) const { return (bits & static_cast<std::uint32_t>(flag)) != 0; }
   void set(EngagementFlag flag) { bits |= static_cast<std::uint32_t>(flag); }
 };
+
+// The names of the flags set, in the order above ("nothing_engaged",
+// "shank_engaged", ...): the words of `vcpost deff --json` and the library.
+std::vector<std::string> flag_names(EngagementFlags flags);
 
 // An edge point in the tool frame and its working diameter 2r,
 // r = distance from the tool axis.

@@ -14,7 +14,6 @@ namespace {
 
 using geometry::CuttingPoint;
 using geometry::CuttingPoints;
-using geometry::EngagementFlag;
 
 // Fixed decimals without a "-0.0000" for values that round to zero.
 std::string fixed(double value, int decimals) {
@@ -60,24 +59,6 @@ std::optional<double> point_diameter(const Evaluation& evaluation, const NamedPo
   const auto& points = evaluation.engagement.points;
   if (!points) return std::nullopt;
   return ((*points).*(point.member)).diameter;
-}
-
-constexpr std::array<std::pair<EngagementFlag, const char*>, 7> kFlags = {{
-    {EngagementFlag::nothing_engaged, "nothing_engaged"},
-    {EngagementFlag::shank_engaged, "shank_engaged"},
-    {EngagementFlag::zero_ae, "zero_ae"},
-    {EngagementFlag::zero_ap, "zero_ap"},
-    {EngagementFlag::ap_exceeds_d, "ap_exceeds_d"},
-    {EngagementFlag::undercut, "undercut"},
-    {EngagementFlag::feed_along_normal, "feed_along_normal"},
-}};
-
-std::vector<std::string> flag_names(const geometry::EngagementFlags& flags) {
-  std::vector<std::string> names;
-  for (const auto& [flag, name] : kFlags) {
-    if (flags.has(flag)) names.emplace_back(name);
-  }
-  return names;
 }
 
 const char* cut_point_key(geometry::Side side) {
@@ -238,7 +219,7 @@ void write_table(std::ostream& out, const Description& description, const Evalua
          "   Points 1..2'' are the paper's rim points: those behind the tool or in the\n"
          "   previous pass do not cut, so their 2r may exceed D_max.)\n\n";
 
-  const auto flags = flag_names(e.flags);
+  const auto flags = geometry::flag_names(e.flags);
   std::string flag_text;
   for (const auto& name : flags) flag_text += (flag_text.empty() ? "" : ", ") + name;
   const auto mode = geometry::milling_mode(setup.side, description.spindle);
@@ -307,7 +288,7 @@ nlohmann::ordered_json to_json(const Description& description, const Evaluation&
   } else {
     json["points"] = nullptr;
   }
-  json["flags"] = flag_names(e.flags);
+  json["flags"] = geometry::flag_names(e.flags);
   json["spindle"] = to_string(description.spindle);
   json["milling"] = to_string(geometry::milling_mode(setup.side, description.spindle));
   if (speed) {

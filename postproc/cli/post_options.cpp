@@ -101,6 +101,8 @@ tools::ToolChoices tool_choices(const PostArguments& args) {
   return choices;
 }
 
+}  // namespace
+
 post::PostSettings settings_from(const PostArguments& args) {
   post::PostSettings settings;
   settings.tools = tool_choices(args);
@@ -124,6 +126,40 @@ post::PostSettings settings_from(const PostArguments& args) {
   }
   return settings;
 }
+
+void require_posted(const post::PostSummary& summary, const std::string& name) {
+  if (summary.motion_events == 0) {
+    throw CommandError("'" + name +
+                       "': the program has no motion (empty, comments only, or cut short before "
+                       "its first move): nothing to post");
+  }
+  if (!summary.sections.empty() &&
+      std::none_of(summary.sections.begin(), summary.sections.end(),
+                   [](const post::ToolSection& s) { return s.entry.has_value(); })) {
+    throw CommandError(
+        "--tool: required (the program names no tool vcpost can read: no CL CUTTER/TLDATA, no "
+        "CAM tool comment); give --tool ball:D, --tool T<n>=ball:D or --tools FILE.toml");
+  }
+  if (summary.samples > 0 && summary.touching + summary.gouging == 0) {
+    throw CommandError(
+        "E2005",
+        "the toolpath never touches the model (" + std::to_string(summary.samples) +
+        " points checked): check the work offset and units of the program against the model, "
+        "and --cl-point (tip or center)");
+  }
+  if (summary.samples > 0 && summary.touching * 100 <= summary.samples &&
+      summary.gouging * 2 >= summary.samples) {
+    // Not a few gouges to warn about: the program and the model disagree.
+    throw CommandError(
+        "the toolpath gouges the model at " + std::to_string(summary.gouging) + " of " +
+        std::to_string(summary.samples) + " points and touches it at only " +
+        std::to_string(summary.touching) +
+        ": the program does not match the model; check the work offset (Z) and units of the "
+        "program against the model, --cl-point (tip or center) and the tool's diameter");
+  }
+}
+
+namespace {
 
 // One report file: its format and, for the streamed CSV, its open file.
 struct ReportFile {
@@ -440,35 +476,7 @@ JobRun run_job(const PostArguments& args, bool write_program) {
     throw CommandError(e.code(), std::string("planning: ") + e.what());
   }  // a GcodeError, ClError or PostError leaves with its own code
   if (show_progress) std::cerr << "\r\x1b[K";
-  if (summary.motion_events == 0) {
-    throw CommandError("'" + name +
-                       "': the program has no motion (empty, comments only, or cut short before "
-                       "its first move): nothing to post");
-  }
-  if (!summary.sections.empty() &&
-      std::none_of(summary.sections.begin(), summary.sections.end(),
-                   [](const post::ToolSection& s) { return s.entry.has_value(); })) {
-    throw CommandError(
-        "--tool: required (the program names no tool vcpost can read: no CL CUTTER/TLDATA, no "
-        "CAM tool comment); give --tool ball:D, --tool T<n>=ball:D or --tools FILE.toml");
-  }
-  if (summary.samples > 0 && summary.touching + summary.gouging == 0) {
-    throw CommandError(
-        "E2005",
-        "the toolpath never touches the model (" + std::to_string(summary.samples) +
-        " points checked): check the work offset and units of the program against the model, "
-        "and --cl-point (tip or center)");
-  }
-  if (summary.samples > 0 && summary.touching * 100 <= summary.samples &&
-      summary.gouging * 2 >= summary.samples) {
-    // Not a few gouges to warn about: the program and the model disagree.
-    throw CommandError(
-        "the toolpath gouges the model at " + std::to_string(summary.gouging) + " of " +
-        std::to_string(summary.samples) + " points and touches it at only " +
-        std::to_string(summary.touching) +
-        ": the program does not match the model; check the work offset (Z) and units of the "
-        "program against the model, --cl-point (tip or center) and the tool's diameter");
-  }
+  require_posted(summary, name);
   if (args.strict && has_warnings(summary)) {
     // Refused before anything is committed: --strict leaves no file it refused.
     if (!args.quiet) print_warnings(summary);

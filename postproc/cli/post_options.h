@@ -36,6 +36,16 @@ struct PostArguments {
 // the report files, which each command words its own way).
 void add_job_options(CLI::App& command, PostArguments& args);
 
+// The job's settings from the options (tools from --tool/--tools/
+// --post-tools, speeds from --vc); throws CommandError for bad ones.
+post::PostSettings settings_from(const PostArguments& args);
+
+// Throws CommandError when the program has no motion, no section had a
+// tool vcpost can read, no point of the toolpath touches the model, or it
+// gouges far more than it touches (with a hint about the work offset,
+// units and --cl-point).
+void require_posted(const post::PostSummary& summary, const std::string& name);
+
 // What one run did, for the command's own output.
 struct JobRun {
   post::PostSummary summary;

@@ -1,0 +1,142 @@
+#include "vcpost/post.h"
+
+#include <array>
+#include <charconv>
+#include <string>
+
+#include "api/translate.h"
+#include "postproc/cli/model_loader.h"
+#include "postproc/cli/post_options.h"
+#include "postproc/gcode/diagnostics.h"
+#include "postproc/output/mazak_writer.h"
+#include "postproc/post/post_job.h"
+#include "postproc/program/timing.h"
+
+namespace vcpost::api {
+
+struct Model::Loaded {
+  cli::LoadedModel model;
+};
+
+Model::Model(std::shared_ptr<const Loaded> loaded) : loaded_(std::move(loaded)) {}
+
+Model Model::load(const std::string& path) {
+  return guarded([&] { return Model(std::make_shared<const Loaded>(Loaded{cli::load_model(path)})); });
+}
+
+std::string Model::kind() const { return loaded_->model.kind; }
+std::string Model::description() const { return loaded_->model.description; }
+
+const geometry::SurfaceModel& internal(const Model& model) { return *model.loaded_->model.model; }
+
+namespace {
+
+// The options as `vcpost post` holds them, so the library and the command
+// set the job up by the same rules (cli::settings_from).
+cli::PostArguments arguments_from(const PostOptions& options) {
+  auto positive = [](double value, const char* option) {
+    if (!(value > 0)) throw Error(std::string(option) + ": must be positive", {}, option);
+  };
+  positive(options.vc, "--vc");
+  positive(options.ap, "--ap");
+  positive(options.spacing_mm, "--spacing");
+  positive(options.contact_tolerance_mm, "--contact-tolerance");
+  if (options.ae) positive(*options.ae, "--ae");
+  if (options.fz_mm) positive(*options.fz_mm, "--fz");
+  if (options.teeth) positive(*options.teeth, "--teeth");
+  cli::PostArguments args;
+  if (!options.tool.empty()) args.tools = {options.tool};
+  std::array<char, 32> vc{};  // shortest text that reads back as the same double
+  args.vc = {std::string(vc.data(), std::to_chars(vc.begin(), vc.end(), options.vc).ptr)};
+  args.ap = options.ap;
+  args.ae = options.ae;
+  args.ae_override = options.ae_override;
+  args.policy = options.policy == DiameterPolicy::tangent ? "tangent"
+                : options.policy == DiameterPolicy::mean  ? "mean"
+                                                          : "max";
+  args.cl_point = options.cl_point == ClPoint::center ? "center" : "tip";
+  args.spacing = options.spacing_mm;
+  args.tolerance = options.contact_tolerance_mm;
+  args.dialect = options.dialect;
+  args.adjust_feed = options.adjust_feed;
+  args.fz = options.fz_mm;
+  args.teeth = options.teeth;
+  args.threads = options.threads;
+  return args;
+}
+
+Vec3 vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+std::optional<VcStatistics> statistics(const std::optional<post::VcStatistics>& s) {
+  if (!s) return std::nullopt;
+  return VcStatistics{s->min, s->max, s->mean, s->within_5_percent, s->within_10_percent};
+}
+
+PostSummary summary_from(const post::PostSummary& s) {
+  PostSummary out;
+  out.kind = s.kind == post::ProgramKind::gcode ? "gcode" : "cldata";
+  out.blocks = s.blocks;
+  out.motion_events = s.motion_events;
+  out.points = s.samples;
+  out.touching = s.touching;
+  out.lifted = s.lifted;
+  out.gouging = s.gouging;
+  out.missed = s.missed;
+  out.ae_measured = s.ae_measured;
+  out.ae_given = s.ae_given;
+  out.ae_first_pass = s.ae_first_pass;
+  out.program_time_s = s.program_time_s;
+  out.cutting_time_s = s.cutting_time_s;
+  out.s_words = s.s_words;
+  out.f_words = s.f_words;
+  out.vc_before = statistics(s.before);
+  out.vc_after = statistics(s.after);
+  return out;
+}
+
+}  // namespace
+
+PostResult post(std::string_view program, const std::string& program_name, const Model& model,
+                const MachineProfile& profile, const PostOptions& options) {
+  return guarded([&] {
+    const cli::PostArguments args = arguments_from(options);
+    const post::PostSettings settings = cli::settings_from(args);
+    PostResult result;
+    const auto sink = [&](std::string_view bytes) { result.program.append(bytes); };
+    post::PointSink points;
+    if (options.keep_points) {
+      points = [&](const pipeline::PathSample& sample, const pipeline::PointResult& point,
+                   const post::PointRecord& record) {
+        PostPoint p;
+        p.line = record.line;
+        p.time_s = record.time_s;
+        p.point = vec(sample.point);
+        p.touching = point.contact.status == geometry::BallStatus::touching;
+        if (point.contact.contact) p.contact = vec(point.contact.contact->point);
+        p.normal = vec(point.contact.normal);
+        p.d_ref = point.d_ref;
+        p.s_before = record.s_before;
+        p.s_after = record.s_after;
+        result.points.push_back(p);
+      };
+    }
+    post::PostSummary summary;
+    try {
+      summary = post::post_program(program, program_name, internal(model), internal(profile),
+                                   settings, sink, {}, points);
+    } catch (const gcode::GcodeError& e) {  // its what() names no file
+      throw std::runtime_error(gcode::format(e.diagnostic(), program_name));
+    } catch (const program::TimingError& e) {  // as `vcpost post` reports them
+      throw std::runtime_error(program_name + ":" + std::to_string(e.source().line) + ": " +
+                               e.what());
+    } catch (const output::OutputError& e) {
+      throw std::runtime_error(program_name + ":" + std::to_string(e.source().line) + ": " +
+                               e.what());
+    }
+    cli::require_posted(summary, program_name);
+    result.summary = summary_from(summary);
+    return result;
+  });
+}
+
+}  // namespace vcpost::api

@@ -8,7 +8,7 @@
 #include "postproc/cli/model_loader.h"
 #include "postproc/cli/post_options.h"
 #include "postproc/gcode/diagnostics.h"
-#include "postproc/output/mazak_writer.h"
+#include "postproc/output/gcode_writer.h"
 #include "postproc/post/post_job.h"
 #include "postproc/program/timing.h"
 

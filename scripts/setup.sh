@@ -18,6 +18,9 @@ packages=(
   clang-14 libclang-rt-14-dev
   # scripts/format-check.sh and .clang-tidy
   clang-format-14 clang-tidy-14
+  # the Debian package (scripts/package-test.sh): CPack's dependency scan
+  # (dpkg-shlibdeps, file), its check (lintian) and the man pages (man-db)
+  dpkg-dev file lintian man-db
 )
 
 missing=()

@@ -315,7 +315,7 @@ TEST(HostileInput, UnknownCommandIsNamed) {
   EXPECT_EQ(r.shell_status(), 2);
   EXPECT_EQ(r.err,
             "vcpost: error: unknown command 'bogus'; the commands are deff, machines, moves, post, "
-            "report, verify (vcpost --help)\n");
+            "report, verify, explain (vcpost --help)\n");
 }
 
 TEST(HostileInput, StepFileAsMachineIsNamedForWhatItIs) {

@@ -314,7 +314,7 @@ TEST(HostileInput, UnknownCommandIsNamed) {
   const ChildResult r = run({kVcpost, "bogus"}, logs);
   EXPECT_EQ(r.shell_status(), 2);
   EXPECT_EQ(r.err,
-            "vcpost: error: unknown command 'bogus'; the commands are deff, machines, moves, post, "
+            "vcpost: error: unknown command 'bogus'; the commands are deff, moves, machines, post, "
             "report, verify, explain (vcpost --help)\n");
 }
 

@@ -310,7 +310,7 @@ void run(CLI::App& command, const Arguments& args) {
   const Description description = describe(request, blame);
   std::optional<Speed> speed;
   SpeedRequest speed_request;
-  const auto policy = parse_policy(args.policy);
+  const auto policy = geometry::parse_diameter_policy(args.policy);
   if (!policy) {
     throw usage("--policy",
                 "'" + args.policy + "' is not a policy (expected max, tangent or mean)");

@@ -113,25 +113,6 @@ Evaluation evaluate(const geometry::Tool& tool, const geometry::CutSetup& setup)
   return {geometry::evaluate_engagement(tool, setup), geometry::engaged_mean_diameter(tool, setup)};
 }
 
-std::string_view to_string(Policy policy) {
-  switch (policy) {
-    case Policy::max:
-      return "max";
-    case Policy::tangent:
-      return "tangent";
-    case Policy::mean:
-      return "mean";
-  }
-  return "?";
-}
-
-std::optional<Policy> parse_policy(std::string_view text) {
-  for (const Policy policy : {Policy::max, Policy::tangent, Policy::mean}) {
-    if (text == to_string(policy)) return policy;
-  }
-  return std::nullopt;
-}
-
 std::optional<double> Speed::vc_at(std::optional<double> diameter) const {
   if (!diameter || !rpm) return std::nullopt;
   return geometry::cutting_speed(*diameter, *rpm);
@@ -141,22 +122,13 @@ Speed plan_speed(const Evaluation& evaluation, const SpeedRequest& request) {
   Speed speed;
   speed.policy = request.policy;
   speed.vc_nominal = request.vc;
-  const auto& e = evaluation.engagement;
-  switch (request.policy) {
-    case Policy::max:
-      speed.d_ref = e.d_max;
-      break;
-    case Policy::tangent:
-      if (e.points) speed.d_ref = e.points->cut.diameter;
-      break;
-    case Policy::mean:
-      speed.d_ref = evaluation.d_mean;
-      break;
-  }
+  speed.d_ref = geometry::reference_diameter(request.policy, evaluation.engagement,
+                                            [&] { return evaluation.d_mean; });
   if (request.rpm) {
     speed.rpm = request.rpm;
-  } else if (request.vc && speed.d_ref && *speed.d_ref > 0) {
-    speed.rpm = geometry::spindle_speed_for(*request.vc, *speed.d_ref);
+  } else if (request.vc && speed.d_ref) {
+    const double rpm = geometry::target_rpm(*request.vc, *speed.d_ref);
+    if (std::isfinite(rpm)) speed.rpm = rpm;  // unbounded at d_ref = 0: none to give
   }
   return speed;
 }

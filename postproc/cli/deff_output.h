@@ -10,6 +10,7 @@
 #include <string>
 #include <string_view>
 
+#include "geometry/diameter_policy.h"
 #include "geometry/engagement.h"
 #include "geometry/tool.h"
 
@@ -25,21 +26,16 @@ struct Evaluation {
 // not handle yet).
 Evaluation evaluate(const geometry::Tool& tool, const geometry::CutSetup& setup);
 
-// Which diameter sets the spindle speed (MODELS.md section 2): D_max (no
-// engaged edge faster than vc), the cutting tangent point's 2r, or D_mean.
-enum class Policy { max, tangent, mean };
-
-std::string_view to_string(Policy policy);
-std::optional<Policy> parse_policy(std::string_view text);
+using geometry::DiameterPolicy;  // which diameter sets the spindle speed
 
 struct SpeedRequest {
-  Policy policy = Policy::max;
+  DiameterPolicy policy = DiameterPolicy::max;
   std::optional<double> vc;   // nominal cutting speed, m/min, > 0
   std::optional<double> rpm;  // given spindle speed, 1/min, > 0
 };
 
 struct Speed {
-  Policy policy = Policy::max;
+  DiameterPolicy policy = DiameterPolicy::max;
   std::optional<double> d_ref;       // mm; empty when the policy's point does not exist
   std::optional<double> vc_nominal;  // m/min, as requested
   // The spindle speed the cutting speeds are given at: the request's rpm, or

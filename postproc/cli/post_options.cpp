@@ -112,9 +112,9 @@ post::PostSettings settings_from(const PostArguments& args) {
   settings.point.contact_tolerance = args.tolerance;
   settings.point.cl_point =
       args.cl_point == "center" ? geometry::ClPoint::center : geometry::ClPoint::tip;
-  settings.point.policy = args.policy == "tangent" ? pipeline::DiameterPolicy::tangent
-                          : args.policy == "mean"  ? pipeline::DiameterPolicy::mean
-                                                   : pipeline::DiameterPolicy::max;
+  // CLI11 admits only the policies' names.
+  settings.point.policy =
+      geometry::parse_diameter_policy(args.policy).value_or(geometry::DiameterPolicy::max);
   settings.sample_spacing_mm = args.spacing;
   settings.threads = args.threads;
   settings.adjust_feed = args.adjust_feed;

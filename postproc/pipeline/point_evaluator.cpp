@@ -1,23 +1,10 @@
 #include "postproc/pipeline/point_evaluator.h"
 
 #include <cmath>
-#include <limits>
 
 #include "geometry/tool_contact.h"
 
 namespace vcpost::pipeline {
-
-std::string_view to_string(DiameterPolicy policy) {
-  switch (policy) {
-    case DiameterPolicy::max:
-      return "max";
-    case DiameterPolicy::tangent:
-      return "tangent";
-    case DiameterPolicy::mean:
-      return "mean";
-  }
-  return "?";
-}
 
 std::string_view to_string(AeSource source) {
   switch (source) {
@@ -101,21 +88,10 @@ void PointEvaluator::engage(const PathSample& sample, PointResult& out) const {
                                  out.feed.isZero() ? sample.direction : out.feed, out.side};
   out.engagement = geometry::evaluate_engagement(settings_.tool, setup, cutting_points_);
   const auto& e = *out.engagement;
-  switch (settings_.policy) {
-    case DiameterPolicy::max:
-      out.d_ref = e.d_max;
-      break;
-    case DiameterPolicy::tangent:
-      if (e.points && e.d_max) out.d_ref = e.points->cut.diameter;
-      break;
-    case DiameterPolicy::mean:
-      out.d_ref = geometry::engaged_mean_diameter(settings_.tool, setup);
-      break;
-  }
-  if (out.d_ref) {
-    out.target_rpm = *out.d_ref > 0 ? geometry::spindle_speed_for(settings_.vc, *out.d_ref)
-                                    : std::numeric_limits<double>::infinity();
-  }
+  out.d_ref = geometry::reference_diameter(settings_.policy, e, [&] {
+    return geometry::engaged_mean_diameter(settings_.tool, setup);
+  });
+  if (out.d_ref) out.target_rpm = geometry::target_rpm(settings_.vc, *out.d_ref);
 }
 
 }  // namespace vcpost::pipeline

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string_view>
 
+#include "geometry/diameter_policy.h"
 #include "geometry/engagement.h"
 #include "geometry/model.h"
 #include "postproc/pipeline/pass_tracker.h"
@@ -13,13 +14,8 @@
 
 namespace vcpost::pipeline {
 
-// Which working diameter sets the spindle speed (MODELS.md section 2).
-enum class DiameterPolicy {
-  max,      // D_max: no engaged edge point runs faster than vc (default)
-  tangent,  // the paper's cutting point on the working side
-  mean,     // D_mean, area-weighted over the engaged zone
-};
-std::string_view to_string(DiameterPolicy policy);
+// Which working diameter sets the spindle speed: geometry's one rule.
+using geometry::DiameterPolicy;
 
 // Where the width of cut came from.
 enum class AeSource {

@@ -1,6 +1,7 @@
 // The files of one run must be distinct: no output may be an input (the
-// program, the model, the machine profile) or another output, whatever the
-// spelling of their names (relative, through symbolic links, hard links).
+// program, the model, the machine profile, the tools table) or another
+// output, whatever the spelling of their names (relative, through symbolic
+// links, hard links).
 // Checked before any work, so a mistyped option never costs a file.
 #pragma once
 

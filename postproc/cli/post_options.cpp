@@ -203,6 +203,7 @@ std::string read_chart_library() {
 std::vector<NamedFile> job_inputs(const PostArguments& args) {
   std::vector<NamedFile> inputs{{"program", args.program}, {"--model", args.model}};
   if (!machines::is_builtin_profile(args.machine)) inputs.push_back({"--machine", args.machine});
+  inputs.push_back({"--tools", args.tools_file});
   return inputs;
 }
 

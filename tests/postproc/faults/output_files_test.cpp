@@ -1,7 +1,7 @@
 // Outputs never cost an input or another output (issue 18): every output
 // of `vcpost post`/`report` must be a file other than the program, the
-// model, the machine profile and the other outputs, however it is named
-// (relative, through a symbolic link); a device or FIFO is written in
+// model, the machine profile, the tools table and the other outputs,
+// however it is named (relative, through a symbolic or a hard link); a device or FIFO is written in
 // place, never replaced; a symbolic link writes its target; an existing
 // output keeps its mode; a hard link is refused, not split. The real
 // binary on the dome sample; inputs are hashed before and after.
@@ -21,22 +21,29 @@ const std::string kVcpost = VCPOST_BINARY;
 // Copies of the dome sample's inputs in `work` (so a failure here cannot
 // damage the repository), and the job on them.
 struct DomeJob {
-  fs::path program, model, machine;
+  fs::path program, model, machine, tools;  // tools: given by the clashes that name it
   explicit DomeJob(const fs::path& work)
-      : program(work / "in.nc"), model(work / "dome.step"), machine(work / "m.toml") {
+      : program(work / "in.nc"),
+        model(work / "dome.step"),
+        machine(work / "m.toml"),
+        tools(work / "tools.toml") {
     fs::copy_file(kSamples / "dome_raster_a0_ae3.nc", program);
     fs::copy_file(kSamples / "dome.step", model);
     fs::copy_file(fs::path(VCPOST_SOURCE_DIR) / "machines/profiles/generic.toml", machine);
+    std::ofstream(tools) << "[[tool]]\nnumber = 1\nshape = \"ball\"\ndiameter = 10.0\n";
   }
-  std::vector<std::string> args(std::vector<std::string> extra, const char* command = "post") const {
-    std::vector<std::string> a{kVcpost, command,   program.string(), "--model", model.string(),
-                               "--tool", "ball:10", "--vc",          "120",     "--ap",
-                               "0.3",    "--ae",    "3",             "--machine", machine.string()};
+  std::vector<std::string> args(std::vector<std::string> extra,
+                                const char* command = "post") const {
+    std::vector<std::string> a{kVcpost,   command,        program.string(),
+                               "--model", model.string(), "--tool",
+                               "ball:10", "--vc",         "120",
+                               "--ap",    "0.3",          "--ae",
+                               "3",       "--machine",    machine.string()};
     a.insert(a.end(), extra.begin(), extra.end());
     return a;
   }
   std::vector<std::uint64_t> hashes() const {
-    return {file_hash(program), file_hash(model), file_hash(machine)};
+    return {file_hash(program), file_hash(model), file_hash(machine), file_hash(tools)};
   }
 };
 
@@ -103,6 +110,28 @@ INSTANTIATE_TEST_SUITE_P(
                                                 (w / "m.json").string()};
               },
               "is the same file as the input --machine"},
+        Clash{
+            "OutputIsTheToolsTable",
+            [](const DomeJob& j, const fs::path&) {
+              return std::vector<std::string>{"--tools", j.tools.string(), "-o", j.tools.string()};
+            },
+            "is the same file as the input --tools"},
+        Clash{"SummaryIsTheToolsTableThroughALink",
+              [](const DomeJob& j, const fs::path& w) {
+                fs::create_symlink("tools.toml", w / "t.json");
+                return std::vector<std::string>{
+                    "--tools",        j.tools.string(),       "-o", (w / "out.nc").string(),
+                    "--summary-json", (w / "t.json").string()};
+              },
+              "is the same file as the input --tools"},
+        Clash{"ReportIsTheToolsTableThroughAHardLink",
+              [](const DomeJob& j, const fs::path& w) {
+                fs::create_hard_link(j.tools, w / "t.html");
+                return std::vector<std::string>{"--tools",  j.tools.string(),
+                                                "-o",       (w / "out.nc").string(),
+                                                "--report", (w / "t.html").string()};
+              },
+              "is the same file as the input --tools"},
         Clash{"SummaryIsTheOutput",
               [](const DomeJob&, const fs::path& w) {
                 return std::vector<std::string>{"-o", (w / "out.nc").string(), "--summary-json",
@@ -111,8 +140,11 @@ INSTANTIATE_TEST_SUITE_P(
               "is the same file as -o"},
         Clash{"ReportIsTheSummary",
               [](const DomeJob&, const fs::path& w) {
-                return std::vector<std::string>{"-o", (w / "out.nc").string(), "--report",
-                                                (w / "s.json").string(), "--summary-json",
+                return std::vector<std::string>{"-o",
+                                                (w / "out.nc").string(),
+                                                "--report",
+                                                (w / "s.json").string(),
+                                                "--summary-json",
                                                 (w / "s.json").string()};
               },
               "is the same file as --summary-json"},
@@ -171,7 +203,8 @@ TEST(OutputFiles, FifoIsWrittenInPlace) {
   EXPECT_TRUE(fs::is_fifo(fs::symlink_status(fifo)));
   EXPECT_EQ(got, read_file(work / "plain.nc"));
   EXPECT_EQ(list_folder(work.path()),
-            (std::vector<std::string>{"dome.step", "fifo.nc", "in.nc", "m.toml", "plain.nc"}));
+            (std::vector<std::string>{"dome.step", "fifo.nc", "in.nc", "m.toml", "plain.nc",
+                                      "tools.toml"}));
 }
 
 TEST(OutputFiles, CharacterDeviceStaysADevice) {
@@ -190,7 +223,7 @@ TEST(OutputFiles, CharacterDeviceStaysADevice) {
   ASSERT_EQ(::stat(null.c_str(), &info), 0);
   EXPECT_TRUE(S_ISCHR(info.st_mode));
   EXPECT_EQ(list_folder(work.path()),
-            (std::vector<std::string>{"dome.step", "in.nc", "m.toml", "null"}));
+            (std::vector<std::string>{"dome.step", "in.nc", "m.toml", "null", "tools.toml"}));
 }
 
 TEST(OutputFiles, SymbolicLinkWritesItsTarget) {
@@ -208,8 +241,8 @@ TEST(OutputFiles, SymbolicLinkWritesItsTarget) {
   EXPECT_TRUE(fs::is_symlink(work / "out.nc"));
   EXPECT_EQ(read_file(work / "real/out.nc"), read_file(work / "plain.nc"));
   EXPECT_NE(r.err.find("vcpost: '" + (work / "out.nc").string() +
-                       "' is a symbolic link: wrote its target '" + (work / "real/out.nc").string() +
-                       "'\n"),
+                       "' is a symbolic link: wrote its target '" +
+                       (work / "real/out.nc").string() + "'\n"),
             std::string::npos)
       << r.err;
   EXPECT_EQ(list_folder(work / "real"), std::vector<std::string>{"out.nc"});

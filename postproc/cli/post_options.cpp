@@ -27,6 +27,7 @@
 #include "postproc/cli/interrupt.h"
 #include "postproc/cli/number_options.h"
 #include "postproc/cli/program_text.h"
+#include "postproc/cli/section_words.h"
 #include "postproc/gcode/diagnostics.h"
 #include "postproc/output/gcode_writer.h"
 #include "postproc/program/timing.h"
@@ -144,18 +145,33 @@ void require_posted(const post::PostSummary& summary, const std::string& name) {
     throw CommandError(
         "E2005",
         "the toolpath never touches the model (" + std::to_string(summary.samples) +
-        " points checked): check the work offset and units of the program against the model, "
-        "and --cl-point (tip or center)");
+            " points checked): check the work offset and units of the program against the model, "
+            "and --cl-point (tip or center)");
   }
   if (summary.samples > 0 && summary.touching * 100 <= summary.samples &&
       summary.gouging * 2 >= summary.samples) {
     // Not a few gouges to warn about: the program and the model disagree.
-    throw CommandError(
-        "the toolpath gouges the model at " + std::to_string(summary.gouging) + " of " +
-        std::to_string(summary.samples) + " points and touches it at only " +
-        std::to_string(summary.touching) +
-        ": the program does not match the model; check the work offset (Z) and units of the "
-        "program against the model, --cl-point (tip or center) and the tool's diameter");
+    // The error gives the sections' own diagnosis, worded as the end-of-run
+    // lines word it.
+    std::string message = "the toolpath gouges the model at " + std::to_string(summary.gouging) +
+                          " of " + std::to_string(summary.samples) +
+                          " points and touches it at only " + std::to_string(summary.touching) +
+                          ": the program does not match the model";
+    bool offset = false;
+    for (const post::ToolSection& s : summary.sections) {
+      if (s.gouge.points + s.lift.points == 0) continue;
+      const std::string name = summary.sections.size() > 1 ? section_name(s) + ": " : std::string();
+      if (s.gouge.points > 0) message += "; " + name + depth_words(s.gouge, "gouge depth");
+      if (s.lift.points > 0) message += "; " + name + depth_words(s.lift, "lift height");
+      if (s.offset) message += "; " + name + offset_words(*s.offset);
+      offset = offset || s.offset.has_value();
+    }
+    if (!offset) {
+      message +=
+          "; no one offset dominates (depths that vary with the surface's slope: a shifted "
+          "work offset, other units or another tool diameter)";
+    }
+    throw CommandError("E2011", message);
   }
 }
 
@@ -192,8 +208,9 @@ std::string read_chart_library() {
   const std::string path(report::chart_library_path());
   std::ifstream in(path, std::ios::binary);
   if (!in) {
-    throw CommandError("E2004", "HTML report: the charting library '" + path + "' is missing; install " +
-                       std::string(report::kChartLibraryPackage) + " (scripts/setup.sh)");
+    throw CommandError("E2004",
+                       "HTML report: the charting library '" + path + "' is missing; install " +
+                           std::string(report::kChartLibraryPackage) + " (scripts/setup.sh)");
   }
   std::ostringstream text;
   text << in.rdbuf();
@@ -363,9 +380,9 @@ void add_job_options(CLI::App& command, PostArguments& args) {
       ->check(CLI::IsMember({"tip", "center"}))
       ->capture_default_str();
   command
-      .add_option("--spacing", args.spacing,
-                  "largest distance between evaluated points, mm (at least " +
-                      shown(kMinSpacingMm) + ")")
+      .add_option(
+          "--spacing", args.spacing,
+          "largest distance between evaluated points, mm (at least " + shown(kMinSpacingMm) + ")")
       ->check(positive_number(kMinSpacingMm, 1e6))
       ->capture_default_str();
   command
@@ -524,7 +541,7 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   if (deliver(pending, std::cout)) std::cout << to_stdout << std::flush;
   if (!std::cout) {
     throw CommandError("E2003", std::string("cannot write to standard output: ") +
-                       (errno != 0 ? std::strerror(errno) : "write error"));
+                                    (errno != 0 ? std::strerror(errno) : "write error"));
   }
   JobRun run{summary, std::nullopt, std::nullopt, std::move(model), profile, run_time, notes};
   for (const post::ToolSection& section : summary.sections) {
@@ -537,27 +554,6 @@ JobRun run_job(const PostArguments& args, bool write_program) {
 }
 
 namespace {
-
-std::string mm3(double value) {
-  std::ostringstream out;
-  out.setf(std::ios::fixed);
-  out.precision(3);
-  out << value;
-  return out.str();
-}
-
-std::string section_name(const post::ToolSection& s) {
-  std::string name = s.tool ? "T" + std::to_string(*s.tool) : std::string("(no tool change)");
-  if (s.entry) {
-    name += " " + std::string(tools::to_string(s.entry->shape));
-    if (s.entry->diameter > 0) name += " D" + mm3(s.entry->diameter);
-    name += " (" + std::string(tools::to_string(s.entry->origin)) +
-            (s.entry->where.empty() ? std::string() : " " + s.entry->where) + ")";
-  } else {
-    name += " unknown";
-  }
-  return name;
-}
 
 // The nominal vc of the posted sections: one number, or their range.
 std::string vc_words(const post::PostSummary& summary) {
@@ -603,18 +599,9 @@ void print_depths(const post::PostSummary& summary) {
     const std::string name = summary.sections.size() > 1 ? section_name(s) + ": " : std::string();
     for (const auto& [depth, what] :
          {std::pair{&s.gouge, "gouge depth"}, std::pair{&s.lift, "lift height"}}) {
-      if (depth->points == 0) continue;
-      std::cerr << "vcpost:   " << name << what << " min " << mm3(depth->min) << ", median "
-                << mm3(depth->median) << ", max " << mm3(depth->max) << " mm (" << depth->points
-                << " points)\n";
+      if (depth->points > 0) std::cerr << "vcpost:   " << name << depth_words(*depth, what) << '\n';
     }
-    if (s.offset) {
-      std::cerr << "vcpost: warning: " << name
-                << static_cast<int>(std::round(s.offset->share * 100))
-                << " % of the points near the model sit " << mm3(std::abs(s.offset->offset_mm))
-                << " mm " << (s.offset->offset_mm > 0 ? "above" : "into") << " it: likely "
-                << s.offset->causes << '\n';
-    }
+    if (s.offset) std::cerr << "vcpost: warning: " << name << offset_words(*s.offset) << '\n';
   }
 }
 

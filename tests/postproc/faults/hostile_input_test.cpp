@@ -20,9 +20,10 @@ const std::string kVcpost = VCPOST_BINARY;
 const std::string kDome = (kSamples / "dome_raster_a0_ae3.nc").string();
 
 std::vector<std::string> dome_job(const std::string& program, std::vector<std::string> extra) {
-  std::vector<std::string> a{kVcpost, "post",  program, "--model", (kSamples / "dome.step").string(),
-                             "--tool", "ball:10", "--vc", "120",  "--ap",
-                             "0.3",    "--ae",    "3"};
+  std::vector<std::string> a{
+      kVcpost,  "post",    program, "--model", (kSamples / "dome.step").string(),
+      "--tool", "ball:10", "--vc",  "120",     "--ap",
+      "0.3",    "--ae",    "3"};
   a.insert(a.end(), extra.begin(), extra.end());
   return a;
 }
@@ -58,17 +59,15 @@ TEST(HostileInput, NulFileStopsAtTheFirstNulInBoundedMemory) {
   // stops at byte 1 with its position, under a 1 GB address-space limit.
   Folder work, logs;
   const fs::path z = work / "z.nc";
-  {
-    std::ofstream out(z, std::ios::binary);
-  }
+  { std::ofstream out(z, std::ios::binary); }
   fs::resize_file(z, 100u << 20);
   const auto limited = [](ChildOptions& o) {
     o.memory_limit = kAddressSpaceLimit;
     o.timeout_s = 20;
   };
-  for (const auto& args :
-       {std::vector<std::string>{kVcpost, "verify", z.string(), z.string()},
-        std::vector<std::string>{kVcpost, "moves", z.string()}, dome_job(z.string(), {"-o", "-"})}) {
+  for (const auto& args : {std::vector<std::string>{kVcpost, "verify", z.string(), z.string()},
+                           std::vector<std::string>{kVcpost, "moves", z.string()},
+                           dome_job(z.string(), {"-o", "-"})}) {
     const ChildResult r = run(args, logs, limited);
     EXPECT_EQ(r.shell_status(), 2) << args[1] << ": " << r.err;
     EXPECT_NE(r.err.find(z.string() + ":1:1: error[E1002]: NUL byte: this is no text program"),
@@ -110,8 +109,8 @@ TEST(HostileInput, StandardInputIsStillRead) {
   Folder work, logs;
   const ChildResult file = run(dome_job(kDome, {"-q", "-o", "-"}), logs);
   ASSERT_EQ(file.shell_status(), 0) << file.err;
-  const ChildResult piped = run(dome_job("-", {"-q", "-o", "-"}), logs,
-                                [](ChildOptions& o) { o.stdin_file = kDome; });
+  const ChildResult piped =
+      run(dome_job("-", {"-q", "-o", "-"}), logs, [](ChildOptions& o) { o.stdin_file = kDome; });
   EXPECT_EQ(piped.shell_status(), 0) << piped.err;
   EXPECT_EQ(piped.out, file.out);
 }
@@ -151,11 +150,13 @@ TEST(HostileInput, LinesRunTwiceArePosted) {
   // rapid down and the first passes), then back up.
   std::istringstream lines(read_file(kDome));
   std::string header, body, line;
-  for (int n = 1; n <= 66 && std::getline(lines, line); ++n) (n <= 6 ? header : body) += line + "\n";
+  for (int n = 1; n <= 66 && std::getline(lines, line); ++n)
+    (n <= 6 ? header : body) += line + "\n";
   const fs::path p = work / "sub.ngc";
   write(p, header + "o100 sub\n" + body + "G0 Z50\no100 endsub\no100 call\no100 call\nM5\nM30\n");
   const fs::path out = work / "out.ngc";
-  auto args = dome_job(p.string(), {"-o", out.string(), "--summary-json", (work / "s.json").string()});
+  auto args =
+      dome_job(p.string(), {"-o", out.string(), "--summary-json", (work / "s.json").string()});
   const ChildResult r = run(args, logs);
   ASSERT_EQ(r.shell_status(), 0) << r.err;
   EXPECT_NE(r.err.find("lines run more than once (subroutines, loops): each has the lowest S"),
@@ -201,8 +202,7 @@ TEST(HostileInput, RangeErrorsAreShort) {
 TEST(HostileInput, AbsurdProfileValuesAreRefused) {
   // block_time_s = 1e300 printed "-2147483648 % after" and NaN in the JSON.
   Folder work, logs;
-  std::string profile =
-      read_file(fs::path(VCPOST_SOURCE_DIR) / "machines/profiles/generic.toml");
+  std::string profile = read_file(fs::path(VCPOST_SOURCE_DIR) / "machines/profiles/generic.toml");
   const std::regex key(R"(block_time_s *= *[0-9.eE+-]+)");
   ASSERT_TRUE(std::regex_search(profile, key));
   write(work / "m.toml", std::regex_replace(profile, key, "block_time_s = 1e300"));
@@ -231,10 +231,93 @@ TEST(HostileInput, ModelFiveMillimetresHigherIsAnError) {
   }
   shifted.append(last, text.cend());
   write(work / "low.nc", shifted);
-  const ChildResult r = run(dome_job((work / "low.nc").string(), {"-o", (work / "out.nc").string()}), logs);
+  const ChildResult r =
+      run(dome_job((work / "low.nc").string(), {"-o", (work / "out.nc").string()}), logs);
   EXPECT_EQ(r.shell_status(), 2) << r.err;
   EXPECT_NE(r.err.find("the toolpath gouges the model at "), std::string::npos) << r.err;
+  // The diagnosis of the sections: the gouge depths (a Z shift of 5 mm is
+  // at most 5 mm deep along the dome's normals, plus the chord errors of
+  // the CAM and of the mesh, 0.025 mm here) and, as no one offset
+  // dominates on a dome, a word that says so.
+  static const std::regex depths(R"(; gouge depth min [0-9.]+, median [0-9.]+, max ([0-9.]+) mm)");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.err, m, depths)) << r.err;
+  EXPECT_LE(std::stod(m[1].str()), 5.05) << r.err;
+  EXPECT_GT(std::stod(m[1].str()), 4.0) << r.err;
+  EXPECT_NE(r.err.find("no one offset dominates"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_FALSE(fs::exists(work / "out.nc"));
+}
+
+// A plane at Z=0 (an ASCII STL, 100 mm square) and a raster inside it.
+void write_plane_job(const fs::path& work, double z_tip) {
+  write(work / "plane.stl",
+        "solid plane\n"
+        " facet normal 0 0 1\n  outer loop\n   vertex -50 -50 0\n   vertex 50 -50 0\n"
+        "   vertex 50 50 0\n  endloop\n endfacet\n"
+        " facet normal 0 0 1\n  outer loop\n   vertex -50 -50 0\n   vertex 50 50 0\n"
+        "   vertex -50 50 0\n  endloop\n endfacet\n"
+        "endsolid plane\n");
+  char z[32];
+  std::snprintf(z, sizeof z, "Z%.3f", z_tip);
+  write(work / "plane.nc", std::string("%\nG21 G90 G17\nT1 M6\nS10000 M3\nG0 X-20 Y-20 ") + z +
+                               "\nG1 X20 F500\nG1 Y-10\nG1 X-20\nG1 Y0\nG1 X20\nG1 Y10\n"
+                               "G1 X-20\nM5\nM30\n%\n");
+}
+
+TEST(HostileInput, MismatchErrorGivesTheSectionsDiagnosis) {
+  // The gross-mismatch error words the sections' own diagnosis (issue 15),
+  // as the end-of-run lines do, not a list of its own. A D10 ball whose tip
+  // runs 1 mm below a plane gouges 1.000 mm everywhere: the dominant offset
+  // is -1 mm (negative stock to leave, or a larger tool). The same program
+  // read as ball centres (--cl-point center) sits R = 5 mm into the plane:
+  // the tool tip read as the centre.
+  Folder work, logs;
+  write_plane_job(work.path(), -1.0);
+  const auto job = [&](std::vector<std::string> extra) {
+    std::vector<std::string> a{kVcpost,
+                               "post",
+                               (work / "plane.nc").string(),
+                               "--model",
+                               (work / "plane.stl").string(),
+                               "--tool",
+                               "ball:10",
+                               "--vc",
+                               "120",
+                               "--ap",
+                               "0.3",
+                               "--ae",
+                               "3",
+                               "-o",
+                               (work / "out.nc").string()};
+    a.insert(a.end(), extra.begin(), extra.end());
+    return a;
+  };
+  const ChildResult below = run(job({}), logs);
+  EXPECT_EQ(below.shell_status(), 2) << below.err;
+  EXPECT_NE(below.err.find("gouge depth min 1.000, median 1.000, max 1.000 mm"), std::string::npos)
+      << below.err;
+  EXPECT_NE(below.err.find("100 % of the points near the model sit 1.000 mm into it: likely "
+                           "negative stock to leave in the CAM"),
+            std::string::npos)
+      << below.err;
+  EXPECT_EQ(below.err.find("no one offset dominates"), std::string::npos) << below.err;
+  EXPECT_EQ(std::count(below.err.begin(), below.err.end(), '\n'), 1) << below.err;
+  EXPECT_FALSE(fs::exists(work / "out.nc"));
+
+  write_plane_job(work.path(), 0.0);
+  const ChildResult center = run(job({"--cl-point", "center"}), logs);
+  EXPECT_EQ(center.shell_status(), 2) << center.err;
+  EXPECT_NE(center.err.find("gouge depth min 5.000, median 5.000, max 5.000 mm"), std::string::npos)
+      << center.err;
+  EXPECT_NE(center.err.find("sit 5.000 mm into it: likely the offset is minus the tool radius: "
+                            "the program's points are likely the tool tip (try --cl-point tip)"),
+            std::string::npos)
+      << center.err;
+  EXPECT_FALSE(fs::exists(work / "out.nc"));
+  // Posted as written (tip on the plane), the same job touches everywhere.
+  const ChildResult right = run(job({"-q"}), logs);
+  EXPECT_EQ(right.shell_status(), 0) << right.err;
 }
 
 TEST(HostileInput, ProgramWithoutMotionIsRefusedWithoutEndWarned) {
@@ -342,17 +425,17 @@ TEST(HostileInput, ReaderLeavingEarlyIsNoFailureMessage) {
   int fds[2];
   ASSERT_EQ(::pipe2(fds, O_CLOEXEC), 0);  // the child keeps no read end (dup2 clears it on 1)
   std::string got;
-  const ChildResult r = run(dome_job((work / "big.nc").string(), {"-q", "-o", "-"}), logs,
-                            [&](ChildOptions& o) {
-                              o.stdout_fd = fds[1];
-                              o.while_running = [&](pid_t) {
-                                ::close(fds[1]);
-                                char buffer[4096];
-                                const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
-                                if (n > 0) got.assign(buffer, static_cast<std::size_t>(n));
-                                ::close(fds[0]);  // `head` has seen enough
-                              };
-                            });
+  const ChildResult r =
+      run(dome_job((work / "big.nc").string(), {"-q", "-o", "-"}), logs, [&](ChildOptions& o) {
+        o.stdout_fd = fds[1];
+        o.while_running = [&](pid_t) {
+          ::close(fds[1]);
+          char buffer[4096];
+          const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
+          if (n > 0) got.assign(buffer, static_cast<std::size_t>(n));
+          ::close(fds[0]);  // `head` has seen enough
+        };
+      });
   EXPECT_FALSE(got.empty());
   EXPECT_FALSE(r.exited);
   EXPECT_EQ(r.signal, SIGPIPE);

@@ -1,0 +1,27 @@
+// The words for a tool section's facts: its name, its gouge and lift
+// depths, the offset that dominates it. One wording per fact, shared by the
+// end-of-run lines of `vcpost post` and the error that refuses a program
+// which does not match its model.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "postproc/post/tool_sections.h"
+
+namespace vcpost::cli {
+
+// A length in mm with three decimals ("5.000").
+std::string mm3(double value);
+
+// "T2 ball D10.000 (--tool)", "(no tool change) unknown".
+std::string section_name(const post::ToolSection& s);
+
+// "gouge depth min 0.010, median 0.500, max 1.200 mm (345 points)";
+// `what` names the depth ("gouge depth", "lift height").
+std::string depth_words(const post::DepthStatistics& depth, std::string_view what);
+
+// "97 % of the points near the model sit 5.000 mm into it: likely ...".
+std::string offset_words(const post::OffsetDiagnosis& offset);
+
+}  // namespace vcpost::cli

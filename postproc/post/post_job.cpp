@@ -22,6 +22,7 @@
 #include "postproc/post/offset_diagnosis.h"
 #include "postproc/post/path_reader.h"
 #include "postproc/post/program_writer.h"
+#include "postproc/post/vc_bands.h"
 
 namespace vcpost::post {
 namespace {
@@ -43,22 +44,21 @@ class VcAccumulator {
     out_.min = std::min(out_.min, vc);
     out_.max = std::max(out_.max, vc);
     out_.mean += weight_s * vc;
-    const double deviation = std::abs(vc / nominal - 1);
-    if (deviation <= 0.05 + 1e-12) out_.within_5_percent += weight_s;
-    if (deviation <= 0.10 + 1e-12) out_.within_10_percent += weight_s;
+    bands_.add(vc, nominal, weight_s);
     weight_ += weight_s;
   }
   std::optional<VcStatistics> result() const {
     if (weight_ <= 0) return std::nullopt;
     VcStatistics r = out_;
     r.mean /= weight_;
-    r.within_5_percent /= weight_;
-    r.within_10_percent /= weight_;
+    r.within_5_percent = bands_.within_5 / weight_;
+    r.within_10_percent = bands_.within_10 / weight_;
     return r;
   }
 
  private:
   VcStatistics out_{INFINITY, -INFINITY, 0, 0, 0};
+  VcBandTimes bands_;
   double weight_ = 0;
 };
 

@@ -7,9 +7,6 @@
 namespace vcpost::report {
 namespace {
 
-// Band edges compared with a little slack so 5.000 % counts as within.
-constexpr double kSlack = 1e-12;
-
 std::size_t surface_bins(double radius_mm) {
   // 0.05 um bins up to the ball radius (no cusp is higher).
   return static_cast<std::size_t>(std::clamp(std::ceil(1000 * radius_mm / 0.05), 100.0, 400000.0));
@@ -95,11 +92,7 @@ void StatisticsAccumulator::add(const PointRow& row) {
     ++counts_.cutting_points;
     auto add_side = [&](Side& side, double vc) {
       side.vc.add(vc, w);
-      const double deviation = vc / vc_nominal_ - 1;
-      if (std::abs(deviation) <= 0.05 + kSlack) side.within_5 += w;
-      if (std::abs(deviation) <= 0.10 + kSlack) side.within_10 += w;
-      if (deviation < -0.05 - kSlack) side.below += w;
-      if (deviation > 0.05 + kSlack) side.above += w;
+      side.bands.add(vc, vc_nominal_, w);
     };
     add_side(before_, *row.vc_before);
     add_side(after_, *row.vc_after);
@@ -124,11 +117,11 @@ ReportStatistics StatisticsAccumulator::result() const {
     s.vc = distribution(side.vc);
     const double total = side.vc.total_weight();
     if (total > 0) {
-      s.within_5_percent = side.within_5 / total;
-      s.within_10_percent = side.within_10 / total;
+      s.within_5_percent = side.bands.within_5 / total;
+      s.within_10_percent = side.bands.within_10 / total;
     }
-    s.below_nominal_time_s = side.below;
-    s.above_nominal_time_s = side.above;
+    s.below_nominal_time_s = side.bands.below;
+    s.above_nominal_time_s = side.bands.above;
     s.clamped_max_time_s = side.clamped_max;
     s.clamped_min_time_s = side.clamped_min;
     if (with_slew) s.slew_time_s = side.slew;

@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "postproc/post/vc_bands.h"
 #include "postproc/report/point_row.h"
 
 namespace vcpost::report {
@@ -81,8 +82,8 @@ class StatisticsAccumulator {
  private:
   struct Side {
     WeightedQuantiles vc;
-    double within_5 = 0, within_10 = 0, below = 0, above = 0, clamped_max = 0, clamped_min = 0,
-           slew = 0;
+    post::VcBandTimes bands;
+    double clamped_max = 0, clamped_min = 0, slew = 0;
     explicit Side(double vc_nominal) : vc(0, 4 * vc_nominal, 40000) {}
   };
   double vc_nominal_;

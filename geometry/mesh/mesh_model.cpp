@@ -211,7 +211,7 @@ void MeshModel::Builder::normals() {
   const std::size_t nf = triangles.size();
   const std::size_t nv = vertices.size();
   m.facet_normal_.resize(nf);
-  m.edge_normal_.resize(nf);
+  m.edge_of_side_.resize(nf);
   m.vertex_normal_.assign(nv, Eigen::Vector3d::Zero());
   std::vector<std::array<double, 3>> angles(nf);  // of each corner
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nf, face_grain), [&](const auto& range) {
@@ -256,20 +256,35 @@ void MeshModel::Builder::normals() {
       }
     }
   }
+  // Two passes over the groups: sort and count the edges (runs), then,
+  // with every group's first edge number known, sum the normals.
+  std::vector<std::size_t> first_edge(nv + 1, 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, face_grain), [&](const auto& range) {
     for (std::size_t v = range.begin(); v < range.end(); ++v) {
       const auto first = sides.begin() + start[v], last = sides.begin() + start[v + 1];
       std::sort(first, last, [](const Side& x, const Side& y) {
         return std::tie(x.upper, x.face, x.k) < std::tie(y.upper, y.face, y.k);
       });
-      for (auto run = first; run != last;) {
+      std::size_t runs = 0;
+      for (auto run = first; run != last; ++run)
+        runs += run == first || run->upper != (run - 1)->upper;
+      first_edge[v + 1] = runs;
+    }
+  });
+  for (std::size_t v = 0; v < nv; ++v) first_edge[v + 1] += first_edge[v];
+  if (first_edge[nv] >= kNone) throw std::invalid_argument("MeshModel: too many edges");
+  m.edge_normal_.resize(first_edge[nv]);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, face_grain), [&](const auto& range) {
+    for (std::size_t v = range.begin(); v < range.end(); ++v) {
+      const auto first = sides.begin() + start[v], last = sides.begin() + start[v + 1];
+      auto edge = static_cast<std::uint32_t>(first_edge[v]);
+      for (auto run = first; run != last; ++edge) {
         auto end = run;
         Eigen::Vector3d sum = Eigen::Vector3d::Zero();
         for (; end != last && end->upper == run->upper; ++end) sum += m.facet_normal_[end->face];
         const double len = sum.norm();
-        for (; run != end; ++run)
-          m.edge_normal_[run->face][run->k] =
-              len > 0 ? Eigen::Vector3d(sum / len) : m.facet_normal_[run->face];
+        if (len > 0) m.edge_normal_[edge] = sum / len;
+        for (; run != end; ++run) m.edge_of_side_[run->face][run->k] = len > 0 ? edge : kNone;
       }
     }
   });
@@ -299,6 +314,8 @@ void MeshModel::Builder::tree() {
     gather(0, nf, false, all);
     top(0, nf, all, 0);
   }
+  // The corners were only for fitting the boxes (72 bytes a face).
+  for (auto& c : corners) c.reset();
 }
 
 // Triangles as the query reads them, in hierarchy order.
@@ -306,12 +323,17 @@ void MeshModel::Builder::slots() {
   const auto& vertices = m.mesh_.vertices;
   const auto& triangles = m.mesh_.triangles;
   const auto nf = static_cast<std::uint32_t>(triangles.size());
+  // The hierarchy's face order alone: the items (32 bytes a face) go before
+  // the slots are allocated.
+  std::vector<std::uint32_t> order(nf);
+  for (std::uint32_t s = 0; s < nf; ++s) order[s] = items[s].face;
+  items.reset();
   m.slots_.resize(nf);
   m.slot_of_face_.resize(nf);
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, nf, face_grain), [&](const auto& range) {
     for (std::uint32_t s = range.begin(); s < range.end(); ++s) {
       Slot& slot = m.slots_[s];
-      slot.face = items[s].face;
+      slot.face = order[s];
       const auto& t = triangles[slot.face];
       slot.a = vertices[t[0]];
       slot.ab = vertices[t[1]] - slot.a;
@@ -702,7 +724,8 @@ geometry::ModelContact MeshModel::make_contact(const Eigen::Vector3d& p, const H
   Eigen::Vector3d pseudo;
   if (hit.feature <= 3) {
     c.type = geometry::ContactType::edge;
-    pseudo = edge_normal_[hit.face][hit.feature - 1];
+    const std::uint32_t edge = edge_of_side_[hit.face][hit.feature - 1];
+    pseudo = edge == kNone ? facet_normal_[hit.face] : edge_normal_[edge];
   } else {
     c.type = geometry::ContactType::vertex;
     pseudo = vertex_normal_[mesh_.triangles[hit.face][hit.feature - 4]];

@@ -91,7 +91,11 @@ class MeshModel final : public geometry::SurfaceModel {
   StlMesh mesh_;
   Eigen::AlignedBox3d bounds_;
   std::vector<Eigen::Vector3d> facet_normal_;
-  std::vector<std::array<Eigen::Vector3d, 3>> edge_normal_;  // per face: edges ab, bc, ca
+  // Edge pseudo-normals, one per edge (not per face side: a side of two
+  // faces is stored once), and per face the edge of each side ab, bc, ca;
+  // kNone where the faces of an edge cancel out (the face's own normal).
+  std::vector<Eigen::Vector3d> edge_normal_;
+  std::vector<std::array<std::uint32_t, 3>> edge_of_side_;
   std::vector<Eigen::Vector3d> vertex_normal_;               // angle-weighted
   std::vector<std::uint32_t> slot_of_face_;
   static constexpr std::uint32_t kNone = 0xffffffffu;  // an empty lane of a WideNode

@@ -6,9 +6,10 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
-#include <fstream>
-#include <sstream>
-#include <unordered_map>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <fcntl.h>
+#include <unistd.h>
 
 namespace vcpost::mesh {
 namespace {
@@ -23,10 +24,18 @@ std::string at_line(const std::string& file, std::uint32_t line, std::uint32_t c
          code_id(code) + "]: ";
 }
 
-// Welds exactly equal corners; drops degenerate triangles.
+// Welds exactly equal corners (== on the coordinates: -0 and +0 weld);
+// drops degenerate triangles. Vertices are numbered in the order they first
+// appear. The index is an open-addressing table of vertex numbers probed
+// linearly: 4 bytes a slot, no node per vertex (a 10 M-triangle file has
+// some 5 M vertices; a node-based map cost 300 MB and most of the parse).
 class MeshBuilder {
  public:
-  explicit MeshBuilder(StlMesh& mesh) : mesh_(mesh) {}
+  MeshBuilder(StlMesh& mesh, std::size_t expected_vertices) : mesh_(mesh) {
+    std::size_t size = 1024;
+    while (size < 2 * expected_vertices) size *= 2;
+    table_.assign(size, kEmpty);
+  }
 
   void add(const std::array<Eigen::Vector3d, 3>& p) {
     const Eigen::Vector3d n = (p[1] - p[0]).cross(p[2] - p[0]);
@@ -44,30 +53,45 @@ class MeshBuilder {
   }
 
  private:
-  struct Key {
-    double x, y, z;
-    bool operator==(const Key&) const = default;
-  };
-  struct KeyHash {
-    std::size_t operator()(const Key& k) const {
-      // +0.0 and -0.0 compare equal, so hash them alike.
-      auto bits = [](double d) { return std::bit_cast<std::uint64_t>(d == 0.0 ? 0.0 : d); };
-      std::uint64_t h = bits(k.x) * 0x9E3779B97F4A7C15ULL;
-      h ^= bits(k.y) + 0x7F4A7C159E3779B9ULL + (h << 6) + (h >> 2);
-      h ^= bits(k.z) + 0x94D049BB133111EBULL + (h << 6) + (h >> 2);
-      return static_cast<std::size_t>(h);
-    }
-  };
+  static constexpr std::uint32_t kEmpty = 0xffffffffu;
+
+  static std::size_t hash(const Eigen::Vector3d& p) {
+    // +0.0 and -0.0 compare equal, so hash them alike.
+    auto bits = [](double d) { return std::bit_cast<std::uint64_t>(d == 0.0 ? 0.0 : d); };
+    std::uint64_t h = bits(p.x()) * 0x9E3779B97F4A7C15ULL;
+    h ^= bits(p.y()) + 0x7F4A7C159E3779B9ULL + (h << 6) + (h >> 2);
+    h ^= bits(p.z()) + 0x94D049BB133111EBULL + (h << 6) + (h >> 2);
+    return static_cast<std::size_t>(h ^ (h >> 29));
+  }
 
   std::uint32_t index_of(const Eigen::Vector3d& p) {
-    const auto [it, inserted] = index_.try_emplace(
-        Key{p.x(), p.y(), p.z()}, static_cast<std::uint32_t>(mesh_.vertices.size()));
-    if (inserted) mesh_.vertices.push_back(p);
-    return it->second;
+    const std::size_t mask = table_.size() - 1;
+    for (std::size_t i = hash(p) & mask;; i = (i + 1) & mask) {
+      const std::uint32_t v = table_[i];
+      if (v == kEmpty) {
+        const auto index = static_cast<std::uint32_t>(mesh_.vertices.size());
+        table_[i] = index;
+        mesh_.vertices.push_back(p);
+        if (2 * mesh_.vertices.size() > table_.size()) grow();
+        return index;
+      }
+      if (mesh_.vertices[v] == p) return v;
+    }
+  }
+
+  // Doubles the table (at most half full) and puts every vertex back.
+  void grow() {
+    table_.assign(2 * table_.size(), kEmpty);
+    const std::size_t mask = table_.size() - 1;
+    for (std::size_t v = 0; v < mesh_.vertices.size(); ++v) {
+      std::size_t i = hash(mesh_.vertices[v]) & mask;
+      while (table_[i] != kEmpty) i = (i + 1) & mask;
+      table_[i] = static_cast<std::uint32_t>(v);
+    }
   }
 
   StlMesh& mesh_;
-  std::unordered_map<Key, std::uint32_t, KeyHash> index_;
+  std::vector<std::uint32_t> table_;
 };
 
 float read_float(const char* p) {
@@ -120,9 +144,9 @@ StlMesh parse_binary(std::string_view bytes, const std::string& file, double uni
                        " whole triangle records; the count is wrong (a damaged or concatenated "
                        "file): export the model again");
   }
-  MeshBuilder builder(mesh);
   mesh.triangles.reserve(count);
   mesh.vertices.reserve(count / 2 + 3);
+  MeshBuilder builder(mesh, count / 2 + 3);
   for (std::uint64_t t = 0; t < count; ++t) {
     const char* rec = bytes.data() + 84 + 50 * t;
     std::array<Eigen::Vector3d, 3> p;
@@ -218,7 +242,7 @@ bool iequals(std::string_view a, std::string_view b) {
 StlMesh parse_ascii(std::string_view bytes, const std::string& file, double unit) {
   StlMesh mesh;
   mesh.format = StlFormat::ascii;
-  MeshBuilder builder(mesh);
+  MeshBuilder builder(mesh, bytes.size() / 400);
   Words words(bytes);
   std::uint64_t facets = 0;
 
@@ -379,14 +403,43 @@ StlMesh read_stl_file(const std::filesystem::path& path, const StlOptions& optio
     throw StlError(StlCode::unreadable, path.string() + ": error[" + code_id(StlCode::unreadable) +
                                             "]: is a directory, not an STL file");
   }
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream buffer;
-  if (in) buffer << in.rdbuf();
-  if (!in || in.bad()) {
+  // The file is mapped, not copied: a 500 MB mesh would otherwise be read
+  // through a growing buffer (twice its size at the peak) before parsing.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  struct stat info {};
+  if (fd < 0 || ::fstat(fd, &info) != 0) {
+    if (fd >= 0) ::close(fd);
     throw StlError(StlCode::unreadable, path.string() + ": error[" + code_id(StlCode::unreadable) +
                                             "]: cannot read the file (permissions?)");
   }
-  return parse_stl(buffer.view(), path.string(), options);
+  const auto size = static_cast<std::size_t>(info.st_size);
+  if (!S_ISREG(info.st_mode) || size == 0) {
+    // Not mappable (a device, an empty file): read it as it comes.
+    std::string bytes;
+    char chunk[65536];
+    ssize_t got = 0;
+    while ((got = ::read(fd, chunk, sizeof chunk)) > 0) bytes.append(chunk, static_cast<std::size_t>(got));
+    ::close(fd);
+    if (got < 0) {
+      throw StlError(StlCode::unreadable, path.string() + ": error[" +
+                                              code_id(StlCode::unreadable) +
+                                              "]: cannot read the file (permissions?)");
+    }
+    return parse_stl(bytes, path.string(), options);
+  }
+  void* const map = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
+  ::close(fd);  // the mapping keeps the file
+  if (map == MAP_FAILED) {
+    throw StlError(StlCode::unreadable, path.string() + ": error[" + code_id(StlCode::unreadable) +
+                                            "]: cannot read the file (permissions?)");
+  }
+  ::madvise(map, size, MADV_SEQUENTIAL);
+  struct Unmap {
+    void* map;
+    std::size_t size;
+    ~Unmap() { ::munmap(map, size); }
+  } unmap{map, size};
+  return parse_stl(std::string_view(static_cast<const char*>(map), size), path.string(), options);
 }
 
 std::string to_ascii_stl(const StlMesh& mesh, const std::string& name, int precision) {

@@ -355,11 +355,11 @@ bool Interpreter::handle_control(std::vector<Event>& events) {
   return true;
 }
 
-double Interpreter::length(const Word& w) const {
+double Interpreter::length(const Word& w, bool inches) const {
   double v = w.value;
   if (dialect_.integer_lengths == IntegerLengths::increments && !w.decimal_point && !w.computed)
-    v *= state_.inches ? dialect_.increment_inch : dialect_.increment_mm;
-  return state_.inches ? v * kInch : v;
+    v *= inches ? dialect_.increment_inch : dialect_.increment_mm;
+  return inches ? v * kInch : v;
 }
 
 void Interpreter::warn_once(char letter, int key, Code code, std::uint32_t column,
@@ -380,6 +380,8 @@ bool uses_axis_words(int nonmodal) {
   return nonmodal == 100 || nonmodal == 280 || nonmodal == 300 || nonmodal == 520 ||
          nonmodal == 920;
 }
+
+constexpr char kAxes[] = "XYZ";
 
 std::size_t work_index(int code) {
   switch (code) {
@@ -404,6 +406,10 @@ std::size_t work_index(int code) {
     default:
       return 9;  // G54.1
   }
+}
+
+Eigen::Vector3d total_offset(const Origins& f, int system) {
+  return Eigen::Vector3d(f.work[work_index(system)] + f.g92 + f.local);
 }
 
 }  // namespace
@@ -485,15 +491,119 @@ void Interpreter::run_siemens_cycle(ModalState& s, const SiemensCycle& sc,
   s.moved = true;
 }
 
-void Interpreter::execute(std::vector<Event>& events) {
-  const Block& b = block_;
-  const bool fanuc_like = dialect_.kind != DialectKind::rs274ngc;
+// One block in execution: its words indexed by letter and group, the modal
+// state it builds (a copy, committed only when every handler has run), and
+// what one handler leaves for a later one.
+struct Interpreter::Step {
+  Step(const Block& block, std::vector<Event>& out, const ModalState& before)
+      : b(block), events(out), state(before) {}
+
+  const Block& b;
+  std::vector<Event>& events;
+  ModalState state;
   WordIndex index;
-  auto word_at = [&](std::uint8_t slot) __attribute__((always_inline)) {
+  bool mist_and_flood = false;  // Fanuc M7 M8 in one block
+  const Word* nonmodal = nullptr;
+  int nonmodal_code = 0;
+  const Word* dwell_x = nullptr;  // Fanuc G4 X: seconds, not an axis
+  bool has_xyz = false;
+  const Word* motion_word = nullptr;
+  const Word* cycle_word = nullptr;  // Fanuc only
+  int motion_code = -1;
+  bool macro_call = false;     // G65 takes S, T, ... as macro arguments
+  bool siemens_dwell = false;  // Sinumerik G4 F.. (seconds) or S.. (turns)
+  bool speed_limit = false;    // Sinumerik G25/G26 S..: spindle limits
+  // G93: the F event goes right before its move, with the path speed it
+  // gives that move (rs274's order and figure).
+  const Word* inverse_f = nullptr;
+  std::optional<Origins> origins;  // the offsets when the block changes one
+  Eigen::Vector3d offset_before = Eigen::Vector3d::Zero();
+  Eigen::Vector3d offset_after = Eigen::Vector3d::Zero();
+  bool axes_taken = false;  // the axis words are not a move (G10, G92, ...)
+  bool has_axis = false;    // the block moves to its axis words
+  std::uint32_t motion_column = 1;
+
+  const Word* at(std::uint8_t slot) const __attribute__((always_inline)) {
     return slot == 0 ? nullptr : &b.words[slot - 1u];
-  };
+  }
+  const Word* word(char letter) const {
+    return at(index.by_letter[static_cast<std::size_t>(letter - 'A')]);
+  }
+  const Word* g(Group group) const { return at(index.g[static_cast<std::size_t>(group)]); }
+  const Word* m(Group group) const { return at(index.m[static_cast<std::size_t>(group)]); }
+  // The code of a group's word; only for a group that has one.
+  int g_code(Group group) const { return code_of(*g(group)); }
+  int m_code(Group group) const { return code_of(*m(group)); }
+  template <class E>
+  void emit(E&& e) {
+    events.emplace_back(std::forward<E>(e));
+  }
+  // path_rate() costs a square root or an arc length: asked only in G93.
+  template <class PathRate>
+  void emit_inverse_f(PathRate path_rate) {
+    if (!inverse_f) return;
+    emit(program::SetFeedRate{state.feed, program::FeedMode::inverse_time,
+                              source(b, inverse_f->column), std::optional<double>(path_rate())});
+    inverse_f = nullptr;
+  }
+  std::uint32_t first_axis_column(std::uint32_t fallback) const {
+    std::uint32_t col = 0;
+    for (char a : {'X', 'Y', 'Z'})
+      if (const Word* w = word(a)) col = col == 0 ? w->column : std::min(col, w->column);
+    return col == 0 ? fallback : col;
+  }
+};
+
+// The block's code families in the order the interpreter applies them
+// (RS274NGC's order of execution): each handler is called only when its
+// family is in the block, so a plain move costs a few tests.
+void Interpreter::execute(std::vector<Event>& events) {
+  Step step(block_, events, state_);
+  index_words(step);
+  classify_words(step);
+  if (dialect_.kind == DialectKind::rs274ngc) check_unused_words(step);
+  if (step.b.message) emit_message(step);
+  if (step.g(Group::units)) set_units(step);
+  if (step.g(Group::feed_mode)) set_feed_mode(step);
+  if (step.word('F') && !step.siemens_dwell) set_feed(step);
+  if (step.word('S') && !step.macro_call && !step.siemens_dwell && !step.speed_limit)
+    set_spindle_speed(step);
+  if (step.word('T') && !step.macro_call) select_tool(step);
+  if (step.m(Group::tool_change)) change_tool(step);
+  if (step.m(Group::spindle)) spindle(step);
+  if (step.m(Group::coolant)) coolant(step);
+  if (step.nonmodal_code == 40) dwell(step);
+  if (step.g(Group::plane)) set_plane(step);
+  if (step.g(Group::cutter_comp)) cutter_compensation(step);
+  if (step.g(Group::tool_length)) tool_length(step);
+  if (changes_origins(step)) set_origins(step);
+  set_distance_modes(step);
+  take_axis_words(step);
+  set_motion_mode(step);
+  move(step);
+  step.emit_inverse_f([] { return std::optional<double>(); });
+  if (dialect_.kind == DialectKind::sinumerik) siemens_words(step);
+  const bool returns = stop(step);
+  state_ = step.state;
+  if (step.origins) origins_ = *step.origins;
+  if (returns) {
+    return_from_sub();  // M99 in a subprogram
+    return;
+  }
+  if (dialect_.kind == DialectKind::sinumerik &&
+      step.b.siemens_cycle.kind != SiemensCycle::Kind::none &&
+      step.b.siemens_cycle.kind != SiemensCycle::Kind::call)
+    mcall_ = mcall_next_;
+  if (step.m(Group::subprogram)) call_subprogram(step);
+}
+
+// Indexes the words by letter and modal group: unknown and refused codes,
+// two codes of one group and a letter given twice are errors here.
+void Interpreter::index_words(Step& step) {
+  const Block& b = step.b;
+  const bool fanuc_like = dialect_.kind != DialectKind::rs274ngc;
+  WordIndex& index = step.index;
   int m_words = 0;
-  bool mist_and_flood = false;
   for (std::size_t k = 0; k < b.words.size(); ++k) {
     const Word& w = b.words[k];
     // Stored only for a word that gets indexed: below kMaxIndexedPosition.
@@ -528,7 +638,7 @@ void Interpreter::execute(std::vector<Event>& events) {
       if (fanuc_like && grp == Group::motion && (entry->code == 800 || is_cycle_code(entry->code)))
         grp = Group::canned_cycle;
       const auto group = static_cast<std::size_t>(grp);
-      if (const Word* before = word_at(index.g[group])) {
+      if (const Word* before = step.at(index.g[group])) {
         // RS274NGC: G80 beside another motion code gives way to it (rs274
         // reads "G0 G80" so).
         if (grp == Group::motion && entry->code == 800) continue;
@@ -548,44 +658,7 @@ void Interpreter::execute(std::vector<Event>& events) {
       // LinuxCNC's limit; Fanuc-like controls allow fewer.
       if (++m_words > 4)
         fail(Code::too_many_m_codes, w.column, "more than four M codes in one block");
-      auto entry = find_code(kMCodes, w.value);
-      // Fanuc-like controls: beyond the standard M codes, every M is the
-      // machine's own (M50 is no feed override there).
-      if (entry && fanuc_like && entry->group == Group::overrides) entry.reset();
-      if (entry && fanuc_like && (entry->code == 600 || entry->code == 610)) entry.reset();
-      if (!entry) {
-        char text[32];
-        std::snprintf(text, sizeof text, "M%g", w.value);
-        if (dialect_.unknown_m_is_error)
-          fail(Code::unknown_m_code, w.column,
-               std::string("unknown M code ") + text +
-                   "; if it is a machine's own M code of a Fanuc-like program, read it with "
-                   "--dialect fanuc (or its --machine)");
-        warn_once(
-            'M', static_cast<int>(std::lround(w.value * 10.0)), Code::unknown_m_code, w.column,
-            std::string("M code ") + text +
-                " is not known to vcpost (a machine's own function); passed through unchanged");
-        continue;
-      }
-      if (entry->support == Support::refused)
-        fail(Code::unsupported_code, w.column,
-             code_text('M', entry->code) +
-                 " changes the program's state in a way vcpost does not follow (it " + entry->what +
-                 ")");
-      const auto group = static_cast<std::size_t>(entry->group);
-      if (const Word* before = word_at(index.m[group])) {
-        // Fanuc-like controls take mist and flood together (M7 M8).
-        const int pair = code_of(*before) + entry->code;
-        if (fanuc_like && entry->group == Group::coolant && pair == 150 &&
-            entry->code != code_of(*before)) {
-          mist_and_flood = true;
-          continue;
-        }
-        fail(Code::modal_group_conflict, w.column,
-             code_text('M', code_of(*before)) + " and " + code_text('M', entry->code) +
-                 " are in the same modal group");
-      }
-      index.m[group] = slot_of_w;
+      if (index_m_word(step, w, slot_of_w)) continue;
     } else {
       const char l = w.letter;
       if (l == 'A' || l == 'B' || l == 'C' || l == 'U' || l == 'V' || l == 'W')
@@ -597,398 +670,453 @@ void Interpreter::execute(std::vector<Event>& events) {
       slot = slot_of_w;
     }
   }
-  auto W = [&](char letter) {
-    return word_at(index.by_letter[static_cast<std::size_t>(letter - 'A')]);
-  };
-  auto G = [&](Group g) { return word_at(index.g[static_cast<std::size_t>(g)]); };
-  auto M = [&](Group g) { return word_at(index.m[static_cast<std::size_t>(g)]); };
-  // The code of a group's word; only for a group that has one.
-  auto Gc = [&](Group g) { return code_of(*G(g)); };
-  auto Mc = [&](Group g) { return code_of(*M(g)); };
+}
 
-  // The transaction: all checks against `s`, committed at the end.
-  ModalState s = state_;
-  auto emit = [&](auto&& e) { events.emplace_back(std::forward<decltype(e)>(e)); };
-
-  const Word* nonmodal = G(Group::non_modal);
-  const int nonmodal_code = nonmodal ? code_of(*nonmodal) : 0;
-  // Fanuc G4 X: seconds, not an axis.
-  const Word* dwell_x = nullptr;
-  if (fanuc_like && nonmodal_code == 40 && W('X')) {
-    dwell_x = W('X');
-    index.by_letter['X' - 'A'] = 0;
+// Indexes one M word; true when it is passed over (a machine's own M code,
+// or the second of Fanuc's M7 M8).
+bool Interpreter::index_m_word(Step& step, const Word& w, std::uint8_t slot) {
+  const bool fanuc_like = dialect_.kind != DialectKind::rs274ngc;
+  auto entry = find_code(kMCodes, w.value);
+  // Fanuc-like controls: beyond the standard M codes, every M is the
+  // machine's own (M50 is no feed override there).
+  if (entry && fanuc_like && entry->group == Group::overrides) entry.reset();
+  if (entry && fanuc_like && (entry->code == 600 || entry->code == 610)) entry.reset();
+  if (!entry) {
+    char text[32];
+    std::snprintf(text, sizeof text, "M%g", w.value);
+    if (dialect_.unknown_m_is_error)
+      fail(Code::unknown_m_code, w.column,
+           std::string("unknown M code ") + text +
+               "; if it is a machine's own M code of a Fanuc-like program, read it with "
+               "--dialect fanuc (or its --machine)");
+    warn_once('M', static_cast<int>(std::lround(w.value * 10.0)), Code::unknown_m_code, w.column,
+              std::string("M code ") + text +
+                  " is not known to vcpost (a machine's own function); passed through unchanged");
+    return true;
   }
-  const bool has_xyz = W('X') || W('Y') || W('Z');
-  const Word* motion_word = G(Group::motion);
-  const Word* cycle_word = G(Group::canned_cycle);  // Fanuc only
-  const int motion_code = motion_word ? code_of(*motion_word) : -1;
-  if (motion_word && motion_code == 800 && has_xyz && !uses_axis_words(nonmodal_code)) {
-    std::uint32_t col = 0;
-    for (char a : {'X', 'Y', 'Z'})
-      if (const Word* w = W(a)) col = col == 0 ? w->column : std::min(col, w->column);
-    fail(Code::words_without_motion, col,
+  if (entry->support == Support::refused)
+    fail(Code::unsupported_code, w.column,
+         code_text('M', entry->code) +
+             " changes the program's state in a way vcpost does not follow (it " + entry->what +
+             ")");
+  const auto group = static_cast<std::size_t>(entry->group);
+  if (const Word* before = step.at(step.index.m[group])) {
+    // Fanuc-like controls take mist and flood together (M7 M8).
+    const int pair = code_of(*before) + entry->code;
+    if (fanuc_like && entry->group == Group::coolant && pair == 150 &&
+        entry->code != code_of(*before)) {
+      step.mist_and_flood = true;
+      return true;
+    }
+    fail(Code::modal_group_conflict, w.column,
+         code_text('M', code_of(*before)) + " and " + code_text('M', entry->code) +
+             " are in the same modal group");
+  }
+  step.index.m[group] = slot;
+  return false;
+}
+
+// The non-modal and motion codes, and the checks of axis words they share.
+void Interpreter::classify_words(Step& step) {
+  const bool fanuc_like = dialect_.kind != DialectKind::rs274ngc;
+  step.nonmodal = step.g(Group::non_modal);
+  step.nonmodal_code = step.nonmodal ? code_of(*step.nonmodal) : 0;
+  const int nonmodal_code = step.nonmodal_code;
+  if (fanuc_like && nonmodal_code == 40 && step.word('X')) {
+    step.dwell_x = step.word('X');
+    step.index.by_letter['X' - 'A'] = 0;
+  }
+  step.has_xyz = step.word('X') || step.word('Y') || step.word('Z');
+  step.motion_word = step.g(Group::motion);
+  step.cycle_word = step.g(Group::canned_cycle);
+  step.motion_code = step.motion_word ? code_of(*step.motion_word) : -1;
+  const int motion_code = step.motion_code;
+  if (step.motion_word && motion_code == 800 && step.has_xyz && !uses_axis_words(nonmodal_code))
+    fail(Code::words_without_motion, step.first_axis_column(0),
          "axis words with G80: without a motion mode (G0/G1/G2/G3)");
-  }
-  if (nonmodal && uses_axis_words(nonmodal_code) && motion_word && motion_code != 800 && has_xyz)
-    fail(Code::modal_group_conflict, nonmodal->column,
+  if (step.nonmodal && uses_axis_words(nonmodal_code) && step.motion_word && motion_code != 800 &&
+      step.has_xyz)
+    fail(Code::modal_group_conflict, step.nonmodal->column,
          code_text('G', nonmodal_code) + " and " + code_text('G', motion_code) +
              " both use the axis words");
+  step.macro_call = nonmodal_code == 650;
+  const bool siemens = dialect_.kind == DialectKind::sinumerik;
+  step.siemens_dwell = siemens && nonmodal_code == 40;
+  step.speed_limit = siemens && (nonmodal_code == 250 || nonmodal_code == 260);
+}
 
-  auto has_letter = [&](char l) { return index.by_letter[static_cast<std::size_t>(l - 'A')] != 0; };
+// rs274's check of words that no code of the block uses (D H I J K L P Q R).
+void Interpreter::check_unused_words(const Step& step) {
+  const ModalState& s = step.state;
+  auto has_letter = [&](char l) {
+    return step.index.by_letter[static_cast<std::size_t>(l - 'A')] != 0;
+  };
   const bool checked_words = has_letter('D') || has_letter('H') || has_letter('I') ||
                              has_letter('J') || has_letter('K') || has_letter('L') ||
                              has_letter('P') || has_letter('Q') || has_letter('R');
-  if (dialect_.kind == DialectKind::rs274ngc && checked_words) {
-    // rs274's check of words that no code of the block uses.
-    int to_be = motion_code;
-    if (to_be < 0 && has_xyz && !uses_axis_words(nonmodal_code)) {
-      to_be = s.cycle != 0                  ? s.cycle
-              : s.motion == Motion::rapid   ? 0
-              : s.motion == Motion::linear  ? 10
-              : s.motion == Motion::arc_cw  ? 20
-              : s.motion == Motion::arc_ccw ? 30
-                                            : -1;
-    }
-    const Word* comp = G(Group::cutter_comp);
-    const int comp_code = comp ? code_of(*comp) : 0;
-    const bool comp_on =
-        comp_code == 410 || comp_code == 411 || comp_code == 420 || comp_code == 421;
-    const Word* tlo = G(Group::tool_length);
-    const int tlo_code = tlo ? code_of(*tlo) : 0;
-    const bool g10 = nonmodal_code == 100;
-    const bool g64 = G(Group::path_control) && Gc(Group::path_control) == 640;
-    const bool arc = to_be == 20 || to_be == 30;
-    const bool cycle = is_cycle_code(to_be);
-    const bool m98 = M(Group::subprogram) != nullptr;
-    // M codes that take words: M50-M53 and M62-M66 (P), M66-M68 (Q, L, E),
-    // M61 (Q), M19 (R, Q, P).
-    const Word* mo = M(Group::overrides);
-    const int moc = mo ? code_of(*mo) : 0;
-    const bool m_p = (moc >= 500 && moc <= 530) || (moc >= 620 && moc <= 660);
-    const bool m_q =
-        (moc >= 660 && moc <= 680) || (M(Group::tool_change) && Mc(Group::tool_change) == 610);
-    const bool m19 = M(Group::spindle) && Mc(Group::spindle) == 190;
-    auto unused = [&](char letter, bool used, const char* users) {
-      if (const Word* w = W(letter); w && !used)
-        fail(Code::word_without_use, w->column,
-             std::string(1, letter) + " word with no " + users + " to use it");
-    };
-    unused('D', comp_on || to_be == 730 || to_be == 830, "G41, G42, G73 or G83");
-    unused('H', tlo_code == 430 || tlo_code == 432, "G43 or G43.2");
-    unused('I', arc || to_be == 870 || g10, "G2, G3, G10 or G87");
-    unused('J', arc || to_be == 870 || g10, "G2, G3, G10 or G87");
-    unused('K', arc || to_be == 870, "G2, G3 or G87");
-    unused('L', cycle || g10 || comp_on || m98 || moc == 660,
-           "G10, cutter compensation, canned cycle or M98");
-    unused('P',
-           g10 || nonmodal_code == 40 || g64 || arc || to_be == 740 || to_be == 820 ||
-               to_be == 840 || to_be == 860 || to_be == 880 || to_be == 890 || m98 || m_p || m19,
-           "G2, G3, G4, G10, G64, G74, G82, G84, G86, G88, G89 or M98");
-    unused('Q', to_be == 730 || to_be == 830 || g10 || g64 || m_q || m19, "G10, G64, G73 or G83");
-    unused('R', arc || cycle || g10 || g64 || m19, "G2, G3, G10, G64 or canned cycle");
-    if (arc) {
-      const char plane_axis = s.plane == program::Plane::xy   ? 'K'
-                              : s.plane == program::Plane::xz ? 'J'
-                                                              : 'I';
-      if (G(Group::plane)) {
-        // the block's own plane decides; checked again below with it
-      } else if (const Word* w = W(plane_axis)) {
-        fail(Code::word_without_use, w->column,
-             std::string(1, plane_axis) + " word given for an arc in the " +
-                 (s.plane == program::Plane::xy   ? "XY"
-                  : s.plane == program::Plane::xz ? "XZ"
-                                                  : "YZ") +
-                 " plane");
-      }
-    }
+  if (!checked_words) return;
+  const int nonmodal_code = step.nonmodal_code;
+  int to_be = step.motion_code;
+  if (to_be < 0 && step.has_xyz && !uses_axis_words(nonmodal_code)) {
+    to_be = s.cycle != 0                  ? s.cycle
+            : s.motion == Motion::rapid   ? 0
+            : s.motion == Motion::linear  ? 10
+            : s.motion == Motion::arc_cw  ? 20
+            : s.motion == Motion::arc_ccw ? 30
+                                          : -1;
   }
-
-  if (b.message)
-    emit(program::Message{*b.message,
-                          source(b, b.comments.empty() ? 1 : b.comments.front().column)});
-
-  // Units first: every length of this block is read in the new units.
-  if (G(Group::units)) {
-    const int c = Gc(Group::units);
-    s.inches = c == 200 || c == 700 || c == 7000;
-  }
-  const bool inches_before = state_.inches;
-  state_.inches = s.inches;  // length() reads state_; restored on error below
-  struct Restore {
-    ModalState& st;
-    bool inches;
-    bool armed = true;
-    ~Restore() {
-      if (armed) st.inches = inches;
-    }
-  } restore{state_, inches_before};
-
-  if (const Word* g = G(Group::feed_mode)) {
-    const int c = Gc(Group::feed_mode);
-    const auto mode = c == 930   ? program::FeedMode::inverse_time
-                      : c == 950 ? program::FeedMode::per_revolution
-                                 : program::FeedMode::per_minute;
-    // As LinuxCNC: a G93/G94/G95 word resets the feed to 0 (it must be
-    // given again); G94 and G95 say so with a zero feed rate.
-    s.feed_mode = mode;
-    s.feed = 0.0;
-    if (mode != program::FeedMode::inverse_time)
-      emit(program::SetFeedRate{0.0, mode, source(b, g->column)});
-  }
-  // G93: the F event goes right before its move, with the path speed it
-  // gives that move (rs274's order and figure).
-  const Word* inverse_f = nullptr;
-  // Sinumerik: G4 F.. is the dwell in seconds (S.. in spindle turns), G25/
-  // G26 S.. the spindle's speed limits: neither is a feed or a speed.
-  const bool siemens = dialect_.kind == DialectKind::sinumerik;
-  const bool siemens_dwell = siemens && nonmodal_code == 40;
-  const bool speed_limit = siemens && (nonmodal_code == 250 || nonmodal_code == 260);
-  if (const Word* f = W('F'); f && !siemens_dwell) {
-    if (f->value < 0) fail(Code::bad_word_value, f->column, "negative feed rate");
-    if (s.feed_mode == program::FeedMode::inverse_time) {
-      s.feed = f->value;
-      inverse_f = f;
-    } else {
-      s.feed = f->value * (s.inches ? kInch : 1.0);
-      emit(program::SetFeedRate{s.feed, s.feed_mode, source(b, f->column)});
-    }
-  }
-  // path_rate() costs a square root or an arc length: asked only in G93.
-  auto emit_inverse_f = [&](auto path_rate) {
-    if (!inverse_f) return;
-    emit(program::SetFeedRate{s.feed, program::FeedMode::inverse_time, source(b, inverse_f->column),
-                              std::optional<double>(path_rate())});
-    inverse_f = nullptr;
+  const Word* comp = step.g(Group::cutter_comp);
+  const int comp_code = comp ? code_of(*comp) : 0;
+  const bool comp_on = comp_code == 410 || comp_code == 411 || comp_code == 420 || comp_code == 421;
+  const Word* tlo = step.g(Group::tool_length);
+  const int tlo_code = tlo ? code_of(*tlo) : 0;
+  const bool g10 = nonmodal_code == 100;
+  const bool g64 = step.g(Group::path_control) && step.g_code(Group::path_control) == 640;
+  const bool arc = to_be == 20 || to_be == 30;
+  const bool cycle = is_cycle_code(to_be);
+  const bool m98 = step.m(Group::subprogram) != nullptr;
+  // M codes that take words: M50-M53 and M62-M66 (P), M66-M68 (Q, L, E),
+  // M61 (Q), M19 (R, Q, P).
+  const Word* mo = step.m(Group::overrides);
+  const int moc = mo ? code_of(*mo) : 0;
+  const bool m_p = (moc >= 500 && moc <= 530) || (moc >= 620 && moc <= 660);
+  const bool m_q = (moc >= 660 && moc <= 680) ||
+                   (step.m(Group::tool_change) && step.m_code(Group::tool_change) == 610);
+  const bool m19 = step.m(Group::spindle) && step.m_code(Group::spindle) == 190;
+  auto unused = [&](char letter, bool used, const char* users) {
+    if (const Word* w = step.word(letter); w && !used)
+      fail(Code::word_without_use, w->column,
+           std::string(1, letter) + " word with no " + users + " to use it");
   };
-  // G65 takes S, T, ... as macro arguments, not as the machine's words.
-  const bool macro_call = nonmodal_code == 650;
-  if (const Word* sw = W('S'); sw && !macro_call && !siemens_dwell && !speed_limit) {
-    if (sw->value < 0) fail(Code::bad_word_value, sw->column, "negative spindle speed");
-    s.spindle_rpm = sw->value;
-    emit(program::SetSpindleSpeed{sw->value, source(b, sw->column)});
+  unused('D', comp_on || to_be == 730 || to_be == 830, "G41, G42, G73 or G83");
+  unused('H', tlo_code == 430 || tlo_code == 432, "G43 or G43.2");
+  unused('I', arc || to_be == 870 || g10, "G2, G3, G10 or G87");
+  unused('J', arc || to_be == 870 || g10, "G2, G3, G10 or G87");
+  unused('K', arc || to_be == 870, "G2, G3 or G87");
+  unused('L', cycle || g10 || comp_on || m98 || moc == 660,
+         "G10, cutter compensation, canned cycle or M98");
+  unused('P',
+         g10 || nonmodal_code == 40 || g64 || arc || to_be == 740 || to_be == 820 ||
+             to_be == 840 || to_be == 860 || to_be == 880 || to_be == 890 || m98 || m_p || m19,
+         "G2, G3, G4, G10, G64, G74, G82, G84, G86, G88, G89 or M98");
+  unused('Q', to_be == 730 || to_be == 830 || g10 || g64 || m_q || m19, "G10, G64, G73 or G83");
+  unused('R', arc || cycle || g10 || g64 || m19, "G2, G3, G10, G64 or canned cycle");
+  if (arc && !step.g(Group::plane)) {
+    // (With a plane word in the block, that plane decides; checked with the arc.)
+    const char plane_axis = s.plane == program::Plane::xy   ? 'K'
+                            : s.plane == program::Plane::xz ? 'J'
+                                                            : 'I';
+    if (const Word* w = step.word(plane_axis))
+      fail(Code::word_without_use, w->column,
+           std::string(1, plane_axis) + " word given for an arc in the " +
+               (s.plane == program::Plane::xy   ? "XY"
+                : s.plane == program::Plane::xz ? "XZ"
+                                                : "YZ") +
+               " plane");
   }
-  if (const Word* t = W('T'); t && !macro_call) {
-    if (!whole_number(t->value))
-      fail(Code::bad_word_value, t->column, "tool number must be a whole number from 0 to 1e9");
-    s.selected_tool = static_cast<int>(t->value);
-    emit(program::SelectTool{s.selected_tool, source(b, t->column)});
-  }
-  if (const Word* m = M(Group::tool_change)) {
-    if (Mc(Group::tool_change) == 60) {
-      s.tool_in_spindle = s.selected_tool;
-      emit(program::ChangeTool{s.tool_in_spindle, source(b, m->column)});
-    }
-  }
-  if (const Word* m = M(Group::spindle)) {
-    const int c = Mc(Group::spindle);
-    if (c == 50 || c == 190) {
-      emit(program::SpindleOff{source(b, m->column)});
-    } else {
-      s.spindle_ccw = c == 40;
-      emit(program::SpindleOn{c == 30 ? program::SpindleDirection::clockwise
-                                      : program::SpindleDirection::counterclockwise,
-                              source(b, m->column)});
-    }
-  }
-  if (const Word* m = M(Group::coolant)) {
-    const int c = Mc(Group::coolant);
-    emit(program::Coolant{c == 70   ? program::CoolantChange::mist_on
-                          : c == 80 ? program::CoolantChange::flood_on
-                                    : program::CoolantChange::off,
-                          source(b, m->column)});
-    if (mist_and_flood)
-      emit(program::Coolant{
-          c == 70 ? program::CoolantChange::flood_on : program::CoolantChange::mist_on,
-          source(b, m->column)});
-  }
-  if (nonmodal && nonmodal_code == 40) {
-    // Dwell: P seconds (RS274NGC); Fanuc: X seconds or P milliseconds.
-    double seconds = 0.0;
-    if (dialect_.kind == DialectKind::rs274ngc) {
-      const Word* p = W('P');
-      if (!p) fail(Code::missing_word, nonmodal->column, "G4 needs P (seconds)");
-      seconds = p->value;
-    } else if (siemens_dwell) {
-      if (const Word* f = W('F')) {
-        seconds = f->value;
-      } else if (const Word* sw = W('S'); sw && s.spindle_rpm > 0) {
-        seconds = sw->value / s.spindle_rpm * 60.0;
-      } else {
-        fail(Code::missing_axis_word, nonmodal->column,
-             "G4 needs F (seconds) or S (spindle turns)");
-      }
-    } else if (dwell_x) {
-      seconds = dwell_x->value;
-    } else if (const Word* p = W('P')) {
-      seconds = p->decimal_point ? p->value : p->value / 1000.0;
-    } else {
-      fail(Code::missing_word, nonmodal->column, "G4 needs X (s) or P (ms)");
-    }
-    if (seconds < 0) fail(Code::bad_word_value, nonmodal->column, "negative dwell");
-    emit(program::Dwell{seconds, source(b, nonmodal->column)});
-  }
-  if (const Word* g = G(Group::plane)) {
-    const int c = Gc(Group::plane);
-    s.plane = c == 170 ? program::Plane::xy : c == 180 ? program::Plane::xz : program::Plane::yz;
-    emit(program::SelectPlane{s.plane, source(b, g->column)});
-  }
-  if (const Word* g = G(Group::cutter_comp)) {
-    const int c = Gc(Group::cutter_comp);
-    emit(program::CutterCompensation{c == 400                 ? program::CompensationSide::off
-                                     : (c == 410 || c == 411) ? program::CompensationSide::left
-                                                              : program::CompensationSide::right,
-                                     source(b, g->column)});
-  }
-  if (const Word* g = G(Group::tool_length)) {
-    program::ToolLengthOffset t{Gc(Group::tool_length) != 490, std::nullopt, source(b, g->column)};
-    if (const Word* h = W('H')) {
-      if (!whole_number(h->value))
-        fail(Code::bad_word_value, h->column,
-             "H (offset register) must be a whole number from 0 to 1e9");
-      t.register_number = static_cast<int>(h->value);
-    } else if (t.enabled) {
-      t.register_number = s.tool_in_spindle;
-    }
-    emit(t);
-  }
+}
 
-  // Origins: what the block does to the origin offsets, applied to a copy.
-  // The tool stays where it is on the machine: its program position moves
-  // by the change of the active offset (rs274 does so).
-  std::optional<Origins> origins;
-  auto total_offset = [&](const Origins& f, int system) {
-    return Eigen::Vector3d(f.work[work_index(system)] + f.g92 + f.local);
-  };
-  // Most blocks touch no offset: the sums only where one may change.
-  const bool origin_codes = G(Group::coordinate) || nonmodal_code == 100 || nonmodal_code == 280 ||
-                            nonmodal_code == 281 || nonmodal_code == 300 || nonmodal_code == 301 ||
-                            nonmodal_code == 520 || (nonmodal_code >= 920 && nonmodal_code <= 923);
-  const Eigen::Vector3d offset_before =
-      origin_codes ? total_offset(origins_, s.work_system) : Eigen::Vector3d::Zero();
-  const char* axes = "XYZ";
-  if (G(Group::coordinate)) {
-    const int c = Gc(Group::coordinate);
+void Interpreter::emit_message(Step& step) {
+  const Block& b = step.b;
+  step.emit(
+      program::Message{*b.message, source(b, b.comments.empty() ? 1 : b.comments.front().column)});
+}
+
+// Units first: every length of this block is read in the new units.
+void Interpreter::set_units(Step& step) {
+  const int c = step.g_code(Group::units);
+  step.state.inches = c == 200 || c == 700 || c == 7000;
+}
+
+void Interpreter::set_feed_mode(Step& step) {
+  const Word* g = step.g(Group::feed_mode);
+  const int c = code_of(*g);
+  const auto mode = c == 930   ? program::FeedMode::inverse_time
+                    : c == 950 ? program::FeedMode::per_revolution
+                               : program::FeedMode::per_minute;
+  // As LinuxCNC: a G93/G94/G95 word resets the feed to 0 (it must be
+  // given again); G94 and G95 say so with a zero feed rate.
+  step.state.feed_mode = mode;
+  step.state.feed = 0.0;
+  if (mode != program::FeedMode::inverse_time)
+    step.emit(program::SetFeedRate{0.0, mode, source(step.b, g->column)});
+}
+
+void Interpreter::set_feed(Step& step) {
+  const Word* f = step.word('F');
+  ModalState& s = step.state;
+  if (f->value < 0) fail(Code::bad_word_value, f->column, "negative feed rate");
+  if (s.feed_mode == program::FeedMode::inverse_time) {
+    s.feed = f->value;
+    step.inverse_f = f;
+  } else {
+    s.feed = f->value * (s.inches ? kInch : 1.0);
+    step.emit(program::SetFeedRate{s.feed, s.feed_mode, source(step.b, f->column)});
+  }
+}
+
+void Interpreter::set_spindle_speed(Step& step) {
+  const Word* sw = step.word('S');
+  if (sw->value < 0) fail(Code::bad_word_value, sw->column, "negative spindle speed");
+  step.state.spindle_rpm = sw->value;
+  step.emit(program::SetSpindleSpeed{sw->value, source(step.b, sw->column)});
+}
+
+void Interpreter::select_tool(Step& step) {
+  const Word* t = step.word('T');
+  if (!whole_number(t->value))
+    fail(Code::bad_word_value, t->column, "tool number must be a whole number from 0 to 1e9");
+  step.state.selected_tool = static_cast<int>(t->value);
+  step.emit(program::SelectTool{step.state.selected_tool, source(step.b, t->column)});
+}
+
+void Interpreter::change_tool(Step& step) {
+  if (step.m_code(Group::tool_change) != 60) return;  // only M6 changes the tool
+  step.state.tool_in_spindle = step.state.selected_tool;
+  step.emit(program::ChangeTool{step.state.tool_in_spindle,
+                                source(step.b, step.m(Group::tool_change)->column)});
+}
+
+void Interpreter::spindle(Step& step) {
+  const Word* m = step.m(Group::spindle);
+  const int c = code_of(*m);
+  if (c == 50 || c == 190) {
+    step.emit(program::SpindleOff{source(step.b, m->column)});
+  } else {
+    step.state.spindle_ccw = c == 40;
+    step.emit(program::SpindleOn{c == 30 ? program::SpindleDirection::clockwise
+                                         : program::SpindleDirection::counterclockwise,
+                                 source(step.b, m->column)});
+  }
+}
+
+void Interpreter::coolant(Step& step) {
+  const Word* m = step.m(Group::coolant);
+  const int c = code_of(*m);
+  step.emit(program::Coolant{c == 70   ? program::CoolantChange::mist_on
+                             : c == 80 ? program::CoolantChange::flood_on
+                                       : program::CoolantChange::off,
+                             source(step.b, m->column)});
+  if (step.mist_and_flood)
+    step.emit(program::Coolant{
+        c == 70 ? program::CoolantChange::flood_on : program::CoolantChange::mist_on,
+        source(step.b, m->column)});
+}
+
+// G4: P seconds (RS274NGC); Fanuc: X seconds or P milliseconds; Sinumerik:
+// F seconds or S spindle turns.
+void Interpreter::dwell(Step& step) {
+  const Word* g4 = step.nonmodal;
+  double seconds = 0.0;
+  if (dialect_.kind == DialectKind::rs274ngc) {
+    const Word* p = step.word('P');
+    if (!p) fail(Code::missing_word, g4->column, "G4 needs P (seconds)");
+    seconds = p->value;
+  } else if (step.siemens_dwell) {
+    if (const Word* f = step.word('F')) {
+      seconds = f->value;
+    } else if (const Word* sw = step.word('S'); sw && step.state.spindle_rpm > 0) {
+      seconds = sw->value / step.state.spindle_rpm * 60.0;
+    } else {
+      fail(Code::missing_axis_word, g4->column, "G4 needs F (seconds) or S (spindle turns)");
+    }
+  } else if (step.dwell_x) {
+    seconds = step.dwell_x->value;
+  } else if (const Word* p = step.word('P')) {
+    seconds = p->decimal_point ? p->value : p->value / 1000.0;
+  } else {
+    fail(Code::missing_word, g4->column, "G4 needs X (s) or P (ms)");
+  }
+  if (seconds < 0) fail(Code::bad_word_value, g4->column, "negative dwell");
+  step.emit(program::Dwell{seconds, source(step.b, g4->column)});
+}
+
+void Interpreter::set_plane(Step& step) {
+  const Word* g = step.g(Group::plane);
+  const int c = code_of(*g);
+  step.state.plane =
+      c == 170 ? program::Plane::xy : c == 180 ? program::Plane::xz : program::Plane::yz;
+  step.emit(program::SelectPlane{step.state.plane, source(step.b, g->column)});
+}
+
+void Interpreter::cutter_compensation(Step& step) {
+  const Word* g = step.g(Group::cutter_comp);
+  const int c = code_of(*g);
+  step.emit(program::CutterCompensation{c == 400                 ? program::CompensationSide::off
+                                        : (c == 410 || c == 411) ? program::CompensationSide::left
+                                                                 : program::CompensationSide::right,
+                                        source(step.b, g->column)});
+}
+
+void Interpreter::tool_length(Step& step) {
+  const Word* g = step.g(Group::tool_length);
+  program::ToolLengthOffset t{code_of(*g) != 490, std::nullopt, source(step.b, g->column)};
+  if (const Word* h = step.word('H')) {
+    if (!whole_number(h->value))
+      fail(Code::bad_word_value, h->column,
+           "H (offset register) must be a whole number from 0 to 1e9");
+    t.register_number = static_cast<int>(h->value);
+  } else if (t.enabled) {
+    t.register_number = step.state.tool_in_spindle;
+  }
+  step.emit(t);
+}
+
+// Most blocks touch no offset: the sums are made only where one may change.
+bool Interpreter::changes_origins(const Step& step) {
+  const int c = step.nonmodal_code;
+  return step.g(Group::coordinate) || c == 100 || c == 280 || c == 281 || c == 300 || c == 301 ||
+         c == 520 || (c >= 920 && c <= 923);
+}
+
+// Origins: what the block does to the origin offsets, applied to a copy.
+// The tool stays where it is on the machine: its program position moves
+// by the change of the active offset (rs274 does so).
+void Interpreter::set_origins(Step& step) {
+  ModalState& s = step.state;
+  const int nonmodal_code = step.nonmodal_code;
+  step.offset_before = total_offset(origins_, s.work_system);
+  if (const Word* g = step.g(Group::coordinate)) {
+    const int c = code_of(*g);
     if (c == 541) {
       // G54.1 P1..: extended offsets, never set by the program: as G54.1 P1.
-      index.by_letter['P' - 'A'] = 0;
+      step.index.by_letter['P' - 'A'] = 0;
     }
     s.work_system = c;
   }
   if (nonmodal_code == 100) {
-    const Word* l = W('L');
-    const Word* p = W('P');
-    if (!l) fail(Code::missing_word, nonmodal->column, "G10 needs L (what it sets)");
-    const long lv = std::lround(l->value);
-    const bool sets_origin = lv == 2 || (lv == 20 && !fanuc_like);
-    if (sets_origin) {
-      if (!p)
-        fail(Code::missing_word, nonmodal->column, "G10 L2/L20 needs P (coordinate system)");
-      const long pv = std::lround(p->value);
-      if (pv < 0 || pv > 9)
-        fail(Code::bad_word_value, p->column, "G10 P must be 0 (the active system) to 9");
-      if (W('R'))
-        fail(Code::unsupported_code, W('R')->column,
-             "G10 R rotates the coordinate system; vcpost does not follow rotation");
-      static constexpr int kSystems[] = {540, 550, 560, 570, 580, 590, 591, 592, 593};
-      const int system = pv == 0 ? s.work_system : kSystems[pv - 1];
-      origins = origins_;
-      Eigen::Vector3d& o = origins->work[work_index(system)];
-      for (int k = 0; k < 3; ++k) {
-        const Word* w = W(axes[k]);
-        if (!w) continue;
-        if (lv == 2) {
-          o[k] = length(*w);
-        } else {  // L20: the current position becomes the given value
-          const double machine = s.position[k] + offset_before[k];
-          o[k] = machine - origins->g92[k] - origins->local[k] - length(*w);
-        }
-      }
-    } else if (lv == 20 && fanuc_like) {
-      warn_once('L', 20, Code::mode_code_passed, l->column,
-                "G10 L20 sets an extended work offset (G54.1 P..); taken as not changing the "
-                "active frame");
-    }
-    // L1, L10, L11, L12, L13: tool data; lengths are not applied to positions.
+    set_origin_g10(step);
   } else if (nonmodal_code == 920 || nonmodal_code == 520) {
-    origins = origins_;
-    if (nonmodal_code == 920 && !has_xyz)
-      fail(Code::missing_axis_word, nonmodal->column, "G92 needs an axis word");
-    for (int k = 0; k < 3; ++k) {
-      const Word* w = W(axes[k]);
-      if (!w) continue;
-      if (nonmodal_code == 520) {
-        // LinuxCNC keeps G52 in the G92 register; Fanuc has a local system.
-        (fanuc_like ? origins->local : origins->g92)[k] = length(*w);
-      } else {
-        const double machine = s.position[k] + offset_before[k];
-        origins->g92[k] =
-            machine - origins->work[work_index(s.work_system)][k] - origins->local[k] - length(*w);
-      }
-    }
-    if (nonmodal_code == 920) origins->g92_saved = origins->g92;
+    set_origin_g92_g52(step);
   } else if (nonmodal_code == 921 || nonmodal_code == 922) {
-    origins = origins_;
-    origins->g92.setZero();
-    if (nonmodal_code == 921) origins->g92_saved.setZero();
+    step.origins = origins_;
+    step.origins->g92.setZero();
+    if (nonmodal_code == 921) step.origins->g92_saved.setZero();
   } else if (nonmodal_code == 923) {
-    origins = origins_;
-    origins->g92 = origins->g92_saved;
+    step.origins = origins_;
+    step.origins->g92 = step.origins->g92_saved;
   } else if (nonmodal_code == 281 || nonmodal_code == 301) {
-    origins = origins_;
-    (nonmodal_code == 281 ? origins->home28 : origins->home30) = s.position + offset_before;
+    step.origins = origins_;
+    (nonmodal_code == 281 ? step.origins->home28 : step.origins->home30) =
+        s.position + step.offset_before;
   }
-  const Eigen::Vector3d offset_after =
-      origin_codes ? total_offset(origins ? *origins : origins_, s.work_system) : offset_before;
-  if (origin_codes && offset_after != offset_before) {
-    s.position += offset_before - offset_after;
+  step.offset_after = total_offset(step.origins ? *step.origins : origins_, s.work_system);
+  if (step.offset_after != step.offset_before) {
+    s.position += step.offset_before - step.offset_after;
     if (s.moved)
-      warn_once('F', 0, Code::frame_change, nonmodal ? nonmodal->column : 1,
+      warn_once('F', 0, Code::frame_change, step.nonmodal ? step.nonmodal->column : 1,
                 "the program's coordinate frame moves here (G10, G52, G92 or another work system); "
                 "positions after it are read in the new frame, as rs274 does");
-  } else if (G(Group::coordinate) && state_.work_system != s.work_system && s.moved) {
-    warn_once('F', 1, Code::frame_change, G(Group::coordinate)->column,
+  } else if (step.g(Group::coordinate) && state_.work_system != s.work_system && s.moved) {
+    warn_once('F', 1, Code::frame_change, step.g(Group::coordinate)->column,
               "switching from " + code_text('G', state_.work_system) + " to " +
                   code_text('G', s.work_system) +
                   " after motion: its offsets are unknown and taken as equal (as rs274 does)");
   }
-  if (G(Group::distance)) s.absolute = Gc(Group::distance) == 900;
-  if (G(Group::arc_distance)) s.arc_absolute = Gc(Group::arc_distance) == 901;
-  if (G(Group::return_mode)) s.retract_to_r = Gc(Group::return_mode) == 990;
+}
 
+// G10 L2 (offsets given) and L20 (the position given) of a work system;
+// L1, L10, L11, L12, L13 set tool data, whose lengths are not applied.
+void Interpreter::set_origin_g10(Step& step) {
+  const bool fanuc_like = dialect_.kind != DialectKind::rs274ngc;
+  const ModalState& s = step.state;
+  const Word* l = step.word('L');
+  const Word* p = step.word('P');
+  if (!l) fail(Code::missing_word, step.nonmodal->column, "G10 needs L (what it sets)");
+  const long lv = std::lround(l->value);
+  const bool sets_origin = lv == 2 || (lv == 20 && !fanuc_like);
+  if (sets_origin) {
+    if (!p)
+      fail(Code::missing_word, step.nonmodal->column, "G10 L2/L20 needs P (coordinate system)");
+    const long pv = std::lround(p->value);
+    if (pv < 0 || pv > 9)
+      fail(Code::bad_word_value, p->column, "G10 P must be 0 (the active system) to 9");
+    if (const Word* r = step.word('R'))
+      fail(Code::unsupported_code, r->column,
+           "G10 R rotates the coordinate system; vcpost does not follow rotation");
+    static constexpr int kSystems[] = {540, 550, 560, 570, 580, 590, 591, 592, 593};
+    const int system = pv == 0 ? s.work_system : kSystems[pv - 1];
+    step.origins = origins_;
+    Origins& origins = *step.origins;
+    Eigen::Vector3d& o = origins.work[work_index(system)];
+    for (int k = 0; k < 3; ++k) {
+      const Word* w = step.word(kAxes[k]);
+      if (!w) continue;
+      if (lv == 2) {
+        o[k] = length(*w, s.inches);
+      } else {  // L20: the current position becomes the given value
+        const double machine = s.position[k] + step.offset_before[k];
+        o[k] = machine - origins.g92[k] - origins.local[k] - length(*w, s.inches);
+      }
+    }
+  } else if (lv == 20 && fanuc_like) {
+    warn_once('L', 20, Code::mode_code_passed, l->column,
+              "G10 L20 sets an extended work offset (G54.1 P..); taken as not changing the "
+              "active frame");
+  }
+}
+
+// G92: the current position becomes the given one; G52: a local origin
+// (LinuxCNC keeps it in the G92 register, Fanuc has a local system).
+void Interpreter::set_origin_g92_g52(Step& step) {
+  const bool fanuc_like = dialect_.kind != DialectKind::rs274ngc;
+  const ModalState& s = step.state;
+  const bool g92 = step.nonmodal_code == 920;
+  step.origins = origins_;
+  Origins& origins = *step.origins;
+  if (g92 && !step.has_xyz)
+    fail(Code::missing_axis_word, step.nonmodal->column, "G92 needs an axis word");
+  for (int k = 0; k < 3; ++k) {
+    const Word* w = step.word(kAxes[k]);
+    if (!w) continue;
+    if (!g92) {
+      (fanuc_like ? origins.local : origins.g92)[k] = length(*w, s.inches);
+    } else {
+      const double machine = s.position[k] + step.offset_before[k];
+      origins.g92[k] = machine - origins.work[work_index(s.work_system)][k] - origins.local[k] -
+                       length(*w, s.inches);
+    }
+  }
+  if (g92) origins.g92_saved = origins.g92;
+}
+
+void Interpreter::set_distance_modes(Step& step) {
+  if (step.g(Group::distance)) step.state.absolute = step.g_code(Group::distance) == 900;
+  if (step.g(Group::arc_distance))
+    step.state.arc_absolute = step.g_code(Group::arc_distance) == 901;
+  if (step.g(Group::return_mode))
+    step.state.retract_to_r = step.g_code(Group::return_mode) == 990;
+}
+
+// Which codes take the axis words for themselves, so that they are no move.
+void Interpreter::take_axis_words(Step& step) {
+  const int nonmodal_code = step.nonmodal_code;
   // Mazak G117: M/S/T words output when the axes reach the given position
   // during the next move; its axis words are that position, not a move.
   // M and S output somewhere inside a move cannot be placed soundly.
-  const bool g117 = nonmodal && nonmodal_code == 1170;
+  const bool g117 = nonmodal_code == 1170;
   if (g117) {
-    if (const Word* sw = W('S'))
+    if (const Word* sw = step.word('S'))
       fail(Code::unsupported_code, sw->column,
            "S in a G117 block changes the speed inside the next move; vcpost cannot place it");
-    if (const Word* m = M(Group::spindle))
+    if (const Word* m = step.m(Group::spindle))
       fail(Code::unsupported_code, m->column,
            "spindle M code in a G117 block acts inside the next move; vcpost cannot place it");
   }
   // G43.1: the axis words are the tool length offset.
-  const bool dynamic_offset = G(Group::tool_length) && Gc(Group::tool_length) == 431;
-  const bool axes_taken = g117 || macro_call || dynamic_offset || nonmodal_code == 100 ||
-                          nonmodal_code == 520 || nonmodal_code == 920;
-  const bool has_axis = !axes_taken && has_xyz;
-  auto target_of = [&](bool absolute) __attribute__((always_inline)) {
-    Eigen::Vector3d t = s.position;
-    for (int k = 0; k < 3; ++k)
-      if (const Word* w = W(axes[k])) t[k] = absolute ? length(*w) : s.position[k] + length(*w);
-    return t;
-  };
-  auto first_axis_column = [&](std::uint32_t fallback) {
-    std::uint32_t col = 0;
-    for (char a : {'X', 'Y', 'Z'})
-      if (const Word* w = W(a)) col = col == 0 ? w->column : std::min(col, w->column);
-    return col == 0 ? fallback : col;
-  };
+  const bool dynamic_offset =
+      step.g(Group::tool_length) && step.g_code(Group::tool_length) == 431;
+  step.axes_taken = g117 || step.macro_call || dynamic_offset || nonmodal_code == 100 ||
+                    nonmodal_code == 520 || nonmodal_code == 920;
+  step.has_axis = !step.axes_taken && step.has_xyz;
+}
 
-  // Motion modes. RS274NGC: one group (a cycle replaces G1, G80 leaves no
-  // mode). Fanuc: G0-G3 stay under a cycle; G80 or a G0-G3 word ends it.
-  if (motion_word) {
-    const int c = motion_code;
+// Motion modes. RS274NGC: one group (a cycle replaces G1, G80 leaves no
+// mode). Fanuc: G0-G3 stay under a cycle; G80 or a G0-G3 word ends it.
+void Interpreter::set_motion_mode(Step& step) {
+  ModalState& s = step.state;
+  if (step.motion_word) {
+    const int c = step.motion_code;
     if (is_cycle_code(c)) {
       if (s.cycle != c) s.cycle_initial_set = s.cycle_initial_set && s.cycle != 0;
       s.cycle = c;
@@ -1003,8 +1131,8 @@ void Interpreter::execute(std::vector<Event>& events) {
                            : Motion::none;
     }
   }
-  if (cycle_word) {
-    const int c = code_of(*cycle_word);
+  if (step.cycle_word) {
+    const int c = code_of(*step.cycle_word);
     if (c == 800) {
       s.cycle = 0;
       s.cycle_initial_set = false;
@@ -1012,302 +1140,383 @@ void Interpreter::execute(std::vector<Event>& events) {
       s.cycle = c;
     }
   }
-  const std::uint32_t motion_column = motion_word  ? motion_word->column
-                                      : cycle_word ? cycle_word->column
-                                                   : first_axis_column(1);
+  step.motion_column = step.motion_word  ? step.motion_word->column
+                       : step.cycle_word ? step.cycle_word->column
+                                         : step.first_axis_column(1);
+}
 
-  if (nonmodal && (nonmodal_code == 280 || nonmodal_code == 300)) {
-    // G28/G30: through the given intermediate point to the reference point,
-    // which rs274 takes from parameters 5161-5163 / 5181-5183 (0 in its
-    // default file, and the machine's are unknown to vcpost).
-    const Eigen::Vector3d via = target_of(s.absolute);
-    const Eigen::Vector3d reference =
-        (nonmodal_code == 280 ? origins_.home28 : origins_.home30) - offset_after;
-    Eigen::Vector3d home = via;
-    for (int k = 0; k < 3; ++k)
-      if (!has_axis || W(axes[k])) home[k] = reference[k];
-    warn_once('G', nonmodal_code, Code::machine_coordinates, nonmodal->column,
-              code_text('G', nonmodal_code) +
-                  " reference point taken as machine 0 with the program's offsets "
-                  "(rs274's default parameters; the machine's are unknown)");
-    if (has_axis) emit(program::StraightTraverse{s.position, via, source(b, nonmodal->column)});
-    emit(program::StraightTraverse{via, home, source(b, nonmodal->column)});
-    s.position = home;
-    s.moved = true;
-  } else if (macro_call) {
-    const Word* p = W('P');
-    if (!p) fail(Code::missing_word, nonmodal->column, "G65 needs P (program number)");
-    warn_once('G', 650, Code::external_macro, nonmodal->column,
-              "G65 P" + std::to_string(std::lround(p->value)) +
-                  " calls a macro program vcpost does not follow (a machine maker's macro): "
-                  "taken as not moving the tool");
-  } else if (has_axis && s.cycle != 0) {
-    // A canned cycle at the given position (Fanuc: K or L repeats).
-    const int c = s.cycle;
-    if (s.feed <= 0.0)
-      fail(Code::missing_feed, motion_column, "canned cycle with no feed rate (F) in effect");
-    if (s.feed_mode == program::FeedMode::inverse_time)
-      fail(Code::cycle_value, motion_column, "canned cycles cannot run in inverse-time feed (G93)");
-    if (s.plane != program::Plane::xy)
-      fail(Code::unsupported_code, motion_column,
-           "canned cycles are followed in the XY plane (G17) only");
-    const bool same = state_.cycle == c && !motion_word && !cycle_word ? true : state_.cycle == c;
-    CycleCall call;
-    call.code = c;
-    call.fanuc = fanuc_like;
-    call.start = s.position;
-    call.source = source(b, motion_column);
-    call.spindle_cw = !s.spindle_ccw;
-    call.peck_clearance = 0.254;
-    if (!s.cycle_initial_set) {
-      s.cycle_initial = s.position.z();
-      s.cycle_initial_set = true;
-    }
-    const Word* r = W('R');
-    if (!r && !same)
-      fail(Code::cycle_value, motion_column, code_text('G', c) + " needs R (the R plane)");
-    const Word* z = W('Z');
-    if (!z && !same)
-      fail(Code::cycle_value, motion_column, code_text('G', c) + " needs Z (the hole bottom)");
-    const double r_word = r ? length(*r) : s.cycle_r;
-    const double z_word = z ? length(*z) : s.cycle_z;
-    s.cycle_r = r_word;
-    s.cycle_z = z_word;
-    const Word* q = W('Q');
-    if (c == 730 || c == 830) {
-      if (!q && !same)
-        fail(Code::cycle_value, motion_column, code_text('G', c) + " needs Q (the peck depth)");
-      const double qv = q ? length(*q) : s.cycle_q;
-      if (qv <= 0.0)
-        fail(Code::cycle_value, q ? q->column : motion_column,
-             code_text('G', c) + " with a peck depth Q <= 0 (the control alarms too)");
-      s.cycle_q = qv;
-      call.q = qv;
-    }
-    const Word* p = W('P');
-    const bool dwell_needed = c == 820 || c == 860 || c == 880 || c == 890;
-    if (dwell_needed && !p && !same && !fanuc_like)
-      fail(Code::cycle_value, motion_column, code_text('G', c) + " needs P (the dwell)");
-    if (p) s.cycle_p = fanuc_like && !p->decimal_point ? p->value / 1000.0 : p->value;
-    call.dwell = (dwell_needed || c == 740 || c == 840 || c == 760) ? s.cycle_p : 0.0;
-    if (c == 870 && !fanuc_like) {
-      if (!same && (!W('I') || !W('J') || !W('K')))
-        fail(Code::cycle_value, motion_column, "G87 needs I, J and K");
-      if (const Word* w = W('I')) s.cycle_i = length(*w);
-      if (const Word* w = W('J')) s.cycle_j = length(*w);
-      if (const Word* w = W('K')) s.cycle_k = length(*w);
-      call.i = s.cycle_i;
-      call.j = s.cycle_j;
-    }
-    if ((c == 760 || c == 870) && fanuc_like)
-      warn_once('G', c, Code::mode_code_passed, motion_column,
-                code_text('G', c) +
-                    ": the tool's shift at the hole bottom (Q, direction a machine "
-                    "parameter) is not followed; the path is read without it");
-    const Word* l = W('L');
-    const Word* kw = fanuc_like ? W('K') : nullptr;
-    const Word* rep = kw ? kw : l;
-    if (rep && (rep->value < 0 || rep->value > 1e6 || rep->value != std::floor(rep->value)))
-      fail(Code::bad_word_value, rep->column, "cycle repeat count must be a whole number");
-    call.repeats = rep ? static_cast<int>(rep->value) : 1;
-    if (rep && call.repeats == 0 && !fanuc_like)
-      fail(Code::cycle_value, rep->column, "cannot do zero repeats of a canned cycle");
-    const double old_z = s.cycle_initial;
-    if (s.absolute) {
-      call.r = r_word;
-      call.bottom = z_word;
-      call.x = W('X') ? length(*W('X')) : s.position.x();
-      call.y = W('Y') ? length(*W('Y')) : s.position.y();
-    } else {
-      call.r = r_word + old_z;
-      call.bottom = call.r + z_word;
-      call.x = s.position.x();
-      call.y = s.position.y();
-      call.dx = W('X') ? length(*W('X')) : 0.0;
-      call.dy = W('Y') ? length(*W('Y')) : 0.0;
-    }
-    if (c == 870 && !fanuc_like) call.k = s.absolute ? s.cycle_k : call.bottom + s.cycle_k;
-    if (call.r < call.bottom && !(c == 870 && fanuc_like))
-      fail(Code::cycle_value, r ? r->column : motion_column,
-           "R plane below the hole bottom Z in a canned cycle");
-    call.initial = old_z;
-    call.retract_to_r = s.retract_to_r && !(c == 870 && fanuc_like);
-    if (call.repeats > 0) {
-      s.position = expand_cycle(call, events);
-      s.moved = true;
-    }
-    if (s.cycle_initial < call.r) s.cycle_initial = call.r;
-  } else if (has_axis ||
-             (!axes_taken && (s.motion == Motion::arc_cw || s.motion == Motion::arc_ccw) &&
-              (W('I') || W('J') || W('K') || W('R')))) {
-    const bool machine = nonmodal && nonmodal_code == 530;
-    if (machine) {
-      if (s.motion != Motion::rapid && s.motion != Motion::linear)
-        fail(Code::unsupported_code, nonmodal->column, "G53 needs G0 or G1");
-      warn_once('G', 530, Code::machine_coordinates, nonmodal->column,
-                "G53 machine coordinates taken as program coordinates (offsets unknown)");
-    }
-    const Eigen::Vector3d end = target_of(s.absolute || machine);
-    const auto src = source(b, motion_column);
-    switch (s.motion) {
-      case Motion::none:
-        fail(Code::words_without_motion, first_axis_column(1),
-             "axis words without a motion mode (G0/G1/G2/G3)");
-      case Motion::rapid:
-        emit(program::StraightTraverse{s.position, end, src});
-        break;
-      case Motion::linear:
-        if (s.feed <= 0.0 || (s.feed_mode == program::FeedMode::inverse_time && !W('F')))
-          fail(Code::missing_feed, motion_column, "G1 with no feed rate (F) in effect");
-        emit_inverse_f([&] { return s.feed * (end - s.position).norm(); });
-        emit(program::StraightFeed{s.position, end, src});
-        break;
-      case Motion::arc_cw:
-      case Motion::arc_ccw: {
-        if (s.feed <= 0.0 || (s.feed_mode == program::FeedMode::inverse_time && !W('F')))
-          fail(Code::missing_feed, motion_column, "arc with no feed rate (F) in effect");
-        const auto ax = program::plane_axes(s.plane);
-        const char letters[3] = {'I', 'J', 'K'};
-        const Word* off0 = W(letters[ax[0]]);
-        const Word* off1 = W(letters[ax[1]]);
-        const Word* r = W('R');
-        const bool cw = s.motion == Motion::arc_cw;
-        Eigen::Vector3d centre = s.position;
-        const double a0 = s.position[ax[0]], b0 = s.position[ax[1]];
-        const double a1 = end[ax[0]], b1 = end[ax[1]];
-        if (r) {
-          const double radius = length(*r);
-          const double chord = std::hypot(a1 - a0, b1 - b0);
-          if (chord < 1e-9)
-            fail(Code::missing_arc_data, r->column,
-                 "R arc with the same start and end point: a full circle needs I/J/K");
-          const double half = chord / 2.0;
-          const double abs_r = std::abs(radius);
-          if (abs_r < 1e-9) fail(Code::arc_zero_radius, r->column, "arc radius R0");
-          if (abs_r < half - kArcAbsoluteTolerance)
-            fail(Code::arc_r_too_small, r->column,
-                 "R = " + std::to_string(abs_r) + " mm is smaller than half the chord (" +
-                     std::to_string(half) + " mm)");
-          const double h = abs_r > half ? std::sqrt(abs_r * abs_r - half * half) : 0.0;
-          // Short arc (R > 0): centre left of the chord for G3, right for G2.
-          double side = cw ? -1.0 : 1.0;
-          if (radius < 0) side = -side;
-          const double ua = (a1 - a0) / chord, ub = (b1 - b0) / chord;
-          centre[ax[0]] = (a0 + a1) / 2.0 - side * ub * h;
-          centre[ax[1]] = (b0 + b1) / 2.0 + side * ua * h;
-        } else {
-          if (!off0 && !off1)
-            fail(Code::missing_arc_data, motion_column,
-                 std::string("arc needs ") + letters[ax[0]] + " or " + letters[ax[1]] +
-                     " (centre) or R (radius)");
-          if (off0)
-            centre[ax[0]] =
-                (s.arc_absolute || off0->absolute ? 0.0 : centre[ax[0]]) + length(*off0);
-          if (off1)
-            centre[ax[1]] =
-                (s.arc_absolute || off1->absolute ? 0.0 : centre[ax[1]]) + length(*off1);
-          const double r0 = std::hypot(a0 - centre[ax[0]], b0 - centre[ax[1]]);
-          const double r1 = std::hypot(a1 - centre[ax[0]], b1 - centre[ax[1]]);
-          if (r0 < 1e-9 || r1 < 1e-9)
-            fail(Code::arc_zero_radius, motion_column, "arc with zero radius at start or end");
-          const double err = std::abs(r1 - r0);
-          if (err > kArcAbsoluteTolerance && err / r0 > kArcRelativeTolerance)
-            fail(Code::arc_radius_mismatch, motion_column,
-                 "radius to end " + std::to_string(r1) + " mm differs from radius to start " +
-                     std::to_string(r0) + " mm");
-        }
-        int turns = 1;
-        if (const Word* p = W('P'); p && (dialect_.kind == DialectKind::rs274ngc || siemens)) {
-          if (p->value < 1 || !whole_number(p->value))
-            fail(Code::bad_word_value, p->column,
-                 "P (turns) of an arc must be a whole number from 1 to 1e9");
-          turns = static_cast<int>(p->value);
-        }
-        const program::ArcFeed arc{s.position, end, centre, s.plane, cw ? -turns : turns, src};
-        emit_inverse_f([&] { return s.feed * program::arc_length(arc); });
-        emit(arc);
-        break;
-      }
-    }
-    s.position = end;
+// The block's position: the program's coordinates of its axis words.
+Eigen::Vector3d Interpreter::target_of(const Step& step, bool absolute) const {
+  const ModalState& s = step.state;
+  Eigen::Vector3d t = s.position;
+  for (int k = 0; k < 3; ++k)
+    if (const Word* w = step.word(kAxes[k]))
+      t[k] = absolute ? length(*w, s.inches) : s.position[k] + length(*w, s.inches);
+  return t;
+}
+
+// What moves the tool: a reference return, a macro call, a canned cycle or
+// a move of the motion mode.
+void Interpreter::move(Step& step) {
+  const int c = step.nonmodal_code;
+  const ModalState& s = step.state;
+  if (c == 280 || c == 300) {
+    reference_return(step);
+  } else if (step.macro_call) {
+    macro_call(step);
+  } else if (step.has_axis && s.cycle != 0) {
+    canned_cycle(step);
+  } else if (step.has_axis ||
+             (!step.axes_taken && (s.motion == Motion::arc_cw || s.motion == Motion::arc_ccw) &&
+              (step.word('I') || step.word('J') || step.word('K') || step.word('R')))) {
+    motion(step);
+  }
+}
+
+// G28/G30: through the given intermediate point to the reference point,
+// which rs274 takes from parameters 5161-5163 / 5181-5183 (0 in its
+// default file, and the machine's are unknown to vcpost).
+void Interpreter::reference_return(Step& step) {
+  ModalState& s = step.state;
+  const int code = step.nonmodal_code;
+  const Word* g = step.nonmodal;
+  const Eigen::Vector3d via = target_of(step, s.absolute);
+  const Eigen::Vector3d reference =
+      (code == 280 ? origins_.home28 : origins_.home30) - step.offset_after;
+  Eigen::Vector3d home = via;
+  for (int k = 0; k < 3; ++k)
+    if (!step.has_axis || step.word(kAxes[k])) home[k] = reference[k];
+  warn_once('G', code, Code::machine_coordinates, g->column,
+            code_text('G', code) +
+                " reference point taken as machine 0 with the program's offsets "
+                "(rs274's default parameters; the machine's are unknown)");
+  if (step.has_axis)
+    step.emit(program::StraightTraverse{s.position, via, source(step.b, g->column)});
+  step.emit(program::StraightTraverse{via, home, source(step.b, g->column)});
+  s.position = home;
+  s.moved = true;
+}
+
+void Interpreter::macro_call(Step& step) {
+  const Word* p = step.word('P');
+  const Word* g65 = step.nonmodal;
+  if (!p) fail(Code::missing_word, g65->column, "G65 needs P (program number)");
+  warn_once('G', 650, Code::external_macro, g65->column,
+            "G65 P" + std::to_string(std::lround(p->value)) +
+                " calls a macro program vcpost does not follow (a machine maker's macro): "
+                "taken as not moving the tool");
+}
+
+// A canned cycle at the block's position (Fanuc: K or L repeats); R, Z, Q
+// and P not given are those of the cycle's earlier blocks.
+void Interpreter::canned_cycle(Step& step) {
+  const bool fanuc_like = dialect_.kind != DialectKind::rs274ngc;
+  ModalState& s = step.state;
+  const int c = s.cycle;
+  const std::uint32_t column = step.motion_column;
+  if (s.feed <= 0.0) fail(Code::missing_feed, column, "canned cycle with no feed rate (F) in effect");
+  if (s.feed_mode == program::FeedMode::inverse_time)
+    fail(Code::cycle_value, column, "canned cycles cannot run in inverse-time feed (G93)");
+  if (s.plane != program::Plane::xy)
+    fail(Code::unsupported_code, column, "canned cycles are followed in the XY plane (G17) only");
+  const bool same = state_.cycle == c;
+  CycleCall call;
+  call.code = c;
+  call.fanuc = fanuc_like;
+  call.start = s.position;
+  call.source = source(step.b, column);
+  call.spindle_cw = !s.spindle_ccw;
+  call.peck_clearance = 0.254;
+  if (!s.cycle_initial_set) {
+    s.cycle_initial = s.position.z();
+    s.cycle_initial_set = true;
+  }
+  const Word* r = step.word('R');
+  if (!r && !same) fail(Code::cycle_value, column, code_text('G', c) + " needs R (the R plane)");
+  const Word* z = step.word('Z');
+  if (!z && !same)
+    fail(Code::cycle_value, column, code_text('G', c) + " needs Z (the hole bottom)");
+  const double r_word = r ? length(*r, s.inches) : s.cycle_r;
+  const double z_word = z ? length(*z, s.inches) : s.cycle_z;
+  s.cycle_r = r_word;
+  s.cycle_z = z_word;
+  const Word* q = step.word('Q');
+  if (c == 730 || c == 830) {
+    if (!q && !same)
+      fail(Code::cycle_value, column, code_text('G', c) + " needs Q (the peck depth)");
+    const double qv = q ? length(*q, s.inches) : s.cycle_q;
+    if (qv <= 0.0)
+      fail(Code::cycle_value, q ? q->column : column,
+           code_text('G', c) + " with a peck depth Q <= 0 (the control alarms too)");
+    s.cycle_q = qv;
+    call.q = qv;
+  }
+  const Word* p = step.word('P');
+  const bool dwell_needed = c == 820 || c == 860 || c == 880 || c == 890;
+  if (dwell_needed && !p && !same && !fanuc_like)
+    fail(Code::cycle_value, column, code_text('G', c) + " needs P (the dwell)");
+  if (p) s.cycle_p = fanuc_like && !p->decimal_point ? p->value / 1000.0 : p->value;
+  call.dwell = (dwell_needed || c == 740 || c == 840 || c == 760) ? s.cycle_p : 0.0;
+  if (c == 870 && !fanuc_like) {
+    if (!same && (!step.word('I') || !step.word('J') || !step.word('K')))
+      fail(Code::cycle_value, column, "G87 needs I, J and K");
+    if (const Word* w = step.word('I')) s.cycle_i = length(*w, s.inches);
+    if (const Word* w = step.word('J')) s.cycle_j = length(*w, s.inches);
+    if (const Word* w = step.word('K')) s.cycle_k = length(*w, s.inches);
+    call.i = s.cycle_i;
+    call.j = s.cycle_j;
+  }
+  if ((c == 760 || c == 870) && fanuc_like)
+    warn_once('G', c, Code::mode_code_passed, column,
+              code_text('G', c) +
+                  ": the tool's shift at the hole bottom (Q, direction a machine "
+                  "parameter) is not followed; the path is read without it");
+  call.repeats = cycle_repeats(step);
+  place_cycle(step, call, r_word, z_word);
+  if (call.r < call.bottom && !(c == 870 && fanuc_like))
+    fail(Code::cycle_value, r ? r->column : column,
+         "R plane below the hole bottom Z in a canned cycle");
+  call.retract_to_r = s.retract_to_r && !(c == 870 && fanuc_like);
+  if (call.repeats > 0) {
+    s.position = expand_cycle(call, step.events);
     s.moved = true;
   }
+  if (s.cycle_initial < call.r) s.cycle_initial = call.r;
+}
 
-  emit_inverse_f([] { return std::optional<double>(); });
+// L (Fanuc: K) repeats of a canned cycle; 1 without.
+int Interpreter::cycle_repeats(const Step& step) const {
+  const bool fanuc_like = dialect_.kind != DialectKind::rs274ngc;
+  const Word* l = step.word('L');
+  const Word* kw = fanuc_like ? step.word('K') : nullptr;
+  const Word* rep = kw ? kw : l;
+  if (rep && (rep->value < 0 || rep->value > 1e6 || rep->value != std::floor(rep->value)))
+    fail(Code::bad_word_value, rep->column, "cycle repeat count must be a whole number");
+  const int repeats = rep ? static_cast<int>(rep->value) : 1;
+  if (rep && repeats == 0 && !fanuc_like)
+    fail(Code::cycle_value, rep->column, "cannot do zero repeats of a canned cycle");
+  return repeats;
+}
 
-  if (siemens) {
-    for (const auto& [name, column] : b.noted_keywords) {
-      int key = 0;
-      for (char ch : name) key = key * 31 + ch;
-      warn_once('K', key, Code::mode_code_passed, column,
-                name +
-                    " is a mode of the control that does not change the path vcpost reads; "
-                    "passed through unchanged");
-    }
-    const SiemensCycle& sc = b.siemens_cycle;
-    if (sc.kind == SiemensCycle::Kind::call) {
-      run_siemens_cycle(s, sc, events);
-    } else if (sc.kind == SiemensCycle::Kind::modal_call) {
-      mcall_next_ = sc;
-    } else if (sc.kind == SiemensCycle::Kind::modal_off) {
-      mcall_next_ = SiemensCycle{};
-    } else if (mcall_.kind == SiemensCycle::Kind::modal_call && has_axis) {
-      run_siemens_cycle(s, mcall_, events);
-    }
+// The cycle's hole position, R plane and bottom: G91 reads R from the
+// initial level and Z from the R plane, X and Y as steps between repeats.
+void Interpreter::place_cycle(const Step& step, CycleCall& call, double r_word,
+                              double z_word) const {
+  const ModalState& s = step.state;
+  const double old_z = s.cycle_initial;
+  const Word* x = step.word('X');
+  const Word* y = step.word('Y');
+  if (s.absolute) {
+    call.r = r_word;
+    call.bottom = z_word;
+    call.x = x ? length(*x, s.inches) : s.position.x();
+    call.y = y ? length(*y, s.inches) : s.position.y();
+  } else {
+    call.r = r_word + old_z;
+    call.bottom = call.r + z_word;
+    call.x = s.position.x();
+    call.y = s.position.y();
+    call.dx = x ? length(*x, s.inches) : 0.0;
+    call.dy = y ? length(*y, s.inches) : 0.0;
   }
+  if (call.code == 870 && !call.fanuc)
+    call.k = s.absolute ? s.cycle_k : call.bottom + s.cycle_k;
+  call.initial = old_z;
+}
 
-  // Stops and subprogram calls come last.
+// A move of the motion mode (G0, G1, G2, G3; G53: machine coordinates).
+void Interpreter::motion(Step& step) {
+  ModalState& s = step.state;
+  const Word* nonmodal = step.nonmodal;
+  const bool machine = step.nonmodal_code == 530;
+  if (machine) {
+    if (s.motion != Motion::rapid && s.motion != Motion::linear)
+      fail(Code::unsupported_code, nonmodal->column, "G53 needs G0 or G1");
+    warn_once('G', 530, Code::machine_coordinates, nonmodal->column,
+              "G53 machine coordinates taken as program coordinates (offsets unknown)");
+  }
+  const Eigen::Vector3d end = target_of(step, s.absolute || machine);
+  const auto src = source(step.b, step.motion_column);
+  switch (s.motion) {
+    case Motion::none:
+      fail(Code::words_without_motion, step.first_axis_column(1),
+           "axis words without a motion mode (G0/G1/G2/G3)");
+    case Motion::rapid:
+      step.emit(program::StraightTraverse{s.position, end, src});
+      break;
+    case Motion::linear:
+      if (s.feed <= 0.0 || (s.feed_mode == program::FeedMode::inverse_time && !step.word('F')))
+        fail(Code::missing_feed, step.motion_column, "G1 with no feed rate (F) in effect");
+      step.emit_inverse_f([&] { return s.feed * (end - s.position).norm(); });
+      step.emit(program::StraightFeed{s.position, end, src});
+      break;
+    case Motion::arc_cw:
+    case Motion::arc_ccw:
+      arc(step, end);
+      break;
+  }
+  s.position = end;
+  s.moved = true;
+}
+
+// G2/G3 to `end`: the centre from R or from I, J, K; P full turns.
+void Interpreter::arc(Step& step, const Eigen::Vector3d& end) {
+  const ModalState& s = step.state;
+  const std::uint32_t column = step.motion_column;
+  if (s.feed <= 0.0 || (s.feed_mode == program::FeedMode::inverse_time && !step.word('F')))
+    fail(Code::missing_feed, column, "arc with no feed rate (F) in effect");
+  const bool cw = s.motion == Motion::arc_cw;
+  const Eigen::Vector3d centre = step.word('R') ? centre_from_radius(step, end, cw)
+                                                : centre_from_offsets(step, end);
+  int turns = 1;
+  if (const Word* p = step.word('P'); p && (dialect_.kind == DialectKind::rs274ngc ||
+                                            dialect_.kind == DialectKind::sinumerik)) {
+    if (p->value < 1 || !whole_number(p->value))
+      fail(Code::bad_word_value, p->column,
+           "P (turns) of an arc must be a whole number from 1 to 1e9");
+    turns = static_cast<int>(p->value);
+  }
+  const program::ArcFeed arc{s.position,           end, centre, s.plane, cw ? -turns : turns,
+                             source(step.b, column)};
+  step.emit_inverse_f([&] { return s.feed * program::arc_length(arc); });
+  step.emit(arc);
+}
+
+// R arc: the centre on the chord's bisector; R > 0 the short arc (centre
+// left of the chord for G3, right for G2), R < 0 the long one.
+Eigen::Vector3d Interpreter::centre_from_radius(const Step& step, const Eigen::Vector3d& end,
+                                                bool cw) const {
+  const ModalState& s = step.state;
+  const Word* r = step.word('R');
+  const auto ax = program::plane_axes(s.plane);
+  Eigen::Vector3d centre = s.position;
+  const double a0 = s.position[ax[0]], b0 = s.position[ax[1]];
+  const double a1 = end[ax[0]], b1 = end[ax[1]];
+  const double radius = length(*r, s.inches);
+  const double chord = std::hypot(a1 - a0, b1 - b0);
+  if (chord < 1e-9)
+    fail(Code::missing_arc_data, r->column,
+         "R arc with the same start and end point: a full circle needs I/J/K");
+  const double half = chord / 2.0;
+  const double abs_r = std::abs(radius);
+  if (abs_r < 1e-9) fail(Code::arc_zero_radius, r->column, "arc radius R0");
+  if (abs_r < half - kArcAbsoluteTolerance)
+    fail(Code::arc_r_too_small, r->column,
+         "R = " + std::to_string(abs_r) + " mm is smaller than half the chord (" +
+             std::to_string(half) + " mm)");
+  const double h = abs_r > half ? std::sqrt(abs_r * abs_r - half * half) : 0.0;
+  double side = cw ? -1.0 : 1.0;
+  if (radius < 0) side = -side;
+  const double ua = (a1 - a0) / chord, ub = (b1 - b0) / chord;
+  centre[ax[0]] = (a0 + a1) / 2.0 - side * ub * h;
+  centre[ax[1]] = (b0 + b1) / 2.0 + side * ua * h;
+  return centre;
+}
+
+// I, J, K arc: the centre's offsets from the start (G91.1) or its
+// coordinates (G90.1); the radii to start and end must agree.
+Eigen::Vector3d Interpreter::centre_from_offsets(const Step& step,
+                                                 const Eigen::Vector3d& end) const {
+  const ModalState& s = step.state;
+  const std::uint32_t column = step.motion_column;
+  const auto ax = program::plane_axes(s.plane);
+  const char letters[3] = {'I', 'J', 'K'};
+  const Word* off0 = step.word(letters[ax[0]]);
+  const Word* off1 = step.word(letters[ax[1]]);
+  Eigen::Vector3d centre = s.position;
+  const double a0 = s.position[ax[0]], b0 = s.position[ax[1]];
+  const double a1 = end[ax[0]], b1 = end[ax[1]];
+  if (!off0 && !off1)
+    fail(Code::missing_arc_data, column,
+         std::string("arc needs ") + letters[ax[0]] + " or " + letters[ax[1]] +
+             " (centre) or R (radius)");
+  if (off0)
+    centre[ax[0]] =
+        (s.arc_absolute || off0->absolute ? 0.0 : centre[ax[0]]) + length(*off0, s.inches);
+  if (off1)
+    centre[ax[1]] =
+        (s.arc_absolute || off1->absolute ? 0.0 : centre[ax[1]]) + length(*off1, s.inches);
+  const double r0 = std::hypot(a0 - centre[ax[0]], b0 - centre[ax[1]]);
+  const double r1 = std::hypot(a1 - centre[ax[0]], b1 - centre[ax[1]]);
+  if (r0 < 1e-9 || r1 < 1e-9)
+    fail(Code::arc_zero_radius, column, "arc with zero radius at start or end");
+  const double err = std::abs(r1 - r0);
+  if (err > kArcAbsoluteTolerance && err / r0 > kArcRelativeTolerance)
+    fail(Code::arc_radius_mismatch, column,
+         "radius to end " + std::to_string(r1) + " mm differs from radius to start " +
+             std::to_string(r0) + " mm");
+  return centre;
+}
+
+// Sinumerik: keywords passed through, and the drilling cycles (CYCLE8x
+// called once, or MCALL'd for every position that follows).
+void Interpreter::siemens_words(Step& step) {
+  const Block& b = step.b;
+  for (const auto& [name, column] : b.noted_keywords) {
+    int key = 0;
+    for (char ch : name) key = key * 31 + ch;
+    warn_once('K', key, Code::mode_code_passed, column,
+              name +
+                  " is a mode of the control that does not change the path vcpost reads; "
+                  "passed through unchanged");
+  }
+  const SiemensCycle& sc = b.siemens_cycle;
+  if (sc.kind == SiemensCycle::Kind::call) {
+    run_siemens_cycle(step.state, sc, step.events);
+  } else if (sc.kind == SiemensCycle::Kind::modal_call) {
+    mcall_next_ = sc;
+  } else if (sc.kind == SiemensCycle::Kind::modal_off) {
+    mcall_next_ = SiemensCycle{};
+  } else if (mcall_.kind == SiemensCycle::Kind::modal_call && step.has_axis) {
+    run_siemens_cycle(step.state, mcall_, step.events);
+  }
+}
+
+// Stops (M0, M1), program ends (M2, M30; M99 in a main program) come last.
+// True for M99 in a subprogram: the caller returns once the block is committed.
+bool Interpreter::stop(Step& step) {
+  const Word* m = step.m(Group::stopping);
+  if (!m) return false;
+  const int c = code_of(*m);
+  const auto src = source(step.b, m->column);
   bool end_program = false;
-  if (const Word* m = M(Group::stopping)) {
-    const int c = Mc(Group::stopping);
-    if (c == 0 || c == 10) {
-      emit(program::ProgramStop{c == 10, source(b, m->column)});
-    } else if (c == 20 || c == 300) {
-      end_program = true;
-    } else if (c == 990) {
-      if (const Word* p = W('P'))
-        fail(Code::unsupported_flow, p->column,
-             "M99 P (return to a sequence number) is a jump vcpost does not follow");
-      if (frames_.empty()) {
-        end_program = true;  // M99 in a main program repeats it on the control: end here
-      } else {
-        restore.armed = false;
-        state_ = s;
-        if (origins) origins_ = *origins;
-        return_from_sub();
-        return;
-      }
-    }
+  if (c == 0 || c == 10) {
+    step.emit(program::ProgramStop{c == 10, src});
+  } else if (c == 20 || c == 300) {
+    end_program = true;
+  } else if (c == 990) {
+    if (const Word* p = step.word('P'))
+      fail(Code::unsupported_flow, p->column,
+           "M99 P (return to a sequence number) is a jump vcpost does not follow");
+    if (!frames_.empty()) return true;
+    end_program = true;  // M99 in a main program repeats it on the control: end here
   }
   if (end_program) {
-    const auto src = source(b, M(Group::stopping)->column);
-    emit(program::SpindleOff{src});
-    emit(program::SetFeedRate{0.0, program::FeedMode::per_minute, src});
-    emit(program::ProgramEnd{src});
+    step.emit(program::SpindleOff{src});
+    step.emit(program::SetFeedRate{0.0, program::FeedMode::per_minute, src});
+    step.emit(program::ProgramEnd{src});
     ended_ = true;
   }
-  restore.armed = false;
-  state_ = s;
-  if (origins) origins_ = *origins;
-  if (siemens && b.siemens_cycle.kind != SiemensCycle::Kind::none &&
-      b.siemens_cycle.kind != SiemensCycle::Kind::call)
-    mcall_ = mcall_next_;
-  if (const Word* m = M(Group::subprogram)) {
-    const Word* p = W('P');
-    if (!p) fail(Code::missing_word, m->column, "M98 needs P (program number)");
-    const Word* l = W('L');
-    long number = std::lround(p->value);
-    long count = l ? std::lround(l->value) : 1;
-    // Fanuc's short form M98 Prrrrnnnn: repetitions rrrr, program nnnn.
-    if (!l && dialect_.kind == DialectKind::fanuc && number > 9999) {
-      count = number / 10000;
-      number %= 10000;
-    }
-    block_.control.column = m->column;
-    char name[32];
-    std::snprintf(name, sizeof name, "%ld", number);
-    call(name, {}, true, count < 1 ? 1 : count);
+  return false;
+}
+
+// M98 P (L count; Fanuc's short form M98 Prrrrnnnn: rrrr repetitions of
+// program nnnn), after the block is committed.
+void Interpreter::call_subprogram(const Step& step) {
+  const Word* m = step.m(Group::subprogram);
+  const Word* p = step.word('P');
+  if (!p) fail(Code::missing_word, m->column, "M98 needs P (program number)");
+  const Word* l = step.word('L');
+  long number = std::lround(p->value);
+  long count = l ? std::lround(l->value) : 1;
+  if (!l && dialect_.kind == DialectKind::fanuc && number > 9999) {
+    count = number / 10000;
+    number %= 10000;
   }
+  block_.control.column = m->column;
+  char name[32];
+  std::snprintf(name, sizeof name, "%ld", number);
+  call(name, {}, true, count < 1 ? 1 : count);
 }
 
 }  // namespace vcpost::gcode

@@ -29,6 +29,8 @@
 
 namespace vcpost::gcode {
 
+struct CycleCall;
+
 enum class Motion { none, rapid, linear, arc_cw, arc_ccw };
 
 // The modal state between blocks (all lengths mm).
@@ -140,8 +142,52 @@ class Interpreter {
   bool return_from_sub();
   void commit_assignments();
 
+  // The block's words, family by family (interpreter.cpp, in the order
+  // execute() applies them).
+  struct Step;
   void execute(std::vector<program::Event>& events);
-  double length(const Word& w) const;
+  void index_words(Step& step);
+  bool index_m_word(Step& step, const Word& w, std::uint8_t slot);
+  void classify_words(Step& step);
+  void check_unused_words(const Step& step);
+  void emit_message(Step& step);
+  void set_units(Step& step);
+  void set_feed_mode(Step& step);
+  void set_feed(Step& step);
+  void set_spindle_speed(Step& step);
+  void select_tool(Step& step);
+  void change_tool(Step& step);
+  void spindle(Step& step);
+  void coolant(Step& step);
+  void dwell(Step& step);
+  void set_plane(Step& step);
+  void cutter_compensation(Step& step);
+  void tool_length(Step& step);
+  static bool changes_origins(const Step& step);
+  void set_origins(Step& step);
+  void set_origin_g10(Step& step);
+  void set_origin_g92_g52(Step& step);
+  void set_distance_modes(Step& step);
+  void take_axis_words(Step& step);
+  void set_motion_mode(Step& step);
+  void move(Step& step);
+  void reference_return(Step& step);
+  void macro_call(Step& step);
+  void canned_cycle(Step& step);
+  int cycle_repeats(const Step& step) const;
+  void place_cycle(const Step& step, CycleCall& call, double r_word, double z_word) const;
+  void motion(Step& step);
+  void arc(Step& step, const Eigen::Vector3d& end);
+  Eigen::Vector3d centre_from_radius(const Step& step, const Eigen::Vector3d& end,
+                                     bool cw) const;
+  Eigen::Vector3d centre_from_offsets(const Step& step, const Eigen::Vector3d& end) const;
+  void siemens_words(Step& step);
+  bool stop(Step& step);
+  void call_subprogram(const Step& step);
+  Eigen::Vector3d target_of(const Step& step, bool absolute) const;
+  // A length word in mm: `inches` are the block's units (G20/G21 of the
+  // block itself included).
+  double length(const Word& w, bool inches) const;
   void run_siemens_cycle(ModalState& s, const SiemensCycle& cycle,
                          std::vector<program::Event>& events);
   // A warning given once per program for `key` (a code, x10, with its letter).

@@ -143,7 +143,7 @@ bool Interpreter::next(std::vector<Event>& events) {
     }
     if (block_.deleted) return true;
     if (block_.control.kind != ControlKind::none) {
-      handle_control(events);
+      handle_control();
       return true;
     }
     commit_assignments();
@@ -236,106 +236,40 @@ bool Interpreter::return_from_sub() {
   return true;
 }
 
-bool Interpreter::handle_control(std::vector<Event>& events) {
+// A control line (o-words, Fanuc IF/WHILE/GOTO, program numbers): it moves
+// the reading position and keeps the call and flow stacks.
+void Interpreter::handle_control() {
   const Control& c = block_.control;
-  const bool fanuc = c.name.empty();  // Fanuc IF/ELSE/ENDIF have no name
-  auto top_is = [&](ControlKind kind) {
-    return !flow_.empty() && flow_.back().kind == kind && flow_.back().name == c.name;
-  };
-  auto advance_past_current = [&] {
-    Line l;
-    if (line_at(pos_, line_ + 1, l)) {
-      pos_ = l.offset + l.text.size() + l.eol.size();
-      line_ = l.number;
-      ++lines_read_;
-    }
-  };
   switch (c.kind) {
+    case ControlKind::none:
     case ControlKind::program_number:
-      return true;
-    case ControlKind::sub: {
+      return;
+    case ControlKind::sub:
+      // A definition met in the flow of the program is skipped to its end.
       subs_.try_emplace("o" + c.name, pos_, line_ + 1);
       skip_to(c.name, {ControlKind::endsub}, false);
-      advance_past_current();
-      return true;
-    }
+      skip_current_line();
+      return;
     case ControlKind::endsub:
     case ControlKind::return_:
       if (!return_from_sub())
         fail(Code::unmatched_control, c.column, "return from a subroutine that was not called");
-      return true;
+      return;
     case ControlKind::call:
       call(c.name, c.arguments, false, 1);
-      return true;
-    case ControlKind::if_: {
-      const bool taken = c.condition.value_or(0.0) != 0.0;
-      flow_.push_back(Flow{ControlKind::if_, c.name, 0, 0, 0, taken});
-      if (!taken)
-        skip_to(c.name, {ControlKind::elseif, ControlKind::else_, ControlKind::endif}, fanuc);
-      return true;
-    }
+      return;
+    case ControlKind::if_:
     case ControlKind::elseif:
-    case ControlKind::else_: {
-      if (!top_is(ControlKind::if_)) fail(Code::unmatched_control, c.column, "else without its if");
-      Flow& f = flow_.back();
-      const bool take =
-          !f.taken && (c.kind == ControlKind::else_ || c.condition.value_or(0.0) != 0.0);
-      if (take) {
-        f.taken = true;
-      } else if (f.taken) {
-        skip_to(c.name, {ControlKind::endif}, fanuc);
-      } else {
-        skip_to(c.name, {ControlKind::elseif, ControlKind::else_, ControlKind::endif}, fanuc);
-      }
-      return true;
-    }
+    case ControlKind::else_:
     case ControlKind::endif:
-      if (!top_is(ControlKind::if_))
-        fail(Code::unmatched_control, c.column, "endif without its if");
-      flow_.pop_back();
-      return true;
-    case ControlKind::while_: {
-      if (c.condition.value_or(0.0) != 0.0) {
-        flow_.push_back(Flow{ControlKind::while_, c.name, block_.offset, block_.line, 0, true});
-      } else {
-        skip_to(c.name, {ControlKind::endwhile}, false);
-        advance_past_current();
-      }
-      return true;
-    }
-    case ControlKind::endwhile: {
-      if (!top_is(ControlKind::while_))
-        fail(Code::unmatched_control, c.column, "endwhile without its while");
-      if (++loop_iterations_ > limits_.max_loop_iterations)
-        fail(Code::loop_limit, c.column, "loop runs more than the iteration limit");
-      const Flow f = flow_.back();
-      flow_.pop_back();
-      jump(f.start_offset, f.start_line);
-      return true;
-    }
-    case ControlKind::repeat: {
-      const long count = std::lround(c.condition.value_or(0.0));
-      if (count >= 1) {
-        flow_.push_back(Flow{ControlKind::repeat, c.name, pos_, line_ + 1, count, true});
-      } else {
-        skip_to(c.name, {ControlKind::endrepeat}, false);
-        advance_past_current();
-      }
-      return true;
-    }
-    case ControlKind::endrepeat: {
-      if (!top_is(ControlKind::repeat))
-        fail(Code::unmatched_control, c.column, "endrepeat without its repeat");
-      if (++loop_iterations_ > limits_.max_loop_iterations)
-        fail(Code::loop_limit, c.column, "loop runs more than the iteration limit");
-      Flow& f = flow_.back();
-      if (--f.remaining > 0) {
-        jump(f.start_offset, f.start_line);
-      } else {
-        flow_.pop_back();
-      }
-      return true;
-    }
+      branch(c);
+      return;
+    case ControlKind::while_:
+    case ControlKind::endwhile:
+    case ControlKind::repeat:
+    case ControlKind::endrepeat:
+      loop(c);
+      return;
     case ControlKind::do_:
     case ControlKind::break_:
     case ControlKind::continue_:
@@ -347,12 +281,100 @@ bool Interpreter::handle_control(std::vector<Event>& events) {
              c.name + " jumps within the program; vcpost does not follow macro jumps and loops");
       // An IF [..] GOTO not taken: nothing happens, but the block's other
       // words (none are allowed) do not run.
-      return true;
-    case ControlKind::none:
-      break;
+      return;
   }
-  (void)events;
-  return true;
+}
+
+// The innermost open if/while/repeat is of `kind` and has this line's name.
+bool Interpreter::flow_top_is(ControlKind kind) const {
+  return !flow_.empty() && flow_.back().kind == kind && flow_.back().name == block_.control.name;
+}
+
+// Steps over the line skip_to() stopped at (its end line).
+void Interpreter::skip_current_line() {
+  Line l;
+  if (line_at(pos_, line_ + 1, l)) {
+    pos_ = l.offset + l.text.size() + l.eol.size();
+    line_ = l.number;
+    ++lines_read_;
+  }
+}
+
+// if / elseif / else / endif: the first branch whose condition holds runs,
+// the others are skipped (Fanuc's IF/ELSE/ENDIF, without names, nest).
+void Interpreter::branch(const Control& c) {
+  const bool fanuc = c.name.empty();
+  if (c.kind == ControlKind::if_) {
+    const bool taken = c.condition.value_or(0.0) != 0.0;
+    flow_.push_back(Flow{ControlKind::if_, c.name, 0, 0, 0, taken});
+    if (!taken)
+      skip_to(c.name, {ControlKind::elseif, ControlKind::else_, ControlKind::endif}, fanuc);
+    return;
+  }
+  if (c.kind == ControlKind::endif) {
+    if (!flow_top_is(ControlKind::if_))
+      fail(Code::unmatched_control, c.column, "endif without its if");
+    flow_.pop_back();
+    return;
+  }
+  if (!flow_top_is(ControlKind::if_)) fail(Code::unmatched_control, c.column, "else without its if");
+  Flow& f = flow_.back();
+  const bool take = !f.taken && (c.kind == ControlKind::else_ || c.condition.value_or(0.0) != 0.0);
+  if (take) {
+    f.taken = true;
+  } else if (f.taken) {
+    skip_to(c.name, {ControlKind::endif}, fanuc);
+  } else {
+    skip_to(c.name, {ControlKind::elseif, ControlKind::else_, ControlKind::endif}, fanuc);
+  }
+}
+
+// while / endwhile and repeat / endrepeat, each pass counted against the
+// iteration limit.
+void Interpreter::loop(const Control& c) {
+  switch (c.kind) {
+    case ControlKind::while_:
+      if (c.condition.value_or(0.0) != 0.0) {
+        flow_.push_back(Flow{ControlKind::while_, c.name, block_.offset, block_.line, 0, true});
+      } else {
+        skip_to(c.name, {ControlKind::endwhile}, false);
+        skip_current_line();
+      }
+      return;
+    case ControlKind::repeat: {
+      const long count = std::lround(c.condition.value_or(0.0));
+      if (count >= 1) {
+        flow_.push_back(Flow{ControlKind::repeat, c.name, pos_, line_ + 1, count, true});
+      } else {
+        skip_to(c.name, {ControlKind::endrepeat}, false);
+        skip_current_line();
+      }
+      return;
+    }
+    case ControlKind::endwhile: {
+      if (!flow_top_is(ControlKind::while_))
+        fail(Code::unmatched_control, c.column, "endwhile without its while");
+      if (++loop_iterations_ > limits_.max_loop_iterations)
+        fail(Code::loop_limit, c.column, "loop runs more than the iteration limit");
+      const Flow f = flow_.back();
+      flow_.pop_back();
+      jump(f.start_offset, f.start_line);
+      return;
+    }
+    default: {  // endrepeat
+      if (!flow_top_is(ControlKind::repeat))
+        fail(Code::unmatched_control, c.column, "endrepeat without its repeat");
+      if (++loop_iterations_ > limits_.max_loop_iterations)
+        fail(Code::loop_limit, c.column, "loop runs more than the iteration limit");
+      Flow& f = flow_.back();
+      if (--f.remaining > 0) {
+        jump(f.start_offset, f.start_line);
+      } else {
+        flow_.pop_back();
+      }
+      return;
+    }
+  }
 }
 
 double Interpreter::length(const Word& w, bool inches) const {

@@ -134,7 +134,11 @@ class Interpreter {
   [[noreturn]] void fail(Code code, std::uint32_t column, std::string message) const;
   void warn(Code code, std::uint32_t column, std::string message);
 
-  bool handle_control(std::vector<program::Event>& events);
+  void handle_control();
+  bool flow_top_is(ControlKind kind) const;
+  void skip_current_line();
+  void branch(const Control& c);
+  void loop(const Control& c);
   void skip_to(const std::string& name, std::initializer_list<ControlKind> stops,
                bool fanuc_nesting);
   std::pair<std::uint64_t, std::uint32_t> find_sub(const std::string& name, bool fanuc);

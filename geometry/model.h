@@ -15,6 +15,11 @@
 
 namespace vcpost::geometry {
 
+// The farthest a point of the part, model or toolpath, may lie from the
+// origin, mm: the part must fit a machine. Beyond it the input is refused
+// before any effort that grows with its size (meshing, flattening curves).
+inline constexpr double kMaxReachMm = 1e5;
+
 // Where on its face the closest point lies: inside the face, on one of its
 // boundary edges, or on a vertex (an end of an edge).
 enum class ContactType { face, edge, vertex };

@@ -57,9 +57,10 @@ class ModelError : public vcpost::Error {
   ModelErrorCode code_;
 };
 
-// The farthest a model's point may lie from the origin, mm: the part must
-// fit a machine. Beyond it the model is refused (E4107) before meshing.
-inline constexpr double kMaxModelReachMm = 1e5;
+// The farthest a model's point may lie from the origin, mm (the part's
+// reach, geometry/model.h). Beyond it the model is refused (E4107) before
+// meshing.
+inline constexpr double kMaxModelReachMm = geometry::kMaxReachMm;
 
 struct BrepOptions {
   // Largest chord deviation of the tessellation that feeds the BVH, mm;

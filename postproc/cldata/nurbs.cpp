@@ -4,6 +4,8 @@
 #include <cmath>
 #include <optional>
 
+#include "geometry/model.h"
+
 namespace vcpost::cldata {
 
 namespace {
@@ -80,8 +82,8 @@ std::optional<BSpline> nx_nurbs(const Eigen::Vector3d& start, std::span<const do
   const long count = 1 + static_cast<long>(cntrl.size());
   const long degree = count - spans;
   if (spans < 1 || degree < 1 || degree > 9) {
-    error = std::to_string(span_ends.size()) + " KNOT values and " +
-            std::to_string(cntrl.size()) + " CNTRL points do not make a B-spline of degree 1 to 9";
+    error = std::to_string(span_ends.size()) + " KNOT values and " + std::to_string(cntrl.size()) +
+            " CNTRL points do not make a B-spline of degree 1 to 9";
     return std::nullopt;
   }
   double previous = 0;
@@ -99,6 +101,14 @@ std::optional<BSpline> nx_nurbs(const Eigen::Vector3d& start, std::span<const do
   for (const Eigen::Vector4d& h : cntrl) {
     if (!(h[3] > 0)) {
       error = "CNTRL weight must be positive";
+      return std::nullopt;
+    }
+    // A point kilometres away pulls the curve out and back: millions of
+    // lines within the chord tolerance, for a path no machine can run.
+    if (!(project(h).cwiseAbs().maxCoeff() <= geometry::kMaxReachMm)) {
+      error =
+          "a CNTRL point lies beyond 100000 mm (100 m) from the origin; the path must fit "
+          "a machine";
       return std::nullopt;
     }
     c.control.push_back(h);

@@ -25,7 +25,7 @@ struct BSpline {
 // usually 1). The degree follows from the counts: 1 + cntrl - spans (3 in
 // every NX file seen). Returns an empty optional and sets `error` when the
 // data do not make a valid curve (degree < 1 or > 9, knots not increasing,
-// weights <= 0).
+// weights <= 0, a CNTRL point beyond geometry::kMaxReachMm on an axis).
 std::optional<BSpline> nx_nurbs(const Eigen::Vector3d& start, std::span<const double> span_ends,
                                 std::span<const Eigen::Vector4d> cntrl, std::string& error);
 

@@ -383,6 +383,31 @@ TEST(ClReader, NurbsBecomesLinesWithinTheTolerance) {
   EXPECT_GT(worst, 0.0001);  // not wastefully fine
 }
 
+TEST(ClReader, NurbsPointBeyondTheMachineReachIsRefused) {
+  // cldata_fuzz found a NURBS pulled out to Y = 14,843,522 mm and back: it
+  // flattened into 321,000 lines at 1 um (0.5 s here, over 5 s under the
+  // sanitizers). A CNTRL point beyond 100 m on an axis is refused, as a
+  // model's point is (E4107); at 100 m it is read.
+  const auto nurbs = [](const std::string& y) {
+    return "GOTO/0,0,0\nNURBS/\nKNOT/1\nCNTRL/0," + y + ",0\nCNTRL/10," + y +
+           ",0\nCNTRL/10,0,0\nGOTO/20,0,0\nFINI\n";
+  };
+  std::string message;
+  try {
+    read_events(nurbs("1.5E7"));
+  } catch (const ClError& e) {
+    EXPECT_EQ(e.code(), ClCode::bad_nurbs);
+    message = e.what();
+  }
+  EXPECT_NE(message.find(":2:1:"), std::string::npos) << message;
+  EXPECT_NE(message.find("a CNTRL point lies beyond 100000 mm (100 m) from the origin"),
+            std::string::npos)
+      << message;
+  EXPECT_EQ(code_of(nurbs("-100000.001")), ClCode::bad_nurbs);
+  const auto lines = only<StraightFeed>(read_events(nurbs("100000")));
+  EXPECT_TRUE(lines.back().end.isApprox(Eigen::Vector3d(20, 0, 0)));
+}
+
 TEST(ClReader, MessagesToolsCoolantCompensationDelay) {
   const auto events = read_events(
       "PARTNO/1\nPPRINT hello\nLOADTL/8\nLOAD/TOOL,14\nSELECT/TOOL,13\nCOOLNT/FLOOD\n"

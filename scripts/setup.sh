@@ -6,7 +6,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config
-  libeigen3-dev libcli11-dev libspdlog-dev libfmt-dev
+  libeigen3-dev libcli11-dev
   libtomlplusplus-dev nlohmann-json3-dev libtbb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libocct-data-exchange-dev libocct-modeling-algorithms-dev

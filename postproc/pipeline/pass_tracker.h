@@ -44,7 +44,7 @@ struct NeighbourPass {
 // runs near a step are listed once for the next several steps (while the
 // list provably covers their reach, bounded by how far the feed turned and
 // CC moved), so most steps do not walk the grid at all.
-// Memory: O(memory), about 100-250 bytes a point.
+// Memory: O(`memory`, the points kept), about 100-250 bytes a point.
 class PassTracker {
  public:
   // search_radius: farthest neighbour considered, mm (a pass farther than

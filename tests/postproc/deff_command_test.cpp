@@ -461,9 +461,6 @@ TEST(DeffCommand, BatchToolColumnsSelectBullNoseAndFlat) {
             "flat,,10,0.3,5,0,0,1,1,0,0,left\n"
             ",,10,0.3,5,0,0,1,1,0,0,left\n");
   const Outcome run = run_deff({"--batch", "tools.csv"}, dir.path());
-  if (run.exit_code == 3 && run.err.find("not available yet") != std::string::npos) {
-    GTEST_SKIP() << "bull-nose/flat engagement not in the engine yet: " << run.err;
-  }
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const auto rows = read_csv(run.out);
   ASSERT_EQ(rows.size(), 3u);

@@ -113,7 +113,7 @@ int main(int argc, char** argv) {
 
   auto* path_cmd = app.add_subcommand("path", "write one program (G-code, APT CL, truth CSV)");
   std::string part_name, pattern = "raster", gcode, cl, truth, title;
-  double diameter = 0, angle = 0, ae = 1, step = 1, rpm = 4000, feed = 800;
+  double diameter = 0, angle = 0, ae = 1, step = 1, rpm = 4000, feed = 800, chord = 0;
   std::uint64_t points = 0;
   int decimals = 6;
   std::vector<double> window;
@@ -127,6 +127,11 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   path_cmd->add_option("--step", step, "largest point spacing along a pass (as --ae)")
       ->check(CLI::PositiveNumber);
+  path_cmd
+      ->add_option("--chord-tolerance", chord,
+                   "add points until every straight move is within this of the ball-centre "
+                   "path, mm (samples/: 0.005; default 0: the --step grid alone)")
+      ->check(CLI::NonNegativeNumber);
   path_cmd->add_option("--window", window, "x0,y0,x1,y1 (raster: ball-centre xy; iso: u,v)")
       ->expected(4)
       ->delimiter(',');
@@ -179,6 +184,7 @@ int main(int argc, char** argv) {
       spec.stepover = ae;
       spec.step = step;
       spec.zigzag = true;
+      spec.chord_tolerance = chord;
       const bool raster = spec.pattern == Pattern::raster;
       spec.window = raster ? part.raster_window : part.iso_window;
       spec.window_radius = raster ? (radius ? radius : part.raster_radius) : std::nullopt;
@@ -197,6 +203,7 @@ int main(int argc, char** argv) {
       ProgramSpec program;
       program.title = title.empty() ? part.name + " " + pattern + " sample" : title;
       program.tool_diameter = 2 * spec.tool_radius;
+      program.safe_z = part.safe_z;
       program.spindle_rpm = rpm;
       program.feed = feed;
       program.decimals = decimals;

@@ -50,6 +50,7 @@ std::optional<Part> make_part(const std::string& name) {
     // (sin = 0.6: the ball centre's y goes to 0.6*(100 + 6) = 63.6 mm).
     p.surface = std::make_unique<SemiCylinder>(100, 40);
     p.tool_diameter = 12;
+    p.safe_z = 120;  // the top line is at z = 100
     p.raster_window = box(10, 0, 15, 63.6);
     p.iso_window = box(10, 0, 15, std::asin(0.6));
   } else if (name == "dome") {
@@ -72,6 +73,8 @@ std::vector<SampleProgram> sample_programs() {
     const auto p = make_part(part);
     SampleProgram s{part, stem, title, path, {}};
     s.path.tool_radius = p->tool_diameter / 2;
+    s.path.chord_tolerance = kSampleChordTolerance;
+    s.program.safe_z = p->safe_z;
     s.program.title = title;
     s.program.tool_diameter = p->tool_diameter;
     s.program.spindle_rpm = rpm;

@@ -20,6 +20,7 @@ struct Part {
   // truth, is the same whatever the cut.
   int step_faces_u = 1, step_faces_v = 1;
   double tool_diameter = 12;  // mm, the part's default ball
+  double safe_z = 50;         // mm, tip height of the approach and retract: above the part
   // Defaults of the windows (see PathSpec): the ball-centre xy box (and
   // disc) of the raster, the (u,v) box of the iso-parametric patterns.
   Eigen::AlignedBox2d raster_window;
@@ -33,6 +34,10 @@ struct Part {
 std::optional<Part> make_part(const std::string& name);
 // The parts of samples/ (without "patches").
 std::vector<std::string> part_names();
+
+// The chord tolerance of the programs of samples/, mm: half of vcpost's
+// default contact tolerance (0.01), so they post without a gouge or a lift.
+inline constexpr double kSampleChordTolerance = 0.005;
 
 // One program of samples/: which part, the path, the file stem.
 struct SampleProgram {

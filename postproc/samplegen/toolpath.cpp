@@ -1,5 +1,6 @@
 #include "postproc/samplegen/toolpath.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <initializer_list>
@@ -12,27 +13,44 @@ namespace {
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 
-// Calls visit(pass, pass_start, position) for every point of the pattern:
-// position = ball-centre xy (raster) or (u,v) (iso). Returns the count.
+// One pass of the pattern: the positions base + t*dir, t from t0 to t1 in
+// `segments` equal steps (from t1 down to t0 when `reverse`); a position is
+// the ball-centre xy (raster) or (u,v) (iso).
+struct Line {
+  int pass = 0;
+  Vector2d base, dir;
+  double t0 = 0, t1 = 0;
+  std::uint64_t segments = 1;
+  bool reverse = false;
+  Vector2d at(std::uint64_t i) const {  // the i-th nominal position, in path order
+    const std::uint64_t k = reverse ? segments - i : i;
+    return base + (t0 + (t1 - t0) * static_cast<double>(k) / static_cast<double>(segments)) * dir;
+  }
+  Vector2d along(double s) const {  // s in [0, segments]: between the nominal positions
+    const double k = reverse ? static_cast<double>(segments) - s : s;
+    return base + (t0 + (t1 - t0) * k / static_cast<double>(segments)) * dir;
+  }
+};
+
+// Calls visit(line) for every pass of the pattern, in order.
 template <typename Visit>
-std::uint64_t walk(const PathSpec& spec, Visit&& visit) {
+void walk(const PathSpec& spec, Visit&& visit) {
   if (!(spec.stepover > 0) || !(spec.step > 0)) {
     throw std::invalid_argument("toolpath: stepover and step must be positive");
   }
-  std::uint64_t count = 0;
   int pass = 0;
   auto emit_line = [&](const Vector2d& base, const Vector2d& dir, double t0, double t1) {
     const double length = t1 - t0;
     if (!(length > 1e-9)) return;
-    const auto segments =
-        static_cast<std::uint64_t>(std::max(1.0, std::ceil(length / spec.step - 1e-9)));
-    const bool reverse = spec.zigzag && pass % 2 == 1;
-    for (std::uint64_t i = 0; i <= segments; ++i) {
-      const std::uint64_t k = reverse ? segments - i : i;
-      const double t = t0 + length * static_cast<double>(k) / static_cast<double>(segments);
-      visit(pass, i == 0, Vector2d(base + t * dir));
-      ++count;
-    }
+    Line line;
+    line.pass = pass;
+    line.base = base;
+    line.dir = dir;
+    line.t0 = t0;
+    line.t1 = t1;
+    line.segments = static_cast<std::uint64_t>(std::max(1.0, std::ceil(length / spec.step - 1e-9)));
+    line.reverse = spec.zigzag && pass % 2 == 1;
+    visit(line);
     ++pass;
   };
   const Eigen::AlignedBox2d& w = spec.window;
@@ -82,8 +100,63 @@ std::uint64_t walk(const PathSpec& spec, Visit&& visit) {
       emit_line(base, dir, w.min()[along], w.max()[along]);
     }
   }
-  return count;
 }
+
+double distance_to_segment(const Vector3d& q, const Vector3d& a, const Vector3d& b) {
+  const Vector3d ab = b - a;
+  const double length2 = ab.squaredNorm();
+  const double t = length2 > 0 ? std::clamp((q - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+  return (a + t * ab - q).norm();
+}
+
+// A curve of ball-centre positions on the offset surface, s -> the contact's
+// (u,v) (`guess`: a nearby contact), and the refinement of its chords.
+using ContactAt = std::function<Vector2d(double s, const Vector2d& guess)>;
+
+struct Knot {
+  double s;
+  Vector2d uv;
+  Vector3d centre;
+};
+
+class ChordRefiner {
+ public:
+  ChordRefiner(const SampleSurface& surface, double r, double tolerance)
+      : surface_(surface), r_(r), tolerance_(tolerance) {}
+
+  Vector3d centre(const Vector2d& uv) const {
+    return surface_.point(uv) + r_ * surface_.normal(uv);
+  }
+
+  // Calls emit(uv) for the points strictly between a and b that keep every
+  // chord within the tolerance of the curve (checked at each chord's middle:
+  // the sagitta of a smooth curve); none when the tolerance is 0.
+  void refine(const ContactAt& contact, const Knot& a, const Knot& b,
+              const std::function<void(const Vector2d&)>& emit, int depth = 4) const {
+    if (!(tolerance_ > 0) || depth == 0) return;
+    const Vector3d middle = centre(contact((a.s + b.s) / 2, a.uv));
+    const double deviation = distance_to_segment(middle, a.centre, b.centre);
+    if (deviation <= tolerance_) return;
+    // The sagitta goes with the square of the chord: n equal parts cut it n^2 times.
+    const int n = std::clamp(static_cast<int>(std::ceil(std::sqrt(deviation / tolerance_))), 2, 64);
+    Knot previous = a;
+    for (int j = 1; j <= n; ++j) {
+      Knot next = b;
+      if (j < n) {
+        next.s = a.s + (b.s - a.s) * j / n;
+        next.uv = contact(next.s, previous.uv);
+        next.centre = centre(next.uv);
+      }
+      refine(contact, previous, next, emit, depth - 1);
+      if (j < n) emit(next.uv);
+      previous = next;
+    }
+  }
+
+ private:
+  const SampleSurface& surface_;
+  double r_, tolerance_;
+};
 
 // Concatenation without operator+ (GCC 12 warns falsely, -Wrestrict, on
 // "literal" + std::string).
@@ -114,24 +187,23 @@ double round_trip(double v, int decimals) {
 }
 
 std::uint64_t count_points(const PathSpec& spec) {
-  return walk(spec, [](int, bool, const Vector2d&) {});
+  std::uint64_t count = 0;
+  walk(spec, [&](const Line& line) { count += line.segments + 1; });
+  return count;
 }
 
 std::uint64_t generate(const SampleSurface& surface, const PathSpec& spec, int decimals,
                        const std::function<void(const PathPoint&)>& sink) {
   const double r = spec.tool_radius;
-  std::optional<Vector2d> previous;
+  const ChordRefiner refiner(surface, r, spec.chord_tolerance);
   PathPoint p;
-  return walk(spec, [&](int pass, bool start, const Vector2d& position) {
-    Vector2d uv;
-    if (spec.pattern == Pattern::raster) {
-      uv = surface.drop(position, r, previous.value_or(position));
-    } else {
-      uv = position;
-    }
-    const Vector3d centre = surface.point(uv) + r * surface.normal(uv);
+  bool started = false;
+  Knot last{};  // the last point emitted (s unused across passes)
+  auto emit = [&](int pass, bool start, bool link, const Vector2d& uv) {
+    const Vector3d centre = refiner.centre(uv);
     p.pass = pass;
     p.pass_start = start;
+    p.link = link;
     for (int k = 0; k < 3; ++k) p.tip[k] = round_trip(centre[k] - (k == 2 ? r : 0.0), decimals);
     p.center = p.tip + Vector3d(0, 0, r);
     p.uv = surface.closest(p.center, uv);
@@ -140,8 +212,45 @@ std::uint64_t generate(const SampleSurface& surface, const PathSpec& spec, int d
     p.distance_error = (p.center - p.cc).norm() - r;
     sink(p);
     ++p.index;
-    previous = uv;
+    last = {0, uv, centre};
+  };
+  walk(spec, [&](const Line& line) {
+    const ContactAt contact = [&](double s, const Vector2d& guess) -> Vector2d {
+      const Vector2d position = line.along(s);
+      return spec.pattern == Pattern::raster ? surface.drop(position, r, guess) : position;
+    };
+    const Vector2d first_guess = line.at(0);
+    Knot knot{0, contact(0, started ? last.uv : first_guess), Vector3d::Zero()};
+    knot.centre = refiner.centre(knot.uv);
+    bool start = true;
+    if (started) {
+      // The straight link from the previous pass, held on the offset surface:
+      // a raster's dropped from above the chord (its xy stays in the
+      // window), an iso path's the surface's nearest to the chord's points.
+      const Knot from = last;
+      const ContactAt link = [&](double s, const Vector2d& guess) -> Vector2d {
+        const Vector3d c = from.centre + s * (knot.centre - from.centre);
+        return spec.pattern == Pattern::raster ? surface.drop(c.head<2>(), r, guess)
+                                               : surface.closest(c, guess);
+      };
+      refiner.refine(link, {0, from.uv, from.centre}, {1, knot.uv, knot.centre},
+                     [&](const Vector2d& uv) {
+                       emit(line.pass, start, true, uv);
+                       start = false;
+                     });
+    }
+    emit(line.pass, start, false, knot.uv);
+    started = true;
+    for (std::uint64_t i = 1; i <= line.segments; ++i) {
+      Knot next{static_cast<double>(i), contact(static_cast<double>(i), knot.uv), Vector3d::Zero()};
+      next.centre = refiner.centre(next.uv);
+      refiner.refine(contact, knot, next,
+                     [&](const Vector2d& uv) { emit(line.pass, false, false, uv); });
+      emit(line.pass, false, false, next.uv);
+      knot = next;
+    }
   });
+  return p.index;
 }
 
 ProgramWriter::ProgramWriter(ProgramSpec spec, std::ostream* gcode, std::ostream* cl,
@@ -190,7 +299,6 @@ void ProgramWriter::add(const PathPoint& point) {
     cline("CUTTER/" + fixed(spec_.tool_diameter, dec) + "," + fixed(spec_.tool_diameter / 2, dec));
     cline("SPINDL/" + fixed(spec_.spindle_rpm, dec) + ",RPM,CLW");
     cline("FROM/" + x + "," + y + "," + safe);
-    cline("FEDRAT/" + fixed(spec_.feed, dec) + ",MMPM");
     if (truth_ != nullptr) {
       *truth_ << "point,pass,gcode_line,cl_line,tip_x,tip_y,tip_z,cc_x,cc_y,cc_z,n_x,n_y,n_z,"
                  "distance_error\n";
@@ -206,20 +314,27 @@ void ProgramWriter::add(const PathPoint& point) {
       last_[k] = words[k];
     }
   }
-  // Built by appending: GCC 12 warns falsely (-Wrestrict) on "literal" + string.
-  if (point.index == 0) {
-    std::string first("G1 ");
+  // The approach is a rapid straight down to the first point (the samples
+  // model the finished surface alone: a feed plunge would cut air), then
+  // every point a feed move. Built by appending: GCC 12 warns falsely
+  // (-Wrestrict) on "literal" + string.
+  if (point.index <= 1) {
+    std::string first(point.index == 0 ? "G0 " : "G1 ");
     if (block.empty()) {
       first.append(1, 'Z').append(z);
     } else {
       first.append(block);
     }
-    block = first.append(" F").append(fixed(spec_.feed, 0));
+    block = first;
+    if (point.index == 1) block.append(" F").append(fixed(spec_.feed, 0));
   } else if (block.empty()) {
     block.assign(1, 'X').append(x);  // the same point again: still one block per point
   }
   gline(block);
+  if (point.index == 0) cline("RAPID");
   cline("GOTO/" + x + "," + y + "," + z);
+  const std::uint64_t gcode_line = gcode_ ? gcode_line_ : 0, cl_line = cl_ ? cl_line_ : 0;
+  if (point.index == 0) cline("FEDRAT/" + fixed(spec_.feed, dec) + ",MMPM");
   last_tip_ = point.tip;
   if (truth_ != nullptr) {
     char buf[512];
@@ -232,9 +347,9 @@ void ProgramWriter::add(const PathPoint& point) {
     *o++ = ',';
     o = std::to_chars(o, buf + 80, point.pass).ptr;
     *o++ = ',';
-    o = std::to_chars(o, buf + 120, gcode_ ? gcode_line_ : 0).ptr;
+    o = std::to_chars(o, buf + 120, gcode_line).ptr;
     *o++ = ',';
-    o = std::to_chars(o, buf + 160, cl_ ? cl_line_ : 0).ptr;
+    o = std::to_chars(o, buf + 160, cl_line).ptr;
     *o++ = ',';
     for (int k = 0; k < 3; ++k) num(point.tip[k], dec);
     for (int k = 0; k < 3; ++k) num(point.cc[k], 10);

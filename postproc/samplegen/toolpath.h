@@ -44,13 +44,21 @@ struct PathSpec {
   Eigen::AlignedBox2d window{Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 1)};
   std::optional<double> window_radius;
   bool zigzag = true;  // alternate the direction of successive passes
+  // Largest distance, mm, of a straight move between two written points
+  // from the ball-centre path it stands for (on the offset surface), within
+  // a pass and on the link between passes: points are added between the
+  // nominal ones until every chord's sagitta is within it (a reader that
+  // samples the straight moves sees the tool off the surface by at most
+  // this much). 0: the nominal points alone, links straight.
+  double chord_tolerance = 0;
 };
 
 // One point of the path, as written and with its truth.
 struct PathPoint {
   std::uint64_t index = 0;  // 0-based, in path order
   int pass = 0;             // 0-based pass number
-  bool pass_start = false;
+  bool pass_start = false;  // the pass's first point (its link's, if it has one)
+  bool link = false;        // on the link from the previous pass, not on this pass's line
   Eigen::Vector3d tip = Eigen::Vector3d::Zero();      // CL point as written (rounded)
   Eigen::Vector3d center = Eigen::Vector3d::Zero();   // ball centre tip + R*z
   Eigen::Vector3d cc = Eigen::Vector3d::Zero();       // exact closest surface point to center
@@ -59,7 +67,8 @@ struct PathPoint {
   double distance_error = 0;                          // |center - cc| - R
 };
 
-// The number of points `spec` will give (without computing them).
+// The number of nominal points `spec` gives (without computing them): all
+// of them when its chord_tolerance is 0, else before refinement.
 std::uint64_t count_points(const PathSpec& spec);
 
 // Calls sink for every point in order; returns the number of points.
@@ -78,7 +87,7 @@ struct ProgramSpec {
   int tool_number = 1;
   double spindle_rpm = 4000;
   double feed = 800;   // mm/min
-  double safe_z = 50;  // mm, tip height of the approach and retract
+  double safe_z = 50;  // mm, tip height of the rapid approach and retract
   int decimals = 6;
 };
 

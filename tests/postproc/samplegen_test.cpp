@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 #include "geometry/mesh/stl_reader.h"
@@ -179,7 +180,7 @@ Written write(const SampleProgram& s) {
   });
   writer.finish();
   EXPECT_EQ(n, w.points.size());
-  EXPECT_EQ(count_points(s.path), n);
+  EXPECT_LE(count_points(s.path), n);  // the nominal grid, before chord refinement
   w.gcode = g.str();
   w.cl = c.str();
   w.truth = t.str();
@@ -258,6 +259,7 @@ TEST(SampleGenerator, RasterPointsAreOnTheirLines) {
     for (const auto& p : w.points) {
       const Vector2d xy = p.tip.head<2>();
       EXPECT_TRUE(s.path.window.exteriorDistance(xy) < 1e-6);
+      if (p.link) continue;  // between two lines
       if (p.index == 0) first_offset = n.dot(xy);
       // Line offsets are multiples of ae from the first (to the 6-decimal rounding).
       const double k = (n.dot(xy) - first_offset) / s.path.stepover;
@@ -281,7 +283,13 @@ TEST(SampleGenerator, GcodeReadsBackAsTheTruthPoints) {
       std::size_t k = 0;
       bool spindle = false, tool = false, end = false;
       for (const auto& e : events) {
-        if (const auto* f = std::get_if<program::StraightFeed>(&e)) {
+        // The approach: a rapid straight down to point 0.
+        if (const auto* r = std::get_if<program::StraightTraverse>(&e);
+            r && k == 0 && r->source.line == rows[0].gcode_line) {
+          EXPECT_EQ(r->end, w.points[0].tip);
+          ++k;
+        } else if (const auto* f = std::get_if<program::StraightFeed>(&e)) {
+          ASSERT_GT(k, 0u) << "a feed move before the approach";
           ASSERT_LT(k, rows.size());
           EXPECT_EQ(f->end, w.points[k].tip) << "point " << k;  // the same decimal, the same double
           EXPECT_EQ(f->source.line, rows[k].gcode_line);
@@ -312,7 +320,12 @@ TEST(SampleGenerator, ClReadsBackAsTheTruthPoints) {
     std::size_t k = 0;
     bool end = false;
     while (const auto e = reader.next()) {
-      if (const auto* f = std::get_if<program::StraightFeed>(&*e)) {
+      if (const auto* r = std::get_if<program::StraightTraverse>(&*e);
+          r && k == 0 && r->source.line == rows[0].cl_line) {
+        EXPECT_EQ(r->end, w.points[0].tip);  // the approach: RAPID, GOTO point 0
+        ++k;
+      } else if (const auto* f = std::get_if<program::StraightFeed>(&*e)) {
+        ASSERT_GT(k, 0u) << "a feed move before the approach";
         ASSERT_LT(k, rows.size());
         EXPECT_EQ(f->end, w.points[k].tip) << "point " << k;
         EXPECT_EQ(f->source.line, rows[k].cl_line);
@@ -328,6 +341,82 @@ TEST(SampleGenerator, ClReadsBackAsTheTruthPoints) {
     ASSERT_TRUE(reader.cutters()[0].tool.has_value());
     EXPECT_EQ(reader.cutters()[0].diameter(), s.program.tool_diameter);
   }
+}
+
+// Signed distance of a ball centre from the part's offset surface (the
+// centres of a ball of radius r resting on it), mm: closed forms for the
+// cylinder and the dome, the generator's Newton foot point for the mould.
+double offset_distance(const Part& part, const Vector3d& c, double r, const Vector2d& guess) {
+  if (part.name == "cylinder") return std::hypot(c.y(), c.z()) - (100 + r);
+  if (part.name == "dome") return c.norm() - (40 + r);
+  return (c - part.surface->point(part.surface->closest(c, guess))).norm() - r;
+}
+
+// Every straight move of a sample program (the feed moves between
+// successive points, within and between passes) stays within the chord
+// tolerance of the offset surface (checked at 32 points along each), so a
+// reader sampling the moves sees neither a gouge nor a lift beyond it.
+TEST(SampleGenerator, SampleMovesStayWithinTheChordTolerance) {
+  for (const auto& s : sample_programs()) {
+    SCOPED_TRACE(s.stem);
+    EXPECT_EQ(s.path.chord_tolerance, kSampleChordTolerance);
+    const auto part = make_part(s.part);
+    const Written w = write(s);
+    const double r = s.path.tool_radius;
+    double worst = 0;
+    for (std::size_t k = 1; k < w.points.size(); ++k) {
+      const PathPoint& a = w.points[k - 1];
+      const PathPoint& b = w.points[k];
+      for (int j = 1; j < 32; ++j) {
+        const Vector3d c = a.center + (b.center - a.center) * (j / 32.0);
+        worst = std::max(worst, std::abs(offset_distance(*part, c, r, a.uv)));
+      }
+    }
+    // The rounding of the written points to 6 decimals moves C by < 1e-6.
+    EXPECT_LE(worst, kSampleChordTolerance + 1e-6);
+  }
+}
+
+// Without a chord tolerance the path is the nominal grid (count_points);
+// with one, points are added until the chords are within it: on the
+// dome's lowest ring (74 deg), points 7.5 deg apart are joined by chords
+// of half-length h = 45 sin 74 deg sin 3.75 deg whose middle is
+// sqrt(45^2 - h^2) from the centre, 0.089 mm inside the 45 mm sphere of
+// the ball centres; refined to 0.005 mm.
+TEST(SampleGenerator, ChordToleranceRefinesTheNominalGrid) {
+  const auto part = make_part("dome");
+  PathSpec spec;
+  spec.pattern = Pattern::iso_u;
+  spec.tool_radius = 5;
+  spec.window = part->iso_window;
+  spec.stepover = 4 * std::numbers::pi / 180;
+  spec.step = 7.5 * std::numbers::pi / 180;
+  spec.zigzag = false;
+  auto worst_chord = [&](std::uint64_t& count) {
+    std::optional<PathPoint> last;
+    double worst = 0;
+    count = generate(*part->surface, spec, 6, [&](const PathPoint& p) {
+      if (last) {
+        for (int j = 1; j < 32; ++j) {
+          const Vector3d c = last->center + (p.center - last->center) * (j / 32.0);
+          worst = std::max(worst, std::abs(c.norm() - 45));
+        }
+      }
+      last = p;
+    });
+    return worst;
+  };
+  std::uint64_t nominal = 0, refined = 0;
+  const double coarse = worst_chord(nominal);
+  EXPECT_EQ(nominal, count_points(spec));
+  const double h =
+      45 * std::sin(74 * std::numbers::pi / 180) * std::sin(3.75 * std::numbers::pi / 180);
+  EXPECT_NEAR(coarse, 45 - std::sqrt(45 * 45 - h * h), 1e-5);
+  spec.chord_tolerance = 0.005;
+  const double fine = worst_chord(refined);
+  EXPECT_LE(fine, 0.005 + 1e-6);
+  EXPECT_GT(refined, nominal);
+  EXPECT_EQ(count_points(spec), nominal);  // count_points: the grid before refinement
 }
 
 TEST(SampleGenerator, TruthCsvHoldsThePoints) {
@@ -363,8 +452,8 @@ TEST(SampleGenerator, SamplesFolderIsUpToDate) {
   for (const auto& name : part_names()) EXPECT_TRUE(fs::exists(dir / (name + ".step"))) << name;
 }
 
-// LinuxCNC's interpreter reads the committed programs as the same feed
-// moves (rs274 prints 4 decimals).
+// LinuxCNC's interpreter reads the committed programs as the same moves:
+// the rapid down to point 0, a feed to every other (rs274 prints 4 decimals).
 TEST(SampleGenerator, Rs274ReadsTheSamplePrograms) {
   if (!fs::exists("/usr/bin/rs274")) GTEST_SKIP() << "rs274 (linuxcnc-uspace) not installed";
   const fs::path dir = fs::path(VCPOST_SOURCE_DIR) / "samples";
@@ -383,12 +472,23 @@ TEST(SampleGenerator, Rs274ReadsTheSamplePrograms) {
     std::istringstream lines(out);
     std::string line;
     std::size_t k = 0;
+    std::optional<Vector3d> approach;  // the last rapid's end before the first feed
     while (std::getline(lines, line)) {
-      const auto at = line.find("STRAIGHT_FEED(");
+      const bool feed = line.find("STRAIGHT_FEED(") != std::string::npos;
+      const auto at = line.find(feed ? "STRAIGHT_FEED(" : "STRAIGHT_TRAVERSE(");
       if (at == std::string::npos) continue;
       double x = 0, y = 0, z = 0;
-      ASSERT_EQ(std::sscanf(line.c_str() + at, "STRAIGHT_FEED(%lf, %lf, %lf", &x, &y, &z), 3)
+      ASSERT_EQ(std::sscanf(line.c_str() + line.find('(', at) + 1, "%lf, %lf, %lf", &x, &y, &z), 3)
           << line;
+      if (!feed) {
+        if (k == 0) approach = Vector3d(x, y, z);
+        continue;
+      }
+      if (k == 0) {  // the approach: a rapid straight down to point 0
+        ASSERT_TRUE(approach.has_value());
+        EXPECT_LE((*approach - w.points[0].tip).cwiseAbs().maxCoeff(), 5.01e-5);
+        ++k;
+      }
       ASSERT_LT(k, w.points.size());
       EXPECT_LE((Vector3d(x, y, z) - w.points[k].tip).cwiseAbs().maxCoeff(), 5.01e-5) << line;
       ++k;

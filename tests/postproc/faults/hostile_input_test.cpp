@@ -146,11 +146,11 @@ TEST(HostileInput, LinesRunTwiceArePosted) {
   // write_patched: patch offset 18446744073709551456" (exit 3). Now posted,
   // verified, and the summary counts the lines run more than once.
   Folder work, logs;
-  // Header: the dome program's first 6 lines; body: its next 60 (the
+  // Header: the dome program's first 6 lines; body: its next 200 (the
   // rapid down and the first passes), then back up.
   std::istringstream lines(read_file(kDome));
   std::string header, body, line;
-  for (int n = 1; n <= 66 && std::getline(lines, line); ++n)
+  for (int n = 1; n <= 206 && std::getline(lines, line); ++n)
     (n <= 6 ? header : body) += line + "\n";
   const fs::path p = work / "sub.ngc";
   write(p, header + "o100 sub\n" + body + "G0 Z50\no100 endsub\no100 call\no100 call\nM5\nM30\n");
@@ -329,10 +329,10 @@ TEST(HostileInput, ProgramWithoutMotionIsRefusedWithoutEndWarned) {
     EXPECT_EQ(r.shell_status(), 2) << name << ": " << r.err;
     EXPECT_NE(r.err.find("the program has no motion"), std::string::npos) << r.err;
   }
-  // The dome program cut in the middle of a number: posted, with a warning.
+  // The dome program cut in the middle of a number (two decimals after the
+  // last point of its first half): posted, with a warning.
   std::string text = read_file(kDome);
-  text.resize(text.size() / 2);
-  text.resize(text.find_last_of("0123456789"));
+  text.resize(text.find_last_of('.', text.size() / 2) + 3);
   write(work / "cut.nc", text);
   const ChildResult r = run(dome_job((work / "cut.nc").string(), {"-o", "-"}), logs);
   EXPECT_EQ(r.shell_status(), 0) << r.err;

@@ -93,8 +93,8 @@ TEST(BuiltinProfiles, HowEachControlTakesAnSWordInMotion) {
   EXPECT_NE(builtin_profile("linuxcnc-3axis").source_of("spindle.stop_cost_s")->text.find("1.07 s"),
             std::string::npos);
   // Sinumerik's note names the machine data that decide it.
-  const auto& sinumerik =
-      builtin_profile("sinumerik-840d").source_of("spindle.stops_path_on_change")->text;
+  const auto sinumerik_profile = builtin_profile("sinumerik-840d");  // the note lives in it
+  const std::string& sinumerik = sinumerik_profile.source_of("spindle.stops_path_on_change")->text;
   EXPECT_NE(sinumerik.find("MD22210 $MC_AUXFU_S_SYNC_TYPE"), std::string::npos);
   EXPECT_NE(sinumerik.find("MD22080"), std::string::npos);
 }

@@ -182,7 +182,7 @@ std::vector<double> reference(const std::vector<Sample>& samples, const SpindleS
     // A new stretch: an allowed block, a feed block since the stretch's
     // start, and the hold passed.
     std::size_t start = k;
-    while (stretch[start - 1] == stretch[k - 1] && run[start - 1] == r) --start;
+    while (start > 0 && stretch[start - 1] == stretch[k - 1] && run[start - 1] == r) --start;
     bool feed = false;
     for (std::size_t j = start; j < k; ++j)
       feed = feed || !s_word_allowed(samples[blocks[j].first]);

@@ -15,8 +15,8 @@ Error::Error(const std::string& what, std::string code, std::string message, std
              unsigned line, unsigned column, std::string hint, Severity severity)
     : std::runtime_error(what),
       detail_(std::make_shared<const Detail>(Detail{std::move(code), std::move(message),
-                                                    std::move(file), std::move(hint), line,
-                                                    column, severity})) {}
+                                                    std::move(file), std::move(hint), line, column,
+                                                    severity})) {}
 
 const std::string& Error::code() const { return detail_->code; }
 const std::string& Error::message() const { return detail_->message; }

@@ -21,7 +21,8 @@ struct Model::Loaded {
 Model::Model(std::shared_ptr<const Loaded> loaded) : loaded_(std::move(loaded)) {}
 
 Model Model::load(const std::string& path) {
-  return guarded([&] { return Model(std::make_shared<const Loaded>(Loaded{cli::load_model(path)})); });
+  return guarded(
+      [&] { return Model(std::make_shared<const Loaded>(Loaded{cli::load_model(path)})); });
 }
 
 std::string Model::kind() const { return loaded_->model.kind; }

@@ -22,9 +22,7 @@ geometry::Tool internal_tool(const Tool& tool) {
 }
 
 // The tool as parse_tool would accept it (the engine's precondition).
-geometry::Tool checked_tool(const Tool& tool) {
-  return geometry::parse_tool(to_string(tool));
-}
+geometry::Tool checked_tool(const Tool& tool) { return geometry::parse_tool(to_string(tool)); }
 
 geometry::CutSetup internal_setup(const CutSetup& setup) {
   geometry::CutSetup out;
@@ -69,9 +67,8 @@ WorkingDiameter working_diameter(const Tool& tool, const CutSetup& setup) {
 }
 
 std::optional<double> mean_working_diameter(const Tool& tool, const CutSetup& setup) {
-  return guarded([&] {
-    return geometry::engaged_mean_diameter(checked_tool(tool), internal_setup(setup));
-  });
+  return guarded(
+      [&] { return geometry::engaged_mean_diameter(checked_tool(tool), internal_setup(setup)); });
 }
 
 double spindle_speed_for(double vc_m_per_min, double diameter_mm) {

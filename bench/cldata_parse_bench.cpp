@@ -59,8 +59,8 @@ void BM_ClRecordReader(benchmark::State& state) {
       benchmark::DoNotOptimize(r.params.data());
     }
   }
-  state.counters["records/s"] = benchmark::Counter(static_cast<double>(records),
-                                                   benchmark::Counter::kIsRate);
+  state.counters["records/s"] =
+      benchmark::Counter(static_cast<double>(records), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_ClRecordReader)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
@@ -78,10 +78,10 @@ void BM_ClReaderEvents(benchmark::State& state) {
     }
     records += reader.record_count();
   }
-  state.counters["records/s"] = benchmark::Counter(static_cast<double>(records),
-                                                   benchmark::Counter::kIsRate);
-  state.counters["events/s"] = benchmark::Counter(static_cast<double>(events),
-                                                  benchmark::Counter::kIsRate);
+  state.counters["records/s"] =
+      benchmark::Counter(static_cast<double>(records), benchmark::Counter::kIsRate);
+  state.counters["events/s"] =
+      benchmark::Counter(static_cast<double>(events), benchmark::Counter::kIsRate);
   state.counters["file_MB"] =
       static_cast<double>(std::filesystem::file_size(path)) / (1024.0 * 1024.0);
   state.counters["peak_rss_growth_kB"] = static_cast<double>(max_rss_kb() - rss_before);

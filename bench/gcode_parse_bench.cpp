@@ -15,8 +15,8 @@ std::string plain_program(int lines) {
   std::string text = "G21 G90 G17\nS12000 M3\nG0 X0 Y0 Z5\nG1 Z0 F1500\n";
   char line[64];
   for (int i = 0; i < lines; ++i) {
-    std::snprintf(line, sizeof line, "G1 X%.3f Y%.3f Z%.3f\n", (i % 1000) * 0.1,
-                  (i / 1000) * 0.25, -0.001 * (i % 97));
+    std::snprintf(line, sizeof line, "G1 X%.3f Y%.3f Z%.3f\n", (i % 1000) * 0.1, (i / 1000) * 0.25,
+                  -0.001 * (i % 97));
     text += line;
   }
   text += "M30\n";

@@ -1,6 +1,6 @@
 // STL mesh model: reading a 100 k-triangle binary STL, building the index
-// (on one and on two of oneTBB's threads), and closest-point queries along a coherent finishing path (warm: the hint
-// of the previous point; cold: no hint; two threads with a hint each).
+// (on one and on two of oneTBB's threads), and closest-point queries along a coherent finishing
+// path (warm: the hint of the previous point; cold: no hint; two threads with a hint each).
 //
 // The mesh is the sample wavy mould (postproc/samplegen) tessellated on a
 // 224 x 224 grid (100,352 triangles, about 0.54 x 0.36 mm cells); the query
@@ -80,7 +80,12 @@ void BM_MeshIndexBuild(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(mesh::MeshModel(m));
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(m.triangles.size()));
 }
-BENCHMARK(BM_MeshIndexBuild)->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MeshIndexBuild)
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 // Each thread walks its own contiguous chunk of the path with its own hint.
 void query(benchmark::State& state, bool warm) {

@@ -39,9 +39,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <ctime>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -107,7 +107,8 @@ struct Face {
 
 std::vector<Face> read_faces(const std::string& path) {
   STEPControl_Reader reader;
-  if (reader.ReadFile(path.c_str()) != IFSelect_RetDone) throw UsageError(path + ": not a STEP file");
+  if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
+    throw UsageError(path + ": not a STEP file");
   reader.TransferRoots();
   const TopoDS_Shape shape = reader.OneShape();
   std::vector<Face> faces;
@@ -163,7 +164,8 @@ int run(int argc, char** argv) {
   std::vector<gp_Pnt> points;
   std::uint64_t index = 0;
   for_each_feed_end(program.text(), [&](const Eigen::Vector3d& p) {
-    if (index++ % k == 0 && points.size() < wanted) points.emplace_back(p.x(), p.y(), p.z() + radius);
+    if (index++ % k == 0 && points.size() < wanted)
+      points.emplace_back(p.x(), p.y(), p.z() + radius);
   });
 
   std::vector<GeomAPI_ProjectPointOnSurf> projectors(faces.size());

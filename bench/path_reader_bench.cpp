@@ -44,7 +44,7 @@ void BM_PathReaderRaster(benchmark::State& state) {
   const std::string text = raster_program(static_cast<int>(state.range(0)));
   const auto profile = vcpost::machines::builtin_profile("mazak-3axis");
   const auto dialect = vcpost::post::dialect_of(profile);
-  vcpost::post::Chunk chunk;  // reused, as the post reuses its chunks
+  vcpost::post::Chunk chunk;         // reused, as the post reuses its chunks
   vcpost::tools::ToolChoices tools;  // every tool a D10 ball, as `--tool ball:10`
   tools.table.add(vcpost::tools::parse_tool_option("ball:10"));
   tools.vc = 120;

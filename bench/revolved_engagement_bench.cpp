@@ -40,10 +40,10 @@ std::vector<Case> finishing_cases(int kind, int count) {
   std::vector<Case> cases;
   for (int i = 0; i < count; ++i) {
     const auto n = normal_from_angles(60 * kPi / 180 * unit(rng), 2 * kPi * unit(rng));
-    cases.push_back({finishing_tool(kind),
-                     {0.1 + 0.4 * unit(rng), 0.2 + 0.8 * unit(rng), n,
-                      feed_from_angle(2 * kPi * unit(rng), n),
-                      unit(rng) < 0.5 ? Side::left : Side::right}});
+    cases.push_back(
+        {finishing_tool(kind),
+         {0.1 + 0.4 * unit(rng), 0.2 + 0.8 * unit(rng), n, feed_from_angle(2 * kPi * unit(rng), n),
+          unit(rng) < 0.5 ? Side::left : Side::right}});
   }
   return cases;
 }
@@ -112,8 +112,11 @@ BENCHMARK(BM_MeanRandom)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 // The issue's set-up on which the old mean did not finish in 300 s.
 void BM_MeanIssueHangCase(benchmark::State& state) {
   const Tool tool = Tool::bull_nose(14.221441, 1.301500345);
-  const CutSetup setup{1.496298, 1.614521, {-0.131600501421, -0.225882401184, 0.965224558774},
-                       {0.803756669574, -0.594227560155, -0.029475801401}, Side::left};
+  const CutSetup setup{1.496298,
+                       1.614521,
+                       {-0.131600501421, -0.225882401184, 0.965224558774},
+                       {0.803756669574, -0.594227560155, -0.029475801401},
+                       Side::left};
   for (auto _ : state) benchmark::DoNotOptimize(engaged_mean_diameter(tool, setup));
   state.SetItemsProcessed(state.iterations());
 }

@@ -35,7 +35,8 @@ inline bool within_budget(std::string_view text, const gcode::Dialect& dialect) 
       if (blocks > 200'000) return false;
     }
   } catch (const gcode::GcodeError& e) {
-    return e.diagnostic().code != gcode::Code::loop_limit && e.diagnostic().code != gcode::Code::call_depth;
+    return e.diagnostic().code != gcode::Code::loop_limit &&
+           e.diagnostic().code != gcode::Code::call_depth;
   }
   return true;
 }

@@ -187,8 +187,8 @@ struct EdgeCurve {
   // both at one w; same arithmetic as dz, and as d2z for w <= R).
   std::pair<double, double> dz_d2z(double w) const {
     const double aw = a(w), h = ball.R * ball.R - w * w, root = sqrt0(h);
-    const double dz = ball.up.x() * ball.ae / aw - ball.sigma * ball.up.y() -
-                      branch * ball.up.z() * w / root;
+    const double dz =
+        ball.up.x() * ball.ae / aw - ball.sigma * ball.up.y() - branch * ball.up.z() * w / root;
     const double d2z = -ball.up.x() * ball.ae * ball.ae / (aw * aw * aw) -
                        branch * ball.up.z() * ball.R * ball.R / (h * root);
     return {dz, d2z};
@@ -261,8 +261,10 @@ Extremes edge_extremes(const Ball& ball) {
   double upper_lo = std::max(w_min, ball.rho), upper_hi = ball.c0 > 0 ? ball.R : -1;
   if (ball.shank_sweep_matters) {
     if (db < 0) lower_hi = std::min(lower_hi, w_v);  // lower: -db w <= dc sqrt(R^2 - w^2)
-    if (db > 0) upper_lo = std::max(upper_lo, w_v);  // upper: dc sqrt(R^2 - w^2) <= db w
-    else upper_hi = -1;
+    if (db > 0)
+      upper_lo = std::max(upper_lo, w_v);  // upper: dc sqrt(R^2 - w^2) <= db w
+    else
+      upper_hi = -1;
   }
   Extremes out = edge_piece_extremes({ball, -1}, w_min, lower_hi);
   if (upper_hi > 0) out.add(edge_piece_extremes({ball, +1}, upper_lo, upper_hi));
@@ -325,9 +327,13 @@ struct Rim {
   bool on_ball_only;  // the whole circle lies at z <= 0
 
   explicit Rim(const Ball& b)
-      : ball(b), on_ball_only(b.c0 * b.up.z() + b.rho * std::sqrt(b.up.x() * b.up.x() + b.up.y() * b.up.y()) <= 0) {}
+      : ball(b),
+        on_ball_only(
+            b.c0 * b.up.z() + b.rho * std::sqrt(b.up.x() * b.up.x() + b.up.y() * b.up.y()) <= 0) {}
 
-  bool circle_point_valid(RimPoint p) const { return ball.z({p.a, p.b, ball.c0}) <= 1e-12 * ball.R; }
+  bool circle_point_valid(RimPoint p) const {
+    return ball.z({p.a, p.b, ball.c0}) <= 1e-12 * ball.R;
+  }
 
   // The rim point with the smallest (sign -1) or largest (+1) b. Gamma is
   // convex, so if the circle's extreme lies on the ball it is Gamma's; else
@@ -440,8 +446,9 @@ double ball_mean_diameter(double radius, const CutSetup& setup, const CutFrame& 
     set.keep_where(z, 0);
     for (int i = 0; i < set.size(); ++i) {
       slice.area += R * (set[i].hi - set[i].lo);
-      slice.moment += R * kronrod_rule([&](double t) { return 2 * sqrt0(R * R - std::pow(z(t), 2)); },
-                                       set[i].lo, set[i].hi);
+      slice.moment +=
+          R * kronrod_rule([&](double t) { return 2 * sqrt0(R * R - std::pow(z(t), 2)); },
+                           set[i].lo, set[i].hi);
     }
     return slice;
   };
@@ -481,7 +488,7 @@ double ball_mean_diameter(double radius, const CutSetup& setup, const CutFrame& 
   };
   // Only where the line is on the leading side and reaches into the stock.
   AngleSet lines({-std::numbers::pi, std::numbers::pi});
-  lines.keep_where({-f.x(), -f.y(), 0}, 0);           // F.u >= 0
+  lines.keep_where({-f.x(), -f.y(), 0}, 0);              // F.u >= 0
   lines.keep_where({R * n.x(), R * n.y(), 0}, ball.c0);  // N.(R u) <= c0 at z = 0
   double shank_area = 0;
   for (int i = 0; i < lines.size(); ++i) {

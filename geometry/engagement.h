@@ -23,8 +23,8 @@ enum class MillingMode { down /* climb */, up /* conventional */ };
 // The cutting situation at one point, in the tool frame (tool.h: origin at
 // the ball centre for a ball mill, tool axis +z).
 struct CutSetup {
-  double ap = 0;  // depth of cut along the normal, mm, > 0
-  double ae = 0;  // width of cut to the previous pass, on the surface, mm, >= 0
+  double ap = 0;                    // depth of cut along the normal, mm, > 0
+  double ae = 0;                    // width of cut to the previous pass, on the surface, mm, >= 0
   Eigen::Vector3d normal{0, 0, 1};  // N: unit surface normal at CC, out of the material
   Eigen::Vector3d feed{1, 0, 0};    // motion direction; projected onto the tangent plane
   Side side = Side::left;

@@ -40,8 +40,8 @@ struct PrincipalCurvatures {
 struct ModelContact {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  // CC, mm
   Eigen::Vector3d normal =
-      Eigen::Vector3d::UnitZ();                  // unit surface normal at CC, out of the material
-  double distance = 0;                           // |query - CC| >= 0, mm
+      Eigen::Vector3d::UnitZ();  // unit surface normal at CC, out of the material
+  double distance = 0;           // |query - CC| >= 0, mm
   // Of the owning face at CC; empty for meshes and when the hint asks for none.
   std::optional<PrincipalCurvatures> curvature;
   int face = -1;                                 // index of the owning face, [0, face_count())

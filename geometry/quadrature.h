@@ -74,7 +74,8 @@ double integrate_adaptive(const Function& f, double lo, double hi, double tolera
 // The same on `panels` equal panels, each adaptive: an integrand that is
 // zero on most of [lo, hi] cannot hide from the first estimates.
 template <class Function>
-double integrate_panels(const Function& f, double lo, double hi, double tolerance, int panels = 16) {
+double integrate_panels(const Function& f, double lo, double hi, double tolerance,
+                        int panels = 16) {
   if (!(hi > lo)) return 0;
   double sum = 0;
   const double width = (hi - lo) / panels;

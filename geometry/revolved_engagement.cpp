@@ -161,10 +161,10 @@ class Groove {
   }
 
   struct BoundaryPoint {
-    Vector3d p;        // the tool point on the silhouette (or shank line) at this level
-    double b = 0;      // its b = e.P
-    double phi = 0;    // the silhouette parameter (the ray foot's on a ray)
-    double ray = 0;    // height above the ray foot, mm (0 on the lower boundary)
+    Vector3d p;      // the tool point on the silhouette (or shank line) at this level
+    double b = 0;    // its b = e.P
+    double phi = 0;  // the silhouette parameter (the ray foot's on a ray)
+    double ray = 0;  // height above the ray foot, mm (0 on the lower boundary)
   };
 
   // The left (smallest b) or right boundary point of Q at level c.
@@ -204,8 +204,10 @@ class Groove {
         a = b = phi;
         break;
       }
-      if ((g > 0) == (sign > 0)) b = phi;  // c(phi) beyond c: the root is below phi
-      else a = phi;
+      if ((g > 0) == (sign > 0))
+        b = phi;  // c(phi) beyond c: the root is below phi
+      else
+        a = phi;
       // d/dphi of R0 U_xy/|U_xy| + rc U.
       const double along = (u.x() * du.x() + u.y() * du.y()) / (length * length);
       const double slope =
@@ -284,7 +286,8 @@ class Groove {
         if (!(slope < 0)) return e.value <= touch ? std::optional<double>(t) : std::nullopt;
         const double step = -e.value / slope;
         t += direction * step;
-        if (step < 1e-15 * radius_) return e.value <= touch ? std::optional<double>(t) : std::nullopt;
+        if (step < 1e-15 * radius_)
+          return e.value <= touch ? std::optional<double>(t) : std::nullopt;
       }
       return excess(t).value <= touch ? std::optional<double>(t) : std::nullopt;
     };
@@ -401,8 +404,8 @@ void Groove::face_extremes(RadiusExtremes& out) const {
         continue;
       }
       const auto g = [&](double x) { return objective(reach(x)); };
-      const double x = golden_argmin(g, u[std::max(i - 1, 0)], u[std::min(i + 1, kSteps)],
-                                     1e-10 * radius_);
+      const double x =
+          golden_argmin(g, u[std::max(i - 1, 0)], u[std::min(i + 1, kSteps)], 1e-10 * radius_);
       const double r = std::abs(g(x));
       if (std::isfinite(r)) out.add(r, -corner_);
     }
@@ -424,8 +427,10 @@ Groove::FaceStretches Groove::face_stretches(double u) const {
   // Stock: c is linear in v.
   const double c_lo = normal_.dot(at(lo)), c_hi = normal_.dot(at(hi));
   if (c_lo > c0_ && c_hi > c0_) return out;
-  if (c_lo > c0_) lo = lo + (c_lo - c0_) / (c_lo - c_hi) * (hi - lo);
-  else if (c_hi > c0_) hi = hi - (c_hi - c0_) / (c_hi - c_lo) * (hi - lo);
+  if (c_lo > c0_)
+    lo = lo + (c_lo - c0_) / (c_lo - c_hi) * (hi - lo);
+  else if (c_hi > c0_)
+    hi = hi - (c_hi - c0_) / (c_hi - c_lo) * (hi - lo);
   // Removed: strictly inside Q shifted by ae, i.e. right of bL(c) + ae and
   // above the bottom level; concave along the line (bL is convex).
   const auto removed = [&](double v) {
@@ -433,8 +438,7 @@ Groove::FaceStretches Groove::face_stretches(double u) const {
     const double c = normal_.dot(p);
     return std::min(side_.dot(p) - boundary(c, true).b - ae_, c - c_min_);
   };
-  const double peak = golden_argmin([&](double v) { return -removed(v); }, lo, hi,
-                                    1e-10 * radius_);
+  const double peak = golden_argmin([&](double v) { return -removed(v); }, lo, hi, 1e-10 * radius_);
   if (removed(peak) <= 0) {
     out.v[out.count++] = {lo, hi};
     return out;
@@ -524,8 +528,7 @@ RadiusExtremes Groove::extremes() const {
   }
   // The stock line.
   const double b_hi = std::min(boundary(c0_, false).b, left_top.b + ae_);
-  curve_extremes([&](double v) { return front(spread(left_top.b, b_hi, v), c0_); }, 0.0, 1.0,
-                 out);
+  curve_extremes([&](double v) { return front(spread(left_top.b, b_hi, v), c0_); }, 0.0, 1.0, out);
   if (edge_on_ || feed_.z() < 0) {
     face_extremes(out);
   }
@@ -666,11 +669,10 @@ Prepared prepare(const Tool& tool, const CutSetup& setup) {
       out.side_dir = normal.cross(out.feed_dir);
     }
   }
-  const std::uint32_t fatal =
-      static_cast<std::uint32_t>(EngagementFlag::zero_ap) |
-      static_cast<std::uint32_t>(EngagementFlag::ap_exceeds_d) |
-      static_cast<std::uint32_t>(EngagementFlag::undercut) |
-      static_cast<std::uint32_t>(EngagementFlag::feed_along_normal);
+  const std::uint32_t fatal = static_cast<std::uint32_t>(EngagementFlag::zero_ap) |
+                              static_cast<std::uint32_t>(EngagementFlag::ap_exceeds_d) |
+                              static_cast<std::uint32_t>(EngagementFlag::undercut) |
+                              static_cast<std::uint32_t>(EngagementFlag::feed_along_normal);
   if ((out.flags.bits & fatal) == 0) {
     // With ae = 0 the rim still exists: build the groove with ae = 0 for the points.
     const double sign = setup.side == Side::left ? 1.0 : -1.0;
@@ -695,7 +697,8 @@ CuttingPoints cutting_points(const Groove& groove, const Engagement& out, Side s
   points.p1 = cutting_point(low);
   points.p2 = cutting_point(high);
   const auto pair_at = [&](double s, const Vector3d& fallback) {
-    if (s >= s_max || s <= s_min) return std::pair{cutting_point(fallback), cutting_point(fallback)};
+    if (s >= s_max || s <= s_min)
+      return std::pair{cutting_point(fallback), cutting_point(fallback)};
     const auto fibre = groove.fibre(sign * s, groove.c0());
     if (!fibre) return std::pair{cutting_point(fallback), cutting_point(fallback)};
     return std::pair{cutting_point(fibre->first), cutting_point(fibre->second)};

@@ -24,8 +24,8 @@ double parse_size(std::string_view text, std::string_view what, std::string_view
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (text.empty() || error != std::errc{} || end != text.data() + text.size() ||
       !std::isfinite(value)) {
-    throw std::invalid_argument("tool '" + std::string(spec) + "': " + std::string(what) +
-                                " '" + std::string(text) + "' is not a number");
+    throw std::invalid_argument("tool '" + std::string(spec) + "': " + std::string(what) + " '" +
+                                std::string(text) + "' is not a number");
   }
   return value;
 }
@@ -62,9 +62,12 @@ Tool parse_tool(std::string_view spec) {
 
 std::string_view to_string(ToolKind kind) {
   switch (kind) {
-    case ToolKind::ball: return "ball";
-    case ToolKind::bull_nose: return "bull";
-    case ToolKind::flat: return "flat";
+    case ToolKind::ball:
+      return "ball";
+    case ToolKind::bull_nose:
+      return "bull";
+    case ToolKind::flat:
+      return "flat";
   }
   return "?";
 }

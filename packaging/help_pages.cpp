@@ -78,8 +78,8 @@ std::string summary_of(const std::string& description) {
 std::string page_name(const CLI::App& sub) { return "vcpost-" + sub.get_name(); }
 
 void write_options(std::ostream& out, const CLI::Formatter& formatter, const CLI::App& app) {
-  const auto positionals =
-      app.get_options([](const CLI::Option* o) { return o->get_positional() && !o->nonpositional(); });
+  const auto positionals = app.get_options(
+      [](const CLI::Option* o) { return o->get_positional() && !o->nonpositional(); });
   const auto options = app.get_options([](const CLI::Option* o) { return o->nonpositional(); });
   const auto write = [&](const char* heading, const std::vector<const CLI::Option*>& list,
                          bool positional) {
@@ -112,15 +112,17 @@ void write_footer(std::ostream& out, const CLI::App& app, const std::vector<std:
   for (std::size_t i = 0; i < see.size(); ++i)
     out << ".BR " << roff(see[i]) << " (1)" << (i + 1 < see.size() ? "," : "") << '\n';
   out << ".PP\nThe README, the machine profile schema and the samples are in\n"
-      << ".IR /usr/share/doc/vcpost " << "and\n.IR /usr/share/vcpost .\n";
+      << ".IR /usr/share/doc/vcpost "
+      << "and\n.IR /usr/share/vcpost .\n";
 }
 
-void write_subcommand_page(const std::filesystem::path& file,
-                           const CLI::App& sub, const std::string& date) {
+void write_subcommand_page(const std::filesystem::path& file, const CLI::App& sub,
+                           const std::string& date) {
   std::ofstream out(file);
   const CLI::Formatter formatter;
   write_header(out, page_name(sub), date);
-  out << ".SH NAME\n" << roff(page_name(sub)) << " \\- " << roff(summary_of(sub.get_description()))
+  out << ".SH NAME\n"
+      << roff(page_name(sub)) << " \\- " << roff(summary_of(sub.get_description()))
       << "\n.SH SYNOPSIS\n";
   std::string usage = formatter.make_usage(&sub, "vcpost " + sub.get_name());
   usage = usage.substr(usage.find(':') + 2);
@@ -172,7 +174,8 @@ void write_completion(const std::filesystem::path& file, const CLI::App& app) {
       << "    COMPREPLY=($(compgen -W \"" << subcommands << "--help --version\" -- \"$cur\"))\n"
       << "    return\n  fi\n"
       << "  if [[ $prev == --machine ]]; then\n"
-      << "    COMPREPLY=($(compgen -W \"" << profiles << "\" -- \"$cur\") $(compgen -f -- \"$cur\"))\n"
+      << "    COMPREPLY=($(compgen -W \"" << profiles
+      << "\" -- \"$cur\") $(compgen -f -- \"$cur\"))\n"
       << "    return\n  fi\n"
       << "  case $sub in\n";
   for (const CLI::App* sub : app.get_subcommands({})) {

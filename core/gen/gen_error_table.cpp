@@ -64,8 +64,8 @@ std::vector<std::string> split(const std::string& line, const std::string& where
   return cells;
 }
 
-std::vector<std::vector<std::string>> read_csv(const std::string& path,
-                                               const std::string& header, std::vector<int>& lines) {
+std::vector<std::vector<std::string>> read_csv(const std::string& path, const std::string& header,
+                                               std::vector<int>& lines) {
   std::ifstream in(path);
   if (!in) die(path, "cannot open");
   std::string line;
@@ -113,8 +113,8 @@ bool valid_code(const std::string& code) {
 bool valid_name(const std::string& name) {
   if (name.empty() || !std::islower(static_cast<unsigned char>(name[0]))) return false;
   for (char c : name)
-    if (!std::islower(static_cast<unsigned char>(c)) && !std::isdigit(static_cast<unsigned char>(c)) &&
-        c != '_')
+    if (!std::islower(static_cast<unsigned char>(c)) &&
+        !std::isdigit(static_cast<unsigned char>(c)) && c != '_')
       return false;
   return true;
 }

@@ -1,10 +1,11 @@
 // Posts a finishing program through libvcpost: `vcpost post` as a call.
 // usage: post_sample PROGRAM MODEL [MACHINE] > posted.nc
+#include <vcpost/post.h>
+#include <vcpost/version.h>
+
 #include <fstream>
 #include <iostream>
 #include <sstream>
-#include <vcpost/post.h>
-#include <vcpost/version.h>
 
 int main(int argc, char** argv) {
   if (argc < 3) {

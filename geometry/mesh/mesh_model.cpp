@@ -121,8 +121,10 @@ void project(const double* xs, const double* ys, const double* zs, std::size_t n
   }
   // The rest in scalars (locals: writing through lo and hi on every corner
   // stalls on store forwarding).
-  double l0 = std::min(lo0[0], lo0[1]), l1 = std::min(lo1[0], lo1[1]), l2 = std::min(lo2[0], lo2[1]);
-  double h0 = std::max(hi0[0], hi0[1]), h1 = std::max(hi1[0], hi1[1]), h2 = std::max(hi2[0], hi2[1]);
+  double l0 = std::min(lo0[0], lo0[1]), l1 = std::min(lo1[0], lo1[1]),
+         l2 = std::min(lo2[0], lo2[1]);
+  double h0 = std::max(hi0[0], hi0[1]), h1 = std::max(hi1[0], hi1[1]),
+         h2 = std::max(hi2[0], hi2[1]);
   const auto one = [&](std::size_t k) {
     const double x = xs[k], y = ys[k], z = zs[k];
     const double q0 = (a00 * x + a01 * y) + a02 * z;
@@ -157,8 +159,8 @@ struct MeshModel::Builder {
   };
 
   MeshModel& m;
-  std::unique_ptr<Item[]> items;         // in slot order
-  std::unique_ptr<double[]> corners[3];  // x, y, z of three per item, in slot order
+  std::unique_ptr<Item[]> items;                       // in slot order
+  std::unique_ptr<double[]> corners[3];                // x, y, z of three per item, in slot order
   std::map<std::uint32_t, std::uint32_t> wide_counts;  // by subtree size; read only in build
 
   explicit Builder(MeshModel& model) : m(model) {}
@@ -420,10 +422,9 @@ std::uint32_t MeshModel::Builder::split(std::uint32_t begin, std::uint32_t end,
   int axis = 0;
   moments.centroids.sizes().maxCoeff(&axis);
   const std::uint32_t mid = begin + (end - begin) / 2;
-  std::nth_element(items.get() + begin, items.get() + mid, items.get() + end,
-                   [axis](const Item& x, const Item& y) {
-                     return x.centroid[axis] < y.centroid[axis];
-                   });
+  std::nth_element(
+      items.get() + begin, items.get() + mid, items.get() + end,
+      [axis](const Item& x, const Item& y) { return x.centroid[axis] < y.centroid[axis]; });
   return mid;
 }
 
@@ -477,7 +478,8 @@ void MeshModel::Builder::top(std::uint32_t begin, std::uint32_t end, const Momen
       expanded(c.begin, c.end, c.moments, own, c.lane, c.own[0], c.own[1]);
     }
   };
-  both(end - begin, [&] { run(children[0]); }, [&] { run(children[1]); });
+  both(
+      end - begin, [&] { run(children[0]); }, [&] { run(children[1]); });
 }
 
 // An inner child of a top node, replaced by its children: lanes `lane`

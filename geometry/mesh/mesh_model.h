@@ -96,7 +96,7 @@ class MeshModel final : public geometry::SurfaceModel {
   // kNone where the faces of an edge cancel out (the face's own normal).
   std::vector<Eigen::Vector3d> edge_normal_;
   std::vector<std::array<std::uint32_t, 3>> edge_of_side_;
-  std::vector<Eigen::Vector3d> vertex_normal_;               // angle-weighted
+  std::vector<Eigen::Vector3d> vertex_normal_;  // angle-weighted
   std::vector<std::uint32_t> slot_of_face_;
   static constexpr std::uint32_t kNone = 0xffffffffu;  // an empty lane of a WideNode
   std::vector<Slot> slots_;

@@ -1,15 +1,16 @@
 #include "geometry/mesh/stl_reader.h"
 
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <bit>
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstring>
-#include <sys/mman.h>
-#include <sys/stat.h>
-#include <fcntl.h>
-#include <unistd.h>
 
 namespace vcpost::mesh {
 namespace {
@@ -418,7 +419,8 @@ StlMesh read_stl_file(const std::filesystem::path& path, const StlOptions& optio
     std::string bytes;
     char chunk[65536];
     ssize_t got = 0;
-    while ((got = ::read(fd, chunk, sizeof chunk)) > 0) bytes.append(chunk, static_cast<std::size_t>(got));
+    while ((got = ::read(fd, chunk, sizeof chunk)) > 0)
+      bytes.append(chunk, static_cast<std::size_t>(got));
     ::close(fd);
     if (got < 0) {
       throw StlError(StlCode::unreadable, path.string() + ": error[" +

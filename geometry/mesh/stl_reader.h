@@ -28,14 +28,14 @@ namespace vcpost::mesh {
 
 // Stable codes; never renumber.
 enum class StlCode : std::uint16_t {
-  missing = 4601,       // the file does not exist
-  unreadable = 4602,    // exists but cannot be read (permissions, a directory)
-  empty = 4603,         // zero bytes
-  truncated = 4604,     // binary shorter than its triangle count says; ASCII without endsolid
-  bad_number = 4605,    // NaN, infinity or not a number in a coordinate
-  no_triangles = 4606,  // a valid file with no (non-degenerate) triangle
-  syntax = 4607,        // ASCII: a keyword other than the one expected
-  bad_unit = 4608,      // unit_mm not a positive finite number
+  missing = 4601,         // the file does not exist
+  unreadable = 4602,      // exists but cannot be read (permissions, a directory)
+  empty = 4603,           // zero bytes
+  truncated = 4604,       // binary shorter than its triangle count says; ASCII without endsolid
+  bad_number = 4605,      // NaN, infinity or not a number in a coordinate
+  no_triangles = 4606,    // a valid file with no (non-degenerate) triangle
+  syntax = 4607,          // ASCII: a keyword other than the one expected
+  bad_unit = 4608,        // unit_mm not a positive finite number
   count_mismatch = 4609,  // binary: whole triangles past the count (the count is wrong)
 };
 

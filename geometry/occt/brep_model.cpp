@@ -959,8 +959,8 @@ BrepModel model_from_shape(const TopoDS_Shape& shape, const BrepOptions& options
       // Checked before meshing: a pole at 1E300 would mesh for hours.
       double x0, y0, z0, x1, y1, z1;
       box.Get(x0, y0, z0, x1, y1, z1);
-      const double reach = std::max({std::abs(x0), std::abs(y0), std::abs(z0), std::abs(x1),
-                                     std::abs(y1), std::abs(z1)});
+      const double reach = std::max(
+          {std::abs(x0), std::abs(y0), std::abs(z0), std::abs(x1), std::abs(y1), std::abs(z1)});
       if (!(reach <= kMaxModelReachMm)) {
         std::ostringstream text;
         text << "the model reaches " << reach << " mm from the origin; parts within "

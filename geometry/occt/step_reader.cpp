@@ -1,9 +1,9 @@
 // STEP loading: file checks with our own messages first (OCCT's reader only
 // says "fail"), then OCCT's reader with lengths converted to mm.
 #include <IFSelect_ReturnStatus.hxx>
+#include <Interface_Check.hxx>
 #include <Interface_Static.hxx>
 #include <STEPControl_Reader.hxx>
-#include <Interface_Check.hxx>
 #include <Standard_Failure.hxx>
 #include <StepBasic_SiUnitAndLengthUnit.hxx>
 #include <StepData_StepModel.hxx>
@@ -88,7 +88,7 @@ void check_entities(const StepData_StepModel& model, const std::string& name) {
                          "); OpenCASCADE would leave those entities out and load a different "
                          "shape: mend the file or export it again");
   }
-  const auto label = [&](const Handle(Standard_Transient)& entity) {
+  const auto label = [&](const Handle(Standard_Transient) & entity) {
     return "#" + std::to_string(model.IdentLabel(entity));
   };
   for (int i = 1; i <= model.NbEntities(); ++i) {
@@ -97,8 +97,9 @@ void check_entities(const StepData_StepModel& model, const std::string& name) {
       for (int k = 1; k <= point->NbCoordinates(); ++k) {
         if (!std::isfinite(point->CoordinatesValue(k))) {
           throw ModelError(ModelErrorCode::bad_values, name,
-                           label(entity) + " CARTESIAN_POINT has a coordinate that is not a "
-                                           "finite number (beyond about 1.8E308)");
+                           label(entity) +
+                               " CARTESIAN_POINT has a coordinate that is not a "
+                               "finite number (beyond about 1.8E308)");
         }
       }
     } else if (const auto direction = Handle(StepGeom_Direction)::DownCast(entity)) {
@@ -111,9 +112,10 @@ void check_entities(const StepData_StepModel& model, const std::string& name) {
     } else if (const auto unit = Handle(StepBasic_SiUnitAndLengthUnit)::DownCast(entity)) {
       if (unit->Name() != StepBasic_sunMetre) {
         throw ModelError(ModelErrorCode::bad_values, name,
-                         label(entity) + " LENGTH_UNIT is an SI unit other than the metre: "
-                                         "lengths in this file cannot be read (export in mm "
-                                         "or inches)");
+                         label(entity) +
+                             " LENGTH_UNIT is an SI unit other than the metre: "
+                             "lengths in this file cannot be read (export in mm "
+                             "or inches)");
       }
     }
   }

@@ -50,21 +50,21 @@ enum class ClPoint { tip, center };
 
 // The options of `vcpost post`, with its defaults.
 struct PostOptions {
-  std::string tool;                  // "ball:D"; empty: the CL program's first CUTTER
-  double vc = 0;                     // nominal cutting speed, m/min, > 0 (required)
-  double ap = 0;                     // depth of cut along the normal, mm, > 0 (required)
-  std::optional<double> ae;          // width of cut where no neighbouring pass shows, mm
-  bool ae_override = false;          // use `ae` everywhere instead of measuring it
+  std::string tool;          // "ball:D"; empty: the CL program's first CUTTER
+  double vc = 0;             // nominal cutting speed, m/min, > 0 (required)
+  double ap = 0;             // depth of cut along the normal, mm, > 0 (required)
+  std::optional<double> ae;  // width of cut where no neighbouring pass shows, mm
+  bool ae_override = false;  // use `ae` everywhere instead of measuring it
   DiameterPolicy policy = DiameterPolicy::max;
   ClPoint cl_point = ClPoint::tip;
-  double spacing_mm = 0.5;            // largest distance between evaluated points
+  double spacing_mm = 0.5;             // largest distance between evaluated points
   double contact_tolerance_mm = 0.01;  // distance error still counted as contact
-  std::string dialect;               // rs274ngc, fanuc or mazak; empty: the profile's
-  bool adjust_feed = false;          // couple F = fz * z * n
-  std::optional<double> fz_mm;       // feed per tooth; default: the program's F at its S
-  std::optional<int> teeth;          // default: the profile's
-  int threads = 0;                   // worker threads; 0: one per core (same output for any)
-  bool keep_points = false;          // fill PostResult::points (memory grows with the program)
+  std::string dialect;                 // rs274ngc, fanuc or mazak; empty: the profile's
+  bool adjust_feed = false;            // couple F = fz * z * n
+  std::optional<double> fz_mm;         // feed per tooth; default: the program's F at its S
+  std::optional<int> teeth;            // default: the profile's
+  int threads = 0;                     // worker threads; 0: one per core (same output for any)
+  bool keep_points = false;            // fill PostResult::points (memory grows with the program)
 };
 
 // Cutting speed over the cutting points, weighted by cutting time, m/min.
@@ -80,19 +80,19 @@ struct PostSummary {
   std::uint64_t touching = 0, lifted = 0, gouging = 0, missed = 0;  // contact of the points
   std::uint64_t ae_measured = 0, ae_given = 0, ae_first_pass = 0;
   double program_time_s = 0, cutting_time_s = 0;
-  std::uint64_t s_words = 0, f_words = 0;  // words written
+  std::uint64_t s_words = 0, f_words = 0;           // words written
   std::optional<VcStatistics> vc_before, vc_after;  // empty when no point cut
 };
 
 // One evaluated point of the path (with keep_points).
 struct PostPoint {
-  std::uint32_t line = 0;         // NC line (CL record) of its block
-  double time_s = 0;              // from program start
-  Vec3 point;                     // programmed point, mm
-  bool touching = false;          // the ball touches the model there (within tolerance)
-  std::optional<Vec3> contact;    // closest point on the model, mm
-  Vec3 normal{0, 0, 1};           // the normal the tool sees
-  std::optional<double> d_ref;    // the policy's working diameter, mm
+  std::uint32_t line = 0;            // NC line (CL record) of its block
+  double time_s = 0;                 // from program start
+  Vec3 point;                        // programmed point, mm
+  bool touching = false;             // the ball touches the model there (within tolerance)
+  std::optional<Vec3> contact;       // closest point on the model, mm
+  Vec3 normal{0, 0, 1};              // the normal the tool sees
+  std::optional<double> d_ref;       // the policy's working diameter, mm
   double s_before = 0, s_after = 0;  // spindle speed in effect, rpm
 };
 

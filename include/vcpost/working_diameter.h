@@ -36,19 +36,19 @@ enum class Side { left, right };
 
 // The cutting situation at one point, in the tool frame (z up the tool axis).
 struct CutSetup {
-  double ap = 0;             // depth of cut along the normal, mm, > 0
-  double ae = 0;             // width of cut to the previous pass, on the surface, mm, >= 0
-  Vec3 normal{0, 0, 1};      // unit surface normal out of the material
-  Vec3 feed{1, 0, 0};        // feed direction, any length; projected onto the tangent plane
+  double ap = 0;         // depth of cut along the normal, mm, > 0
+  double ae = 0;         // width of cut to the previous pass, on the surface, mm, >= 0
+  Vec3 normal{0, 0, 1};  // unit surface normal out of the material
+  Vec3 feed{1, 0, 0};    // feed direction, any length; projected onto the tangent plane
   Side side = Side::left;
 };
 
 struct WorkingDiameter {
-  bool engaged = false;           // some edge point cuts in this pass
-  std::optional<double> d_max;    // largest 2r over the engaged edge points, mm (exact)
-  std::optional<double> d_min;    // smallest, mm
-  std::optional<double> d_cut;    // 2r at the cutting point (the groove edge away from
-                                  // the previous pass), mm; empty without a rim
+  bool engaged = false;         // some edge point cuts in this pass
+  std::optional<double> d_max;  // largest 2r over the engaged edge points, mm (exact)
+  std::optional<double> d_min;  // smallest, mm
+  std::optional<double> d_cut;  // 2r at the cutting point (the groove edge away from
+                                // the previous pass), mm; empty without a rim
   // Why the set-up is degenerate or special, as `vcpost deff --json` names
   // them: nothing_engaged, shank_engaged, zero_ae, zero_ap, ap_exceeds_d,
   // undercut, feed_along_normal.

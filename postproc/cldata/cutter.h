@@ -15,8 +15,8 @@
 namespace vcpost::cldata {
 
 struct ClCutter {
-  std::string source_word;     // "CUTTER", "TLDATA/MILL", "$$-> CUTTER"
-  std::vector<double> params;  // as written, lengths converted to mm, angles in degrees
+  std::string source_word;             // "CUTTER", "TLDATA/MILL", "$$-> CUTTER"
+  std::vector<double> params;          // as written, lengths converted to mm, angles in degrees
   std::optional<geometry::Tool> tool;  // set when the shape is a ball, bull-nose or flat mill
   std::string why_not;                 // when tool is empty: why (for a warning)
   program::SourceRef source;           // the record that defined it

@@ -14,8 +14,8 @@ namespace vcpost::cldata {
 // Control points are homogeneous: (w*x, w*y, w*z, w), mm.
 struct BSpline {
   int degree = 3;
-  std::vector<double> knots;              // full vector: control.size() + degree + 1 values
-  std::vector<Eigen::Vector4d> control;   // weights > 0
+  std::vector<double> knots;             // full vector: control.size() + degree + 1 values
+  std::vector<Eigen::Vector4d> control;  // weights > 0
 };
 
 // The curve of an NX CLSF NURBS/ record: it starts at the current tool

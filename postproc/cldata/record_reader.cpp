@@ -91,8 +91,7 @@ bool ClRecordReader::read_line(std::string_view& line) {
     const std::size_t pending = end_ - begin_;
     if (pending > options_.max_line_length + 1) {
       fail(ClCode::line_too_long, line_number_ + 1, 1,
-           "line longer than the limit of " + std::to_string(options_.max_line_length) +
-               " bytes");
+           "line longer than the limit of " + std::to_string(options_.max_line_length) + " bytes");
     }
     if (begin_ > 0) {
       std::memmove(buffer_.data(), buffer_.data() + begin_, pending);
@@ -110,9 +109,9 @@ bool ClRecordReader::read_line(std::string_view& line) {
 
 std::pair<std::uint32_t, std::uint32_t> ClRecordReader::position_of(
     std::size_t logical_offset) const {
-  auto it = std::upper_bound(
-      segments_.begin(), segments_.end(), logical_offset,
-      [](std::size_t off, const Segment& s) { return off < s.logical_offset; });
+  auto it =
+      std::upper_bound(segments_.begin(), segments_.end(), logical_offset,
+                       [](std::size_t off, const Segment& s) { return off < s.logical_offset; });
   const Segment& s = *(it - 1);
   return {s.line, s.column + static_cast<std::uint32_t>(logical_offset - s.logical_offset)};
 }
@@ -138,8 +137,7 @@ void ClRecordReader::split_params(ClRecord& record, std::size_t text_begin) {
       if (static_cast<unsigned char>(all[i]) >= 0x80) {
         const auto [l, c] = position_of(i);
         fail(ClCode::invalid_byte, l, c,
-             "invalid byte " + byte_name(static_cast<unsigned char>(all[i])) +
-                 " in a parameter");
+             "invalid byte " + byte_name(static_cast<unsigned char>(all[i])) + " in a parameter");
       }
     }
     if (!p.text.empty() && starts_number(p.text.front())) {
@@ -198,8 +196,7 @@ bool ClRecordReader::next(ClRecord& record) {
       body.remove_suffix(1);
     }
     if (!continued) record_offset = line_offset_ + first;
-    segments_.push_back(
-        {logical_.size(), line_number_, static_cast<std::uint32_t>(first + 1)});
+    segments_.push_back({logical_.size(), line_number_, static_cast<std::uint32_t>(first + 1)});
     logical_.append(body);
     if (continues) {
       logical_ += ' ';

@@ -42,11 +42,11 @@ enum class ClRecordKind {
 // until the next call of ClRecordReader::next().
 struct ClRecord {
   ClRecordKind kind = ClRecordKind::statement;
-  std::string_view major;        // upper-cased, e.g. "GOTO", "TOOL PATH"; empty unless statement
-  char separator = 0;            // what followed the major word: '/', ',', '=', ' ' or 0 (nothing)
-  std::string_view text;         // everything after the separator, trimmed (continuations joined)
-  std::vector<ClParam> params;   // `text` split at commas (statements and points)
-  program::SourceRef source;     // line and column of the first character, byte offset
+  std::string_view major;       // upper-cased, e.g. "GOTO", "TOOL PATH"; empty unless statement
+  char separator = 0;           // what followed the major word: '/', ',', '=', ' ' or 0 (nothing)
+  std::string_view text;        // everything after the separator, trimmed (continuations joined)
+  std::vector<ClParam> params;  // `text` split at commas (statements and points)
+  program::SourceRef source;    // line and column of the first character, byte offset
 
   bool is(std::string_view upper_major) const { return major == upper_major; }
 };

@@ -61,16 +61,18 @@ AtomicFile::AtomicFile(std::filesystem::path target)
     // A device, FIFO or terminal: written in place on commit. Opening a FIFO
     // now would block, or tell its reader the output ended: check only.
     if (::access(written_.c_str(), W_OK) != 0) {
-      throw CommandError("E2003", "cannot write '" + target_.string() + "': " + std::strerror(errno));
+      throw CommandError("E2003",
+                         "cannot write '" + target_.string() + "': " + std::strerror(errno));
     }
     held_ = std::make_unique<HeldOutput>();
     return;
   }
   if (exists && info.st_nlink > 1) {
-    throw CommandError("E2003", "cannot write '" + target_.string() + "': it has " +
-                       std::to_string(info.st_nlink) +
-                       " hard links and replacing it would split it from the others; remove "
-                       "it first or write elsewhere");
+    throw CommandError("E2003",
+                       "cannot write '" + target_.string() + "': it has " +
+                           std::to_string(info.st_nlink) +
+                           " hard links and replacing it would split it from the others; remove "
+                           "it first or write elsewhere");
   }
   std::error_code ignored;
   // Absolute, so the signal handler's unlink does not depend on the working folder.
@@ -80,9 +82,10 @@ AtomicFile::AtomicFile(std::filesystem::path target)
   const int fd = registration_.create(pattern);
   if (fd < 0) {
     const int error = errno;
-    throw CommandError("E2003", "cannot write '" + target_.string() + "': cannot create a file in '" +
-                       (written_.has_parent_path() ? written_.parent_path().string() : ".") +
-                       "': " + std::strerror(error));
+    throw CommandError("E2003",
+                       "cannot write '" + target_.string() + "': cannot create a file in '" +
+                           (written_.has_parent_path() ? written_.parent_path().string() : ".") +
+                           "': " + std::strerror(error));
   }
   temporary_ = pattern;
   if (exists) {
@@ -126,7 +129,8 @@ void AtomicFile::write(std::string_view bytes) {
     held_->append(bytes);
     return;
   }
-  if (!file_) throw CommandError("E2003", "cannot write '" + target_.string() + "': already closed");
+  if (!file_)
+    throw CommandError("E2003", "cannot write '" + target_.string() + "': already closed");
   if (std::fwrite(bytes.data(), 1, bytes.size(), file_) != bytes.size()) fail(errno);
 }
 
@@ -146,7 +150,8 @@ void AtomicFile::commit_in_place() {
 
 void AtomicFile::commit() {
   if (held_) return commit_in_place();
-  if (!file_) throw CommandError("E2003", "cannot write '" + target_.string() + "': already closed");
+  if (!file_)
+    throw CommandError("E2003", "cannot write '" + target_.string() + "': already closed");
   int error = 0;
   errno = 0;
   if (std::fflush(file_) != 0 || std::ferror(file_) || ::fsync(::fileno(file_)) != 0) {
@@ -161,7 +166,8 @@ void AtomicFile::commit() {
     ::unlink(temporary_.c_str());
     temporary_.clear();
     registration_.release();
-    throw CommandError("E2003", "cannot create '" + target_.string() + "': " + std::strerror(rename_error));
+    throw CommandError("E2003",
+                       "cannot create '" + target_.string() + "': " + std::strerror(rename_error));
   }
   temporary_.clear();
   registration_.committed();

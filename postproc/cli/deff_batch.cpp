@@ -58,7 +58,8 @@ std::vector<std::string> split_csv_line(const std::string& line) {
       }
       while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
       if (i < line.size() && line[i] != ',') {
-        throw InputError("text after a closing quote in cell " + std::to_string(cells.size() + 1), "E2006");
+        throw InputError("text after a closing quote in cell " + std::to_string(cells.size() + 1),
+                         "E2006");
       }
     } else {
       const std::size_t comma = line.find(',', i);
@@ -75,8 +76,9 @@ BatchReader::BatchReader(std::istream& in, std::string source)
     : in_(&in), source_(std::move(source)) {
   if (!read_line(header_)) {
     throw InputError(source_ +
-                     ": empty input, expected a header row with the columns "
-                     "d,ap,ae,nx,ny,nz,fx,fy,fz,side", "E2006");
+                         ": empty input, expected a header row with the columns "
+                         "d,ap,ae,nx,ny,nz,fx,fy,fz,side",
+                     "E2006");
   }
   // A byte-order mark is what spreadsheet programs put before the header.
   if (header_.rfind("\xEF\xBB\xBF", 0) == 0) header_.erase(0, 3);
@@ -98,7 +100,8 @@ BatchReader::BatchReader(std::istream& in, std::string source)
   for (const char* name : kRequired) {
     if (!columns_.contains(name)) {
       throw InputError(where() + "missing column '" + name +
-                       "' (the header needs d,ap,ae,nx,ny,nz,fx,fy,fz,side in any order)", "E2006");
+                           "' (the header needs d,ap,ae,nx,ny,nz,fx,fy,fz,side in any order)",
+                       "E2006");
     }
   }
 }
@@ -133,7 +136,8 @@ bool BatchReader::next(BatchRow& row) {
   }
   if (cells.size() != cell_count_) {
     throw InputError(where() + "expected " + std::to_string(cell_count_) +
-                     " cells as in the header, found " + std::to_string(cells.size()), "E2006");
+                         " cells as in the header, found " + std::to_string(cells.size()),
+                     "E2006");
   }
 
   const double diameter = number(cells, "d");
@@ -150,7 +154,8 @@ bool BatchReader::next(BatchRow& row) {
 
   if (!(diameter > 0)) {
     throw InputError(where() + "column 'd': the tool diameter must be > 0 mm, got '" +
-                     cells[columns_.at("d")] + "'", "E2006");
+                         cells[columns_.at("d")] + "'",
+                     "E2006");
   }
   const auto tool_column = columns_.find("tool");
   const std::string kind = tool_column == columns_.end() ? "" : cells[tool_column->second];
@@ -160,9 +165,10 @@ bool BatchReader::next(BatchRow& row) {
   if (kind.empty() || kind == "ball" || kind == "flat") {
     if (has_rc) {
       throw InputError(where() +
-                       "column 'rc': only a bull tool takes a corner radius, this row's "
-                       "tool is " +
-                       (kind.empty() ? std::string("ball") : kind), "E2006");
+                           "column 'rc': only a bull tool takes a corner radius, this row's "
+                           "tool is " +
+                           (kind.empty() ? std::string("ball") : kind),
+                       "E2006");
     }
     tool = kind == "flat" ? geometry::Tool::flat(diameter) : geometry::Tool::ball(diameter);
   } else if (kind == "bull") {
@@ -172,14 +178,16 @@ bool BatchReader::next(BatchRow& row) {
     const double corner = number(cells, "rc");
     if (!(corner > 0 && corner <= diameter / 2)) {
       throw InputError(where() + "column 'rc': the corner radius must lie in (0, d/2], got '" +
-                       cells[rc_column->second] + "'", "E2006");
+                           cells[rc_column->second] + "'",
+                       "E2006");
     }
     // A corner that fills the radius is the ball end.
     tool = corner == diameter / 2 ? geometry::Tool::ball(diameter)
                                   : geometry::Tool::bull_nose(diameter, corner);
   } else {
-    throw InputError(where() + "column 'tool': unknown tool '" + kind +
-                     "' (expected ball, bull or flat)", "E2006");
+    throw InputError(
+        where() + "column 'tool': unknown tool '" + kind + "' (expected ball, bull or flat)",
+        "E2006");
   }
 
   try {

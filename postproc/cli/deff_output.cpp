@@ -123,7 +123,7 @@ Speed plan_speed(const Evaluation& evaluation, const SpeedRequest& request) {
   speed.policy = request.policy;
   speed.vc_nominal = request.vc;
   speed.d_ref = geometry::reference_diameter(request.policy, evaluation.engagement,
-                                            [&] { return evaluation.d_mean; });
+                                             [&] { return evaluation.d_mean; });
   if (request.rpm) {
     speed.rpm = request.rpm;
   } else if (request.vc && speed.d_ref) {

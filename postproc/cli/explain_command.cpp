@@ -30,8 +30,9 @@ void add_explain_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "explain", "Print what a diagnostic code (E1403, W3150 ...) means and what to do about it");
   auto code = std::make_shared<std::string>();
-  cmd->add_option("CODE", *code, "the code as printed in error[...] or warning[...]; "
-                                 "without it, every code is listed");
+  cmd->add_option("CODE", *code,
+                  "the code as printed in error[...] or warning[...]; "
+                  "without it, every code is listed");
   cmd->footer("The same table is docs/errors.md.");
   cmd->callback([code] {
     if (code->empty()) {

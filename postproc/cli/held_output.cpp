@@ -30,7 +30,8 @@ void HeldOutput::fail(const std::string& what, int error) const {
   std::string reason = std::strerror(error);
   if (error == ENOSPC || error == EFBIG || error == EDQUOT) reason += " (free some space there)";
   throw CommandError("E2003", "cannot hold the program for standard output: " + what + " in '" +
-                     folder_.string() + "': " + reason + " (or write it to a file with -o FILE)");
+                                  folder_.string() + "': " + reason +
+                                  " (or write it to a file with -o FILE)");
 }
 
 void HeldOutput::append(std::string_view bytes) {
@@ -64,7 +65,8 @@ bool HeldOutput::for_each_chunk(const std::function<bool(std::string_view)>& tak
     std::rewind(file_);
     std::string buffer(std::size_t{1} << 20, '\0');
     for (std::uint64_t left = spilled_; left > 0;) {
-      const std::size_t want = static_cast<std::size_t>(std::min<std::uint64_t>(left, buffer.size()));
+      const std::size_t want =
+          static_cast<std::size_t>(std::min<std::uint64_t>(left, buffer.size()));
       const std::size_t got = std::fread(buffer.data(), 1, want, file_);
       if (got == 0) fail("cannot read back a temporary file", std::ferror(file_) ? errno : EIO);
       if (!take(std::string_view(buffer.data(), got))) return false;

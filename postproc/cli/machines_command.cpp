@@ -33,8 +33,9 @@ void refuse_non_toml(std::istream& in, const std::string& name) {
     what = "an STL model";
   }
   if (!what.empty()) {
-    throw CommandError("E5010", "machine profile " + name + ": this is " + what +
-                       ", not a TOML profile (--machine takes a built-in name or a .toml file)");
+    throw CommandError(
+        "E5010", "machine profile " + name + ": this is " + what +
+                     ", not a TOML profile (--machine takes a built-in name or a .toml file)");
   }
 }
 

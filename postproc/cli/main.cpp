@@ -16,7 +16,8 @@ int main(int argc, char** argv) {
 
   const CLI::App& commands = app;
   if (argc > 1 && argv[1][0] != '-' &&
-      commands.get_subcommands([&](const CLI::App* command) { return command->get_name() == argv[1]; })
+      commands
+          .get_subcommands([&](const CLI::App* command) { return command->get_name() == argv[1]; })
           .empty()) {
     std::string names;  // from the command line's own definition
     for (const CLI::App* command : commands.get_subcommands({})) {
@@ -37,7 +38,8 @@ int main(int argc, char** argv) {
     // One line: a vcpost::Error is the user's to fix (or a known internal
     // fault, E9xxx), anything else is an internal error.
     const bool known = dynamic_cast<const vcpost::Error*>(&e) != nullptr;
-    std::cerr << (known ? "vcpost: error: " : "vcpost: internal error: ") << printable(e.what()) << '\n';
+    std::cerr << (known ? "vcpost: error: " : "vcpost: internal error: ") << printable(e.what())
+              << '\n';
     return exit_code_of(e);
   }
   return exit_ok;

@@ -38,8 +38,9 @@ LoadedModel load_model(const std::filesystem::path& path) {
       !std::filesystem::is_directory(status)) {
     // A FIFO or device cannot be sniffed and then read again: its bytes
     // would be gone (or the second open would wait forever for a writer).
-    throw CommandError("E4101", "--model: '" + path.string() +
-                                    "' is not a regular file (a FIFO or a device); give the model as a file");
+    throw CommandError(
+        "E4101", "--model: '" + path.string() +
+                     "' is not a regular file (a FIFO or a device); give the model as a file");
   }
   if (!step && !std::filesystem::is_regular_file(status)) {
     throw CommandError("E4101", "--model: '" + path.string() + "': no such file");
@@ -55,9 +56,10 @@ LoadedModel load_model(const std::filesystem::path& path) {
   auto mesh = mesh::read_stl_file(path);
   for (const auto& v : mesh.vertices) {
     if (!(v.cwiseAbs().maxCoeff() <= occt::kMaxModelReachMm)) {
-      throw CommandError("E4107", "--model: '" + path.string() +
-                                      "': the model reaches beyond 100000 mm (100 m) from the origin; parts "
-                                      "within it are read (a stray point or a wrong unit?)");
+      throw CommandError("E4107",
+                         "--model: '" + path.string() +
+                             "': the model reaches beyond 100000 mm (100 m) from the origin; parts "
+                             "within it are read (a stray point or a wrong unit?)");
     }
   }
   const std::string description = std::to_string(mesh.triangles.size()) + " triangles";

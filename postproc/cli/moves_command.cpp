@@ -127,7 +127,7 @@ void add_moves_command(CLI::App& app) {
       std::fflush(stdout);
       flush_warnings();
       throw CommandError(e.code(), name + ":" + std::to_string(e.source().line) + ":" +
-                         std::to_string(e.source().column) + ": error: " + e.what());
+                                       std::to_string(e.source().column) + ": error: " + e.what());
     } catch (const gcode::GcodeError& e) {
       write_standard_output(out);
       std::fflush(stdout);

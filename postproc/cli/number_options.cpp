@@ -41,8 +41,7 @@ CLI::Validator positive_number(double at_least, double at_most) {
         if (std::string reason = parse(text, value); !reason.empty()) return reason;
         if (!(value > 0)) return "must be positive, got " + text;
         if (at_most > 0 && (value < at_least || value > at_most)) {
-          return "must be between " + shown(at_least) + " and " + shown(at_most) + ", got " +
-                 text;
+          return "must be between " + shown(at_least) + " and " + shown(at_most) + ", got " + text;
         }
         return {};
       },

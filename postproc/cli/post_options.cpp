@@ -160,7 +160,8 @@ void require_posted(const post::PostSummary& summary, const std::string& name) {
     bool offset = false;
     for (const post::ToolSection& s : summary.sections) {
       if (s.gouge.points + s.lift.points == 0) continue;
-      const std::string label = summary.sections.size() > 1 ? section_name(s) + ": " : std::string();
+      const std::string label =
+          summary.sections.size() > 1 ? section_name(s) + ": " : std::string();
       if (s.gouge.points > 0) message += "; " + label + depth_words(s.gouge, "gouge depth");
       if (s.lift.points > 0) message += "; " + label + depth_words(s.lift, "lift height");
       if (s.offset) message += "; " + label + offset_words(*s.offset);

@@ -32,8 +32,9 @@ std::string temporary_folder() {
   const std::size_t last_nl = before_nul.rfind('\n');
   const std::size_t column =
       before_nul.size() - (last_nl == std::string_view::npos ? 0 : last_nl + 1) + 1;
-  throw CommandError(name + ":" + std::to_string(line) + ":" + std::to_string(column) +
-                     ": error[E1002]: NUL byte: this is no text program (binary data?); nothing read past it");
+  throw CommandError(
+      name + ":" + std::to_string(line) + ":" + std::to_string(column) +
+      ": error[E1002]: NUL byte: this is no text program (binary data?); nothing read past it");
 }
 
 }  // namespace
@@ -44,16 +45,17 @@ ProgramText::ProgramText(const std::string& path) {
   if (path != "-") {
     fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
     if (fd < 0) {
-      throw CommandError("E2002", "'" + path + "': cannot open the program: " + std::strerror(errno));
+      throw CommandError("E2002",
+                         "'" + path + "': cannot open the program: " + std::strerror(errno));
     }
   }
   struct stat info {};
   if (::fstat(fd, &info) != 0 || S_ISDIR(info.st_mode)) {
     const int error = errno;
     if (fd != STDIN_FILENO) ::close(fd);
-    throw CommandError("E2002",
-        "'" + name + "': cannot open the program: " +
-        (S_ISDIR(info.st_mode) ? std::string("it is a folder") : std::strerror(error)));
+    throw CommandError("E2002", "'" + name + "': cannot open the program: " +
+                                    (S_ISDIR(info.st_mode) ? std::string("it is a folder")
+                                                           : std::strerror(error)));
   }
   if (S_ISREG(info.st_mode) && path != "-") {
     const auto size = static_cast<std::size_t>(info.st_size);
@@ -68,8 +70,8 @@ ProgramText::ProgramText(const std::string& path) {
   if (copy < 0) {
     const int error = errno;
     if (fd != STDIN_FILENO) ::close(fd);
-    throw CommandError("E2002", "'" + name + "': cannot hold the program in '" + temporary_folder() +
-                       "': " + std::strerror(error));
+    throw CommandError("E2002", "'" + name + "': cannot hold the program in '" +
+                                    temporary_folder() + "': " + std::strerror(error));
   }
   ::unlink(pattern.c_str());
   std::vector<char> buffer(std::size_t{1} << 20);
@@ -84,15 +86,16 @@ ProgramText::ProgramText(const std::string& path) {
       const int error = errno;
       ::close(copy);
       if (fd != STDIN_FILENO) ::close(fd);
-      throw CommandError("E2002", "'" + name + "': cannot read the program: " + std::strerror(error));
+      throw CommandError("E2002",
+                         "'" + name + "': cannot read the program: " + std::strerror(error));
     }
     const std::string_view piece(buffer.data(), static_cast<std::size_t>(got));
     if (const std::size_t nul = piece.find('\0'); nul != std::string_view::npos) {
       ::close(copy);
       if (fd != STDIN_FILENO) ::close(fd);
       const std::string_view before = piece.substr(0, nul);
-      const auto lines = newlines + static_cast<std::uint64_t>(
-                                        std::count(before.begin(), before.end(), '\n'));
+      const auto lines =
+          newlines + static_cast<std::uint64_t>(std::count(before.begin(), before.end(), '\n'));
       const std::size_t last_nl = before.rfind('\n');
       const std::size_t col = last_nl == std::string_view::npos ? column + nul : nul - last_nl;
       throw CommandError(name + ":" + std::to_string(lines + 1) + ":" + std::to_string(col) +
@@ -109,8 +112,8 @@ ProgramText::ProgramText(const std::string& path) {
         const int error = errno;
         ::close(copy);
         if (fd != STDIN_FILENO) ::close(fd);
-        throw CommandError("E2002", "'" + name + "': cannot hold the program in '" + temporary_folder() +
-                           "': " + std::strerror(error));
+        throw CommandError("E2002", "'" + name + "': cannot hold the program in '" +
+                                        temporary_folder() + "': " + std::strerror(error));
       }
       done += static_cast<std::size_t>(put);
     }
@@ -138,7 +141,8 @@ void ProgramText::refuse_binary(const std::string& name) const {
   // one window whatever the file's size.
   const auto page = static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
   for (std::uint64_t at = 0; at < map_size_; at += release_step) {
-    const std::size_t length = static_cast<std::size_t>(std::min<std::uint64_t>(release_step, map_size_ - at));
+    const std::size_t length =
+        static_cast<std::size_t>(std::min<std::uint64_t>(release_step, map_size_ - at));
     if (std::memchr(view_.data() + at, '\0', length) != nullptr) {
       const std::size_t nul = view_.find('\0', at);
       binary_input(name, view_.substr(0, nul));

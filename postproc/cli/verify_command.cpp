@@ -171,9 +171,9 @@ void add_verify_command(CLI::App& app) {
                   "machine profile (built-in name or TOML file): the dialect, and the output "
                   "decimals for CL input")
       ->capture_default_str();
-  cmd->add_option(
-      "--dialect", args->dialect,
-      "G-code dialect of both programs: rs274ngc, fanuc, mazak, sinumerik (default: the profile's)");
+  cmd->add_option("--dialect", args->dialect,
+                  "G-code dialect of both programs: rs274ngc, fanuc, mazak, sinumerik (default: "
+                  "the profile's)");
   cmd->add_option("--tolerance", args->tolerance,
                   "CL input: largest per-axis distance of an output end point or arc centre from "
                   "the CL's, mm")

@@ -54,9 +54,29 @@ constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8
 // lead, taken and ignored for milling).
 bool is_word_letter(char c, const Dialect& d) {
   switch (c) {
-    case 'A': case 'B': case 'C': case 'D': case 'F': case 'G': case 'H': case 'I': case 'J':
-    case 'K': case 'L': case 'M': case 'P': case 'Q': case 'R': case 'S': case 'T': case 'U':
-    case 'V': case 'W': case 'X': case 'Y': case 'Z':
+    case 'A':
+    case 'B':
+    case 'C':
+    case 'D':
+    case 'F':
+    case 'G':
+    case 'H':
+    case 'I':
+    case 'J':
+    case 'K':
+    case 'L':
+    case 'M':
+    case 'P':
+    case 'Q':
+    case 'R':
+    case 'S':
+    case 'T':
+    case 'U':
+    case 'V':
+    case 'W':
+    case 'X':
+    case 'Y':
+    case 'Z':
       return true;
     case 'E':
       return d.kind != DialectKind::rs274ngc;
@@ -136,7 +156,7 @@ class LineReader {
   std::size_t i_ = 0;
   std::uint32_t line_;
   const Dialect& d_;
-  const Parameters* p_;  // null when only peeking (nothing is evaluated)
+  const Parameters* p_;   // null when only peeking (nothing is evaluated)
   bool ac_seen_ = false;  // AC(..) read in the current word's expression
 
   bool at_end() const { return i_ >= s_.size(); }
@@ -145,13 +165,14 @@ class LineReader {
   // A Sinumerik statement at i_: MSG( MCALL CYCLE8x( CR=.
   bool looks_siemens() const {
     std::string key;
-    for (std::size_t k = i_; k < s_.size() && key.size() < 8 && (is_alpha(s_[k]) || is_digit(s_[k])); ++k)
+    for (std::size_t k = i_;
+         k < s_.size() && key.size() < 8 && (is_alpha(s_[k]) || is_digit(s_[k])); ++k)
       key += upper(s_[k]);
     std::size_t k = i_ + key.size();
     while (k < s_.size() && is_blank(s_[k])) ++k;
     const char next = k < s_.size() ? s_[k] : '\0';
-    return (key == "MSG" && next == '(') || key == "MCALL" || (key.rfind("CYCLE", 0) == 0 && next == '(') ||
-           (key == "CR" && next == '=');
+    return (key == "MSG" && next == '(') || key == "MCALL" ||
+           (key.rfind("CYCLE", 0) == 0 && next == '(') || (key == "CR" && next == '=');
   }
 
   // ---- Sinumerik 840D statements ---------------------------------------
@@ -169,7 +190,8 @@ class LineReader {
     const std::size_t start = i_;
     ++i_;
     int number = 0;
-    while (!at_end() && is_digit(s_[i_]) && number < 100000) number = number * 10 + (s_[i_++] - '0');
+    while (!at_end() && is_digit(s_[i_]) && number < 100000)
+      number = number * 10 + (s_[i_++] - '0');
     skip_blanks();
     ++i_;  // '='
     const Value v = binary(0, start);
@@ -197,10 +219,12 @@ class LineReader {
   }
 
   // Arguments "(a, , c)" of a cycle call; empty ones are nullopt.
-  std::vector<std::optional<double>> read_call_arguments(std::size_t start, const std::string& key) {
+  std::vector<std::optional<double>> read_call_arguments(std::size_t start,
+                                                         const std::string& key) {
     std::vector<std::optional<double>> args;
     skip_blanks();
-    if (at_end() || s_[i_] != '(') fail(Code::bad_expression, start, key + " needs its arguments in ( )");
+    if (at_end() || s_[i_] != '(')
+      fail(Code::bad_expression, start, key + " needs its arguments in ( )");
     ++i_;
     while (true) {
       skip_blanks();
@@ -285,7 +309,8 @@ class LineReader {
       // TURN=n: n full turns more than the helix's end point says; the P
       // (turns) word of RS274NGC arcs, which counts them all.
       skip_blanks();
-      if (at_end() || s_[i_] != '=') fail(Code::bad_expression, start, "TURN needs '=' and a count");
+      if (at_end() || s_[i_] != '=')
+        fail(Code::bad_expression, start, "TURN needs '=' and a count");
       ++i_;
       Word w;
       w.letter = 'P';
@@ -308,7 +333,8 @@ class LineReader {
         std::string name;
         while (!at_end() && (is_alpha(s_[i_]) || is_digit(s_[i_]))) name += upper(s_[i_++]);
         if (!read_cycle(name, at, cycle))
-          fail(Code::unsupported_code, at, "MCALL " + name + ": vcpost follows MCALL of CYCLE81-CYCLE89 only");
+          fail(Code::unsupported_code, at,
+               "MCALL " + name + ": vcpost follows MCALL of CYCLE81-CYCLE89 only");
         cycle.kind = SiemensCycle::Kind::modal_call;
       }
       return;
@@ -319,41 +345,45 @@ class LineReader {
     }
     // Modes that leave the path as written: passed through, named once.
     static constexpr std::string_view kNoted[] = {
-        "SOFT",   "BRISK",   "FFWON",  "FFWOF",   "CFC",     "CFTCP",    "CFIN",     "COMPON",
-        "COMPCURV", "COMPCAD", "COMPOF", "DIAMOF", "TRAFOOF", "UPATH",    "SPATH",    "STOPRE",
-        "CYCLE832", "WORKPIECE", "FGROUP", "G_GROUP", "ORIWKS", "ORIAXES", "ORIVECT",
-        "TOFFON", "TOFFOF", "FNORM",  "FLIN",    "FCUB",    "PTP",      "CP",       "SUPA"};
+        "SOFT",     "BRISK",     "FFWON",  "FFWOF",   "CFC",     "CFTCP",   "CFIN",    "COMPON",
+        "COMPCURV", "COMPCAD",   "COMPOF", "DIAMOF",  "TRAFOOF", "UPATH",   "SPATH",   "STOPRE",
+        "CYCLE832", "WORKPIECE", "FGROUP", "G_GROUP", "ORIWKS",  "ORIAXES", "ORIVECT", "TOFFON",
+        "TOFFOF",   "FNORM",     "FLIN",   "FCUB",    "PTP",     "CP",      "SUPA"};
     for (const auto noted : kNoted) {
       if (key == noted) {
         if (key == "SUPA")
-          fail(Code::unsupported_code, start, "SUPA (machine coordinates without any frame) is not followed; use G53");
+          fail(Code::unsupported_code, start,
+               "SUPA (machine coordinates without any frame) is not followed; use G53");
         skip_parenthesised();
         out.noted_keywords.emplace_back(key, column);
         return;
       }
     }
-    static constexpr std::string_view kFrames[] = {"TRANS", "ATRANS", "ROT",    "AROT",   "SCALE",
-                                                   "ASCALE", "MIRROR", "AMIRROR", "CYCLE800", "TRAORI",
-                                                   "ROTS",  "AROTS"};
+    static constexpr std::string_view kFrames[] = {"TRANS",    "ATRANS", "ROT",    "AROT",
+                                                   "SCALE",    "ASCALE", "MIRROR", "AMIRROR",
+                                                   "CYCLE800", "TRAORI", "ROTS",   "AROTS"};
     for (const auto frame : kFrames)
       if (key == frame)
         fail(Code::unsupported_code, start,
-             key + " moves, rotates, scales or mirrors the coordinate frame; vcpost does not follow "
-                   "frames: remove it or post without it");
-    static constexpr std::string_view kFlow[] = {"GOTOF", "GOTOB", "GOTO", "GOTOC", "LOOP", "ENDLOOP",
-                                                 "WHILE", "ENDWHILE", "FOR", "ENDFOR", "IF", "ELSE",
-                                                 "ENDIF", "REPEAT", "UNTIL", "CALL", "PCALL", "RET",
-                                                 "DEF", "PROC"};
+             key +
+                 " moves, rotates, scales or mirrors the coordinate frame; vcpost does not follow "
+                 "frames: remove it or post without it");
+    static constexpr std::string_view kFlow[] = {"GOTOF",   "GOTOB", "GOTO",     "GOTOC",  "LOOP",
+                                                 "ENDLOOP", "WHILE", "ENDWHILE", "FOR",    "ENDFOR",
+                                                 "IF",      "ELSE",  "ENDIF",    "REPEAT", "UNTIL",
+                                                 "CALL",    "PCALL", "RET",      "DEF",    "PROC"};
     for (const auto flow : kFlow)
       if (key == flow)
         fail(Code::unsupported_flow, start,
-             key + ": Sinumerik program flow and subprograms are not followed by vcpost; expand them in CAM");
+             key +
+                 ": Sinumerik program flow and subprograms are not followed by vcpost; expand them "
+                 "in CAM");
     fail(Code::unknown_word, start, "unknown Sinumerik word or statement '" + key + "'");
   }
 
   bool read_cycle(const std::string& name, std::size_t start, SiemensCycle& cycle) {
-    static constexpr std::string_view kCycles[] = {"CYCLE81", "CYCLE82", "CYCLE83", "CYCLE84", "CYCLE85",
-                                                   "CYCLE86", "CYCLE89"};
+    static constexpr std::string_view kCycles[] = {"CYCLE81", "CYCLE82", "CYCLE83", "CYCLE84",
+                                                   "CYCLE85", "CYCLE86", "CYCLE89"};
     for (const auto c : kCycles) {
       if (name == c) {
         cycle.number = (name[5] - '0') * 10 + (name[6] - '0');
@@ -509,8 +539,7 @@ class LineReader {
         read_comment(out);
       } else if (c == ';') {
         for (std::size_t k = i_ + 1; k < s_.size(); ++k) check_byte(k);
-        out.comments.push_back(
-            Comment{s_.substr(i_ + 1), static_cast<std::uint32_t>(i_ + 1)});
+        out.comments.push_back(Comment{s_.substr(i_ + 1), static_cast<std::uint32_t>(i_ + 1)});
         i_ = s_.size();
         return;
       } else if (c == '#') {
@@ -685,12 +714,10 @@ class LineReader {
       if (compact_length < sizeof compact) compact[compact_length++] = c;
       ++i_;
     }
-    if (!any)
-      fail(Code::bad_number, word_start, std::string(1, letter) + " word without a number");
+    if (!any) fail(Code::bad_number, word_start, std::string(1, letter) + " word without a number");
     decimal_point = point;
     if (digits <= 15 && fraction <= 22) return static_cast<double>(mantissa) / kPow10[fraction];
-    if (compact_length >= sizeof compact)
-      fail(Code::bad_number, word_start, "number too long");
+    if (compact_length >= sizeof compact) fail(Code::bad_number, word_start, "number too long");
     double v = 0.0;
     const auto r = std::from_chars(compact, compact + compact_length, v);
     if (r.ec != std::errc()) fail(Code::bad_number, word_start, "number out of range");
@@ -724,7 +751,8 @@ class LineReader {
       // R parameter: 0 until set, as on the control.
       ++i_;
       int number = 0;
-      while (!at_end() && is_digit(s_[i_]) && number < 100000) number = number * 10 + (s_[i_++] - '0');
+      while (!at_end() && is_digit(s_[i_]) && number < 100000)
+        number = number * 10 + (s_[i_++] - '0');
       const Access a = p_->read("_r" + std::to_string(number));
       return Value{a.ok ? a.value.number : 0.0, false};
     }
@@ -753,7 +781,24 @@ class LineReader {
     return v;
   }
 
-  enum class Op { none, power, times, divide, mod, plus, minus, eq, ne, gt, ge, lt, le, and_, or_, xor_ };
+  enum class Op {
+    none,
+    power,
+    times,
+    divide,
+    mod,
+    plus,
+    minus,
+    eq,
+    ne,
+    gt,
+    ge,
+    lt,
+    le,
+    and_,
+    or_,
+    xor_
+  };
 
   Op peek_op(std::size_t& length) const {
     length = 0;
@@ -791,12 +836,28 @@ class LineReader {
 
   static int precedence(Op op) {
     switch (op) {
-      case Op::power: return 5;
-      case Op::times: case Op::divide: case Op::mod: return 4;
-      case Op::plus: case Op::minus: return 3;
-      case Op::eq: case Op::ne: case Op::gt: case Op::ge: case Op::lt: case Op::le: return 2;
-      case Op::and_: case Op::or_: case Op::xor_: return 1;
-      case Op::none: return 0;
+      case Op::power:
+        return 5;
+      case Op::times:
+      case Op::divide:
+      case Op::mod:
+        return 4;
+      case Op::plus:
+      case Op::minus:
+        return 3;
+      case Op::eq:
+      case Op::ne:
+      case Op::gt:
+      case Op::ge:
+      case Op::lt:
+      case Op::le:
+        return 2;
+      case Op::and_:
+      case Op::or_:
+      case Op::xor_:
+        return 1;
+      case Op::none:
+        return 0;
     }
     return 0;
   }
@@ -824,7 +885,8 @@ class LineReader {
         if (x < 0 && y != std::floor(y))
           fail(Code::math_domain, at, "negative base to a non-integer power");
         return Value{std::pow(x, y), false};
-      case Op::times: return Value{x * y, false};
+      case Op::times:
+        return Value{x * y, false};
       case Op::divide:
         if (y == 0.0) fail(Code::math_domain, at, "division by zero");
         return Value{x / y, false};
@@ -834,21 +896,31 @@ class LineReader {
         if (r < 0) r += std::abs(y);  // LinuxCNC: result has the divisor's sign convention
         return Value{r, false};
       }
-      case Op::plus: return Value{x + y, false};
-      case Op::minus: return Value{x - y, false};
+      case Op::plus:
+        return Value{x + y, false};
+      case Op::minus:
+        return Value{x - y, false};
       // Fanuc: <vacant> equals only <vacant> in EQ/NE.
       case Op::eq:
         return truth(a.vacant || b.vacant ? a.vacant == b.vacant : x == y);
       case Op::ne:
         return truth(a.vacant || b.vacant ? a.vacant != b.vacant : x != y);
-      case Op::gt: return truth(x > y);
-      case Op::ge: return truth(x >= y);
-      case Op::lt: return truth(x < y);
-      case Op::le: return truth(x <= y);
-      case Op::and_: return truth(x != 0.0 && y != 0.0);
-      case Op::or_: return truth(x != 0.0 || y != 0.0);
-      case Op::xor_: return truth((x != 0.0) != (y != 0.0));
-      case Op::none: break;
+      case Op::gt:
+        return truth(x > y);
+      case Op::ge:
+        return truth(x >= y);
+      case Op::lt:
+        return truth(x < y);
+      case Op::le:
+        return truth(x <= y);
+      case Op::and_:
+        return truth(x != 0.0 && y != 0.0);
+      case Op::or_:
+        return truth(x != 0.0 || y != 0.0);
+      case Op::xor_:
+        return truth((x != 0.0) != (y != 0.0));
+      case Op::none:
+        break;
     }
     return a;
   }
@@ -873,14 +945,16 @@ class LineReader {
     }
     const bool round_brackets = siemens() && !at_end() && s_[i_] == '(';
     if (at_end() || (s_[i_] != '[' && !round_brackets))
-      fail(Code::bad_expression, start, "unknown word or function '" + name + "'" + dialect_hint(name));
+      fail(Code::bad_expression, start,
+           "unknown word or function '" + name + "'" + dialect_hint(name));
     const double x = round_brackets ? paren().number : bracket().number;
     if (round_brackets && name == "AC") {
       ac_seen_ = true;
       return Value{x, false};
     }
     if (round_brackets && name == "IC")
-      fail(Code::unsupported_code, start, "IC() (incremental for one word) is not followed; use G91");
+      fail(Code::unsupported_code, start,
+           "IC() (incremental for one word) is not followed; use G91");
     constexpr double deg = std::numbers::pi / 180.0;
     if (name == "ATAN") {
       skip_blanks();
@@ -951,9 +1025,10 @@ class LineReader {
     skip_blanks();
     if (!at_end() && s_[i_] == '<') {
       if (!d_.named_parameters)
-        fail(Code::parameters_not_in_dialect, hash,
-             "named parameters are not part of this dialect; an RS274NGC (LinuxCNC) program is read "
-             "with --dialect rs274ngc");
+        fail(
+            Code::parameters_not_in_dialect, hash,
+            "named parameters are not part of this dialect; an RS274NGC (LinuxCNC) program is read "
+            "with --dialect rs274ngc");
       return Ref{0, read_name()};
     }
     if (!d_.numbered_parameters)
@@ -982,8 +1057,8 @@ class LineReader {
     ++i_;
     // Fanuc macros allow "#1 = #2 + 3" without brackets; RS274NGC takes one value.
     const Value v = d_.fanuc_macros ? binary(0, hash) : unary(hash);
-    out.assignments.push_back(
-        Assignment{ref.number, std::move(ref.name), v.number, static_cast<std::uint32_t>(hash + 1)});
+    out.assignments.push_back(Assignment{ref.number, std::move(ref.name), v.number,
+                                         static_cast<std::uint32_t>(hash + 1)});
   }
 
   void read_o_word(Block& out) {
@@ -1010,7 +1085,9 @@ class LineReader {
     if (c.kind == ControlKind::none)
       fail(Code::unknown_word, key_at, "unknown O-word keyword '" + key + "'");
     switch (c.kind) {
-      case ControlKind::if_: case ControlKind::elseif: case ControlKind::while_:
+      case ControlKind::if_:
+      case ControlKind::elseif:
+      case ControlKind::while_:
       case ControlKind::repeat: {
         skip_blanks();
         if (at_end() || s_[i_] != '[')
@@ -1018,7 +1095,9 @@ class LineReader {
         c.condition = bracket().number;
         break;
       }
-      case ControlKind::call: case ControlKind::return_: case ControlKind::endsub: {
+      case ControlKind::call:
+      case ControlKind::return_:
+      case ControlKind::endsub: {
         skip_blanks();
         while (!at_end() && s_[i_] == '[') {
           c.arguments.push_back(bracket().number);
@@ -1052,7 +1131,8 @@ class LineReader {
     c.column = static_cast<std::uint32_t>(start + 1);
     if (key == "IF") {
       skip_blanks();
-      if (at_end() || s_[i_] != '[') fail(Code::bad_expression, start, "IF needs a condition in [ ]");
+      if (at_end() || s_[i_] != '[')
+        fail(Code::bad_expression, start, "IF needs a condition in [ ]");
       const bool taken = bracket().number != 0.0;
       skip_blanks();
       const std::size_t key_at = i_;
@@ -1063,7 +1143,8 @@ class LineReader {
         c.name = "GOTO";
         return false;
       }
-      if (then != "THEN") fail(Code::bad_expression, key_at, "IF [..] must be followed by THEN or GOTO");
+      if (then != "THEN")
+        fail(Code::bad_expression, key_at, "IF [..] must be followed by THEN or GOTO");
       skip_blanks();
       if (at_end() || s_[i_] == '(' || s_[i_] == ';') {
         c.kind = ControlKind::if_;
@@ -1116,9 +1197,9 @@ void read_block(std::string_view line, std::uint32_t line_number, std::uint64_t 
   out.line = line_number;
   out.offset = offset;
   if (line.size() > kMaxLineLength)
-    throw GcodeError(Diagnostic{Code::line_too_long, Severity::error, line_number, 1,
-                                "line longer than " + std::to_string(kMaxLineLength) +
-                                    " bytes, the reader's limit"});
+    throw GcodeError(Diagnostic{
+        Code::line_too_long, Severity::error, line_number, 1,
+        "line longer than " + std::to_string(kMaxLineLength) + " bytes, the reader's limit"});
   LineReader reader(line, line_number, dialect, &parameters);
   reader.read(out);
 }
@@ -1177,7 +1258,8 @@ std::optional<Span> find_word_span(std::string_view line, char letter) {
                                     (is_digit(line[k + 1]) || line[k + 1] == '.'))))
           ++k;
       }
-      return Span{static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(std::min(k, line.size()))};
+      return Span{static_cast<std::uint32_t>(i),
+                  static_cast<std::uint32_t>(std::min(k, line.size()))};
     }
     ++i;
   }

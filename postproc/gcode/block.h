@@ -45,12 +45,23 @@ struct Assignment {
 // O-word control (RS274NGC) and Fanuc/Mazak macro flow.
 enum class ControlKind {
   none,
-  sub, endsub, call, return_,              // o<name> sub / endsub / call [args] / return
-  if_, elseif, else_, endif,               // o<name> if [cond] ... (also Fanuc IF..THEN..ENDIF)
-  while_, endwhile, do_, break_, continue_,
-  repeat, endrepeat,
-  program_number,                          // Fanuc/Mazak "O1234" program header
-  fanuc_goto,                              // GOTO n, IF [..] GOTO n, WHILE/DO/END
+  sub,
+  endsub,
+  call,
+  return_,  // o<name> sub / endsub / call [args] / return
+  if_,
+  elseif,
+  else_,
+  endif,  // o<name> if [cond] ... (also Fanuc IF..THEN..ENDIF)
+  while_,
+  endwhile,
+  do_,
+  break_,
+  continue_,
+  repeat,
+  endrepeat,
+  program_number,  // Fanuc/Mazak "O1234" program header
+  fanuc_goto,      // GOTO n, IF [..] GOTO n, WHILE/DO/END
 };
 
 struct Control {

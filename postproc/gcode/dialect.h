@@ -24,8 +24,8 @@ struct Dialect {
   // `#<x>` and O-word control only in RS274NGC.
   bool numbered_parameters = true;
   bool named_parameters = true;
-  bool o_word_control = true;        // o100 sub / call / if / while ... (RS274NGC)
-  bool fanuc_macros = false;         // IF [..] THEN, program numbers O1234, M98/M99
+  bool o_word_control = true;  // o100 sub / call / if / while ... (RS274NGC)
+  bool fanuc_macros = false;   // IF [..] THEN, program numbers O1234, M98/M99
   // Unknown M codes: machine-specific on Fanuc-like controls (warning), an
   // error for LinuxCNC.
   bool unknown_m_is_error = true;

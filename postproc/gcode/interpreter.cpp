@@ -317,7 +317,8 @@ void Interpreter::branch(const Control& c) {
     flow_.pop_back();
     return;
   }
-  if (!flow_top_is(ControlKind::if_)) fail(Code::unmatched_control, c.column, "else without its if");
+  if (!flow_top_is(ControlKind::if_))
+    fail(Code::unmatched_control, c.column, "else without its if");
   Flow& f = flow_.back();
   const bool take = !f.taken && (c.kind == ControlKind::else_ || c.condition.value_or(0.0) != 0.0);
   if (take) {
@@ -818,8 +819,8 @@ void Interpreter::check_unused_words(const Step& step) {
   unused('L', cycle || g10 || comp_on || m98 || moc == 660,
          "G10, cutter compensation, canned cycle or M98");
   unused('P',
-         g10 || nonmodal_code == 40 || g64 || arc || to_be == 740 || to_be == 820 ||
-             to_be == 840 || to_be == 860 || to_be == 880 || to_be == 890 || m98 || m_p || m19,
+         g10 || nonmodal_code == 40 || g64 || arc || to_be == 740 || to_be == 820 || to_be == 840 ||
+             to_be == 860 || to_be == 880 || to_be == 890 || m98 || m_p || m19,
          "G2, G3, G4, G10, G64, G74, G82, G84, G86, G88, G89 or M98");
   unused('Q', to_be == 730 || to_be == 830 || g10 || g64 || m_q || m19, "G10, G64, G73 or G83");
   unused('R', arc || cycle || g10 || g64 || m19, "G2, G3, G10, G64 or canned cycle");
@@ -956,8 +957,9 @@ void Interpreter::dwell(Step& step) {
 void Interpreter::set_plane(Step& step) {
   const Word* g = step.g(Group::plane);
   const int c = code_of(*g);
-  step.state.plane =
-      c == 170 ? program::Plane::xy : c == 180 ? program::Plane::xz : program::Plane::yz;
+  step.state.plane = c == 170   ? program::Plane::xy
+                     : c == 180 ? program::Plane::xz
+                                : program::Plane::yz;
   step.emit(program::SelectPlane{step.state.plane, source(step.b, g->column)});
 }
 
@@ -1106,8 +1108,7 @@ void Interpreter::set_distance_modes(Step& step) {
   if (step.g(Group::distance)) step.state.absolute = step.g_code(Group::distance) == 900;
   if (step.g(Group::arc_distance))
     step.state.arc_absolute = step.g_code(Group::arc_distance) == 901;
-  if (step.g(Group::return_mode))
-    step.state.retract_to_r = step.g_code(Group::return_mode) == 990;
+  if (step.g(Group::return_mode)) step.state.retract_to_r = step.g_code(Group::return_mode) == 990;
 }
 
 // Which codes take the axis words for themselves, so that they are no move.
@@ -1126,8 +1127,7 @@ void Interpreter::take_axis_words(Step& step) {
            "spindle M code in a G117 block acts inside the next move; vcpost cannot place it");
   }
   // G43.1: the axis words are the tool length offset.
-  const bool dynamic_offset =
-      step.g(Group::tool_length) && step.g_code(Group::tool_length) == 431;
+  const bool dynamic_offset = step.g(Group::tool_length) && step.g_code(Group::tool_length) == 431;
   step.axes_taken = g117 || step.macro_call || dynamic_offset || nonmodal_code == 100 ||
                     nonmodal_code == 520 || nonmodal_code == 920;
   step.has_axis = !step.axes_taken && step.has_xyz;
@@ -1236,7 +1236,8 @@ void Interpreter::canned_cycle(Step& step) {
   ModalState& s = step.state;
   const int c = s.cycle;
   const std::uint32_t column = step.motion_column;
-  if (s.feed <= 0.0) fail(Code::missing_feed, column, "canned cycle with no feed rate (F) in effect");
+  if (s.feed <= 0.0)
+    fail(Code::missing_feed, column, "canned cycle with no feed rate (F) in effect");
   if (s.feed_mode == program::FeedMode::inverse_time)
     fail(Code::cycle_value, column, "canned cycles cannot run in inverse-time feed (G93)");
   if (s.plane != program::Plane::xy)
@@ -1341,8 +1342,7 @@ void Interpreter::place_cycle(const Step& step, CycleCall& call, double r_word,
     call.dx = x ? length(*x, s.inches) : 0.0;
     call.dy = y ? length(*y, s.inches) : 0.0;
   }
-  if (call.code == 870 && !call.fanuc)
-    call.k = s.absolute ? s.cycle_k : call.bottom + s.cycle_k;
+  if (call.code == 870 && !call.fanuc) call.k = s.absolute ? s.cycle_k : call.bottom + s.cycle_k;
   call.initial = old_z;
 }
 
@@ -1388,18 +1388,18 @@ void Interpreter::arc(Step& step, const Eigen::Vector3d& end) {
   if (s.feed <= 0.0 || (s.feed_mode == program::FeedMode::inverse_time && !step.word('F')))
     fail(Code::missing_feed, column, "arc with no feed rate (F) in effect");
   const bool cw = s.motion == Motion::arc_cw;
-  const Eigen::Vector3d centre = step.word('R') ? centre_from_radius(step, end, cw)
-                                                : centre_from_offsets(step, end);
+  const Eigen::Vector3d centre =
+      step.word('R') ? centre_from_radius(step, end, cw) : centre_from_offsets(step, end);
   int turns = 1;
-  if (const Word* p = step.word('P'); p && (dialect_.kind == DialectKind::rs274ngc ||
-                                            dialect_.kind == DialectKind::sinumerik)) {
+  if (const Word* p = step.word('P');
+      p && (dialect_.kind == DialectKind::rs274ngc || dialect_.kind == DialectKind::sinumerik)) {
     if (p->value < 1 || !whole_number(p->value))
       fail(Code::bad_word_value, p->column,
            "P (turns) of an arc must be a whole number from 1 to 1e9");
     turns = static_cast<int>(p->value);
   }
-  const program::ArcFeed arc{s.position,           end, centre, s.plane, cw ? -turns : turns,
-                             source(step.b, column)};
+  const program::ArcFeed arc{
+      s.position, end, centre, s.plane, cw ? -turns : turns, source(step.b, column)};
   step.emit_inverse_f([&] { return s.feed * program::arc_length(arc); });
   step.emit(arc);
 }

@@ -182,8 +182,7 @@ class Interpreter {
   void place_cycle(const Step& step, CycleCall& call, double r_word, double z_word) const;
   void motion(Step& step);
   void arc(Step& step, const Eigen::Vector3d& end);
-  Eigen::Vector3d centre_from_radius(const Step& step, const Eigen::Vector3d& end,
-                                     bool cw) const;
+  Eigen::Vector3d centre_from_radius(const Step& step, const Eigen::Vector3d& end, bool cw) const;
   Eigen::Vector3d centre_from_offsets(const Step& step, const Eigen::Vector3d& end) const;
   void siemens_words(Step& step);
   bool stop(Step& step);

@@ -49,7 +49,8 @@ void write_patched(std::string_view text, std::span<const WordPatch> patches,
       const WordPatch& p = patches[i];
       if (p.letter != 'S' && p.letter != 'F' && p.letter != 's' && p.letter != 'f')
         throw std::invalid_argument("write_patched: only S and F words are patched");
-      if (edit_count == 2) throw std::invalid_argument("write_patched: more than S and F in a block");
+      if (edit_count == 2)
+        throw std::invalid_argument("write_patched: more than S and F in a block");
       if (const auto span = find_word_span(line, p.letter)) {
         edits[edit_count++] = Edit{span->begin + 1, span->end, p.value};
       } else {

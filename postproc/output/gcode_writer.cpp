@@ -69,8 +69,8 @@ Format format_for(const machines::MachineProfile& profile) {
 OutputError::OutputError(std::string_view code, const std::string& message,
                          program::SourceRef source)
     : vcpost::Error(code,
-                    std::to_string(source.line) + ":" + std::to_string(source.column) +
-                        ": error[" + std::string(code) + "]: " + message,
+                    std::to_string(source.line) + ":" + std::to_string(source.column) + ": error[" +
+                        std::string(code) + "]: " + message,
                     {"", source.line, source.column}),
       source_(source) {}
 

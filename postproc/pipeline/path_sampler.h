@@ -11,11 +11,12 @@
 namespace vcpost::pipeline {
 
 struct PathSample {
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();      // programmed (CL) point, mm
-  Eigen::Vector3d direction = Eigen::Vector3d::UnitX(); // unit motion direction (arc tangent on arcs)
-  std::uint64_t move = 0;                               // index of the motion event it lies on
-  double fraction = 1;                                  // position along that move, (0, 1]; 0 = its start
-  program::SourceRef source;                            // the block (record) of that move
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // programmed (CL) point, mm
+  Eigen::Vector3d direction =
+      Eigen::Vector3d::UnitX();  // unit motion direction (arc tangent on arcs)
+  std::uint64_t move = 0;        // index of the motion event it lies on
+  double fraction = 1;           // position along that move, (0, 1]; 0 = its start
+  program::SourceRef source;     // the block (record) of that move
 };
 
 // Splits cutting moves (straight and arc feeds) into samples no further

@@ -88,9 +88,8 @@ void PointEvaluator::engage(const PathSample& sample, PointResult& out) const {
                                  out.feed.isZero() ? sample.direction : out.feed, out.side};
   out.engagement = geometry::evaluate_engagement(settings_.tool, setup, cutting_points_);
   const auto& e = *out.engagement;
-  out.d_ref = geometry::reference_diameter(settings_.policy, e, [&] {
-    return geometry::engaged_mean_diameter(settings_.tool, setup);
-  });
+  out.d_ref = geometry::reference_diameter(
+      settings_.policy, e, [&] { return geometry::engaged_mean_diameter(settings_.tool, setup); });
   if (out.d_ref) out.target_rpm = geometry::target_rpm(settings_.vc, *out.d_ref);
 }
 

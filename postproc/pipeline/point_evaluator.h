@@ -27,9 +27,9 @@ std::string_view to_string(AeSource source);
 
 struct PointSettings {
   geometry::Tool tool = geometry::Tool::ball(10);  // any shape (tool_contact.h)
-  double ap = 0.3;           // mm
-  std::optional<double> ae;  // mm; see ae_override
-  bool ae_override = false;  // use `ae` everywhere instead of measuring
+  double ap = 0.3;                                 // mm
+  std::optional<double> ae;                        // mm; see ae_override
+  bool ae_override = false;                        // use `ae` everywhere instead of measuring
   // The tip, or the tool frame's origin (tool_origin): a ball's centre, the
   // plane of a bull-nose's corner centres, a flat end mill's face.
   geometry::ClPoint cl_point = geometry::ClPoint::tip;

@@ -242,11 +242,11 @@ struct PathReader::State {
   plan::SpindleState spindle = plan::SpindleState::off;
   program::SpindleDirection direction = program::SpindleDirection::clockwise;
   double program_s = 0, program_f = 0;
-  bool tool_change = false;    // since the last timeline entry
-  bool break_pass = false;     // since the last slot
-  bool path_stops = false;     // the path stops before the next slot (Sample::path_stops)
+  bool tool_change = false;  // since the last timeline entry
+  bool break_pass = false;   // since the last slot
+  bool path_stops = false;   // the path stops before the next slot (Sample::path_stops)
   std::optional<Eigen::Vector3d> last_direction;  // of the last motion of non-zero length
-  std::size_t next_event = 0;  // of `events`, not yet taken
+  std::size_t next_event = 0;                     // of `events`, not yet taken
   std::uint64_t last_offset = 0;
   bool program_end = false;  // M2/M30 (a ProgramEnd event) read
 };
@@ -297,7 +297,8 @@ bool PathReader::read(Chunk& chunk, std::size_t samples) {
       more = s.source.next(s.events, s.program_tools);
     }
     if (!more) {
-      totals_.missing_end = s.kind == ProgramKind::gcode && !s.program_end && !ends_with_percent(s.text);
+      totals_.missing_end =
+          s.kind == ProgramKind::gcode && !s.program_end && !ends_with_percent(s.text);
       break;
     }
     Event& event = s.events[s.next_event];
@@ -366,8 +367,8 @@ bool PathReader::read(Chunk& chunk, std::size_t samples) {
         Slot& slot = next_slot();
         slot.kind = SlotKind::rapid;
         slot.break_pass = true;
-        slot.plan = {time.start,    block_index,       std::nullopt, true,
-                     s.tool_change, false,             s.spindle_state(), s.program_s};
+        slot.plan = {time.start,    block_index, std::nullopt,      true,
+                     s.tool_change, false,       s.spindle_state(), s.program_s};
         take_stop(slot);
         s.tool_change = false;
       } else {
@@ -380,8 +381,8 @@ bool PathReader::read(Chunk& chunk, std::size_t samples) {
         if (!s.path.empty() && s.path.front().fraction > 0) {
           Slot& slot = next_slot();
           slot.kind = SlotKind::resume;
-          slot.plan = {time.start,    block_index,       std::nullopt, false,
-                       s.tool_change, false,             s.spindle_state(), s.program_s};
+          slot.plan = {time.start,    block_index, std::nullopt,      false,
+                       s.tool_change, false,       s.spindle_state(), s.program_s};
           take_stop(slot);
           s.tool_change = false;
         }

@@ -51,10 +51,10 @@ enum class SlotKind : std::uint8_t {
 // One entry of the planner's timeline.
 struct Slot {
   SlotKind kind = SlotKind::sample;
-  bool break_pass = false;  // a rapid or a tool change comes first: a new pass starts
+  bool break_pass = false;    // a rapid or a tool change comes first: a new pass starts
   std::uint32_t section = 0;  // ToolSection::index
-  plan::Sample plan;        // target and air flag of samples and resumes: set later
-  float weight_s = 0;       // cutting time a sample stands for, s
+  plan::Sample plan;          // target and air flag of samples and resumes: set later
+  float weight_s = 0;         // cutting time a sample stands for, s
   pipeline::PathSample sample;
 };
 

@@ -84,7 +84,7 @@ struct PostSummary {
   std::optional<VcStatistics> before, after;
   std::vector<ToolSection> sections;    // every section with a motion, in program order
   std::vector<std::string> tool_notes;  // tool comments that could not be read
-  SPlacement s_placement;  // how the S words sit on the control and what they cost
+  SPlacement s_placement;               // how the S words sit on the control and what they cost
 };
 
 // One evaluated point of the path with the spindle speed before (the

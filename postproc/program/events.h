@@ -154,10 +154,10 @@ struct Message {
   SourceRef source;
 };
 
-using Event = std::variant<StraightTraverse, StraightFeed, ArcFeed, SetFeedRate, SetSpindleSpeed,
-                           SpindleOn, SpindleOff, SelectTool, ChangeTool, ToolLengthOffset,
-                           CutterCompensation, SelectPlane, Coolant, Dwell, ProgramStop,
-                           ProgramEnd, Message>;
+using Event =
+    std::variant<StraightTraverse, StraightFeed, ArcFeed, SetFeedRate, SetSpindleSpeed, SpindleOn,
+                 SpindleOff, SelectTool, ChangeTool, ToolLengthOffset, CutterCompensation,
+                 SelectPlane, Coolant, Dwell, ProgramStop, ProgramEnd, Message>;
 
 // The source of any event.
 SourceRef source_of(const Event& event);

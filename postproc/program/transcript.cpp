@@ -120,7 +120,8 @@ void append_call(std::string& out, const Event& event) {
           append_quoted(out, "COMMENT", text);
         } else if constexpr (std::is_same_v<T, CutterCompensation>) {
           append_quoted(out, "COMMENT",
-                        e.side == CompensationSide::off ? "interpreter: cutter radius compensation off"
+                        e.side == CompensationSide::off
+                            ? "interpreter: cutter radius compensation off"
                         : e.side == CompensationSide::left
                             ? "interpreter: cutter radius compensation on left"
                             : "interpreter: cutter radius compensation on right");

@@ -15,8 +15,8 @@
 #include <iostream>
 #include <numbers>
 
-#include "geometry/occt/sample_parts.h"
 #include "geometry/mesh/stl_reader.h"
+#include "geometry/occt/sample_parts.h"
 #include "postproc/samplegen/parts.h"
 #include "postproc/samplegen/surface_mesh.h"
 
@@ -65,15 +65,15 @@ Part part_or_throw(const std::string& name) {
 void write_step(const Part& part, const fs::path& file) {
   if (const auto* wavy = dynamic_cast<const WavyBspline*>(part.surface.get())) {
     const auto& d = wavy->data();
-    const vcpost::occt::BsplineSurfaceSpec spec{
-        d.degree_u, d.degree_v, d.knots_u, d.knots_v, d.count_u, d.count_v, d.poles};
+    const vcpost::occt::BsplineSurfaceSpec spec{d.degree_u, d.degree_v, d.knots_u, d.knots_v,
+                                                d.count_u,  d.count_v,  d.poles};
     if (part.step_faces_u * part.step_faces_v == 1) {
       vcpost::occt::write_bspline_face_step(file, spec, "vcpost wavy B-spline mould 120 x 80");
     } else {
-      vcpost::occt::write_bspline_patches_step(
-          file, spec, part.step_faces_u, part.step_faces_v,
-          "vcpost wavy B-spline mould 120 x 80 in " + std::to_string(part.step_faces_u) + " x " +
-              std::to_string(part.step_faces_v) + " faces");
+      vcpost::occt::write_bspline_patches_step(file, spec, part.step_faces_u, part.step_faces_v,
+                                               "vcpost wavy B-spline mould 120 x 80 in " +
+                                                   std::to_string(part.step_faces_u) + " x " +
+                                                   std::to_string(part.step_faces_v) + " faces");
     }
   } else if (part.name == "cylinder") {
     const auto& c = dynamic_cast<const SemiCylinder&>(*part.surface);

@@ -53,8 +53,8 @@ mesh::StlMesh triangulate_grid(const SampleSurface& surface, int cells_u, int ce
   m.triangles.reserve(2 * static_cast<std::size_t>(cells_u) * cells_v);
   for (int i = 0; i < cells_u; ++i) {
     for (int j = 0; j < cells_v; ++j) {
-      const Vector2d centre = lo + size.cwiseProduct(Vector2d((i + 0.5) / cells_u,
-                                                              (j + 0.5) / cells_v));
+      const Vector2d centre =
+          lo + size.cwiseProduct(Vector2d((i + 0.5) / cells_u, (j + 0.5) / cells_v));
       add(at(i, j), at(i + 1, j), at(i + 1, j + 1), centre);
       add(at(i, j), at(i + 1, j + 1), at(i, j + 1), centre);
     }
@@ -71,7 +71,8 @@ mesh::StlMesh triangulate(const SampleSurface& surface, std::uint64_t triangles)
   const double along_u = curve_length(surface, {lo.x(), mid.y()}, {hi.x(), mid.y()});
   const double along_v = curve_length(surface, {mid.x(), lo.y()}, {mid.x(), hi.y()});
   const double cells = static_cast<double>(triangles) / 2;
-  const int cells_v = std::max(1, static_cast<int>(std::lround(std::sqrt(cells * along_v / along_u))));
+  const int cells_v =
+      std::max(1, static_cast<int>(std::lround(std::sqrt(cells * along_v / along_u))));
   const int cells_u = std::max(1, static_cast<int>(std::lround(cells / cells_v)));
   return triangulate_grid(surface, cells_u, cells_v);
 }

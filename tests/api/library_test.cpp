@@ -28,8 +28,8 @@ fs::path samples() { return fs::path(VCPOST_SOURCE_DIR) / "samples"; }
 
 // `vcpost ARGUMENTS` in a fresh folder; its standard output.
 std::string run_vcpost(const std::string& arguments, int& exit_code) {
-  const fs::path folder = fs::temp_directory_path() /
-                          ("vcpost_library_test_" + std::to_string(::getpid()));
+  const fs::path folder =
+      fs::temp_directory_path() / ("vcpost_library_test_" + std::to_string(::getpid()));
   fs::create_directories(folder);
   const std::string command = "cd '" + folder.string() + "' && '" + VCPOST_BINARY + "' " +
                               arguments + " > out.txt 2> /dev/null < /dev/null";
@@ -44,10 +44,10 @@ TEST(Library, PostsAProgramByteForByteAsTheCommandDoes) {
   const fs::path program = samples() / "wavy_raster_a0_ae2.nc";
   const fs::path model = samples() / "wavy.step";
   int exit_code = -1;
-  const std::string expected = run_vcpost(
-      "post '" + program.string() + "' --model '" + model.string() +
-          "' --tool ball:10 --vc 120 --ap 0.3 --machine mazak-3axis -q -o -",
-      exit_code);
+  const std::string expected =
+      run_vcpost("post '" + program.string() + "' --model '" + model.string() +
+                     "' --tool ball:10 --vc 120 --ap 0.3 --machine mazak-3axis -q -o -",
+                 exit_code);
   ASSERT_EQ(exit_code, 0);
   ASSERT_FALSE(expected.empty());
 

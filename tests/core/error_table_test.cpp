@@ -74,7 +74,8 @@ TEST(Error, FormatsDiagnostics) {
             "p.nc:7:2: error[E1403]: two motions");
   EXPECT_EQ(format_diagnostic("W3150", {"p.cls", 4, 0}, "ignored"),
             "p.cls:4: warning[W3150]: ignored");
-  EXPECT_EQ(format_diagnostic("E4101", {"m.step", 0, 0}, "missing"), "m.step: error[E4101]: missing");
+  EXPECT_EQ(format_diagnostic("E4101", {"m.step", 0, 0}, "missing"),
+            "m.step: error[E4101]: missing");
   EXPECT_EQ(format_diagnostic("E2001", {}, "bad"), "error[E2001]: bad");
 }
 

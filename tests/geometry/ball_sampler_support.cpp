@@ -54,7 +54,8 @@ SampledEngagement sample_ball(double diameter, double ap, double ae, const Eigen
     for (int j = 0; j < n_theta; ++j) {
       const double theta = (j + 0.5) * d_theta;
       const Eigen::Vector3d p =
-          R * (std::sin(alpha) * (std::cos(theta) * e1 + std::sin(theta) * e2) - std::cos(alpha) * n);
+          R *
+          (std::sin(alpha) * (std::cos(theta) * e1 + std::sin(theta) * e2) - std::cos(alpha) * n);
       if (p.z() > 0 || n.dot(p) > stock || f.dot(p) < 0 || !outside_previous(p)) continue;
       take(p, R * R * std::sin(alpha) * d_alpha * d_theta);
     }
@@ -92,8 +93,14 @@ SampledEngagement sample_ball(double diameter, double ap, double ae, const Eigen
   double s_lo = INFINITY, s_hi = -INFINITY;
   auto rim_candidate = [&](const Eigen::Vector3d& p) {
     const double s = left.dot(p);
-    if (s < s_lo) { s_lo = s; out.p1 = p; }
-    if (s > s_hi) { s_hi = s; out.p2 = p; }
+    if (s < s_lo) {
+      s_lo = s;
+      out.p1 = p;
+    }
+    if (s > s_hi) {
+      s_hi = s;
+      out.p2 = p;
+    }
   };
   const int n_rim = 200 * resolution;
   for (int k = 0; k < n_rim; ++k) {

@@ -9,11 +9,11 @@
 namespace vcpost::testing {
 
 struct SampledEngagement {
-  bool any = false;          // some grid point is engaged
-  bool shank = false;        // some shank grid point is engaged
+  bool any = false;    // some grid point is engaged
+  bool shank = false;  // some shank grid point is engaged
   double d_max = 0, d_min = 0, d_mean = 0;
-  double spacing = 0;        // largest distance between neighbouring grid points, mm
-  Eigen::Vector3d p1, p2;    // rim points of smallest and largest s = S0.P
+  double spacing = 0;      // largest distance between neighbouring grid points, mm
+  Eigen::Vector3d p1, p2;  // rim points of smallest and largest s = S0.P
 };
 
 SampledEngagement sample_ball(double diameter, double ap, double ae, const Eigen::Vector3d& normal,

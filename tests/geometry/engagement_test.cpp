@@ -58,7 +58,8 @@ TEST(BallEngagement, HorizontalCuttingPointsByHand) {
   EXPECT_TRUE(p.p2b.position.isApprox(Eigen::Vector3d(-a1, -b1, -4.7), 1e-12));
   EXPECT_NEAR(p.p1a.diameter, 2 * rho, 1e-12);  // every rim point of a level cut has r = rho
   EXPECT_TRUE(p.cut.position.isApprox(p.p1.position));  // previous pass left -> point 1
-  const auto right = evaluate_engagement(Tool::ball(10), setup(0.3, ae, {0, 0, 1}, {1, 0, 0}, Side::right));
+  const auto right =
+      evaluate_engagement(Tool::ball(10), setup(0.3, ae, {0, 0, 1}, {1, 0, 0}, Side::right));
   EXPECT_TRUE(right.points->cut.position.isApprox(p.p2.position));
 }
 
@@ -91,7 +92,8 @@ TEST(BallEngagement, WithoutCuttingPointsTheDiametersAreTheSame) {
 
 TEST(BallEngagement, PrimesFallOntoOppositePointPastTheGrooveWidth) {
   const double rho = std::sqrt(0.3 * 9.7);
-  const auto e = evaluate_engagement(Tool::ball(10), setup(0.3, 2 * rho + 0.1, {0, 0, 1}, {1, 0, 0}));
+  const auto e =
+      evaluate_engagement(Tool::ball(10), setup(0.3, 2 * rho + 0.1, {0, 0, 1}, {1, 0, 0}));
   EXPECT_TRUE(e.points->p1a.position.isApprox(e.points->p2.position));
   EXPECT_TRUE(e.points->p2b.position.isApprox(e.points->p1.position));
 }
@@ -100,7 +102,8 @@ TEST(BallEngagement, TiltedUpTheSlopeReachesTheCapMaximumWithAWideStepover) {
   const double d = 10, ap = 0.3, rho = std::sqrt(ap * (d - ap));
   for (const double beta_deg : {5.0, 15.0, 25.0, 45.0, 60.0, 75.0}) {
     const double beta = deg(beta_deg);
-    const auto wide = evaluate_engagement(Tool::ball(d), setup(ap, rho, tilted_normal(beta), uphill(beta)));
+    const auto wide =
+        evaluate_engagement(Tool::ball(d), setup(ap, rho, tilted_normal(beta), uphill(beta)));
     ASSERT_TRUE(wide.d_max);
     EXPECT_NEAR(*wide.d_max, cap_max_diameter(d, ap, beta), 1e-9) << beta_deg;
     // A narrower stepover leaves that point inside the previous pass.
@@ -114,12 +117,14 @@ TEST(BallEngagement, TiltedUpTheSlopeReachesTheCapMaximumWithAWideStepover) {
 
 TEST(BallEngagement, EngagedMaximumNeverExceedsTheCapFormula) {
   std::mt19937 rng(7);
-  std::uniform_real_distribution<double> angle(0, 2 * pi), tilt(0, deg(85)), ap(0.05, 2), ae(0.01, 3);
+  std::uniform_real_distribution<double> angle(0, 2 * pi), tilt(0, deg(85)), ap(0.05, 2),
+      ae(0.01, 3);
   for (int i = 0; i < 2000; ++i) {
     const double beta = tilt(rng), a = ap(rng);
     const auto n = normal_from_angles(beta, angle(rng));
-    const auto e = evaluate_engagement(Tool::ball(10), setup(a, ae(rng), n, feed_from_angle(angle(rng), n),
-                                                             i % 2 ? Side::left : Side::right));
+    const auto e = evaluate_engagement(
+        Tool::ball(10),
+        setup(a, ae(rng), n, feed_from_angle(angle(rng), n), i % 2 ? Side::left : Side::right));
     ASSERT_TRUE(e.d_max);
     EXPECT_LE(*e.d_max, cap_max_diameter(10, a, beta) + 1e-9);
   }
@@ -128,7 +133,8 @@ TEST(BallEngagement, EngagedMaximumNeverExceedsTheCapFormula) {
 TEST(BallEngagement, PaperTableOneMaximumAt45Degrees) {
   // r = R sin(45 deg + acos(4.7 / 5)) = 4.530 mm (the paper's Table 1, a radius).
   const double beta = deg(45);
-  const auto e = evaluate_engagement(Tool::ball(10), setup(0.3, 2, tilted_normal(beta), uphill(beta)));
+  const auto e =
+      evaluate_engagement(Tool::ball(10), setup(0.3, 2, tilted_normal(beta), uphill(beta)));
   EXPECT_NEAR(*e.d_max / 2, 5 * std::sin(beta + std::acos(4.7 / 5)), 1e-9);
   EXPECT_NEAR(*e.d_max / 2, 4.530, 5e-4);
   EXPECT_NEAR(*e.d_max, 9.059, 5e-4);
@@ -157,7 +163,8 @@ TEST(BallEngagement, PaperFigure8RangeOfTheTangentPointsOverFeedAngles) {
   const Eigen::Vector3d n = normal_from_angles(deg(25), deg(35));
   double lo = INFINITY, hi = -INFINITY;
   for (int step = 0; step < 3600; ++step) {
-    const auto e = evaluate_engagement(Tool::ball(10), setup(1, 0.5, n, feed_from_angle(deg(step * 0.1), n)));
+    const auto e =
+        evaluate_engagement(Tool::ball(10), setup(1, 0.5, n, feed_from_angle(deg(step * 0.1), n)));
     for (const auto* p : {&e.points->p1, &e.points->p2}) {
       lo = std::min(lo, p->diameter / 2);
       hi = std::max(hi, p->diameter / 2);
@@ -176,7 +183,8 @@ TEST(BallEngagement, MeanDiameterOfAHalfCapInClosedForm) {
   for (const double ap : {0.1, 0.3, 1.0, 2.5}) {
     const double R = 5, a0 = std::acos((R - ap) / R);
     const double expected = 2 * R * (a0 / 2 - std::sin(2 * a0) / 4) / (1 - std::cos(a0));
-    const auto mean = engaged_mean_diameter(Tool::ball(10), setup(ap, 20, {0, 0, 1}, {0.6, 0.8, 0}));
+    const auto mean =
+        engaged_mean_diameter(Tool::ball(10), setup(ap, 20, {0, 0, 1}, {0.6, 0.8, 0}));
     ASSERT_TRUE(mean);
     EXPECT_NEAR(*mean, expected, 1e-6) << ap;
   }
@@ -203,10 +211,12 @@ TEST(BallEngagement, SteepWallEngagesTheShankUnlessThePreviousShankTookTheStock)
   // 1 - ap/R puts stock above the equator. With ae = 3 the shank cuts (D_max
   // = D); with ae = 1 the previous pass's shank already swept that stock.
   const double beta = deg(80);
-  const auto wide = evaluate_engagement(Tool::ball(10), setup(1, 3, tilted_normal(beta), {0, 1, 0}));
+  const auto wide =
+      evaluate_engagement(Tool::ball(10), setup(1, 3, tilted_normal(beta), {0, 1, 0}));
   EXPECT_TRUE(wide.flags.has(EngagementFlag::shank_engaged));
   EXPECT_DOUBLE_EQ(*wide.d_max, 10);
-  const auto narrow = evaluate_engagement(Tool::ball(10), setup(1, 1, tilted_normal(beta), {0, 1, 0}));
+  const auto narrow =
+      evaluate_engagement(Tool::ball(10), setup(1, 1, tilted_normal(beta), {0, 1, 0}));
   EXPECT_FALSE(narrow.flags.has(EngagementFlag::shank_engaged));
   EXPECT_LT(*narrow.d_max, 10);
   const auto sampled = testing::sample_ball(10, 1, 1, tilted_normal(beta), {0, 1, 0}, true, 600);
@@ -269,8 +279,9 @@ TEST(BallEngagement, AgreesWithBruteForceOnRandomSetups) {
     const CutSetup s = setup(ap, ae, n, f, left ? Side::left : Side::right);
     const auto exact = evaluate_engagement(Tool::ball(d), s);
     const auto sampled = testing::sample_ball(d, ap, ae, n, f, left, 300);
-    SCOPED_TRACE(::testing::Message() << "case " << i << " d=" << d << " ap=" << ap << " ae=" << ae
-                                      << " n=" << n.transpose() << " f=" << f.transpose() << " left=" << left);
+    SCOPED_TRACE(::testing::Message()
+                 << "case " << i << " d=" << d << " ap=" << ap << " ae=" << ae
+                 << " n=" << n.transpose() << " f=" << f.transpose() << " left=" << left);
     ASSERT_TRUE(exact.d_max);
     ASSERT_TRUE(sampled.any);
     // Every sampled engaged point lies within the exact range...

@@ -32,14 +32,14 @@ CutSetup setup(double ap, double ae, Vector3d normal, Vector3d feed, Side side =
 }
 
 void expect_near(const Vector3d& actual, const Vector3d& expected, double tolerance) {
-  EXPECT_LT((actual - expected).norm(), tolerance) << actual.transpose() << " vs "
-                                                   << expected.transpose();
+  EXPECT_LT((actual - expected).norm(), tolerance)
+      << actual.transpose() << " vs " << expected.transpose();
 }
 
 // MODELS.md: bull-nose on a horizontal floor, ap < rc, wide stepover: the
 // rim is the circle of radius R0 + sqrt(ap (2 rc - ap)) at z = -rc + ap.
 TEST(RevolvedEngagement, BullNoseFloorRimDiameter) {
-  const Tool tool = Tool::bull_nose(10, 2);  // R0 = 3
+  const Tool tool = Tool::bull_nose(10, 2);               // R0 = 3
   const double ap = 0.5, rim = 3 + std::sqrt(0.5 * 3.5);  // 4.3229 mm
   const Engagement e = evaluate_revolved_engagement(tool, setup(ap, 12, {0, 0, 1}, {1, 0, 0}));
   ASSERT_TRUE(e.points && e.d_max && e.d_min);
@@ -132,7 +132,9 @@ TEST(RevolvedEngagement, BullNoseFloorMeanInClosedForm) {
 TEST(RevolvedEngagement, DegenerateInputIsFlaggedNotThrown) {
   const Tool bull = Tool::bull_nose(10, 2), flat = Tool::flat(10);
   for (const Tool& tool : {bull, flat}) {
-    const auto flags = [&](const CutSetup& s) { return evaluate_revolved_engagement(tool, s).flags; };
+    const auto flags = [&](const CutSetup& s) {
+      return evaluate_revolved_engagement(tool, s).flags;
+    };
     const auto check = [&](const CutSetup& s, EngagementFlag flag) {
       const Engagement e = evaluate_revolved_engagement(tool, s);
       EXPECT_TRUE(e.flags.has(flag));
@@ -189,7 +191,8 @@ TEST(RevolvedEngagement, CuttingPointsLieOnTheRimAtTheRightSides) {
   for (int i = 0; i < 200; ++i) {
     const RandomCase c = random_case(random, i % 3 == 0);
     const Tool tool = tool_of(c);
-    const Engagement e = evaluate_revolved_engagement(tool, setup(c.ap, c.ae, c.normal, c.feed, c.side));
+    const Engagement e =
+        evaluate_revolved_engagement(tool, setup(c.ap, c.ae, c.normal, c.feed, c.side));
     ASSERT_TRUE(e.points);
     const Vector3d n = e.normal;
     const double radius = c.diameter / 2, flat = radius - c.corner;
@@ -237,10 +240,10 @@ TEST(RevolvedEngagement, BullNoseTendsToTheBall) {
     const Engagement bull =
         evaluate_revolved_engagement(Tool::bull_nose(c.diameter, c.diameter / 2 - 1e-6), s);
     ASSERT_TRUE(ball.d_max && bull.d_max && ball.points && bull.points) << i;
-    SCOPED_TRACE(::testing::Message() << "case " << i << " D " << c.diameter << " ap " << c.ap
-                                      << " ae " << c.ae << " N " << c.normal.transpose() << " F "
-                                      << c.feed.transpose()
-                                      << (c.side == Side::left ? " left" : " right"));
+    SCOPED_TRACE(::testing::Message()
+                 << "case " << i << " D " << c.diameter << " ap " << c.ap << " ae " << c.ae << " N "
+                 << c.normal.transpose() << " F " << c.feed.transpose()
+                 << (c.side == Side::left ? " left" : " right"));
     EXPECT_NEAR(*bull.d_max, *ball.d_max, 1e-5) << i;
     EXPECT_NEAR(*bull.d_min, *ball.d_min, 1e-5) << i;
     EXPECT_NEAR(bull.points->p1.diameter, ball.points->p1.diameter, 1e-5) << i;

@@ -39,38 +39,49 @@ struct Surface {
   Vector3d point(Piece piece, double u, double theta) const {
     const double c = std::cos(theta), s = std::sin(theta);
     switch (piece) {
-      case Piece::face: return {u * c, u * s, -corner};
+      case Piece::face:
+        return {u * c, u * s, -corner};
       case Piece::corner: {
         const double rho = flat + corner * std::sin(u);
         return {rho * c, rho * s, -corner * std::cos(u)};
       }
-      case Piece::shank: return {radius * c, radius * s, u};
+      case Piece::shank:
+        return {radius * c, radius * s, u};
     }
     return Vector3d::Zero();
   }
   Vector3d normal(Piece piece, double u, double theta) const {
     const double c = std::cos(theta), s = std::sin(theta);
     switch (piece) {
-      case Piece::face: return {0, 0, -1};
-      case Piece::corner: return {std::sin(u) * c, std::sin(u) * s, -std::cos(u)};
-      case Piece::shank: return {c, s, 0};
+      case Piece::face:
+        return {0, 0, -1};
+      case Piece::corner:
+        return {std::sin(u) * c, std::sin(u) * s, -std::cos(u)};
+      case Piece::shank:
+        return {c, s, 0};
     }
     return Vector3d::Zero();
   }
   // Area of a du x dtheta cell at u.
   double area(Piece piece, double u) const {
     switch (piece) {
-      case Piece::face: return u;
-      case Piece::corner: return corner * (flat + corner * std::sin(u));
-      case Piece::shank: return radius;
+      case Piece::face:
+        return u;
+      case Piece::corner:
+        return corner * (flat + corner * std::sin(u));
+      case Piece::shank:
+        return radius;
     }
     return 0;
   }
   double u_max(Piece piece) const {
     switch (piece) {
-      case Piece::face: return flat;
-      case Piece::corner: return kPi / 2;
-      case Piece::shank: return shank_height;
+      case Piece::face:
+        return flat;
+      case Piece::corner:
+        return kPi / 2;
+      case Piece::shank:
+        return shank_height;
     }
     return 0;
   }
@@ -146,7 +157,8 @@ RevolvedSample sample_revolved(double diameter, double corner_radius, double ap,
     const double du = surface.u_max(piece) / n_u, dtheta = 2 * kPi / n_theta;
     if (!(du > 0)) continue;
     const double extent = piece == Piece::corner ? corner_radius * du
-                          : piece == Piece::face ? du : du;
+                          : piece == Piece::face ? du
+                                                 : du;
     out.spacing = std::max({out.spacing, extent, (piece == Piece::face ? flat : radius) * dtheta});
     // Cell corners for the extremes (they reach the pieces' edges), cell
     // centres for the area-weighted mean.

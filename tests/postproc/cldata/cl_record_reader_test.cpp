@@ -40,7 +40,8 @@ TEST(ClRecordReader, StatementWithParametersAndColumns) {
 }
 
 TEST(ClRecordReader, ContinuationJoinsLinesAndKeepsEachParametersLine) {
-  std::istringstream in("CIRCLE / 7.4550, 5.8500, 1.8000,  $\r\n0.0000, 0.0000, 1.0000,  0.0250\r\nFINI\r\n");
+  std::istringstream in(
+      "CIRCLE / 7.4550, 5.8500, 1.8000,  $\r\n0.0000, 0.0000, 1.0000,  0.0250\r\nFINI\r\n");
   ClRecordReader reader(in, "t.cl");
   ClRecord r;
   ASSERT_TRUE(reader.next(r));

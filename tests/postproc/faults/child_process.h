@@ -43,7 +43,7 @@ struct ChildOptions {
   // Killed (SIGKILL) when still running after this many seconds: a hang
   // fails the test instead of stopping the suite.
   std::optional<double> timeout_s;
-  std::optional<uid_t> run_as;            // setresuid/setresgid (same id) in the child
+  std::optional<uid_t> run_as;  // setresuid/setresgid (same id) in the child
   // Called in the parent while the child runs, with its pid; returns when
   // the child may be left to finish (e.g. after sending it a signal).
   std::function<void(pid_t)> while_running;

@@ -301,14 +301,14 @@ TEST(FanucPosts, SafetyLineAndProgramNumberAreRead) {
       "%\nO0001 (PART)\nN0008 G00 G40 G80 G90 G17 G21\nN1 G00 G17 G21 G40 G49 G80 G90\n"
       "G0 X1. Y2.\nM30\n%\n";
   for (const auto& d : {fanuc_dialect(), mazak_dialect(), rs274ngc_dialect()})
-    EXPECT_EQ(moves(text, d), "STRAIGHT_TRAVERSE(1.0000, 2.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n");
+    EXPECT_EQ(moves(text, d),
+              "STRAIGHT_TRAVERSE(1.0000, 2.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n");
 }
 
 TEST(FanucPosts, CycleLeavesTheG01ModeAndG80ReturnsToIt) {
   // Fanuc: G81 is group 09 beside G01 (group 01); after G80, X10. feeds at
   // the initial level (G98 retract, Fanuc's default).
-  const std::string text =
-      "G21 G90 G17\nG1 X0 Y0 Z5. F100.\nG81 X5. Y5. Z-1. R1.\nG80 X10.\nM30\n";
+  const std::string text = "G21 G90 G17\nG1 X0 Y0 Z5. F100.\nG81 X5. Y5. Z-1. R1.\nG80 X10.\nM30\n";
   EXPECT_EQ(moves(text, fanuc_dialect()),
             "STRAIGHT_FEED(0.0000, 0.0000, 5.0000, 0.0000, 0.0000, 0.0000)\n"
             "STRAIGHT_TRAVERSE(5.0000, 5.0000, 5.0000, 0.0000, 0.0000, 0.0000)\n"
@@ -354,12 +354,14 @@ TEST(FanucPosts, CodesThatMoveTheToolUnknowablyAreRefused) {
 TEST(FanucPosts, PeckCycleWithRepeatsInK) {
   // G91 G83 with K2: two holes 5 mm apart, pecks of 2 mm back to R, 0.254 mm
   // back-off (rs274's clearance), retract to the initial level (G98).
-  const std::string text = "G21 G90\nG0 X0 Y0 Z3.\nG91 G83 X5. Z-4. R-2. Q2. K2 F100.\nG90 G80\nM30\n";
+  const std::string text =
+      "G21 G90\nG0 X0 Y0 Z3.\nG91 G83 X5. Z-4. R-2. Q2. K2 F100.\nG90 G80\nM30\n";
   const std::string m = moves(text, fanuc_dialect());
   EXPECT_NE(m.find("STRAIGHT_FEED(5.0000, 0.0000, -1.0000"), std::string::npos) << m;
   EXPECT_NE(m.find("STRAIGHT_TRAVERSE(5.0000, 0.0000, -0.7460"), std::string::npos) << m;
   EXPECT_NE(m.find("STRAIGHT_FEED(10.0000, 0.0000, -3.0000"), std::string::npos) << m;
-  EXPECT_TRUE(m.ends_with("STRAIGHT_TRAVERSE(10.0000, 0.0000, 3.0000, 0.0000, 0.0000, 0.0000)\n")) << m;
+  EXPECT_TRUE(m.ends_with("STRAIGHT_TRAVERSE(10.0000, 0.0000, 3.0000, 0.0000, 0.0000, 0.0000)\n"))
+      << m;
 }
 
 }  // namespace
@@ -388,7 +390,8 @@ TEST(Sinumerik, MessagesCrArcsRParametersAndToolWords) {
             "ARC_FEED(15.0000, 0.0000, 10.0000, 0.0000, -1, -2.0000, 0.0000, 0.0000, 0.0000)\n");
   int tools = 0, dwells = 0, messages = 0;
   for (const auto& e : all_events(text, sinumerik_dialect())) {
-    tools += std::holds_alternative<program::SelectTool>(e) + std::holds_alternative<program::ChangeTool>(e);
+    tools += std::holds_alternative<program::SelectTool>(e) +
+             std::holds_alternative<program::ChangeTool>(e);
     dwells += std::holds_alternative<program::Dwell>(e);
     messages += std::holds_alternative<program::Message>(e);
   }
@@ -423,7 +426,8 @@ TEST(Sinumerik, ModalDrillingCycleRunsAtEveryPositionUntilMcall) {
 }
 
 TEST(Sinumerik, FramesAndFlowAreRefusedAndOtherDialectsNameIt) {
-  for (const char* line : {"ROT Z30", "TRANS X10", "MIRROR X0", "GOTOF LABEL1", "CYCLE800(1,\"TC\")"}) {
+  for (const char* line :
+       {"ROT Z30", "TRANS X10", "MIRROR X0", "GOTOF LABEL1", "CYCLE800(1,\"TC\")"}) {
     SCOPED_TRACE(line);
     const Diagnostic d = error_of(std::string("G0 X0\n") + line + "\nM30\n", sinumerik_dialect());
     EXPECT_EQ(d.line, 2u);

@@ -3,8 +3,6 @@
 // with the warning for warning files; a 10 MB line is refused the same way;
 // --time prints the programmed time.
 #include <gtest/gtest.h>
-
-#include "../cli_run_support.h"
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -13,6 +11,8 @@
 #include <fstream>
 #include <regex>
 #include <string>
+
+#include "../cli_run_support.h"
 
 namespace {
 
@@ -75,7 +75,8 @@ TEST_F(MovesCli, TenMegabyteLineIsRefusedWithItsPosition) {
   }
   const Outcome r = run("'" + file.string() + "'");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find(file.string() + ":2:1: error[E1006]: line longer than 65536 bytes, the reader's limit"),
+  EXPECT_NE(r.err.find(file.string() +
+                       ":2:1: error[E1006]: line longer than 65536 bytes, the reader's limit"),
             std::string::npos)
       << r.err;
   // The moves before the bad line are printed.

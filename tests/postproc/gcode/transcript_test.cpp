@@ -1,12 +1,13 @@
 // The event printer against lines copied from `rs274 -g` (LinuxCNC 2.9,
 // Debian 12) output, and the arc geometry against hand-computed values.
+#include "postproc/program/transcript.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
 #include "postproc/program/arc.h"
-#include "postproc/program/transcript.h"
 
 namespace vcpost::program {
 namespace {
@@ -23,13 +24,16 @@ TEST(Transcript, StraightMovesMatchRs274Format) {
 }
 
 TEST(Transcript, ArcFeedArgumentOrderPerPlane) {
-  // G17 from X10 Y2 Z3: G2 X20 Y2 I5 J0 -> rs274 "ARC_FEED(20.0000, 2.0000, 15.0000, 2.0000, -1, 3.0000, ...)".
+  // G17 from X10 Y2 Z3: G2 X20 Y2 I5 J0 -> rs274 "ARC_FEED(20.0000, 2.0000, 15.0000, 2.0000,
+  // -1, 3.0000, ...)".
   EXPECT_EQ(transcript(ArcFeed{{10, 2, 3}, {20, 2, 3}, {15, 2, 3}, Plane::xy, -1, {}}),
             "ARC_FEED(20.0000, 2.0000, 15.0000, 2.0000, -1, 3.0000, 0.0000, 0.0000, 0.0000)\n");
-  // G18 from X10 Y2 Z-1: G2 X0 Z0 I-5 K0.5 -> "ARC_FEED(0.0000, 0.0000, -0.5000, 5.0000, -1, 2.0000, ...)".
+  // G18 from X10 Y2 Z-1: G2 X0 Z0 I-5 K0.5 -> "ARC_FEED(0.0000, 0.0000, -0.5000, 5.0000,
+  // -1, 2.0000, ...)".
   EXPECT_EQ(transcript(ArcFeed{{10, 2, -1}, {0, 2, 0}, {5, 2, -0.5}, Plane::xz, -1, {}}),
             "ARC_FEED(0.0000, 0.0000, -0.5000, 5.0000, -1, 2.0000, 0.0000, 0.0000, 0.0000)\n");
-  // G19 from X0 Y2 Z0: G3 Y0 Z1 J-1 K0.5 P2 -> "ARC_FEED(0.0000, 1.0000, 1.0000, 0.5000, 2, 0.0000, ...)".
+  // G19 from X0 Y2 Z0: G3 Y0 Z1 J-1 K0.5 P2 -> "ARC_FEED(0.0000, 1.0000, 1.0000, 0.5000, 2, 0.0000,
+  // ...)".
   EXPECT_EQ(transcript(ArcFeed{{0, 2, 0}, {0, 0, 1}, {0, 1, 0.5}, Plane::yz, 2, {}}),
             "ARC_FEED(0.0000, 1.0000, 1.0000, 0.5000, 2, 0.0000, 0.0000, 0.0000, 0.0000)\n");
 }

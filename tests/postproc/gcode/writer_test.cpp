@@ -1,5 +1,7 @@
 // The lossless writer: byte-identical output without changes (every shared
 // real program), and S/F patches that change those words only.
+#include "postproc/gcode/writer.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -7,7 +9,6 @@
 #include <vector>
 
 #include "postproc/gcode/interpreter.h"
-#include "postproc/gcode/writer.h"
 
 namespace vcpost::gcode {
 namespace {
@@ -21,8 +22,8 @@ std::string read_file(const fs::path& path) {
 
 TEST(Writer, PatchesOnlyTheWordAndKeepsEverythingElse) {
   const std::string text = "N10 G1 X1 S100 F200 (keep)\r\nn20g1x2s#<a>f[3*4]\r\nG0 X0 ; note\n";
-  const std::vector<WordPatch> patches{{0, 'S', "12000"}, {0, 'F', "850.5"},
-                                       {28, 'S', "9000"}, {48, 'S', "8000"}};
+  const std::vector<WordPatch> patches{
+      {0, 'S', "12000"}, {0, 'F', "850.5"}, {28, 'S', "9000"}, {48, 'S', "8000"}};
   EXPECT_EQ(patched(text, patches),
             "N10 G1 X1 S12000 F850.5 (keep)\r\nn20g1x2s9000f[3*4]\r\nG0 X0 S8000 ; note\n");
 }

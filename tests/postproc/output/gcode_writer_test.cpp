@@ -1,5 +1,7 @@
 // CL data -> Mazak-like G-code: the format, and the motions rs274 reads back
 // from the written program compared with the CL events.
+#include "postproc/output/gcode_writer.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +10,6 @@
 #include <sstream>
 
 #include "postproc/cldata/cl_reader.h"
-#include "postproc/output/gcode_writer.h"
 #include "postproc/program/transcript.h"
 #include "tests/postproc/cldata/cl_support.h"
 

@@ -9,8 +9,7 @@ namespace {
 
 TEST(OffsetHistogram, DepthsOfGougesAndLifts) {
   OffsetHistogram h(0.01, 5);
-  for (const double e : {-0.02, -0.04, -0.06, 0.0, 0.005, -0.005, 0.5, 1.5})
-    h.add(e);
+  for (const double e : {-0.02, -0.04, -0.06, 0.0, 0.005, -0.005, 0.5, 1.5}) h.add(e);
   const DepthStatistics gouge = h.gouge();
   EXPECT_EQ(gouge.points, 3u);
   EXPECT_DOUBLE_EQ(gouge.min, 0.02);
@@ -21,7 +20,7 @@ TEST(OffsetHistogram, DepthsOfGougesAndLifts) {
   EXPECT_DOUBLE_EQ(lift.min, 0.5);
   EXPECT_DOUBLE_EQ(lift.max, 1.5);
   EXPECT_NEAR(lift.median, 0.5, 0.001);  // the lower of two
-  EXPECT_FALSE(h.diagnosis());  // no offset holds half the points
+  EXPECT_FALSE(h.diagnosis());           // no offset holds half the points
 }
 
 TEST(OffsetHistogram, StockLeftIsNamed) {

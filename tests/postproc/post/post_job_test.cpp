@@ -3,6 +3,8 @@
 // machine can take at the rate it can change, vc never exceeds nominal,
 // and the share of cutting time near nominal rises. When LinuxCNC's rs274
 // is installed, it must read the same motion from input and output.
+#include "postproc/post/post_job.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,13 +15,12 @@
 #include <regex>
 #include <sstream>
 
-#include "geometry/analytic_surfaces.h"
-#include "machines/builtin.h"
-#include "postproc/gcode/interpreter.h"
 #include "../dome_program_support.h"
 #include "../rs274_support.h"
 #include "../temp_folder.h"
-#include "postproc/post/post_job.h"
+#include "geometry/analytic_surfaces.h"
+#include "machines/builtin.h"
+#include "postproc/gcode/interpreter.h"
 #include "postproc/program/timing.h"
 
 namespace vcpost::post {
@@ -98,7 +99,8 @@ std::vector<SWord> s_words(const std::string& text, const machines::MachineProfi
   std::vector<SWord> words;
   for (const auto& e : events_of(text)) {
     const auto t = clock.advance(e);
-    if (const auto* s = std::get_if<program::SetSpindleSpeed>(&e)) words.push_back({t.start, s->rpm});
+    if (const auto* s = std::get_if<program::SetSpindleSpeed>(&e))
+      words.push_back({t.start, s->rpm});
   }
   return words;
 }
@@ -164,7 +166,8 @@ TEST(PostJob, LevelCutNeedsOneSpeedAndTheFormulaGivesIt) {
   EXPECT_NE(out.find("S" + std::to_string(static_cast<int>(n)) + " M3"), std::string::npos) << out;
   const std::regex s_word(R"(S([0-9]+))");
   int words = 0;
-  for (auto it = std::sregex_iterator(out.begin(), out.end(), s_word); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(out.begin(), out.end(), s_word); it != std::sregex_iterator();
+       ++it) {
     EXPECT_EQ(std::stod((*it)[1]), n) << out;
     ++words;
   }
@@ -180,14 +183,16 @@ TEST(PostJob, AdjustFeedKeepsTheFeedPerTooth) {
   plane.u_min = plane.v_min = -100;
   plane.u_max = plane.v_max = 100;
   const geometry::AnalyticModel model({plane});
-  const std::string program = "G21 G90\nS6000 M3\nF1000\nG0 X0 Y0 Z1\nG1 Z0\nG1 X30\nG1 Y0.5\nG1 X0\nM30\n";
+  const std::string program =
+      "G21 G90\nS6000 M3\nF1000\nG0 X0 Y0 Z1\nG1 Z0\nG1 X30\nG1 Y0.5\nG1 X0\nM30\n";
   PostSettings settings = settings_for(100);
   settings.adjust_feed = true;
   settings.fz_mm = 0.05;
   settings.teeth = 2;
   std::string out;
-  const auto summary = post_program(program, "level.ngc", model, machines::builtin_profile("mazak-3axis"),
-                                    settings, [&](std::string_view bytes) { out.append(bytes); });
+  const auto summary =
+      post_program(program, "level.ngc", model, machines::builtin_profile("mazak-3axis"), settings,
+                   [&](std::string_view bytes) { out.append(bytes); });
   EXPECT_NE(out.find("G1 X30 F932\n"), std::string::npos) << out;
   EXPECT_EQ(out.find("G0 X0 Y0 Z1 S9329 F"), std::string::npos) << out;  // no F on rapids
   EXPECT_GE(summary.f_words, 1u);
@@ -212,7 +217,8 @@ TEST(PostJob, ToolComesFromTheClCutterWhenNoneIsGiven) {
 TEST(PostJob, Rs274ReadsTheSameMotionFromInputAndOutput) {
   if (std::system("command -v rs274 >/dev/null 2>&1") != 0) GTEST_SKIP() << "rs274 not installed";
   const std::string input = dome_raster(2.0, 0.5, 8000);
-  const auto output = run_post(input, machines::builtin_profile("linuxcnc-3axis"), settings_for(120));
+  const auto output =
+      run_post(input, machines::builtin_profile("linuxcnc-3axis"), settings_for(120));
   const testing::Folder dir;
   auto transcript = [&](const std::string& name, const std::string& text) {
     return testing::rs274_motion(dir.path(), name, text);
@@ -323,10 +329,13 @@ TEST(PostJob, RepeatLoopAndFanucM98PostWithOneSPerLine) {
   }
   PostSettings fanuc = settings_for(60);
   fanuc.dialect = gcode::fanuc_dialect();
-  const std::string called = "%\nO0001\nG21 G90 G17 G94\nT1 M6\nS4000 M3\nF300.\n"
-                             "M98 P1000 L2\nM5\nM30\nO1000\n" + body + "M99\n%\n";
+  const std::string called =
+      "%\nO0001\nG21 G90 G17 G94\nT1 M6\nS4000 M3\nF300.\n"
+      "M98 P1000 L2\nM5\nM30\nO1000\n" +
+      body + "M99\n%\n";
   PostSummary fanuc_summary;
-  EXPECT_NO_THROW(run_post(called, machines::builtin_profile("fanuc-3axis"), fanuc, &fanuc_summary));
+  EXPECT_NO_THROW(
+      run_post(called, machines::builtin_profile("fanuc-3axis"), fanuc, &fanuc_summary));
   EXPECT_GT(fanuc_summary.repeated_lines, 0u);
 }
 

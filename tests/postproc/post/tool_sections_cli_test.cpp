@@ -51,9 +51,10 @@ class ToolSectionsCli : public ::testing::Test {
     const std::size_t end = sample.find("M5\n");
     const std::string moves = sample.substr(begin, end - begin);
     const fs::path path = dir_ / "two.nc";
-    std::ofstream(path, std::ios::binary)
-        << "%\n" << header << "G21 G90 G17 G94 G40\nT1 M6\nS4800 M3\n" << moves
-        << "M5\nT2 M6\nS4800 M3\n" << moves << "M5\nM30\n%\n";
+    std::ofstream(path, std::ios::binary) << "%\n"
+                                          << header << "G21 G90 G17 G94 G40\nT1 M6\nS4800 M3\n"
+                                          << moves << "M5\nT2 M6\nS4800 M3\n"
+                                          << moves << "M5\nM30\n%\n";
     return path;
   }
 
@@ -119,10 +120,10 @@ TEST_F(ToolSectionsCli, ToolsFile) {
 
 TEST_F(ToolSectionsCli, NoToolAnywhereIsAUsageError) {
   const fs::path err = dir_ / "err";
-  EXPECT_EQ(run("post " + two_tools("").string() + " --model " + kSamples +
-                "dome.step --vc 120 --ap 0.3 -o " + (dir_ / "o.nc").string() + " 2>" +
-                err.string()),
-            2);
+  EXPECT_EQ(
+      run("post " + two_tools("").string() + " --model " + kSamples +
+          "dome.step --vc 120 --ap 0.3 -o " + (dir_ / "o.nc").string() + " 2>" + err.string()),
+      2);
   EXPECT_NE(read(err).find("--tool: required"), std::string::npos) << read(err);
   EXPECT_FALSE(fs::exists(dir_ / "o.nc"));
 }

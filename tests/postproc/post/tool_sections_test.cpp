@@ -198,9 +198,10 @@ TEST(ToolSections, ClCuttersNameTheTools) {
       raster << "GOTO/" << x << "," << y << "," << z << "\n";
     }
   }
-  const std::string input = "PARTNO TWO\nUNITS/MM\nCUTTER/10,0\nLOADTL/1\nSPINDL/5000,RPM,CLW\n"
-                            "FEDRAT/2000,MMPM\n" + raster.str() +
-                            "CUTTER/10,5\nLOADTL/2\nSPINDL/8000,RPM,CLW\n" + raster.str() + "FINI\n";
+  const std::string input =
+      "PARTNO TWO\nUNITS/MM\nCUTTER/10,0\nLOADTL/1\nSPINDL/5000,RPM,CLW\n"
+      "FEDRAT/2000,MMPM\n" +
+      raster.str() + "CUTTER/10,5\nLOADTL/2\nSPINDL/8000,RPM,CLW\n" + raster.str() + "FINI\n";
   const Posted out = post(input, vc_only(120));
   ASSERT_EQ(out.summary.sections.size(), 2u);
   EXPECT_EQ(out.summary.sections[0].tool, 1);

@@ -9,10 +9,10 @@
 #include <cmath>
 #include <sstream>
 
+#include "../dome_program_support.h"
 #include "geometry/analytic_surfaces.h"
 #include "geometry/surface_quality.h"
 #include "machines/builtin.h"
-#include "../dome_program_support.h"
 #include "postproc/post/post_job.h"
 #include "postproc/report/csv_writer.h"
 #include "postproc/report/report.h"

@@ -3,8 +3,6 @@
 // E71xx diagnostics (at most 20, then "... and K more"), exit 2 for input
 // errors; a CL sample posted by `vcpost post` verifies.
 #include <gtest/gtest.h>
-
-#include "../cli_run_support.h"
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -13,6 +11,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+
+#include "../cli_run_support.h"
 
 namespace {
 

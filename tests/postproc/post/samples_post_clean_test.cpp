@@ -5,31 +5,22 @@
 // within the generator's chord tolerance, half the default contact
 // tolerance (samplegen_test.cpp), and approach by rapid.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
+#include <string>
+
+#include "../cli_run_support.h"
+#include "../temp_folder.h"
 
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string read(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using vcpost::testing::CliOutcome;
 
 TEST(SamplesPostClean, EveryBundledSamplePostsWithoutAWarning) {
   const fs::path samples = fs::path(VCPOST_SOURCE_DIR) / "samples";
-  const fs::path work =
-      fs::temp_directory_path() / ("vcpost_samples_clean_" + std::to_string(::getpid()));
-  fs::create_directories(work);
+  const vcpost::testing::Folder work;
   // The part of a program is its stem's first word; its ball and the
   // demo's cut data (samples/README.md, scripts/demo.sh).
   struct Job {
@@ -47,21 +38,17 @@ TEST(SamplesPostClean, EveryBundledSamplePostsWithoutAWarning) {
     SCOPED_TRACE(name);
     const auto part = parts.find(name.substr(0, name.find('_')));
     ASSERT_NE(part, parts.end()) << "a sample of an unknown part";
-    const fs::path err = work / "err";
-    const std::string command = std::string(VCPOST_BINARY) + " post '" + file.string() +
-                                "' --model '" + (samples / (part->first + ".step")).string() +
-                                "' --tool " + part->second.tool + " --vc 120 --ap " +
-                                part->second.ap + " --machine mazak-3axis --strict -o '" +
-                                (work / "out.nc").string() + "' 2>'" + err.string() + "'";
-    const int status = std::system(command.c_str());
-    const std::string stderr_text = read(err);
-    ASSERT_TRUE(WIFEXITED(status)) << stderr_text;
-    EXPECT_EQ(WEXITSTATUS(status), 0) << stderr_text;
-    EXPECT_EQ(stderr_text.find("warning"), std::string::npos) << stderr_text;
-    EXPECT_NE(stderr_text.find(" points, "), std::string::npos) << stderr_text;  // it did post
+    const CliOutcome run = vcpost::testing::run_vcpost(
+        "post '" + file.string() + "' --model '" + (samples / (part->first + ".step")).string() +
+            "' --tool " + part->second.tool + " --vc 120 --ap " + part->second.ap +
+            " --machine mazak-3axis --strict -o out.nc",
+        work.path());
+    ASSERT_NE(run.exit_code, -1) << run.err;
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_EQ(run.err.find("warning"), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find(" points, "), std::string::npos) << run.err;  // it did post
     ++posted;
   }
-  fs::remove_all(work);
   EXPECT_EQ(posted, 2 * truths);  // every program, in both forms
   EXPECT_GE(truths, 13);
 }

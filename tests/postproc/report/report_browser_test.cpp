@@ -11,20 +11,16 @@
 
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+
+#include "../cli_run_support.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string read(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using vcpost::testing::slurp;
 
 int shell(const std::string& command) {
   const int status = std::system(command.c_str());
@@ -65,17 +61,17 @@ TEST(ReportBrowser, PageDrawsEveryPlotWithoutConsoleMessages) {
   ASSERT_EQ(shell(chromium(profile / "a") + " --virtual-time-budget=10000 --dump-dom file://" +
                   page.string() + " >" + dom.string() + " 2>" + log.string()),
             0)
-      << read(log);
+      << slurp(log);
 
   // Every console message the page caused (Chromium logs them all as CONSOLE).
-  std::istringstream lines(read(log));
+  std::istringstream lines(slurp(log));
   std::string line;
   while (std::getline(lines, line)) {
     EXPECT_EQ(line.find(":CONSOLE"), std::string::npos) << line;
   }
 
   // The page's own check, written into #selfcheck after drawing.
-  const std::string text = read(dom);
+  const std::string text = slurp(dom);
   const std::string open = "<pre id=\"selfcheck\">";
   const auto begin = text.find(open);
   ASSERT_NE(begin, std::string::npos) << "no #selfcheck in the DOM";

@@ -5,11 +5,16 @@
 # finding: crash, sanitizer report, undocumented exception, an input slower
 # than 5 s or above 2 GB; the input is left in build/fuzz/findings/<target>/
 # (save it under fuzz/regressions/<target>/ with a regression test).
-# Prints the executions per target. Longer runs: README, "Hardening".
+# Prints the executions per target, and a finding's input in base64 (so a
+# CI log alone reproduces it: base64 -d > crash; build/fuzz/fuzz/T crash).
+# The mutation seed is fixed (FUZZ_SEED, default 1) so a run can be repeated
+# exactly; FUZZ_SEED=0 lets libFuzzer pick one. Longer runs: README,
+# "Hardening".
 # Usage: scripts/fuzz.sh [DURATION] [TARGET...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 duration="${1:-60}"
+seed="${FUZZ_SEED:-1}"
 shift || true
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(gcode_fuzz cldata_fuzz profile_fuzz verify_fuzz stl_fuzz)
@@ -29,7 +34,7 @@ for t in "${targets[@]}"; do
   mkdir -p "$corpus" "$findings" "$(dirname "$log")"
   status=0
   "$build/fuzz/$t" "$corpus" "$build/seeds/$t" -dict="fuzz/${t%_fuzz}.dict" \
-    -max_total_time="$duration" -timeout=5 -rss_limit_mb=2048 -print_final_stats=1 \
+    -max_total_time="$duration" -seed="$seed" -timeout=5 -rss_limit_mb=2048 -print_final_stats=1 \
     -artifact_prefix="$findings/" >"$log" 2>&1 || status=$?
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   units=$(ls "$corpus" | wc -l)
@@ -37,7 +42,9 @@ for t in "${targets[@]}"; do
     echo "fuzz: $t ${runs:-?} executions in ${duration} s, corpus $units inputs, no finding"
   else
     echo "fuzz: $t FINDING (exit $status) after ${runs:-?} executions; log $log; inputs:"
-    ls -1 "$findings" | sed 's/^/  /'
+    for f in "$findings"/*; do
+      [ -f "$f" ] && echo "  $(basename "$f") base64: $(head -c 8192 "$f" | base64 -w0)"
+    done
     grep -m1 -A25 -E '^==[0-9]+==ERROR|runtime error|uncaught exception|ALARM|out-of-memory|deadly signal' \
       "$log" || tail -30 "$log"
     failed+=("$t")

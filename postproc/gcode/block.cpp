@@ -3,6 +3,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <numbers>
 #include <optional>
@@ -239,7 +240,7 @@ class LineReader {
         ++i_;
         continue;
       }
-      args.emplace_back(binary(0, start).number);
+      args.emplace_back(bounded(binary(0, start).number, start, key + " argument"));
       skip_blanks();
       if (!at_end() && s_[i_] == ',') {
         ++i_;
@@ -302,7 +303,7 @@ class LineReader {
       w.decimal_point = true;
       w.computed = true;
       w.end = static_cast<std::uint32_t>(i_);
-      out.words.push_back(w);
+      push_word(out, w);
       return;
     }
     if (key == "TURN") {
@@ -320,7 +321,7 @@ class LineReader {
       w.decimal_point = true;
       w.computed = true;
       w.end = static_cast<std::uint32_t>(i_);
-      out.words.push_back(w);
+      push_word(out, w);
       return;
     }
     SiemensCycle& cycle = out.siemens_cycle;
@@ -622,7 +623,7 @@ class LineReader {
       w.decimal_point = true;
       w.end = static_cast<std::uint32_t>(i_);
       while (w.end > w.begin && is_blank(s_[w.end - 1])) --w.end;
-      out.words.push_back(w);
+      push_word(out, w);
       return;
     }
     const char c = s_[i_];
@@ -642,7 +643,7 @@ class LineReader {
     w.end = static_cast<std::uint32_t>(i_);
     // Trailing blanks belong to no word.
     while (w.end > w.begin && is_blank(s_[w.end - 1])) --w.end;
-    out.words.push_back(w);
+    push_word(out, w);
   }
 
   bool literal_follows(std::size_t k) const {
@@ -876,7 +877,35 @@ class LineReader {
     }
   }
 
+  // An operation whose result overflows (or is not a number) fails here, so
+  // no parameter or word ever holds an infinity or a NaN.
   Value apply(Op op, Value a, Value b, std::size_t at) const {
+    return finite(apply_unchecked(op, a, b, at), at);
+  }
+
+  Value finite(Value v, std::size_t at) const {
+    if (!std::isfinite(v.number))
+      fail(Code::math_domain, at, "the expression's result is too large to be a number");
+    return v;
+  }
+
+  // The word's value within kMaxWordMagnitude, then stored.
+  void push_word(Block& out, const Word& w) const {
+    (void)bounded(w.value, w.begin, std::string(1, w.letter) + " word");
+    out.words.push_back(w);
+  }
+
+  double bounded(double v, std::size_t at, const std::string& what) const {
+    if (!(std::abs(v) <= kMaxWordMagnitude)) {
+      char text[32];
+      std::snprintf(text, sizeof text, "%.15g", v);
+      fail(Code::bad_number, at,
+           what + " value " + text + " is out of range (at most 1e12 either way)");
+    }
+    return v;
+  }
+
+  Value apply_unchecked(Op op, Value a, Value b, std::size_t at) const {
     const double x = a.number;
     const double y = b.number;
     auto truth = [](bool t) { return Value{t ? 1.0 : 0.0, false}; };
@@ -926,6 +955,11 @@ class LineReader {
   }
 
   Value function() {
+    const std::size_t start = i_;
+    return finite(function_unchecked(), start);
+  }
+
+  Value function_unchecked() {
     const std::size_t start = i_;
     const std::string name = read_letters();
     skip_blanks();

@@ -106,6 +106,11 @@ struct Block {
 // Longest line the reader accepts (longer ones are Code::line_too_long).
 inline constexpr std::size_t kMaxLineLength = 65536;
 
+// Largest magnitude of a word's or a cycle argument's value (Code::bad_number
+// beyond): 10^12 mm is far past any machine, and keeps every sum, square and
+// arc the interpreter forms from such values finite.
+inline constexpr double kMaxWordMagnitude = 1e12;
+
 // Reads `line` (no terminator) into `out` (cleared first; text, line and
 // offset set by the caller or here). Throws GcodeError with the line and
 // column of the first problem. `parameters` is only read.

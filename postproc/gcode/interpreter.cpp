@@ -127,8 +127,10 @@ bool Interpreter::next(std::vector<Event>& events) {
     }
     pos_ = l.offset + l.text.size() + l.eol.size();
     line_ = l.number;
-    ++lines_read_;
     block_.line = l.number;  // for errors thrown while reading
+    if (++lines_read_ > limits_.max_blocks)
+      fail(Code::loop_limit, 1,
+           "program runs more than " + std::to_string(limits_.max_blocks) + " blocks, the limit");
     read_block(l.text, l.number, l.offset, dialect_, parameters_, block_);
     block_.eol = l.eol;
     if (block_.tape_marker) {

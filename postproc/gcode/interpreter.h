@@ -15,6 +15,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -78,6 +79,10 @@ struct Origins {
 struct InterpreterLimits {
   std::size_t max_call_depth = 64;
   std::uint64_t max_loop_iterations = 10'000'000;
+  // Blocks executed in all (loops and calls included): unbounded for
+  // programs, set by callers that must end in bounded time (the fuzzers:
+  // subroutines calling each other twice double at each level, no loop).
+  std::uint64_t max_blocks = std::numeric_limits<std::uint64_t>::max();
   // Warnings kept (later ones are counted only): memory stays flat even
   // when every block of a long program warns.
   std::size_t max_warnings = 1000;

@@ -38,20 +38,32 @@ std::set<std::string> files_in(const fs::path& folder) {
 }
 
 // Outcome per dialect: "rs274ngc:<code> fanuc:<code> mazak:<code>".
+// Since a word's value is bounded at the reader (kMaxWordMagnitude, 1e12),
+// the first five inputs stop there, E1003, before the later guards they
+// once reached (those guards, E1401 and E1511, still take values up to 1e12).
 const std::map<std::string, std::string> kGcodeCases = {
     // G with a 70-digit number (8.9e66): its conversion to a code number
-    // overflowed a long (UBSan). No such code: E1401 in every dialect.
-    {"huge_g_code.ngc", "rs274ngc:E1401 fanuc:E1401 mazak:E1401"},
-    // T1e20 overflowed the int tool number: now E1511 (0..1e9).
-    {"huge_tool_number.ngc", "rs274ngc:E1511 fanuc:E1511 mazak:E1511"},
-    // G43 H1e20 overflowed the int register: E1511.
-    {"huge_h_register.ngc", "rs274ngc:E1511 fanuc:E1511 mazak:E1511"},
+    // overflowed a long (UBSan).
+    {"huge_g_code.ngc", "rs274ngc:E1003 fanuc:E1003 mazak:E1003"},
+    // T1e20 overflowed the int tool number.
+    {"huge_tool_number.ngc", "rs274ngc:E1003 fanuc:E1003 mazak:E1003"},
+    // G43 H1e20 overflowed the int register.
+    {"huge_h_register.ngc", "rs274ngc:E1003 fanuc:E1003 mazak:E1003"},
     // G43 H-3.5 was silently truncated to register -3: E1511 as for T.
     {"fractional_negative_h.ngc", "rs274ngc:E1511 fanuc:E1511 mazak:E1511"},
-    // G2 X1 I0.5 P1e20: P (turns, RS274NGC only) overflowed an int: E1511.
-    // Fanuc/Mazak take no turns word; X1 is 1 increment (0.001 mm), so the
-    // end radius 0.499 mm is within 0.002 mm of the start radius 0.5: ok.
-    {"huge_arc_turns.ngc", "rs274ngc:E1511 fanuc:ok mazak:ok"},
+    // G2 X1 I0.5 P1e20: P (turns, RS274NGC only) overflowed an int.
+    {"huge_arc_turns.ngc", "rs274ngc:E1003 fanuc:E1003 mazak:E1003"},
+    // X[EXP[1000]]: e^1000 overflows to infinity, which reached the motion
+    // events (CI's fuzz run). The expression fails: E1205.
+    {"overflowing_expression.ngc", "rs274ngc:E1205 fanuc:E1205 mazak:E1205"},
+    // X with 60 nines (1e60): finite, but its squares and sums in arcs and
+    // offsets are not. Beyond 1e12: E1003.
+    {"sixty_digit_coordinate.ngc", "rs274ngc:E1003 fanuc:E1003 mazak:E1003"},
+    // "o200 while [#4 LT 3]" with #4 never set: an endless loop whose body
+    // calls a subroutine with an arc; 100,000 iterations took over 5 s.
+    // The fuzz limit of 50,000 blocks ends it: E1307. Fanuc and Mazak stop
+    // at line 2's named parameter: E1206.
+    {"endless_while_calling_arcs.ngc", "rs274ngc:E1307 fanuc:E1206 mazak:E1206"},
 };
 
 // Outcome of the CL reader.

@@ -373,7 +373,8 @@ void add_job_options(CLI::App& command, PostArguments& args) {
       ->check(positive_number());
   command
       .add_option("--teeth", args.teeth,
-                  "number of teeth for --adjust-feed (default: the profile's)")
+                  "number of teeth for --adjust-feed: every tool's but those with teeth in "
+                  "--tools (default: the profile's)")
       ->check(CLI::Range(1, 1000));
   command
       .add_option("--cl-point", args.cl_point,

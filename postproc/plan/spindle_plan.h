@@ -150,6 +150,7 @@ double feed_per_tooth(double program_f_mm_per_min, double program_s_rpm, int tee
 struct BlockFeedInput {
   double program_f_mm_per_min = 0.0;  // F in effect on the block (0: none, e.g. a rapid)
   double program_s_rpm = 0.0;         // the program's S on the block
+  int teeth = 0;  // the teeth of the block's tool where known (0: the planner's own)
 };
 
 struct BlockFeed {

@@ -407,9 +407,10 @@ BlockFeed StreamingFeedPlanner::next(const BlockPlan& block, const BlockFeedInpu
                        input.program_f_mm_per_min > 0;
   if (coupled) {
     const Grid grid{step_};
+    const int teeth = input.teeth > 0 ? input.teeth : teeth_;
     const double fz =
-        fz_mm_ ? *fz_mm_ : feed_per_tooth(input.program_f_mm_per_min, input.program_s_rpm, teeth_);
-    const auto c = coupled_feed(fz, teeth_, block.planned_rpm, feed_);
+        fz_mm_ ? *fz_mm_ : feed_per_tooth(input.program_f_mm_per_min, input.program_s_rpm, teeth);
+    const auto c = coupled_feed(fz, teeth, block.planned_rpm, feed_);
     o.bound = c.bound;
     // Down to the output's step, but never under f_min.
     o.f_mm_per_min = std::max(grid.floor(c.f_mm_per_min), grid.ceil(feed_.f_min_mm_per_min));

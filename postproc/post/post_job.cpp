@@ -232,6 +232,10 @@ class Finisher {
       vc_.resize(std::max<std::size_t>(vc_.size(), index + 1), 0.0);
       vc_[index] = section.vc_nominal;
     }
+    // The feed coupling takes the section's tool's teeth where its entry
+    // (tools file) gives them, else --teeth or the profile's.
+    teeth_.resize(std::max<std::size_t>(teeth_.size(), index + 1), 0);
+    teeth_[index] = section.entry && section.entry->teeth ? *section.entry->teeth : 0;
     has_summary_[index] = true;
     summary_.sections.push_back(std::move(section));
   }
@@ -386,7 +390,10 @@ class Finisher {
     count_placement(block);
     const BlockInfo& info = writer_.block(block.block);
     std::optional<plan::BlockFeed> feed;
-    if (feeds_) feed = feeds_->next(block, {info.program_f, info.program_s});
+    if (feeds_) {
+      const int teeth = info.section < teeth_.size() ? teeth_[info.section] : 0;
+      feed = feeds_->next(block, {info.program_f, info.program_s, teeth});
+    }
     const double program_s = info.program_s;
     const bool posted = state_of(info.section) == SectionState::posted;
     SectionLedger* ledger = info.section < ledgers_.size() ? &ledgers_[info.section] : nullptr;
@@ -445,6 +452,7 @@ class Finisher {
   machines::SpindleSpec spindle_;
   std::optional<Placement> placement_;
   std::optional<plan::StreamingFeedPlanner> feeds_;
+  std::vector<int> teeth_;  // per section: its tool's teeth, 0 where unknown
   ProgramWriter& writer_;
   const PointSink& points_;
   PostSummary& summary_;

@@ -41,7 +41,7 @@ struct PostSettings {
   std::optional<gcode::Dialect> dialect;  // G-code input; default: the profile's
   bool adjust_feed = false;               // couple F = fz * z * n
   std::optional<double> fz_mm;            // feed per tooth; default: the program's F at its S
-  std::optional<int> teeth;               // default: the profile's
+  std::optional<int> teeth;               // tools without their own; default: the profile's
   int threads = 0;                        // worker threads; 0: one per core
 };
 

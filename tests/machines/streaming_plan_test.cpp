@@ -290,6 +290,25 @@ TEST(StreamingPlan, RejectsABrokenSampleAndGoesOn) {
   EXPECT_THROW(planner.push(samples.back()), PlanError);  // after finish()
 }
 
+// A block's own tool teeth (a section whose tools-file entry gives them)
+// replace the planner's (--teeth or the profile's): F = fz * z * n with
+// that z; without them (0) the planner's. fz 0.05 mm, n 8000 rpm: 4 teeth
+// 1600 mm/min, 2 teeth 800. With fz from the program's F and S, z cancels:
+// F = F_prog * n / S_prog whatever the teeth.
+TEST(StreamingFeedPlanner, TakesTheBlocksToolTeethWhereKnown) {
+  const machines::FeedSpec feed{5.0, 6000.0, 30000.0};
+  BlockPlan block;
+  block.target_rpm = 8000.0;
+  block.planned_rpm = 8000.0;
+  block.bound = Bound::none;
+  StreamingFeedPlanner given(0.05, 2, feed, 1.0);
+  EXPECT_DOUBLE_EQ(given.next(block, {1000.0, 4000.0, 4}).f_mm_per_min, 1600.0);
+  EXPECT_DOUBLE_EQ(given.next(block, {1000.0, 4000.0, 0}).f_mm_per_min, 800.0);
+  StreamingFeedPlanner from_program(std::nullopt, 2, feed, 1.0);
+  EXPECT_DOUBLE_EQ(from_program.next(block, {1000.0, 4000.0, 4}).f_mm_per_min, 2000.0);
+  EXPECT_DOUBLE_EQ(from_program.next(block, {1000.0, 4000.0, 0}).f_mm_per_min, 2000.0);
+}
+
 TEST(StreamingFeedPlanner, EqualsPlanFeedsOnTheSamePlans) {
   // On streamed random plans: the same F as plan_feeds() over the whole
   // plan, and on coupled blocks F = fz * z * S rounded down to the step

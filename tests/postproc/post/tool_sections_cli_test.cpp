@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -116,6 +117,56 @@ TEST_F(ToolSectionsCli, ToolsFile) {
   expect_t1_kept_t2_posted(two_tools(""), "--tools " + (dir_ / "shop.toml").string());
   const auto s = nlohmann::json::parse(read(dir_ / "s.json"));
   EXPECT_EQ(s["sections"][1]["tool"]["source"], "tools file");
+}
+
+// --adjust-feed with --fz: each section's F is fz * z * S with its own
+// tool's teeth z. Two ball-end mills over the same raster, T1 with teeth = 2
+// in the tools file (beating --teeth 4), T2 with none (so --teeth 4). On
+// every feed move of the posted program, the F in effect (mazak-3axis
+// writes whole mm/min, rounded down) satisfies 0 <= fz*z*S - F < 1 for the
+// S in effect: fz = F/(z*S) = 0.02 mm within one F step, per tool.
+TEST_F(ToolSectionsCli, AdjustFeedTakesEachToolsTeeth) {
+  std::ofstream(dir_ / "shop.toml") << "[[tool]]\nnumber = 1\nshape = \"ball\"\ndiameter = 10\n"
+                                       "teeth = 2\n\n"
+                                       "[[tool]]\nnumber = 2\nshape = \"ball\"\ndiameter = 10\n";
+  const fs::path program = two_tools(""), out = dir_ / "two.out.nc", err = dir_ / "err";
+  ASSERT_EQ(run("post " + program.string() + " --model " + kSamples +
+                "dome.step --vc 120 --ap 0.3 --machine mazak-3axis --tools " +
+                (dir_ / "shop.toml").string() + " --adjust-feed --fz 0.02 --teeth 4 -o " +
+                out.string() + " 2>" + err.string()),
+            0)
+      << read(err);
+  const double fz = 0.02;
+  std::istringstream lines(read(out));
+  std::string line;
+  int teeth = 0, mode = -1;
+  double s = 0, f = 0;
+  std::map<int, int> checked;  // teeth -> feed moves checked
+  while (std::getline(lines, line)) {
+    if (line == "T1 M6" || line == "T2 M6") {
+      teeth = line == "T1 M6" ? 2 : 4;
+      f = 0;
+      continue;
+    }
+    bool moves = false;
+    for (std::size_t k = 0; k < line.size(); ++k) {
+      const char c = line[k];
+      if (c == 'X' || c == 'Y' || c == 'Z') moves = true;
+      if (c != 'G' && c != 'S' && c != 'F') continue;
+      const double value = std::strtod(line.c_str() + k + 1, nullptr);
+      if (c == 'G' && (value == 0 || value == 1)) mode = static_cast<int>(value);
+      if (c == 'S') s = value;
+      if (c == 'F') f = value;
+    }
+    if (teeth == 0 || mode != 1 || !moves || f == 0) continue;
+    const double by_hand = fz * teeth * s;
+    EXPECT_GE(by_hand - f, 0.0) << line;
+    EXPECT_LT(by_hand - f, 1.0) << line;
+    ++checked[teeth];
+  }
+  // Every feed move of both sections (2,747 each in the raster).
+  EXPECT_GT(checked[2], 2000);
+  EXPECT_EQ(checked[2], checked[4]);
 }
 
 TEST_F(ToolSectionsCli, NoToolAnywhereIsAUsageError) {

@@ -39,44 +39,27 @@
 namespace vcpost::cli {
 namespace {
 
-nlohmann::json summary_json(const PostArguments& args, const JobRun& run) {
-  const post::PostSummary& s = run.summary;
-  return {
-      {"program", args.program},
-      {"kind", s.kind == post::ProgramKind::gcode ? "gcode" : "cldata"},
-      {"model",
-       {{"file", args.model}, {"kind", run.model.kind}, {"description", run.model.description}}},
-      {"machine", run.profile.name()},
-      {"tool", run.tool ? nlohmann::json(geometry::to_string(*run.tool)) : nullptr},
-      {"vc_nominal", run.vc ? nlohmann::json(*run.vc) : nullptr},
-      {"ap", args.ap},
-      {"ae", args.ae ? nlohmann::json(*args.ae) : nlohmann::json(nullptr)},
-      {"policy", args.policy},
-      {"blocks", s.blocks},
-      {"motion_events", s.motion_events},
-      {"points", s.samples},
-      {"contact",
-       {{"touching", s.touching},
-        {"lifted", s.lifted},
-        {"gouging", s.gouging},
-        {"missed", s.missed}}},
-      {"ae_source",
-       {{"measured", s.ae_measured}, {"given", s.ae_given}, {"first_pass", s.ae_first_pass}}},
-      {"time_s",
-       {{"program", s.program_time_s},
-        {"cutting", s.cutting_time_s},
-        {"clamped_max", s.time_clamped_max_s},
-        {"clamped_min", s.time_clamped_min_s},
-        {"slew", s.time_slew_s},
-        {"rate", s.time_rate_s}}},
-      {"words_written", {{"s", s.s_words}, {"f", s.f_words}, {"repeated_lines", s.repeated_lines}}},
-      {"s_placement", report::s_placement_json(s.s_placement)},
-      {"vc_before", report::vc_json(s.before)},
-      {"vc_after", report::vc_json(s.after)},
-      {"sections", report::tool_sections_json(s)},
-      {"tool_notes", s.tool_notes},
-      {"run_time_s", run.run_time_s},
-  };
+// The inputs `post --summary-json` names, as the report names them.
+report::ReportInputs summary_inputs(const PostArguments& args, const JobRun& run) {
+  report::ReportInputs in;
+  in.program = args.program == "-" ? "<stdin>" : args.program;
+  in.program_kind = run.summary.kind == post::ProgramKind::gcode ? "gcode" : "cldata";
+  in.model = args.model;
+  in.model_kind = run.model.kind;
+  in.model_description = run.model.description;
+  in.machine = run.profile.name();
+  if (run.tool) in.tool = geometry::to_string(*run.tool);
+  if (run.vc) in.vc_nominal = *run.vc;
+  in.policy = args.policy;
+  in.cl_point = args.cl_point;
+  in.ap_mm = args.ap;
+  in.ae_mm = args.ae;
+  in.ae_override = args.ae_override;
+  in.adjust_feed = args.adjust_feed;
+  in.spacing_mm = args.spacing;
+  in.n_min_rpm = run.profile.spindle().n_min_rpm;
+  in.n_max_rpm = run.profile.spindle().n_max_rpm;
+  return in;
 }
 
 std::string read_text_file(const std::string& path, const std::string& option) {
@@ -516,7 +499,7 @@ JobRun run_job(const PostArguments& args, bool write_program) {
       }
       std::string bytes;
       if (r.format == report::ReportFormat::json) {
-        bytes = report::summary_json(data).dump(2) + "\n";
+        bytes = report::report_json(data).dump(2) + "\n";
       } else {
         try {
           bytes = report::render_html(data, chart_library);
@@ -613,7 +596,11 @@ void finish_job(const PostArguments& args, const JobRun& run) {
   const post::PostSummary& summary = run.summary;
   std::vector<std::string> notes = run.notes;
   if (!args.summary_json.empty()) {
-    const std::string json = summary_json(args, run).dump(2) + "\n";
+    const std::string json =
+        report::post_summary_json(summary_inputs(args, run), run.tool.has_value(), summary,
+                                  run.run_time_s)
+            .dump(2) +
+        "\n";
     if (args.summary_json == "-") {
       std::cerr << json;
     } else {

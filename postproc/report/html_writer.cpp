@@ -99,7 +99,7 @@ json page_data(const ReportData& d) {
   for (const auto& p : d.vc_after) total = std::max(total, p.x);
   const double t_step = total > 1000 ? 0.01 : 1e-4;
   return {
-      {"summary", summary_json(d)},
+      {"summary", report_json(d)},
       {"bucket_points", d.plot_bucket_points},
       {"vc",
        {{"before", flat_points(d.vc_before, t_step, vc * 1e-5)},
@@ -306,7 +306,7 @@ card('Mean vc', fmt(A.vc && A.vc.mean, 1), 'm/min after (' + fmt(B.vc && B.vc.me
 card('vc p5 \u2013 p95 after', fmt(A.vc && A.vc.p5, 1) + '\u2013' + fmt(A.vc && A.vc.p95, 1), 'm/min (before ' + fmt(B.vc && B.vc.p5, 0) + '\u2013' + fmt(B.vc && B.vc.p95, 0) + ')');
 card('Clamped at n_max', fmt(A.time_s.clamped_n_max, 1) + ' s', 'after; ' + pct(A.time_s.clamped_n_max / Math.max(S.time_s.cutting, 1e-12)) + ' of cutting', A.time_s.clamped_n_max > 0 ? 'warn' : 'good');
 card('Slew limit binds', fmt(A.time_s.slew, 1) + ' s', 'spindle acceleration', A.time_s.slew > 0.05 * S.time_s.cutting ? 'warn' : '');
-card('No contact / gouge', S.points.no_contact + ' / ' + S.points.gouge, 'of ' + S.points.total + ' points', S.points.gouge > 0 ? 'bad' : (S.points.no_contact > 0 ? 'warn' : 'good'));
+card('No contact / gouge', S.points.no_contact + ' / ' + S.points.gouging, 'of ' + S.points.total + ' points', S.points.gouging > 0 ? 'bad' : (S.points.no_contact > 0 ? 'warn' : 'good'));
 card('S words written', String(S.words_written.s), S.inputs.adjust_feed ? (S.words_written.f + ' F words') : 'F unchanged');
 var P = S.s_placement, placed = P.mode === 'at_stops' ? 'at stops' : 'inline';
 card('S words placed ' + placed, String(P.s_words), P.in_feed + ' inside feed streams; ' + P.stops + ' path stops \u00d7 ' +

@@ -1,6 +1,6 @@
 // The dry-run report of a post job: collects every evaluated point (hand
 // `point_sink()` to post::post_program) into bounded statistics and plot
-// data, then renders the JSON summary and the HTML page. The per-point CSV
+// data, then renders the HTML page (the JSON documents: json_documents.h). The per-point CSV
 // is streamed by csv_writer.h from the same rows. No I/O here.
 #pragma once
 
@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "postproc/post/post_job.h"
+#include "postproc/report/json_documents.h"
 #include "postproc/report/plot_data.h"
 #include "postproc/report/point_row.h"
 #include "postproc/report/statistics.h"
@@ -74,22 +75,6 @@ class ReportCollector {
 // Regions listed: vc off nominal by more than these shares.
 inline constexpr double kRegionThresholdAfter = 0.05;
 inline constexpr double kRegionThresholdBefore = 0.10;
-
-// The JSON summary (schema in postproc/report/README.md; keys are stable).
-nlohmann::json summary_json(const ReportData& data);
-
-// vc statistics as {min, max, mean, within_5_percent, within_10_percent}, or null:
-// the one form of the post summary and the report.
-nlohmann::json vc_json(const std::optional<post::VcStatistics>& s);
-
-// The tool sections of a job (the `sections` list of both the report's and
-// `post --summary-json`'s summary; keys in postproc/report/README.md).
-nlohmann::json tool_sections_json(const post::PostSummary& summary);
-
-// How the S words sit on the profile's control and what they cost, per
-// run of the spindle: the `s_placement` object of both summaries (report
-// and `post --summary-json`).
-nlohmann::json s_placement_json(const post::SPlacement& placement);
 
 // The self-contained HTML page. `chart_library` is the charting library's
 // JavaScript (Chart.js 3), inlined as it is. Throws std::invalid_argument

@@ -101,8 +101,8 @@ TEST(LinuxCncSim, PostedProgramStopsNoMoreAndRunsAsLongAndVcIsNearerNominal) {
       dir);
   ASSERT_EQ(posted.exit_code, 0) << posted.err;
   const json summary = json::parse(testing::slurp(dir / "summary.json"));
-  const double before = summary.at("vc_before").at("within_10_percent").get<double>();
-  const double after = summary.at("vc_after").at("within_10_percent").get<double>();
+  const double before = summary.at("before").at("within_10_percent").get<double>();
+  const double after = summary.at("after").at("within_10_percent").get<double>();
 
   const SimRun in = simulate(dir / "input.ngc", dir);
   const SimRun out = simulate(dir / "output.ngc", dir);

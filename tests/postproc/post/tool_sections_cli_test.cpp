@@ -84,7 +84,7 @@ class ToolSectionsCli : public ::testing::Test {
     EXPECT_EQ(t2s["posted"], true);
     EXPECT_GT(t2s["words_written"]["s"].get<int>(), 0);
     EXPECT_EQ(t2s["words_written"]["s"], s["words_written"]["s"]);
-    EXPECT_EQ(s["tool"], "ball:10");
+    EXPECT_EQ(s["inputs"]["tool"], "ball:10");
     // The terminal lists both sections.
     const std::string messages = read(err);
     EXPECT_NE(messages.find("T1 flat D10.000"), std::string::npos) << messages;

@@ -148,7 +148,7 @@ TEST(ReportJob, CsvHasOneRowPerPointAndTheJsonItsKeys) {
   const DomeRun run = run_dome("mazak-3axis", 3000, 100);
   EXPECT_EQ(static_cast<std::uint64_t>(std::count(run.csv.begin(), run.csv.end(), '\n')),
             run.summary.samples + 1);
-  const nlohmann::json j = summary_json(*run.data);
+  const nlohmann::json j = report_json(*run.data);
   for (const char* key : {"schema", "inputs", "profile", "vc_nominal", "points", "time_s", "before",
                           "after", "words_written", "surface", "run_time_s"}) {
     EXPECT_TRUE(j.contains(key)) << key;
@@ -164,7 +164,7 @@ TEST(ReportJob, CsvHasOneRowPerPointAndTheJsonItsKeys) {
     EXPECT_TRUE(j[side].contains("within_10_percent"));
   }
   EXPECT_EQ(j["points"]["total"], run.summary.samples);
-  EXPECT_EQ(j["points"]["gouge"], run.summary.gouging);
+  EXPECT_EQ(j["points"]["gouging"], run.summary.gouging);
   EXPECT_EQ(j["points"]["no_contact"], run.summary.lifted + run.summary.missed);
   EXPECT_DOUBLE_EQ(j["vc_nominal"].get<double>(), 100);
   for (const char* key : {"cusp_um", "ra_um", "rz_um"})

@@ -1,6 +1,6 @@
 // `vcpost deff`: the working-diameter model at one point, over a sweep of an
-// angle, or for every row of a CSV file. Argument checks and output only;
-// the numbers come from geometry/engagement.h.
+// angle, or for every row of a CSV file. Argument checks and printing only;
+// the set-ups and numbers come from postproc/deff/.
 #include <Eigen/Geometry>
 #include <filesystem>
 #include <fstream>
@@ -14,14 +14,16 @@
 #include "geometry/engagement.h"
 #include "geometry/tool.h"
 #include "postproc/cli/commands.h"
-#include "postproc/cli/deff_batch.h"
-#include "postproc/cli/deff_input.h"
 #include "postproc/cli/deff_output.h"
+#include "postproc/deff/batch_reader.h"
+#include "postproc/deff/evaluation.h"
+#include "postproc/deff/setup_input.h"
 
 namespace vcpost::cli {
 namespace {
 
-using namespace deff;
+using namespace vcpost::deff;
+using namespace deff_printing;
 
 constexpr const char* kDescription =
     "Working diameter of the tool at one point, over a sweep of an angle, or for every row of a\n"
@@ -72,28 +74,16 @@ Eigen::Vector3d vector_option(const std::string& option, const std::string& text
   }
 }
 
-// The set-up as given, before the swept angle (if any) is filled in.
-struct Request {
-  geometry::Tool tool;
-  double ap = 0, ae = 0;
-  geometry::Side side = geometry::Side::left;
-  geometry::SpindleDirection spindle = geometry::SpindleDirection::clockwise;
-  std::optional<Eigen::Vector3d> normal;  // else from tilt and azimuth
-  double tilt_deg = 0, azimuth_deg = 0;
-  std::optional<Eigen::Vector3d> feed;  // else from feed_angle
-  double feed_angle_deg = 0;
-};
-
 // Which option to blame for a bad normal or feed: the vector option, the
 // angle option or the sweep value they came from.
 struct Blame {
   std::string normal, feed;
 };
 
-geometry::CutSetup checked(const geometry::Tool& tool, const geometry::CutSetup& setup,
-                           const Blame& blame) {
+// Builds and checks one set-up, naming the option at fault.
+Description described(const SetupRequest& request, const Blame& blame) {
   try {
-    return checked_setup(tool, setup);
+    return describe(request);
   } catch (const SetupError& e) {
     switch (e.field()) {
       case SetupField::diameter:
@@ -109,42 +99,6 @@ geometry::CutSetup checked(const geometry::Tool& tool, const geometry::CutSetup&
     }
     throw;
   }
-}
-
-// Builds and checks one set-up from the request.
-Description describe(const Request& request, const Blame& blame) {
-  Description description;
-  description.tool = request.tool;
-  description.spindle = request.spindle;
-  geometry::CutSetup setup;
-  setup.ap = request.ap;
-  setup.ae = request.ae;
-  setup.side = request.side;
-  if (request.normal) {
-    setup.normal = *request.normal;
-  } else {
-    try {
-      check_tilt(request.tilt_deg);
-    } catch (const InputError& e) {
-      throw usage(blame.normal, e.what());
-    }
-    setup.normal = geometry::normal_from_angles(degrees_to_radians(request.tilt_deg),
-                                                degrees_to_radians(request.azimuth_deg));
-  }
-  if (request.feed) {
-    setup.feed = *request.feed;
-  } else {
-    // The feed angle is projected onto the tangent plane, so the normal
-    // must be good first: check it with a stand-in feed across it.
-    geometry::CutSetup probe = setup;
-    probe.feed = setup.normal.unitOrthogonal();
-    setup.normal = checked(request.tool, probe, blame).normal;
-    setup.feed =
-        geometry::feed_from_angle(degrees_to_radians(request.feed_angle_deg), setup.normal);
-    description.feed_angle_deg = request.feed_angle_deg;
-  }
-  description.setup = checked(request.tool, setup, blame);
-  return description;
 }
 
 // Writes the header and the rows with their result columns. The header goes
@@ -230,7 +184,7 @@ void run(CLI::App& command, const Arguments& args) {
     throw usage("--policy", "only used with --vc or --rpm");
   }
 
-  Request request;
+  SetupRequest request;
   try {
     request.tool = geometry::parse_tool(args.tool);
   } catch (const std::invalid_argument& e) {
@@ -279,7 +233,7 @@ void run(CLI::App& command, const Arguments& args) {
     // Check every set-up before printing anything.
     std::vector<std::pair<double, Description>> cases;
     for (const double value : sweep.values()) {
-      Request at = request;
+      SetupRequest at = request;
       Blame at_blame = blame;
       const std::string name = "--sweep: " + swept + " = " + format_value(value);
       switch (sweep.parameter) {
@@ -297,7 +251,7 @@ void run(CLI::App& command, const Arguments& args) {
       // some tilt or azimuth is the sweep value's as well.
       if (sweep.parameter == SweepParameter::tilt) at_blame.normal = name;
       at_blame.feed = name;
-      cases.emplace_back(value, describe(at, at_blame));
+      cases.emplace_back(value, described(at, at_blame));
     }
     std::cout << csv_name(sweep.parameter) << ',' << csv_header(args.radius) << '\n';
     for (const auto& [value, description] : cases) {
@@ -307,7 +261,7 @@ void run(CLI::App& command, const Arguments& args) {
     return;
   }
 
-  const Description description = describe(request, blame);
+  const Description description = described(request, blame);
   std::optional<Speed> speed;
   SpeedRequest speed_request;
   const auto policy = geometry::parse_diameter_policy(args.policy);

@@ -7,9 +7,12 @@
 #include <utility>
 #include <vector>
 
-#include "postproc/cli/deff_input.h"
+#include "postproc/deff/setup_input.h"
 
-namespace vcpost::cli::deff {
+namespace vcpost::cli::deff_printing {
+
+using namespace vcpost::deff;
+using vcpost::deff::to_string;  // beside the local overloads below
 namespace {
 
 using geometry::CuttingPoint;
@@ -108,30 +111,6 @@ nlohmann::ordered_json optional_json(const std::optional<double>& value) {
 nlohmann::ordered_json vector_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
 }  // namespace
-
-Evaluation evaluate(const geometry::Tool& tool, const geometry::CutSetup& setup) {
-  return {geometry::evaluate_engagement(tool, setup), geometry::engaged_mean_diameter(tool, setup)};
-}
-
-std::optional<double> Speed::vc_at(std::optional<double> diameter) const {
-  if (!diameter || !rpm) return std::nullopt;
-  return geometry::cutting_speed(*diameter, *rpm);
-}
-
-Speed plan_speed(const Evaluation& evaluation, const SpeedRequest& request) {
-  Speed speed;
-  speed.policy = request.policy;
-  speed.vc_nominal = request.vc;
-  speed.d_ref = geometry::reference_diameter(request.policy, evaluation.engagement,
-                                             [&] { return evaluation.d_mean; });
-  if (request.rpm) {
-    speed.rpm = request.rpm;
-  } else if (request.vc && speed.d_ref) {
-    const double rpm = geometry::target_rpm(*request.vc, *speed.d_ref);
-    if (std::isfinite(rpm)) speed.rpm = rpm;  // unbounded at d_ref = 0: none to give
-  }
-  return speed;
-}
 
 void write_table(std::ostream& out, const Description& description, const Evaluation& evaluation,
                  const std::optional<Speed>& speed, bool radius) {
@@ -307,4 +286,4 @@ std::string csv_cells(const Evaluation& evaluation, bool radius) {
   return cells;
 }
 
-}  // namespace vcpost::cli::deff
+}  // namespace vcpost::cli::deff_printing

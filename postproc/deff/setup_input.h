@@ -1,4 +1,4 @@
-// Input side of `vcpost deff`: numbers, vectors, sweep ranges and the
+// The input of the working-diameter evaluation: numbers, vectors, sweep ranges and the
 // checks a cutting set-up must pass before the engine sees it. No I/O; every
 // failure is an exception whose message the caller prefixes with the
 // argument or file:line at fault.
@@ -14,7 +14,7 @@
 #include "geometry/engagement.h"
 #include "geometry/tool.h"
 
-namespace vcpost::cli::deff {
+namespace vcpost::deff {
 
 // A value that cannot be used; what() says why, without naming the source.
 // E2001 (a bad option) unless the reader of a batch file gives E2006.
@@ -62,7 +62,7 @@ geometry::CutSetup checked_setup(const geometry::Tool& tool, geometry::CutSetup 
 
 // Tilt of the normal to +z in degrees must lie in (-90, 90): at 90 the
 // surface is a vertical wall seen edge-on (n_z = 0, undercut). Throws
-// InputError.
+// SetupError (the normal's).
 void check_tilt(double tilt_deg);
 
 // The parameter a sweep varies, in degrees.
@@ -91,4 +91,4 @@ Sweep parse_sweep(std::string_view text);
 double degrees_to_radians(double degrees);
 double radians_to_degrees(double radians);
 
-}  // namespace vcpost::cli::deff
+}  // namespace vcpost::deff

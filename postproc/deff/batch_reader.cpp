@@ -1,11 +1,11 @@
-#include "postproc/cli/deff_batch.h"
+#include "postproc/deff/batch_reader.h"
 
 #include <array>
 #include <utility>
 
-#include "postproc/cli/deff_input.h"
+#include "postproc/deff/setup_input.h"
 
-namespace vcpost::cli::deff {
+namespace vcpost::deff {
 namespace {
 
 constexpr std::array<const char*, 10> kRequired = {"d",  "ap", "ae", "nx", "ny",
@@ -201,4 +201,4 @@ bool BatchReader::next(BatchRow& row) {
   return true;
 }
 
-}  // namespace vcpost::cli::deff
+}  // namespace vcpost::deff

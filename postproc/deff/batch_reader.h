@@ -1,5 +1,5 @@
-// The batch input of `vcpost deff --batch`: a CSV file of cutting set-ups,
-// read one row at a time so a file of any length streams through.
+// The batch input of the working-diameter evaluation (`vcpost deff --batch`): a CSV file of cutting
+// set-ups, read one row at a time so a file of any length streams through.
 //
 // Header (first non-blank line) names the columns, in any order:
 //   required d, ap, ae, nx, ny, nz, fx, fy, fz, side
@@ -20,7 +20,7 @@
 #include "geometry/engagement.h"
 #include "geometry/tool.h"
 
-namespace vcpost::cli::deff {
+namespace vcpost::deff {
 
 struct BatchRow {
   std::size_t line = 0;  // 1-based line number in the input
@@ -63,4 +63,4 @@ class BatchReader {
   std::map<std::string, std::size_t> columns_;
 };
 
-}  // namespace vcpost::cli::deff
+}  // namespace vcpost::deff

@@ -1,4 +1,4 @@
-#include "postproc/cli/deff_input.h"
+#include "postproc/deff/setup_input.h"
 
 #include <Eigen/Geometry>
 #include <charconv>
@@ -6,7 +6,7 @@
 #include <numbers>
 #include <sstream>
 
-namespace vcpost::cli::deff {
+namespace vcpost::deff {
 namespace {
 
 std::string_view trim(std::string_view text) {
@@ -122,8 +122,9 @@ geometry::CutSetup checked_setup(const geometry::Tool& tool, geometry::CutSetup 
 
 void check_tilt(double tilt_deg) {
   if (!(std::abs(tilt_deg) < 90)) {
-    throw InputError("tilt must lie in (-90, 90) degrees, got " + format_number(tilt_deg) +
-                     " (at 90 and beyond the surface is a wall or an undercut)");
+    throw SetupError(SetupField::normal,
+                     "tilt must lie in (-90, 90) degrees, got " + format_number(tilt_deg) +
+                         " (at 90 and beyond the surface is a wall or an undercut)");
   }
 }
 
@@ -212,4 +213,4 @@ Sweep parse_sweep(std::string_view text) {
 double degrees_to_radians(double degrees) { return degrees * std::numbers::pi / 180; }
 double radians_to_degrees(double radians) { return radians * 180 / std::numbers::pi; }
 
-}  // namespace vcpost::cli::deff
+}  // namespace vcpost::deff

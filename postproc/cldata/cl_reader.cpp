@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -76,6 +77,13 @@ double ClReader::number(const ClRecord& r, std::size_t i) const {
   if (p.text.empty()) fail(ClCode::bad_number, p, "empty parameter where a number is expected");
   const char c = p.text.front();
   if ((c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.') {
+    std::string_view t = p.text.substr(c == '+' ? 1 : 0);
+    double v = 0;
+    const auto parsed = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (parsed.ec == std::errc::result_out_of_range ||
+        (parsed.ec == std::errc() && parsed.ptr == t.data() + t.size() && std::isfinite(v)))
+      fail(ClCode::bad_number, p,
+           "number '" + std::string(p.text) + "' is out of range (at most 1e12 either way)");
     fail(ClCode::bad_number, p, "malformed number '" + std::string(p.text) + "'");
   }
   fail(ClCode::wrong_parameters, p, "expected a number, found '" + std::string(p.text) + "'");

@@ -145,8 +145,10 @@ void ClRecordReader::split_params(ClRecord& record, std::size_t text_begin) {
       if (t.front() == '+') t.remove_prefix(1);
       double v = 0;
       const auto r = std::from_chars(t.data(), t.data() + t.size(), v);
-      // "inf" and "nan" parse, but are no coordinates: left as bad numbers.
-      if (r.ec == std::errc() && r.ptr == t.data() + t.size() && std::isfinite(v)) {
+      // "inf" and "nan" parse, but are no coordinates: left as bad numbers,
+      // as is a magnitude beyond 1e12, whose inch conversions, sums and
+      // squares would overflow (the G-code reader's kMaxWordMagnitude).
+      if (r.ec == std::errc() && r.ptr == t.data() + t.size() && std::abs(v) <= kMaxClNumber) {
         p.value = v;
         p.is_number = true;
       }

@@ -24,9 +24,12 @@
 
 namespace vcpost::cldata {
 
+// Largest magnitude a parameter may have to count as a number.
+inline constexpr double kMaxClNumber = 1e12;
+
 struct ClParam {
   std::string_view text;  // trimmed, as written (empty for ",,")
-  double value = 0;       // valid when is_number
+  double value = 0;       // valid when is_number: finite, |value| <= kMaxClNumber
   bool is_number = false;
   std::uint32_t line = 0;
   std::uint32_t column = 0;  // 1-based column of the parameter's first character

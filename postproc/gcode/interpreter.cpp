@@ -1397,7 +1397,10 @@ void Interpreter::arc(Step& step, const Eigen::Vector3d& end) {
       p && (dialect_.kind == DialectKind::rs274ngc || dialect_.kind == DialectKind::sinumerik)) {
     if (p->value < 1 || !whole_number(p->value))
       fail(Code::bad_word_value, p->column,
-           "P (turns) of an arc must be a whole number from 1 to 1e9");
+           dialect_.kind == DialectKind::sinumerik
+               ? "TURN= (full turns beyond the end point) must be a whole number from 0 to "
+                 "999999999"
+               : "P (turns) of an arc must be a whole number from 1 to 1e9");
     turns = static_cast<int>(p->value);
   }
   const program::ArcFeed arc{

@@ -70,8 +70,16 @@ const std::map<std::string, std::string> kGcodeCases = {
 const std::map<std::string, std::string> kClCases = {
     // A NURBS with a CNTRL point at Y = 14,843,522 mm (line 74): 321,000
     // lines at 1 um, over the 5 s limit under the sanitizers. Now refused
-    // before flattening: E3111, the point lies beyond 100 m.
-    {"nurbs_control_point_15_km.cls", "E3111"},
+    // before flattening: E3111, the point lies beyond 100 m (the reader
+    // test ClReader.NurbsPointBeyondTheMachineReachIsRefused keeps that case).
+    // Since parameters beyond 1e12 are no numbers, the same curve's
+    // CNTRL/-254.9e88 (line 77) is refused first, while the curve is read:
+    // E3103.
+    {"nurbs_control_point_15_km.cls", "E3103"},
+    // UNITS/INCHES, then FROM/0,1e308,3.775 (line 8): 1e308 in times 25.4
+    // is infinite, which reached the motion events. A parameter beyond 1e12
+    // is no number (kMaxClNumber): E3103.
+    {"inch_coordinate_1e308.cls", "E3103"},
 };
 
 TEST(FuzzRegressions, GcodeInputsGiveTheirDocumentedOutcome) {

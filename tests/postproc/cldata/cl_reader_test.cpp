@@ -383,6 +383,27 @@ TEST(ClReader, NurbsBecomesLinesWithinTheTolerance) {
   EXPECT_GT(worst, 0.0001);  // not wastefully fine
 }
 
+TEST(ClReader, NumbersBeyondOneTrillionAreRefused) {
+  // cldata_fuzz: FROM/0,1e308,3.775 after UNITS/INCHES became an infinite
+  // coordinate (1e308 x 25.4). A parameter beyond 1e12 is no number: E3103
+  // at its column, with the bound in the message; 1e12 itself is read (in
+  // inches: 2.54e13 mm, finite).
+  std::string message;
+  try {
+    read_events("UNITS/INCHES\nFROM/0,1e308,3.775\nFINI\n");
+  } catch (const ClError& e) {
+    EXPECT_EQ(e.code(), ClCode::bad_number);
+    message = e.what();
+  }
+  EXPECT_NE(message.find(":2:8:"), std::string::npos) << message;
+  EXPECT_NE(message.find("'1e308' is out of range (at most 1e12 either way)"), std::string::npos)
+      << message;
+  EXPECT_EQ(code_of("GOTO/0,-1000000000000.5,0\nFINI\n"), ClCode::bad_number);
+  const auto moves = only<StraightFeed>(read_events("UNITS/INCHES\nGOTO/0,1e12,0\nFINI\n"));
+  ASSERT_EQ(moves.size(), 1u);
+  EXPECT_DOUBLE_EQ(moves[0].end.y(), 2.54e13);
+}
+
 TEST(ClReader, NurbsPointBeyondTheMachineReachIsRefused) {
   // cldata_fuzz found a NURBS pulled out to Y = 14,843,522 mm and back: it
   // flattened into 321,000 lines at 1 um (0.5 s here, over 5 s under the

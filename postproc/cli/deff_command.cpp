@@ -145,18 +145,28 @@ void run_batch(const Arguments& args) {
   }
 }
 
-void run(CLI::App& command, const Arguments& args) {
-  const auto given = [&command](const char* option) { return command.count(option) > 0; };
-  const auto conflict = [&](const char* first, const char* second, const std::string& why) {
-    if (given(first) && given(second)) {
+// Which options the user gave, and the refusals of two given together.
+class Given {
+ public:
+  explicit Given(const CLI::App& command) : command_(command) {}
+  bool operator()(const char* option) const { return command_.count(option) > 0; }
+  void conflict(const char* first, const char* second, const std::string& why) const {
+    if ((*this)(first) && (*this)(second)) {
       throw usage(first, std::string("cannot be combined with ") + second + " (" + why + ")");
     }
-  };
-  conflict("--sweep", "--batch", "a sweep varies one set-up, a batch reads many");
-  conflict("--normal", "--tilt", "give the normal either as a vector or as angles");
-  conflict("--normal", "--azimuth", "give the normal either as a vector or as angles");
-  conflict("--feed", "--feed-angle", "give the feed either as a vector or as an angle");
-  conflict("--vc", "--rpm", "give the nominal cutting speed or the spindle speed, not both");
+  }
+
+ private:
+  const CLI::App& command_;
+};
+
+// Options that cannot go together, or not with --batch or --sweep.
+void check_combinations(const Given& given) {
+  given.conflict("--sweep", "--batch", "a sweep varies one set-up, a batch reads many");
+  given.conflict("--normal", "--tilt", "give the normal either as a vector or as angles");
+  given.conflict("--normal", "--azimuth", "give the normal either as a vector or as angles");
+  given.conflict("--feed", "--feed-angle", "give the feed either as a vector or as an angle");
+  given.conflict("--vc", "--rpm", "give the nominal cutting speed or the spindle speed, not both");
 
   if (given("--batch")) {
     for (const char* option : {"--tool", "--ap", "--ae", "--normal", "--tilt", "--azimuth",
@@ -175,8 +185,10 @@ void run(CLI::App& command, const Arguments& args) {
       }
     }
   }
-  if (given("--batch")) return run_batch(args);
+}
 
+// The one set-up of the options (before a swept angle is filled in).
+SetupRequest read_setup(const Given& given, const Arguments& args) {
   for (const char* option : {"--tool", "--ap", "--ae"}) {
     if (!given(option)) throw usage(option, "required (see vcpost deff --help)");
   }
@@ -204,65 +216,67 @@ void run(CLI::App& command, const Arguments& args) {
   } else {
     throw usage("--spindle", "'" + args.spindle + "' is not a direction (expected cw or ccw)");
   }
-  Blame blame{given("--normal") ? "--normal" : "--tilt",
-              given("--feed") ? "--feed" : "--feed-angle"};
   if (given("--normal")) request.normal = vector_option("--normal", args.normal, "nx,ny,nz");
   if (given("--tilt")) request.tilt_deg = number_option("--tilt", args.tilt);
   if (given("--azimuth")) request.azimuth_deg = number_option("--azimuth", args.azimuth);
   if (given("--feed")) request.feed = vector_option("--feed", args.feed, "fx,fy,fz");
   if (given("--feed-angle"))
     request.feed_angle_deg = number_option("--feed-angle", args.feed_angle);
-  if (given("--sweep")) {
-    Sweep sweep;
-    try {
-      sweep = parse_sweep(args.sweep);
-    } catch (const InputError& e) {
-      throw usage("--sweep", e.what());
-    }
-    const std::string swept(to_string(sweep.parameter));
-    if (sweep.parameter == SweepParameter::tilt) {
-      conflict("--sweep", "--normal", "the sweep sets the normal's tilt");
-      conflict("--sweep", "--tilt", "the sweep sets the tilt");
-    } else if (sweep.parameter == SweepParameter::azimuth) {
-      conflict("--sweep", "--normal", "the sweep sets the normal's azimuth");
-      conflict("--sweep", "--azimuth", "the sweep sets the azimuth");
-    } else {
-      conflict("--sweep", "--feed", "the sweep sets the feed angle");
-      conflict("--sweep", "--feed-angle", "the sweep sets the feed angle");
-    }
-    // Check every set-up before printing anything.
-    std::vector<std::pair<double, Description>> cases;
-    for (const double value : sweep.values()) {
-      SetupRequest at = request;
-      Blame at_blame = blame;
-      const std::string name = "--sweep: " + swept + " = " + format_value(value);
-      switch (sweep.parameter) {
-        case SweepParameter::tilt:
-          at.tilt_deg = value;
-          break;
-        case SweepParameter::azimuth:
-          at.azimuth_deg = value;
-          break;
-        case SweepParameter::feed_angle:
-          at.feed_angle_deg = value;
-          break;
-      }
-      // A bad tilt is the sweep's; a feed vector parallel to the normal at
-      // some tilt or azimuth is the sweep value's as well.
-      if (sweep.parameter == SweepParameter::tilt) at_blame.normal = name;
-      at_blame.feed = name;
-      cases.emplace_back(value, described(at, at_blame));
-    }
-    std::cout << csv_name(sweep.parameter) << ',' << csv_header(args.radius) << '\n';
-    for (const auto& [value, description] : cases) {
-      std::cout << format_value(value) << ','
-                << csv_cells(evaluate(description.tool, description.setup), args.radius) << '\n';
-    }
-    return;
-  }
+  return request;
+}
 
-  const Description description = described(request, blame);
-  std::optional<Speed> speed;
+// --sweep: one CSV row per value of the swept angle, every set-up checked
+// before anything is printed.
+void run_sweep(const Given& given, const Arguments& args, const SetupRequest& request,
+               const Blame& blame) {
+  Sweep sweep;
+  try {
+    sweep = parse_sweep(args.sweep);
+  } catch (const InputError& e) {
+    throw usage("--sweep", e.what());
+  }
+  const std::string swept(to_string(sweep.parameter));
+  if (sweep.parameter == SweepParameter::tilt) {
+    given.conflict("--sweep", "--normal", "the sweep sets the normal's tilt");
+    given.conflict("--sweep", "--tilt", "the sweep sets the tilt");
+  } else if (sweep.parameter == SweepParameter::azimuth) {
+    given.conflict("--sweep", "--normal", "the sweep sets the normal's azimuth");
+    given.conflict("--sweep", "--azimuth", "the sweep sets the azimuth");
+  } else {
+    given.conflict("--sweep", "--feed", "the sweep sets the feed angle");
+    given.conflict("--sweep", "--feed-angle", "the sweep sets the feed angle");
+  }
+  std::vector<std::pair<double, Description>> cases;
+  for (const double value : sweep.values()) {
+    SetupRequest at = request;
+    Blame at_blame = blame;
+    const std::string name = "--sweep: " + swept + " = " + format_value(value);
+    switch (sweep.parameter) {
+      case SweepParameter::tilt:
+        at.tilt_deg = value;
+        break;
+      case SweepParameter::azimuth:
+        at.azimuth_deg = value;
+        break;
+      case SweepParameter::feed_angle:
+        at.feed_angle_deg = value;
+        break;
+    }
+    // A bad tilt is the sweep's; a feed vector parallel to the normal at
+    // some tilt or azimuth is the sweep value's as well.
+    if (sweep.parameter == SweepParameter::tilt) at_blame.normal = name;
+    at_blame.feed = name;
+    cases.emplace_back(value, described(at, at_blame));
+  }
+  std::cout << csv_name(sweep.parameter) << ',' << csv_header(args.radius) << '\n';
+  for (const auto& [value, description] : cases) {
+    std::cout << format_value(value) << ','
+              << csv_cells(evaluate(description.tool, description.setup), args.radius) << '\n';
+  }
+}
+
+// --vc, --rpm and --policy.
+SpeedRequest read_speed(const Given& given, const Arguments& args) {
   SpeedRequest speed_request;
   const auto policy = geometry::parse_diameter_policy(args.policy);
   if (!policy) {
@@ -278,8 +292,16 @@ void run(CLI::App& command, const Arguments& args) {
     speed_request.rpm = number_option("--rpm", args.rpm);
     if (*speed_request.rpm <= 0) throw usage("--rpm", "the spindle speed must be > 0 rpm");
   }
+  return speed_request;
+}
 
+// One set-up: the table or the JSON object.
+void run_one(const Given& given, const Arguments& args, const SetupRequest& request,
+             const Blame& blame) {
+  const Description description = described(request, blame);
+  const SpeedRequest speed_request = read_speed(given, args);
   const Evaluation evaluation = evaluate(description.tool, description.setup);
+  std::optional<Speed> speed;
   if (speed_request.vc || speed_request.rpm) speed = plan_speed(evaluation, speed_request);
   std::ostringstream out;
   if (args.json) {
@@ -288,6 +310,17 @@ void run(CLI::App& command, const Arguments& args) {
     write_table(out, description, evaluation, speed, args.radius);
   }
   std::cout << out.str();
+}
+
+void run(const CLI::App& command, const Arguments& args) {
+  const Given given(command);
+  check_combinations(given);
+  if (given("--batch")) return run_batch(args);
+  const SetupRequest request = read_setup(given, args);
+  const Blame blame{given("--normal") ? "--normal" : "--tilt",
+                    given("--feed") ? "--feed" : "--feed-angle"};
+  if (given("--sweep")) return run_sweep(given, args, request, blame);
+  run_one(given, args, request, blame);
 }
 
 }  // namespace

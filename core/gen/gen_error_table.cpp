@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "core/csv_line.h"
+
 namespace {
 
 struct Row {
@@ -30,38 +32,17 @@ struct Row {
 
 // One CSV record (RFC 4180 quoting, no line breaks inside fields).
 std::vector<std::string> split(const std::string& line, const std::string& where) {
-  std::vector<std::string> cells;
-  std::string cell;
-  std::size_t i = 0;
-  while (true) {
-    cell.clear();
-    if (i < line.size() && line[i] == '"') {
-      ++i;
-      while (true) {
-        if (i >= line.size()) die(where, "quoted field not closed");
-        if (line[i] == '"') {
-          if (i + 1 < line.size() && line[i + 1] == '"') {
-            cell += '"';
-            i += 2;
-            continue;
-          }
-          ++i;
-          break;
-        }
-        cell += line[i++];
-      }
-      if (i < line.size() && line[i] != ',') die(where, "text after a closing quote");
-    } else {
-      while (i < line.size() && line[i] != ',') {
-        if (line[i] == '"') die(where, "quote inside an unquoted field");
-        cell += line[i++];
-      }
-    }
-    cells.push_back(cell);
-    if (i >= line.size()) break;
-    ++i;  // the comma
+  vcpost::csv::SplitLine split = vcpost::csv::split_line(line, {.quote_in_unquoted = false});
+  if (!split.error) return std::move(split.cells);
+  switch (*split.error) {
+    case vcpost::csv::LineError::unterminated_quote:
+      die(where, "quoted field not closed");
+    case vcpost::csv::LineError::text_after_quote:
+      die(where, "text after a closing quote");
+    case vcpost::csv::LineError::quote_in_unquoted:
+      die(where, "quote inside an unquoted field");
   }
-  return cells;
+  die(where, "unreadable record");
 }
 
 std::vector<std::vector<std::string>> read_csv(const std::string& path, const std::string& header,

@@ -3,6 +3,7 @@
 #include <array>
 #include <utility>
 
+#include "core/csv_line.h"
 #include "postproc/deff/setup_input.h"
 
 namespace vcpost::deff {
@@ -10,12 +11,6 @@ namespace {
 
 constexpr std::array<const char*, 10> kRequired = {"d",  "ap", "ae", "nx", "ny",
                                                    "nz", "fx", "fy", "fz", "side"};
-
-std::string trim(const std::string& text) {
-  const auto first = text.find_first_not_of(" \t");
-  if (first == std::string::npos) return {};
-  return text.substr(first, text.find_last_not_of(" \t") - first + 1);
-}
 
 std::string column_label(SetupField field) {
   switch (field) {
@@ -36,40 +31,13 @@ std::string column_label(SetupField field) {
 }  // namespace
 
 std::vector<std::string> split_csv_line(const std::string& line) {
-  std::vector<std::string> cells;
-  std::size_t i = 0;
-  for (;;) {
-    std::string cell;
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
-    if (i < line.size() && line[i] == '"') {
-      ++i;
-      for (;;) {
-        if (i >= line.size()) throw InputError("unterminated quoted cell", "E2006");
-        if (line[i] == '"') {
-          if (i + 1 < line.size() && line[i + 1] == '"') {
-            cell += '"';
-            i += 2;
-            continue;
-          }
-          ++i;
-          break;
-        }
-        cell += line[i++];
-      }
-      while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
-      if (i < line.size() && line[i] != ',') {
-        throw InputError("text after a closing quote in cell " + std::to_string(cells.size() + 1),
-                         "E2006");
-      }
-    } else {
-      const std::size_t comma = line.find(',', i);
-      cell = trim(line.substr(i, comma == std::string::npos ? std::string::npos : comma - i));
-      i = comma == std::string::npos ? line.size() : comma;
-    }
-    cells.push_back(std::move(cell));
-    if (i >= line.size()) return cells;
-    ++i;  // the comma
+  csv::SplitLine split = csv::split_line(line, {.trim_blanks = true, .quote_in_unquoted = true});
+  if (!split.error) return std::move(split.cells);
+  if (*split.error == csv::LineError::unterminated_quote) {
+    throw InputError("unterminated quoted cell", "E2006");
   }
+  throw InputError("text after a closing quote in cell " + std::to_string(split.error_cell),
+                   "E2006");
 }
 
 BatchReader::BatchReader(std::istream& in, std::string source)

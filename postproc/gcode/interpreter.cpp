@@ -19,6 +19,10 @@ using program::Event;
 namespace {
 
 constexpr double kInch = 25.4;
+
+// A length or feed in the program's units, in mm (mm/min).
+double to_mm(double v, bool inches) { return inches ? v * kInch : v; }
+
 // A whole number in [0, 1e9]: T, H and arc turns, which become ints (a
 // larger value would not fit, and its conversion would be undefined).
 bool whole_number(double v) { return v >= 0 && v <= 1e9 && v == std::floor(v); }
@@ -384,7 +388,7 @@ double Interpreter::length(const Word& w, bool inches) const {
   double v = w.value;
   if (dialect_.integer_lengths == IntegerLengths::increments && !w.decimal_point && !w.computed)
     v *= inches ? dialect_.increment_inch : dialect_.increment_mm;
-  return inches ? v * kInch : v;
+  return to_mm(v, inches);
 }
 
 void Interpreter::warn_once(char letter, int key, Code code, std::uint32_t column,
@@ -399,11 +403,15 @@ namespace {
 
 bool is_cycle_code(int c) { return c == 730 || c == 740 || c == 760 || (c >= 810 && c <= 890); }
 
+// Codes whose axis words are values, not a point to move to: G10, G52, G92.
+bool axis_words_are_values(int nonmodal) {
+  return nonmodal == 100 || nonmodal == 520 || nonmodal == 920;
+}
+
 // Codes that take the block's axis words for themselves (no move of their own
-// kind from them): G10, G28, G30, G52, G92.
+// kind from them): those above, and G28, G30 (the point passed on the way home).
 bool uses_axis_words(int nonmodal) {
-  return nonmodal == 100 || nonmodal == 280 || nonmodal == 300 || nonmodal == 520 ||
-         nonmodal == 920;
+  return axis_words_are_values(nonmodal) || nonmodal == 280 || nonmodal == 300;
 }
 
 constexpr char kAxes[] = "XYZ";
@@ -446,7 +454,7 @@ void Interpreter::run_siemens_cycle(ModalState& s, const SiemensCycle& sc,
   // counts 0, as on the control.
   auto arg = [&](std::size_t k) { return k < sc.args.size() && sc.args[k] ? *sc.args[k] : 0.0; };
   auto given = [&](std::size_t k) { return k < sc.args.size() && sc.args[k].has_value(); };
-  auto mm = [&](double v) { return s.inches ? v * kInch : v; };
+  auto mm = [&](double v) { return to_mm(v, s.inches); };
   if (s.feed <= 0.0)
     fail(Code::missing_feed, sc.column, "drilling cycle with no feed rate (F) in effect");
   if (s.plane != program::Plane::xy)
@@ -875,7 +883,7 @@ void Interpreter::set_feed(Step& step) {
     s.feed = f->value;
     step.inverse_f = f;
   } else {
-    s.feed = f->value * (s.inches ? kInch : 1.0);
+    s.feed = to_mm(f->value, s.inches);
     step.emit(program::SetFeedRate{s.feed, s.feed_mode, source(step.b, f->column)});
   }
 }
@@ -1130,8 +1138,8 @@ void Interpreter::take_axis_words(Step& step) {
   }
   // G43.1: the axis words are the tool length offset.
   const bool dynamic_offset = step.g(Group::tool_length) && step.g_code(Group::tool_length) == 431;
-  step.axes_taken = g117 || step.macro_call || dynamic_offset || nonmodal_code == 100 ||
-                    nonmodal_code == 520 || nonmodal_code == 920;
+  step.axes_taken =
+      g117 || step.macro_call || dynamic_offset || axis_words_are_values(nonmodal_code);
   step.has_axis = !step.axes_taken && step.has_xyz;
 }
 

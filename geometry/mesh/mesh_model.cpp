@@ -147,6 +147,16 @@ void project(const double* xs, const double* ys, const double* zs, std::size_t n
   hi = {h0, h1, h2};
 }
 
+// Unit normal of the triangle a, b, c (counterclockwise seen from outside);
+// +z for a degenerate one. The one expression every user of a facet normal
+// goes through, so they agree bit for bit.
+Eigen::Vector3d unit_normal(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                            const Eigen::Vector3d& c) {
+  const Eigen::Vector3d n = (b - a).cross(c - a);
+  const double len = n.norm();
+  return len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::UnitZ();
+}
+
 }  // namespace
 
 // The index is built in a fixed order of floating-point operations, the
@@ -212,16 +222,16 @@ void MeshModel::Builder::normals() {
   const auto& triangles = m.mesh_.triangles;
   const std::size_t nf = triangles.size();
   const std::size_t nv = vertices.size();
-  m.facet_normal_.resize(nf);
+  // Facet normals only while the pseudo-normals are summed (24 bytes a
+  // face; queries recompute the few they need).
+  std::vector<Eigen::Vector3d> facet_normal(nf);
   m.edge_of_side_.resize(nf);
   m.vertex_normal_.assign(nv, Eigen::Vector3d::Zero());
   std::vector<std::array<double, 3>> angles(nf);  // of each corner
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nf, face_grain), [&](const auto& range) {
     for (std::size_t f = range.begin(); f < range.end(); ++f) {
       const auto& t = triangles[f];
-      Eigen::Vector3d n = (vertices[t[1]] - vertices[t[0]]).cross(vertices[t[2]] - vertices[t[0]]);
-      const double len = n.norm();
-      m.facet_normal_[f] = len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::UnitZ();
+      facet_normal[f] = unit_normal(vertices[t[0]], vertices[t[1]], vertices[t[2]]);
       for (int k = 0; k < 3; ++k) {
         const Eigen::Vector3d e1 = vertices[t[(k + 1) % 3]] - vertices[t[k]];
         const Eigen::Vector3d e2 = vertices[t[(k + 2) % 3]] - vertices[t[k]];
@@ -230,8 +240,7 @@ void MeshModel::Builder::normals() {
     }
   });
   for (std::size_t f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k)
-      m.vertex_normal_[triangles[f][k]] += angles[f][k] * m.facet_normal_[f];
+    for (int k = 0; k < 3; ++k) m.vertex_normal_[triangles[f][k]] += angles[f][k] * facet_normal[f];
   for (auto& n : m.vertex_normal_) {
     const double len = n.norm();
     n = len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::UnitZ();
@@ -283,7 +292,7 @@ void MeshModel::Builder::normals() {
       for (auto run = first; run != last; ++edge) {
         auto end = run;
         Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-        for (; end != last && end->upper == run->upper; ++end) sum += m.facet_normal_[end->face];
+        for (; end != last && end->upper == run->upper; ++end) sum += facet_normal[end->face];
         const double len = sum.norm();
         if (len > 0) m.edge_normal_[edge] = sum / len;
         for (; run != end; ++run) m.edge_of_side_[run->face][run->k] = len > 0 ? edge : kNone;
@@ -322,31 +331,20 @@ void MeshModel::Builder::tree() {
 
 // Triangles as the query reads them, in hierarchy order.
 void MeshModel::Builder::slots() {
-  const auto& vertices = m.mesh_.vertices;
   const auto& triangles = m.mesh_.triangles;
   const auto nf = static_cast<std::uint32_t>(triangles.size());
-  // The hierarchy's face order alone: the items (32 bytes a face) go before
-  // the slots are allocated.
-  std::vector<std::uint32_t> order(nf);
-  for (std::uint32_t s = 0; s < nf; ++s) order[s] = items[s].face;
-  items.reset();
   m.slots_.resize(nf);
   m.slot_of_face_.resize(nf);
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, nf, face_grain), [&](const auto& range) {
     for (std::uint32_t s = range.begin(); s < range.end(); ++s) {
       Slot& slot = m.slots_[s];
-      slot.face = order[s];
+      slot.face = items[s].face;
       const auto& t = triangles[slot.face];
-      slot.a = vertices[t[0]];
-      slot.ab = vertices[t[1]] - slot.a;
-      slot.ac = vertices[t[2]] - slot.a;
-      slot.normal = m.facet_normal_[slot.face];
-      slot.abab = slot.ab.squaredNorm();
-      slot.abac = slot.ab.dot(slot.ac);
-      slot.acac = slot.ac.squaredNorm();
+      for (int k = 0; k < 3; ++k) slot.corner[k] = t[k];
       m.slot_of_face_[slot.face] = s;
     }
   });
+  items.reset();
 }
 
 // The corners of slots [begin, end) copied side by side in slot order,
@@ -659,18 +657,29 @@ void MeshModel::Builder::set_lane(std::uint32_t wide, int lane_index, const Node
 // Closest point of one triangle by the Voronoi regions of its corners,
 // edges and interior (the classic region test on the dot products).
 void MeshModel::test_slot(std::uint32_t s, const Eigen::Vector3d& p, Hit& best) const {
-  const Slot& t = slots_[s];
-  const Eigen::Vector3d ap = p - t.a;
+  const Slot& slot = slots_[s];
+  const Eigen::Vector3d* const vertices = mesh_.vertices.data();
+  const Eigen::Vector3d& a = vertices[slot.corner[0]];
+  const Eigen::Vector3d& b = vertices[slot.corner[1]];
+  const Eigen::Vector3d& c = vertices[slot.corner[2]];
+  const Eigen::Vector3d ap = p - a;
+  const Eigen::Vector3d ab = b - a, ac = c - a;
   // The plane is no farther than the triangle: most rejections end here.
-  const double plane = t.normal.dot(ap);
-  if (plane * plane >= best.d2) return;
-  const double d1 = t.ab.dot(ap), d2 = t.ac.dot(ap);
+  // With n = ab x ac unnormalised, plane distance^2 = (n.ap)^2 / |n|^2;
+  // the 1e-12 keeps the rounding of this product from rejecting a
+  // triangle the exact comparison would keep (no square root, no division;
+  // a degenerate triangle, n = 0, always goes on to the full test).
+  const Eigen::Vector3d n = ab.cross(ac);
+  const double plane = n.dot(ap), n2 = n.squaredNorm();
+  if (plane * plane >= best.d2 * n2 * (1 + 1e-12) && n2 > 0) return;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
   double v = 0, w = 0;
   int feature = 0;
   if (d1 <= 0 && d2 <= 0) {
     feature = 4;
   } else {
-    const double abab = t.abab, abac = t.abac, acac = t.acac;
+    // Gram matrix of the edges.
+    const double abab = ab.squaredNorm(), abac = ab.dot(ac), acac = ac.squaredNorm();
     const double d3 = d1 - abab, d4 = d2 - abac;  // dots with p - b
     const double d5 = d1 - abac, d6 = d2 - acac;  // dots with p - c
     if (d3 >= 0 && d4 <= d3) {
@@ -700,7 +709,7 @@ void MeshModel::test_slot(std::uint32_t s, const Eigen::Vector3d& p, Hit& best) 
       }
     }
   }
-  const Eigen::Vector3d q = t.a + v * t.ab + w * t.ac;
+  const Eigen::Vector3d q = a + v * ab + w * ac;
   const double d2q = (p - q).squaredNorm();
   if (d2q < best.d2) {
     best.d2 = d2q;
@@ -708,8 +717,13 @@ void MeshModel::test_slot(std::uint32_t s, const Eigen::Vector3d& p, Hit& best) 
     best.v = v;
     best.w = w;
     best.feature = feature;
-    best.face = t.face;
+    best.face = slot.face;
   }
+}
+
+Eigen::Vector3d MeshModel::facet_normal(int face) const {
+  const auto& t = mesh_.triangles[static_cast<std::size_t>(face)];
+  return unit_normal(mesh_.vertices[t[0]], mesh_.vertices[t[1]], mesh_.vertices[t[2]]);
 }
 
 geometry::ModelContact MeshModel::make_contact(const Eigen::Vector3d& p, const Hit& hit) const {
@@ -720,14 +734,14 @@ geometry::ModelContact MeshModel::make_contact(const Eigen::Vector3d& p, const H
   c.uv = {hit.v, hit.w};
   if (hit.feature == 0) {
     c.type = geometry::ContactType::face;
-    c.normal = facet_normal_[hit.face];
+    c.normal = facet_normal(c.face);
     return c;
   }
   Eigen::Vector3d pseudo;
   if (hit.feature <= 3) {
     c.type = geometry::ContactType::edge;
     const std::uint32_t edge = edge_of_side_[hit.face][hit.feature - 1];
-    pseudo = edge == kNone ? facet_normal_[hit.face] : edge_normal_[edge];
+    pseudo = edge == kNone ? facet_normal(c.face) : edge_normal_[edge];
   } else {
     c.type = geometry::ContactType::vertex;
     pseudo = vertex_normal_[mesh_.triangles[hit.face][hit.feature - 4]];

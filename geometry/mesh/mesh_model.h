@@ -50,8 +50,8 @@ class MeshModel final : public geometry::SurfaceModel {
   int face_count() const override { return static_cast<int>(mesh_.triangles.size()); }
 
   const StlMesh& mesh() const { return mesh_; }
-  // Unit facet normal of triangle `face`.
-  const Eigen::Vector3d& facet_normal(int face) const { return facet_normal_[face]; }
+  // Unit facet normal of triangle `face` (UnitZ for a degenerate one).
+  Eigen::Vector3d facet_normal(int face) const;
 
  private:
   // The query hierarchy: the binary one collapsed to four children per
@@ -67,11 +67,13 @@ class MeshModel final : public geometry::SurfaceModel {
     // few megabytes first would be serial).
     WideNode() {}
   };
-  // A triangle as the query reads it, in hierarchy order.
+  // A triangle in hierarchy order: its corners (indices into the shared
+  // vertices) and its face number. 16 bytes: the edges, normal and Gram
+  // matrix the query needs are recomputed from the corners (a few dozen
+  // flops against a cache line per triangle; the 10 M-triangle mould's
+  // slots took 1.3 GB when they were stored, 128 bytes each).
   struct Slot {
-    Eigen::Vector3d a, ab, ac;
-    Eigen::Vector3d normal;   // unit facet normal: |normal.(p - a)| bounds the distance from below
-    double abab, abac, acac;  // Gram matrix of the edges
+    std::uint32_t corner[3];
     std::uint32_t face;
     Slot() {}  // left unset, as WideNode
   };
@@ -90,7 +92,6 @@ class MeshModel final : public geometry::SurfaceModel {
 
   StlMesh mesh_;
   Eigen::AlignedBox3d bounds_;
-  std::vector<Eigen::Vector3d> facet_normal_;
   // Edge pseudo-normals, one per edge (not per face side: a side of two
   // faces is stored once), and per face the edge of each side ab, bc, ca;
   // kNone where the faces of an edge cancel out (the face's own normal).

@@ -537,5 +537,60 @@ TEST(MeshModel, IndexBuiltOnOneOrTwoThreadsGivesTheSameAnswersBitForBit) {
   EXPECT_GT(types[2], 5);    // on a vertex
 }
 
+// The welded mesh (corners shared by index, as the reader builds it from a
+// binary STL) against the same triangles as a soup (three corners of its
+// own each, nothing shared) and against a brute force computed apart: the
+// same contact point and normal at 600 points of a walk over the wavy
+// mould, and the reader shares the corners (about one vertex for two
+// triangles). Above the surface the normal is (p - point)/|p - point| on an
+// edge or a vertex and the facet normal inside a face.
+TEST(MeshModel, SharedCornersGiveTheSoupsContactsAndTheBruteForceOnes) {
+  const StlMesh welded = parse_stl(to_binary_stl(wavy_mesh(), "wavy"), "wavy.stl");
+  ASSERT_EQ(welded.triangles.size(), 100352u);
+  EXPECT_EQ(welded.vertices.size(), 225u * 225u);
+  StlMesh soup;
+  for (const auto& t : welded.triangles) {
+    const auto first = static_cast<std::uint32_t>(soup.vertices.size());
+    for (const auto i : t) soup.vertices.push_back(welded.vertices[i]);
+    soup.triangles.push_back({first, first + 1, first + 2});
+  }
+  const MeshModel shared(welded), separate(soup);
+  const std::vector<Vector3d> walk = wavy_walk(600, 23);
+  int types[3] = {0, 0, 0};
+  for (std::size_t i = 0; i < walk.size(); ++i) {
+    const Vector3d& p = walk[i];
+    const auto a = shared.closest_point(p, 20, nullptr);
+    const auto b = separate.closest_point(p, 20, nullptr);
+    ASSERT_TRUE(a && b) << i;
+    ++types[static_cast<int>(a->type)];
+    // Brute force: the nearest of every triangle's reference closest point.
+    Vector3d best_point = Vector3d::Zero();
+    double best = INFINITY;
+    for (const auto& t : welded.triangles) {
+      const Vector3d q =
+          reference_closest(p, welded.vertices[t[0]], welded.vertices[t[1]], welded.vertices[t[2]]);
+      if ((p - q).norm() < best) {
+        best = (p - q).norm();
+        best_point = q;
+      }
+    }
+    EXPECT_LT((a->point - best_point).norm(), 1e-9) << i;
+    EXPECT_LT((b->point - best_point).norm(), 1e-9) << i;
+    EXPECT_NEAR(a->distance, best, 1e-11) << i;
+    EXPECT_NEAR(b->distance, best, 1e-11) << i;
+    if (best < 1e-6) continue;  // the normal below is a direction from p
+    const auto& t = welded.triangles[static_cast<std::size_t>(a->face)];
+    const Vector3d facet = (welded.vertices[t[1]] - welded.vertices[t[0]])
+                               .cross(welded.vertices[t[2]] - welded.vertices[t[0]])
+                               .normalized();
+    const Vector3d expected =
+        a->type == geometry::ContactType::face ? facet : Vector3d((p - best_point) / best);
+    EXPECT_LT((a->normal - expected).norm(), 1e-9) << i;
+    EXPECT_LT((b->normal - a->normal).norm(), 1e-9) << i;
+  }
+  EXPECT_GT(types[0], 50);  // inside a triangle
+  EXPECT_GT(types[1], 10);  // on an edge
+}
+
 }  // namespace
 }  // namespace vcpost::mesh

@@ -30,6 +30,10 @@ inline void check_finite(const program::Event& event) {
           return std::isfinite(e.rpm);
         else if constexpr (std::is_same_v<T, program::Dwell>)
           return std::isfinite(e.seconds);
+        else if constexpr (std::is_same_v<T, program::CannedCycle>)
+          return std::isfinite(e.x) && std::isfinite(e.y) && std::isfinite(e.top_z) &&
+                 std::isfinite(e.r_z) && std::isfinite(e.bottom_z) && std::isfinite(e.peck) &&
+                 std::isfinite(e.dwell_s);
         else
           return true;
       },

@@ -41,7 +41,7 @@ ProfileError::ProfileError(std::string code, std::string file, std::uint32_t lin
 namespace {
 
 // The schema: every table and its keys. Anything else in a file is an error.
-constexpr std::array<std::string_view, 29> kSchemaKeys = {
+constexpr std::array<std::string_view, 30> kSchemaKeys = {
     "machine.name",
     "machine.description",
     "machine.dialect",
@@ -71,6 +71,7 @@ constexpr std::array<std::string_view, 29> kSchemaKeys = {
     "output.decimals",
     "output.feed_decimals",
     "output.line_numbers",
+    "output.canned_cycles",
 };
 
 constexpr std::array<std::string_view, 7> kTables = {"machine", "spindle", "control", "feed",
@@ -441,6 +442,7 @@ MachineProfile profile_from_toml(std::string_view text, const std::string& file)
     o.feed_decimals = static_cast<int>(*v);
   }
   o.line_numbers = r.boolean("output", "line_numbers", false).value_or(o.line_numbers);
+  o.canned_cycles = r.boolean("output", "canned_cycles", false).value_or(o.canned_cycles);
 
   if (const auto* sources = r.table("sources")) {
     for (const auto& [key, node] : *sources) {

@@ -87,6 +87,7 @@ struct OutputSpec {
   int decimals = 4;                    // digits after the point for lengths, 0..6
   int feed_decimals = 1;               // digits after the point for F, 0..6
   bool line_numbers = false;           // N words
+  bool canned_cycles = false;          // CL hole cycles as G73/G81-G89 (else their moves)
 };
 
 // Provenance of one key ("spindle.n_max_rpm", or a whole table "feed").

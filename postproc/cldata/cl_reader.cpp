@@ -913,13 +913,43 @@ void ClReader::cycle(const ClRecord& r) {
   last_cycle_ = cycle_;
 }
 
+namespace {
+
+// What a control's canned cycle `code` is told for cycle c at the hole
+// whose top is p (the event counts are filled in after the expansion).
+program::CannedCycle canned_cycle(const ClCycle& c, int code, const Vec& p, const SourceRef& src) {
+  program::CannedCycle m;
+  m.code = code;
+  m.x = p.x();
+  m.y = p.y();
+  m.top_z = p.z() + c.retract.value_or(c.clearance);
+  m.r_z = p.z() + c.clearance;
+  m.bottom_z = p.z() - c.depth;
+  m.peck = code == 73 || code == 83 ? c.first_peck : 0.0;
+  m.dwell_s = code == 82 || code == 84 || code == 86 || code == 89 ? c.dwell_s : 0.0;
+  m.source = src;
+  return m;
+}
+
+}  // namespace
+
 // The canned cycle's moves at the hole whose top is p; the cycle's feed
 // comes before its first feed move, not before the rapids to the hole.
 void ClReader::drill(const Vec& p, const SourceRef& src) {
   const ClCycle& c = *cycle_;
   const Vec start = position_.value_or(p + c.retract.value_or(c.clearance) * Vec::UnitZ());
+  const std::size_t marker = queue_.size();
+  const std::optional<int> code = canned_code(c, direction_);
+  if (code) queue_.push_back(canned_cycle(c, *code, p, src));
   const std::size_t first = queue_.size();
   expand_cycle(c, p, start, direction_, src, queue_);
+  if (code) {
+    auto& m = std::get<program::CannedCycle>(queue_[marker]);
+    for (std::size_t i = first; i < queue_.size(); ++i) {
+      ++m.events;
+      if (program::is_motion(queue_[i])) ++m.moves;
+    }
+  }
   const Feed feed{c.feed, c.mode};
   if (!machine_feed_ || !(*machine_feed_ == feed)) {
     auto at = queue_.begin() + static_cast<std::ptrdiff_t>(first);

@@ -300,6 +300,29 @@ ClCycle parse_cycle(const ClRecord& record, double mm_per_unit, std::string_view
   return CycleParser(record, mm_per_unit, file_name).parse();
 }
 
+std::optional<int> canned_code(const ClCycle& c, program::SpindleDirection direction) {
+  const bool dwell = c.dwell_s > 0;
+  switch (c.kind) {
+    case CycleKind::drill:
+      return dwell ? 82 : 81;
+    case CycleKind::deep:
+    case CycleKind::chip_break:
+      if (c.first_peck == 0) return dwell ? 82 : 81;  // one stroke
+      if (dwell || c.next_peck != c.first_peck) return std::nullopt;
+      return c.kind == CycleKind::deep ? 83 : 73;
+    case CycleKind::tap:
+      if (direction != program::SpindleDirection::clockwise) return std::nullopt;
+      return 84;
+    case CycleKind::bore:
+      return dwell ? 89 : 85;
+    case CycleKind::bore_stop:
+      return 86;
+    case CycleKind::bore_dwell:
+      return 89;
+  }
+  return std::nullopt;
+}
+
 void expand_cycle(const ClCycle& c, const Vec& hole, const Vec& from,
                   program::SpindleDirection direction, const program::SourceRef& src,
                   std::deque<program::Event>& out) {
@@ -354,21 +377,31 @@ void expand_cycle(const ClCycle& c, const Vec& hole, const Vec& from,
       break;
     }
     case CycleKind::tap: {
+      // As rs274's G84: stop, reverse, dwell, out, stop, forward again.
       const auto reverse = direction == program::SpindleDirection::clockwise
                                ? program::SpindleDirection::counterclockwise
                                : program::SpindleDirection::clockwise;
       feed(bottom);
-      dwell();
+      out.push_back(program::SpindleOff{src});
       out.push_back(program::SpindleOn{reverse, src});
+      dwell();
       feed(clear);
+      out.push_back(program::SpindleOff{src});
       out.push_back(program::SpindleOn{direction, src});
       break;
     }
     case CycleKind::bore:
       feed(bottom);
-      dwell();
+      if (c.dwell_s > 0) {  // G89
+        dwell();
+        feed(clear);
+        break;
+      }
+      // G85 as rs274 makes it: out to R at the feed, then a rapid to the
+      // return level even where that is R (a move of no length).
       feed(clear);
-      break;
+      rapid(top);
+      return;
     case CycleKind::bore_stop:
       feed(bottom);
       dwell();

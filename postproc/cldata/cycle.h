@@ -12,7 +12,7 @@
 // Kinds and what they become (the canned cycle whose moves they are):
 //   DRILL G81 (G82 with DWELL), FACE G82, DEEP|DEEP2|PECK|DRILL,DEEP G83,
 //   BRKCHP|DRILL,BRKCHP G73, TAP G84 (spindle reversed at the bottom),
-//   BORE|BORE5|REAM G85, BORE6 G86 (spindle stopped, rapid out), BORE9 G89.
+//   BORE|BORE5|REAM G85 (G89 with DWELL), BORE6 G86 (spindle stopped, rapid out), BORE9 G89.
 // Anything else (BORE,BACK, THRU, CSINK, words not listed) is refused with
 // E3112 naming the word.
 #pragma once
@@ -57,6 +57,14 @@ ClCycle parse_cycle(const ClRecord& record, double mm_per_unit, std::string_view
 // How far above the last peck's bottom a G83 comes back down in rapid, and
 // how far a G73 backs off (rs274's 0.010 in).
 inline constexpr double peck_clearance_mm = 0.254;
+
+// The canned cycle whose moves expand_cycle gives at every hole of `cycle`
+// in every control vcpost writes for (rs274 and the Fanuc form agree on
+// them): G81, G82 with a dwell, G83 and G73 with one peck depth and no
+// dwell (one stroke: G81/G82), G84 turning clockwise, G85 (G89 with a
+// dwell), G86, G89. None: a form no canned cycle makes (two peck depths, a
+// peck cycle with a dwell, a left-hand tap): the hole is written as moves.
+std::optional<int> canned_code(const ClCycle& cycle, program::SpindleDirection direction);
 
 // The events of one hole at `hole` (its top), starting from `from`, with
 // the spindle turning in `direction`. Feed changes are not emitted: the

@@ -30,6 +30,7 @@ void print_cl_moves(std::string_view text, const std::string& name,
   std::uint64_t events = 0;
   try {
     while (auto event = reader.next()) {
+      if (std::holds_alternative<program::CannedCycle>(*event)) continue;  // its moves follow
       ++events;
       if (options.time) clock.advance(*event);
       if (!options.count) program::append_transcript(out, *event, print);

@@ -51,12 +51,14 @@ Format format_for(const machines::MachineProfile& profile) {
   format.decimals = o.decimals;
   format.feed_decimals = o.feed_decimals;
   format.line_numbers = o.line_numbers;
+  format.canned_cycles = o.canned_cycles;
   switch (profile.output_format()) {
     case machines::OutputFormat::rs274ngc:
       // LinuxCNC reads `O1000` as a subroutine keyword and G4 X as no dwell
       // time: no O line, G4 P in seconds.
       format.program_number.reset();
       format.dwell = DwellWord::p_seconds;
+      format.g83_pecks_out_to_r = false;
       break;
     case machines::OutputFormat::fanuc:
     case machines::OutputFormat::mazak:
@@ -137,6 +139,7 @@ void GcodeWriter::header() {
 }
 
 void GcodeWriter::end_program() {
+  end_cycle();
   std::string words = take_pending();
   if (high_speed_on_) {
     block("G05 P0");
@@ -159,9 +162,112 @@ void GcodeWriter::append_axis(std::string& words, char axis, double value, std::
   last = std::move(text);
 }
 
+void GcodeWriter::end_cycle() {
+  if (!modal_cycle_) return;
+  block("G80");
+  modal_cycle_.reset();
+  motion_mode_ = -1;
+}
+
+// Decides whether the hole that follows is written as its cycle: only where
+// the cycle makes the hole's very moves (see the header).
+void GcodeWriter::start_hole(const CannedCycle& c) {
+  hole_.reset();
+  if (!format_.canned_cycles || plane_ != 17 || !at_known_ || c.moves == 0) return;
+  const SourceRef& src = c.source;
+  const std::string top = number(c.top_z, format_.decimals, src);
+  // Above the return level the moves go down diagonally to it: no cycle does.
+  if (at_.z() > c.top_z && number(at_.z(), format_.decimals, src) != top) return;
+  Hole h;
+  h.cycle = c;
+  h.events_left = c.events;
+  h.lead = at_.z() < c.top_z ? 1 : 0;  // the moves' rapid up to the return level
+  if (c.code == 83 && c.r_z != c.top_z && !format_.g83_pecks_out_to_r) return;
+  const bool straight_out =
+      c.code == 73 || c.code == 81 || c.code == 82 || c.code == 83 || c.code == 85 || c.code == 86;
+  h.retract_to_r = !straight_out || c.r_z == c.top_z;
+  // G99 leaves the tool at R; the moves end at the return level.
+  h.tail = !straight_out && c.r_z != c.top_z ? 1 : 0;
+  if (h.lead + h.tail >= c.moves) return;
+  hole_ = h;
+}
+
+// True when `event` is one of the hole's own events and has been dealt
+// with (the cycle block stands for it); its lead and tail moves are not.
+bool GcodeWriter::take_hole_event(const Event& event) {
+  const bool own = is_motion(event) || std::holds_alternative<Dwell>(event) ||
+                   std::holds_alternative<SpindleOn>(event) ||
+                   std::holds_alternative<SpindleOff>(event);
+  if (!own) return false;
+  Hole& h = *hole_;
+  bool taken = true;
+  if (is_motion(event)) {
+    const std::uint32_t index = h.moves_seen++;
+    const std::uint32_t last = h.cycle.moves - h.tail;  // one past the cycle's moves
+    if (index < h.lead || index >= last) {
+      taken = false;
+    } else {
+      at_ = std::holds_alternative<StraightTraverse>(event) ? std::get<StraightTraverse>(event).end
+                                                            : std::get<StraightFeed>(event).end;
+      if (index + 1 == last) write_cycle();
+    }
+  }
+  if (--h.events_left == 0) hole_.reset();
+  return taken;
+}
+
+void GcodeWriter::write_cycle() {
+  const Hole& h = *hole_;
+  const CannedCycle& c = h.cycle;
+  const SourceRef& src = c.source;
+  const auto same_cycle = [&](const Hole& m) {
+    const CannedCycle& o = m.cycle;
+    return o.code == c.code && o.r_z == c.r_z && o.bottom_z == c.bottom_z && o.peck == c.peck &&
+           o.dwell_s == c.dwell_s && m.retract_to_r == h.retract_to_r &&
+           (h.retract_to_r || initial_z_ == c.top_z);
+  };
+  std::string words;
+  if (pending_g43_) {
+    block("G43 H" + std::to_string(*pending_g43_));
+    pending_g43_.reset();
+  }
+  if (!modal_cycle_ || !same_cycle(*modal_cycle_)) {
+    end_cycle();
+    // The G98 level is where the tool stands when the cycle starts: the
+    // return level (start_hole saw to it).
+    initial_z_ = c.top_z;
+    words = h.retract_to_r ? "G99 G" : "G98 G";
+    words += std::to_string(c.code);
+    append_axis(words, 'X', c.x, last_x_, true, src);
+    append_axis(words, 'Y', c.y, last_y_, true, src);
+    std::string ignored;
+    append_axis(words, 'Z', c.bottom_z, ignored, true, src);
+    append_axis(words, 'R', c.r_z, ignored, true, src);
+    if (c.code == 73 || c.code == 83) append_axis(words, 'Q', c.peck, ignored, true, src);
+    if (c.code == 82 || c.code == 84 || c.code == 86 || c.code == 89) {
+      // Always given: P is modal, and G84 dwells with an earlier cycle's P.
+      words += " P";
+      words += format_.dwell == DwellWord::p_seconds
+                   ? number(c.dwell_s, 3, src)
+                   : std::to_string(std::lround(c.dwell_s * 1000));
+    }
+    modal_cycle_ = h;
+  } else {
+    append_axis(words, 'X', c.x, last_x_, true, src);
+    append_axis(words, 'Y', c.y, last_y_, true, src);
+    words.erase(0, 1);
+  }
+  std::string pending = take_pending();
+  if (!pending.empty()) words += ' ' + pending;
+  block(words);
+  motion_mode_ = -1;
+  last_z_ = number(at_.z(), format_.decimals, src);
+}
+
 void GcodeWriter::motion(const Event& event) {
   std::string words;
   const SourceRef source = source_of(event);
+  end_cycle();
   if (pending_g43_) {
     if (!std::holds_alternative<StraightTraverse>(event)) {
       block("G43 H" + std::to_string(*pending_g43_));
@@ -227,11 +333,20 @@ void GcodeWriter::motion(const Event& event) {
   if (!pending.empty()) words += ' ' + pending;
   if (!words.empty() && words.front() == ' ') words.erase(0, 1);
   block(words);
+  at_known_ = true;
+  at_ = std::holds_alternative<StraightTraverse>(event) ? std::get<StraightTraverse>(event).end
+        : std::holds_alternative<StraightFeed>(event)   ? std::get<StraightFeed>(event).end
+                                                        : std::get<ArcFeed>(event).end;
 }
 
 void GcodeWriter::write(const Event& event) {
   if (ended_) return;  // nothing follows M30
   if (!started_) header();
+  if (const auto* c = std::get_if<CannedCycle>(&event)) {
+    start_hole(*c);
+    return;
+  }
+  if (hole_ && take_hole_event(event)) return;
   std::visit(
       [&](const auto& e) {
         using T = std::decay_t<decltype(e)>;
@@ -270,6 +385,7 @@ void GcodeWriter::write(const Event& event) {
           std::string words = take_pending();
           block((words.empty() ? "" : words + " ") + "T" + std::to_string(e.number));
         } else if constexpr (std::is_same_v<T, ChangeTool>) {
+          end_cycle();
           if (high_speed_on_) {
             block("G05 P0");
             high_speed_on_ = false;

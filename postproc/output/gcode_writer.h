@@ -11,6 +11,16 @@
 // tool-tip positions in the work frame; G43 applies the length).
 // CL data are tool-centre paths: CutterCompensation events become comments,
 // never G41/G42 (the control would offset the path a second time).
+//
+// Canned cycles (Format::canned_cycles): a CannedCycle event is written as
+// its cycle block (G98/G99 G73/G81-G89 X Y Z R [Q] [P] F) in place of the
+// hole's moves that follow it, so that the control (and rs274, and vcpost's
+// own reader) makes those very moves: a rapid up to the hole's return level
+// before it, when the tool is below, stays a G0; a return level above R is
+// G98 where the cycle's last move out ends there (G73 G81 G82 G85 G86, and
+// G83 where it pecks out to R), else G99 and a G0 up after the hole. A hole the cycle cannot make
+// exactly (tool above the return level, a plane other than G17) keeps its moves. G80 ends the cycle
+// before the next other move, tool change or M30.
 #pragma once
 
 #include <Eigen/Core>
@@ -51,8 +61,12 @@ struct Format {
   bool line_numbers = false;           // N words (wrapping after N99999)
   int line_number_start = 10;
   int line_number_step = 10;
-  bool tool_length_offset = true;  // G43 H<tool> on the first move after a tool change
-  DwellWord dwell = DwellWord::x_seconds;
+  bool tool_length_offset = true;          // G43 H<tool> on the first move after a tool change
+  DwellWord dwell = DwellWord::x_seconds;  // also the cycles' P: seconds in rs274ngc, else ms
+  bool canned_cycles = false;              // CannedCycle events as cycles (else their moves)
+  // G98 G83 comes out to R between pecks (Fanuc, Mazak); rs274 comes out to
+  // the G98 level, which no CL peck cycle does: such holes stay moves.
+  bool g83_pecks_out_to_r = true;
   bool comments = true;  // messages and notes as ( ) comments
   std::string end_of_line = "\n";
 };
@@ -94,6 +108,10 @@ class GcodeWriter {
   void append_axis(std::string& words, char axis, double value, std::string& last, bool force,
                    const program::SourceRef& source);
   std::string take_pending();
+  void start_hole(const program::CannedCycle& cycle);
+  bool take_hole_event(const program::Event& event);
+  void write_cycle();
+  void end_cycle();
   void comment(std::string_view text);
   void end_program();
 
@@ -112,6 +130,19 @@ class GcodeWriter {
   std::string pending_;             // F / S words waiting for the next block
   std::optional<int> pending_g43_;  // tool number whose G43 is due
   bool high_speed_on_ = false;
+  Eigen::Vector3d at_ = Eigen::Vector3d::Zero();  // end of the last motion event
+  bool at_known_ = false;
+
+  // The hole whose events are being read: its first `lead` and last `tail`
+  // moves are written as moves, the rest is the cycle block.
+  struct Hole {
+    program::CannedCycle cycle;
+    std::uint32_t events_left = 0, moves_seen = 0, lead = 0, tail = 0;
+    bool retract_to_r = true;  // G99 (else G98)
+  };
+  std::optional<Hole> hole_;
+  std::optional<Hole> modal_cycle_;  // the cycle in effect in the output
+  double initial_z_ = 0.0;           // the G98 level of the cycle in effect
 };
 
 }  // namespace vcpost::output

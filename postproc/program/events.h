@@ -154,10 +154,27 @@ struct Message {
   SourceRef source;
 };
 
+// The canned cycle (G73, G81-G89) that makes the hole whose events follow
+// (CL CYCLE/...). The reader still gives every move, dwell and spindle
+// change of the hole after it: a writer for a control with canned cycles
+// writes the cycle instead of them; every other stage skips this event.
+struct CannedCycle {
+  int code = 81;             // 73, 81, 82, 83, 84, 85, 86, 89
+  double x = 0.0, y = 0.0;   // the hole, mm
+  double top_z = 0.0;        // where the hole's moves start and end (return level), mm
+  double r_z = 0.0;          // R plane: feeding starts here, r_z <= top_z, mm
+  double bottom_z = 0.0;     // mm
+  double peck = 0.0;         // Q (G73, G83), mm > 0
+  double dwell_s = 0.0;      // P (G82, G84, G86, G89), s
+  std::uint32_t events = 0;  // events of the hole that follow: motion, dwell, spindle
+  std::uint32_t moves = 0;   // of which motion
+  SourceRef source;
+};
+
 using Event =
     std::variant<StraightTraverse, StraightFeed, ArcFeed, SetFeedRate, SetSpindleSpeed, SpindleOn,
                  SpindleOff, SelectTool, ChangeTool, ToolLengthOffset, CutterCompensation,
-                 SelectPlane, Coolant, Dwell, ProgramStop, ProgramEnd, Message>;
+                 SelectPlane, Coolant, Dwell, ProgramStop, ProgramEnd, Message, CannedCycle>;
 
 // The source of any event.
 SourceRef source_of(const Event& event);

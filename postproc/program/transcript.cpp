@@ -162,6 +162,8 @@ void append_source(std::string& out, const SourceRef& source, const TranscriptOp
 }  // namespace
 
 void append_transcript(std::string& out, const Event& event, const TranscriptOptions& options) {
+  // rs274 prints a cycle's moves, which follow the marker, not the cycle.
+  if (std::holds_alternative<CannedCycle>(event)) return;
   const std::size_t start = out.size();
   append_call(out, event);
   if (options.with_source) {

@@ -52,6 +52,11 @@ bool is_item(const Event& e) {
          std::holds_alternative<program::ChangeTool>(e);
 }
 
+bool is_feed(const Event& e) {
+  return std::holds_alternative<program::StraightFeed>(e) ||
+         std::holds_alternative<program::ArcFeed>(e);
+}
+
 class ClItems {
  public:
   ClItems(std::string_view text, const std::string& name)
@@ -100,9 +105,16 @@ class GcodeItems {
         } else if (std::holds_alternative<program::SetFeedRate>(e)) {
           if (f_word_) f_ = word('F', std::get<program::SetFeedRate>(e).rate, src);
         } else if (is_item(e)) {
-          Item item{e, src.line, src.column, std::move(s_), std::move(f_)};
+          // A canned cycle's F belongs to its first feed move, where the CL
+          // reader sets the cycle's feed, not to the rapids before it.
+          const bool f_later = f_ && !is_feed(e) &&
+                               std::any_of(events_.begin() + static_cast<std::ptrdiff_t>(at_),
+                                           events_.end(), is_feed);
+          std::optional<SfValue> f;
+          if (!f_later) f = std::move(f_);
+          Item item{e, src.line, src.column, std::move(s_), std::move(f)};
           s_.reset();
-          f_.reset();
+          if (!f_later) f_.reset();
           return item;
         }
       }

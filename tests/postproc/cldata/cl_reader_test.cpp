@@ -295,7 +295,7 @@ TEST(ClReader, CamworksPeckingCycle) {
 TEST(ClReader, TapAndBoreCyclesDriveTheSpindle) {
   EXPECT_EQ(z_levels(read_events("SPINDL/500,RPM,CLW\nGOTO/0,0,3\n"
                                  "CYCLE/TAP,FEDTO,10,MMPR,1.5,RAPTO,3\nGOTO/0,0,0\nFINI\n")),
-            "M3 f3.000 r3.000 f-10.000 M4 f3.000 M3 ");
+            "M3 f3.000 r3.000 f-10.000 M5 M4 f3.000 M5 M3 ");
   const auto tap = read_events("CYCLE/TAP,FEDTO,10,MMPR,1.5,RAPTO,3\nGOTO/0,0,0\nFINI\n");
   ASSERT_EQ(only<SetFeedRate>(tap).size(), 1u);
   EXPECT_EQ(only<SetFeedRate>(tap)[0].mode, FeedMode::per_revolution);

@@ -1,0 +1,194 @@
+// CL hole cycles written as canned cycles (Format::canned_cycles): the
+// blocks, and the moves rs274 and vcpost's own reader make of them compared
+// with the CL reader's moves of the same holes.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "postproc/gcode/dialect.h"
+#include "postproc/output/gcode_writer.h"
+#include "postproc/program/transcript.h"
+#include "postproc/verify/verify.h"
+#include "tests/postproc/cldata/cl_support.h"
+
+namespace vcpost::output {
+namespace {
+
+namespace fs = std::filesystem;
+using cldata::testing::Call;
+using cldata::testing::motion_calls;
+using cldata::testing::read_events;
+
+// One hole of every cycle kind; the tool starts at the return level Z20.
+const char* const every_kind =
+    "LOADTL/1\nSPINDL/1000,RPM,CLW\nRAPID\nGOTO/0,0,20\n"
+    "CYCLE/DRILL,FEDTO,5,MMPM,100,RAPTO,2,RTRCTO,20\nGOTO/10,10,0\nGOTO/20,10,0\n"
+    "CYCLE/DRILL,FEDTO,5,MMPM,100,RAPTO,2,RTRCTO,20,DWELL,1.5\nGOTO/30,10,0\n"
+    "CYCLE/DEEP,FEDTO,10,STEP,3,MMPM,100,RAPTO,2,RTRCTO,20\nGOTO/40,10,0\n"
+    "CYCLE/BRKCHP,FEDTO,10,STEP,3,MMPM,100,RAPTO,2,RTRCTO,20\nGOTO/50,10,0\n"
+    "CYCLE/TAP,FEDTO,8,MMPR,1.5,RAPTO,3,RTRCTO,20\nGOTO/60,10,0\n"
+    "CYCLE/BORE,FEDTO,10,MMPM,80,RAPTO,2,RTRCTO,20\nGOTO/70,10,0\n"
+    "CYCLE/BORE6,FEDTO,10,MMPM,80,RAPTO,2,RTRCTO,20,DWELL,0.5\nGOTO/80,10,0\n"
+    "CYCLE/BORE9,FEDTO,10,MMPM,80,RAPTO,2,DWELL,0.5,RTRCTO,20\nGOTO/90,10,0\n"
+    "CYCLE/DRILL,FEDTO,5,MMPM,100,RAPTO,15\nGOTO/100,10,5\n"
+    "CYCLE/OFF\nRAPID\nGOTO/0,0,50\nFINI\n";
+
+Format rs274ngc_format() {
+  Format f;
+  f.program_number.reset();
+  f.dwell = DwellWord::p_seconds;
+  f.g83_pecks_out_to_r = false;
+  f.canned_cycles = true;
+  return f;
+}
+
+std::string write_program(const std::string& cl, const Format& format) {
+  std::ostringstream out;
+  GcodeWriter writer(out, format);
+  for (const auto& e : read_events(cl)) writer.write(e);
+  writer.finish();
+  return out.str();
+}
+
+// Checked by hand against the CL: G98 where the cycle's last move out ends
+// at the return level (G81 G82 G73 G85 G86), G99 and a G0 up where it
+// ends at R (G84 G89; G83 in rs274, which pecks out to the G98 level),
+// G99 alone where R is the return level.
+TEST(CannedCycles, EveryKindAsItsCycleBlock) {
+  const std::string expected =
+      "%\n"
+      "G21 G17 G40 G49 G80 G90 G94\n"
+      "G54\n"
+      "T1 M6\n"
+      "S1000 M3\n"
+      "G43 H1 G0 X0. Y0. Z20.\n"
+      "G98 G81 X10. Y10. Z-5. R2. F100.\n"
+      "X20. Y10.\n"
+      "G80\n"
+      "G98 G82 X30. Y10. Z-5. R2. P1.5\n"
+      "G80\n"
+      "G0 X40.\n"  // G83 here: its moves (rs274 would peck out to Z20)
+      "Z2.\n"
+      "G1 Z-1.\n"
+      "G0 Z2.\n"
+      "Z-0.746\n"
+      "G1 Z-4.\n"
+      "G0 Z2.\n"
+      "Z-3.746\n"
+      "G1 Z-7.\n"
+      "G0 Z2.\n"
+      "Z-6.746\n"
+      "G1 Z-10.\n"
+      "G0 Z20.\n"
+      "G98 G73 X50. Y10. Z-10. R2. Q3.\n"
+      "G80\n"
+      "G99 G84 X60. Y10. Z-8. R3. P0. G95 F1.5\n"
+      "G80\n"
+      "G0 Z20.\n"
+      "G98 G85 X70. Y10. Z-10. R2. G94 F80.\n"
+      "G80\n"
+      "G98 G86 X80. Y10. Z-10. R2. P0.5\n"
+      "G80\n"
+      "G99 G89 X90. Y10. Z-10. R2. P0.5\n"
+      "G80\n"
+      "G0 Z20.\n"
+      "G99 G81 X100. Y10. Z0. R20. F100.\n"
+      "G80\n"
+      "G0 X0. Y0. Z50.\n"
+      "M30\n"
+      "%\n";
+  EXPECT_EQ(write_program(every_kind, rs274ngc_format()), expected);
+}
+
+// The Fanuc/Mazak form: P in milliseconds, as an integer; G98 G83.
+TEST(CannedCycles, FanucDwellInMilliseconds) {
+  Format f;
+  f.canned_cycles = true;
+  const std::string program = write_program(every_kind, f);
+  EXPECT_NE(program.find("G98 G82 X30. Y10. Z-5. R2. P1500\n"), std::string::npos) << program;
+  EXPECT_NE(program.find("G98 G86 X80. Y10. Z-10. R2. P500\n"), std::string::npos) << program;
+  // Fanuc's G98 G83 pecks out to R, as the CL cycle does.
+  EXPECT_NE(program.find("G98 G83 X40. Y10. Z-10. R2. Q3.\n"), std::string::npos) << program;
+}
+
+// What no canned cycle makes exactly stays as moves: two peck depths, a
+// tool above the hole's return level (the moves go down diagonally), a
+// profile without cycles.
+TEST(CannedCycles, HolesNoCycleMakesStayMoves) {
+  const Format f = rs274ngc_format();
+  const std::string two_pecks = write_program(
+      "SPINDL/1000\nGOTO/0,0,20\nCYCLE/DEEP2,FEDTO,10,1STPECK,5,SUBPECK,2,MMPM,100,RAPTO,2,"
+      "RTRCTO,20\nGOTO/10,0,0\nFINI\n",
+      f);
+  EXPECT_EQ(two_pecks.find("G8"), two_pecks.find("G80"));  // only the header's G80
+  EXPECT_NE(two_pecks.find("G1 Z-3. F100.\n"), std::string::npos) << two_pecks;
+  const std::string above = write_program(
+      "SPINDL/1000\nGOTO/0,0,50\nCYCLE/DRILL,FEDTO,5,MMPM,100,RAPTO,2,RTRCTO,20\n"
+      "GOTO/10,0,0\nFINI\n",
+      f);
+  EXPECT_EQ(above.find("G81"), std::string::npos) << above;
+  EXPECT_NE(above.find("G0 X10. Z20.\n"), std::string::npos) << above;
+  Format off = f;
+  off.canned_cycles = false;
+  const std::string moves = write_program(every_kind, off);
+  for (const char* code : {"G73", "G81", "G82", "G83", "G84", "G85", "G86", "G89", "G98", "G99"})
+    EXPECT_EQ(moves.find(code), std::string::npos) << code;
+}
+
+// rs274 makes of the cycles the moves the CL reader made of the holes, and
+// vcpost's reader does too in both dialects (verify: same motion, spindle
+// changes, S and F).
+TEST(CannedCycles, Rs274AndVcpostReadTheClMoves) {
+  for (const bool fanuc : {false, true}) {
+    SCOPED_TRACE(fanuc ? "fanuc" : "rs274ngc");
+    Format format = rs274ngc_format();
+    if (fanuc) {
+      format.program_number = 1000;
+      format.dwell = DwellWord::x_seconds;
+    }
+    const std::string program = write_program(every_kind, format);
+    verify::Options options;
+    options.dialect = fanuc ? gcode::fanuc_dialect() : gcode::rs274ngc_dialect();
+    const verify::Result v = verify::verify_cl(every_kind, program, options, "every_kind.cl");
+    EXPECT_TRUE(v.ok()) << (v.violations.empty() ? "" : verify::format(v.violations[0], "output"))
+                        << "\n"
+                        << program;
+    EXPECT_TRUE(v.changes.empty())
+        << (v.changes.empty() ? "" : verify::describe(v.changes[0])) << " output line "
+        << (v.changes.empty() ? 0 : v.changes[0].line);
+  }
+  if (!cldata::testing::have_rs274()) GTEST_SKIP() << "rs274 (linuxcnc-uspace) not installed";
+  const fs::path dir =
+      fs::temp_directory_path() / ("vcpost_canned_cycles_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const fs::path nc = dir / "cycles.ngc";
+  std::ofstream(nc, std::ios::binary) << write_program(every_kind, rs274ngc_format());
+  const auto rs274 = cldata::testing::run_rs274(nc.string());
+  fs::remove_all(dir);
+  ASSERT_TRUE(rs274);
+  std::string transcript;
+  for (const auto& e : read_events(every_kind)) program::append_transcript(transcript, e);
+  const auto keep = [](std::vector<Call> calls) {
+    std::vector<Call> moves;
+    for (auto& c : calls)
+      if (c.name != "SET_FEED_RATE" && c.name != "SET_SPINDLE_SPEED") moves.push_back(c);
+    return moves;
+  };
+  const auto want = keep(motion_calls(transcript));
+  const auto got = keep(motion_calls(*rs274));
+  ASSERT_EQ(want.size(), got.size()) << *rs274;
+  EXPECT_GT(want.size(), 50u);
+  for (std::size_t i = 0; i < want.size(); ++i) {
+    ASSERT_EQ(want[i].name, got[i].name) << "call " << i;
+    for (std::size_t k = 0; k < want[i].args.size(); ++k)
+      ASSERT_NEAR(want[i].args[k], got[i].args.at(k), 1e-4 + 1e-9) << "call " << i << " arg " << k;
+  }
+}
+
+}  // namespace
+}  // namespace vcpost::output

@@ -1,6 +1,6 @@
 %
-(semi-cylinder R100, D12 ball, ap 0.2, ae 0.2, feed 45 deg to the axis)
-(ball-end mill D12.000 mm, CL point = tool tip, written by vcpost-samplegen)
+(semi-cylinder R100, D12 ball, ap 0.2, ae 0.2, feed 45 deg to the axis; CL point = tool tip, written by vcpost-samplegen)
+(T1 D=12. CR=6. - ball end mill)
 G21 G90 G17 G94 G40
 T1 M6
 S4000 M3

@@ -1,6 +1,6 @@
 %
-(dome R40, D10 ball, iso-parametric rings 4 deg apart [to 74 deg])
-(ball-end mill D10.000 mm, CL point = tool tip, written by vcpost-samplegen)
+(dome R40, D10 ball, iso-parametric rings 4 deg apart [to 74 deg]; CL point = tool tip, written by vcpost-samplegen)
+(T1 D=10. CR=5. - ball end mill)
 G21 G90 G17 G94 G40
 T1 M6
 S4800 M3

@@ -1,6 +1,6 @@
 %
-(dome R40 with 75 deg walls, D10 ball, XY raster, ae 3)
-(ball-end mill D10.000 mm, CL point = tool tip, written by vcpost-samplegen)
+(dome R40 with 75 deg walls, D10 ball, XY raster, ae 3; CL point = tool tip, written by vcpost-samplegen)
+(T1 D=10. CR=5. - ball end mill)
 G21 G90 G17 G94 G40
 T1 M6
 S4800 M3

@@ -1,6 +1,6 @@
 %
-(wavy B-spline mould, D10 ball, XY raster along X, ae 2)
-(ball-end mill D10.000 mm, CL point = tool tip, written by vcpost-samplegen)
+(wavy B-spline mould, D10 ball, XY raster along X, ae 2; CL point = tool tip, written by vcpost-samplegen)
+(T1 D=10. CR=5. - ball end mill)
 G21 G90 G17 G94 G40
 T1 M6
 S4800 M3

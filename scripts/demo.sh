@@ -9,15 +9,17 @@ bash scripts/build.sh >/dev/null
 vcpost=build/release/postproc/cli/vcpost
 mkdir -p out
 
-post() {  # program model tool vc ap output
-  echo "== vcpost post $1 --model $2 --tool $3 --vc $4 --ap $5 --machine mazak-3axis"
-  "$vcpost" post "$1" --model "$2" --tool "$3" --vc "$4" --ap "$5" --machine mazak-3axis \
-    -o "out/$6" --summary-json "out/${6%.*}.summary.json" --report "out/${6%.*}.html"
-  echo "   wrote out/$6, out/${6%.*}.summary.json and the report out/${6%.*}.html"
+# No --tool: the programs name their tool, the G-code in a Fusion 360
+# comment "(T1 D=10. CR=5. - ball end mill)", the CL in CUTTER/.
+post() {  # program model vc ap output
+  echo "== vcpost post $1 --model $2 --vc $3 --ap $4 --machine mazak-3axis"
+  "$vcpost" post "$1" --model "$2" --vc "$3" --ap "$4" --machine mazak-3axis \
+    -o "out/$5" --summary-json "out/${5%.*}.summary.json" --report "out/${5%.*}.html"
+  echo "   wrote out/$5, out/${5%.*}.summary.json and the report out/${5%.*}.html"
 }
-post samples/wavy_raster_a0_ae2.nc samples/wavy.step ball:10 120 0.3 wavy_raster.ccs.nc
-post samples/cylinder_r100_ae0.5_a45.cls samples/cylinder.step ball:12 150 0.2 cylinder_a45.ccs.nc
-post samples/dome_iso_rings.nc samples/dome.step ball:10 120 0.3 dome_rings.ccs.nc
+post samples/wavy_raster_a0_ae2.nc samples/wavy.step 120 0.3 wavy_raster.ccs.nc
+post samples/cylinder_r100_ae0.5_a45.cls samples/cylinder.step 150 0.2 cylinder_a45.ccs.nc
+post samples/dome_iso_rings.nc samples/dome.step 120 0.3 dome_rings.ccs.nc
 echo
 echo "== What changed in the wavy program (first S words):"
 diff samples/wavy_raster_a0_ae2.nc out/wavy_raster.ccs.nc | grep '^>' | head -5 || true

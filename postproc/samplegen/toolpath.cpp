@@ -171,6 +171,14 @@ char* put(char* out, double v, int decimals) {
   return std::to_chars(out, out + 64, v, std::chars_format::fixed, decimals).ptr;
 }
 
+// A length as Fusion 360's posts write it: up to 3 decimals, trailing
+// zeros dropped, the point kept ("10.", "2.5", "0.125").
+std::string fusion_number(double v) {
+  std::string text = fixed(v, 3);
+  while (text.back() == '0') text.pop_back();
+  return text;
+}
+
 }  // namespace
 
 std::string fixed(double v, int decimals) {
@@ -282,9 +290,12 @@ void ProgramWriter::add(const PathPoint& point) {
       if (ch == '(') ch = '[';
       if (ch == ')') ch = ']';
     }
-    gline(cat({"(", comment, ")"}));
-    gline("(ball-end mill D" + fixed(spec_.tool_diameter, 3) +
-          " mm, CL point = tool tip, written by vcpost-samplegen)");
+    gline(cat({"(", comment, "; CL point = tool tip, written by vcpost-samplegen)"}));
+    // The tool as Fusion 360's posts describe it, a form vcpost reads: the
+    // sample posts with no --tool.
+    const std::string d = fusion_number(spec_.tool_diameter);
+    const std::string r = fusion_number(spec_.tool_diameter / 2);
+    gline(cat({"(T", std::to_string(spec_.tool_number), " D=", d, " CR=", r, " - ball end mill)"}));
     gline("G21 G90 G17 G94 G40");
     gline(cat({"T", std::to_string(spec_.tool_number), " M6"}));
     gline(cat({"S", fixed(spec_.spindle_rpm, 0), " M3"}));

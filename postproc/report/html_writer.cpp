@@ -530,8 +530,11 @@ function inked(canvas) {
   return false;
 }
 var ids = ['vcplot', 'histplot', 'splot', 'devmap', 'cuspmap'], drawn = ids.filter(function (id) { return inked(document.getElementById(id)); });
+// The section marks the vc plot draws: label and time.
+var drawnMarks = vcChart.data.datasets.filter(function (ds) { return marks.some(function (m) { return m.label === ds.label; }); })
+  .map(function (ds) { return {label: ds.label, x: ds.data[0].x}; });
 document.getElementById('selfcheck').textContent = JSON.stringify({canvases: ids, drawn: drawn, errors: window.__vcpostErrors,
-  chart: typeof Chart === 'function' ? Chart.version : null});
+  chart: typeof Chart === 'function' ? Chart.version : null, marks: drawnMarks});
 document.body.setAttribute('data-drawn', String(drawn.length));
 })();
 </script>

@@ -9,21 +9,28 @@ constexpr std::size_t kMaxNotes = 100;  // a program of unreadable lines still k
 }  // namespace
 
 void ProgramTools::on_comment(std::string_view text, const std::string& where, bool inches) {
-  auto found = read_tool_comment(text);
-  if (!found) return;
-  if (!found->entry) {
+  if (pycam_.takes(text)) {
+    if (auto found = pycam_.read(text, where)) take(std::move(*found), where, inches);
+    return;
+  }
+  if (auto cut = pycam_.cut_short()) take(std::move(*cut), where, inches);
+  if (auto found = read_tool_comment(text)) take(std::move(*found), where, inches);
+}
+
+void ProgramTools::take(CommentTool found, const std::string& where, bool inches) {
+  if (!found.entry) {
     if (notes_.size() < kMaxNotes) {
-      notes_.push_back(where + ": " + std::string(to_string(found->format)) +
-                       " tool comment not read (" + found->note + "); its tool stays unknown");
+      notes_.push_back(where + ": " + std::string(to_string(found.format)) +
+                       " tool comment not read (" + found.note + "); its tool stays unknown");
     }
     return;
   }
-  ToolEntry entry = std::move(*found->entry);
+  ToolEntry entry = std::move(*found.entry);
   if (inches) {
     entry.diameter *= kMmPerInch;
     if (entry.corner_radius) *entry.corner_radius *= kMmPerInch;
   }
-  entry.where = where;
+  if (entry.where.empty()) entry.where = where;
   on_entry(std::move(entry));
 }
 

@@ -16,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "postproc/tools/pycam_settings.h"
 #include "postproc/tools/tool_comment.h"
 #include "postproc/tools/tool_table.h"
 
@@ -41,6 +42,10 @@ class ProgramTools {
   const std::vector<std::string>& notes() const { return notes_; }
 
  private:
+  // A comment read as a tool description (or a note) at `where`.
+  void take(CommentTool found, const std::string& where, bool inches);
+
+  PycamSettings pycam_;  // PyCAM's tool is a block of comments
   std::map<int, ToolEntry> numbered_;
   std::optional<ToolEntry> pending_;  // unnumbered, waiting for a tool change or a motion
   std::optional<ToolEntry> section_;  // unnumbered, of the section under way

@@ -207,9 +207,11 @@ std::string_view to_string(CommentFormat format) {
     case CommentFormat::mastercam:
       return "Mastercam";
     case CommentFormat::carbide:
+      return "Carbide Create";
+    case CommentFormat::pycam:
       break;
   }
-  return "Carbide Create";
+  return "PyCAM";
 }
 
 std::optional<ToolShape> shape_from_type_name(std::string_view name) {

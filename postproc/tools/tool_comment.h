@@ -7,6 +7,7 @@
 //                                      - 1 DIA. - .0625)   (name words give the shape)
 //   Carbide Create                   (TOOL/MILL,3.17, 0.00, 0.00, 0.00): D, corner
 //                                    radius, length, taper half-angle (no number)
+//   PyCAM                            a block of ';' lines, read by pycam_settings.h
 // A comment that looks like one of these but cannot be read (no diameter,
 // an unknown tool type, a ball whose CR is not D/2) gives a note instead of
 // an entry: the tool stays unknown, it is never guessed into a ball.
@@ -22,7 +23,7 @@
 
 namespace vcpost::tools {
 
-enum class CommentFormat { fusion, mastercam, carbide };
+enum class CommentFormat { fusion, mastercam, carbide, pycam };
 std::string_view to_string(CommentFormat format);
 
 struct CommentTool {

@@ -169,6 +169,31 @@ TEST_F(ToolSectionsCli, AdjustFeedTakesEachToolsTeeth) {
   EXPECT_EQ(checked[2], checked[4]);
 }
 
+// PyCAM's own program (../shared/data/corpus/gcode/PyCAM_tiny_cat_outline.ngc)
+// posts with no --tool: its settings block names a CylindricalCutter of
+// radius 0.79375 mm, read as T1 flat D1.5875 and kept byte for byte.
+TEST_F(ToolSectionsCli, PycamProgramNamesItsToolInItsSettings) {
+  const fs::path program =
+      fs::path(VCPOST_SHARED_DATA_DIR) / "corpus" / "gcode" / "PyCAM_tiny_cat_outline.ngc";
+  if (!fs::exists(program)) GTEST_SKIP() << "shared data absent: " << program;
+  const fs::path out = dir_ / "cat.ngc", summary = dir_ / "s.json", err = dir_ / "err";
+  ASSERT_EQ(
+      run("post " + program.string() + " --model " + kSamples + "wavy.step --vc 120 --ap 0.3 -o " +
+          out.string() + " --summary-json " + summary.string() + " 2>" + err.string()),
+      0)
+      << read(err);
+  EXPECT_EQ(read(out), read(program));
+  const auto s = nlohmann::json::parse(read(summary));
+  ASSERT_EQ(s["sections"].size(), 1u);
+  const auto& tool = s["sections"][0]["tool"];
+  EXPECT_EQ(s["sections"][0]["tool_number"], 1);
+  EXPECT_EQ(tool["shape"], "flat");
+  EXPECT_DOUBLE_EQ(tool["diameter"].get<double>(), 1.5875);
+  EXPECT_EQ(tool["source"], "comment");
+  EXPECT_EQ(tool["where"], program.string() + ":26");
+  EXPECT_EQ(s["sections"][0]["posted"], false);
+}
+
 TEST_F(ToolSectionsCli, NoToolAnywhereIsAUsageError) {
   const fs::path err = dir_ / "err";
   EXPECT_EQ(

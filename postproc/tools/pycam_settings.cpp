@@ -68,8 +68,8 @@ std::optional<CommentTool> PycamSettings::read(std::string_view text, const std:
     if (t.size() >= 2 && t.front() == '[' && t.back() == ']') {
       in_tool_ = t == "[Tool]";
       any_tool_ = any_tool_ || in_tool_;
-    } else if (in_tool_ && !t.empty()) {
-      const std::size_t equals = t.find(" = ");
+    } else if (const std::size_t equals = t.find(" = ");
+               in_tool_ && equals != std::string_view::npos) {
       const std::string_view key = trim(t.substr(0, equals));
       const std::string_view value = trim(t.substr(equals + 3));
       if (key == "shape") {
@@ -106,7 +106,7 @@ std::optional<CommentTool> PycamSettings::read(std::string_view text, const std:
     e.shape = ToolShape::bull_nose;
     e.corner_radius = *torus_;
   } else {
-    return pycam_note("unknown shape '" + shape_ + "'");
+    return pycam_note("unknown shape '" + shape_.substr(0, 60) + "'");
   }
   CommentTool out;
   out.format = CommentFormat::pycam;

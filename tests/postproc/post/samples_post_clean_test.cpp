@@ -52,7 +52,7 @@ TEST(SamplesPostClean, EveryBundledSamplePostsWithoutAWarning) {
     EXPECT_EQ(run.err.find("warning"), std::string::npos) << run.err;
     EXPECT_NE(run.err.find(" points, "), std::string::npos) << run.err;  // it did post
     const auto summary = nlohmann::json::parse(vcpost::testing::slurp(work.path() / "s.json"));
-    EXPECT_EQ(summary["tool"], part->second.tool);
+    EXPECT_EQ(summary["inputs"]["tool"], part->second.tool);
     ASSERT_EQ(summary["sections"].size(), 1u);
     EXPECT_EQ(summary["sections"][0]["tool"]["source"],
               file.extension() == ".nc" ? "comment" : "CL record");

@@ -318,26 +318,11 @@ const SourceNote* MachineProfile::source_of(std::string_view key) const {
   return table_note;
 }
 
-MachineProfile profile_from_toml(std::string_view text, const std::string& file) {
-  toml::table root;
-  try {
-    root = toml::parse(text, file);
-  } catch (const toml::parse_error& e) {
-    throw ProfileError(std::string(codes::syntax), file, e.source().begin.line,
-                       e.source().begin.column, std::string(e.description()));
-  }
-  const Reader r(root, file);
-  r.check_unknown();
+namespace {
 
-  MachineProfile p;
-  p.origin_ = file;
-  p.name_ = *r.string("machine", "name", true);
-  r.require(!p.name_.empty(), "machine", "name", "must not be empty");
-  p.description_ = r.string("machine", "description", false).value_or("");
-  p.dialect_ = r.choice("machine", "dialect", kDialects);
-  p.output_format_ = r.choice("machine", "output_format", kFormats);
-
-  auto& s = p.spindle_;
+// [spindle]: the speed range, rates, S resolution and how an S change acts.
+SpindleSpec read_spindle(const Reader& r) {
+  SpindleSpec s;
   s.n_min_rpm = *r.number("spindle", "n_min_rpm", true);
   r.require(s.n_min_rpm > 0, "spindle", "n_min_rpm", "must be > 0 rpm (S0 means spindle off)");
   s.n_max_rpm = *r.number("spindle", "n_max_rpm", true);
@@ -394,13 +379,22 @@ MachineProfile profile_from_toml(std::string_view text, const std::string& file)
               "must be in [0, 100) (0: the control does not wait for the spindle)");
     s.at_speed_window_percent = *v;
   }
+  return s;
+}
 
-  p.control_.block_time_s = *r.number("control", "block_time_s", true);
-  r.require(p.control_.block_time_s >= 0, "control", "block_time_s", "must be >= 0 s");
-  r.require(p.control_.block_time_s <= kMaxBlockTimeS, "control", "block_time_s",
+// [control]
+ControlSpec read_control(const Reader& r) {
+  ControlSpec c;
+  c.block_time_s = *r.number("control", "block_time_s", true);
+  r.require(c.block_time_s >= 0, "control", "block_time_s", "must be >= 0 s");
+  r.require(c.block_time_s <= kMaxBlockTimeS, "control", "block_time_s",
             cat({"must be at most ", limit_text(kMaxBlockTimeS), " s"}));
+  return c;
+}
 
-  auto& f = p.feed_;
+// [feed]
+FeedSpec read_feed(const Reader& r) {
+  FeedSpec f;
   f.f_min_mm_per_min = *r.number("feed", "f_min_mm_per_min", true);
   r.require(f.f_min_mm_per_min > 0, "feed", "f_min_mm_per_min", "must be > 0 mm/min");
   r.require(f.f_min_mm_per_min <= kMaxFeed, "feed", "f_min_mm_per_min",
@@ -416,12 +410,21 @@ MachineProfile profile_from_toml(std::string_view text, const std::string& file)
             cat({"must be at most ", limit_text(kMaxFeed), " mm/min"}));
   r.require(f.rapid_mm_per_min <= kMaxFeed, "feed", "rapid_mm_per_min",
             cat({"must be at most ", limit_text(kMaxFeed), " mm/min"}));
+  return f;
+}
 
+// [tool]
+ToolSpec read_tool(const Reader& r) {
+  ToolSpec t;
   const auto teeth = *r.integer("tool", "default_teeth", true);
   r.require(teeth >= 1 && teeth <= 100, "tool", "default_teeth", "must be in 1..100");
-  p.tool_.default_teeth = static_cast<int>(teeth);
+  t.default_teeth = static_cast<int>(teeth);
+  return t;
+}
 
-  auto& o = p.output_;
+// [output]: the optional settings of the written program.
+OutputSpec read_output(const Reader& r) {
+  OutputSpec o;
   if (const auto v = r.integer("output", "program_number", false)) {
     r.require(*v >= 1 && *v <= 9999, "output", "program_number", "must be in 1..9999");
     o.program_number = static_cast<int>(*v);
@@ -443,7 +446,12 @@ MachineProfile profile_from_toml(std::string_view text, const std::string& file)
   }
   o.line_numbers = r.boolean("output", "line_numbers", false).value_or(o.line_numbers);
   o.canned_cycles = r.boolean("output", "canned_cycles", false).value_or(o.canned_cycles);
+  return o;
+}
 
+// [sources]: where each value comes from, "vendor: ..." or "assumed: ...".
+std::vector<SourceNote> read_sources(const Reader& r) {
+  std::vector<SourceNote> notes;
   if (const auto* sources = r.table("sources")) {
     for (const auto& [key, node] : *sources) {
       const std::string k(key.str());
@@ -484,9 +492,38 @@ MachineProfile profile_from_toml(std::string_view text, const std::string& file)
         r.fail(codes::bad_source, node.source(),
                "'sources.\"" + k + "\"' must be one line of text without control characters");
       }
-      p.sources_.push_back(std::move(n));
+      notes.push_back(std::move(n));
     }
   }
+  return notes;
+}
+
+}  // namespace
+
+MachineProfile profile_from_toml(std::string_view text, const std::string& file) {
+  toml::table root;
+  try {
+    root = toml::parse(text, file);
+  } catch (const toml::parse_error& e) {
+    throw ProfileError(std::string(codes::syntax), file, e.source().begin.line,
+                       e.source().begin.column, std::string(e.description()));
+  }
+  const Reader r(root, file);
+  r.check_unknown();
+
+  MachineProfile p;
+  p.origin_ = file;
+  p.name_ = *r.string("machine", "name", true);
+  r.require(!p.name_.empty(), "machine", "name", "must not be empty");
+  p.description_ = r.string("machine", "description", false).value_or("");
+  p.dialect_ = r.choice("machine", "dialect", kDialects);
+  p.output_format_ = r.choice("machine", "output_format", kFormats);
+  p.spindle_ = read_spindle(r);
+  p.control_ = read_control(r);
+  p.feed_ = read_feed(r);
+  p.tool_ = read_tool(r);
+  p.output_ = read_output(r);
+  p.sources_ = read_sources(r);
   return p;
 }
 

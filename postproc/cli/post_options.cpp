@@ -389,6 +389,97 @@ void add_job_options(CLI::App& command, PostArguments& args) {
                    "exit 1 when there were warnings (gouges, points without contact)");
 }
 
+namespace {
+
+// The first section the job will post (read ahead), which the report is
+// drawn for; its errors are the job's, worded as the job words them.
+std::optional<post::ToolSection> first_section(std::string_view text, const std::string& name,
+                                               const machines::MachineProfile& profile,
+                                               const post::PostSettings& settings) {
+  try {
+    return post::first_postable_section(text, name, profile, settings);
+  } catch (const post::PostError& e) {
+    throw CommandError(e.what());
+  } catch (const gcode::GcodeError& e) {
+    throw CommandError(gcode::format(e.diagnostic(), name));
+  } catch (const cldata::ClError& e) {
+    throw CommandError(e.what());
+  } catch (const program::TimingError& e) {
+    throw CommandError(name + ":" + std::to_string(e.source().line) + ": " + e.what());
+  }
+}
+
+// A CSV writer on each .csv report's file; the writers, to feed the rows to.
+std::vector<report::CsvWriter*> start_csv_reports(std::vector<ReportFile>& reports) {
+  std::vector<report::CsvWriter*> writers;
+  for (auto& r : reports) {
+    if (r.format != report::ReportFormat::csv) continue;
+    AtomicFile* out = r.file.get();
+    r.csv =
+        std::make_unique<report::CsvWriter>([out](std::string_view bytes) { out->write(bytes); });
+    writers.push_back(r.csv.get());
+  }
+  return writers;
+}
+
+// post::post_program, dropping the program's text behind the writer, with
+// the errors that carry a source line worded "file:line: ..." (a
+// GcodeError, ClError or PostError leaves with its own code).
+post::PostSummary post_translating_errors(ProgramText& program, const std::string& name,
+                                          const geometry::SurfaceModel& model,
+                                          const machines::MachineProfile& profile,
+                                          const post::PostSettings& settings,
+                                          const std::function<void(std::string_view)>& sink,
+                                          const post::Progress& progress,
+                                          const post::PointSink& points) {
+  try {
+    return post::post_program(program.view(), name, model, profile, settings, sink, progress,
+                              points,
+                              [&program](std::uint64_t offset) { program.release_before(offset); });
+  } catch (const gcode::GcodeError& e) {
+    throw CommandError(e.code(), gcode::format(e.diagnostic(), name));
+  } catch (const program::TimingError& e) {
+    throw CommandError(e.code(), name + ":" + std::to_string(e.source().line) + ": " + e.what());
+  } catch (const output::OutputError& e) {
+    throw CommandError(e.code(), name + ":" + std::to_string(e.source().line) + ": " + e.what());
+  } catch (const plan::PlanError& e) {
+    throw CommandError(e.code(), std::string("planning: ") + e.what());
+  }
+}
+
+// Finishes the CSV reports and writes the JSON and HTML ones, each file
+// committed; returns what goes to standard output ('-').
+std::string write_reports(const report::ReportData& data, std::vector<ReportFile>& reports,
+                          const std::string& chart_library) {
+  std::string to_stdout;
+  for (auto& r : reports) {
+    if (r.format == report::ReportFormat::csv) {
+      r.csv->finish();
+      r.file->commit();
+      continue;
+    }
+    std::string bytes;
+    if (r.format == report::ReportFormat::json) {
+      bytes = report::report_json(data).dump(2) + "\n";
+    } else {
+      try {
+        bytes = report::render_html(data, chart_library);
+      } catch (const std::invalid_argument& e) {
+        throw CommandError("E2004", std::string("HTML report: ") + e.what());
+      }
+    }
+    if (r.path == "-") {
+      to_stdout += bytes;
+    } else {
+      r.file->write(bytes);
+      r.file->commit();
+    }
+  }
+  return to_stdout;
+}
+
+}  // namespace
+
 JobRun run_job(const PostArguments& args, bool write_program) {
   const auto started = std::chrono::steady_clock::now();
   require_distinct_files(job_inputs(args), job_outputs(args, write_program));
@@ -435,27 +526,9 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   std::optional<report::ReportCollector> collector;
   std::vector<report::CsvWriter*> csv_writers;
   if (!reports.empty()) {
-    std::optional<post::ToolSection> first;
-    try {
-      first = post::first_postable_section(text, name, profile, settings);
-    } catch (const post::PostError& e) {
-      throw CommandError(e.what());
-    } catch (const gcode::GcodeError& e) {
-      throw CommandError(gcode::format(e.diagnostic(), name));
-    } catch (const cldata::ClError& e) {
-      throw CommandError(e.what());
-    } catch (const program::TimingError& e) {
-      throw CommandError(name + ":" + std::to_string(e.source().line) + ": " + e.what());
-    }
-    collector.emplace(
-        report_inputs(args, settings, model, profile, post::detect_program_kind(text), first));
-    for (auto& r : reports) {
-      if (r.format != report::ReportFormat::csv) continue;
-      AtomicFile* out = r.file.get();
-      r.csv =
-          std::make_unique<report::CsvWriter>([out](std::string_view bytes) { out->write(bytes); });
-      csv_writers.push_back(r.csv.get());
-    }
+    collector.emplace(report_inputs(args, settings, model, profile, post::detect_program_kind(text),
+                                    first_section(text, name, profile, settings)));
+    csv_writers = start_csv_reports(reports);
   }
   post::PointSink points;
   if (collector) {
@@ -464,20 +537,8 @@ JobRun run_job(const PostArguments& args, bool write_program) {
     });
   }
 
-  post::PostSummary summary;
-  try {
-    summary =
-        post::post_program(text, name, *model.model, profile, settings, sink, progress, points,
-                           [&program](std::uint64_t offset) { program.release_before(offset); });
-  } catch (const gcode::GcodeError& e) {
-    throw CommandError(e.code(), gcode::format(e.diagnostic(), name));
-  } catch (const program::TimingError& e) {
-    throw CommandError(e.code(), name + ":" + std::to_string(e.source().line) + ": " + e.what());
-  } catch (const output::OutputError& e) {
-    throw CommandError(e.code(), name + ":" + std::to_string(e.source().line) + ": " + e.what());
-  } catch (const plan::PlanError& e) {
-    throw CommandError(e.code(), std::string("planning: ") + e.what());
-  }  // a GcodeError, ClError or PostError leaves with its own code
+  const post::PostSummary summary = post_translating_errors(program, name, *model.model, profile,
+                                                            settings, sink, progress, points);
   if (show_progress) std::cerr << "\r\x1b[K";
   require_posted(summary, name);
   if (args.strict && has_warnings(summary)) {
@@ -490,30 +551,7 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   const double run_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   if (collector) {
-    const report::ReportData data = collector->finish(summary, run_time);
-    for (auto& r : reports) {
-      if (r.format == report::ReportFormat::csv) {
-        r.csv->finish();
-        r.file->commit();
-        continue;
-      }
-      std::string bytes;
-      if (r.format == report::ReportFormat::json) {
-        bytes = report::report_json(data).dump(2) + "\n";
-      } else {
-        try {
-          bytes = report::render_html(data, chart_library);
-        } catch (const std::invalid_argument& e) {
-          throw CommandError("E2004", std::string("HTML report: ") + e.what());
-        }
-      }
-      if (r.path == "-") {
-        to_stdout += bytes;
-      } else {
-        r.file->write(bytes);
-        r.file->commit();
-      }
-    }
+    to_stdout = write_reports(collector->finish(summary, run_time), reports, chart_library);
   }
   // The program last: a failed report leaves no posted program behind.
   if (file) file->commit();

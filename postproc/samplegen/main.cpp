@@ -104,6 +104,120 @@ std::uint64_t write_program(const Part& part, const PathSpec& path, const Progra
   return n;
 }
 
+// The options of `path`.
+struct PathArgs {
+  std::string part_name, pattern = "raster", gcode, cl, truth, title;
+  double diameter = 0, angle = 0, ae = 1, step = 1, rpm = 4000, feed = 800, chord = 0;
+  std::uint64_t points = 0;
+  int decimals = 6;
+  std::vector<double> window;
+  std::optional<double> radius;
+};
+
+CLI::App* add_path_command(CLI::App& app, PathArgs& a) {
+  auto* path_cmd = app.add_subcommand("path", "write one program (G-code, APT CL, truth CSV)");
+  path_cmd->add_option("part", a.part_name, "wavy | patches | cylinder | dome")->required();
+  path_cmd->add_option("--pattern", a.pattern, "raster | iso-u | iso-v")
+      ->check(CLI::IsMember({"raster", "iso-u", "iso-v"}));
+  path_cmd->add_option("--tool-diameter", a.diameter, "ball diameter, mm (default: the part's)");
+  path_cmd->add_option("--angle", a.angle, "raster feed direction in the xy plane, deg from +x");
+  path_cmd->add_option("--ae", a.ae, "stepover: mm in xy (raster) or parameter units (iso)")
+      ->check(CLI::PositiveNumber);
+  path_cmd->add_option("--step", a.step, "largest point spacing along a pass (as --ae)")
+      ->check(CLI::PositiveNumber);
+  path_cmd
+      ->add_option("--chord-tolerance", a.chord,
+                   "add points until every straight move is within this of the ball-centre "
+                   "path, mm (samples/: 0.005; default 0: the --step grid alone)")
+      ->check(CLI::NonNegativeNumber);
+  path_cmd->add_option("--window", a.window, "x0,y0,x1,y1 (raster: ball-centre xy; iso: u,v)")
+      ->expected(4)
+      ->delimiter(',');
+  path_cmd->add_option("--radius", a.radius,
+                       "raster: also keep the ball centre within this xy radius");
+  path_cmd
+      ->add_option("--points", a.points,
+                   "about this many points: sets --ae = --step to fill the window")
+      ->check(CLI::Range(std::uint64_t{10}, std::uint64_t{1'000'000'000}));
+  path_cmd->add_option("--decimals", a.decimals, "decimals of the written coordinates (>= 6)")
+      ->check(CLI::Range(6, 12));
+  path_cmd->add_option("--rpm", a.rpm, "spindle speed S")->check(CLI::PositiveNumber);
+  path_cmd->add_option("--feed", a.feed, "feed F, mm/min")->check(CLI::PositiveNumber);
+  path_cmd->add_option("--title", a.title, "program title");
+  path_cmd->add_option("--gcode", a.gcode, "G-code output file");
+  path_cmd->add_option("--cl", a.cl, "APT CL output file");
+  path_cmd->add_option("--truth", a.truth, "truth CSV output file");
+  return path_cmd;
+}
+
+// `path`: one program over a part, with its truth.
+void run_path(const PathArgs& a) {
+  const Part part = part_or_throw(a.part_name);
+  if (a.gcode.empty() && a.cl.empty() && a.truth.empty()) {
+    throw UsageError("nothing to write: give --gcode, --cl and/or --truth");
+  }
+  PathSpec spec;
+  spec.pattern = a.pattern == "raster"  ? Pattern::raster
+                 : a.pattern == "iso-u" ? Pattern::iso_u
+                                        : Pattern::iso_v;
+  spec.tool_radius = (a.diameter > 0 ? a.diameter : part.tool_diameter) / 2;
+  spec.angle_deg = a.angle;
+  spec.stepover = a.ae;
+  spec.step = a.step;
+  spec.zigzag = true;
+  spec.chord_tolerance = a.chord;
+  const bool raster = spec.pattern == Pattern::raster;
+  spec.window = raster ? part.raster_window : part.iso_window;
+  spec.window_radius = raster ? (a.radius ? a.radius : part.raster_radius) : std::nullopt;
+  if (!a.window.empty()) {
+    spec.window = Eigen::AlignedBox2d(Eigen::Vector2d(a.window[0], a.window[1]),
+                                      Eigen::Vector2d(a.window[2], a.window[3]));
+    if (spec.window.isEmpty()) throw UsageError("--window: x0 <= x1 and y0 <= y1 expected");
+  }
+  if (a.points > 0) {
+    double area = spec.window.volume();
+    if (spec.window_radius) {
+      area = std::min(area, std::numbers::pi * *spec.window_radius * *spec.window_radius);
+    }
+    spec.stepover = spec.step = std::sqrt(area / static_cast<double>(a.points));
+  }
+  ProgramSpec program;
+  program.title = a.title.empty() ? part.name + " " + a.pattern + " sample" : a.title;
+  program.tool_diameter = 2 * spec.tool_radius;
+  program.safe_z = part.safe_z;
+  program.spindle_rpm = a.rpm;
+  program.feed = a.feed;
+  program.decimals = a.decimals;
+  const std::uint64_t n = write_program(part, spec, program, a.gcode, a.cl, a.truth);
+  std::cerr << "vcpost-samplegen: " << n << " points\n";
+}
+
+// `stl`: a binary STL mesh of a part's surface.
+void run_stl(const std::string& part_name, const std::string& file, std::uint64_t triangles) {
+  const Part part = part_or_throw(part_name);
+  const vcpost::mesh::StlMesh m = triangulate(*part.surface, triangles);
+  OutFile out(file);
+  const std::string bytes =
+      vcpost::mesh::to_binary_stl(m, "vcpost-samplegen " + part.name + " surface");
+  out.stream()->write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  out.commit();
+  std::cerr << "vcpost-samplegen: " << m.triangles.size() << " triangles\n";
+}
+
+// `samples`: the samples/ folder's parts and programs.
+void run_samples(const std::string& dir) {
+  fs::create_directories(dir);
+  for (const auto& name : part_names())
+    write_step(part_or_throw(name), fs::path(dir) / (name + ".step"));
+  for (const auto& s : sample_programs()) {
+    const Part part = part_or_throw(s.part);
+    const fs::path base = fs::path(dir) / s.stem;
+    const std::uint64_t n = write_program(part, s.path, s.program, base.string() + ".nc",
+                                          base.string() + ".cls", base.string() + ".truth.csv");
+    std::cerr << s.stem << ": " << n << " points\n";
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -111,44 +225,8 @@ int main(int argc, char** argv) {
       "vcpost-samplegen: ball-end finishing programs with exact truth over sample surfaces"};
   app.require_subcommand(1);
 
-  auto* path_cmd = app.add_subcommand("path", "write one program (G-code, APT CL, truth CSV)");
-  std::string part_name, pattern = "raster", gcode, cl, truth, title;
-  double diameter = 0, angle = 0, ae = 1, step = 1, rpm = 4000, feed = 800, chord = 0;
-  std::uint64_t points = 0;
-  int decimals = 6;
-  std::vector<double> window;
-  std::optional<double> radius;
-  path_cmd->add_option("part", part_name, "wavy | patches | cylinder | dome")->required();
-  path_cmd->add_option("--pattern", pattern, "raster | iso-u | iso-v")
-      ->check(CLI::IsMember({"raster", "iso-u", "iso-v"}));
-  path_cmd->add_option("--tool-diameter", diameter, "ball diameter, mm (default: the part's)");
-  path_cmd->add_option("--angle", angle, "raster feed direction in the xy plane, deg from +x");
-  path_cmd->add_option("--ae", ae, "stepover: mm in xy (raster) or parameter units (iso)")
-      ->check(CLI::PositiveNumber);
-  path_cmd->add_option("--step", step, "largest point spacing along a pass (as --ae)")
-      ->check(CLI::PositiveNumber);
-  path_cmd
-      ->add_option("--chord-tolerance", chord,
-                   "add points until every straight move is within this of the ball-centre "
-                   "path, mm (samples/: 0.005; default 0: the --step grid alone)")
-      ->check(CLI::NonNegativeNumber);
-  path_cmd->add_option("--window", window, "x0,y0,x1,y1 (raster: ball-centre xy; iso: u,v)")
-      ->expected(4)
-      ->delimiter(',');
-  path_cmd->add_option("--radius", radius,
-                       "raster: also keep the ball centre within this xy radius");
-  path_cmd
-      ->add_option("--points", points,
-                   "about this many points: sets --ae = --step to fill the window")
-      ->check(CLI::Range(std::uint64_t{10}, std::uint64_t{1'000'000'000}));
-  path_cmd->add_option("--decimals", decimals, "decimals of the written coordinates (>= 6)")
-      ->check(CLI::Range(6, 12));
-  path_cmd->add_option("--rpm", rpm, "spindle speed S")->check(CLI::PositiveNumber);
-  path_cmd->add_option("--feed", feed, "feed F, mm/min")->check(CLI::PositiveNumber);
-  path_cmd->add_option("--title", title, "program title");
-  path_cmd->add_option("--gcode", gcode, "G-code output file");
-  path_cmd->add_option("--cl", cl, "APT CL output file");
-  path_cmd->add_option("--truth", truth, "truth CSV output file");
+  PathArgs path_args;
+  auto* path_cmd = add_path_command(app, path_args);
 
   auto* step_cmd = app.add_subcommand("step", "write the STEP file of a part's surface");
   std::string step_part, step_file;
@@ -171,66 +249,13 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
     if (*path_cmd) {
-      const Part part = part_or_throw(part_name);
-      if (gcode.empty() && cl.empty() && truth.empty()) {
-        throw UsageError("nothing to write: give --gcode, --cl and/or --truth");
-      }
-      PathSpec spec;
-      spec.pattern = pattern == "raster"  ? Pattern::raster
-                     : pattern == "iso-u" ? Pattern::iso_u
-                                          : Pattern::iso_v;
-      spec.tool_radius = (diameter > 0 ? diameter : part.tool_diameter) / 2;
-      spec.angle_deg = angle;
-      spec.stepover = ae;
-      spec.step = step;
-      spec.zigzag = true;
-      spec.chord_tolerance = chord;
-      const bool raster = spec.pattern == Pattern::raster;
-      spec.window = raster ? part.raster_window : part.iso_window;
-      spec.window_radius = raster ? (radius ? radius : part.raster_radius) : std::nullopt;
-      if (!window.empty()) {
-        spec.window = Eigen::AlignedBox2d(Eigen::Vector2d(window[0], window[1]),
-                                          Eigen::Vector2d(window[2], window[3]));
-        if (spec.window.isEmpty()) throw UsageError("--window: x0 <= x1 and y0 <= y1 expected");
-      }
-      if (points > 0) {
-        double area = spec.window.volume();
-        if (spec.window_radius) {
-          area = std::min(area, std::numbers::pi * *spec.window_radius * *spec.window_radius);
-        }
-        spec.stepover = spec.step = std::sqrt(area / static_cast<double>(points));
-      }
-      ProgramSpec program;
-      program.title = title.empty() ? part.name + " " + pattern + " sample" : title;
-      program.tool_diameter = 2 * spec.tool_radius;
-      program.safe_z = part.safe_z;
-      program.spindle_rpm = rpm;
-      program.feed = feed;
-      program.decimals = decimals;
-      const std::uint64_t n = write_program(part, spec, program, gcode, cl, truth);
-      std::cerr << "vcpost-samplegen: " << n << " points\n";
+      run_path(path_args);
     } else if (*step_cmd) {
       write_step(part_or_throw(step_part), step_file);
     } else if (*stl_cmd) {
-      const Part part = part_or_throw(stl_part);
-      const vcpost::mesh::StlMesh m = triangulate(*part.surface, triangles);
-      OutFile out(stl_file);
-      const std::string bytes =
-          vcpost::mesh::to_binary_stl(m, "vcpost-samplegen " + part.name + " surface");
-      out.stream()->write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-      out.commit();
-      std::cerr << "vcpost-samplegen: " << m.triangles.size() << " triangles\n";
+      run_stl(stl_part, stl_file, triangles);
     } else if (*samples_cmd) {
-      fs::create_directories(dir);
-      for (const auto& name : part_names())
-        write_step(part_or_throw(name), fs::path(dir) / (name + ".step"));
-      for (const auto& s : sample_programs()) {
-        const Part part = part_or_throw(s.part);
-        const fs::path base = fs::path(dir) / s.stem;
-        const std::uint64_t n = write_program(part, s.path, s.program, base.string() + ".nc",
-                                              base.string() + ".cls", base.string() + ".truth.csv");
-        std::cerr << s.stem << ": " << n << " points\n";
-      }
+      run_samples(dir);
     }
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);

@@ -554,6 +554,87 @@ std::optional<ToolSection> first_postable_section(std::string_view text,
   return std::nullopt;
 }
 
+namespace {
+
+// One evaluator per posted section (its own tool, vc and passes), made by
+// the reading stage as sections appear; each chunk carries pointers to the
+// evaluators of its sections to the other stages.
+class SectionEvaluators {
+ public:
+  SectionEvaluators(const geometry::SurfaceModel& model, const pipeline::PointSettings& point,
+                    bool cutting_points)
+      : model_(model), point_(point), cutting_points_(cutting_points) {}
+
+  void attach(Chunk& chunk) {
+    for (const ToolSection& section : chunk.sections) {
+      if (evaluators_.size() <= section.index) evaluators_.resize(section.index + 1);
+      if (!section.postable) continue;
+      pipeline::PointSettings point_settings = point_;
+      point_settings.tool = *section.entry->geometry();
+      point_settings.vc = section.vc_nominal;
+      point_settings.cutting_points = cutting_points_;  // only the report reads them
+      evaluators_[section.index] =
+          std::make_unique<pipeline::PointEvaluator>(model_, point_settings);
+    }
+    std::uint32_t last = chunk.first_section;
+    for (const Slot& slot : chunk.slots) last = std::max(last, slot.section);
+    if (evaluators_.size() <= last) evaluators_.resize(last + 1);
+    chunk.evaluators.clear();
+    for (std::uint32_t section = chunk.first_section; section <= last; ++section)
+      chunk.evaluators.push_back(evaluators_[section].get());
+  }
+
+ private:
+  const geometry::SurfaceModel& model_;
+  const pipeline::PointSettings& point_;
+  bool cutting_points_;
+  std::vector<std::unique_ptr<pipeline::PointEvaluator>> evaluators_;
+};
+
+// The chunks of the pipeline: every chunk in flight holds a token, so one
+// chunk per token suffices; they are reused, and their vectors keep their
+// capacity.
+class ChunkPool {
+ public:
+  explicit ChunkPool(std::size_t tokens) {
+    for (std::size_t i = 0; i < tokens; ++i) {
+      chunks_.push_back(std::make_unique<Chunk>());
+      free_.push_back(chunks_.back().get());
+    }
+  }
+  Chunk* take() {
+    std::lock_guard lock(mutex_);
+    Chunk* chunk = free_.back();
+    free_.pop_back();
+    return chunk;
+  }
+  void give(Chunk* chunk) {
+    std::lock_guard lock(mutex_);
+    free_.push_back(chunk);
+  }
+
+ private:
+  std::vector<std::unique_ptr<Chunk>> chunks_;
+  std::vector<Chunk*> free_;
+  std::mutex mutex_;
+};
+
+// The totals only the reader and the writer know.
+void add_totals(PostSummary& summary, const PathReader& reader, const ProgramWriter& writer) {
+  const ReadTotals& totals = reader.totals();
+  summary.blocks = totals.blocks;
+  summary.motion_events = totals.motion_events;
+  summary.program_time_s = totals.program_time_s;
+  summary.cutting_time_s = totals.cutting_time_s;
+  summary.s_words = writer.s_words();
+  summary.f_words = writer.f_words();
+  summary.tool_notes = reader.tool_notes();
+  summary.repeated_lines = writer.repeated_lines();
+  summary.missing_end = totals.missing_end;
+}
+
+}  // namespace
+
 PostSummary post_program(std::string_view text, const std::string& file_name,
                          const geometry::SurfaceModel& model,
                          const machines::MachineProfile& profile, const PostSettings& settings,
@@ -575,26 +656,7 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
                        [&decides](std::uint32_t section) { return decides->keeps(section); });
   Finisher finisher(profile, settings, writer, points, summary);
   decides = &finisher;
-  // One evaluator per posted section (its own tool, vc and passes), made by
-  // the reading stage; the chunks carry pointers to them to the others.
-  std::vector<std::unique_ptr<pipeline::PointEvaluator>> evaluators;
-  auto add_evaluators = [&](Chunk& chunk) {
-    for (const ToolSection& section : chunk.sections) {
-      if (evaluators.size() <= section.index) evaluators.resize(section.index + 1);
-      if (!section.postable) continue;
-      pipeline::PointSettings point_settings = settings.point;
-      point_settings.tool = *section.entry->geometry();
-      point_settings.vc = section.vc_nominal;
-      point_settings.cutting_points = static_cast<bool>(points);  // only the report reads them
-      evaluators[section.index] = std::make_unique<pipeline::PointEvaluator>(model, point_settings);
-    }
-    std::uint32_t last = chunk.first_section;
-    for (const Slot& slot : chunk.slots) last = std::max(last, slot.section);
-    if (evaluators.size() <= last) evaluators.resize(last + 1);
-    chunk.evaluators.clear();
-    for (std::uint32_t section = chunk.first_section; section <= last; ++section)
-      chunk.evaluators.push_back(evaluators[section].get());
-  };
+  SectionEvaluators evaluators(model, settings.point, static_cast<bool>(points));
 
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const int threads = settings.threads > 0 ? settings.threads : cores;
@@ -604,29 +666,16 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
   if (threads > cores) parallelism.emplace(tbb::global_control::max_allowed_parallelism, threads);
   // Chunks in flight: enough to keep every thread busy, few enough to bound memory.
   const auto tokens = static_cast<std::size_t>(2 * threads + 2);
-  // Every chunk in flight holds a token, so `tokens` chunks suffice; they
-  // are reused, and their vectors keep their capacity.
-  std::vector<std::unique_ptr<Chunk>> chunks;
-  std::vector<Chunk*> free_chunks;
-  for (std::size_t i = 0; i < tokens; ++i) {
-    chunks.push_back(std::make_unique<Chunk>());
-    free_chunks.push_back(chunks.back().get());
-  }
-  std::mutex free_mutex;
+  ChunkPool pool(tokens);
   double next_report = 0.01;
 
   auto read = [&](tbb::flow_control& control) -> Chunk* {
-    Chunk* chunk = nullptr;
-    {
-      std::lock_guard lock(free_mutex);
-      chunk = free_chunks.back();
-      free_chunks.pop_back();
-    }
+    Chunk* chunk = pool.take();
     if (!reader.read(*chunk, chunk_samples)) {
       control.stop();
       return nullptr;
     }
-    add_evaluators(*chunk);
+    evaluators.attach(*chunk);
     if (kind == ProgramKind::cldata && consumed) consumed(chunk->read_bytes);
     return chunk;
   };
@@ -666,8 +715,7 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
       progress(std::min(chunk->read_fraction, 1.0));
       next_report = chunk->read_fraction + 0.01;
     }
-    std::lock_guard lock(free_mutex);
-    free_chunks.push_back(chunk);
+    pool.give(chunk);
   };
 
   tbb::task_arena arena(threads);
@@ -680,17 +728,7 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
                     tbb::make_filter<Chunk*, void>(tbb::filter_mode::serial_in_order, finish));
   });
   finisher.finish();
-
-  const ReadTotals& totals = reader.totals();
-  summary.blocks = totals.blocks;
-  summary.motion_events = totals.motion_events;
-  summary.program_time_s = totals.program_time_s;
-  summary.cutting_time_s = totals.cutting_time_s;
-  summary.s_words = writer.s_words();
-  summary.f_words = writer.f_words();
-  summary.tool_notes = reader.tool_notes();
-  summary.repeated_lines = writer.repeated_lines();
-  summary.missing_end = totals.missing_end;
+  add_totals(summary, reader, writer);
   if (progress) progress(1.0);
   return summary;
 }

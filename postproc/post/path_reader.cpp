@@ -224,6 +224,14 @@ struct PathReader::State {
                                                              : plan::SpindleState::ccw;
   }
 
+  // The steps of PathReader::read, for one event.
+  void note_program_state(const Event& event, BlockInfo& block);
+  void decide_section(Chunk& chunk, std::uint32_t line);
+  void add_slots(Chunk& chunk, const Event& event, const program::EventTime& time,
+                 std::size_t block_index, ReadTotals& totals);
+  Slot& next_slot(Chunk& chunk);
+  void take_stop(Slot& slot);
+
   const tools::ToolChoices& tools;
   double ap_mm;
   tools::ProgramTools program_tools;
@@ -264,6 +272,101 @@ const std::vector<std::string>& PathReader::tool_notes() const {
   return state_->program_tools.notes();
 }
 
+Slot& PathReader::State::next_slot(Chunk& chunk) {
+  Slot& slot = chunk.slots.emplace_back();
+  slot.break_pass = break_pass;
+  slot.section = section;
+  break_pass = false;
+  return slot;
+}
+
+// The first slot after a stop of the path carries it.
+void PathReader::State::take_stop(Slot& slot) {
+  slot.plan.path_stops = path_stops;
+  path_stops = false;
+}
+
+// The program's own S, F, spindle, end and tool change, as they stand.
+void PathReader::State::note_program_state(const Event& event, BlockInfo& block) {
+  if (const auto* speed = std::get_if<program::SetSpindleSpeed>(&event)) {
+    program_s = block.program_s = speed->rpm;
+    block.has_s = true;
+    if (speed->rpm <= 0) spindle = plan::SpindleState::off;
+  } else if (const auto* on = std::get_if<program::SpindleOn>(&event)) {
+    direction = on->direction;
+    spindle = plan::SpindleState::cw;  // direction applied in spindle_state()
+  } else if (std::holds_alternative<program::SpindleOff>(event)) {
+    spindle = plan::SpindleState::off;
+  } else if (const auto* feed = std::get_if<program::SetFeedRate>(&event)) {
+    program_f = block.program_f = feed->rate;
+    block.has_f = true;
+  } else if (std::holds_alternative<program::ProgramEnd>(event)) {
+    program_end = true;
+  } else if (std::holds_alternative<program::ChangeTool>(event)) {
+    tool_change = true;
+    break_pass = true;
+  }
+}
+
+// At a section's first motion: which tool cuts it and whether it is posted.
+void PathReader::State::decide_section(Chunk& chunk, std::uint32_t line) {
+  program_tools.on_motion();
+  if (section_decided) return;
+  const auto number = program_tools.number();
+  const tools::ToolEntry* tool = tools.table.resolve(number, program_tools.current());
+  chunk.sections.push_back(post::decide_section(section, number, line, tool, tools, ap_mm));
+  section_posted = chunk.sections.back().postable;
+  section_decided = true;
+}
+
+// A motion's slots: one for a rapid; else a resume where the move continues
+// the cut, then its samples.
+void PathReader::State::add_slots(Chunk& chunk, const Event& event, const program::EventTime& time,
+                                  std::size_t block_index, ReadTotals& totals) {
+  path.clear();
+  sampler.add(event, totals.motion_events - 1, path);
+  if (std::holds_alternative<program::StraightTraverse>(event)) {
+    Slot& slot = next_slot(chunk);
+    slot.kind = SlotKind::rapid;
+    slot.break_pass = true;
+    slot.plan = {time.start,  block_index, std::nullopt,    true,
+                 tool_change, false,       spindle_state(), program_s};
+    take_stop(slot);
+    tool_change = false;
+    return;
+  }
+  totals.cutting_time_s += time.duration;
+  const float weight =
+      path.empty() ? 0.0f : static_cast<float>(time.duration / static_cast<double>(path.size()));
+  // The planner holds a block's S from its first sample on: a move that
+  // continues the cut starts where the last one ended, at its target.
+  if (!path.empty() && path.front().fraction > 0) {
+    Slot& slot = next_slot(chunk);
+    slot.kind = SlotKind::resume;
+    slot.plan = {time.start,  block_index, std::nullopt,    false,
+                 tool_change, false,       spindle_state(), program_s};
+    take_stop(slot);
+    tool_change = false;
+  }
+  for (const auto& sample : path) {
+    Slot& slot = next_slot(chunk);
+    slot.kind = section_posted ? SlotKind::sample : SlotKind::kept;
+    slot.plan = {time.start + time.duration * sample.fraction,
+                 block_index,
+                 std::nullopt,
+                 false,
+                 tool_change,
+                 false,
+                 spindle_state(),
+                 program_s};
+    take_stop(slot);
+    slot.weight_s = weight;
+    slot.sample = sample;
+    tool_change = false;
+    ++chunk.samples;
+  }
+}
+
 bool PathReader::read(Chunk& chunk, std::size_t samples) {
   State& s = *state_;
   chunk.slots.clear();  // keeps its capacity: no allocation per point
@@ -273,18 +376,6 @@ bool PathReader::read(Chunk& chunk, std::size_t samples) {
   chunk.sections.clear();
   chunk.first_section = s.section;
   chunk.first_block = totals_.blocks;
-  auto next_slot = [&]() -> Slot& {
-    Slot& slot = chunk.slots.emplace_back();
-    slot.break_pass = s.break_pass;
-    slot.section = s.section;
-    s.break_pass = false;
-    return slot;
-  };
-  // The first slot after a stop of the path carries it.
-  auto take_stop = [&](Slot& slot) {
-    slot.plan.path_stops = s.path_stops;
-    s.path_stops = false;
-  };
 
   // A chunk holds whole blocks: it ends before the first event of a block
   // once it has its samples (the rest of the batch waits for the next call).
@@ -324,86 +415,17 @@ bool PathReader::read(Chunk& chunk, std::size_t samples) {
     if (change) block.section = s.section;   // the tool-change block is the new tool's
     const program::EventTime time = s.clock.advance(event);
     if (stops_path(event)) s.path_stops = true;
-    if (const auto* speed = std::get_if<program::SetSpindleSpeed>(&event)) {
-      s.program_s = block.program_s = speed->rpm;
-      block.has_s = true;
-      if (speed->rpm <= 0) s.spindle = plan::SpindleState::off;
-    } else if (const auto* on = std::get_if<program::SpindleOn>(&event)) {
-      s.direction = on->direction;
-      s.spindle = plan::SpindleState::cw;  // direction applied in spindle_state()
-    } else if (std::holds_alternative<program::SpindleOff>(event)) {
-      s.spindle = plan::SpindleState::off;
-    } else if (const auto* feed = std::get_if<program::SetFeedRate>(&event)) {
-      s.program_f = block.program_f = feed->rate;
-      block.has_f = true;
-    } else if (std::holds_alternative<program::ProgramEnd>(event)) {
-      s.program_end = true;
-    } else if (std::holds_alternative<program::ChangeTool>(event)) {
-      s.tool_change = true;
-      s.break_pass = true;
-    }
+    s.note_program_state(event, block);
     if (motion) {
       if (const auto directions = motion_directions(event)) {
         if (s.last_direction && s.last_direction->dot(directions->first) < kReversalCos)
           s.path_stops = true;
         s.last_direction = directions->second;
       }
-      if (!s.section_decided) {
-        s.program_tools.on_motion();
-        const auto number = s.program_tools.number();
-        const tools::ToolEntry* tool = s.tools.table.resolve(number, s.program_tools.current());
-        chunk.sections.push_back(
-            decide_section(s.section, number, source.line, tool, s.tools, s.ap_mm));
-        s.section_posted = chunk.sections.back().postable;
-        s.section_decided = true;
-      } else {
-        s.program_tools.on_motion();
-      }
+      s.decide_section(chunk, source.line);
       ++totals_.motion_events;
       totals_.program_time_s = time.end();
-      s.path.clear();
-      s.sampler.add(event, totals_.motion_events - 1, s.path);
-      if (std::holds_alternative<program::StraightTraverse>(event)) {
-        Slot& slot = next_slot();
-        slot.kind = SlotKind::rapid;
-        slot.break_pass = true;
-        slot.plan = {time.start,    block_index, std::nullopt,      true,
-                     s.tool_change, false,       s.spindle_state(), s.program_s};
-        take_stop(slot);
-        s.tool_change = false;
-      } else {
-        totals_.cutting_time_s += time.duration;
-        const float weight =
-            s.path.empty() ? 0.0f
-                           : static_cast<float>(time.duration / static_cast<double>(s.path.size()));
-        // The planner holds a block's S from its first sample on: a move
-        // that continues the cut starts where the last one ended, at its target.
-        if (!s.path.empty() && s.path.front().fraction > 0) {
-          Slot& slot = next_slot();
-          slot.kind = SlotKind::resume;
-          slot.plan = {time.start,    block_index, std::nullopt,      false,
-                       s.tool_change, false,       s.spindle_state(), s.program_s};
-          take_stop(slot);
-          s.tool_change = false;
-        }
-        for (const auto& sample : s.path) {
-          Slot& slot = next_slot();
-          slot.kind = s.section_posted ? SlotKind::sample : SlotKind::kept;
-          slot.plan = {time.start + time.duration * sample.fraction,
-                       block_index,
-                       std::nullopt,
-                       false,
-                       s.tool_change,
-                       false,
-                       s.spindle_state(),
-                       s.program_s};
-          take_stop(slot);
-          slot.weight_s = weight;
-          slot.sample = sample;
-          s.tool_change = false;
-          ++chunk.samples;
-        }
-      }
+      s.add_slots(chunk, event, time, block_index, totals_);
     }
     if (s.keep_events) chunk.events.emplace_back(std::move(event), block_index);
   }

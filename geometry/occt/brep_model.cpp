@@ -666,17 +666,9 @@ struct BrepModel::Impl {
 
 namespace {
 
-void add_face(BrepModel::Impl& model, const TopoDS_Face& face,
-              const TopTools_IndexedMapOfShape& edge_map, bool orient_up) {
-  Handle(Geom_Surface) surface = BRep_Tool::Surface(face);
-  if (surface.IsNull()) return;
-  FaceData f(face, SurfaceEval(surface));
-  f.reversed = face.Orientation() == TopAbs_REVERSED;
-  BRepTools::UVBounds(face, f.u0, f.u1, f.v0, f.v1);
-  if (surface->IsUPeriodic()) f.u_period = surface->UPeriod();
-  if (surface->IsVPeriodic()) f.v_period = surface->VPeriod();
-
-  // Trim polygon and the face's edges.
+// The trim polygon (f.loops, f.polygon_error) and the face's edges
+// (f.edges); returns the number of wires.
+int add_trims(FaceData& f, const TopoDS_Face& face, const TopTools_IndexedMapOfShape& edge_map) {
   int wires = 0;
   for (TopExp_Explorer w(face, TopAbs_WIRE); w.More(); w.Next()) ++wires;
   for (TopExp_Explorer x(face, TopAbs_EDGE); x.More(); x.Next()) {
@@ -729,10 +721,13 @@ void add_face(BrepModel::Impl& model, const TopoDS_Face& face,
     const int index = edge_map.FindIndex(edge) - 1;
     if (index >= 0) f.edges.push_back({index, pcurve});
   }
+  return wires;
+}
+
+// Whether the trim is the (u,v) box (f.natural); else the grid of cells
+// inside, outside or on the trim, and the segments near each row and cell.
+void classify_trim(FaceData& f, int wires) {
   const double span_u = f.u1 - f.u0, span_v = f.v1 - f.v0;
-  if (!(span_u > 0 && span_v > 0)) return;
-  f.u_closed = f.u_period > 0 && span_u >= f.u_period * (1 - 1e-9);
-  f.v_closed = f.v_period > 0 && span_v >= f.v_period * (1 - 1e-9);
   const double eps = 1e-9 * std::max(span_u, span_v);
   const auto on_box = [&](const Vector2d& q) {
     return std::abs(q.x() - f.u0) < eps || std::abs(q.x() - f.u1) < eps ||
@@ -795,8 +790,12 @@ void add_face(BrepModel::Impl& model, const TopoDS_Face& face,
       }
     }
   }
+}
 
-  // Tessellation (with (u,v) at the nodes) or, without one, a (u,v) grid.
+// Tessellation (with (u,v) at the nodes) or, without one, a (u,v) grid;
+// f.slack bounds the surface's distance from the triangles.
+void tessellate(FaceData& f, const TopoDS_Face& face) {
+  const double span_u = f.u1 - f.u0, span_v = f.v1 - f.v0;
   TopLoc_Location location;
   const Handle(Poly_Triangulation) mesh = BRep_Tool::Triangulation(face, location);
   if (!mesh.IsNull() && mesh->HasUVNodes() && mesh->NbTriangles() > 0) {
@@ -856,6 +855,10 @@ void add_face(BrepModel::Impl& model, const TopoDS_Face& face,
     }
     f.slack = 4 * chord + 1e-6;
   }
+}
+
+// The box tree over the triangles and the face's box grown by the slack.
+void build_box_tree(FaceData& f) {
   std::vector<Eigen::AlignedBox3d> boxes;
   boxes.reserve(f.triangles.size());
   for (const auto& tri : f.triangles) {
@@ -868,20 +871,42 @@ void add_face(BrepModel::Impl& model, const TopoDS_Face& face,
   f.tree = BoxTree(boxes);
   const Vector3d grow = Vector3d::Constant(f.slack);
   f.box = Eigen::AlignedBox3d(f.box.min() - grow, f.box.max() + grow);
-  if (orient_up) {
-    // Area-weighted mean of the oriented normal over the tessellation.
-    double up = 0;
-    for (std::size_t t = 0; t < f.triangles.size(); ++t) {
-      const auto& tri = f.triangles[t];
-      const auto& uv = f.triangle_uv[t];
-      const Vector2d c = (uv[0] + uv[1] + uv[2]) / 3;
-      const SurfacePoint sp = f.eval.d2(c.x(), c.y());
-      const Vector3d n = sp.su.cross(sp.sv);
-      const double area = (tri[1] - tri[0]).cross(tri[2] - tri[0]).norm();
-      if (n.norm() > 0) up += area * n.z() / n.norm();
-    }
-    if ((f.reversed ? -up : up) < 0) f.reversed = !f.reversed;
+}
+
+// Flips f.reversed where the face's area-weighted mean normal points down.
+void orient_up_normal(FaceData& f) {
+  // Area-weighted mean of the oriented normal over the tessellation.
+  double up = 0;
+  for (std::size_t t = 0; t < f.triangles.size(); ++t) {
+    const auto& tri = f.triangles[t];
+    const auto& uv = f.triangle_uv[t];
+    const Vector2d c = (uv[0] + uv[1] + uv[2]) / 3;
+    const SurfacePoint sp = f.eval.d2(c.x(), c.y());
+    const Vector3d n = sp.su.cross(sp.sv);
+    const double area = (tri[1] - tri[0]).cross(tri[2] - tri[0]).norm();
+    if (n.norm() > 0) up += area * n.z() / n.norm();
   }
+  if ((f.reversed ? -up : up) < 0) f.reversed = !f.reversed;
+}
+
+void add_face(BrepModel::Impl& model, const TopoDS_Face& face,
+              const TopTools_IndexedMapOfShape& edge_map, bool orient_up) {
+  Handle(Geom_Surface) surface = BRep_Tool::Surface(face);
+  if (surface.IsNull()) return;
+  FaceData f(face, SurfaceEval(surface));
+  f.reversed = face.Orientation() == TopAbs_REVERSED;
+  BRepTools::UVBounds(face, f.u0, f.u1, f.v0, f.v1);
+  if (surface->IsUPeriodic()) f.u_period = surface->UPeriod();
+  if (surface->IsVPeriodic()) f.v_period = surface->VPeriod();
+  const int wires = add_trims(f, face, edge_map);
+  const double span_u = f.u1 - f.u0, span_v = f.v1 - f.v0;
+  if (!(span_u > 0 && span_v > 0)) return;
+  f.u_closed = f.u_period > 0 && span_u >= f.u_period * (1 - 1e-9);
+  f.v_closed = f.v_period > 0 && span_v >= f.v_period * (1 - 1e-9);
+  classify_trim(f, wires);
+  tessellate(f, face);
+  build_box_tree(f);
+  if (orient_up) orient_up_normal(f);
   model.faces.push_back(std::move(f));
 }
 

@@ -111,19 +111,27 @@ void ProgramWriter::resolve_front(Planned own, Planned next) {
   // another section's plan is not this one's.
   if (next.plan && pending_[next.plan->block - first_pending_].section != block.section) next = {};
   const bool keep = keeps_ && keeps_(block.section);
+  const bool moves = own.plan != nullptr;
   if (keep) own = next = {};
   pending_.pop_front();
   ++first_pending_;
 
   // S (F) in effect from this block on, when the plan changes it here: the
-  // block's own S word if planned, else the next planned block's S for a
-  // block that already carries an S word of the program.
+  // block's own S word if planned (and not just set to that value before
+  // the move), else the next planned block's S for a block that already
+  // carries an S word of the program.
   std::optional<double> s, f;
   if (own.plan && own.plan->s_word) {
-    s = own.plan->planned_rpm;
+    if (block.has_s || on_grid(own.plan->planned_rpm, s_step_) != s_before_motion_)
+      s = own.plan->planned_rpm;
   } else if (block.has_s && block.program_s > 0 && next.plan &&
              next.plan->bound != plan::Bound::off) {
     s = next.plan->planned_rpm;
+  }
+  if (!moves && (s || block.has_s)) {
+    s_before_motion_ = on_grid(s ? *s : block.program_s, s_step_);
+  } else if (moves) {
+    s_before_motion_ = kNoS;
   }
   if (adjust_feed_ && !(own.plan && own.plan->bound == plan::Bound::rapid)) {  // rapids use no F
     if (own.feed && own.feed->f_word) {

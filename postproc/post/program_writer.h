@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <span>
@@ -100,6 +101,12 @@ class ProgramWriter {
   std::unique_ptr<output::GcodeWriter> cl_writer_;
   std::function<bool(std::uint32_t)> keeps_;
   std::uint64_t s_words_ = 0, f_words_ = 0;
+  // The S (on the grid) that blocks without motion set since the last block
+  // with motion ("S6000 M3" before the first move): a planned word of the
+  // same value at the next move would only repeat it, and on a control
+  // whose path stops at every S word (LinuxCNC, grbl) cost a stop. NaN: none.
+  static constexpr double kNoS = std::numeric_limits<double>::quiet_NaN();
+  double s_before_motion_ = kNoS;
   std::vector<std::pair<std::uint64_t, std::uint64_t>> words_by_section_;  // S, F
 };
 

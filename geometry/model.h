@@ -55,6 +55,10 @@ struct ModelContact {
 struct ContactHint {
   int face = -1;
   Eigen::Vector2d uv = Eigen::Vector2d::Zero();
+  // The previous query's point: a query farther from it than its search
+  // distance is answered cold (Newton's method started that far away may
+  // stop in another local minimum, as at a new tool's first point).
+  Eigen::Vector3d query = Eigen::Vector3d::Zero();
   // Whether answers carry curvatures (only reports read them; leaving them
   // out saves the second fundamental form on every query).
   bool curvature = true;

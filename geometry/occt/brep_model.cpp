@@ -628,7 +628,8 @@ struct BrepModel::Impl {
     double bound = max_distance;
     int done = -1;
     const bool curvature = !hint || hint->curvature;
-    if (hint && hint->face >= 0 && hint->face < static_cast<int>(faces.size())) {
+    if (hint && hint->face >= 0 && hint->face < static_cast<int>(faces.size()) &&
+        (p - hint->query).norm() <= max_distance) {
       best = refine(hint->face, p, hint->uv, std::numeric_limits<double>::infinity(), curvature);
       if (best && best->distance > bound) best.reset();
       // A failed warm start leaves the face to the global search below.
@@ -659,6 +660,7 @@ struct BrepModel::Impl {
     if (hint && best) {
       hint->face = best->face;
       hint->uv = best->uv;
+      hint->query = p;
     }
     return best;
   }

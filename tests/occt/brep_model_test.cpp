@@ -568,6 +568,29 @@ TEST(BrepModel, WarmPathAcrossFacesOfARealPartMatchesColdQueries) {
   EXPECT_GT(hints[0].warm_queries + hints[1].warm_queries, points.size() * 9 / 10);
 }
 
+// A warm start from a query far away (a new tool's first point after the
+// last point of the tool before, across the dome) is not trusted: from
+// there Newton's method stopped on the far side of the sphere, 0.0545 mm
+// too far, and the first point of the second ball section was "lifted".
+// The dome is a sphere of radius 40 about the origin (samples/README.md):
+// the closest point to c is 40 c / |c|, |c| = 45 here.
+TEST(BrepModel, WarmStartFromAFarQueryFindsTheGlobalClosestPoint) {
+  const BrepModel dome =
+      BrepModel::load_step(fs::path(VCPOST_SOURCE_DIR) / "samples" / "dome.step");
+  const Vector3d far(10.351265, 42, 12.403681), c(-10.351265, -42, 12.403681);
+  ContactHint hint;
+  hint.curvature = false;
+  ASSERT_TRUE(dome.closest_point(far, 15, &hint));
+  const auto contact = dome.closest_point(c, 15, &hint);
+  ASSERT_TRUE(contact);
+  EXPECT_NEAR(contact->distance, c.norm() - 40, 1e-9);
+  EXPECT_LT((contact->point - 40 * c.normalized()).norm(), 1e-9);
+  // Near the previous query the warm start still answers.
+  const std::uint64_t warm = hint.warm_queries;
+  ASSERT_TRUE(dome.closest_point(c + Vector3d(0.5, 0, 0), 15, &hint));
+  EXPECT_EQ(hint.warm_queries, warm + 1);
+}
+
 void expect_error(const fs::path& path, ModelErrorCode code, const std::string& words) {
   try {
     (void)BrepModel::load_step(path);

@@ -5,7 +5,9 @@
 // the suite) and, where memory was the problem, an address-space limit.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <regex>
 
 #include "tests/postproc/faults/child_process.h"
@@ -263,6 +265,43 @@ void write_plane_job(const fs::path& work, double z_tip) {
   write(work / "plane.nc", std::string("%\nG21 G90 G17\nT1 M6\nS10000 M3\nG0 X-20 Y-20 ") + z +
                                "\nG1 X20 F500\nG1 Y-10\nG1 X-20\nG1 Y0\nG1 X20\nG1 Y10\n"
                                "G1 X-20\nM5\nM30\n%\n");
+}
+
+TEST(HostileInput, BinaryStlCountBelowItsRecordsIsAnInputError) {
+  // The plane as a binary STL whose header announces 1 triangle of its 2:
+  // refused with E4609, which had no row in the code table, so the run
+  // ended as an internal error (exit 3) and `vcpost explain E4609` knew
+  // nothing of it. Now a documented input error: exit 2.
+  Folder work, logs;
+  write_plane_job(work.path(), 0.0);
+  std::string stl(80, ' ');
+  const auto put = [&stl](const auto& value) {
+    stl.append(reinterpret_cast<const char*>(&value), sizeof value);
+  };
+  put(std::uint32_t{1});
+  for (const auto& t : {std::array<float, 9>{-50, -50, 0, 50, -50, 0, 50, 50, 0},
+                        std::array<float, 9>{-50, -50, 0, 50, 50, 0, -50, 50, 0}}) {
+    for (float v : {0.0f, 0.0f, 1.0f}) put(v);
+    for (float v : t) put(v);
+    put(std::uint16_t{0});
+  }
+  ASSERT_EQ(stl.size(), 84u + 2 * 50);
+  const fs::path half = work / "half.stl";
+  write(half, stl);
+  const ChildResult r =
+      run({kVcpost, "post", (work / "plane.nc").string(), "--model", half.string(), "--tool",
+           "ball:10", "--vc", "120", "--ap", "0.3", "-o", (work / "out.nc").string()},
+          logs);
+  EXPECT_EQ(r.shell_status(), 2) << r.err;
+  EXPECT_EQ(r.err.substr(0, r.err.find('\n') + 1),
+            "vcpost: error: " + half.string() +
+                ": offset 134: error[E4609]: binary STL header announces 1 triangles but the "
+                "file holds 2 whole triangle records; the count is wrong (a damaged or "
+                "concatenated file): export the model again\n");
+  EXPECT_FALSE(fs::exists(work / "out.nc"));
+  const ChildResult explain = run({kVcpost, "explain", "E4609"}, logs);
+  EXPECT_EQ(explain.shell_status(), 0) << explain.err;
+  EXPECT_NE(explain.out.find("stl_count_mismatch"), std::string::npos) << explain.out;
 }
 
 TEST(HostileInput, MismatchErrorGivesTheSectionsDiagnosis) {

@@ -78,6 +78,52 @@ TEST(HostileInput, NulFileStopsAtTheFirstNulInBoundedMemory) {
   }
 }
 
+// Peak resident size of a run that must not hold its input: 100 MB (the
+// runs take 22-34 MB), 400 MB under AddressSanitizer (its shadow memory).
+#if defined(__SANITIZE_ADDRESS__)
+constexpr long kPeakRssBoundKb = 400'000;
+#else
+constexpr long kPeakRssBoundKb = 100'000;
+#endif
+
+TEST(HostileInput, EndlessFirstLineIsRefusedInBoundedMemory) {
+  // A program whose first line is 200 MB long, no newline, under a line
+  // limit of 65,536 bytes: the kind was sniffed from the whole line (a
+  // copy of it as a word, 460 MB resident for `post`, `moves`), and
+  // `verify` split it into tokens (660 MB for letters, 12.9 GB for words).
+  // Now each refuses it at the limit, having read no further than that:
+  // the peak resident size stays far below the file's size.
+  Folder work, logs;
+  const fs::path p = work / "long.nc";
+  for (const std::string piece : {"G1 X1 Y2 Z3 ", "X"}) {
+    {
+      std::ofstream out(p, std::ios::binary);
+      const std::string block = [&] {
+        std::string b;
+        while (b.size() < (1u << 20)) b += piece;
+        return b;
+      }();
+      for (std::size_t written = 0; written < 200'000'000; written += block.size()) out << block;
+    }
+    const auto limited = [](ChildOptions& o) {
+      o.memory_limit = kAddressSpaceLimit;
+      o.timeout_s = 30;
+    };
+    for (const auto& args : {std::vector<std::string>{kVcpost, "verify", p.string(), p.string()},
+                             std::vector<std::string>{kVcpost, "moves", p.string()},
+                             dome_job(p.string(), {"-o", "-"})}) {
+      const ChildResult r = run(args, logs, limited);
+      EXPECT_EQ(r.shell_status(), 2) << args[1] << " '" << piece << "': " << r.err;
+      EXPECT_EQ(r.err, "vcpost: error: " + p.string() +
+                           ":1:1: error[E1006]: line longer than 65536 bytes, the reader's limit\n")
+          << args[1] << " '" << piece << "'";
+      EXPECT_LT(r.peak_rss_kb, kPeakRssBoundKb) << args[1] << " '" << piece << "'";
+      std::printf("%s on a 200 MB line of '%s': peak RSS %ld KB, %.2f s\n", args[1].c_str(),
+                  piece.c_str(), r.peak_rss_kb, r.seconds);
+    }
+  }
+}
+
 TEST(HostileInput, NulAfterTextGivesItsLineAndColumn) {
   Folder work, logs;
   const fs::path p = work / "p.nc";

@@ -35,7 +35,38 @@ bool write_all(int fd, std::string_view bytes) {
   return true;
 }
 
+// Whether `folder` (canonical) is this process's (or one of its threads')
+// folder of open descriptors: /proc/<pid>/fd or /proc/<pid>/task/<tid>/fd.
+bool own_descriptor_folder(const std::filesystem::path& folder) {
+  if (folder.filename() != "fd") return false;
+  const std::filesystem::path own = "/proc/" + std::to_string(::getpid());
+  const std::filesystem::path up = folder.parent_path();
+  return up == own ||
+         (up.parent_path().filename() == "task" && up.parent_path().parent_path() == own);
+}
+
 }  // namespace
+
+int own_descriptor(const std::filesystem::path& path) {
+  std::filesystem::path p = path;
+  for (int hops = 0; hops < 40; ++hops) {
+    const std::string name = p.filename().string();
+    if (!name.empty() && name.size() < 10 &&
+        name.find_first_not_of("0123456789") == std::string::npos) {
+      std::error_code error;
+      const std::filesystem::path folder =
+          std::filesystem::canonical(p.has_parent_path() ? p.parent_path() : ".", error);
+      if (!error && own_descriptor_folder(folder)) return std::stoi(name);
+    }
+    struct stat info {};
+    if (::lstat(p.c_str(), &info) != 0 || !S_ISLNK(info.st_mode)) return -1;
+    std::error_code error;
+    const std::filesystem::path next = std::filesystem::read_symlink(p, error);
+    if (error) return -1;
+    p = next.is_absolute() ? next : p.parent_path() / next;
+  }
+  return -1;
+}
 
 std::filesystem::path follow_links(const std::filesystem::path& path) {
   std::filesystem::path p = path;
@@ -52,6 +83,20 @@ std::filesystem::path follow_links(const std::filesystem::path& path) {
 
 AtomicFile::AtomicFile(std::filesystem::path target)
     : target_(std::move(target)), written_(follow_links(target_)) {
+  descriptor_ = own_descriptor(target_);
+  if (descriptor_ >= 0) {
+    // One of our own open files (standard output or error): written into
+    // the descriptor as it is, whatever is behind it.
+    const int flags = ::fcntl(descriptor_, F_GETFL);
+    const std::string why = flags < 0                         ? std::strerror(errno)
+                            : (flags & O_ACCMODE) == O_RDONLY ? "it is open for reading only"
+                                                              : "";
+    if (!why.empty())
+      throw CommandError("E2003", "cannot write '" + target_.string() + "': " + why);
+    written_ = target_;
+    held_ = std::make_unique<HeldOutput>();
+    return;
+  }
   struct stat info {};
   const bool exists = ::stat(written_.c_str(), &info) == 0;
   if (exists && S_ISDIR(info.st_mode)) {
@@ -135,7 +180,7 @@ void AtomicFile::write(std::string_view bytes) {
 }
 
 void AtomicFile::commit_in_place() {
-  const int fd = ::open(written_.c_str(), O_WRONLY | O_CLOEXEC);
+  const int fd = descriptor_ >= 0 ? descriptor_ : ::open(written_.c_str(), O_WRONLY | O_CLOEXEC);
   if (fd < 0) fail(errno);
   int error = 0;
   held_->for_each_chunk([&](std::string_view bytes) {
@@ -143,7 +188,7 @@ void AtomicFile::commit_in_place() {
     error = errno;
     return false;
   });
-  if (::close(fd) != 0 && error == 0 && errno != EINTR) error = errno;
+  if (descriptor_ < 0 && ::close(fd) != 0 && error == 0 && errno != EINTR) error = errno;
   held_.reset();
   if (error != 0) fail(error);
 }

@@ -22,7 +22,11 @@ class HeldOutput;
 // stays; through_link() tells the caller to say so). A target that is not a
 // regular file (a device such as /dev/null, a FIFO, a terminal) is never
 // replaced: the bytes are held (HeldOutput) and written into it in place on
-// commit(). A regular file with more than one hard link is refused: a rename
+// commit(). A name for one of this process's own open files (/dev/stdout,
+// /dev/stderr, /dev/fd/N, /proc/self/fd/N) is written in place into that
+// descriptor on commit(), as the shell opened it: appended after `2>>log`,
+// into the pipe after `| cat`; never replaced by a rename.
+// A regular file with more than one hard link is refused: a rename
 // would silently split it from its other names.
 // Destroying it uncommitted removes the temporary file, and so does a
 // SIGINT/SIGTERM/SIGHUP/SIGPIPE (interrupt.h): an error or an interrupt
@@ -43,7 +47,8 @@ class AtomicFile {
   void commit();                       // flush, fsync, close, rename; throws CommandError
 
   const std::filesystem::path& temporary() const { return temporary_; }
-  bool in_place() const { return held_ != nullptr; }  // a device, FIFO or terminal
+  // A device, FIFO, terminal or an open descriptor of this process.
+  bool in_place() const { return held_ != nullptr; }
   bool through_link() const { return written_ != target_; }
   const std::filesystem::path& written() const { return written_; }  // the link's target
 
@@ -54,12 +59,20 @@ class AtomicFile {
   std::filesystem::path target_, written_, temporary_;
   std::FILE* file_ = nullptr;
   std::unique_ptr<HeldOutput> held_;
+  int descriptor_ = -1;  // >= 0: written in place into this open descriptor
   TemporaryRegistration registration_;
 };
 
 // True when both paths name the same existing file (the input must never be
 // overwritten, whatever the spelling of the names).
 bool same_file(const std::filesystem::path& a, const std::filesystem::path& b);
+
+// N when `path` names this process's open descriptor N (/dev/stdout,
+// /dev/stderr, /dev/fd/N, /proc/self/fd/N, /proc/<its pid>/fd/N) at any
+// link of its chain; else -1. Following such a link to its end leads to a
+// name that is not the open file (a pipe's "pipe:[...]") or to a file the
+// shell opened its own way (appending).
+int own_descriptor(const std::filesystem::path& path);
 
 // `path` with every symbolic link of its last component followed, also a
 // dangling one (the file a write to it would create). Throws CommandError

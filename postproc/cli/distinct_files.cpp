@@ -16,6 +16,10 @@ namespace {
 struct FileKey {
   bool exists = false;
   bool character_device = false;
+  // Written in place, not replaced (a device, FIFO or socket, or one of
+  // the process's open descriptors such as /dev/stderr): two outputs there
+  // follow each other and lose nothing.
+  bool in_place = false;
   dev_t device = 0;
   ino_t inode = 0;
   std::filesystem::path created_at;
@@ -33,6 +37,7 @@ std::optional<FileKey> key_of(const std::string& path) {
   if (::stat(path.c_str(), &info) == 0) {
     key.exists = true;
     key.character_device = S_ISCHR(info.st_mode);
+    key.in_place = !S_ISREG(info.st_mode) || own_descriptor(path) >= 0;
     key.device = info.st_dev;
     key.inode = info.st_ino;
   } else {
@@ -62,7 +67,8 @@ void require_distinct_files(const std::vector<NamedFile>& inputs,
       }
     }
     for (std::size_t p = 0; p < o; ++p) {
-      if (output_keys[p] && *output_keys[p] == *out) {
+      if (output_keys[p] && *output_keys[p] == *out &&
+          !(out->in_place && output_keys[p]->in_place)) {
         throw CommandError(quoted(outputs[o]) + " is the same file as " + quoted(outputs[p]) +
                            "; give each output its own file");
       }

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "postproc/cldata/cl_reader.h"
+#include "postproc/gcode/block.h"
 #include "postproc/plan/stop_aware_plan.h"
 #include "postproc/plan/streaming_plan.h"
 #include "postproc/post/offset_diagnosis.h"
@@ -487,16 +488,24 @@ gcode::Dialect dialect_of(const machines::MachineProfile& profile) {
 }
 
 ProgramKind detect_program_kind(std::string_view text) {
-  // The first statement that is not blank or a comment decides.
+  // The first statement that is not blank or a comment decides. A line is
+  // looked at no further than just past the readers' line limit: a longer
+  // one is refused by the reader (of the kind its start shows), and a file
+  // of one endless line costs no more than the limit (65,536 bytes for
+  // G-code and CL alike).
+  constexpr std::size_t look = gcode::kMaxLineLength + 2;
   std::size_t pos = 0;
   while (pos < text.size()) {
-    const std::size_t end = std::min(text.find('\n', pos), text.size());
-    std::string_view line = text.substr(pos, end - pos);
-    pos = end + 1;
+    const std::size_t scan = std::min(text.size() - pos, look);
+    const std::size_t nl = text.substr(pos, scan).find('\n');
+    const bool cut = nl == std::string_view::npos && scan < text.size() - pos;
+    std::string_view line = text.substr(pos, nl == std::string_view::npos ? scan : nl);
+    pos += nl == std::string_view::npos ? text.size() : nl + 1;
     while (!line.empty() && (line.front() == ' ' || line.front() == '\t')) line.remove_prefix(1);
     while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.remove_suffix(1);
     if (line.empty() || line.starts_with("$$") || line.front() == '(' || line.front() == ';' ||
         line.front() == '%') {
+      if (cut) return line.starts_with("$$") ? ProgramKind::cldata : ProgramKind::gcode;
       continue;
     }
     std::string word;

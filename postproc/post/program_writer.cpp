@@ -145,6 +145,22 @@ void ProgramWriter::resolve_front(Planned own, Planned next) {
   auto& [section_s, section_f] = words_by_section_[block.section];
   if (kind_ == ProgramKind::gcode) {
     if (s) {
+      s_in_effect_ = on_grid(*s, s_step_);
+    } else if (block.has_s) {
+      s_in_effect_ = block.program_s;
+    }
+    if (f) {
+      f_in_effect_ = on_grid(*f, f_step_);
+    } else if (block.has_f) {
+      f_in_effect_ = block.program_f;
+    }
+    if (block.offset >= hold_from_) {
+      HeldLine& line = held_lines_[block.offset];
+      line.s = std::fmin(line.s, s_in_effect_);  // fmin: NaN (none yet) counts for nothing
+      line.f = std::fmin(line.f, f_in_effect_);
+      ++line.runs;
+    }
+    if (s) {
       patches_.push_back({block.offset, 'S', format_word(*s, s_step_, s_decimals_)});
       ++s_words_;
       ++section_s;
@@ -199,30 +215,41 @@ void ProgramWriter::write_text_until(std::uint64_t offset) {
 }
 
 void ProgramWriter::merge_repeated_patches() {
-  // In program order, one patch per line and letter: the lowest value of
-  // the line's runs (the one safe for all of them).
+  // In program order, one patch per line and letter. A held line's word
+  // gets the lowest S (F) in effect at any of its runs: a run that set it
+  // there, and also a run that carried a lower one from a line before (its
+  // word now holds for that run too, up to the next word).
   std::stable_sort(patches_.begin(), patches_.end(),
                    [](const gcode::WordPatch& a, const gcode::WordPatch& b) {
                      return a.block_offset != b.block_offset ? a.block_offset < b.block_offset
                                                              : a.letter < b.letter;
                    });
   std::vector<gcode::WordPatch> merged;
-  std::uint64_t last_repeated = UINT64_MAX;
   for (auto& patch : patches_) {
     if (!merged.empty() && merged.back().block_offset == patch.block_offset &&
         merged.back().letter == patch.letter) {
-      if (std::strtod(patch.value.c_str(), nullptr) <
-          std::strtod(merged.back().value.c_str(), nullptr)) {
-        merged.back().value = std::move(patch.value);
-      }
       (patch.letter == 'S' ? s_words_ : f_words_) -= 1;
-      if (last_repeated != patch.block_offset) ++repeated_lines_;
-      last_repeated = patch.block_offset;
       continue;
     }
     merged.push_back(std::move(patch));
   }
+  std::uint64_t last_repeated = UINT64_MAX;
+  for (auto& patch : merged) {
+    const auto line = held_lines_.find(patch.block_offset);
+    if (line == held_lines_.end()) continue;
+    const bool s = patch.letter == 'S';
+    const double lowest = s ? line->second.s : line->second.f;
+    if (!std::isnan(lowest)) {
+      std::string value =
+          s ? format_word(lowest, s_step_, s_decimals_) : format_word(lowest, f_step_, f_decimals_);
+      if (std::strtod(value.c_str(), nullptr) < std::strtod(patch.value.c_str(), nullptr))
+        patch.value = std::move(value);
+    }
+    if (line->second.runs > 1 && last_repeated != patch.block_offset) ++repeated_lines_;
+    last_repeated = patch.block_offset;
+  }
   patches_ = std::move(merged);
+  held_lines_.clear();
 }
 
 void ProgramWriter::flush_cl() {

@@ -14,6 +14,7 @@
 #include <span>
 #include <sstream>
 #include <string_view>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -64,9 +65,10 @@ class ProgramWriter {
   // ... written in the blocks of one tool section.
   std::uint64_t s_words(std::uint32_t section) const;
   std::uint64_t f_words(std::uint32_t section) const;
-  // Lines that ran more than once with an S (F) of their own decided each
-  // time: each is written once, with the lowest of those values (under
-  // policy max no run is then faster than vc).
+  // Lines that ran more than once and carry a planned S (F): each is
+  // written once, with the lowest S (F) in effect at any of its runs,
+  // whether that run set it on the line or carried it from a line before
+  // (under policy max no run is then faster than vc).
   std::uint64_t repeated_lines() const { return repeated_lines_; }
 
  private:
@@ -97,6 +99,22 @@ class ProgramWriter {
   // text and patches wait for finish().
   std::uint64_t hold_from_ = UINT64_MAX;
   std::uint64_t repeated_lines_ = 0;
+  // G-code: the S (F) in effect after the last block decided, as each run
+  // plans it (its own words, before the runs of a line share one word);
+  // NaN before any. And for each held line (by offset): the lowest S (F)
+  // in effect at any of its runs, and how many runs it had. In each run
+  // the line's one word holds up to the next line with a word, and up to
+  // there the run planned no word of its own: the S it planned there is
+  // the one in effect at the line, so the lowest over the runs is safe for
+  // all of them.
+  struct HeldLine {
+    double s = std::numeric_limits<double>::quiet_NaN();
+    double f = std::numeric_limits<double>::quiet_NaN();
+    std::uint32_t runs = 0;
+  };
+  double s_in_effect_ = std::numeric_limits<double>::quiet_NaN();
+  double f_in_effect_ = std::numeric_limits<double>::quiet_NaN();
+  std::unordered_map<std::uint64_t, HeldLine> held_lines_;
   std::ostringstream cl_buffer_;
   std::unique_ptr<output::GcodeWriter> cl_writer_;
   std::function<bool(std::uint32_t)> keeps_;

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "postproc/gcode/block.h"
 #include "postproc/gcode/diagnostics.h"
 #include "postproc/gcode/interpreter.h"
 #include "postproc/program/transcript.h"
@@ -362,6 +363,22 @@ Result verify_gcode(std::string_view input, std::string_view output, const Optio
   Result result;
   result.kind = InputKind::gcode;
   ViolationSink sink(options.max_violations);
+  // A line past the reader's limit, refused before either proof splits it
+  // into tokens (a line of 200 MB held gigabytes of them): as the reader
+  // refuses it in the input, as a violation in the output.
+  const std::string too_long =
+      "line longer than " + std::to_string(gcode::kMaxLineLength) + " bytes, the reader's limit";
+  if (const std::uint32_t line = first_line_longer_than(input, gcode::kMaxLineLength)) {
+    const gcode::Diagnostic d{gcode::Code::line_too_long, Severity::error, line, 1, too_long};
+    throw InputError(gcode::code_id(d.code, d.severity), gcode::format(d, input_name));
+  }
+  if (const std::uint32_t line = first_line_longer_than(output, gcode::kMaxLineLength)) {
+    sink.add(Code::output_unreadable, line, 1, 0,
+             "the output does not interpret where the input does: " +
+                 gcode::code_id(gcode::Code::line_too_long, Severity::error) + " " + too_long);
+    sink.move_into(result);
+    return result;
+  }
   ChangeSink changes(result, options.on_change);
   compare_lines(input, output, changes, sink);
   // The interpreted events carry their lines; with lines added or removed

@@ -1,5 +1,7 @@
 #include "postproc/verify/lexer.h"
 
+#include <algorithm>
+
 namespace vcpost::verify {
 
 namespace {
@@ -87,6 +89,21 @@ std::uint32_t count_lines(std::string_view text) {
   for (std::size_t at = 0; (at = text.find('\n', at)) != std::string_view::npos; ++at) ++n;
   if (!text.empty() && text.back() != '\n') ++n;
   return n;
+}
+
+std::uint32_t first_line_longer_than(std::string_view text, std::size_t limit) {
+  std::uint32_t number = 0;
+  for (std::size_t at = 0; at < text.size();) {
+    ++number;
+    const std::size_t scan = std::min(text.size() - at, limit + 2);
+    const std::size_t nl = text.substr(at, scan).find('\n');
+    std::size_t length = nl == std::string_view::npos ? scan : nl;
+    if (length > 0 && text[at + length - 1] == '\r') --length;
+    if (length > limit) return number;
+    if (nl == std::string_view::npos) break;  // the last line, within the limit
+    at += nl + 1;
+  }
+  return 0;
 }
 
 std::vector<Line> split_lines(std::string_view text) {

@@ -21,6 +21,12 @@ std::vector<Line> split_lines(std::string_view text);
 // The number of lines split_lines() gives, without keeping them.
 std::uint32_t count_lines(std::string_view text);
 
+// The number of the first line longer than `limit` bytes (its terminator
+// and a '\r' before it not counted), 0 when none is. Looks no further into
+// a line than just past the limit: a text of one endless line costs no
+// more than that.
+std::uint32_t first_line_longer_than(std::string_view text, std::size_t limit);
+
 // The line that starts at `offset` (< text.size()), numbered `number`;
 // returns the offset just after it (after its terminator).
 std::size_t line_at(std::string_view text, std::size_t offset, std::uint32_t number, Line& line);

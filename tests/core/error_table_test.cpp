@@ -79,24 +79,42 @@ TEST(Error, FormatsDiagnostics) {
   EXPECT_EQ(format_diagnostic("E2001", {}, "bad"), "error[E2001]: bad");
 }
 
-// Every "E1234"/"W1234" literal in the product's sources names a row.
+// Every code the product's sources name is a row: each E1234/W1234 token
+// (a quoted literal or the comment beside an enumerator), and each number
+// of an enumeration of codes (`count_mismatch = 4609,`: its id is built
+// from the number, "E" + 4609, and no literal names it; such a code was
+// thrown with no row, so it reported as an internal error, exit 3).
 TEST(CodeTable, EveryCodeInTheSourcesIsInTheTable) {
   const fs::path root(VCPOST_SOURCE_DIR);
-  const std::regex literal("\"([EW][0-9]{4})\"");
-  int files = 0;
-  for (const char* folder : {"core", "geometry", "machines", "postproc"}) {
+  const std::regex token(R"(\b([EW][0-9]{4})\b)");
+  const std::regex enumeration(R"(enum\s+class\s+\w+[^{;]*\{([^}]*)\})");
+  const std::regex numbered(R"(\b[a-z_0-9]+\s*=\s*([0-9]{4})\s*[,/\n])");
+  int files = 0, numbers = 0;
+  for (const char* folder : {"core", "geometry", "machines", "postproc", "api"}) {
     for (const auto& entry : fs::recursive_directory_iterator(root / folder)) {
       const auto ext = entry.path().extension();
       if (ext != ".cpp" && ext != ".h") continue;
       ++files;
       const std::string text = read(entry.path());
-      for (std::sregex_iterator it(text.begin(), text.end(), literal), end; it != end; ++it) {
+      for (std::sregex_iterator it(text.begin(), text.end(), token), end; it != end; ++it) {
         EXPECT_NE(find_code((*it)[1].str()), nullptr)
             << (*it)[1].str() << " in " << entry.path() << " is not in core/error_codes.csv";
+      }
+      for (std::sregex_iterator e(text.begin(), text.end(), enumeration), end; e != end; ++e) {
+        const std::string body = (*e)[1].str();
+        for (std::sregex_iterator it(body.begin(), body.end(), numbered); it != end; ++it) {
+          const std::string number = (*it)[1].str();
+          ++numbers;
+          EXPECT_TRUE(find_code("E" + number) != nullptr || find_code("W" + number) != nullptr)
+              << "code " << number << " (" << (*it)[0].str() << ") in " << entry.path()
+              << " is not in core/error_codes.csv as E" << number << " or W" << number;
+        }
       }
     }
   }
   EXPECT_GT(files, 50);
+  // The enumerations of G-code, STL and verify codes.
+  EXPECT_GT(numbers, 60);
 }
 
 // docs/errors.md is generated at build time; the committed copy must match.

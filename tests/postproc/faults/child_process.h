@@ -55,6 +55,7 @@ struct ChildResult {
   int signal = 0;
   std::string out, err;
   double seconds = 0;
+  long peak_rss_kb = 0;  // the child's peak resident set size (getrusage's ru_maxrss), KB
   // What a shell would show as $?.
   int shell_status() const { return exited ? exit_code : 128 + signal; }
 };
@@ -154,13 +155,15 @@ inline ChildResult run_child(const ChildOptions& options) {
     }
   }
   int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  rusage usage{};
+  while (::wait4(pid, &status, 0, &usage) < 0 && errno == EINTR) {
   }
   ChildResult r;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   r.exited = WIFEXITED(status);
   r.exit_code = r.exited ? WEXITSTATUS(status) : -1;
   r.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
+  r.peak_rss_kb = usage.ru_maxrss;
   r.out = read_file(options.stdout_file);
   r.err = read_file(options.stderr_file);
   return r;

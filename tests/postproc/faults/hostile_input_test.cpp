@@ -5,7 +5,9 @@
 // the suite) and, where memory was the problem, an address-space limit.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <regex>
 
 #include "tests/postproc/faults/child_process.h"
@@ -73,6 +75,52 @@ TEST(HostileInput, NulFileStopsAtTheFirstNulInBoundedMemory) {
     EXPECT_NE(r.err.find(z.string() + ":1:1: error[E1002]: NUL byte: this is no text program"),
               std::string::npos)
         << args[1] << ": " << r.err;
+  }
+}
+
+// Peak resident size of a run that must not hold its input: 100 MB (the
+// runs take 22-34 MB), 400 MB under AddressSanitizer (its shadow memory).
+#if defined(__SANITIZE_ADDRESS__)
+constexpr long kPeakRssBoundKb = 400'000;
+#else
+constexpr long kPeakRssBoundKb = 100'000;
+#endif
+
+TEST(HostileInput, EndlessFirstLineIsRefusedInBoundedMemory) {
+  // A program whose first line is 200 MB long, no newline, under a line
+  // limit of 65,536 bytes: the kind was sniffed from the whole line (a
+  // copy of it as a word, 460 MB resident for `post`, `moves`), and
+  // `verify` split it into tokens (660 MB for letters, 12.9 GB for words).
+  // Now each refuses it at the limit, having read no further than that:
+  // the peak resident size stays far below the file's size.
+  Folder work, logs;
+  const fs::path p = work / "long.nc";
+  for (const std::string piece : {"G1 X1 Y2 Z3 ", "X"}) {
+    {
+      std::ofstream out(p, std::ios::binary);
+      const std::string block = [&] {
+        std::string b;
+        while (b.size() < (1u << 20)) b += piece;
+        return b;
+      }();
+      for (std::size_t written = 0; written < 200'000'000; written += block.size()) out << block;
+    }
+    const auto limited = [](ChildOptions& o) {
+      o.memory_limit = kAddressSpaceLimit;
+      o.timeout_s = 30;
+    };
+    for (const auto& args : {std::vector<std::string>{kVcpost, "verify", p.string(), p.string()},
+                             std::vector<std::string>{kVcpost, "moves", p.string()},
+                             dome_job(p.string(), {"-o", "-"})}) {
+      const ChildResult r = run(args, logs, limited);
+      EXPECT_EQ(r.shell_status(), 2) << args[1] << " '" << piece << "': " << r.err;
+      EXPECT_EQ(r.err, "vcpost: error: " + p.string() +
+                           ":1:1: error[E1006]: line longer than 65536 bytes, the reader's limit\n")
+          << args[1] << " '" << piece << "'";
+      EXPECT_LT(r.peak_rss_kb, kPeakRssBoundKb) << args[1] << " '" << piece << "'";
+      std::printf("%s on a 200 MB line of '%s': peak RSS %ld KB, %.2f s\n", args[1].c_str(),
+                  piece.c_str(), r.peak_rss_kb, r.seconds);
+    }
   }
 }
 
@@ -263,6 +311,43 @@ void write_plane_job(const fs::path& work, double z_tip) {
   write(work / "plane.nc", std::string("%\nG21 G90 G17\nT1 M6\nS10000 M3\nG0 X-20 Y-20 ") + z +
                                "\nG1 X20 F500\nG1 Y-10\nG1 X-20\nG1 Y0\nG1 X20\nG1 Y10\n"
                                "G1 X-20\nM5\nM30\n%\n");
+}
+
+TEST(HostileInput, BinaryStlCountBelowItsRecordsIsAnInputError) {
+  // The plane as a binary STL whose header announces 1 triangle of its 2:
+  // refused with E4609, which had no row in the code table, so the run
+  // ended as an internal error (exit 3) and `vcpost explain E4609` knew
+  // nothing of it. Now a documented input error: exit 2.
+  Folder work, logs;
+  write_plane_job(work.path(), 0.0);
+  std::string stl(80, ' ');
+  const auto put = [&stl](const auto& value) {
+    stl.append(reinterpret_cast<const char*>(&value), sizeof value);
+  };
+  put(std::uint32_t{1});
+  for (const auto& t : {std::array<float, 9>{-50, -50, 0, 50, -50, 0, 50, 50, 0},
+                        std::array<float, 9>{-50, -50, 0, 50, 50, 0, -50, 50, 0}}) {
+    for (float v : {0.0f, 0.0f, 1.0f}) put(v);
+    for (float v : t) put(v);
+    put(std::uint16_t{0});
+  }
+  ASSERT_EQ(stl.size(), 84u + 2 * 50);
+  const fs::path half = work / "half.stl";
+  write(half, stl);
+  const ChildResult r =
+      run({kVcpost, "post", (work / "plane.nc").string(), "--model", half.string(), "--tool",
+           "ball:10", "--vc", "120", "--ap", "0.3", "-o", (work / "out.nc").string()},
+          logs);
+  EXPECT_EQ(r.shell_status(), 2) << r.err;
+  EXPECT_EQ(r.err.substr(0, r.err.find('\n') + 1),
+            "vcpost: error: " + half.string() +
+                ": offset 134: error[E4609]: binary STL header announces 1 triangles but the "
+                "file holds 2 whole triangle records; the count is wrong (a damaged or "
+                "concatenated file): export the model again\n");
+  EXPECT_FALSE(fs::exists(work / "out.nc"));
+  const ChildResult explain = run({kVcpost, "explain", "E4609"}, logs);
+  EXPECT_EQ(explain.shell_status(), 0) << explain.err;
+  EXPECT_NE(explain.out.find("stl_count_mismatch"), std::string::npos) << explain.out;
 }
 
 TEST(HostileInput, MismatchErrorGivesTheSectionsDiagnosis) {

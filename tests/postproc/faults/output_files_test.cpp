@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 #include <sys/sysmacros.h>
 
+#include <regex>
+
 #include "tests/postproc/faults/child_process.h"
 
 namespace vcpost::test {
@@ -286,6 +288,83 @@ TEST(OutputFiles, HardLinkIsRefusedNotSplit) {
   EXPECT_NE(r.err.find("it has 2 hard links"), std::string::npos) << r.err;
   EXPECT_EQ(read_file(work / "out.nc"), "old\n");
   EXPECT_EQ(fs::hard_link_count(work / "other.nc"), 2u);
+}
+
+// `ARGUMENTS` as one shell word each ('...'; no test path holds a quote).
+std::string shell_words(const std::vector<std::string>& args) {
+  std::string line;
+  for (const auto& a : args) line += (line.empty() ? "'" : " '") + a + "'";
+  return line;
+}
+
+// The JSON summary without the one key that differs from run to run.
+std::string without_run_time(const std::string& summary) {
+  static const std::regex run_time("\n *\"run_time_s\": [0-9.e+-]+,");
+  return std::regex_replace(summary, run_time, "");
+}
+
+TEST(OutputFiles, OwnStandardStreamsAreWrittenInPlace) {
+  // /dev/stderr, /dev/stdout, /dev/fd/N and /proc/self/fd/N are links to
+  // the process's own open file. `--summary-json /dev/stderr 2>>log`
+  // followed them to the log and replaced it by rename (a new inode, its
+  // first line gone); behind a pipe (`2>&1 | cat`, `-o /dev/stdout | wc`)
+  // the link leads to "pipe:[...]" and the run failed, exit 2: "cannot
+  // create a file in '/proc/self/fd'". Now the bytes go into the open
+  // descriptor as the shell opened it: appended to the log, into the pipe.
+  Folder work, logs;
+  const DomeJob job(work.path());
+  const fs::path out = work / "out.nc", summary = work / "s.json";
+  const ChildResult plain =
+      run(job.args({"-q", "-o", out.string(), "--summary-json", summary.string()}), logs);
+  ASSERT_EQ(plain.shell_status(), 0) << plain.err;
+  const std::string program = read_file(out), json = without_run_time(read_file(summary));
+  ASSERT_GT(json.size(), 500u);
+  const auto shell = [&](const std::string& line) {
+    return run({"/bin/sh", "-c", "cd '" + work.path().string() + "' && " + line}, logs);
+  };
+  const fs::path log = work / "log";
+  for (const std::string name : {"/dev/stderr", "/dev/fd/2", "/proc/self/fd/2"}) {
+    std::ofstream(log) << "x\n";
+    const auto inode = [&log] {
+      struct stat info {};
+      return ::stat(log.c_str(), &info) == 0 ? info.st_ino : 0;
+    };
+    const auto before = inode();
+    const ChildResult r = shell(
+        shell_words(job.args({"-q", "-o", out.string(), "--summary-json", name})) + " 2>>log");
+    EXPECT_EQ(r.shell_status(), 0) << name << ": " << r.err;
+    EXPECT_EQ(inode(), before) << name << ": the log was replaced";
+    const std::string text = read_file(log);
+    EXPECT_EQ(text.substr(0, 2), "x\n") << name;
+    EXPECT_TRUE(without_run_time(text.substr(std::min<std::size_t>(2, text.size()))) == json)
+        << name << ": the log holds " << text.size() << " bytes: " << text.substr(0, 40);
+  }
+  for (const std::string name : {"/dev/stderr", "/proc/self/fd/2"}) {
+    fs::remove(work / "got");
+    const ChildResult r =
+        shell("{ " + shell_words(job.args({"-q", "-o", out.string(), "--summary-json", name})) +
+              " 2>&1; echo $? >status; } | cat >got");
+    EXPECT_EQ(r.shell_status(), 0) << name << ": " << r.err;
+    EXPECT_EQ(read_file(work / "status"), "0\n")
+        << name << ": " << read_file(work / "got").substr(0, 300);
+    EXPECT_TRUE(without_run_time(read_file(work / "got")) == json)
+        << name << ": " << read_file(work / "got").substr(0, 300);
+  }
+  for (const std::string name : {"/dev/stdout", "/dev/fd/1"}) {
+    fs::remove(work / "got");
+    const ChildResult r = shell("{ " + shell_words(job.args({"-q", "-o", name})) +
+                                " 2>err; echo $? >status; } | cat >got");
+    EXPECT_EQ(r.shell_status(), 0) << name << ": " << r.err;
+    EXPECT_EQ(read_file(work / "status"), "0\n") << name << ": " << read_file(work / "err");
+    EXPECT_TRUE(read_file(work / "got") == program)
+        << name << ": " << read_file(work / "got").size() << " bytes";
+  }
+  // Standard input is no output (it replaced the file behind it): refused.
+  std::ofstream(log) << "x\n";
+  const ChildResult r = shell(shell_words(job.args({"-q", "-o", "/dev/stdin"})) + " <log");
+  EXPECT_EQ(r.shell_status(), 2) << r.err;
+  EXPECT_EQ(r.err, "vcpost: error: cannot write '/dev/stdin': it is open for reading only\n");
+  EXPECT_EQ(read_file(log), "x\n");
 }
 
 }  // namespace

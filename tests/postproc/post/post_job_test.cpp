@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -257,20 +258,33 @@ std::vector<std::string> s_per_line(const std::string& text) {
 }
 
 TEST(PostJob, LinesRunTwiceGetTheLowestSOfTheirRuns) {
-  // The pass at y = 0 as a subroutine called after the pass at y = -12 and
-  // again after the pass at y = 15 (used to end in "internal error:
+  // The pass at y = 0 as a subroutine, called at once and again at y = 0.4
+  // after the pass at y = 15 (used to end in "internal error:
   // write_patched: patch offset 18446744073709551456"). The oracle is the
   // same program unrolled: its events are the same, so each run of a body
-  // line gets the S the unrolled copy of that line gets, and the line's one
-  // S must be the lower of the two.
+  // line gets the S the unrolled copy of that line gets. The called
+  // program, run line by line (each S word in effect until the next), must
+  // never turn faster than the unrolled one: a body line's one S is the
+  // lowest S the unrolled program has in effect at either of its runs,
+  // whether that run sets S on the line or carries it from a line before.
+  // (It was the lower of the words the runs set: at the first cut, where
+  // the first run keeps the S set before the call and the second run, next
+  // to the first pass, sets a higher one, the first run went 10 % too fast.)
   // vc 60 keeps S under the profile's 8000 rpm (at 120 the flat top is
   // clamped there); F300 lets the planner change S on almost every line.
   const std::string header = "%\nG21 G90 G17 G94\nT1 M6\nS4000 M3\nF300\n";
   const std::string tail = "M5\nM30\n%\n";
-  const std::string body = dome_pass(0), before = dome_pass(-12), between = dome_pass(15);
-  const std::string unrolled = header + before + body + between + body + tail;
-  const std::string called = header + "o100 sub\n" + body + "o100 endsub\n" + before +
-                             "o100 call\n" + between + "o100 call\n" + tail;
+  // Down to the surface in rapid, so the first cut (X-19) is the first S
+  // the plan sets; the subroutine's argument is the pass's Y (the dome's Z
+  // differs by under 0.003 mm at y = 0.4, within the contact tolerance).
+  const std::string body = std::regex_replace(dome_pass(0), std::regex("\nG1 Z"), "\nG0 Z");
+  const std::string between = dome_pass(15);
+  const auto at = [&body](const std::string& y) {
+    return std::regex_replace(body, std::regex("Y0\\.000000"), "Y" + y);
+  };
+  const std::string unrolled = header + body + between + at("0.400000") + tail;
+  const std::string called = header + "o100 sub\n" + at("[0.000000+#1]") + "o100 endsub\n" +
+                             "o100 call [0]\n" + between + "o100 call [0.4]\n" + tail;
   // An inline control: linuxcnc-3axis stops at every S word, and its plan
   // keeps one S per stretch between stops, none inside a pass.
   const auto profile = machines::builtin_profile("generic");
@@ -280,29 +294,70 @@ TEST(PostJob, LinesRunTwiceGetTheLowestSOfTheirRuns) {
   const auto lines_of = [](const std::string& t) {
     return static_cast<std::size_t>(std::count(t.begin(), t.end(), '\n'));
   };
-  const std::size_t h = lines_of(header), b = lines_of(body), p1 = lines_of(before),
-                    p2 = lines_of(between);
-  ASSERT_EQ(u.size(), h + p1 + b + p2 + b + lines_of(tail));
-  ASSERT_EQ(c.size(), h + 1 + b + 1 + p1 + 1 + p2 + 1 + lines_of(tail));
-  std::size_t both = 0, differ = 0;
-  for (std::size_t i = 0; i < b; ++i) {
-    const std::string& first = u[h + p1 + i];
-    const std::string& second = u[h + p1 + b + p2 + i];
-    std::string expected = first.empty() ? second : first;
-    if (!first.empty() && !second.empty()) {
-      ++both;
-      if (first != second) ++differ;
-      if (std::stod(second) < std::stod(first)) expected = second;
-    }
-    EXPECT_EQ(c[h + 1 + i], expected) << "body line " << i + 1;
+  const std::size_t h = lines_of(header), b = lines_of(body), p = lines_of(between),
+                    t = lines_of(tail);
+  ASSERT_EQ(u.size(), h + b + p + b + t);
+  ASSERT_EQ(c.size(), h + 1 + b + 1 + 1 + p + 1 + t);
+  // The lines of the called program in the order they run, which is the
+  // order of the unrolled program's lines (the o-lines hold no S).
+  const std::size_t body_at = h + 1, between_at = h + 1 + b + 2, tail_at = between_at + p + 1;
+  std::vector<std::size_t> runs;
+  const auto add = [&runs](std::size_t first, std::size_t count) {
+    for (std::size_t i = 0; i < count; ++i) runs.push_back(first + i);
+  };
+  add(0, h);
+  add(body_at, b);
+  add(between_at, p);
+  add(body_at, b);
+  add(tail_at, t);
+  ASSERT_EQ(runs.size(), u.size());
+  // The S in effect at each run (the line's own S or the last one before).
+  std::vector<double> u_in_effect, c_in_effect;
+  double u_s = 0, c_s = 0;
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    if (!u[k].empty()) u_s = std::stod(u[k]);
+    if (!c[runs[k]].empty()) c_s = std::stod(c[runs[k]]);
+    u_in_effect.push_back(u_s);
+    c_in_effect.push_back(c_s);
   }
-  // The passes around the calls are the unrolled program's, word for word.
-  for (std::size_t i = 0; i < p1; ++i) EXPECT_EQ(c[h + 1 + b + 1 + i], u[h + i]);
-  for (std::size_t i = 0; i < p2; ++i) EXPECT_EQ(c[h + 1 + b + 1 + p1 + 1 + i], u[h + p1 + b + i]);
+  std::size_t faster = 0;
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    if (c_in_effect[k] > u_in_effect[k]) {
+      ++faster;
+      ADD_FAILURE() << "run " << k + 1 << " (line " << runs[k] + 1 << " of the called program) at S"
+                    << c_in_effect[k] << ", in the unrolled program at S" << u_in_effect[k];
+    }
+  }
+  EXPECT_EQ(faster, 0u);
+  // Each body line: an S word when either run of the unrolled program has
+  // one there, and then the lower of the two S in effect at its runs.
+  const std::size_t first_run = h, second_run = h + b + p;
+  std::size_t both = 0, either = 0, carried = 0;
+  for (std::size_t i = 0; i < b; ++i) {
+    const std::string& first = u[first_run + i];
+    const std::string& second = u[second_run + i];
+    std::string expected;
+    if (!first.empty() || !second.empty()) {
+      ++either;
+      if (!first.empty() && !second.empty()) ++both;
+      const double lowest = std::min(u_in_effect[first_run + i], u_in_effect[second_run + i]);
+      if ((first.empty() || second.empty()) && lowest < std::stod(first + second)) ++carried;
+      expected = std::to_string(static_cast<long>(lowest));
+    }
+    EXPECT_EQ(c[body_at + i], expected) << "body line " << i + 1 << ": S'" << first << "' then S'"
+                                        << second << "' in the unrolled program";
+  }
+  // The pass between the calls is the unrolled program's, word for word.
+  for (std::size_t i = 0; i < p; ++i) EXPECT_EQ(c[between_at + i], u[h + b + i]);
   EXPECT_GT(both, 5u);
-  std::printf("%zu body lines with an S in both runs, %zu with two different values\n", both,
-              differ);
-  EXPECT_EQ(called_summary.repeated_lines, both);
+  // Lines where one run sets S and the other carries a lower one from
+  // before: the case whose S used to be the setting run's.
+  EXPECT_EQ(carried, 1u);
+  std::printf(
+      "%zu body lines with an S in both runs, %zu in one run only (%zu of them lower "
+      "in the run without)\n",
+      both, either - both, carried);
+  EXPECT_EQ(called_summary.repeated_lines, either);
   EXPECT_EQ(unrolled_summary.repeated_lines, 0u);
   EXPECT_EQ(called_summary.s_words + both, unrolled_summary.s_words);
 }

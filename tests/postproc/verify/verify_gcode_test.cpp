@@ -289,6 +289,30 @@ TEST(VerifyLexer, LinesForwardAndBackwardAgree) {
   EXPECT_EQ(end, 0u);
 }
 
+TEST(VerifyLexer, FirstLineLongerThanTheLimitAsTheReaderCountsIt) {
+  // Limit 4: the terminator and a CR before it do not count; a lone CR does.
+  EXPECT_EQ(first_line_longer_than("abcd\r\nabcd\nabcd", 4), 0u);
+  EXPECT_EQ(first_line_longer_than("abcd\nabcde\nx\n", 4), 2u);
+  EXPECT_EQ(first_line_longer_than("ab\rcd\n", 4), 1u);
+  EXPECT_EQ(first_line_longer_than("a\n\nabcdefgh", 4), 3u);  // the last line, no terminator
+  EXPECT_EQ(first_line_longer_than("", 4), 0u);
+  // A line too long in the input is refused as the reader refuses it; in
+  // the output it is the one violation.
+  const std::string long_line = "G1 X1" + std::string(70000, ' ') + "\n";
+  try {
+    run("G21\n" + long_line, "G21\nM30\n");
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.code(), "E1006");
+    EXPECT_STREQ(e.what(),
+                 "input:2:1: error[E1006]: line longer than 65536 bytes, the reader's limit");
+  }
+  const Result r = run(kInput, "%\n" + long_line);
+  ASSERT_EQ(r.violation_count, 1u);
+  EXPECT_EQ(r.violations[0].code, Code::output_unreadable);
+  EXPECT_EQ(r.violations[0].line, 2u);
+}
+
 TEST(VerifyLexer, TokensCoverTheLineAndFindWords) {
   std::vector<Token> tokens;
   const std::string_view line = "N80G0X53.Y-56.128 S #<rpm> F[#1*2] (S100) #<f1>=2";

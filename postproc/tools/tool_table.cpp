@@ -81,6 +81,8 @@ std::optional<geometry::Tool> ToolEntry::geometry() const {
     case ToolShape::flat:
       return geometry::Tool::flat(diameter);
     case ToolShape::bull_nose:
+      // A corner that fills the radius is a ball end (as geometry::parse_tool).
+      if (corner_radius && *corner_radius == diameter / 2) return geometry::Tool::ball(diameter);
       if (corner_radius && *corner_radius > 0 && *corner_radius < diameter / 2)
         return geometry::Tool::bull_nose(diameter, *corner_radius);
       return std::nullopt;

@@ -35,6 +35,11 @@ TEST(ToolOption, NumberedSpecs) {
   const ToolEntry o = parse_tool_option("T4=other");
   EXPECT_EQ(o.shape, ToolShape::other);
   EXPECT_FALSE(o.geometry());
+  // A corner radius of D/2 is the ball (issue 21): posted as one.
+  const auto full = parse_tool_option("T5=bull:10:5").geometry();
+  ASSERT_TRUE(full);
+  EXPECT_EQ(full->kind, geometry::ToolKind::ball);
+  EXPECT_DOUBLE_EQ(full->corner_radius, 5);
 }
 
 TEST(ToolOption, BadSpecsNameTheOption) {

@@ -33,7 +33,7 @@ constexpr const char* kDescription =
     "or repeated. Then both programs are interpreted (--dialect, default the --machine\n"
     "profile's) and must give the same motions and other events, positions exactly equal;\n"
     "only spindle speeds and feed rates may differ.\n"
-    "APT CL INPUT: OUTPUT (G-code in the --machine profile's dialect) must hold the CL\n"
+    "APT CL INPUT: OUTPUT (G-code in the --machine profile's output format) must hold the CL\n"
     "motions one to one: rapids as rapids, feeds as feeds, arcs with the same plane,\n"
     "direction and centre; end points within --tolerance on each axis (at least half a\n"
     "step of the profile's output decimals, the rounding a correct output has); spindle\n"
@@ -97,8 +97,12 @@ void run(const Arguments& args) {
   if (args.input == "-" && args.output == "-")
     throw CommandError("verify: INPUT and OUTPUT cannot both be '-'");
   const machines::MachineProfile profile = load_machine(args.machine);
+  const ProgramText input_text(args.input), output_text(args.output);
+  const std::string_view input = input_text.view(), output = output_text.view();
+  const bool cl_input = post::detect_program_kind(input) == post::ProgramKind::cldata;
   verify::Options options;
-  options.dialect = post::dialect_of(profile);
+  // From CL data vcpost wrote the output in the profile's output format.
+  options.dialect = cl_input ? post::output_dialect_of(profile) : post::dialect_of(profile);
   if (!args.dialect.empty()) {
     const auto d = gcode::dialect_from_name(args.dialect);
     if (!d) throw CommandError("verify: --dialect: unknown dialect '" + args.dialect + "'");
@@ -107,8 +111,6 @@ void run(const Arguments& args) {
   options.tolerance_mm = args.tolerance;
   options.output_decimals = profile.output().decimals;
   options.output_feed_decimals = profile.output().feed_decimals;
-  const ProgramText input_text(args.input), output_text(args.output);
-  const std::string_view input = input_text.view(), output = output_text.view();
   const std::string in_name = args.input == "-" ? "<stdin>" : args.input;
   const std::string out_name = args.output == "-" ? "<stdin>" : args.output;
   if (post::detect_program_kind(output) == post::ProgramKind::cldata)
@@ -125,9 +127,8 @@ void run(const Arguments& args) {
   }
   verify::Result result;
   try {
-    result = post::detect_program_kind(input) == post::ProgramKind::cldata
-                 ? verify::verify_cl(input, output, options, in_name)
-                 : verify::verify_gcode(input, output, options, in_name);
+    result = cl_input ? verify::verify_cl(input, output, options, in_name)
+                      : verify::verify_gcode(input, output, options, in_name);
   } catch (const verify::InputError& e) {
     throw CommandError(e.code(), e.what());
   }

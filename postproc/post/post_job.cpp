@@ -487,6 +487,18 @@ gcode::Dialect dialect_of(const machines::MachineProfile& profile) {
   return gcode::rs274ngc_dialect();
 }
 
+gcode::Dialect output_dialect_of(const machines::MachineProfile& profile) {
+  switch (profile.output_format()) {
+    case machines::OutputFormat::fanuc:
+      return gcode::fanuc_dialect();
+    case machines::OutputFormat::mazak:
+      return gcode::mazak_dialect();
+    case machines::OutputFormat::rs274ngc:
+      break;
+  }
+  return gcode::rs274ngc_dialect();
+}
+
 ProgramKind detect_program_kind(std::string_view text) {
   // The first statement that is not blank or a comment decides. A line is
   // looked at no further than just past the readers' line limit: a longer

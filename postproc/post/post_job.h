@@ -26,6 +26,11 @@ enum class ProgramKind { gcode, cldata };
 
 // The G-code dialect a machine profile reads.
 gcode::Dialect dialect_of(const machines::MachineProfile& profile);
+// The dialect of the G-code vcpost writes from CL data for the profile (its
+// output format): what that output is read back in (verify). It differs
+// from dialect_of where the control reads two languages and vcpost writes
+// one (sinumerik-840d: Siemens language in, ISO dialect out).
+gcode::Dialect output_dialect_of(const machines::MachineProfile& profile);
 
 // G-code or APT CL data, recognised by content: CL records are `WORD/...`
 // statements (GOTO/, FEDRAT/, CUTTER/ ...) or bare PARTNO/FINI lines.

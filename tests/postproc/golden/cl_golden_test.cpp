@@ -196,7 +196,7 @@ TEST(GoldenCl, EveryCaseEqualsItsStoredResultVerifiesAndRunsInRs274) {
       if (p.exit_code != 0) continue;
       ++written;
       verify::Options options;
-      options.dialect = post::dialect_of(profile);
+      options.dialect = post::output_dialect_of(profile);
       options.output_decimals = profile.output().decimals;
       options.output_feed_decimals = profile.output().feed_decimals;
       const verify::Result v = verify::verify_cl(text, p.program, options, name);

@@ -23,6 +23,7 @@
 #include "machines/builtin.h"
 #include "postproc/gcode/interpreter.h"
 #include "postproc/program/timing.h"
+#include "postproc/program/transcript.h"
 
 namespace vcpost::post {
 namespace {
@@ -395,6 +396,34 @@ TEST(PostJob, RepeatLoopAndFanucM98PostWithOneSPerLine) {
   EXPECT_NO_THROW(
       run_post(called, machines::builtin_profile("fanuc-3axis"), fanuc, &fanuc_summary));
   EXPECT_GT(fanuc_summary.repeated_lines, 0u);
+}
+
+// The sinumerik-840d profile reads the Siemens language that NX's 840D posts
+// write (MSG, G71, G642, T with D), with no --dialect: its CL output is ISO
+// (verify reads that in output_dialect_of), its input the control's own.
+TEST(PostJob, SinumerikProfileReadsTheSiemensLanguage) {
+  std::string program = dome_raster(2.0, 1.0, 5000);
+  const std::string header = "%\n(dome raster)\nG21 G90 G17 G94\nT1 M6\n";
+  ASSERT_EQ(program.rfind(header, 0), 0u);
+  program = "; dome raster\nMSG(\"FINISH D10\")\nG17 G71 G90 G94 G642\nT1 D1\nM6\n" +
+            program.substr(header.size(), program.size() - header.size() - 2);  // no "%\n"
+  const auto profile = machines::builtin_profile("sinumerik-840d");
+  EXPECT_EQ(post::dialect_of(profile).kind, gcode::DialectKind::sinumerik);
+  EXPECT_EQ(post::output_dialect_of(profile).kind, gcode::DialectKind::fanuc);
+  PostSummary summary;
+  const std::string out = run_post(program, profile, settings_for(120), &summary);
+  EXPECT_GT(summary.s_words, 1u);
+  const auto motions = [](const std::string& text) {
+    gcode::Interpreter interpreter(text, gcode::sinumerik_dialect());
+    std::vector<program::Event> events;
+    while (interpreter.next(events)) {
+    }
+    std::string moves;
+    for (const auto& e : events)
+      if (program::is_motion(e)) program::append_transcript(moves, e);
+    return moves;
+  };
+  EXPECT_EQ(motions(out), motions(program));
 }
 
 // A bull-nose end mill (D 10, rc 2) on a raster written for it: every point

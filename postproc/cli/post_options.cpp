@@ -560,6 +560,8 @@ JobRun run_job(const PostArguments& args, bool write_program) {
     if (r.file) note_links(*r.file, r.path, notes);
   }
   if (file) note_links(*file, args.output, notes);
+  for (const std::string& w : post::unused_tool_choices(*settings.tools, summary.sections))
+    notes.push_back("warning: " + w);
   errno = 0;
   if (deliver(pending, std::cout)) std::cout << to_stdout << std::flush;
   if (!std::cout) {
@@ -675,8 +677,8 @@ void finish_job(const PostArguments& args, const JobRun& run) {
     if (!summary.sections.empty() &&
         std::none_of(summary.sections.begin(), summary.sections.end(),
                      [](const post::ToolSection& s) { return s.posted; })) {
-      std::cerr << "vcpost: warning: no section is posted (no ball-end mill whose path touches the "
-                   "model): the program keeps its own speeds\n";
+      std::cerr << "vcpost: warning: no section is posted (each section's reason is above): the "
+                   "program keeps its own speeds\n";
     }
     print_warnings(summary);
   }

@@ -11,6 +11,30 @@ bool posts_shape(tools::ToolShape shape) {
   return shape == tools::ToolShape::ball || shape == tools::ToolShape::bull_nose;
 }
 
+std::vector<std::string> unused_tool_choices(const tools::ToolChoices& choices,
+                                             const std::vector<ToolSection>& sections) {
+  std::vector<int> used;
+  for (const ToolSection& s : sections)
+    if (s.tool) used.push_back(*s.tool);
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
+  std::string tools;
+  for (const int t : used) tools += (tools.empty() ? "T" : ", T") + std::to_string(t);
+  std::vector<std::string> warnings;
+  const auto check = [&](const std::string& option, int number) {
+    if (std::binary_search(used.begin(), used.end(), number)) return;
+    warnings.push_back(option + " names T" + std::to_string(number) +
+                       ", which no tool change of the program selects (its tools: " +
+                       (tools.empty() ? std::string("none numbered") : tools) + ")");
+  };
+  if (choices.post_tools)
+    for (const int t : *choices.post_tools) check("--post-tools", t);
+  for (const auto& [t, vc] : choices.vc_by_tool) check("--vc", t);
+  for (const tools::ToolEntry& e : choices.table.numbered())
+    if (e.origin == tools::ToolOrigin::command_line) check("--tool", *e.number);
+  return warnings;
+}
+
 ToolSection decide_section(std::uint32_t index, std::optional<int> number, std::uint32_t first_line,
                            const tools::ToolEntry* tool, const tools::ToolChoices& choices,
                            double ap_mm) {

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "postproc/tools/tool_table.h"
 
@@ -68,5 +69,13 @@ bool posts_shape(tools::ToolShape shape);
 ToolSection decide_section(std::uint32_t index, std::optional<int> number, std::uint32_t first_line,
                            const tools::ToolEntry* tool, const tools::ToolChoices& choices,
                            double ap_mm);
+
+// The tool numbers the command line names (--post-tools, --vc T2=..,
+// --tool T8=..; not a tools file, a shop's whole table) that no section of
+// the program selects, each as a warning in words: a typo or the wrong
+// program, which otherwise only shows as a tool posted at another speed or
+// not at all.
+std::vector<std::string> unused_tool_choices(const tools::ToolChoices& choices,
+                                             const std::vector<ToolSection>& sections);
 
 }  // namespace vcpost::post

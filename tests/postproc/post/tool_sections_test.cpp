@@ -167,6 +167,29 @@ TEST(ToolSections, VcPerTool) {
   EXPECT_LE(out.summary.sections[1].after->max, 90 * (1 + 1e-9));
 }
 
+// Tool numbers the command line names but the program never selects are
+// warned of, one line each; a tools file may list a shop's whole table.
+TEST(ToolSections, ToolsNamedButNotInTheProgramAreWarnedOf) {
+  tools::ToolChoices choices;
+  choices.post_tools = std::vector<int>{2, 7};
+  choices.vc_by_tool = {{2, 150.0}, {3, 150.0}};
+  choices.table.add(tools::parse_tool_option("T8=ball:6"));
+  tools::ToolEntry from_file = tools::parse_tool_option("T9=ball:6");
+  from_file.origin = tools::ToolOrigin::tools_file;
+  choices.table.add(from_file);
+  std::vector<ToolSection> sections(3);
+  sections[1].tool = 2;
+  sections[2].tool = 1;
+  const std::vector<std::string> expected = {
+      "--post-tools names T7, which no tool change of the program selects (its tools: T1, T2)",
+      "--vc names T3, which no tool change of the program selects (its tools: T1, T2)",
+      "--tool names T8, which no tool change of the program selects (its tools: T1, T2)"};
+  EXPECT_EQ(unused_tool_choices(choices, sections), expected);
+  choices = {};
+  choices.vc = 120;
+  EXPECT_TRUE(unused_tool_choices(choices, sections).empty());
+}
+
 TEST(ToolSections, UnknownToolsAndSectionsInTheAirKeepTheirSpeed) {
   // T3 is named nowhere; T2 is a ball whose path runs 25 mm and more above the dome.
   std::string lifted;

@@ -405,6 +405,95 @@ TEST(HostileInput, MismatchErrorGivesTheSectionsDiagnosis) {
   EXPECT_EQ(right.shell_status(), 0) << right.err;
 }
 
+std::vector<std::string> wavy_job(const std::string& model, std::vector<std::string> extra) {
+  std::vector<std::string> a{kVcpost,   "post", (kSamples / "wavy_raster_a0_ae2.nc").string(),
+                             "--model", model,  "--vc",
+                             "120",     "--ap", "0.3"};
+  a.insert(a.end(), extra.begin(), extra.end());
+  return a;
+}
+
+TEST(HostileInput, MismatchesThatTouchALittleAreErrors) {
+  // The rule was "touching at 1 % of all points or fewer and gouging at
+  // half": a D30 ball on the D10 raster touches at 108 of 8,704 points
+  // (1.2 %) and gouges at 8,596; the wavy model labelled INCH (its numbers
+  // are mm: 25.4 times too large) is gouged at 2,918 points, touched at
+  // none, and missed at 5,786. Both posted with exit 0 and rewritten S.
+  Folder work, logs;
+  const fs::path out = work / "out.nc";
+  const ChildResult ball30 = run(
+      wavy_job((kSamples / "wavy.step").string(), {"--tool", "ball:30", "-o", out.string()}), logs);
+  EXPECT_EQ(ball30.shell_status(), 2) << ball30.err;
+  EXPECT_EQ(ball30.err.rfind("vcpost: error: the toolpath gouges the model at 8596 of 8704 points "
+                             "and touches it at only 108: the program does not match the model; "
+                             "gouge depth min 0.010, median 0.281, max 0.819 mm (8596 points)",
+                             0),
+            0u)
+      << ball30.err;
+  EXPECT_FALSE(fs::exists(out));
+
+  std::string step = read_file(kSamples / "wavy.step");
+  const std::string mm = "#213 = ( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.) );\n";
+  ASSERT_NE(step.find(mm), std::string::npos);
+  step.replace(step.find(mm), mm.size(),
+               "#213 = ( CONVERSION_BASED_UNIT('INCH',#900) LENGTH_UNIT() NAMED_UNIT(#901) );\n"
+               "#900 = LENGTH_MEASURE_WITH_UNIT(LENGTH_MEASURE(25.4),#902);\n"
+               "#901 = DIMENSIONAL_EXPONENTS(1.,0.,0.,0.,0.,0.,0.);\n"
+               "#902 = ( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.) );\n");
+  write(work / "inch.step", step);
+  const ChildResult inch = run(wavy_job((work / "inch.step").string(), {"-o", out.string()}), logs);
+  EXPECT_EQ(inch.shell_status(), 2) << inch.err;
+  EXPECT_EQ(inch.err,
+            "vcpost: error: the toolpath gouges the model at 2918 of 8704 points and touches it "
+            "at only 0: the program does not match the model; gouge depth min 3.211, median "
+            "13.348, max 19.988 mm (2918 points); no one offset dominates (depths that vary with "
+            "the surface's slope: a shifted work offset, other units or another tool diameter)\n");
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(HostileInput, SectionThatNeverTouchesKeepsItsSpeed) {
+  // The D10 ball's tip 0.5 mm into the dome's pole along 2 mm (a few
+  // gouging points, too few to call the program a mismatch), the rest of
+  // the path in the air: no point touches, so no cutting speed is kept and
+  // the section keeps its S (it was posted: S rewritten from the gouges).
+  Folder work, logs;
+  std::string text =
+      "%\n(T1 D=10. CR=5. - ball end mill)\nG21 G90 G17 G94\nT1 M6\nS4800 M3\nG0 X-1 Y0 Z50\n"
+      "G1 Z39.5 F1000\nX1\nZ60\n";
+  for (int i = 0; i < 20; ++i) text += "X-60 Y" + std::to_string(i) + "\nX60\n";
+  text += "M30\n%\n";
+  write(work / "dip.nc", text);
+  const fs::path out = work / "out.nc";
+  const fs::path summary = work / "s.json";
+  const ChildResult r = run(dome_job((work / "dip.nc").string(),
+                                     {"-o", out.string(), "--summary-json", summary.string()}),
+                            logs);
+  EXPECT_EQ(r.shell_status(), 0) << r.err;
+  EXPECT_EQ(r.err.rfind("vcpost: 9568 points, 0 S words", 0), 0u) << r.err;
+  EXPECT_EQ(read_file(out), text) << r.err;
+  EXPECT_NE(read_file(summary).find("\"reason\": \"the path never touches the model: speed kept\""),
+            std::string::npos)
+      << read_file(summary);
+}
+
+TEST(HostileInput, ManyAirMovesAreNoMismatch) {
+  // The dome raster with 40 passes of 120 mm in the air after it (about
+  // 9,600 points lifted or far from the model, more than the raster's
+  // 6,967) and a short gouge: posted, a warning, not an error.
+  Folder work, logs;
+  std::string text = read_file(kDome);
+  std::string air = "G1 Z60 F1000\n";
+  for (int i = 0; i < 20; ++i) air += "X-60 Y" + std::to_string(i) + "\nX60\n";
+  air += "G1 X-1 Y0 Z39.9\nX1\nZ60\n";
+  const std::size_t end = text.rfind("M30");
+  ASSERT_NE(end, std::string::npos);
+  text.insert(end, air);
+  write(work / "air.nc", text);
+  const ChildResult r = run(dome_job((work / "air.nc").string(), {"-o", "-"}), logs);
+  EXPECT_EQ(r.shell_status(), 0) << r.err;
+  EXPECT_NE(r.err.find("points gouge the model"), std::string::npos) << r.err;
+}
+
 TEST(HostileInput, ProgramWithoutMotionIsRefusedWithoutEndWarned) {
   Folder work, logs;
   write(work / "empty.nc", "");

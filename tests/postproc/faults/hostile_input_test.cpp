@@ -261,6 +261,36 @@ TEST(HostileInput, AbsurdProfileValuesAreRefused) {
   EXPECT_NE(r.err.find("must be at most 10 s"), std::string::npos) << r.err;
 }
 
+TEST(HostileInput, ProfileRatesHaveFloors) {
+  // rapid_mm_per_min = 1e-300 and acceleration_rpm_per_s = 1e-300 were
+  // accepted: every G0 then lasted 1e303 s (9.1e+303 in the JSON). Each
+  // now stops the run at its file:line:col with E5005.
+  Folder work, logs;
+  const std::string profile =
+      read_file(fs::path(VCPOST_SOURCE_DIR) / "machines/profiles/generic.toml");
+  for (const auto& [key, floor] :
+       {std::pair<std::string, std::string>{"rapid_mm_per_min", "must be at least 10 mm/min"},
+        {"acceleration_rpm_per_s", "must be at least 1 rpm/s"}}) {
+    SCOPED_TRACE(key);
+    const std::regex assignment(key + R"( *= *[0-9.eE+-]+)");
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(profile, m, assignment));
+    const std::string text = std::regex_replace(profile, assignment, key + " = 1e-300");
+    const std::size_t line = 1 + static_cast<std::size_t>(std::count(
+                                     profile.begin(), profile.begin() + m.position(0), '\n'));
+    const fs::path file = work / "m.toml";
+    write(file, text);
+    const ChildResult r =
+        run(dome_job(kDome, {"--machine", file.string(), "-o", (work / "out.nc").string()}), logs);
+    EXPECT_EQ(r.shell_status(), 2) << r.err;
+    const std::string table = key == "rapid_mm_per_min" ? "feed." : "spindle.";
+    EXPECT_EQ(r.err, "vcpost: error: " + file.string() + ":" + std::to_string(line) + ":" +
+                         std::to_string(key.size() + 4) + ": error[E5005]: '" + table + key + "' " +
+                         floor + "\n");
+    EXPECT_FALSE(fs::exists(work / "out.nc"));
+  }
+}
+
 TEST(HostileInput, ModelFiveMillimetresHigherIsAnError) {
   // Every Z of the program 5 mm down (the model "5 mm higher"): no point
   // touches, nearly all gouge. Exit 0 with rewritten S before; now exit 2

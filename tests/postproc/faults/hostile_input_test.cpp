@@ -646,5 +646,48 @@ TEST(HostileInput, ReaderLeavingEarlyIsNoFailureMessage) {
   EXPECT_EQ(r.err, "");
 }
 
+TEST(HostileInput, StandardOutputCommandsEndQuietlyWhenTheReaderLeaves) {
+  // `vcpost moves f.nc | head -1` (and verify --changes, deff --sweep)
+  // printed "interrupted by SIGPIPE; no output written": their only output
+  // is standard output, so a reader that leaves is their normal end. Each
+  // writes well over a pipe's 64 KB here: the dome's transcript (180 KB),
+  // 6,000 changed S words, a sweep in 0.01 deg steps.
+  Folder work, logs;
+  std::string a = "G21 G90 G17 G94\nS1000 M3\n", b = a;
+  for (int i = 1; i <= 6000; ++i) {
+    const std::string move = "G1 X" + std::to_string(i % 100) + " F100 S";
+    a += move + "1000\n";
+    b += move + "2000\n";
+  }
+  a += "M30\n";
+  b += "M30\n";
+  write(work / "a.nc", a);
+  write(work / "b.nc", b);
+  const std::vector<std::vector<std::string>> cases = {
+      {kVcpost, "moves", kDome},
+      {kVcpost, "verify", "--changes", (work / "a.nc").string(), (work / "b.nc").string()},
+      {kVcpost, "deff", "--tool", "ball:10", "--ap", "1", "--ae", "1", "--tilt", "25", "--azimuth",
+       "35", "--sweep", "feed-angle=0:360:0.01"}};
+  for (const auto& args : cases) {
+    int fds[2];
+    ASSERT_EQ(::pipe2(fds, O_CLOEXEC), 0);
+    std::string got;
+    const ChildResult r = run(args, logs, [&](ChildOptions& o) {
+      o.stdout_fd = fds[1];
+      o.while_running = [&](pid_t) {
+        ::close(fds[1]);
+        char buffer[256];
+        const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
+        if (n > 0) got.assign(buffer, static_cast<std::size_t>(n));
+        ::close(fds[0]);  // `head -1` has seen enough
+      };
+    });
+    EXPECT_FALSE(got.empty()) << joined(args);
+    EXPECT_FALSE(r.exited) << joined(args);
+    EXPECT_EQ(r.signal, SIGPIPE) << joined(args);
+    EXPECT_EQ(r.err, "") << joined(args);
+  }
+}
+
 }  // namespace
 }  // namespace vcpost::test

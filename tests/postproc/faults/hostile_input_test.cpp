@@ -596,6 +596,28 @@ TEST(HostileInput, ControlBytesInMessagesAreEscaped) {
   EXPECT_NE(r.err.find("bad\\x0d\\x1b[2Jname.nc"), std::string::npos) << r.err;
 }
 
+TEST(HostileInput, EmptyOptionValueIsNamed) {
+  // `--ap= -o out.nc` said "--ap: '-o' is not a number" (CLI11 took the
+  // next argument as the value) and `--vc= -o out.nc` "--output is
+  // required" (it took -o and lost the file name).
+  Folder work, logs;
+  for (const std::string option : {"--ap", "--vc", "--spacing", "--tool"}) {
+    std::vector<std::string> args{kVcpost,
+                                  "post",
+                                  kDome,
+                                  "--model",
+                                  (kSamples / "dome.step").string(),
+                                  option + "=",
+                                  "-o",
+                                  (work / "out.nc").string()};
+    const ChildResult r = run(args, logs);
+    EXPECT_EQ(r.shell_status(), 2) << r.err;
+    EXPECT_EQ(r.err, "vcpost: error: " + option + ": empty value after '=' (give " + option +
+                         "=VALUE or " + option + " VALUE)\n");
+    EXPECT_FALSE(fs::exists(work / "out.nc"));
+  }
+}
+
 TEST(HostileInput, UnknownCommandIsNamed) {
   Folder logs;
   const ChildResult r = run({kVcpost, "bogus"}, logs);

@@ -92,13 +92,20 @@ std::string number_text(double v) {
   return out.str();
 }
 
-// Upper limits of the profile's values: beyond them no machine exists, and
-// a value there is a typo (1e300 for 1e-3) that would turn into NaN or
-// overflow downstream. Lower limits are in the loader (> 0, >= 0).
+// Limits of the profile's values: beyond them no machine exists, and a
+// value there is a typo (1e300 for 1e-3, 1e-300 for 1e3) that would turn
+// into NaN or overflow downstream (a rapid rate of 1e-300 mm/min made
+// every G0 last 1e303 s). Every rate and time has a floor below any real
+// machine; a time may also be 0 (none).
 constexpr double kMaxSpindleRpm = 200000;    // spindle.n_max_rpm
+constexpr double kMinSpindleRate = 1;        // spindle.*celeration_rpm_per_s, rpm/s
 constexpr double kMaxSpindleRate = 1000000;  // spindle.*celeration_rpm_per_s, rpm/s
+constexpr double kMinChangesPerS = 0.001;    // spindle.max_changes_per_s: one per 1000 s
 constexpr double kMaxChangesPerS = 1000;     // spindle.max_changes_per_s
+constexpr double kMinTimeS = 0.0001;         // control.block_time_s, spindle.stop_cost_s: 0 or this
 constexpr double kMaxBlockTimeS = 10;        // control.block_time_s
+constexpr double kMinFeed = 0.01;            // feed.f_min_mm_per_min, feed.f_max_mm_per_min
+constexpr double kMinRapid = 10;             // feed.rapid_mm_per_min, mm/min
 constexpr double kMaxFeed = 1000000;         // feed.*_mm_per_min, mm/min
 
 // A range limit in full: 1000000, not 1e+06.
@@ -334,12 +341,14 @@ SpindleSpec read_spindle(const Reader& r) {
                  number_text(s.n_max_rpm), ")"}),
             codes::inconsistent);
   s.acceleration_rpm_per_s = *r.number("spindle", "acceleration_rpm_per_s", true);
-  r.require(s.acceleration_rpm_per_s > 0, "spindle", "acceleration_rpm_per_s", "must be > 0 rpm/s");
+  r.require(s.acceleration_rpm_per_s >= kMinSpindleRate, "spindle", "acceleration_rpm_per_s",
+            cat({"must be at least ", limit_text(kMinSpindleRate), " rpm/s"}));
   r.require(s.acceleration_rpm_per_s <= kMaxSpindleRate, "spindle", "acceleration_rpm_per_s",
             cat({"must be at most ", limit_text(kMaxSpindleRate), " rpm/s"}));
   s.deceleration_rpm_per_s = *r.number("spindle", "deceleration_rpm_per_s", true);
-  r.require(s.deceleration_rpm_per_s > 0, "spindle", "deceleration_rpm_per_s",
-            "must be > 0 rpm/s (a rate, given without sign)");
+  r.require(s.deceleration_rpm_per_s >= kMinSpindleRate, "spindle", "deceleration_rpm_per_s",
+            cat({"must be at least ", limit_text(kMinSpindleRate),
+                 " rpm/s (a rate, given without sign)"}));
   r.require(s.deceleration_rpm_per_s <= kMaxSpindleRate, "spindle", "deceleration_rpm_per_s",
             cat({"must be at most ", limit_text(kMaxSpindleRate), " rpm/s"}));
   s.s_resolution_rpm = *r.number("spindle", "s_resolution_rpm", true);
@@ -356,7 +365,9 @@ SpindleSpec read_spindle(const Reader& r) {
   r.require(s.min_change_percent >= 0 && s.min_change_percent < 100, "spindle",
             "min_change_percent", "must be in [0, 100)");
   s.max_changes_per_s = *r.number("spindle", "max_changes_per_s", true);
-  r.require(s.max_changes_per_s > 0, "spindle", "max_changes_per_s", "must be > 0");
+  r.require(s.max_changes_per_s >= kMinChangesPerS, "spindle", "max_changes_per_s",
+            cat({"must be at least ", limit_text(kMinChangesPerS), " (one S word per ",
+                 limit_text(1 / kMinChangesPerS), " s)"}));
   r.require(s.max_changes_per_s <= kMaxChangesPerS, "spindle", "max_changes_per_s",
             cat({"must be at most ", limit_text(kMaxChangesPerS)}));
   s.change_in_motion = r.choice("spindle", "change_in_motion", kInMotion);
@@ -371,7 +382,8 @@ SpindleSpec read_spindle(const Reader& r) {
   }
   s.stops_path_on_change = *r.boolean("spindle", "stops_path_on_change", true);
   if (const auto v = r.number("spindle", "stop_cost_s", false)) {
-    r.require(*v >= 0 && *v <= 10, "spindle", "stop_cost_s", "must be in [0, 10] s");
+    r.require(*v == 0 || (*v >= kMinTimeS && *v <= 10), "spindle", "stop_cost_s",
+              cat({"must be 0 or in [", limit_text(kMinTimeS), ", 10] s"}));
     s.stop_cost_s = *v;
   }
   if (const auto v = r.number("spindle", "at_speed_window_percent", false)) {
@@ -386,7 +398,8 @@ SpindleSpec read_spindle(const Reader& r) {
 ControlSpec read_control(const Reader& r) {
   ControlSpec c;
   c.block_time_s = *r.number("control", "block_time_s", true);
-  r.require(c.block_time_s >= 0, "control", "block_time_s", "must be >= 0 s");
+  r.require(c.block_time_s == 0 || c.block_time_s >= kMinTimeS, "control", "block_time_s",
+            cat({"must be 0 or at least ", limit_text(kMinTimeS), " s"}));
   r.require(c.block_time_s <= kMaxBlockTimeS, "control", "block_time_s",
             cat({"must be at most ", limit_text(kMaxBlockTimeS), " s"}));
   return c;
@@ -396,7 +409,8 @@ ControlSpec read_control(const Reader& r) {
 FeedSpec read_feed(const Reader& r) {
   FeedSpec f;
   f.f_min_mm_per_min = *r.number("feed", "f_min_mm_per_min", true);
-  r.require(f.f_min_mm_per_min > 0, "feed", "f_min_mm_per_min", "must be > 0 mm/min");
+  r.require(f.f_min_mm_per_min >= kMinFeed, "feed", "f_min_mm_per_min",
+            cat({"must be at least ", limit_text(kMinFeed), " mm/min"}));
   r.require(f.f_min_mm_per_min <= kMaxFeed, "feed", "f_min_mm_per_min",
             cat({"must be at most ", limit_text(kMaxFeed), " mm/min"}));
   f.f_max_mm_per_min = *r.number("feed", "f_max_mm_per_min", true);
@@ -405,7 +419,8 @@ FeedSpec read_feed(const Reader& r) {
                  number_text(f.f_max_mm_per_min), ")"}),
             codes::inconsistent);
   f.rapid_mm_per_min = *r.number("feed", "rapid_mm_per_min", true);
-  r.require(f.rapid_mm_per_min > 0, "feed", "rapid_mm_per_min", "must be > 0 mm/min");
+  r.require(f.rapid_mm_per_min >= kMinRapid, "feed", "rapid_mm_per_min",
+            cat({"must be at least ", limit_text(kMinRapid), " mm/min"}));
   r.require(f.f_max_mm_per_min <= kMaxFeed, "feed", "f_max_mm_per_min",
             cat({"must be at most ", limit_text(kMaxFeed), " mm/min"}));
   r.require(f.rapid_mm_per_min <= kMaxFeed, "feed", "rapid_mm_per_min",

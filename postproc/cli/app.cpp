@@ -26,4 +26,16 @@ void configure_app(CLI::App& app) {
   add_explain_command(app);
 }
 
+std::optional<std::string> empty_option_value(const std::vector<std::string>& args) {
+  for (const std::string& arg : args) {
+    if (arg == "--") break;
+    if (arg.size() > 3 && arg.compare(0, 2, "--") == 0 && arg.back() == '=' &&
+        arg.find('=') == arg.size() - 1) {
+      const std::string name = arg.substr(0, arg.size() - 1);
+      return name + ": empty value after '=' (give " + name + "=VALUE or " + name + " VALUE)";
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace vcpost::cli

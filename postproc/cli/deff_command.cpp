@@ -15,6 +15,7 @@
 #include "geometry/tool.h"
 #include "postproc/cli/commands.h"
 #include "postproc/cli/deff_output.h"
+#include "postproc/cli/interrupt.h"
 #include "postproc/deff/batch_reader.h"
 #include "postproc/deff/evaluation.h"
 #include "postproc/deff/setup_input.h"
@@ -409,7 +410,10 @@ void add_deff_command(CLI::App& app) {
                    "tool,rc), '-' for stdin; writes the rows with result columns (default "
                    "none)")
       ->type_name("FILE");
-  command->callback([command, args] { run(*command, *args); });
+  command->callback([command, args] {
+    standard_output_is_the_only_output();
+    run(*command, *args);
+  });
 }
 
 }  // namespace vcpost::cli

@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "postproc/cli/commands.h"
+#include "postproc/cli/interrupt.h"
 
 namespace vcpost::cli {
 
@@ -35,6 +36,7 @@ void add_explain_command(CLI::App& app) {
                   "without it, every code is listed");
   cmd->footer("The same table is docs/errors.md.");
   cmd->callback([code] {
+    standard_output_is_the_only_output();
     if (code->empty()) {
       for (const CodeInfo& row : code_table())
         std::cout << row.id << "  " << row.name << ": " << row.summary << '\n';

@@ -36,6 +36,12 @@ void install_signal_handlers();
 // the process by the signal as before but without a message.
 void standard_output_delivered();
 
+// The command's only output is standard output (moves, verify, deff,
+// machines, explain): no file can be left unfinished, and a SIGPIPE at any
+// point is its reader leaving (`vcpost moves f.nc | head -1`), a normal end
+// of such a run: it ends by the signal without a message, as post does.
+void standard_output_is_the_only_output();
+
 // A temporary file that the signal handler removes, from its creation until
 // release(). Create the file through this object so that no signal can fall
 // between the file's creation and its registration. Not copyable.

@@ -11,6 +11,7 @@
 #include "machines/builtin.h"
 #include "machines/profile.h"
 #include "postproc/cli/commands.h"
+#include "postproc/cli/interrupt.h"
 
 namespace vcpost::cli {
 
@@ -113,6 +114,7 @@ void add_machines_command(CLI::App& app) {
   cmd->add_option("PROFILE", options->target,
                   "for show: a shipped profile's name or a profile file (.toml)");
   cmd->callback([options] {
+    standard_output_is_the_only_output();
     if (options->action == "list") {
       if (!options->target.empty())
         throw CommandError("machines list takes no profile (did you mean `machines show " +

@@ -3,6 +3,7 @@
 #include <exception>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "postproc/cli/app.h"
 #include "postproc/cli/commands.h"
@@ -25,6 +26,10 @@ int main(int argc, char** argv) {
     }
     std::cerr << "vcpost: error: unknown command '" << printable(argv[1]) << "'; the commands are "
               << names << " (vcpost --help)\n";
+    return exit_input_error;
+  }
+  if (const auto refusal = empty_option_value(std::vector<std::string>(argv + 1, argv + argc))) {
+    std::cerr << "vcpost: error: " << printable(*refusal) << '\n';
     return exit_input_error;
   }
   try {

@@ -9,6 +9,7 @@
 
 #include "postproc/cldata/cl_reader.h"
 #include "postproc/cli/commands.h"
+#include "postproc/cli/interrupt.h"
 #include "postproc/cli/number_options.h"
 #include "postproc/cli/program_text.h"
 #include "postproc/gcode/interpreter.h"
@@ -85,6 +86,7 @@ void add_moves_command(CLI::App& app) {
       ->capture_default_str()
       ->check(positive_number());
   cmd->callback([options] {
+    standard_output_is_the_only_output();
     const auto dialect = gcode::dialect_from_name(options->dialect);
     if (!dialect) throw CommandError("moves: unknown dialect '" + options->dialect + "'");
     ProgramText text(options->program);

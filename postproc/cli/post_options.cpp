@@ -111,6 +111,12 @@ post::PostSettings settings_from(const PostArguments& args) {
   return settings;
 }
 
+bool is_gross_mismatch(const post::ToolSection& s) {
+  const std::uint64_t on_model = s.touching + s.gouging;
+  return s.postable && s.gouging >= kGrossMismatchMinGouging &&
+         s.touching * 100 < on_model * kGrossMismatchMaxTouchingPercent;
+}
+
 void require_posted(const post::PostSummary& summary, const std::string& name) {
   if (summary.motion_events == 0) {
     throw CommandError("'" + name +
@@ -131,32 +137,41 @@ void require_posted(const post::PostSummary& summary, const std::string& name) {
             " points checked): check the work offset and units of the program against the model, "
             "and --cl-point (tip or center)");
   }
-  if (summary.samples > 0 && summary.touching * 100 <= summary.samples &&
-      summary.gouging * 2 >= summary.samples) {
-    // Not a few gouges to warn about: the program and the model disagree.
-    // The error gives the sections' own diagnosis, worded as the end-of-run
-    // lines word it.
-    std::string message = "the toolpath gouges the model at " + std::to_string(summary.gouging) +
-                          " of " + std::to_string(summary.samples) +
-                          " points and touches it at only " + std::to_string(summary.touching) +
-                          ": the program does not match the model";
-    bool offset = false;
-    for (const post::ToolSection& s : summary.sections) {
-      if (s.gouge.points + s.lift.points == 0) continue;
-      const std::string label =
-          summary.sections.size() > 1 ? section_name(s) + ": " : std::string();
-      if (s.gouge.points > 0) message += "; " + label + depth_words(s.gouge, "gouge depth");
-      if (s.lift.points > 0) message += "; " + label + depth_words(s.lift, "lift height");
-      if (s.offset) message += "; " + label + offset_words(*s.offset);
-      offset = offset || s.offset.has_value();
-    }
-    if (!offset) {
-      message +=
-          "; no one offset dominates (depths that vary with the surface's slope: a shifted "
-          "work offset, other units or another tool diameter)";
-    }
-    throw CommandError("E2011", message);
+  // A section whose points on the model mostly gouge it: not a few gouges
+  // to warn about, the program and the model disagree (another tool
+  // diameter, units, work offset or --cl-point). Points in the air (lifted
+  // or far from the model) do not count either way: a program with many
+  // air moves is judged by its points on the model.
+  std::vector<const post::ToolSection*> gross;
+  for (const post::ToolSection& s : summary.sections) {
+    if (is_gross_mismatch(s)) gross.push_back(&s);
   }
+  if (gross.empty()) return;
+  std::uint64_t touching = 0, gouging = 0, points = 0;
+  for (const post::ToolSection* s : gross) {
+    touching += s->touching;
+    gouging += s->gouging;
+    points += s->points;
+  }
+  // The error gives the sections' own diagnosis, worded as the end-of-run
+  // lines word it.
+  std::string message = "the toolpath gouges the model at " + std::to_string(gouging) + " of " +
+                        std::to_string(points) + " points and touches it at only " +
+                        std::to_string(touching) + ": the program does not match the model";
+  bool offset = false;
+  for (const post::ToolSection* s : gross) {
+    const std::string label = summary.sections.size() > 1 ? section_name(*s) + ": " : std::string();
+    if (s->gouge.points > 0) message += "; " + label + depth_words(s->gouge, "gouge depth");
+    if (s->lift.points > 0) message += "; " + label + depth_words(s->lift, "lift height");
+    if (s->offset) message += "; " + label + offset_words(*s->offset);
+    offset = offset || s->offset.has_value();
+  }
+  if (!offset) {
+    message +=
+        "; no one offset dominates (depths that vary with the surface's slope: a shifted "
+        "work offset, other units or another tool diameter)";
+  }
+  throw CommandError("E2011", message);
 }
 
 namespace {

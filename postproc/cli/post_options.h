@@ -4,6 +4,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -40,10 +41,19 @@ void add_job_options(CLI::App& command, PostArguments& args);
 // --post-tools, speeds from --vc); throws CommandError for bad ones.
 post::PostSettings settings_from(const PostArguments& args);
 
+// A gross program/model mismatch (E2011): an evaluated section with at
+// least kGrossMismatchMinGouging gouging points of which fewer than
+// kGrossMismatchMaxTouchingPercent % of its points on the model (touching
+// or gouging) touch it. Points in the air (lifted, or too far from the
+// model) count neither way.
+inline constexpr std::uint64_t kGrossMismatchMinGouging = 10;
+inline constexpr std::uint64_t kGrossMismatchMaxTouchingPercent = 10;
+bool is_gross_mismatch(const post::ToolSection& section);
+
 // Throws CommandError when the program has no motion, no section had a
-// tool vcpost can read, no point of the toolpath touches the model, or it
-// gouges far more than it touches (with a hint about the work offset,
-// units and --cl-point).
+// tool vcpost can read, no point of the toolpath touches the model, or a
+// section is a gross mismatch (E2011, with the sections' depths and a hint
+// about the work offset, units and --cl-point).
 void require_posted(const post::PostSummary& summary, const std::string& name);
 
 // What one run did, for the command's own output.

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "postproc/cli/commands.h"
+#include "postproc/cli/interrupt.h"
 #include "postproc/cli/number_options.h"
 #include "postproc/cli/program_text.h"
 #include "postproc/gcode/dialect.h"
@@ -180,7 +181,10 @@ void add_verify_command(CLI::App& app) {
                   "the CL's, mm")
       ->capture_default_str()
       ->check(positive_number());
-  cmd->callback([args] { run(*args); });
+  cmd->callback([args] {
+    standard_output_is_the_only_output();
+    run(*args);
+  });
 }
 
 }  // namespace vcpost::cli

@@ -285,9 +285,10 @@ class Finisher {
     }
     if (r.contact.status != geometry::BallStatus::missed && ledger.offsets)
       ledger.offsets->add(r.contact.distance_error);
+    // Posted from its first touching point: a section that only gouges
+    // (a model in other units, another tool) has no cutting speed to keep.
     if (ledger.state == SectionState::pending &&
-        (r.contact.status == geometry::BallStatus::touching ||
-         r.contact.status == geometry::BallStatus::gouging)) {
+        r.contact.status == geometry::BallStatus::touching) {
       ledger.state = SectionState::posted;
     }
     if (r.engagement) {

@@ -261,6 +261,36 @@ TEST(HostileInput, AbsurdProfileValuesAreRefused) {
   EXPECT_NE(r.err.find("must be at most 10 s"), std::string::npos) << r.err;
 }
 
+TEST(HostileInput, ProfileRatesHaveFloors) {
+  // rapid_mm_per_min = 1e-300 and acceleration_rpm_per_s = 1e-300 were
+  // accepted: every G0 then lasted 1e303 s (9.1e+303 in the JSON). Each
+  // now stops the run at its file:line:col with E5005.
+  Folder work, logs;
+  const std::string profile =
+      read_file(fs::path(VCPOST_SOURCE_DIR) / "machines/profiles/generic.toml");
+  for (const auto& [key, floor] :
+       {std::pair<std::string, std::string>{"rapid_mm_per_min", "must be at least 10 mm/min"},
+        {"acceleration_rpm_per_s", "must be at least 1 rpm/s"}}) {
+    SCOPED_TRACE(key);
+    const std::regex assignment(key + R"( *= *[0-9.eE+-]+)");
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(profile, m, assignment));
+    const std::string text = std::regex_replace(profile, assignment, key + " = 1e-300");
+    const std::size_t line = 1 + static_cast<std::size_t>(std::count(
+                                     profile.begin(), profile.begin() + m.position(0), '\n'));
+    const fs::path file = work / "m.toml";
+    write(file, text);
+    const ChildResult r =
+        run(dome_job(kDome, {"--machine", file.string(), "-o", (work / "out.nc").string()}), logs);
+    EXPECT_EQ(r.shell_status(), 2) << r.err;
+    const std::string table = key == "rapid_mm_per_min" ? "feed." : "spindle.";
+    EXPECT_EQ(r.err, "vcpost: error: " + file.string() + ":" + std::to_string(line) + ":" +
+                         std::to_string(key.size() + 4) + ": error[E5005]: '" + table + key + "' " +
+                         floor + "\n");
+    EXPECT_FALSE(fs::exists(work / "out.nc"));
+  }
+}
+
 TEST(HostileInput, ModelFiveMillimetresHigherIsAnError) {
   // Every Z of the program 5 mm down (the model "5 mm higher"): no point
   // touches, nearly all gouge. Exit 0 with rewritten S before; now exit 2
@@ -405,6 +435,95 @@ TEST(HostileInput, MismatchErrorGivesTheSectionsDiagnosis) {
   EXPECT_EQ(right.shell_status(), 0) << right.err;
 }
 
+std::vector<std::string> wavy_job(const std::string& model, std::vector<std::string> extra) {
+  std::vector<std::string> a{kVcpost,   "post", (kSamples / "wavy_raster_a0_ae2.nc").string(),
+                             "--model", model,  "--vc",
+                             "120",     "--ap", "0.3"};
+  a.insert(a.end(), extra.begin(), extra.end());
+  return a;
+}
+
+TEST(HostileInput, MismatchesThatTouchALittleAreErrors) {
+  // The rule was "touching at 1 % of all points or fewer and gouging at
+  // half": a D30 ball on the D10 raster touches at 108 of 8,704 points
+  // (1.2 %) and gouges at 8,596; the wavy model labelled INCH (its numbers
+  // are mm: 25.4 times too large) is gouged at 2,918 points, touched at
+  // none, and missed at 5,786. Both posted with exit 0 and rewritten S.
+  Folder work, logs;
+  const fs::path out = work / "out.nc";
+  const ChildResult ball30 = run(
+      wavy_job((kSamples / "wavy.step").string(), {"--tool", "ball:30", "-o", out.string()}), logs);
+  EXPECT_EQ(ball30.shell_status(), 2) << ball30.err;
+  EXPECT_EQ(ball30.err.rfind("vcpost: error: the toolpath gouges the model at 8596 of 8704 points "
+                             "and touches it at only 108: the program does not match the model; "
+                             "gouge depth min 0.010, median 0.281, max 0.819 mm (8596 points)",
+                             0),
+            0u)
+      << ball30.err;
+  EXPECT_FALSE(fs::exists(out));
+
+  std::string step = read_file(kSamples / "wavy.step");
+  const std::string mm = "#213 = ( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.) );\n";
+  ASSERT_NE(step.find(mm), std::string::npos);
+  step.replace(step.find(mm), mm.size(),
+               "#213 = ( CONVERSION_BASED_UNIT('INCH',#900) LENGTH_UNIT() NAMED_UNIT(#901) );\n"
+               "#900 = LENGTH_MEASURE_WITH_UNIT(LENGTH_MEASURE(25.4),#902);\n"
+               "#901 = DIMENSIONAL_EXPONENTS(1.,0.,0.,0.,0.,0.,0.);\n"
+               "#902 = ( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.) );\n");
+  write(work / "inch.step", step);
+  const ChildResult inch = run(wavy_job((work / "inch.step").string(), {"-o", out.string()}), logs);
+  EXPECT_EQ(inch.shell_status(), 2) << inch.err;
+  EXPECT_EQ(inch.err,
+            "vcpost: error: the toolpath gouges the model at 2918 of 8704 points and touches it "
+            "at only 0: the program does not match the model; gouge depth min 3.211, median "
+            "13.348, max 19.988 mm (2918 points); no one offset dominates (depths that vary with "
+            "the surface's slope: a shifted work offset, other units or another tool diameter)\n");
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(HostileInput, SectionThatNeverTouchesKeepsItsSpeed) {
+  // The D10 ball's tip 0.5 mm into the dome's pole along 2 mm (a few
+  // gouging points, too few to call the program a mismatch), the rest of
+  // the path in the air: no point touches, so no cutting speed is kept and
+  // the section keeps its S (it was posted: S rewritten from the gouges).
+  Folder work, logs;
+  std::string text =
+      "%\n(T1 D=10. CR=5. - ball end mill)\nG21 G90 G17 G94\nT1 M6\nS4800 M3\nG0 X-1 Y0 Z50\n"
+      "G1 Z39.5 F1000\nX1\nZ60\n";
+  for (int i = 0; i < 20; ++i) text += "X-60 Y" + std::to_string(i) + "\nX60\n";
+  text += "M30\n%\n";
+  write(work / "dip.nc", text);
+  const fs::path out = work / "out.nc";
+  const fs::path summary = work / "s.json";
+  const ChildResult r = run(dome_job((work / "dip.nc").string(),
+                                     {"-o", out.string(), "--summary-json", summary.string()}),
+                            logs);
+  EXPECT_EQ(r.shell_status(), 0) << r.err;
+  EXPECT_EQ(r.err.rfind("vcpost: 9568 points, 0 S words", 0), 0u) << r.err;
+  EXPECT_EQ(read_file(out), text) << r.err;
+  EXPECT_NE(read_file(summary).find("\"reason\": \"the path never touches the model: speed kept\""),
+            std::string::npos)
+      << read_file(summary);
+}
+
+TEST(HostileInput, ManyAirMovesAreNoMismatch) {
+  // The dome raster with 40 passes of 120 mm in the air after it (about
+  // 9,600 points lifted or far from the model, more than the raster's
+  // 6,967) and a short gouge: posted, a warning, not an error.
+  Folder work, logs;
+  std::string text = read_file(kDome);
+  std::string air = "G1 Z60 F1000\n";
+  for (int i = 0; i < 20; ++i) air += "X-60 Y" + std::to_string(i) + "\nX60\n";
+  air += "G1 X-1 Y0 Z39.9\nX1\nZ60\n";
+  const std::size_t end = text.rfind("M30");
+  ASSERT_NE(end, std::string::npos);
+  text.insert(end, air);
+  write(work / "air.nc", text);
+  const ChildResult r = run(dome_job((work / "air.nc").string(), {"-o", "-"}), logs);
+  EXPECT_EQ(r.shell_status(), 0) << r.err;
+  EXPECT_NE(r.err.find("points gouge the model"), std::string::npos) << r.err;
+}
+
 TEST(HostileInput, ProgramWithoutMotionIsRefusedWithoutEndWarned) {
   Folder work, logs;
   write(work / "empty.nc", "");
@@ -477,6 +596,28 @@ TEST(HostileInput, ControlBytesInMessagesAreEscaped) {
   EXPECT_NE(r.err.find("bad\\x0d\\x1b[2Jname.nc"), std::string::npos) << r.err;
 }
 
+TEST(HostileInput, EmptyOptionValueIsNamed) {
+  // `--ap= -o out.nc` said "--ap: '-o' is not a number" (CLI11 took the
+  // next argument as the value) and `--vc= -o out.nc` "--output is
+  // required" (it took -o and lost the file name).
+  Folder work, logs;
+  for (const std::string option : {"--ap", "--vc", "--spacing", "--tool"}) {
+    std::vector<std::string> args{kVcpost,
+                                  "post",
+                                  kDome,
+                                  "--model",
+                                  (kSamples / "dome.step").string(),
+                                  option + "=",
+                                  "-o",
+                                  (work / "out.nc").string()};
+    const ChildResult r = run(args, logs);
+    EXPECT_EQ(r.shell_status(), 2) << r.err;
+    EXPECT_EQ(r.err, "vcpost: error: " + option + ": empty value after '=' (give " + option +
+                         "=VALUE or " + option + " VALUE)\n");
+    EXPECT_FALSE(fs::exists(work / "out.nc"));
+  }
+}
+
 TEST(HostileInput, UnknownCommandIsNamed) {
   Folder logs;
   const ChildResult r = run({kVcpost, "bogus"}, logs);
@@ -525,6 +666,49 @@ TEST(HostileInput, ReaderLeavingEarlyIsNoFailureMessage) {
   EXPECT_FALSE(r.exited);
   EXPECT_EQ(r.signal, SIGPIPE);
   EXPECT_EQ(r.err, "");
+}
+
+TEST(HostileInput, StandardOutputCommandsEndQuietlyWhenTheReaderLeaves) {
+  // `vcpost moves f.nc | head -1` (and verify --changes, deff --sweep)
+  // printed "interrupted by SIGPIPE; no output written": their only output
+  // is standard output, so a reader that leaves is their normal end. Each
+  // writes well over a pipe's 64 KB here: the dome's transcript (180 KB),
+  // 6,000 changed S words, a sweep in 0.01 deg steps.
+  Folder work, logs;
+  std::string a = "G21 G90 G17 G94\nS1000 M3\n", b = a;
+  for (int i = 1; i <= 6000; ++i) {
+    const std::string move = "G1 X" + std::to_string(i % 100) + " F100 S";
+    a += move + "1000\n";
+    b += move + "2000\n";
+  }
+  a += "M30\n";
+  b += "M30\n";
+  write(work / "a.nc", a);
+  write(work / "b.nc", b);
+  const std::vector<std::vector<std::string>> cases = {
+      {kVcpost, "moves", kDome},
+      {kVcpost, "verify", "--changes", (work / "a.nc").string(), (work / "b.nc").string()},
+      {kVcpost, "deff", "--tool", "ball:10", "--ap", "1", "--ae", "1", "--tilt", "25", "--azimuth",
+       "35", "--sweep", "feed-angle=0:360:0.01"}};
+  for (const auto& args : cases) {
+    int fds[2];
+    ASSERT_EQ(::pipe2(fds, O_CLOEXEC), 0);
+    std::string got;
+    const ChildResult r = run(args, logs, [&](ChildOptions& o) {
+      o.stdout_fd = fds[1];
+      o.while_running = [&](pid_t) {
+        ::close(fds[1]);
+        char buffer[256];
+        const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
+        if (n > 0) got.assign(buffer, static_cast<std::size_t>(n));
+        ::close(fds[0]);  // `head -1` has seen enough
+      };
+    });
+    EXPECT_FALSE(got.empty()) << joined(args);
+    EXPECT_FALSE(r.exited) << joined(args);
+    EXPECT_EQ(r.signal, SIGPIPE) << joined(args);
+    EXPECT_EQ(r.err, "") << joined(args);
+  }
 }
 
 }  // namespace

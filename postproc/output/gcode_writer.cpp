@@ -116,9 +116,23 @@ void GcodeWriter::comment(std::string_view text) {
   block(words);
 }
 
+// The feed words due (G94/G95 only where the mode changes), then the S
+// words: the words waiting for the next block.
 std::string GcodeWriter::take_pending() {
-  std::string words = std::move(pending_);
-  pending_.clear();
+  std::string words;
+  if (pending_feed_) {
+    if (pending_feed_->per_revolution != per_revolution_) {
+      words = pending_feed_->per_revolution ? "G95 " : "G94 ";
+      per_revolution_ = pending_feed_->per_revolution;
+    }
+    words += pending_feed_->f_word;
+    pending_feed_.reset();
+  }
+  if (!pending_.empty()) {
+    if (!words.empty()) words += ' ';
+    words += pending_;
+    pending_.clear();
+  }
   return words;
 }
 
@@ -231,8 +245,16 @@ void GcodeWriter::write_cycle() {
     block("G43 H" + std::to_string(*pending_g43_));
     pending_g43_.reset();
   }
-  if (!modal_cycle_ || !same_cycle(*modal_cycle_)) {
-    end_cycle();
+  const bool new_cycle = !modal_cycle_ || !same_cycle(*modal_cycle_);
+  if (new_cycle) end_cycle();
+  // A feed mode change goes on a block of its own before the cycle's: the
+  // cycle's F is then read in the mode it is meant in (G94 for a drill
+  // after a per-revolution contour, G95 for a tap), on every control.
+  if (pending_feed_ && pending_feed_->per_revolution != per_revolution_) {
+    per_revolution_ = pending_feed_->per_revolution;
+    block(per_revolution_ ? "G95" : "G94");
+  }
+  if (new_cycle) {
     // The G98 level is where the tool stands when the cycle starts: the
     // return level (start_hole saw to it).
     initial_z_ = c.top_z;
@@ -357,19 +379,11 @@ void GcodeWriter::write(const Event& event) {
           if (e.mode == FeedMode::inverse_time) {
             throw OutputError("E3202", "inverse-time feed (G93) is not written", e.source);
           }
+          // A later F replaces an unwritten one, and its mode the unwritten
+          // mode: one G94/G95 at most per block.
           const bool per_rev = e.mode == FeedMode::per_revolution;
-          std::string words;
-          if (per_rev != per_revolution_) {
-            words = per_rev ? "G95 " : "G94 ";
-            per_revolution_ = per_rev;
-          }
-          words += word('F', number(e.rate, per_rev ? 4 : format_.feed_decimals, e.source));
-          // A later F replaces an unwritten one.
-          if (const auto at = pending_.find('F'); at != std::string::npos) {
-            const auto stop = pending_.find(' ', at);
-            pending_.erase(at, stop == std::string::npos ? std::string::npos : stop - at + 1);
-          }
-          pending_ = pending_.empty() ? words : words + " " + pending_;
+          pending_feed_ = PendingFeed{
+              per_rev, word('F', number(e.rate, per_rev ? 4 : format_.feed_decimals, e.source))};
         } else if constexpr (std::is_same_v<T, SetSpindleSpeed>) {
           const long s = std::lround(e.rpm);
           pending_ += (pending_.empty() ? "S" : " S") + std::to_string(s);

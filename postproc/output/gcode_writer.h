@@ -124,11 +124,16 @@ class GcodeWriter {
 
   int motion_mode_ = -1;  // 0, 1, 2, 3 as last written
   int plane_ = 17;
-  bool per_revolution_ = false;
+  bool per_revolution_ = false;  // G95 (else G94) as last written
   std::string last_x_, last_y_, last_z_;
   std::optional<double> last_f_;
-  std::string pending_;             // F / S words waiting for the next block
-  std::optional<int> pending_g43_;  // tool number whose G43 is due
+  struct PendingFeed {
+    bool per_revolution = false;
+    std::string f_word;  // "F150."
+  };
+  std::optional<PendingFeed> pending_feed_;  // the feed waiting for the next block
+  std::string pending_;                      // S words waiting for the next block
+  std::optional<int> pending_g43_;           // tool number whose G43 is due
   bool high_speed_on_ = false;
   Eigen::Vector3d at_ = Eigen::Vector3d::Zero();  // end of the last motion event
   bool at_known_ = false;

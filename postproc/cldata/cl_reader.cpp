@@ -314,14 +314,19 @@ void ClReader::cutcom(const ClRecord& r) {
   } else if (!word_is(p, "OFF")) {
     fail(ClCode::unexpected_word, p, "unknown CUTCOM word '" + std::string(p.text) + "'");
   }
+  std::optional<int> register_number;
   for (std::size_t i = 1; i < r.params.size(); ++i) {
     const ClParam& q = r.params[i];
-    if (q.is_number || word_is(q, "XYPLAN")) continue;
+    if (word_is(q, "XYPLAN")) continue;
+    if (q.is_number && !register_number) {
+      register_number = integer(r, i);
+      continue;
+    }
     fail(ClCode::unexpected_word, q,
          "CUTCOM/" + std::string(p.text) + "," + std::string(q.text) +
-             ": only the XYPLAN plane and a register number are understood");
+             ": only the XYPLAN plane and one register number are understood");
   }
-  queue_.push_back(program::CutterCompensation{side, r.source});
+  queue_.push_back(program::CutterCompensation{side, r.source, register_number});
 }
 
 void ClReader::delay(const ClRecord& r) {

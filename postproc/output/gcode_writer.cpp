@@ -52,6 +52,7 @@ Format format_for(const machines::MachineProfile& profile) {
   format.feed_decimals = o.feed_decimals;
   format.line_numbers = o.line_numbers;
   format.canned_cycles = o.canned_cycles;
+  format.cutter_compensation = o.cutter_compensation;
   switch (profile.output_format()) {
     case machines::OutputFormat::rs274ngc:
       // LinuxCNC reads `O1000` as a subroutine keyword and G4 X as no dwell
@@ -152,8 +153,39 @@ void GcodeWriter::header() {
   if (format_.geometry_compensation) block("G61.1");
 }
 
+// G41/G42 D or G40 for a motion's block where the side written is not the
+// side wanted (see the header): on a straight move; before an arc, only
+// the start of compensation, on a block of its own.
+void GcodeWriter::compensation_words(std::string& words, bool straight) {
+  if (comp_wanted_ == comp_written_) return;
+  if (!straight && comp_written_ != CompensationSide::off) return;
+  if (comp_wanted_ != CompensationSide::off && comp_written_ != CompensationSide::off)
+    end_compensation();  // G41 -> G42: G40 first
+  std::string comp;
+  if (comp_wanted_ == CompensationSide::off) {
+    comp = "G40";
+  } else {
+    comp = comp_wanted_ == CompensationSide::left ? "G41" : "G42";
+    if (const auto d = comp_register_ ? comp_register_ : tool_) comp += " D" + std::to_string(*d);
+  }
+  comp_written_ = comp_wanted_;
+  if (!straight) {
+    block(comp);
+    return;
+  }
+  if (!words.empty()) words += ' ';
+  words += comp;
+}
+
+void GcodeWriter::end_compensation() {
+  if (comp_written_ == CompensationSide::off) return;
+  block("G40");
+  comp_written_ = CompensationSide::off;
+}
+
 void GcodeWriter::end_program() {
   end_cycle();
+  end_compensation();
   std::string words = take_pending();
   if (high_speed_on_) {
     block("G05 P0");
@@ -241,6 +273,7 @@ void GcodeWriter::write_cycle() {
            (h.retract_to_r || initial_z_ == c.top_z);
   };
   std::string words;
+  end_compensation();  // rs274 runs no cycle under compensation
   if (pending_g43_) {
     block("G43 H" + std::to_string(*pending_g43_));
     pending_g43_.reset();
@@ -298,6 +331,7 @@ void GcodeWriter::motion(const Event& event) {
     }
     pending_g43_.reset();
   }
+  compensation_words(words, !std::holds_alternative<ArcFeed>(event));
   const auto motion_word = [&](int mode) {
     if (mode != motion_mode_) {
       if (!words.empty()) words += ' ';
@@ -400,6 +434,9 @@ void GcodeWriter::write(const Event& event) {
           block((words.empty() ? "" : words + " ") + "T" + std::to_string(e.number));
         } else if constexpr (std::is_same_v<T, ChangeTool>) {
           end_cycle();
+          end_compensation();
+          comp_wanted_ = CompensationSide::off;  // a tool change ends it
+          tool_ = e.number;
           if (high_speed_on_) {
             block("G05 P0");
             high_speed_on_ = false;
@@ -420,9 +457,18 @@ void GcodeWriter::write(const Event& event) {
           }
           pending_g43_.reset();
         } else if constexpr (std::is_same_v<T, CutterCompensation>) {
-          comment(e.side == CompensationSide::off    ? "CUTCOM OFF"
-                  : e.side == CompensationSide::left ? "CUTCOM LEFT - CL PATH IS THE TOOL CENTRE"
-                                                     : "CUTCOM RIGHT - CL PATH IS THE TOOL CENTRE");
+          // Written with the next move (compensation_words).
+          if (!format_.cutter_compensation) {
+            comment(e.side == CompensationSide::off ? "CUTCOM OFF"
+                    : e.side == CompensationSide::left
+                        ? "CUTCOM LEFT - CL PATH IS THE TOOL CENTRE"
+                        : "CUTCOM RIGHT - CL PATH IS THE TOOL CENTRE");
+          } else if (e.side != comp_wanted_ || e.register_number != comp_register_) {
+            if (e.side != CompensationSide::off && e.side == comp_written_)
+              end_compensation();  // another register: G41 again after G40
+            comp_wanted_ = e.side;
+            comp_register_ = e.register_number;
+          }
         } else if constexpr (std::is_same_v<T, SelectPlane>) {
           const int plane = e.plane == Plane::xy ? 17 : e.plane == Plane::xz ? 18 : 19;
           if (plane != plane_) {

@@ -145,7 +145,10 @@ void ClReader::finish_input() {
 
 void ClReader::process(const ClRecord& r) {
   if (r.kind == ClRecordKind::comment) {
-    if (!ended_) creo_cutter_comment(r);
+    if (!ended_) {
+      creo_cutter_comment(r);
+      comment(r);
+    }
     return;
   }
   if (ended_) {
@@ -352,6 +355,16 @@ void ClReader::fini(const ClRecord& r) {
 }
 
 void ClReader::end_of_path(const ClRecord&) { end_of_path_ = true; }
+
+// A `$$` comment record: a comment of the output, where it stands (the
+// CAM system's operation names, notes for the operator), blanks trimmed.
+void ClReader::comment(const ClRecord& r) {
+  std::string_view t = r.text;
+  while (!t.empty() && (t.front() == ' ' || t.front() == '\t')) t.remove_prefix(1);
+  while (!t.empty() && (t.back() == ' ' || t.back() == '\t' || t.back() == '\r'))
+    t.remove_suffix(1);
+  if (!t.empty()) queue_.push_back(program::Message{std::string(t), r.source});
+}
 
 // Text the output carries as a comment.
 void ClReader::message(const ClRecord& r) {

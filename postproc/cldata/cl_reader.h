@@ -41,8 +41,9 @@
 //                                        accepted; a frame that would move
 //                                        the points is refused (E3119), a
 //                                        turned table too (E3108)
+//   $$ comment records                   Message (a comment in the output)
 //   PAINT, MACHIN, TPRINT, TOOLNO, CLRSRF, END, MODE, SEQNO, BOX,
-//   CSI_SET_FLUTE_LENGTH, CSI_SET_EXTENSION_LENGTH, END-OF-PATH, $$ comments
+//   CSI_SET_FLUTE_LENGTH, CSI_SET_EXTENSION_LENGTH, END-OF-PATH
 //                                        no motion, no state: ignored
 //   APT source statements (TLON, GOFWD, INDIRV, `X=...` definitions)
 //                                        refused (E3113); TRACUT, GOHOME
@@ -138,6 +139,7 @@ class ClReader {
   void fini(const ClRecord& r);
   void end_of_path(const ClRecord& r);
   void message(const ClRecord& r);
+  void comment(const ClRecord& r);
   void tlaxis(const ClRecord& r);
   void multax(const ClRecord& r);
   void nurbs(const ClRecord& r);

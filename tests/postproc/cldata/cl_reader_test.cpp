@@ -498,6 +498,25 @@ TEST(ClReader, UnknownRecordsAndFramesThatMoveThePointsAreRefused) {
   EXPECT_EQ(notes[1].text, "OPSKIP/ON");
 }
 
+// `$$` comment records become messages (comments in the output), without
+// the blanks around the text; Creo's `$$-> CUTTER` line too, which also
+// gives the cutter; empty ones and those after FINI are dropped.
+TEST(ClReader, CommentRecordsBecomeMessages) {
+  std::istringstream in(
+      "$$ centerline data\nGOTO/1,2,3\n$$-> CUTTER / 0.375000\n$$   \nFINI\n$$ after the end\n");
+  ClReader reader(in, "t.cl");
+  std::vector<Event> events;
+  while (auto e = reader.next()) events.push_back(std::move(*e));
+  const auto messages = only<Message>(events);
+  ASSERT_EQ(messages.size(), 2u);
+  EXPECT_EQ(messages[0].text, "centerline data");
+  EXPECT_EQ(messages[0].source.line, 1u);
+  EXPECT_EQ(messages[1].text, "-> CUTTER / 0.375000");
+  EXPECT_EQ(messages[1].source.line, 3u);
+  ASSERT_EQ(reader.cutters().size(), 1u);
+  EXPECT_DOUBLE_EQ(reader.cutters()[0].diameter(), 0.375);
+}
+
 TEST(ClReader, CodeTableIsInOrderAndUnique) {
   const auto table = cl_code_table();
   for (std::size_t i = 0; i < table.size(); ++i) {

@@ -234,12 +234,62 @@ void ClReader::godlta(const ClRecord& r) {
     fail(ClCode::arc_without_goto, arc_pending_->source.line, arc_pending_->source.column,
          "CIRCLE must be followed by GOTO, not GODLTA");
   }
+  begin_motion(r.source);
   move_to(*position_ + delta, r.source);
   rapid_active_ = false;
 }
 
 void ClReader::loadtl(const ClRecord& r) {
   queue_.push_back(program::ChangeTool{integer(r, 0), r.source});
+  tool_changed(integer(r, 0));
+}
+
+void ClReader::tool_changed(int number) {
+  tool_ = number;
+  named_tool_.reset();
+  toolno_pending_ = false;
+  moved_ = false;
+  new_cutter_.reset();
+}
+
+// TOOLNO/n[,diameter,...]: the number of the tool change to come.
+void ClReader::toolno(const ClRecord& r) {
+  named_tool_ = integer(r, 0);
+  toolno_pending_ = true;
+}
+
+// After a cutter record: another cutter than the section's, once the
+// section has moved, is a tool change (made at the next motion).
+void ClReader::note_cutter(const ClRecord& r) {
+  if (!moved_ || !section_cutter_) return;
+  const ClCutter& now = cutters_[*section_cutter_];
+  const ClCutter& next = cutters_.back();
+  if (now.source_word == next.source_word && now.params == next.params) return;
+  new_cutter_ =
+      NewCutter{std::string(r.major) + "/" + std::string(r.text), r.source.line, r.source.column};
+}
+
+// Before the events of a motion record: the tool change TOOLNO or another
+// cutter asked for, and the section's cutter at its first motion.
+void ClReader::begin_motion(const SourceRef& src) {
+  const bool toolno_change = toolno_pending_ && named_tool_ != tool_;
+  toolno_pending_ = false;
+  if (new_cutter_ || toolno_change) {
+    if (!named_tool_) {
+      fail(ClCode::tool_change_without_number, new_cutter_->line, new_cutter_->column,
+           new_cutter_->record +
+               " is another tool than the one cutting, but no LOAD/TOOL, LOADTL, TOOLNO or "
+               "SELECT/TOOL gives its number: the tool change cannot be written (give the tool "
+               "numbers in the CAM system)");
+    }
+    const int number = *named_tool_;
+    queue_.push_back(program::ChangeTool{number, src});
+    tool_changed(number);
+  }
+  if (!moved_) {
+    moved_ = true;
+    if (!cutters_.empty()) section_cutter_ = cutters_.size() - 1;
+  }
 }
 
 // LOAD/TOOL,n[,ADJUST,h] and SELECT/TOOL,n.
@@ -264,8 +314,10 @@ void ClReader::load_or_select(const ClRecord& r) {
   }
   if (m == "LOAD") {
     queue_.push_back(program::ChangeTool{integer(r, 1), r.source});
+    tool_changed(integer(r, 1));
   } else {
     queue_.push_back(program::SelectTool{integer(r, 1), r.source});
+    named_tool_ = integer(r, 1);
   }
 }
 
@@ -394,6 +446,7 @@ void ClReader::nurbs(const ClRecord& r) {
     fail(ClCode::bad_nurbs, r, "NURBS/ with parameters is not understood");
   }
   if (!position_) fail(ClCode::no_start_position, r, "NURBS before any position");
+  begin_motion(r.source);
   nurbs_active_ = true;
   nurbs_rapid_ = std::exchange(rapid_pending_, false);
   nurbs_source_ = r.source;
@@ -558,7 +611,7 @@ const ClReader::RecordRule* ClReader::find_rule(std::string_view word) {
       {"TLON", &ClReader::apt_source},
       {"TLRGT", &ClReader::apt_source},
       {"TOOL PATH", &ClReader::message},
-      {"TOOLNO", &ClReader::ignore},
+      {"TOOLNO", &ClReader::toolno},
       {"TPRINT", &ClReader::ignore},
       {"TRACUT", &ClReader::tracut},
       {"TRNTYP", &ClReader::trntyp},
@@ -585,6 +638,7 @@ void ClReader::process_motion_points(const ClRecord& r, bool continuation) {
              " values; expected groups of " + std::to_string(group) +
              (group == 3 ? " (x,y,z)" : " (x,y,z,i,j,k)"));
   }
+  begin_motion(r.source);
   for (std::size_t i = 0; i < count; i += group) {
     if (group == 6) {
       check_axis(Vec(r.params[i + 3].value, r.params[i + 4].value, r.params[i + 5].value),
@@ -810,6 +864,7 @@ void ClReader::cutter(const ClRecord& r) {
   c.source = r.source;
   if (!c.tool) warn(ClCode::tool_not_modelled, r.source, "CUTTER: " + c.why_not);
   cutters_.push_back(std::move(c));
+  note_cutter(r);
 }
 
 void ClReader::tldata(const ClRecord& r) {
@@ -823,6 +878,7 @@ void ClReader::tldata(const ClRecord& r) {
     c.source = r.source;
     warn(ClCode::tool_not_modelled, r.source, c.why_not);
     cutters_.push_back(std::move(c));
+    note_cutter(r);
     return;
   }
   if (r.params.size() < 3) fail(ClCode::wrong_parameters, r, "TLDATA/MILL needs d and r");
@@ -836,6 +892,7 @@ void ClReader::tldata(const ClRecord& r) {
   c.source = r.source;
   if (!c.tool) warn(ClCode::tool_not_modelled, r.source, "TLDATA/MILL: " + c.why_not);
   cutters_.push_back(std::move(c));
+  note_cutter(r);
 }
 
 // Creo writes the cutter only as a comment: `$$-> CUTTER / 0.375000`.

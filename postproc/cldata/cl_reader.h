@@ -23,6 +23,18 @@
 //   CUTTER/1..7 values, TLDATA/MILL, Creo's `$$-> CUTTER / d`
 //                                        cutter() (no event)
 //   LOADTL/n, LOAD/TOOL,n                ChangeTool; SELECT/TOOL,n SelectTool
+//       (a preselection: SolidWorks CAM selects the next tool while the
+//       one in the spindle still cuts, so SELECT alone changes nothing)
+//   TOOLNO/n[,...]                       the number of the next tool change:
+//       CATIA writes LOADTL after it (then that is the change); with no
+//       LOAD/TOOL or LOADTL before the next motion, ChangeTool n there
+//   a cutter record (CUTTER, TLDATA, after NX's TOOL PATH) after the
+//       section's first motion that describes another cutter than the
+//       section's (CAMWorks and NX write no LOAD/TOOL when the operation
+//       has no tool number): ChangeTool before the next motion, unless a
+//       LOAD/TOOL or LOADTL comes first, to the tool TOOLNO or SELECT/TOOL
+//       named since the last change; with no number, refused (E3120): the
+//       output cannot write a tool change without one
 //   COOLNT, CUTCOM (LEFT|RIGHT|OFF[,XYPLAN][,register]; CAMWorks' ON),
 //   DELAY (seconds or REV,n), STOP, OPSTOP
 //                                        Coolant, CutterCompensation, Dwell,
@@ -42,7 +54,7 @@
 //                                        the points is refused (E3119), a
 //                                        turned table too (E3108)
 //   $$ comment records                   Message (a comment in the output)
-//   PAINT, MACHIN, TPRINT, TOOLNO, CLRSRF, END, MODE, SEQNO, BOX,
+//   PAINT, MACHIN, TPRINT, CLRSRF, END, MODE, SEQNO, BOX,
 //   CSI_SET_FLUTE_LENGTH, CSI_SET_EXTENSION_LENGTH, END-OF-PATH
 //                                        no motion, no state: ignored
 //   APT source statements (TLON, GOFWD, INDIRV, `X=...` definitions)
@@ -130,6 +142,10 @@ class ClReader {
   void from(const ClRecord& r);
   void godlta(const ClRecord& r);
   void loadtl(const ClRecord& r);
+  void toolno(const ClRecord& r);
+  void tool_changed(int number);
+  void note_cutter(const ClRecord& r);
+  void begin_motion(const program::SourceRef& src);
   void load_or_select(const ClRecord& r);
   void units(const ClRecord& r);
   void coolnt(const ClRecord& r);
@@ -195,6 +211,17 @@ class ClReader {
   std::optional<Feed> machine_feed_;  // last SetFeedRate emitted
   double rpm_ = 0;
   program::SpindleDirection direction_ = program::SpindleDirection::clockwise;
+  // Tool changes the CL data make without LOAD/TOOL or LOADTL.
+  std::optional<int> tool_;                    // the tool in the spindle (the last ChangeTool)
+  std::optional<int> named_tool_;              // TOOLNO or SELECT/TOOL since the last change
+  bool toolno_pending_ = false;                // TOOLNO since the last motion or change
+  bool moved_ = false;                         // a motion since the last change
+  std::optional<std::size_t> section_cutter_;  // cutters_ index: the section's cutter
+  struct NewCutter {
+    std::string record;  // "CUTTER/6,3"
+    std::uint32_t line = 0, column = 0;
+  };
+  std::optional<NewCutter> new_cutter_;  // a cutter record of another tool since
   std::optional<ClCycle> cycle_;
   std::optional<ClCycle> last_cycle_;
 

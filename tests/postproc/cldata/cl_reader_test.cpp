@@ -517,6 +517,44 @@ TEST(ClReader, CommentRecordsBecomeMessages) {
   EXPECT_DOUBLE_EQ(reader.cutters()[0].diameter(), 0.375);
 }
 
+// Tool changes without LOAD/TOOL: TOOLNO/n before the next motion is the
+// change to tool n (CATIA writes LOADTL after it: then that is the one
+// change); a cutter record of another shape after the section's first
+// motion (a second CUTTER, NX's TOOL PATH with its TLDATA) is a change to
+// the tool TOOLNO or SELECT/TOOL named, refused when none did; SELECT/TOOL
+// alone preselects the next tool (SolidWorks CAM writes it while the
+// current tool still cuts); the same cutter again is no change.
+TEST(ClReader, ToolChangesWithoutLoadTool) {
+  const auto events = read_events(
+      "CUTTER/10\nTOOLNO/4\nGOTO/0,0,10\n"
+      "CUTTER/10\nGOTO/0,0,20\n"
+      "SELECT/TOOL,7\nGOTO/0,0,30\n"
+      "CUTTER/6,3\nGOTO/0,0,40\n"
+      "TOOL PATH/OP2,TOOL,BALL_8\nTLDATA/MILL,8,4,50,0,0\nTOOLNO/9\nGOTO/0,0,50\n"
+      "TOOL PATH/OP3,TOOL,BALL_8\nTLDATA/MILL,8,4,50,0,0\nGOTO/0,0,60\n"
+      "CUTTER/12\nTOOLNO/5\nLOADTL/5\nGOTO/0,0,70\nFINI\n");
+  std::vector<std::pair<int, std::uint32_t>> changes;  // number, line
+  for (const auto& c : only<ChangeTool>(events)) changes.emplace_back(c.number, c.source.line);
+  EXPECT_EQ(changes,
+            (std::vector<std::pair<int, std::uint32_t>>{{4, 3}, {7, 9}, {9, 13}, {5, 19}}));
+  ASSERT_EQ(only<SelectTool>(events).size(), 1u);
+  // Each change comes before its motion.
+  std::size_t change_at = 0;
+  for (std::size_t i = 0; i < events.size(); ++i)
+    if (std::holds_alternative<ChangeTool>(events[i])) change_at = i;
+  ASSERT_LT(change_at + 1, events.size());
+  EXPECT_TRUE(std::holds_alternative<StraightFeed>(events[change_at + 1]));
+  try {
+    read_events("CUTTER/10\nLOADTL/1\nGOTO/0,0,10\nCUTTER/6,3\nGOTO/0,0,20\nFINI\n");
+    FAIL() << "no error";
+  } catch (const ClError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "test.cl:4:1: error[E3120]: CUTTER/6,3 is another tool than the one cutting, but "
+              "no LOAD/TOOL, LOADTL, TOOLNO or SELECT/TOOL gives its number: the tool change "
+              "cannot be written (give the tool numbers in the CAM system)");
+  }
+}
+
 TEST(ClReader, CodeTableIsInOrderAndUnique) {
   const auto table = cl_code_table();
   for (std::size_t i = 0; i < table.size(); ++i) {

@@ -209,7 +209,7 @@ void ClReader::from(const ClRecord& r) {
   if (r.params.size() == 6) {
     check_axis(Vec(number(r, 3), number(r, 4), number(r, 5)), r.params[3].line, r.params[3].column);
   }
-  position_ = unit_ * Vec(number(r, 0), number(r, 1), number(r, 2));
+  position_ = place(unit_ * Vec(number(r, 0), number(r, 1), number(r, 2)));
 }
 
 void ClReader::godlta(const ClRecord& r) {
@@ -221,7 +221,7 @@ void ClReader::godlta(const ClRecord& r) {
   if (r.params.size() == 1) {
     delta = unit_ * number(r, 0) * Vec::UnitZ();
   } else if (r.params.size() == 3 || r.params.size() == 6) {
-    delta = unit_ * Vec(number(r, 0), number(r, 1), number(r, 2));
+    delta = rotation_ * (unit_ * Vec(number(r, 0), number(r, 1), number(r, 2)));
     if (r.params.size() == 6) {
       check_axis(Vec(number(r, 3), number(r, 4), number(r, 5)), r.params[3].line,
                  r.params[3].column);
@@ -465,7 +465,7 @@ void ClReader::nurbs_data(const ClRecord& r) {
       fail(ClCode::bad_nurbs, r, "CNTRL needs x,y,z or x,y,z,w");
     }
     const double w = r.params.size() == 4 ? number(r, 3) : 1.0;
-    const Vec p = unit_ * Vec(number(r, 0), number(r, 1), number(r, 2));
+    const Vec p = place(unit_ * Vec(number(r, 0), number(r, 1), number(r, 2)));
     cntrl_.emplace_back(w * p.x(), w * p.y(), w * p.z(), w);
   }
 }
@@ -476,21 +476,36 @@ void ClReader::nurbs_data(const ClRecord& r) {
 // are already in it, so any MSYS is accepted.
 void ClReader::msys(const ClRecord& r) { require_numbers(r); }
 
-// SolidWorks CAM: CSYS/r11,r12,r13,tx,r21,...,tz (GOTOs in world
-// coordinates, TRNTYP/WORLD); CATIA/APT: the 12 values of a 3x4 matrix.
+// SolidWorks CAM: CSYS/r11,r12,r13,tx,r21,...,tz; CATIA/APT: the 12 values
+// of a 3x4 matrix. The points that follow are in the frame it defines:
+// placed at R p + t (a 3-axis machine makes a translation and a turn
+// about its Z axis; a tilted set-up is another machine's job).
 void ClReader::csys(const ClRecord& r) {
   require_numbers(r);
   if (r.params.size() != 12) {
     fail(ClCode::wrong_parameters, r, "CSYS needs the 12 values of a 3x4 matrix");
   }
-  for (std::size_t i = 0; i < 12; ++i) {
-    const double identity = (i == 0 || i == 5 || i == 10) ? 1.0 : 0.0;
-    if (std::abs(number(r, i) - identity) > 1e-9) {
-      fail(ClCode::frame_not_identity, r.params[i],
-           "CSYS with a rotation or translation is not applied (the set-up frame differs from "
-           "the CL points' frame); post each set-up from its own CL file");
-    }
+  Eigen::Matrix3d rotation;
+  Vec offset;
+  for (int row = 0; row < 3; ++row) {
+    for (int col = 0; col < 3; ++col)
+      rotation(row, col) = number(r, static_cast<std::size_t>(4 * row + col));
+    offset[row] = unit_ * number(r, static_cast<std::size_t>(4 * row + 3));
   }
+  constexpr double tolerance = 1e-6;
+  const double c = rotation(0, 0), s = rotation(1, 0);
+  const bool about_z =
+      std::abs(rotation(0, 2)) <= tolerance && std::abs(rotation(1, 2)) <= tolerance &&
+      std::abs(rotation(2, 0)) <= tolerance && std::abs(rotation(2, 1)) <= tolerance &&
+      std::abs(rotation(2, 2) - 1) <= tolerance && std::abs(c * c + s * s - 1) <= tolerance &&
+      std::abs(rotation(1, 1) - c) <= tolerance && std::abs(rotation(0, 1) + s) <= tolerance;
+  if (!about_z) {
+    fail(ClCode::frame_not_identity, r,
+         "CSYS rotates about another axis than Z (or scales): only a translation and a rotation "
+         "about Z are applied; post each set-up from its own CL file");
+  }
+  rotation_ = rotation;
+  offset_ = offset;
 }
 
 void ClReader::trntyp(const ClRecord& r) {
@@ -644,7 +659,8 @@ void ClReader::process_motion_points(const ClRecord& r, bool continuation) {
       check_axis(Vec(r.params[i + 3].value, r.params[i + 4].value, r.params[i + 5].value),
                  r.params[i + 3].line, r.params[i + 3].column);
     }
-    const Vec p = unit_ * Vec(r.params[i].value, r.params[i + 1].value, r.params[i + 2].value);
+    const Vec p =
+        place(unit_ * Vec(r.params[i].value, r.params[i + 1].value, r.params[i + 2].value));
     if (cycle_) {
       drill(p, r.source);
     } else {
@@ -963,8 +979,8 @@ void ClReader::circle(const ClRecord& r) {
   }
   const double norm = arc.axis.norm();
   if (!(norm > 0)) fail(ClCode::wrong_parameters, r, "circle axis is a zero vector");
-  arc.axis /= norm;
-  arc.centre = unit_ * Vec(number(r, 0), number(r, 1), number(r, 2));
+  arc.axis = rotation_ * (arc.axis / norm);
+  arc.centre = place(unit_ * Vec(number(r, 0), number(r, 1), number(r, 2)));
   if (arc.radius && !(*arc.radius > 0))
     fail(ClCode::wrong_parameters, r, "circle radius must be positive");
   arc_pending_ = arc;

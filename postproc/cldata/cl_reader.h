@@ -1,8 +1,8 @@
 // APT CL data -> motion events (postproc/program/events.h), streaming.
 //
 // Records and what they become (units: the file's UNITS, converted to mm;
-// feeds to mm/min or mm/rev; positions are the CL points as written, in the
-// CL file's output frame: no frame record moves them, see below):
+// feeds to mm/min or mm/rev; positions are the CL points in the CL file's
+// output frame, moved only by a CSYS, see below):
 //   GOTO/x,y,z[,i,j,k] (several points per record, and Creo's bare
 //       coordinate lines after it)      StraightFeed, or StraightTraverse
 //                                        after RAPID (one motion record)
@@ -48,11 +48,17 @@
 //       ends it (INIT and CAMWorks' ON around it); others refused (E3112).
 //   UNITS|UNIT, TLAXIS, MULTAX           state; any axis other than +Z is
 //                                        refused (E3108): events are 3-axis
-//   MSYS (NX: the output frame, the GOTOs are in it), CSYS, TRNTYP/WORLD,
+//   CSYS/r11,r12,r13,tx,r21,r22,r23,ty,r31,r32,r33,tz (the 3x4 matrix row
+//       by row): the frame the following points are given in; each point p
+//       becomes R p + t (directions R d: GODLTA, circle axes), until the
+//       next CSYS. Only a translation and a rotation about Z (R's third row
+//       and column 0,0,1, a proper rotation within 1e-6) are applied; any
+//       other rotation, a mirror or a scaling is refused (E3119).
+//   MSYS (NX: the output frame, the GOTOs are in it), TRNTYP/WORLD,
 //   ORIGIN that leave the points where they are (identity), ROTABL by 0
-//                                        accepted; a frame that would move
-//                                        the points is refused (E3119), a
-//                                        turned table too (E3108)
+//                                        accepted; another TRNTYP or ORIGIN
+//                                        is refused (E3119), a turned table
+//                                        too (E3108)
 //   $$ comment records                   Message (a comment in the output)
 //   PAINT, MACHIN, TPRINT, CLRSRF, END, MODE, SEQNO, BOX,
 //   CSI_SET_FLUTE_LENGTH, CSI_SET_EXTENSION_LENGTH, END-OF-PATH
@@ -197,6 +203,10 @@ class ClReader {
   std::uint64_t records_ = 0;
 
   double unit_ = 1.0;  // mm per file length unit
+  // The last CSYS: points p are placed at rotation_ p + offset_ (mm).
+  Eigen::Matrix3d rotation_ = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d offset_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d place(const Eigen::Vector3d& p) const { return rotation_ * p + offset_; }
   std::optional<Eigen::Vector3d> position_;
   bool multax_ = false;
 

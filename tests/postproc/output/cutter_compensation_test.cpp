@@ -129,7 +129,8 @@ TEST(CutterCompensation, GrblKeepsComments) {
 
 // rs274 reads the program with the motion of the CL data when the registers
 // hold no wear, and reads it whole (its rules on the entry move, the move
-// after G40) with a wear of 0.002 in; vcpost verify holds.
+// after G40) with a wear of 0.002 in; vcpost verify holds, and tells a
+// compensation on the wrong side.
 TEST(CutterCompensation, Rs274AndVerifyReadTheClMotion) {
   const std::string program = write_program(contour, rs274ngc_format());
   for (const bool fanuc : {false, true}) {
@@ -148,6 +149,18 @@ TEST(CutterCompensation, Rs274AndVerifyReadTheClMotion) {
                         << text;
     EXPECT_EQ(v.motions, 8u);
   }
+
+  // verify compares the sides: G42 where the CL says LEFT is a difference.
+  std::string wrong = program;
+  const auto at = wrong.find("G41 D3");
+  ASSERT_NE(at, std::string::npos) << program;
+  wrong.replace(at, 3, "G42");
+  const verify::Result v = verify::verify_cl(contour, wrong, {}, "contour.cl");
+  ASSERT_FALSE(v.ok());
+  EXPECT_EQ(verify::format(v.violations[0], "out"),
+            "out:8:1: error[E7135]: the output means COMMENT(\"interpreter: cutter radius "
+            "compensation on right\") where the CL data mean COMMENT(\"interpreter: cutter radius "
+            "compensation on left\") (input line 7)");
 
   if (!cldata::testing::have_rs274()) GTEST_SKIP() << "rs274 (linuxcnc-uspace) not installed";
   const fs::path dir = fs::temp_directory_path() / ("vcpost_cutcom_" + std::to_string(getpid()));

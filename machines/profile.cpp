@@ -41,7 +41,7 @@ ProfileError::ProfileError(std::string code, std::string file, std::uint32_t lin
 namespace {
 
 // The schema: every table and its keys. Anything else in a file is an error.
-constexpr std::array<std::string_view, 30> kSchemaKeys = {
+constexpr std::array<std::string_view, 31> kSchemaKeys = {
     "machine.name",
     "machine.description",
     "machine.dialect",
@@ -72,6 +72,7 @@ constexpr std::array<std::string_view, 30> kSchemaKeys = {
     "output.feed_decimals",
     "output.line_numbers",
     "output.canned_cycles",
+    "output.cutter_compensation",
 };
 
 constexpr std::array<std::string_view, 7> kTables = {"machine", "spindle", "control", "feed",
@@ -461,6 +462,8 @@ OutputSpec read_output(const Reader& r) {
   }
   o.line_numbers = r.boolean("output", "line_numbers", false).value_or(o.line_numbers);
   o.canned_cycles = r.boolean("output", "canned_cycles", false).value_or(o.canned_cycles);
+  o.cutter_compensation =
+      r.boolean("output", "cutter_compensation", false).value_or(o.cutter_compensation);
   return o;
 }
 

@@ -88,6 +88,7 @@ struct OutputSpec {
   int feed_decimals = 1;               // digits after the point for F, 0..6
   bool line_numbers = false;           // N words
   bool canned_cycles = false;          // CL hole cycles as G73/G81-G89 (else their moves)
+  bool cutter_compensation = true;     // CL CUTCOM as G41/G42 D, G40 (else comments)
 };
 
 // Provenance of one key ("spindle.n_max_rpm", or a whole table "feed").

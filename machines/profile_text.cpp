@@ -162,6 +162,7 @@ std::string profile_to_toml(const MachineProfile& p) {
   w.key("feed_decimals", std::to_string(o.feed_decimals));
   w.key("line_numbers", boolean(o.line_numbers));
   w.key("canned_cycles", boolean(o.canned_cycles));
+  w.key("cutter_compensation", boolean(o.cutter_compensation));
 
   if (!p.sources().empty()) {
     w.raw("\n[sources]\n");

@@ -8,7 +8,7 @@ namespace {
 
 // The reader's codes in enumerator order; severity and summary come from
 // the one code table.
-constexpr std::array<std::string_view, 24> kIds{
+constexpr std::array<std::string_view, 25> kIds{
     "E3101",  // line_too_long
     "E3102",  // invalid_byte
     "E3103",  // bad_number
@@ -33,10 +33,11 @@ constexpr std::array<std::string_view, 24> kIds{
     "W3154",  // ignored_option
     "E3118",  // unknown_word
     "E3119",  // frame_not_identity
+    "E3120",  // tool_change_without_number
 };
 
-std::array<ClCodeInfo, 24> make_table() {
-  std::array<ClCodeInfo, 24> out{};
+std::array<ClCodeInfo, 25> make_table() {
+  std::array<ClCodeInfo, 25> out{};
   for (std::size_t i = 0; i < kIds.size(); ++i) {
     const vcpost::CodeInfo& row = vcpost::code_info(kIds[i]);
     out[i] = ClCodeInfo{static_cast<ClCode>(i), row.id, row.severity, row.summary};
@@ -44,8 +45,8 @@ std::array<ClCodeInfo, 24> make_table() {
   return out;
 }
 
-const std::array<ClCodeInfo, 24>& table() {
-  static const std::array<ClCodeInfo, 24> rows = make_table();
+const std::array<ClCodeInfo, 25>& table() {
+  static const std::array<ClCodeInfo, 25> rows = make_table();
   return rows;
 }
 

@@ -18,30 +18,31 @@ using vcpost::Severity;
 
 // Codes are stable: never renumber, only append.
 enum class ClCode {
-  line_too_long,          // E3101
-  invalid_byte,           // E3102
-  bad_number,             // E3103
-  wrong_parameters,       // E3104
-  unexpected_word,        // E3105
-  truncated_record,       // E3106
-  orphan_points,          // E3107
-  tool_axis_not_z,        // E3108
-  arc_inconsistent,       // E3109
-  arc_without_goto,       // E3110
-  bad_nurbs,              // E3111
-  unsupported_cycle,      // E3112
-  apt_source_statement,   // E3113
-  no_start_position,      // E3114
-  surface_speed_no_tool,  // E3115
-  bad_units,              // E3116
-  unsupported_record,     // E3117
-  unknown_record,         // W3150 (no longer given: unknown records are E3118)
-  missing_fini,           // W3151
-  after_fini,             // W3152
-  tool_not_modelled,      // W3153
-  ignored_option,         // W3154
-  unknown_word,           // E3118
-  frame_not_identity,     // E3119
+  line_too_long,               // E3101
+  invalid_byte,                // E3102
+  bad_number,                  // E3103
+  wrong_parameters,            // E3104
+  unexpected_word,             // E3105
+  truncated_record,            // E3106
+  orphan_points,               // E3107
+  tool_axis_not_z,             // E3108
+  arc_inconsistent,            // E3109
+  arc_without_goto,            // E3110
+  bad_nurbs,                   // E3111
+  unsupported_cycle,           // E3112
+  apt_source_statement,        // E3113
+  no_start_position,           // E3114
+  surface_speed_no_tool,       // E3115
+  bad_units,                   // E3116
+  unsupported_record,          // E3117
+  unknown_record,              // W3150 (no longer given: unknown records are E3118)
+  missing_fini,                // W3151
+  after_fini,                  // W3152
+  tool_not_modelled,           // W3153
+  ignored_option,              // W3154
+  unknown_word,                // E3118
+  frame_not_identity,          // E3119
+  tool_change_without_number,  // E3120
 };
 
 struct ClCodeInfo {

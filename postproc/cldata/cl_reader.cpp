@@ -145,7 +145,10 @@ void ClReader::finish_input() {
 
 void ClReader::process(const ClRecord& r) {
   if (r.kind == ClRecordKind::comment) {
-    if (!ended_) creo_cutter_comment(r);
+    if (!ended_) {
+      creo_cutter_comment(r);
+      comment(r);
+    }
     return;
   }
   if (ended_) {
@@ -206,7 +209,7 @@ void ClReader::from(const ClRecord& r) {
   if (r.params.size() == 6) {
     check_axis(Vec(number(r, 3), number(r, 4), number(r, 5)), r.params[3].line, r.params[3].column);
   }
-  position_ = unit_ * Vec(number(r, 0), number(r, 1), number(r, 2));
+  position_ = place(unit_ * Vec(number(r, 0), number(r, 1), number(r, 2)));
 }
 
 void ClReader::godlta(const ClRecord& r) {
@@ -218,7 +221,7 @@ void ClReader::godlta(const ClRecord& r) {
   if (r.params.size() == 1) {
     delta = unit_ * number(r, 0) * Vec::UnitZ();
   } else if (r.params.size() == 3 || r.params.size() == 6) {
-    delta = unit_ * Vec(number(r, 0), number(r, 1), number(r, 2));
+    delta = rotation_ * (unit_ * Vec(number(r, 0), number(r, 1), number(r, 2)));
     if (r.params.size() == 6) {
       check_axis(Vec(number(r, 3), number(r, 4), number(r, 5)), r.params[3].line,
                  r.params[3].column);
@@ -231,12 +234,62 @@ void ClReader::godlta(const ClRecord& r) {
     fail(ClCode::arc_without_goto, arc_pending_->source.line, arc_pending_->source.column,
          "CIRCLE must be followed by GOTO, not GODLTA");
   }
+  begin_motion(r.source);
   move_to(*position_ + delta, r.source);
   rapid_active_ = false;
 }
 
 void ClReader::loadtl(const ClRecord& r) {
   queue_.push_back(program::ChangeTool{integer(r, 0), r.source});
+  tool_changed(integer(r, 0));
+}
+
+void ClReader::tool_changed(int number) {
+  tool_ = number;
+  named_tool_.reset();
+  toolno_pending_ = false;
+  moved_ = false;
+  new_cutter_.reset();
+}
+
+// TOOLNO/n[,diameter,...]: the number of the tool change to come.
+void ClReader::toolno(const ClRecord& r) {
+  named_tool_ = integer(r, 0);
+  toolno_pending_ = true;
+}
+
+// After a cutter record: another cutter than the section's, once the
+// section has moved, is a tool change (made at the next motion).
+void ClReader::note_cutter(const ClRecord& r) {
+  if (!moved_ || !section_cutter_) return;
+  const ClCutter& now = cutters_[*section_cutter_];
+  const ClCutter& next = cutters_.back();
+  if (now.source_word == next.source_word && now.params == next.params) return;
+  new_cutter_ =
+      NewCutter{std::string(r.major) + "/" + std::string(r.text), r.source.line, r.source.column};
+}
+
+// Before the events of a motion record: the tool change TOOLNO or another
+// cutter asked for, and the section's cutter at its first motion.
+void ClReader::begin_motion(const SourceRef& src) {
+  const bool toolno_change = toolno_pending_ && named_tool_ != tool_;
+  toolno_pending_ = false;
+  if (new_cutter_ || toolno_change) {
+    if (!named_tool_) {
+      fail(ClCode::tool_change_without_number, new_cutter_->line, new_cutter_->column,
+           new_cutter_->record +
+               " is another tool than the one cutting, but no LOAD/TOOL, LOADTL, TOOLNO or "
+               "SELECT/TOOL gives its number: the tool change cannot be written (give the tool "
+               "numbers in the CAM system)");
+    }
+    const int number = *named_tool_;
+    queue_.push_back(program::ChangeTool{number, src});
+    tool_changed(number);
+  }
+  if (!moved_) {
+    moved_ = true;
+    if (!cutters_.empty()) section_cutter_ = cutters_.size() - 1;
+  }
 }
 
 // LOAD/TOOL,n[,ADJUST,h] and SELECT/TOOL,n.
@@ -261,8 +314,10 @@ void ClReader::load_or_select(const ClRecord& r) {
   }
   if (m == "LOAD") {
     queue_.push_back(program::ChangeTool{integer(r, 1), r.source});
+    tool_changed(integer(r, 1));
   } else {
     queue_.push_back(program::SelectTool{integer(r, 1), r.source});
+    named_tool_ = integer(r, 1);
   }
 }
 
@@ -314,14 +369,19 @@ void ClReader::cutcom(const ClRecord& r) {
   } else if (!word_is(p, "OFF")) {
     fail(ClCode::unexpected_word, p, "unknown CUTCOM word '" + std::string(p.text) + "'");
   }
+  std::optional<int> register_number;
   for (std::size_t i = 1; i < r.params.size(); ++i) {
     const ClParam& q = r.params[i];
-    if (q.is_number || word_is(q, "XYPLAN")) continue;
+    if (word_is(q, "XYPLAN")) continue;
+    if (q.is_number && !register_number) {
+      register_number = integer(r, i);
+      continue;
+    }
     fail(ClCode::unexpected_word, q,
          "CUTCOM/" + std::string(p.text) + "," + std::string(q.text) +
-             ": only the XYPLAN plane and a register number are understood");
+             ": only the XYPLAN plane and one register number are understood");
   }
-  queue_.push_back(program::CutterCompensation{side, r.source});
+  queue_.push_back(program::CutterCompensation{side, r.source, register_number});
 }
 
 void ClReader::delay(const ClRecord& r) {
@@ -347,6 +407,16 @@ void ClReader::fini(const ClRecord& r) {
 }
 
 void ClReader::end_of_path(const ClRecord&) { end_of_path_ = true; }
+
+// A `$$` comment record: a comment of the output, where it stands (the
+// CAM system's operation names, notes for the operator), blanks trimmed.
+void ClReader::comment(const ClRecord& r) {
+  std::string_view t = r.text;
+  while (!t.empty() && (t.front() == ' ' || t.front() == '\t')) t.remove_prefix(1);
+  while (!t.empty() && (t.back() == ' ' || t.back() == '\t' || t.back() == '\r'))
+    t.remove_suffix(1);
+  if (!t.empty()) queue_.push_back(program::Message{std::string(t), r.source});
+}
 
 // Text the output carries as a comment.
 void ClReader::message(const ClRecord& r) {
@@ -376,6 +446,7 @@ void ClReader::nurbs(const ClRecord& r) {
     fail(ClCode::bad_nurbs, r, "NURBS/ with parameters is not understood");
   }
   if (!position_) fail(ClCode::no_start_position, r, "NURBS before any position");
+  begin_motion(r.source);
   nurbs_active_ = true;
   nurbs_rapid_ = std::exchange(rapid_pending_, false);
   nurbs_source_ = r.source;
@@ -394,7 +465,7 @@ void ClReader::nurbs_data(const ClRecord& r) {
       fail(ClCode::bad_nurbs, r, "CNTRL needs x,y,z or x,y,z,w");
     }
     const double w = r.params.size() == 4 ? number(r, 3) : 1.0;
-    const Vec p = unit_ * Vec(number(r, 0), number(r, 1), number(r, 2));
+    const Vec p = place(unit_ * Vec(number(r, 0), number(r, 1), number(r, 2)));
     cntrl_.emplace_back(w * p.x(), w * p.y(), w * p.z(), w);
   }
 }
@@ -405,21 +476,36 @@ void ClReader::nurbs_data(const ClRecord& r) {
 // are already in it, so any MSYS is accepted.
 void ClReader::msys(const ClRecord& r) { require_numbers(r); }
 
-// SolidWorks CAM: CSYS/r11,r12,r13,tx,r21,...,tz (GOTOs in world
-// coordinates, TRNTYP/WORLD); CATIA/APT: the 12 values of a 3x4 matrix.
+// SolidWorks CAM: CSYS/r11,r12,r13,tx,r21,...,tz; CATIA/APT: the 12 values
+// of a 3x4 matrix. The points that follow are in the frame it defines:
+// placed at R p + t (a 3-axis machine makes a translation and a turn
+// about its Z axis; a tilted set-up is another machine's job).
 void ClReader::csys(const ClRecord& r) {
   require_numbers(r);
   if (r.params.size() != 12) {
     fail(ClCode::wrong_parameters, r, "CSYS needs the 12 values of a 3x4 matrix");
   }
-  for (std::size_t i = 0; i < 12; ++i) {
-    const double identity = (i == 0 || i == 5 || i == 10) ? 1.0 : 0.0;
-    if (std::abs(number(r, i) - identity) > 1e-9) {
-      fail(ClCode::frame_not_identity, r.params[i],
-           "CSYS with a rotation or translation is not applied (the set-up frame differs from "
-           "the CL points' frame); post each set-up from its own CL file");
-    }
+  Eigen::Matrix3d rotation;
+  Vec offset;
+  for (int row = 0; row < 3; ++row) {
+    for (int col = 0; col < 3; ++col)
+      rotation(row, col) = number(r, static_cast<std::size_t>(4 * row + col));
+    offset[row] = unit_ * number(r, static_cast<std::size_t>(4 * row + 3));
   }
+  constexpr double tolerance = 1e-6;
+  const double c = rotation(0, 0), s = rotation(1, 0);
+  const bool about_z =
+      std::abs(rotation(0, 2)) <= tolerance && std::abs(rotation(1, 2)) <= tolerance &&
+      std::abs(rotation(2, 0)) <= tolerance && std::abs(rotation(2, 1)) <= tolerance &&
+      std::abs(rotation(2, 2) - 1) <= tolerance && std::abs(c * c + s * s - 1) <= tolerance &&
+      std::abs(rotation(1, 1) - c) <= tolerance && std::abs(rotation(0, 1) + s) <= tolerance;
+  if (!about_z) {
+    fail(ClCode::frame_not_identity, r,
+         "CSYS rotates about another axis than Z (or scales): only a translation and a rotation "
+         "about Z are applied; post each set-up from its own CL file");
+  }
+  rotation_ = rotation;
+  offset_ = offset;
 }
 
 void ClReader::trntyp(const ClRecord& r) {
@@ -540,7 +626,7 @@ const ClReader::RecordRule* ClReader::find_rule(std::string_view word) {
       {"TLON", &ClReader::apt_source},
       {"TLRGT", &ClReader::apt_source},
       {"TOOL PATH", &ClReader::message},
-      {"TOOLNO", &ClReader::ignore},
+      {"TOOLNO", &ClReader::toolno},
       {"TPRINT", &ClReader::ignore},
       {"TRACUT", &ClReader::tracut},
       {"TRNTYP", &ClReader::trntyp},
@@ -567,12 +653,14 @@ void ClReader::process_motion_points(const ClRecord& r, bool continuation) {
              " values; expected groups of " + std::to_string(group) +
              (group == 3 ? " (x,y,z)" : " (x,y,z,i,j,k)"));
   }
+  begin_motion(r.source);
   for (std::size_t i = 0; i < count; i += group) {
     if (group == 6) {
       check_axis(Vec(r.params[i + 3].value, r.params[i + 4].value, r.params[i + 5].value),
                  r.params[i + 3].line, r.params[i + 3].column);
     }
-    const Vec p = unit_ * Vec(r.params[i].value, r.params[i + 1].value, r.params[i + 2].value);
+    const Vec p =
+        place(unit_ * Vec(r.params[i].value, r.params[i + 1].value, r.params[i + 2].value));
     if (cycle_) {
       drill(p, r.source);
     } else {
@@ -792,6 +880,7 @@ void ClReader::cutter(const ClRecord& r) {
   c.source = r.source;
   if (!c.tool) warn(ClCode::tool_not_modelled, r.source, "CUTTER: " + c.why_not);
   cutters_.push_back(std::move(c));
+  note_cutter(r);
 }
 
 void ClReader::tldata(const ClRecord& r) {
@@ -805,6 +894,7 @@ void ClReader::tldata(const ClRecord& r) {
     c.source = r.source;
     warn(ClCode::tool_not_modelled, r.source, c.why_not);
     cutters_.push_back(std::move(c));
+    note_cutter(r);
     return;
   }
   if (r.params.size() < 3) fail(ClCode::wrong_parameters, r, "TLDATA/MILL needs d and r");
@@ -818,6 +908,7 @@ void ClReader::tldata(const ClRecord& r) {
   c.source = r.source;
   if (!c.tool) warn(ClCode::tool_not_modelled, r.source, "TLDATA/MILL: " + c.why_not);
   cutters_.push_back(std::move(c));
+  note_cutter(r);
 }
 
 // Creo writes the cutter only as a comment: `$$-> CUTTER / 0.375000`.
@@ -888,8 +979,8 @@ void ClReader::circle(const ClRecord& r) {
   }
   const double norm = arc.axis.norm();
   if (!(norm > 0)) fail(ClCode::wrong_parameters, r, "circle axis is a zero vector");
-  arc.axis /= norm;
-  arc.centre = unit_ * Vec(number(r, 0), number(r, 1), number(r, 2));
+  arc.axis = rotation_ * (arc.axis / norm);
+  arc.centre = place(unit_ * Vec(number(r, 0), number(r, 1), number(r, 2)));
   if (arc.radius && !(*arc.radius > 0))
     fail(ClCode::wrong_parameters, r, "circle radius must be positive");
   arc_pending_ = arc;

@@ -1,8 +1,8 @@
 // APT CL data -> motion events (postproc/program/events.h), streaming.
 //
 // Records and what they become (units: the file's UNITS, converted to mm;
-// feeds to mm/min or mm/rev; positions are the CL points as written, in the
-// CL file's output frame: no frame record moves them, see below):
+// feeds to mm/min or mm/rev; positions are the CL points in the CL file's
+// output frame, moved only by a CSYS, see below):
 //   GOTO/x,y,z[,i,j,k] (several points per record, and Creo's bare
 //       coordinate lines after it)      StraightFeed, or StraightTraverse
 //                                        after RAPID (one motion record)
@@ -23,6 +23,18 @@
 //   CUTTER/1..7 values, TLDATA/MILL, Creo's `$$-> CUTTER / d`
 //                                        cutter() (no event)
 //   LOADTL/n, LOAD/TOOL,n                ChangeTool; SELECT/TOOL,n SelectTool
+//       (a preselection: SolidWorks CAM selects the next tool while the
+//       one in the spindle still cuts, so SELECT alone changes nothing)
+//   TOOLNO/n[,...]                       the number of the next tool change:
+//       CATIA writes LOADTL after it (then that is the change); with no
+//       LOAD/TOOL or LOADTL before the next motion, ChangeTool n there
+//   a cutter record (CUTTER, TLDATA, after NX's TOOL PATH) after the
+//       section's first motion that describes another cutter than the
+//       section's (CAMWorks and NX write no LOAD/TOOL when the operation
+//       has no tool number): ChangeTool before the next motion, unless a
+//       LOAD/TOOL or LOADTL comes first, to the tool TOOLNO or SELECT/TOOL
+//       named since the last change; with no number, refused (E3120): the
+//       output cannot write a tool change without one
 //   COOLNT, CUTCOM (LEFT|RIGHT|OFF[,XYPLAN][,register]; CAMWorks' ON),
 //   DELAY (seconds or REV,n), STOP, OPSTOP
 //                                        Coolant, CutterCompensation, Dwell,
@@ -36,13 +48,20 @@
 //       ends it (INIT and CAMWorks' ON around it); others refused (E3112).
 //   UNITS|UNIT, TLAXIS, MULTAX           state; any axis other than +Z is
 //                                        refused (E3108): events are 3-axis
-//   MSYS (NX: the output frame, the GOTOs are in it), CSYS, TRNTYP/WORLD,
+//   CSYS/r11,r12,r13,tx,r21,r22,r23,ty,r31,r32,r33,tz (the 3x4 matrix row
+//       by row): the frame the following points are given in; each point p
+//       becomes R p + t (directions R d: GODLTA, circle axes), until the
+//       next CSYS. Only a translation and a rotation about Z (R's third row
+//       and column 0,0,1, a proper rotation within 1e-6) are applied; any
+//       other rotation, a mirror or a scaling is refused (E3119).
+//   MSYS (NX: the output frame, the GOTOs are in it), TRNTYP/WORLD,
 //   ORIGIN that leave the points where they are (identity), ROTABL by 0
-//                                        accepted; a frame that would move
-//                                        the points is refused (E3119), a
-//                                        turned table too (E3108)
-//   PAINT, MACHIN, TPRINT, TOOLNO, CLRSRF, END, MODE, SEQNO, BOX,
-//   CSI_SET_FLUTE_LENGTH, CSI_SET_EXTENSION_LENGTH, END-OF-PATH, $$ comments
+//                                        accepted; another TRNTYP or ORIGIN
+//                                        is refused (E3119), a turned table
+//                                        too (E3108)
+//   $$ comment records                   Message (a comment in the output)
+//   PAINT, MACHIN, TPRINT, CLRSRF, END, MODE, SEQNO, BOX,
+//   CSI_SET_FLUTE_LENGTH, CSI_SET_EXTENSION_LENGTH, END-OF-PATH
 //                                        no motion, no state: ignored
 //   APT source statements (TLON, GOFWD, INDIRV, `X=...` definitions)
 //                                        refused (E3113); TRACUT, GOHOME
@@ -129,6 +148,10 @@ class ClReader {
   void from(const ClRecord& r);
   void godlta(const ClRecord& r);
   void loadtl(const ClRecord& r);
+  void toolno(const ClRecord& r);
+  void tool_changed(int number);
+  void note_cutter(const ClRecord& r);
+  void begin_motion(const program::SourceRef& src);
   void load_or_select(const ClRecord& r);
   void units(const ClRecord& r);
   void coolnt(const ClRecord& r);
@@ -138,6 +161,7 @@ class ClReader {
   void fini(const ClRecord& r);
   void end_of_path(const ClRecord& r);
   void message(const ClRecord& r);
+  void comment(const ClRecord& r);
   void tlaxis(const ClRecord& r);
   void multax(const ClRecord& r);
   void nurbs(const ClRecord& r);
@@ -179,6 +203,10 @@ class ClReader {
   std::uint64_t records_ = 0;
 
   double unit_ = 1.0;  // mm per file length unit
+  // The last CSYS: points p are placed at rotation_ p + offset_ (mm).
+  Eigen::Matrix3d rotation_ = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d offset_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d place(const Eigen::Vector3d& p) const { return rotation_ * p + offset_; }
   std::optional<Eigen::Vector3d> position_;
   bool multax_ = false;
 
@@ -193,6 +221,17 @@ class ClReader {
   std::optional<Feed> machine_feed_;  // last SetFeedRate emitted
   double rpm_ = 0;
   program::SpindleDirection direction_ = program::SpindleDirection::clockwise;
+  // Tool changes the CL data make without LOAD/TOOL or LOADTL.
+  std::optional<int> tool_;                    // the tool in the spindle (the last ChangeTool)
+  std::optional<int> named_tool_;              // TOOLNO or SELECT/TOOL since the last change
+  bool toolno_pending_ = false;                // TOOLNO since the last motion or change
+  bool moved_ = false;                         // a motion since the last change
+  std::optional<std::size_t> section_cutter_;  // cutters_ index: the section's cutter
+  struct NewCutter {
+    std::string record;  // "CUTTER/6,3"
+    std::uint32_t line = 0, column = 0;
+  };
+  std::optional<NewCutter> new_cutter_;  // a cutter record of another tool since
   std::optional<ClCycle> cycle_;
   std::optional<ClCycle> last_cycle_;
 

@@ -38,7 +38,8 @@ constexpr const char* kDescription =
     "motions one to one: rapids as rapids, feeds as feeds, arcs with the same plane,\n"
     "direction and centre; end points within --tolerance on each axis (at least half a\n"
     "step of the profile's output decimals, the rounding a correct output has); spindle\n"
-    "on/off and tool changes in the same order. S and F values are free.\n"
+    "on/off, tool changes and cutter compensation sides (CUTCOM as G40/G41/G42) in the\n"
+    "same order. S and F values are free.\n"
     "\n"
     "Prints \"verified: ...\" and exits 0 when the proof holds. Each difference goes to\n"
     "stderr as file:line:col: error[E71xx]: message (line and column in OUTPUT, the\n"
@@ -112,6 +113,7 @@ void run(const Arguments& args) {
   options.tolerance_mm = args.tolerance;
   options.output_decimals = profile.output().decimals;
   options.output_feed_decimals = profile.output().feed_decimals;
+  options.cutter_compensation = profile.output().cutter_compensation;
   const std::string in_name = args.input == "-" ? "<stdin>" : args.input;
   const std::string out_name = args.output == "-" ? "<stdin>" : args.output;
   if (post::detect_program_kind(output) == post::ProgramKind::cldata)

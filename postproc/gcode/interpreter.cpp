@@ -976,10 +976,14 @@ void Interpreter::set_plane(Step& step) {
 void Interpreter::cutter_compensation(Step& step) {
   const Word* g = step.g(Group::cutter_comp);
   const int c = code_of(*g);
-  step.emit(program::CutterCompensation{c == 400                 ? program::CompensationSide::off
-                                        : (c == 410 || c == 411) ? program::CompensationSide::left
-                                                                 : program::CompensationSide::right,
-                                        source(step.b, g->column)});
+  program::CutterCompensation comp{c == 400                 ? program::CompensationSide::off
+                                   : (c == 410 || c == 411) ? program::CompensationSide::left
+                                                            : program::CompensationSide::right,
+                                   source(step.b, g->column)};
+  const Word* d = step.word('D');
+  if (d != nullptr && c != 400 && whole_number(d->value))
+    comp.register_number = static_cast<int>(d->value);
+  step.emit(comp);
 }
 
 void Interpreter::tool_length(Step& step) {

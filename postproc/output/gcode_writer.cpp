@@ -52,6 +52,7 @@ Format format_for(const machines::MachineProfile& profile) {
   format.feed_decimals = o.feed_decimals;
   format.line_numbers = o.line_numbers;
   format.canned_cycles = o.canned_cycles;
+  format.cutter_compensation = o.cutter_compensation;
   switch (profile.output_format()) {
     case machines::OutputFormat::rs274ngc:
       // LinuxCNC reads `O1000` as a subroutine keyword and G4 X as no dwell
@@ -116,9 +117,23 @@ void GcodeWriter::comment(std::string_view text) {
   block(words);
 }
 
+// The feed words due (G94/G95 only where the mode changes), then the S
+// words: the words waiting for the next block.
 std::string GcodeWriter::take_pending() {
-  std::string words = std::move(pending_);
-  pending_.clear();
+  std::string words;
+  if (pending_feed_) {
+    if (pending_feed_->per_revolution != per_revolution_) {
+      words = pending_feed_->per_revolution ? "G95 " : "G94 ";
+      per_revolution_ = pending_feed_->per_revolution;
+    }
+    words += pending_feed_->f_word;
+    pending_feed_.reset();
+  }
+  if (!pending_.empty()) {
+    if (!words.empty()) words += ' ';
+    words += pending_;
+    pending_.clear();
+  }
   return words;
 }
 
@@ -138,8 +153,39 @@ void GcodeWriter::header() {
   if (format_.geometry_compensation) block("G61.1");
 }
 
+// G41/G42 D or G40 for a motion's block where the side written is not the
+// side wanted (see the header): on a straight move; before an arc, only
+// the start of compensation, on a block of its own.
+void GcodeWriter::compensation_words(std::string& words, bool straight) {
+  if (comp_wanted_ == comp_written_) return;
+  if (!straight && comp_written_ != CompensationSide::off) return;
+  if (comp_wanted_ != CompensationSide::off && comp_written_ != CompensationSide::off)
+    end_compensation();  // G41 -> G42: G40 first
+  std::string comp;
+  if (comp_wanted_ == CompensationSide::off) {
+    comp = "G40";
+  } else {
+    comp = comp_wanted_ == CompensationSide::left ? "G41" : "G42";
+    if (const auto d = comp_register_ ? comp_register_ : tool_) comp += " D" + std::to_string(*d);
+  }
+  comp_written_ = comp_wanted_;
+  if (!straight) {
+    block(comp);
+    return;
+  }
+  if (!words.empty()) words += ' ';
+  words += comp;
+}
+
+void GcodeWriter::end_compensation() {
+  if (comp_written_ == CompensationSide::off) return;
+  block("G40");
+  comp_written_ = CompensationSide::off;
+}
+
 void GcodeWriter::end_program() {
   end_cycle();
+  end_compensation();
   std::string words = take_pending();
   if (high_speed_on_) {
     block("G05 P0");
@@ -227,12 +273,21 @@ void GcodeWriter::write_cycle() {
            (h.retract_to_r || initial_z_ == c.top_z);
   };
   std::string words;
+  end_compensation();  // rs274 runs no cycle under compensation
   if (pending_g43_) {
     block("G43 H" + std::to_string(*pending_g43_));
     pending_g43_.reset();
   }
-  if (!modal_cycle_ || !same_cycle(*modal_cycle_)) {
-    end_cycle();
+  const bool new_cycle = !modal_cycle_ || !same_cycle(*modal_cycle_);
+  if (new_cycle) end_cycle();
+  // A feed mode change goes on a block of its own before the cycle's: the
+  // cycle's F is then read in the mode it is meant in (G94 for a drill
+  // after a per-revolution contour, G95 for a tap), on every control.
+  if (pending_feed_ && pending_feed_->per_revolution != per_revolution_) {
+    per_revolution_ = pending_feed_->per_revolution;
+    block(per_revolution_ ? "G95" : "G94");
+  }
+  if (new_cycle) {
     // The G98 level is where the tool stands when the cycle starts: the
     // return level (start_hole saw to it).
     initial_z_ = c.top_z;
@@ -276,6 +331,7 @@ void GcodeWriter::motion(const Event& event) {
     }
     pending_g43_.reset();
   }
+  compensation_words(words, !std::holds_alternative<ArcFeed>(event));
   const auto motion_word = [&](int mode) {
     if (mode != motion_mode_) {
       if (!words.empty()) words += ' ';
@@ -357,19 +413,11 @@ void GcodeWriter::write(const Event& event) {
           if (e.mode == FeedMode::inverse_time) {
             throw OutputError("E3202", "inverse-time feed (G93) is not written", e.source);
           }
+          // A later F replaces an unwritten one, and its mode the unwritten
+          // mode: one G94/G95 at most per block.
           const bool per_rev = e.mode == FeedMode::per_revolution;
-          std::string words;
-          if (per_rev != per_revolution_) {
-            words = per_rev ? "G95 " : "G94 ";
-            per_revolution_ = per_rev;
-          }
-          words += word('F', number(e.rate, per_rev ? 4 : format_.feed_decimals, e.source));
-          // A later F replaces an unwritten one.
-          if (const auto at = pending_.find('F'); at != std::string::npos) {
-            const auto stop = pending_.find(' ', at);
-            pending_.erase(at, stop == std::string::npos ? std::string::npos : stop - at + 1);
-          }
-          pending_ = pending_.empty() ? words : words + " " + pending_;
+          pending_feed_ = PendingFeed{
+              per_rev, word('F', number(e.rate, per_rev ? 4 : format_.feed_decimals, e.source))};
         } else if constexpr (std::is_same_v<T, SetSpindleSpeed>) {
           const long s = std::lround(e.rpm);
           pending_ += (pending_.empty() ? "S" : " S") + std::to_string(s);
@@ -386,6 +434,9 @@ void GcodeWriter::write(const Event& event) {
           block((words.empty() ? "" : words + " ") + "T" + std::to_string(e.number));
         } else if constexpr (std::is_same_v<T, ChangeTool>) {
           end_cycle();
+          end_compensation();
+          comp_wanted_ = CompensationSide::off;  // a tool change ends it
+          tool_ = e.number;
           if (high_speed_on_) {
             block("G05 P0");
             high_speed_on_ = false;
@@ -406,9 +457,18 @@ void GcodeWriter::write(const Event& event) {
           }
           pending_g43_.reset();
         } else if constexpr (std::is_same_v<T, CutterCompensation>) {
-          comment(e.side == CompensationSide::off    ? "CUTCOM OFF"
-                  : e.side == CompensationSide::left ? "CUTCOM LEFT - CL PATH IS THE TOOL CENTRE"
-                                                     : "CUTCOM RIGHT - CL PATH IS THE TOOL CENTRE");
+          // Written with the next move (compensation_words).
+          if (!format_.cutter_compensation) {
+            comment(e.side == CompensationSide::off ? "CUTCOM OFF"
+                    : e.side == CompensationSide::left
+                        ? "CUTCOM LEFT - CL PATH IS THE TOOL CENTRE"
+                        : "CUTCOM RIGHT - CL PATH IS THE TOOL CENTRE");
+          } else if (e.side != comp_wanted_ || e.register_number != comp_register_) {
+            if (e.side != CompensationSide::off && e.side == comp_written_)
+              end_compensation();  // another register: G41 again after G40
+            comp_wanted_ = e.side;
+            comp_register_ = e.register_number;
+          }
         } else if constexpr (std::is_same_v<T, SelectPlane>) {
           const int plane = e.plane == Plane::xy ? 17 : e.plane == Plane::xz ? 18 : 19;
           if (plane != plane_) {

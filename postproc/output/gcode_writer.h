@@ -9,8 +9,21 @@
 // Units: events are mm, mm/min (or mm/rev), rpm; the program is written in
 // mm (G21). Positions are written as the events give them (CL points are
 // tool-tip positions in the work frame; G43 applies the length).
-// CL data are tool-centre paths: CutterCompensation events become comments,
-// never G41/G42 (the control would offset the path a second time).
+//
+// Cutter compensation, in wear mode. CL data are tool-centre paths (the CAM
+// system has offset the contour by the tool's radius already; CUTCOM says
+// on which side the material is), so CUTCOM/LEFT|RIGHT becomes G41|G42 with
+// D = CUTCOM's register, else the tool's number, and the control's D
+// register must hold only the wear (the difference from the nominal
+// radius, 0 for a tool at its size), as CAM posts write "wear"/"control
+// wear" compensation: a D holding the whole radius would offset the path a
+// second time. G41/G42 goes with the first straight move after CUTCOM (the
+// entry move rs274 and Fanuc controls start compensation on; an arc first
+// gets it on a block of its own before it), G40 with the first straight
+// move after CUTCOM/OFF (rs274 wants a straight move after G40: an arc in
+// between stays compensated), and a G40 block of its own ends the
+// compensation before a tool change (which ends it), a canned cycle, a side
+// change and the program's end.
 //
 // Canned cycles (Format::canned_cycles): a CannedCycle event is written as
 // its cycle block (G98/G99 G73/G81-G89 X Y Z R [Q] [P] F) in place of the
@@ -64,6 +77,7 @@ struct Format {
   bool tool_length_offset = true;          // G43 H<tool> on the first move after a tool change
   DwellWord dwell = DwellWord::x_seconds;  // also the cycles' P: seconds in rs274ngc, else ms
   bool canned_cycles = false;              // CannedCycle events as cycles (else their moves)
+  bool cutter_compensation = true;         // G41/G42 D and G40 (see above; else comments)
   // G98 G83 comes out to R between pecks (Fanuc, Mazak); rs274 comes out to
   // the G98 level, which no CL peck cycle does: such holes stay moves.
   bool g83_pecks_out_to_r = true;
@@ -113,6 +127,8 @@ class GcodeWriter {
   void write_cycle();
   void end_cycle();
   void comment(std::string_view text);
+  void compensation_words(std::string& words, bool straight);
+  void end_compensation();
   void end_program();
 
   std::ostream& out_;
@@ -124,12 +140,21 @@ class GcodeWriter {
 
   int motion_mode_ = -1;  // 0, 1, 2, 3 as last written
   int plane_ = 17;
-  bool per_revolution_ = false;
+  bool per_revolution_ = false;  // G95 (else G94) as last written
   std::string last_x_, last_y_, last_z_;
   std::optional<double> last_f_;
-  std::string pending_;             // F / S words waiting for the next block
-  std::optional<int> pending_g43_;  // tool number whose G43 is due
+  struct PendingFeed {
+    bool per_revolution = false;
+    std::string f_word;  // "F150."
+  };
+  std::optional<PendingFeed> pending_feed_;  // the feed waiting for the next block
+  std::string pending_;                      // S words waiting for the next block
+  std::optional<int> pending_g43_;           // tool number whose G43 is due
   bool high_speed_on_ = false;
+  program::CompensationSide comp_wanted_ = program::CompensationSide::off;   // as CUTCOM says
+  program::CompensationSide comp_written_ = program::CompensationSide::off;  // G40/G41/G42
+  std::optional<int> comp_register_;              // CUTCOM's register, for D
+  std::optional<int> tool_;                       // the tool in the spindle, the D otherwise
   Eigen::Vector3d at_ = Eigen::Vector3d::Zero();  // end of the last motion event
   bool at_known_ = false;
 

@@ -117,9 +117,12 @@ struct ToolLengthOffset {
 
 enum class CompensationSide { off, left, right };
 
-struct CutterCompensation {  // G40 / G41 / G42, reported only
+// G40 / G41 / G42 (CL CUTCOM); the motion events are the programmed path,
+// never offset by it.
+struct CutterCompensation {
   CompensationSide side = CompensationSide::off;
   SourceRef source;
+  std::optional<int> register_number = std::nullopt;  // D (CL: CUTCOM's register)
 };
 
 struct SelectPlane {

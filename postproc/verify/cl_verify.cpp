@@ -7,6 +7,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "postproc/cldata/cl_reader.h"
@@ -57,42 +58,69 @@ bool is_feed(const Event& e) {
          std::holds_alternative<program::ArcFeed>(e);
 }
 
+// A change of the cutter compensation's side: an item (without S/F) when
+// `side` differs from `current`, which it then becomes.
+std::optional<Item> side_change(const program::CutterCompensation& c, const program::SourceRef& src,
+                                program::CompensationSide& current) {
+  if (c.side == current) return std::nullopt;
+  current = c.side;
+  return Item{c, src.line, src.column, std::nullopt, std::nullopt};
+}
+
 class ClItems {
  public:
-  ClItems(std::string_view text, const std::string& name)
-      : in_(std::string(text)), reader_(in_, name) {}
+  ClItems(std::string_view text, const std::string& name, bool compensation)
+      : in_(std::string(text)), reader_(in_, name), compensation_(compensation) {}
 
   std::optional<Item> next() {
+    if (queued_) return std::exchange(queued_, std::nullopt);
+    using program::CompensationSide;
     try {
       while (auto event = reader_.next()) {
         const auto src = program::source_of(*event);
+        last_ = src;
         if (const auto* s = std::get_if<program::SetSpindleSpeed>(&*event)) {
           s_ = SfValue{s->rpm, "", src.line, src.column};
         } else if (const auto* f = std::get_if<program::SetFeedRate>(&*event)) {
           f_ = SfValue{f->rate, "", src.line, src.column};
+        } else if (const auto* c = std::get_if<program::CutterCompensation>(&*event)) {
+          if (!compensation_) continue;
+          if (auto item = side_change(*c, src, side_)) return item;
         } else if (is_item(*event)) {
           Item item{*event, src.line, src.column, std::move(s_), std::move(f_)};
           s_.reset();
           f_.reset();
+          // The output ends the compensation before a tool change (G40).
+          if (std::holds_alternative<program::ChangeTool>(*event) &&
+              side_ != CompensationSide::off) {
+            queued_ = std::move(item);
+            return side_change({CompensationSide::off, src}, src, side_);
+          }
           return item;
         }
       }
     } catch (const cldata::ClError& e) {
       throw InputError(e.vcpost::Error::code(), e.what());
     }
-    return std::nullopt;
+    // ... and before the program's end.
+    return side_change({CompensationSide::off, last_}, last_, side_);
   }
 
  private:
   std::istringstream in_;
   cldata::ClReader reader_;
+  bool compensation_;
   std::optional<SfValue> s_, f_;
+  program::CompensationSide side_ = program::CompensationSide::off;
+  std::optional<Item> queued_;
+  program::SourceRef last_;
 };
 
 // The output's items. Throws gcode::GcodeError.
 class GcodeItems {
  public:
-  GcodeItems(std::string_view text, const gcode::Dialect& dialect) : interpreter_(text, dialect) {}
+  GcodeItems(std::string_view text, const gcode::Dialect& dialect, bool compensation)
+      : interpreter_(text, dialect), compensation_(compensation) {}
 
   std::optional<Item> next() {
     while (true) {
@@ -104,6 +132,9 @@ class GcodeItems {
           if (s_word_) s_ = word('S', std::get<program::SetSpindleSpeed>(e).rpm, src);
         } else if (std::holds_alternative<program::SetFeedRate>(e)) {
           if (f_word_) f_ = word('F', std::get<program::SetFeedRate>(e).rate, src);
+        } else if (const auto* c = std::get_if<program::CutterCompensation>(&e)) {
+          if (!compensation_) continue;
+          if (auto item = side_change(*c, src, side_)) return item;
         } else if (is_item(e)) {
           // A canned cycle's F belongs to its first feed move, where the CL
           // reader sets the cycle's feed, not to the rapids before it.
@@ -156,6 +187,8 @@ class GcodeItems {
   }
 
   gcode::Interpreter interpreter_;
+  bool compensation_;
+  program::CompensationSide side_ = program::CompensationSide::off;
   std::vector<Event> events_;
   std::size_t at_ = 0;
   bool done_ = false;
@@ -179,6 +212,7 @@ const char* kind_name(const Event& e) {
   if (std::holds_alternative<program::ArcFeed>(e)) return "arc";
   if (std::holds_alternative<program::SpindleOn>(e)) return "spindle start";
   if (std::holds_alternative<program::SpindleOff>(e)) return "spindle stop";
+  if (std::holds_alternative<program::CutterCompensation>(e)) return "cutter compensation";
   return "tool change";
 }
 
@@ -306,8 +340,8 @@ Result verify_cl(std::string_view cl_text, std::string_view output, const Option
   ChangeSink changes(result, options.on_change);
   Comparer comparer(result.tolerance_mm, half_step, options.output_feed_decimals, result, changes,
                     sink);
-  ClItems cl(cl_text, input_name);
-  GcodeItems out(output, options.dialect);
+  ClItems cl(cl_text, input_name, options.cutter_compensation);
+  GcodeItems out(output, options.dialect, options.cutter_compensation);
   while (true) {
     const std::optional<Item> a = cl.next();
     std::optional<Item> b;

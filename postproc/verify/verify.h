@@ -16,7 +16,9 @@
 // CL in, G-code out: the CL events and the output's events must hold the
 // same motions one to one (rapid/feed/arc; end points and arc centres
 // within the tolerance, arc plane and direction equal) and the same spindle
-// on/off and tool changes in the same order; S and F values are free.
+// on/off, tool changes and cutter compensation sides (each change of side;
+// a tool change and the program's end turn it off, as the writer does) in
+// the same order; S and F values are free.
 //
 // No I/O: texts in, a Result out. Units: mm.
 #pragma once
@@ -114,6 +116,9 @@ struct Options {
   // CL only: digits of the output's F (mm/min); S is an integer. A CL value
   // that the output writes rounded to that grid is no change.
   int output_feed_decimals = 1;
+  // CL only: compare CUTCOM with the output's G40/G41/G42; false for a
+  // profile that writes CUTCOM as comments (output.cutter_compensation).
+  bool cutter_compensation = true;
   std::size_t max_violations = 1000;  // kept in Result::violations (all are counted)
   // When set, each change is handed here, in output order, instead of being
   // kept in Result::changes (memory stays flat on long programs).

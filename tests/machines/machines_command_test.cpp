@@ -65,6 +65,7 @@ void expect_same(const MachineProfile& a, const MachineProfile& b) {
   EXPECT_EQ(o.feed_decimals, q.feed_decimals);
   EXPECT_EQ(o.line_numbers, q.line_numbers);
   EXPECT_EQ(o.canned_cycles, q.canned_cycles);
+  EXPECT_EQ(o.cutter_compensation, q.cutter_compensation);
   ASSERT_EQ(a.sources().size(), b.sources().size());
   for (std::size_t i = 0; i < a.sources().size(); ++i) {
     EXPECT_EQ(a.sources()[i].key, b.sources()[i].key);
@@ -130,7 +131,7 @@ TEST(MachinesCommand, ShowPrintsALoadableProfileWithItsSources) {
   EXPECT_EQ(r.exit_code, 0) << r.out;
   expect_same(builtin_profile("mazak-3axis"), profile_from_toml(r.out, "shown.toml"));
   // 29 keys, all with an "assumed" note in the shipped file.
-  EXPECT_NE(r.out.find("30 keys: 30 assumed"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("31 keys: 31 assumed"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("n_max_rpm = 12000"), std::string::npos);
   EXPECT_NE(r.out.find("change_code = \"G117\""), std::string::npos);
 }

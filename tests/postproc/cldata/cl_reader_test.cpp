@@ -476,7 +476,7 @@ TEST(ClReader, UnknownRecordsAndFramesThatMoveThePointsAreRefused) {
   }
   EXPECT_EQ(code_of("TRNTYP/WORLD,0,0,5\nFINI\n"), ClCode::frame_not_identity);
   EXPECT_EQ(code_of("TRNTYP/LOCAL\nFINI\n"), ClCode::frame_not_identity);
-  EXPECT_EQ(code_of("CSYS/1,0,0,10,0,1,0,0,0,0,1,0\nFINI\n"), ClCode::frame_not_identity);
+  EXPECT_EQ(code_of("CSYS/1,0,0,10,0,0,-1,0,0,1,0,0\nFINI\n"), ClCode::frame_not_identity);
   EXPECT_EQ(code_of("ORIGIN/0,0,-5\nFINI\n"), ClCode::frame_not_identity);
   EXPECT_EQ(code_of("ROTABL/ 1.570796,AAXIS,TABLE,CCLW\nFINI\n"), ClCode::tool_axis_not_z);
   EXPECT_EQ(code_of("GOHOME\nFINI\n"), ClCode::unsupported_record);
@@ -496,6 +496,101 @@ TEST(ClReader, UnknownRecordsAndFramesThatMoveThePointsAreRefused) {
   ASSERT_EQ(notes.size(), 2u);
   EXPECT_EQ(notes[0].text, "OPFEATSTART/Drill1-Hole1");
   EXPECT_EQ(notes[1].text, "OPSKIP/ON");
+}
+
+// `$$` comment records become messages (comments in the output), without
+// the blanks around the text; Creo's `$$-> CUTTER` line too, which also
+// gives the cutter; empty ones and those after FINI are dropped.
+TEST(ClReader, CommentRecordsBecomeMessages) {
+  std::istringstream in(
+      "$$ centerline data\nGOTO/1,2,3\n$$-> CUTTER / 0.375000\n$$   \nFINI\n$$ after the end\n");
+  ClReader reader(in, "t.cl");
+  std::vector<Event> events;
+  while (auto e = reader.next()) events.push_back(std::move(*e));
+  const auto messages = only<Message>(events);
+  ASSERT_EQ(messages.size(), 2u);
+  EXPECT_EQ(messages[0].text, "centerline data");
+  EXPECT_EQ(messages[0].source.line, 1u);
+  EXPECT_EQ(messages[1].text, "-> CUTTER / 0.375000");
+  EXPECT_EQ(messages[1].source.line, 3u);
+  ASSERT_EQ(reader.cutters().size(), 1u);
+  EXPECT_DOUBLE_EQ(reader.cutters()[0].diameter(), 0.375);
+}
+
+// CSYS with a translation and a rotation about Z is applied to the points
+// that follow: p' = R p + t, the 3x4 matrix given row by row; each CSYS
+// replaces the last. Other rotations and scalings are refused.
+TEST(ClReader, CsysTranslationAndRotationAboutZAreApplied) {
+  // 90 deg about +Z, then by (100, 50, -10): (x, y, z) -> (100 - y, 50 + x, z - 10).
+  const auto events = read_events(
+      "CSYS/0,-1,0,100,1,0,0,50,0,0,1,-10\nFROM/0,0,20\nGOTO/10,0,5\nGODLTA/0,5,0\n"
+      "CIRCLE/10,10,5,0,0,1,5\nGOTO/15,10,5\n"
+      "CSYS/1,0,0,5,0,1,0,6,0,0,1,7\nGOTO/1,2,3\n"
+      "CSYS/1,0,0,0,0,1,0,0,0,0,1,0\nGOTO/1,2,3\nFINI\n");
+  const auto lines = only<StraightFeed>(events);
+  ASSERT_EQ(lines.size(), 4u);
+  EXPECT_TRUE(lines[0].start.isApprox(Eigen::Vector3d(100, 50, 10))) << lines[0].start.transpose();
+  EXPECT_TRUE(lines[0].end.isApprox(Eigen::Vector3d(100, 60, -5))) << lines[0].end.transpose();
+  EXPECT_TRUE(lines[1].end.isApprox(Eigen::Vector3d(95, 60, -5))) << lines[1].end.transpose();
+  EXPECT_TRUE(lines[2].end.isApprox(Eigen::Vector3d(6, 8, 10))) << lines[2].end.transpose();
+  EXPECT_TRUE(lines[3].end.isApprox(Eigen::Vector3d(1, 2, 3))) << lines[3].end.transpose();
+  const auto arcs = only<ArcFeed>(events);
+  ASSERT_EQ(arcs.size(), 1u);
+  EXPECT_EQ(arcs[0].plane, Plane::xy);
+  EXPECT_EQ(arcs[0].rotation, 1);
+  EXPECT_NEAR(arcs[0].centre.x(), 90, 1e-9);
+  EXPECT_NEAR(arcs[0].centre.y(), 60, 1e-9);
+  EXPECT_TRUE(arcs[0].start.isApprox(Eigen::Vector3d(95, 60, -5))) << arcs[0].start.transpose();
+  EXPECT_TRUE(arcs[0].end.isApprox(Eigen::Vector3d(90, 65, -5))) << arcs[0].end.transpose();
+  try {
+    read_events("GOTO/0,0,0\nCSYS/1,0,0,0,0,0,-1,0,0,1,0,0\nFINI\n");
+    FAIL() << "no error";
+  } catch (const ClError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "test.cl:2:1: error[E3119]: CSYS rotates about another axis than Z (or scales): "
+              "only a translation and a rotation about Z are applied; post each set-up from its "
+              "own CL file");
+  }
+  EXPECT_EQ(code_of("CSYS/2,0,0,0,0,2,0,0,0,0,1,0\nFINI\n"), ClCode::frame_not_identity);
+  EXPECT_EQ(code_of("CSYS/0,1,0,0,1,0,0,0,0,0,1,0\nFINI\n"), ClCode::frame_not_identity);  // mirror
+}
+
+// Tool changes without LOAD/TOOL: TOOLNO/n before the next motion is the
+// change to tool n (CATIA writes LOADTL after it: then that is the one
+// change); a cutter record of another shape after the section's first
+// motion (a second CUTTER, NX's TOOL PATH with its TLDATA) is a change to
+// the tool TOOLNO or SELECT/TOOL named, refused when none did; SELECT/TOOL
+// alone preselects the next tool (SolidWorks CAM writes it while the
+// current tool still cuts); the same cutter again is no change.
+TEST(ClReader, ToolChangesWithoutLoadTool) {
+  const auto events = read_events(
+      "CUTTER/10\nTOOLNO/4\nGOTO/0,0,10\n"
+      "CUTTER/10\nGOTO/0,0,20\n"
+      "SELECT/TOOL,7\nGOTO/0,0,30\n"
+      "CUTTER/6,3\nGOTO/0,0,40\n"
+      "TOOL PATH/OP2,TOOL,BALL_8\nTLDATA/MILL,8,4,50,0,0\nTOOLNO/9\nGOTO/0,0,50\n"
+      "TOOL PATH/OP3,TOOL,BALL_8\nTLDATA/MILL,8,4,50,0,0\nGOTO/0,0,60\n"
+      "CUTTER/12\nTOOLNO/5\nLOADTL/5\nGOTO/0,0,70\nFINI\n");
+  std::vector<std::pair<int, std::uint32_t>> changes;  // number, line
+  for (const auto& c : only<ChangeTool>(events)) changes.emplace_back(c.number, c.source.line);
+  EXPECT_EQ(changes,
+            (std::vector<std::pair<int, std::uint32_t>>{{4, 3}, {7, 9}, {9, 13}, {5, 19}}));
+  ASSERT_EQ(only<SelectTool>(events).size(), 1u);
+  // Each change comes before its motion.
+  std::size_t change_at = 0;
+  for (std::size_t i = 0; i < events.size(); ++i)
+    if (std::holds_alternative<ChangeTool>(events[i])) change_at = i;
+  ASSERT_LT(change_at + 1, events.size());
+  EXPECT_TRUE(std::holds_alternative<StraightFeed>(events[change_at + 1]));
+  try {
+    read_events("CUTTER/10\nLOADTL/1\nGOTO/0,0,10\nCUTTER/6,3\nGOTO/0,0,20\nFINI\n");
+    FAIL() << "no error";
+  } catch (const ClError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "test.cl:4:1: error[E3120]: CUTTER/6,3 is another tool than the one cutting, but "
+              "no LOAD/TOOL, LOADTL, TOOLNO or SELECT/TOOL gives its number: the tool change "
+              "cannot be written (give the tool numbers in the CAM system)");
+  }
 }
 
 TEST(ClReader, CodeTableIsInOrderAndUnique) {

@@ -25,8 +25,11 @@ struct Call {
 // "   12 N..... NAME(args)" or vcpost's "NAME(args)").
 std::vector<Call> motion_calls(const std::string& transcript);
 
-// stdout of `rs274 -g file`, or nullopt when rs274 cannot be run.
-std::optional<std::string> run_rs274(const std::string& path);
+// stdout of `rs274 -g file`, or nullopt when rs274 cannot be run. Its tool
+// table holds tools 1..99 of length 0 and diameter `diameter_inch` (rs274
+// reads the table in inches): 0 by default, as the D register of a CL
+// path's cutter compensation holds only the wear (gcode_writer.h).
+std::optional<std::string> run_rs274(const std::string& path, double diameter_inch = 0.0);
 
 bool have_rs274();
 

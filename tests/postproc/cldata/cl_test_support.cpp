@@ -47,14 +47,14 @@ std::vector<Call> motion_calls(const std::string& transcript) {
 
 bool have_rs274() { return access("/usr/bin/rs274", X_OK) == 0; }
 
-std::optional<std::string> run_rs274(const std::string& path) {
+std::optional<std::string> run_rs274(const std::string& path, double diameter_inch) {
   if (!have_rs274()) return std::nullopt;
   // Tools 1..99 of length 0: rs274 refuses tools missing from its table,
-  // and G43 must not shift the comparison.
+  // and G43 must not shift the comparison (nor G41/G42 with D).
   const std::string table = path + ".tbl";
   {
     std::ofstream t(table);
-    for (int i = 1; i <= 99; ++i) t << 'T' << i << " P" << i << " Z0 D6\n";
+    for (int i = 1; i <= 99; ++i) t << 'T' << i << " P" << i << " Z0 D" << diameter_inch << '\n';
   }
   // In the program's own folder, with no terminal: rs274 keeps its parameter
   // file in the working folder, which parallel tests would otherwise share.

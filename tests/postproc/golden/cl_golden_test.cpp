@@ -199,6 +199,7 @@ TEST(GoldenCl, EveryCaseEqualsItsStoredResultVerifiesAndRunsInRs274) {
       options.dialect = post::output_dialect_of(profile);
       options.output_decimals = profile.output().decimals;
       options.output_feed_decimals = profile.output().feed_decimals;
+      options.cutter_compensation = profile.output().cutter_compensation;
       const verify::Result v = verify::verify_cl(text, p.program, options, name);
       EXPECT_TRUE(v.ok()) << (v.violations.empty() ? ""
                                                    : verify::format(v.violations[0], "output"));

@@ -87,10 +87,12 @@ TEST(CannedCycles, EveryKindAsItsCycleBlock) {
       "G0 Z20.\n"
       "G98 G73 X50. Y10. Z-10. R2. Q3.\n"
       "G80\n"
-      "G99 G84 X60. Y10. Z-8. R3. P0. G95 F1.5\n"
+      "G95\n"
+      "G99 G84 X60. Y10. Z-8. R3. P0. F1.5\n"
       "G80\n"
       "G0 Z20.\n"
-      "G98 G85 X70. Y10. Z-10. R2. G94 F80.\n"
+      "G94\n"
+      "G98 G85 X70. Y10. Z-10. R2. F80.\n"
       "G80\n"
       "G98 G86 X80. Y10. Z-10. R2. P0.5\n"
       "G80\n"
@@ -138,6 +140,77 @@ TEST(CannedCycles, HolesNoCycleMakesStayMoves) {
   const std::string moves = write_program(every_kind, off);
   for (const char* code : {"G73", "G81", "G82", "G83", "G84", "G85", "G86", "G89", "G98", "G99"})
     EXPECT_EQ(moves.find(code), std::string::npos) << code;
+}
+
+// A per-revolution feed before a hole whose cycle feeds per minute: the
+// cycle's block reads its F per minute (G94 on a block of its own when G95
+// was written), and the per-revolution feed comes back after it. Before, the
+// unwritten G95 stayed in the cycle's block beside its G94 ("G98 G85 X60.
+// Y30. Z-10. R2. G94 F150. G95": two codes of one modal group, refused by
+// rs274 and by vcpost verify, E7123).
+const char* const per_rev_then_cycle =
+    "LOADTL/1\nSPINDL/1000,RPM,CLW\nRAPID\nGOTO/0,0,20\nFEDRAT/0.1,MMPR\n"
+    "CYCLE/BORE,FEDTO,10,MMPM,150,RAPTO,2,RTRCTO,20\nGOTO/60,30,0\nCYCLE/OFF\n"
+    "GOTO/0,0,15\nCYCLE/BORE,FEDTO,10,MMPM,150,RAPTO,2,RTRCTO,20\nGOTO/60,30,0\nCYCLE/OFF\n"
+    "GOTO/0,0,20\nFINI\n";
+
+TEST(CannedCycles, PerRevolutionFeedAroundAPerMinuteCycle) {
+  const std::string expected =
+      "%\n"
+      "G21 G17 G40 G49 G80 G90 G94\n"
+      "G54\n"
+      "T1 M6\n"
+      "S1000 M3\n"
+      "G43 H1 G0 X0. Y0. Z20.\n"
+      "G98 G85 X60. Y30. Z-10. R2. F150.\n"
+      "G80\n"
+      "G1 X0. Y0. Z15. G95 F0.1\n"
+      "G0 Z20.\n"
+      "G94\n"
+      "G98 G85 X60. Y30. Z-10. R2. F150.\n"
+      "G80\n"
+      "G1 X0. Y0. G95 F0.1\n"
+      "M30\n"
+      "%\n";
+  const std::string program = write_program(per_rev_then_cycle, rs274ngc_format());
+  EXPECT_EQ(program, expected);
+  for (const bool fanuc : {false, true}) {
+    SCOPED_TRACE(fanuc ? "fanuc" : "rs274ngc");
+    Format format = rs274ngc_format();
+    if (fanuc) {
+      format.program_number = 1000;
+      format.dwell = DwellWord::x_seconds;
+      format.g83_pecks_out_to_r = true;
+    }
+    const std::string text = write_program(per_rev_then_cycle, format);
+    verify::Options options;
+    options.dialect = fanuc ? gcode::fanuc_dialect() : gcode::rs274ngc_dialect();
+    const verify::Result v = verify::verify_cl(per_rev_then_cycle, text, options, "per_rev.cl");
+    EXPECT_TRUE(v.ok()) << (v.violations.empty() ? "" : verify::format(v.violations[0], "output"))
+                        << "\n"
+                        << text;
+  }
+  if (!cldata::testing::have_rs274()) GTEST_SKIP() << "rs274 (linuxcnc-uspace) not installed";
+  const fs::path dir = fs::temp_directory_path() / ("vcpost_per_rev_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const fs::path nc = dir / "per_rev.ngc";
+  std::ofstream(nc, std::ios::binary) << program;
+  const auto rs274 = cldata::testing::run_rs274(nc.string());
+  fs::remove_all(dir);
+  ASSERT_TRUE(rs274);
+  // rs274 reads it whole (it stops at the first error) with the feeds
+  // the CL says: 0.1 mm/rev, 150 mm/min in the holes, 0.1 mm/rev again.
+  EXPECT_NE(rs274->find("PROGRAM_END()"), std::string::npos) << *rs274;
+  std::vector<std::string> modes;
+  std::istringstream lines(*rs274);
+  for (std::string line; std::getline(lines, line);) {
+    if (const auto at = line.find("SET_FEED_MODE("); at != std::string::npos)
+      modes.push_back(line.substr(at, line.find(')', at) + 1 - at));
+  }
+  EXPECT_EQ(modes, (std::vector<std::string>{"SET_FEED_MODE(0, 0)", "SET_FEED_MODE(0, 1)",
+                                             "SET_FEED_MODE(0, 0)", "SET_FEED_MODE(0, 1)",
+                                             "SET_FEED_MODE(0, 0)"}))
+      << *rs274;
 }
 
 // rs274 makes of the cycles the moves the CL reader made of the holes, and

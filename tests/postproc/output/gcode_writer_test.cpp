@@ -58,6 +58,23 @@ TEST(GcodeWriter, SmallProgramInTheDefaultFormat) {
   EXPECT_EQ(write_program(events, format), expected);
 }
 
+// A CL `$$` comment record is a comment of the program, where it stands.
+TEST(GcodeWriter, ClCommentRecordsAreComments) {
+  const auto events = read_events("$$ centerline data (NX)\nLOADTL/1\nGOTO/1,2,3\nFINI\n");
+  Format format;
+  format.program_number.reset();
+  EXPECT_EQ(write_program(events, format),
+            "%\n"
+            "G21 G17 G40 G49 G80 G90 G94\n"
+            "G54\n"
+            "(centerline data [NX])\n"
+            "T1 M6\n"
+            "G43 H1\n"
+            "G1 X1. Y2. Z3.\n"
+            "M30\n"
+            "%\n");
+}
+
 TEST(GcodeWriter, HighSpeedModeGeometryCompensationAndLineNumbers) {
   const auto events =
       read_events("LOADTL/1\nSPINDL/12000\nFEDRAT/1000\nGOTO/1,2,3\nDELAY/0.5\nFINI\n");

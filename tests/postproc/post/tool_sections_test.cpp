@@ -208,9 +208,8 @@ TEST(ToolSections, UnknownToolsAndSectionsInTheAirKeepTheirSpeed) {
   EXPECT_EQ(out.summary.s_words, 0u);
 }
 
-// CL data: CUTTER before LOADTL names each tool; the flat T1's SPINDL stays
-// its S, the ball T2's section gets the planned S words.
-TEST(ToolSections, ClCuttersNameTheTools) {
+// The dome raster as CL GOTOs (ball centre on the dome, 21 passes of 81 points).
+std::string cl_raster() {
   std::ostringstream raster;
   raster.setf(std::ios::fixed);
   raster.precision(6);
@@ -221,10 +220,42 @@ TEST(ToolSections, ClCuttersNameTheTools) {
       raster << "GOTO/" << x << "," << y << "," << z << "\n";
     }
   }
+  return raster.str();
+}
+
+// CL data without LOAD/TOOL or LOADTL (CAMWorks writes a CUTTER per
+// operation): TOOLNO names the first tool, and the second CUTTER, after the
+// first section has moved, is the change to the tool SELECT/TOOL named: two
+// sections, each with its own cutter's shape. Before, the second CUTTER was
+// dropped and the ball's raster was kept as the flat mill's.
+TEST(ToolSections, ClCutterWithoutLoadToolStartsASection) {
+  const std::string input =
+      "UNITS/MM\nCUTTER/10,0\nTOOLNO/1\nSPINDL/5000,RPM,CLW\n"
+      "FEDRAT/2000,MMPM\n" +
+      cl_raster() + "SELECT/TOOL,2\nCUTTER/10,5\nSPINDL/8000,RPM,CLW\n" + cl_raster() + "FINI\n";
+  const Posted out = post(input, vc_only(120));
+  ASSERT_EQ(out.summary.sections.size(), 2u);
+  EXPECT_EQ(out.summary.sections[0].tool, 1);
+  ASSERT_TRUE(out.summary.sections[0].entry);
+  EXPECT_EQ(out.summary.sections[0].entry->shape, tools::ToolShape::flat);
+  EXPECT_FALSE(out.summary.sections[0].posted);
+  EXPECT_EQ(out.summary.sections[1].tool, 2);
+  ASSERT_TRUE(out.summary.sections[1].entry);
+  EXPECT_EQ(out.summary.sections[1].entry->shape, tools::ToolShape::ball);
+  EXPECT_EQ(out.summary.sections[1].entry->where, "two.ngc:1708");
+  EXPECT_TRUE(out.summary.sections[1].posted);
+  EXPECT_NE(out.text.find("T1 M6\n"), std::string::npos);
+  EXPECT_NE(out.text.find("T2 M6\n"), std::string::npos);
+}
+
+// CL data: CUTTER before LOADTL names each tool; the flat T1's SPINDL stays
+// its S, the ball T2's section gets the planned S words.
+TEST(ToolSections, ClCuttersNameTheTools) {
+  const std::string raster = cl_raster();
   const std::string input =
       "PARTNO TWO\nUNITS/MM\nCUTTER/10,0\nLOADTL/1\nSPINDL/5000,RPM,CLW\n"
       "FEDRAT/2000,MMPM\n" +
-      raster.str() + "CUTTER/10,5\nLOADTL/2\nSPINDL/8000,RPM,CLW\n" + raster.str() + "FINI\n";
+      raster + "CUTTER/10,5\nLOADTL/2\nSPINDL/8000,RPM,CLW\n" + raster + "FINI\n";
   const Posted out = post(input, vc_only(120));
   ASSERT_EQ(out.summary.sections.size(), 2u);
   EXPECT_EQ(out.summary.sections[0].tool, 1);

@@ -3,6 +3,7 @@
 #include <cctype>
 #include <fstream>
 
+#include "geometry/analytic_surfaces.h"
 #include "geometry/mesh/mesh_model.h"
 #include "geometry/mesh/stl_reader.h"
 #include "geometry/occt/brep_model.h"
@@ -64,6 +65,11 @@ LoadedModel load_model(const std::filesystem::path& path) {
   }
   const std::string description = std::to_string(mesh.triangles.size()) + " triangles";
   return {std::make_unique<mesh::MeshModel>(std::move(mesh)), "STL", description};
+}
+
+LoadedModel no_model() {
+  return {std::make_unique<geometry::AnalyticModel>(std::vector<geometry::AnalyticSurface>{}),
+          "none", "no model"};
 }
 
 }  // namespace vcpost::cli

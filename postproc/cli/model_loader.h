@@ -21,4 +21,7 @@ struct LoadedModel {
 // unreadable, empty or unusable file.
 LoadedModel load_model(const std::filesystem::path& path);
 
+// No model (kind "none"): an empty surface model no toolpath touches.
+LoadedModel no_model();
+
 }  // namespace vcpost::cli

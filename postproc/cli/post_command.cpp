@@ -11,12 +11,14 @@ constexpr const char* kDescription =
     "Rewrites the spindle speed S (and with --adjust-feed the feed F) of a ball-end finishing\n"
     "program so that the real cutting speed at the tool's working diameter stays at --vc, within\n"
     "what the machine profile allows. G-code input keeps every byte but the S/F words; APT CL\n"
-    "input becomes G-code in the profile's format.\n"
+    "input becomes G-code in the profile's format; without --model it is only translated,\n"
+    "with its own speeds (a plain 3-axis post-processor: --vc and --ap are then not needed).\n"
     "\n"
-    "Example:\n"
+    "Examples:\n"
     "  vcpost post finish.nc --model part.step --tool ball:10 --vc 120 --ap 0.3 \\\n"
     "              --machine mazak-3axis -o finish.ccs.nc --summary-json summary.json \\\n"
-    "              --report finish.html\n";
+    "              --report finish.html\n"
+    "  vcpost post whole_part.cls --machine linuxcnc-3axis -o whole_part.ngc\n";
 
 }  // namespace
 

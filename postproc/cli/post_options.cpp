@@ -81,7 +81,9 @@ tools::ToolChoices tool_choices(const PostArguments& args) {
   }
   if (!args.post_tools.empty()) choices.post_tools = tools::parse_tool_list(args.post_tools);
   for (const std::string& vc : args.vc) tools::add_vc_option(vc, choices);
-  if (!choices.vc && choices.vc_by_tool.empty()) throw CommandError("--vc: required");
+  // Without a model (CL translated as it is) no speed is computed.
+  if (!args.model.empty() && !choices.vc && choices.vc_by_tool.empty())
+    throw CommandError("--vc: required");
   return choices;
 }
 
@@ -90,6 +92,7 @@ tools::ToolChoices tool_choices(const PostArguments& args) {
 post::PostSettings settings_from(const PostArguments& args) {
   post::PostSettings settings;
   settings.tools = tool_choices(args);
+  if (!args.model.empty() && !(args.ap > 0)) throw CommandError("--ap: required");
   settings.point.ap = args.ap;
   settings.point.ae = args.ae;
   settings.point.ae_override = args.ae_override;
@@ -117,12 +120,16 @@ bool is_gross_mismatch(const post::ToolSection& s) {
          s.touching * 100 < on_model * kGrossMismatchMaxTouchingPercent;
 }
 
-void require_posted(const post::PostSummary& summary, const std::string& name) {
+void require_motion(const post::PostSummary& summary, const std::string& name) {
   if (summary.motion_events == 0) {
     throw CommandError("'" + name +
                        "': the program has no motion (empty, comments only, or cut short before "
                        "its first move): nothing to post");
   }
+}
+
+void require_posted(const post::PostSummary& summary, const std::string& name) {
+  require_motion(summary, name);
   if (!summary.sections.empty() &&
       std::none_of(summary.sections.begin(), summary.sections.end(),
                    [](const post::ToolSection& s) { return s.entry.has_value(); })) {
@@ -328,9 +335,10 @@ report::ReportInputs report_inputs(const PostArguments& args, const post::PostSe
 void add_job_options(CLI::App& command, PostArguments& args) {
   command.add_option("program", args.program, "G-code or APT CL program ('-': standard input)")
       ->required();
-  command
-      .add_option("--model", args.model, "finished-surface model: STEP (mm or inch) or STL (mm)")
-      ->required();
+  command.add_option(
+      "--model", args.model,
+      "finished-surface model: STEP (mm or inch) or STL (mm); required but for APT CL "
+      "input, which without it is translated for --machine with its own speeds");
   command.add_option("--tool", args.tools,
                      "the tool: ball:D, bull:D:rc, flat:D, drill:D or other (mm), for every tool; "
                      "T8=ball:14 for tool 8 (repeatable; default: what the program says, CL "
@@ -341,12 +349,12 @@ void add_job_options(CLI::App& command, PostArguments& args) {
   command.add_option("--post-tools", args.post_tools,
                      "post only these tools' sections, e.g. T2,T8 (default: every ball-end mill "
                      "whose path touches the model)");
+  command.add_option("--vc", args.vc,
+                     "nominal cutting speed, m/min, for every tool; T2=150 for tool 2 (repeatable; "
+                     "required with --model)");
   command
-      .add_option("--vc", args.vc,
-                  "nominal cutting speed, m/min, for every tool; T2=150 for tool 2 (repeatable)")
-      ->required();
-  command.add_option("--ap", args.ap, "depth of cut along the surface normal, mm")
-      ->required()
+      .add_option("--ap", args.ap,
+                  "depth of cut along the surface normal, mm (required with --model)")
       ->check(positive_number());
   command
       .add_option("--ae", args.ae,
@@ -513,7 +521,18 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   }
 
   const machines::MachineProfile profile = load_machine(args.machine);
-  LoadedModel model = load_model(args.model);
+  // Without a model, CL data is translated for the profile with its own
+  // speeds (every section kept): vcpost as a plain 3-axis post-processor.
+  const bool translate_only = args.model.empty();
+  if (translate_only) {
+    if (!write_program || !reports.empty())
+      throw CommandError("--model: required (the report evaluates the toolpath on the model)");
+    if (post::detect_program_kind(text) != post::ProgramKind::cldata)
+      throw CommandError(
+          "--model: required for G-code input (S is rewritten from the toolpath's contact with "
+          "the model; without one the program would come out unchanged)");
+  }
+  LoadedModel model = translate_only ? no_model() : load_model(args.model);
 
   const bool show_progress = !args.quiet && ::isatty(STDERR_FILENO);
   const post::Progress progress = [&](double done) {
@@ -555,7 +574,11 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   const post::PostSummary summary = post_translating_errors(program, name, *model.model, profile,
                                                             settings, sink, progress, points);
   if (show_progress) std::cerr << "\r\x1b[K";
-  require_posted(summary, name);
+  if (translate_only) {
+    require_motion(summary, name);
+  } else {
+    require_posted(summary, name);
+  }
   if (args.strict && has_warnings(summary)) {
     // Refused before anything is committed: --strict leaves no file it refused.
     if (!args.quiet) print_warnings(summary);
@@ -689,9 +712,12 @@ void finish_job(const PostArguments& args, const JobRun& run) {
     print_depths(summary);
     for (const std::string& note : summary.tool_notes)
       std::cerr << "vcpost: note: " << note << '\n';
-    if (!summary.sections.empty() &&
-        std::none_of(summary.sections.begin(), summary.sections.end(),
-                     [](const post::ToolSection& s) { return s.posted; })) {
+    if (args.model.empty()) {
+      std::cerr << "vcpost: no --model: the CL data is translated for " << run.profile.name()
+                << " with its own speeds\n";
+    } else if (!summary.sections.empty() &&
+               std::none_of(summary.sections.begin(), summary.sections.end(),
+                            [](const post::ToolSection& s) { return s.posted; })) {
       std::cerr << "vcpost: warning: no section is posted (each section's reason is above): the "
                    "program keeps its own speeds\n";
     }

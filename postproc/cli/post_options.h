@@ -55,6 +55,8 @@ bool is_gross_mismatch(const post::ToolSection& section);
 // section is a gross mismatch (E2011, with the sections' depths and a hint
 // about the work offset, units and --cl-point).
 void require_posted(const post::PostSummary& summary, const std::string& name);
+// Only the first of those: the program has a motion.
+void require_motion(const post::PostSummary& summary, const std::string& name);
 
 // What one run did, for the command's own output.
 struct JobRun {

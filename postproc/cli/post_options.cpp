@@ -138,11 +138,32 @@ void require_posted(const post::PostSummary& summary, const std::string& name) {
         "CAM tool comment); give --tool ball:D, --tool T<n>=ball:D or --tools FILE.toml");
   }
   if (summary.samples > 0 && summary.touching + summary.gouging == 0) {
-    throw CommandError(
-        "E2005",
-        "the toolpath never touches the model (" + std::to_string(summary.samples) +
-            " points checked): check the work offset and units of the program against the model, "
-            "and --cl-point (tip or center)");
+    const std::string hint =
+        "check the work offset and units of the program against the model, and --cl-point (tip "
+        "or center)";
+    std::string message = "the toolpath never touches the model (" +
+                          std::to_string(summary.samples) + " points checked)";
+    if (summary.lifted == 0) throw CommandError("E2005", message + ": " + hint);
+    // Points above the model within the search distance: how high, and
+    // when one offset dominates (stock left on, a smaller tool), why.
+    message += ": " + std::to_string(summary.lifted) + " sit above it" +
+               (summary.missed > 0 ? ", " + std::to_string(summary.missed) +
+                                         " miss it entirely (no contact within "
+                                         "the search distance)"
+                                   : std::string());
+    bool offset = false;
+    for (const post::ToolSection& s : summary.sections) {
+      if (s.lift.points == 0) continue;
+      const std::string label =
+          summary.sections.size() > 1 ? section_name(s) + ": " : std::string();
+      message += "; " + label + depth_words(s.lift, "lift height");
+      if (s.offset && s.offset->offset_mm > 0 && s.entry) {
+        message += "; " + label + lift_words(*s.offset, s.entry->diameter / 2);
+        offset = true;
+      }
+    }
+    if (!offset) message += "; no one offset dominates: " + hint;
+    throw CommandError("E2005", message);
   }
   // A section whose points on the model mostly gouge it: not a few gouges
   // to warn about, the program and the model disagree (another tool

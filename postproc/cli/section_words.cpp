@@ -37,4 +37,18 @@ std::string offset_words(const post::OffsetDiagnosis& offset) {
          (offset.offset_mm > 0 ? "above" : "into") + " it: likely " + offset.causes;
 }
 
+std::string lift_words(const post::OffsetDiagnosis& offset, double radius_mm) {
+  const std::string share = std::to_string(static_cast<int>(std::round(offset.share * 100))) +
+                            " % of the points near the model sit " + mm3(offset.offset_mm) +
+                            " mm above it: likely ";
+  // The offset is the tool radius: the program's points are the ball centre
+  // (OffsetHistogram says so in its causes).
+  if (std::abs(offset.offset_mm - radius_mm) <= 0.05) return share + offset.causes;
+  return share + "stock to leave of about " + mm3(offset.offset_mm) +
+         " mm (post the finishing program), or a tool diameter " + mm3(2 * offset.offset_mm) +
+         " mm smaller than the program's (give the program's tool), or a contact tolerance too "
+         "tight for it (--contact-tolerance above " +
+         mm3(offset.offset_mm) + " mm posts it as it is)";
+}
+
 }  // namespace vcpost::cli

@@ -24,4 +24,11 @@ std::string depth_words(const post::DepthStatistics& depth, std::string_view wha
 // "97 % of the points near the model sit 5.000 mm into it: likely ...".
 std::string offset_words(const post::OffsetDiagnosis& offset);
 
+// For a toolpath that sits above the model and never touches it: "100 % of
+// the points near the model sit 0.050 mm above it: likely stock to leave of
+// about 0.050 mm ...". The causes of `offset` (> 0) where the offset is the
+// tool radius (`radius_mm`: the CL point), else stock, the tool diameter or
+// the contact tolerance.
+std::string lift_words(const post::OffsetDiagnosis& offset, double radius_mm);
+
 }  // namespace vcpost::cli

@@ -28,34 +28,6 @@ StopAwarePlanner::StopAwarePlanner(const machines::SpindleSpec& spec)
       hold_(1.0 / spec.max_changes_per_s - 1e-9),
       horizon_(StreamingPlanner::horizon_s(spec)) {}
 
-void StopAwarePlanner::push(const Sample& sample) {
-  if (finished_)
-    throw PlanError("sample " + std::to_string(pushed_) + ": pushed after the end of the timeline");
-  detail::check_sample(pushed_, sample, open_.empty() ? nullptr : &open_.back());
-  if (!open_.empty() && sample.block != open_.back().block) close_block(sample.time_s);
-  open_.push_back(sample);
-  ++pushed_;
-}
-
-void StopAwarePlanner::finish() {
-  if (finished_) return;
-  finished_ = true;
-  if (!open_.empty()) close_block(open_.back().time_s);
-  if (in_run_) end_run();
-}
-
-std::size_t StopAwarePlanner::take_final(std::vector<BlockPlan>& out) {
-  std::size_t n = 0;
-  while (!blocks_.empty() && blocks_.front().done) {
-    out.push_back(blocks_.front().plan);
-    taken_s_words_ += blocks_.front().plan.s_word ? 1 : 0;
-    blocks_.pop_front();
-    ++n;
-  }
-  assign_from_ -= std::min(assign_from_, n);
-  return n;
-}
-
 void StopAwarePlanner::start_run(SpindleState direction) {
   in_run_ = true;
   direction_ = direction;

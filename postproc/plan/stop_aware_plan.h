@@ -49,6 +49,7 @@
 // per block), not a window of the spindle's figures as in streaming_plan.h.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <deque>
 #include <limits>
@@ -56,6 +57,7 @@
 #include <vector>
 
 #include "machines/profile.h"
+#include "postproc/plan/block_stream.h"
 #include "postproc/plan/spindle_plan.h"
 
 namespace vcpost::plan {
@@ -64,32 +66,31 @@ namespace vcpost::plan {
 // (within a run; the first block of a run always may).
 bool s_word_allowed(const Sample& first);
 
+// A block of StopAwarePlanner waiting for its plan.
+struct StopAwareBlock {
+  BlockPlan plan;
+  bool off = false;
+  bool done = false;
+  bool any_target = false;
+  bool all_rapid = true;
+  double ceiling_min = 0.0;  // lowest ceiling E of its cutting samples
+  std::size_t stretch = 0;   // absolute stretch index
+};
+
 // The stop-aware plan while the timeline streams in: the same interface as
 // StreamingPlanner (push, finish, take_final), the blocks out in order.
-class StopAwarePlanner {
+class StopAwarePlanner
+    : public detail::BlockStream<StopAwarePlanner, StopAwareBlock, std::deque<StopAwareBlock>> {
  public:
   // The spec must be valid (as a loaded profile's is).
   explicit StopAwarePlanner(const machines::SpindleSpec& spec);
-  // Throws PlanError like plan_spindle (the sample is then not taken), or
-  // after finish().
-  void push(const Sample& sample);
-  void finish();
-  // Appends the final blocks to `out` (does not clear it); returns how many.
-  std::size_t take_final(std::vector<BlockPlan>& out);
-  std::size_t s_words() const { return taken_s_words_; }  // among the blocks taken
-  std::size_t stretches() const { return stretches_; }    // stretches decided so far
+  // push(), finish(), take_final(), s_words(): see block_stream.h.
+  std::size_t stretches() const { return stretches_; }  // stretches decided so far
   std::size_t held_blocks() const { return blocks_.size(); }
 
  private:
-  struct Block {
-    BlockPlan plan;
-    bool off = false;
-    bool done = false;
-    bool any_target = false;
-    bool all_rapid = true;
-    double ceiling_min = 0.0;  // lowest ceiling E of its cutting samples
-    std::size_t stretch = 0;   // absolute stretch index
-  };
+  friend class detail::BlockStream<StopAwarePlanner, StopAwareBlock, std::deque<StopAwareBlock>>;
+  using Block = StopAwareBlock;
   // What a set of samples asks of a stretch's S (infinity: no sample).
   struct Need {
     double own = std::numeric_limits<double>::infinity();   // lowest E
@@ -111,6 +112,10 @@ class StopAwarePlanner {
   };
 
   void close_block(double end_s);
+  void end_timeline() {
+    if (in_run_) end_run();
+  }
+  void taken(std::size_t n) { assign_from_ -= std::min(assign_from_, n); }
   void start_run(SpindleState direction);
   void end_run();
   void open_stretch(double start_s, double program_rpm, bool run_first);
@@ -121,13 +126,6 @@ class StopAwarePlanner {
   double g_min_, g_max_;
   double hold_;     // shortest time between S words, less a nanosecond
   double horizon_;  // H
-
-  std::size_t pushed_ = 0;
-  std::vector<Sample> open_;  // samples of the open block
-  bool finished_ = false;
-
-  std::deque<Block> blocks_;  // not taken yet
-  std::size_t taken_s_words_ = 0;
 
   bool in_run_ = false;
   SpindleState direction_ = SpindleState::cw;

@@ -34,38 +34,7 @@ StreamingPlanner::StreamingPlanner(const machines::SpindleSpec& spec)
 
 double StreamingPlanner::clamp(double x) const { return std::clamp(x, g_min_, g_max_); }
 
-void StreamingPlanner::push(const Sample& sample) {
-  if (finished_)
-    throw PlanError("sample " + std::to_string(pushed_) + ": pushed after the end of the timeline");
-  detail::check_sample(pushed_, sample, open_.empty() ? nullptr : &open_.back());
-  if (!open_.empty() && sample.block != open_.back().block) close_block(sample.time_s);
-  open_.push_back(sample);
-  ++pushed_;
-}
-
-void StreamingPlanner::finish() {
-  if (finished_) return;
-  finished_ = true;
-  if (!open_.empty()) close_block(open_.back().time_s);
-  if (in_run_) end_run();
-}
-
-std::size_t StreamingPlanner::take_final(std::vector<BlockPlan>& out) {
-  std::size_t n = 0;
-  while (!blocks_.empty() && blocks_.front().done) {
-    const auto& bp = blocks_.front().plan;
-    out.push_back(bp);
-    taken_s_words_ += bp.s_word ? 1 : 0;
-    blocks_.pop_front();
-    ++blocks_base_;
-    ++n;
-  }
-  return n;
-}
-
 std::size_t StreamingPlanner::held_samples() const { return open_.size() + points_.size(); }
-
-std::size_t StreamingPlanner::s_words() const { return taken_s_words_; }
 
 // The open block is complete: it ends at `end_s`, the first time of the
 // block after it (its own last time at the end of the timeline). It joins

@@ -55,33 +55,49 @@
 #include <vector>
 
 #include "machines/profile.h"
+#include "postproc/plan/block_stream.h"
 #include "postproc/plan/ring_queue.h"
 #include "postproc/plan/spindle_plan.h"
 
 namespace vcpost::plan {
+
+// A block of StreamingPlanner waiting for its plan.
+struct StreamingBlock {
+  BlockPlan plan;
+  bool off = false;   // spindle off: planned already
+  bool done = false;  // final, ready for take_final
+  // From the final curve of its samples (run blocks only):
+  double own_min = 0.0;    // lowest curve over its own samples
+  double span_min = 0.0;   // ... and the next block's first sample
+  double end_curve = 0.0;  // curve at the span's end
+  double last_curve = 0.0;
+  double ceiling_min = 0.0;
+  bool any_target = false;
+  bool all_rapid = true;
+  double u = 0.0;  // the highest S it may command
+  bool u_done = false;
+};
 
 // Plans the spindle while the timeline streams in, with bounded memory:
 // feed samples in order with push(); take the blocks whose plan can no
 // longer change with take_final(); call finish() after the last sample,
 // then take_final() returns the rest. The blocks come out in order and
 // equal plan_spindle() over the whole timeline, field for field.
-class StreamingPlanner {
+class StreamingPlanner : public detail::BlockStream<StreamingPlanner, StreamingBlock,
+                                                    detail::RingQueue<StreamingBlock>> {
  public:
   // The spec must be valid (as a loaded profile's is).
   explicit StreamingPlanner(const machines::SpindleSpec& spec);
-  // Throws PlanError like plan_spindle (the sample is then not taken), or
-  // after finish().
-  void push(const Sample& sample);
-  void finish();
-  // Appends the final blocks to `out` (does not clear it); returns how many.
-  std::size_t take_final(std::vector<BlockPlan>& out);
+  // push(), finish(), take_final(), s_words(): see block_stream.h.
   std::size_t held_samples() const;  // samples kept now (for tests of the bound)
-  std::size_t s_words() const;       // S words among the blocks taken so far
 
   // The horizon H above (s).
   static double horizon_s(const machines::SpindleSpec& spec);
 
  private:
+  friend class detail::BlockStream<StreamingPlanner, StreamingBlock,
+                                   detail::RingQueue<StreamingBlock>>;
+  using Block = StreamingBlock;
   // A sample of the current run whose curve is not final yet.
   struct Point {
     double time_s = 0.0;
@@ -94,22 +110,6 @@ class StreamingPlanner {
     bool has_target = false;
     bool first = false;  // first sample of its block
   };
-  // A block waiting for its plan.
-  struct Block {
-    BlockPlan plan;
-    bool off = false;   // spindle off: planned already
-    bool done = false;  // final, ready for take_final
-    // From the final curve of its samples (run blocks only):
-    double own_min = 0.0;    // lowest curve over its own samples
-    double span_min = 0.0;   // ... and the next block's first sample
-    double end_curve = 0.0;  // curve at the span's end
-    double last_curve = 0.0;
-    double ceiling_min = 0.0;
-    bool any_target = false;
-    bool all_rapid = true;
-    double u = 0.0;  // the highest S it may command
-    bool u_done = false;
-  };
   struct Word {
     std::size_t block = 0;  // absolute plan index
     double time_s = 0.0;    // its block's start
@@ -118,6 +118,10 @@ class StreamingPlanner {
   };
 
   void close_block(double end_s);
+  void end_timeline() {
+    if (in_run_) end_run();
+  }
+  void taken(std::size_t n) { blocks_base_ += n; }
   void start_run(SpindleState direction, std::size_t first_block);
   void end_run();
   void add_point(const Sample& s, std::size_t block, bool first);
@@ -145,16 +149,11 @@ class StreamingPlanner {
   double horizon_;  // H
 
   // Intake.
-  std::size_t pushed_ = 0;
   std::optional<Sample> last_;
-  std::vector<Sample> open_;  // samples of the open block
-  bool finished_ = false;
 
-  // Blocks not taken yet; blocks_base_ is the plan index of the first.
-  detail::RingQueue<Block> blocks_;
+  // blocks_base_ is the plan index of blocks_.front().
   std::size_t blocks_base_ = 0;
   std::size_t assign_next_ = 0;  // first block not final
-  std::size_t taken_s_words_ = 0;
 
   // The current run.
   bool in_run_ = false;

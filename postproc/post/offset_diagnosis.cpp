@@ -99,8 +99,12 @@ std::optional<OffsetDiagnosis> OffsetHistogram::diagnosis() const {
   const double offset = best > 0 ? sum / static_cast<double>(best) : value_of(best_centre);
   const double share = static_cast<double>(best) / static_cast<double>(points_);
   // Chord errors of a coarse path spread over a few hundredths of a mm;
-  // an offset worth naming (stock, a tool size, a frame) is larger.
-  if (share < 0.5 || std::abs(offset) < std::max(kMinOffset, 3 * tolerance_)) return std::nullopt;
+  // an offset worth naming (stock, a tool size, a frame) is larger. A path
+  // none of whose points is within the tolerance (it never touches) has no
+  // chord error to tell apart: any offset beyond the tolerance is named.
+  const bool touches = gouges_ + lifts_ < points_;
+  const double min_offset = touches ? std::max(kMinOffset, 3 * tolerance_) : tolerance_;
+  if (share < 0.5 || std::abs(offset) <= min_offset) return std::nullopt;
   OffsetDiagnosis d;
   d.offset_mm = offset;
   d.share = share;

@@ -24,7 +24,8 @@ class OffsetHistogram {
   DepthStatistics gouge() const;  // over the points deeper than the tolerance
   DepthStatistics lift() const;   // over the points higher than the tolerance
   // Set when at least half the points near the model lie within +-0.02 mm
-  // of one offset of at least 0.05 mm and 3 tolerances.
+  // of one offset of at least 0.05 mm and 3 tolerances (when none is within
+  // the tolerance: of more than the tolerance).
   std::optional<OffsetDiagnosis> diagnosis() const;
 
  private:

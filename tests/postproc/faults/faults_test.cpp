@@ -369,6 +369,85 @@ TEST(Faults, ProgramBesideTheModel) {
   EXPECT_EQ(file_hash(program), before);
 }
 
+TEST(Faults, ProgramAboveTheModelIsDiagnosed) {
+  // A program of ball-centre points for a D10 ball on the dome (sphere R40
+  // about the origin: every point 45 mm from it), posted with a D9.9 ball:
+  // every point sits 45 - 40 - 4.95 = 0.05 mm above the model (stock left
+  // on). The refusal (E2005) gives the lift heights and the likely causes.
+  // The program's chords are within 0.0002 mm of the centre path, so every
+  // point's lift is 0.05 mm within 0.002.
+  const fs::path generator =
+      fs::path(kVcpost).parent_path().parent_path() / "samplegen" / "vcpost-samplegen";
+  ASSERT_TRUE(fs::exists(generator)) << generator;
+  Folder work, logs;
+  const fs::path tip = work / "tip.nc";
+  ChildOptions o;
+  o.argv = {generator.string(),
+            "path",
+            "dome",
+            "--tool-diameter",
+            "10",
+            "--ae",
+            "6",
+            "--step",
+            "1",
+            "--chord-tolerance",
+            "0.0002",
+            "--radius",
+            "43.26",
+            "--gcode",
+            tip.string()};
+  o.stdout_file = (logs.path() / "gen.out").string();
+  o.stderr_file = (logs.path() / "gen.err").string();
+  const ChildResult g = run_child(o);
+  ASSERT_TRUE(g.exited && g.exit_code == 0) << read_file(o.stderr_file);
+  // The tip points to ball centres: + R on z.
+  constexpr double kSphere = 40, kProgramRadius = 5, kToolRadius = 4.95;
+  static const std::regex z_word(R"(Z(-?[0-9]+\.?[0-9]*))");
+  std::string centres;
+  const std::string text = read_file(tip);
+  auto last = text.cbegin();
+  for (std::sregex_iterator m(text.begin(), text.end(), z_word), end; m != end; ++m) {
+    centres.append(last, (*m)[0].first);
+    char number[32];
+    std::snprintf(number, sizeof number, "Z%.6f", std::stod((*m)[1].str()) + kProgramRadius);
+    centres += number;
+    last = (*m)[0].second;
+  }
+  centres.append(last, text.cend());
+  const fs::path program = work / "centre.nc";
+  std::ofstream(program, std::ios::binary) << centres;
+  fs::remove(tip);
+  const auto before = file_hash(program);
+  auto args = dome_job(program);
+  *std::find(args.begin(), args.end(), "ball:10") = "ball:9.9";
+  const ChildResult r =
+      run_vcpost(with(args, {"--cl-point", "center", "-o", (work / "out.nc").string()}), logs);
+  EXPECT_EQ(r.shell_status(), 2);
+  const std::string line = one_line(r);
+  EXPECT_NE(line.find("vcpost: error: the toolpath never touches the model ("), std::string::npos)
+      << r.err;
+  const double lift = kSphere + kProgramRadius - kSphere - kToolRadius;  // 0.05
+  std::smatch m;
+  static const std::regex heights(
+      R"(: ([0-9]+) sit above it; lift height min ([0-9.]+), median ([0-9.]+), max ([0-9.]+) mm \(([0-9]+) points\))");
+  ASSERT_TRUE(std::regex_search(line, m, heights)) << r.err;
+  EXPECT_EQ(m[1].str(), m[5].str());
+  EXPECT_GT(std::stoi(m[1].str()), 1000);
+  for (int i = 2; i <= 4; ++i) EXPECT_NEAR(std::stod(m[i].str()), lift, 0.002) << m[i].str();
+  static const std::regex causes(
+      R"(([0-9]+) % of the points near the model sit ([0-9.]+) mm above it: likely stock to leave of about ([0-9.]+) mm \(post the finishing program\), or a tool diameter ([0-9.]+) mm smaller than the program's.*--contact-tolerance above ([0-9.]+) mm)");
+  ASSERT_TRUE(std::regex_search(line, m, causes)) << r.err;
+  EXPECT_EQ(m[1].str(), "100");
+  EXPECT_NEAR(std::stod(m[2].str()), lift, 0.002);
+  EXPECT_NEAR(std::stod(m[3].str()), lift, 0.002);
+  EXPECT_NEAR(std::stod(m[4].str()), 2 * lift, 0.004);
+  EXPECT_NEAR(std::stod(m[5].str()), lift, 0.002);
+  EXPECT_EQ(line.find("no one offset dominates"), std::string::npos);
+  EXPECT_EQ(list_folder(work.path()), std::vector<std::string>{"centre.nc"});
+  EXPECT_EQ(file_hash(program), before);
+}
+
 TEST(Faults, ProgramHalfBesideTheModel) {
   // The second half of the lines 500 mm off: the first half touches, the
   // rest does not. A warning names the points without contact (the program

@@ -54,5 +54,23 @@ TEST(OffsetHistogram, ChordErrorsAreNotAnOffset) {
   EXPECT_EQ(h.gouge().points, 300u);  // deeper than 0.01 mm: i = 101 .. 400
 }
 
+TEST(OffsetHistogram, APathThatNeverTouchesNamesASmallLift) {
+  // Every point 0.03 to 0.04 mm above the model (a ball 0.07 mm smaller
+  // than the program's): no chord error explains a path that never
+  // touches, so an offset below 0.05 mm but beyond the tolerance is named.
+  OffsetHistogram above(0.01, 5);
+  for (int i = 0; i <= 100; ++i) above.add(0.03 + 0.0001 * i);
+  const auto d = above.diagnosis();
+  ASSERT_TRUE(d);
+  EXPECT_NEAR(d->offset_mm, 0.035, 1e-3);
+  EXPECT_NEAR(d->share, 1.0, 1e-9);
+  EXPECT_EQ(above.lift().points, 101u);
+  // The same with points that touch: the 0.05 mm floor holds.
+  OffsetHistogram touching(0.01, 5);
+  for (int i = 0; i <= 100; ++i) touching.add(0.03 + 0.0001 * i);
+  for (int i = 0; i < 10; ++i) touching.add(0.0);
+  EXPECT_FALSE(touching.diagnosis());
+}
+
 }  // namespace
 }  // namespace vcpost::post

@@ -117,11 +117,13 @@ std::optional<OffsetDiagnosis> OffsetHistogram::diagnosis() const {
               "(try --cl-point tip)";
   } else if (offset > 0) {
     causes << "stock to leave in the CAM (" << mm(offset)
-           << "), a smaller tool than the one given, the CL point (tip or centre), "
+           << "), a program written for a larger tool than the one given, the CL point (tip or "
+              "centre), "
               "or the work offset or frame (the path or the model shifted)";
   } else {
     causes << "negative stock to leave in the CAM (" << mm(-offset)
-           << "), a larger tool than the one given, the CL point (tip or centre), "
+           << "), a program written for a smaller tool than the one given, the CL point (tip or "
+              "centre), "
               "or the work offset or frame (the path or the model shifted)";
   }
   d.causes = causes.str();

@@ -889,20 +889,25 @@ class LineReader {
     return v;
   }
 
-  // The word's value within kMaxWordMagnitude, then stored.
+  // The word's value within kMaxWordMagnitude, then stored. (The message
+  // is worded only on failure: this runs for every word of the program.)
   void push_word(Block& out, const Word& w) const {
-    (void)bounded(w.value, w.begin, std::string(1, w.letter) + " word");
+    if (!in_range(w.value)) out_of_range(w.value, w.begin, std::string(1, w.letter) + " word");
     out.words.push_back(w);
   }
 
   double bounded(double v, std::size_t at, const std::string& what) const {
-    if (!(std::abs(v) <= kMaxWordMagnitude)) {
-      char text[32];
-      std::snprintf(text, sizeof text, "%.15g", v);
-      fail(Code::bad_number, at,
-           what + " value " + text + " is out of range (at most 1e12 either way)");
-    }
+    if (!in_range(v)) out_of_range(v, at, what);
     return v;
+  }
+
+  static bool in_range(double v) { return std::abs(v) <= kMaxWordMagnitude; }
+
+  [[noreturn]] void out_of_range(double v, std::size_t at, const std::string& what) const {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.15g", v);
+    fail(Code::bad_number, at,
+         what + " value " + text + " is out of range (at most 1e12 either way)");
   }
 
   Value apply_unchecked(Op op, Value a, Value b, std::size_t at) const {

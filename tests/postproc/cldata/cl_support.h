@@ -7,7 +7,9 @@
 #include <vector>
 
 #include "postproc/cldata/cl_reader.h"
+#include "postproc/output/gcode_writer.h"
 #include "postproc/program/events.h"
+#include "postproc/verify/verify.h"
 
 namespace vcpost::cldata::testing {
 
@@ -32,5 +34,14 @@ std::vector<Call> motion_calls(const std::string& transcript);
 std::optional<std::string> run_rs274(const std::string& path, double diameter_inch = 0.0);
 
 bool have_rs274();
+
+// The G-code the writer makes of CL text `cl` in `format`.
+std::string write_gcode(const std::string& cl, const output::Format& format);
+
+// vcpost verify's proof that `text` holds the CL motions of `cl`, read in
+// the Fanuc dialect or rs274ngc's; and its first violation in words ("" if
+// none), for a failure message.
+verify::Result verify_written(const std::string& cl, const std::string& text, bool fanuc);
+std::string first_violation(const verify::Result& result);
 
 }  // namespace vcpost::cldata::testing

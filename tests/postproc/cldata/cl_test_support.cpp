@@ -72,4 +72,22 @@ std::optional<std::string> run_rs274(const std::string& path, double diameter_in
   return out;
 }
 
+std::string write_gcode(const std::string& cl, const output::Format& format) {
+  std::ostringstream out;
+  output::GcodeWriter writer(out, format);
+  for (const auto& e : read_events(cl)) writer.write(e);
+  writer.finish();
+  return out.str();
+}
+
+verify::Result verify_written(const std::string& cl, const std::string& text, bool fanuc) {
+  verify::Options options;
+  options.dialect = fanuc ? gcode::fanuc_dialect() : gcode::rs274ngc_dialect();
+  return verify::verify_cl(cl, text, options, "test.cl");
+}
+
+std::string first_violation(const verify::Result& result) {
+  return result.violations.empty() ? "" : verify::format(result.violations[0], "output");
+}
+
 }  // namespace vcpost::cldata::testing

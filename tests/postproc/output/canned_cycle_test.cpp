@@ -21,8 +21,11 @@ namespace {
 
 namespace fs = std::filesystem;
 using cldata::testing::Call;
+using cldata::testing::first_violation;
 using cldata::testing::motion_calls;
 using cldata::testing::read_events;
+using cldata::testing::verify_written;
+using cldata::testing::write_gcode;
 
 // One hole of every cycle kind; the tool starts at the return level Z20.
 const char* const every_kind =
@@ -45,14 +48,6 @@ Format rs274ngc_format() {
   f.g83_pecks_out_to_r = false;
   f.canned_cycles = true;
   return f;
-}
-
-std::string write_program(const std::string& cl, const Format& format) {
-  std::ostringstream out;
-  GcodeWriter writer(out, format);
-  for (const auto& e : read_events(cl)) writer.write(e);
-  writer.finish();
-  return out.str();
 }
 
 // Checked by hand against the CL: G98 where the cycle's last move out ends
@@ -104,14 +99,14 @@ TEST(CannedCycles, EveryKindAsItsCycleBlock) {
       "G0 X0. Y0. Z50.\n"
       "M30\n"
       "%\n";
-  EXPECT_EQ(write_program(every_kind, rs274ngc_format()), expected);
+  EXPECT_EQ(write_gcode(every_kind, rs274ngc_format()), expected);
 }
 
 // The Fanuc/Mazak form: P in milliseconds, as an integer; G98 G83.
 TEST(CannedCycles, FanucDwellInMilliseconds) {
   Format f;
   f.canned_cycles = true;
-  const std::string program = write_program(every_kind, f);
+  const std::string program = write_gcode(every_kind, f);
   EXPECT_NE(program.find("G98 G82 X30. Y10. Z-5. R2. P1500\n"), std::string::npos) << program;
   EXPECT_NE(program.find("G98 G86 X80. Y10. Z-10. R2. P500\n"), std::string::npos) << program;
   // Fanuc's G98 G83 pecks out to R, as the CL cycle does.
@@ -123,13 +118,13 @@ TEST(CannedCycles, FanucDwellInMilliseconds) {
 // profile without cycles.
 TEST(CannedCycles, HolesNoCycleMakesStayMoves) {
   const Format f = rs274ngc_format();
-  const std::string two_pecks = write_program(
+  const std::string two_pecks = write_gcode(
       "SPINDL/1000\nGOTO/0,0,20\nCYCLE/DEEP2,FEDTO,10,1STPECK,5,SUBPECK,2,MMPM,100,RAPTO,2,"
       "RTRCTO,20\nGOTO/10,0,0\nFINI\n",
       f);
   EXPECT_EQ(two_pecks.find("G8"), two_pecks.find("G80"));  // only the header's G80
   EXPECT_NE(two_pecks.find("G1 Z-3. F100.\n"), std::string::npos) << two_pecks;
-  const std::string above = write_program(
+  const std::string above = write_gcode(
       "SPINDL/1000\nGOTO/0,0,50\nCYCLE/DRILL,FEDTO,5,MMPM,100,RAPTO,2,RTRCTO,20\n"
       "GOTO/10,0,0\nFINI\n",
       f);
@@ -137,7 +132,7 @@ TEST(CannedCycles, HolesNoCycleMakesStayMoves) {
   EXPECT_NE(above.find("G0 X10. Z20.\n"), std::string::npos) << above;
   Format off = f;
   off.canned_cycles = false;
-  const std::string moves = write_program(every_kind, off);
+  const std::string moves = write_gcode(every_kind, off);
   for (const char* code : {"G73", "G81", "G82", "G83", "G84", "G85", "G86", "G89", "G98", "G99"})
     EXPECT_EQ(moves.find(code), std::string::npos) << code;
 }
@@ -172,7 +167,7 @@ TEST(CannedCycles, PerRevolutionFeedAroundAPerMinuteCycle) {
       "G1 X0. Y0. G95 F0.1\n"
       "M30\n"
       "%\n";
-  const std::string program = write_program(per_rev_then_cycle, rs274ngc_format());
+  const std::string program = write_gcode(per_rev_then_cycle, rs274ngc_format());
   EXPECT_EQ(program, expected);
   for (const bool fanuc : {false, true}) {
     SCOPED_TRACE(fanuc ? "fanuc" : "rs274ngc");
@@ -182,13 +177,9 @@ TEST(CannedCycles, PerRevolutionFeedAroundAPerMinuteCycle) {
       format.dwell = DwellWord::x_seconds;
       format.g83_pecks_out_to_r = true;
     }
-    const std::string text = write_program(per_rev_then_cycle, format);
-    verify::Options options;
-    options.dialect = fanuc ? gcode::fanuc_dialect() : gcode::rs274ngc_dialect();
-    const verify::Result v = verify::verify_cl(per_rev_then_cycle, text, options, "per_rev.cl");
-    EXPECT_TRUE(v.ok()) << (v.violations.empty() ? "" : verify::format(v.violations[0], "output"))
-                        << "\n"
-                        << text;
+    const std::string text = write_gcode(per_rev_then_cycle, format);
+    const verify::Result v = verify_written(per_rev_then_cycle, text, fanuc);
+    EXPECT_TRUE(v.ok()) << first_violation(v) << "\n" << text;
   }
   if (!cldata::testing::have_rs274()) GTEST_SKIP() << "rs274 (linuxcnc-uspace) not installed";
   const fs::path dir = fs::temp_directory_path() / ("vcpost_per_rev_" + std::to_string(getpid()));
@@ -224,7 +215,7 @@ TEST(CannedCycles, Rs274AndVcpostReadTheClMoves) {
       format.program_number = 1000;
       format.dwell = DwellWord::x_seconds;
     }
-    const std::string program = write_program(every_kind, format);
+    const std::string program = write_gcode(every_kind, format);
     verify::Options options;
     options.dialect = fanuc ? gcode::fanuc_dialect() : gcode::rs274ngc_dialect();
     const verify::Result v = verify::verify_cl(every_kind, program, options, "every_kind.cl");
@@ -240,7 +231,7 @@ TEST(CannedCycles, Rs274AndVcpostReadTheClMoves) {
       fs::temp_directory_path() / ("vcpost_canned_cycles_" + std::to_string(getpid()));
   fs::create_directories(dir);
   const fs::path nc = dir / "cycles.ngc";
-  std::ofstream(nc, std::ios::binary) << write_program(every_kind, rs274ngc_format());
+  std::ofstream(nc, std::ios::binary) << write_gcode(every_kind, rs274ngc_format());
   const auto rs274 = cldata::testing::run_rs274(nc.string());
   fs::remove_all(dir);
   ASSERT_TRUE(rs274);

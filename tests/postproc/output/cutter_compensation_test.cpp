@@ -23,8 +23,11 @@ namespace {
 
 namespace fs = std::filesystem;
 using cldata::testing::Call;
+using cldata::testing::first_violation;
 using cldata::testing::motion_calls;
 using cldata::testing::read_events;
+using cldata::testing::verify_written;
+using cldata::testing::write_gcode;
 
 // A contour cut on the left (its register the tool's), an exit, a second
 // stretch on the right with register 12, a rapid out.
@@ -40,14 +43,6 @@ Format rs274ngc_format() {
   f.dwell = DwellWord::p_seconds;
   f.g83_pecks_out_to_r = false;
   return f;
-}
-
-std::string write_program(const std::string& cl, const Format& format) {
-  std::ostringstream out;
-  GcodeWriter writer(out, format);
-  for (const auto& e : read_events(cl)) writer.write(e);
-  writer.finish();
-  return out.str();
 }
 
 // Checked by hand: G41/G42 with the first straight move after CUTCOM (the
@@ -70,7 +65,7 @@ TEST(CutterCompensation, WrittenAsG41G42WithDAndG40) {
       "G40 G0 Z5.\n"
       "M30\n"
       "%\n";
-  EXPECT_EQ(write_program(contour, rs274ngc_format()), expected);
+  EXPECT_EQ(write_gcode(contour, rs274ngc_format()), expected);
 }
 
 // Compensation on one side, then the other with no OFF between: G40 first
@@ -84,7 +79,7 @@ TEST(CutterCompensation, SideChangesArcsAndToolChanges) {
       "LEFT\nGOTO/20,0,0\n"
       "CUTCOM/RIGHT\nGOTO/30,0,0\nCUTCOM/OFF\nCIRCLE/30,10,0,0,0,1,10\nGOTO/40,10,0\n"
       "GOTO/40,20,0\nCUTCOM/LEFT,XYPLAN\nGOTO/50,20,0\nLOADTL/2\nGOTO/60,20,0\nFINI\n";
-  const std::string program = write_program(cl, rs274ngc_format());
+  const std::string program = write_gcode(cl, rs274ngc_format());
   const std::string expected =
       "%\n"
       "G21 G17 G40 G49 G80 G90 G94\n"
@@ -120,7 +115,7 @@ TEST(CutterCompensation, GrblKeepsComments) {
   }
   Format format = rs274ngc_format();
   format.cutter_compensation = false;
-  const std::string program = write_program(contour, format);
+  const std::string program = write_gcode(contour, format);
   EXPECT_EQ(program.find("G41"), std::string::npos) << program;
   EXPECT_NE(program.find("(CUTCOM LEFT - CL PATH IS THE TOOL CENTRE)\nX10.\n"), std::string::npos)
       << program;
@@ -132,7 +127,7 @@ TEST(CutterCompensation, GrblKeepsComments) {
 // after G40) with a wear of 0.002 in; vcpost verify holds, and tells a
 // compensation on the wrong side.
 TEST(CutterCompensation, Rs274AndVerifyReadTheClMotion) {
-  const std::string program = write_program(contour, rs274ngc_format());
+  const std::string program = write_gcode(contour, rs274ngc_format());
   for (const bool fanuc : {false, true}) {
     SCOPED_TRACE(fanuc ? "fanuc" : "rs274ngc");
     Format format = rs274ngc_format();
@@ -140,13 +135,9 @@ TEST(CutterCompensation, Rs274AndVerifyReadTheClMotion) {
       format.program_number = 1000;
       format.dwell = DwellWord::x_seconds;
     }
-    const std::string text = write_program(contour, format);
-    verify::Options options;
-    options.dialect = fanuc ? gcode::fanuc_dialect() : gcode::rs274ngc_dialect();
-    const verify::Result v = verify::verify_cl(contour, text, options, "contour.cl");
-    EXPECT_TRUE(v.ok()) << (v.violations.empty() ? "" : verify::format(v.violations[0], "output"))
-                        << "\n"
-                        << text;
+    const std::string text = write_gcode(contour, format);
+    const verify::Result v = verify_written(contour, text, fanuc);
+    EXPECT_TRUE(v.ok()) << first_violation(v) << "\n" << text;
     EXPECT_EQ(v.motions, 8u);
   }
 

@@ -44,4 +44,12 @@ std::string write_gcode(const std::string& cl, const output::Format& format);
 verify::Result verify_written(const std::string& cl, const std::string& text, bool fanuc);
 std::string first_violation(const verify::Result& result);
 
+// The motion calls of a transcript (no SET_FEED_RATE, SET_SPINDLE_SPEED),
+// and of CL text through vcpost's own reader.
+std::vector<Call> moves_only(const std::string& transcript);
+std::vector<Call> cl_moves(const std::string& cl);
+// Fails the test (gtest) unless `got` lists the calls of `want`, every
+// number within 1e-4 (rs274's printed precision).
+void expect_same_moves(const std::vector<Call>& want, const std::vector<Call>& got);
+
 }  // namespace vcpost::cldata::testing

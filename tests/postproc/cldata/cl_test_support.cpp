@@ -1,3 +1,4 @@
+#include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -6,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "postproc/program/transcript.h"
 #include "tests/postproc/cldata/cl_support.h"
 #include "tests/postproc/rs274_support.h"
 
@@ -88,6 +90,28 @@ verify::Result verify_written(const std::string& cl, const std::string& text, bo
 
 std::string first_violation(const verify::Result& result) {
   return result.violations.empty() ? "" : verify::format(result.violations[0], "output");
+}
+
+std::vector<Call> moves_only(const std::string& transcript) {
+  std::vector<Call> moves;
+  for (auto& c : motion_calls(transcript))
+    if (c.name != "SET_FEED_RATE" && c.name != "SET_SPINDLE_SPEED") moves.push_back(std::move(c));
+  return moves;
+}
+
+std::vector<Call> cl_moves(const std::string& cl) {
+  std::string transcript;
+  for (const auto& e : read_events(cl)) program::append_transcript(transcript, e);
+  return moves_only(transcript);
+}
+
+void expect_same_moves(const std::vector<Call>& want, const std::vector<Call>& got) {
+  ASSERT_EQ(want.size(), got.size());
+  for (std::size_t i = 0; i < want.size(); ++i) {
+    ASSERT_EQ(want[i].name, got[i].name) << "call " << i;
+    for (std::size_t k = 0; k < want[i].args.size(); ++k)
+      ASSERT_NEAR(want[i].args[k], got[i].args.at(k), 1e-4 + 1e-9) << "call " << i << " arg " << k;
+  }
 }
 
 }  // namespace vcpost::cldata::testing

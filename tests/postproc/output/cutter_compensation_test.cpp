@@ -23,8 +23,11 @@ namespace {
 
 namespace fs = std::filesystem;
 using cldata::testing::Call;
+using cldata::testing::cl_moves;
+using cldata::testing::expect_same_moves;
 using cldata::testing::first_violation;
 using cldata::testing::motion_calls;
+using cldata::testing::moves_only;
 using cldata::testing::read_events;
 using cldata::testing::verify_written;
 using cldata::testing::write_gcode;
@@ -164,23 +167,11 @@ TEST(CutterCompensation, Rs274AndVerifyReadTheClMotion) {
   ASSERT_TRUE(rs274 && worn);
   EXPECT_NE(worn->find("PROGRAM_END()"), std::string::npos) << *worn;
   EXPECT_NE(worn->find("cutter radius compensation on right"), std::string::npos) << *worn;
-  std::string transcript;
-  for (const auto& e : read_events(contour)) program::append_transcript(transcript, e);
-  const auto keep = [](std::vector<Call> calls) {
-    std::vector<Call> moves;
-    for (auto& c : calls)
-      if (c.name != "SET_FEED_RATE" && c.name != "SET_SPINDLE_SPEED") moves.push_back(c);
-    return moves;
-  };
-  const auto want = keep(motion_calls(transcript));
-  const auto got = keep(motion_calls(*rs274));
+  const auto want = cl_moves(contour);
+  const auto got = moves_only(*rs274);
   ASSERT_EQ(want.size(), got.size()) << *rs274;
   EXPECT_EQ(want.size(), 8u);
-  for (std::size_t i = 0; i < want.size(); ++i) {
-    ASSERT_EQ(want[i].name, got[i].name) << "call " << i;
-    for (std::size_t k = 0; k < want[i].args.size(); ++k)
-      ASSERT_NEAR(want[i].args[k], got[i].args.at(k), 1e-4 + 1e-9) << "call " << i << " arg " << k;
-  }
+  expect_same_moves(want, got);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <initializer_list>
 #include <iterator>
@@ -41,7 +42,7 @@ ProfileError::ProfileError(std::string code, std::string file, std::uint32_t lin
 namespace {
 
 // The schema: every table and its keys. Anything else in a file is an error.
-constexpr std::array<std::string_view, 31> kSchemaKeys = {
+constexpr std::array<std::string_view, 38> kSchemaKeys = {
     "machine.name",
     "machine.description",
     "machine.dialect",
@@ -73,6 +74,13 @@ constexpr std::array<std::string_view, 31> kSchemaKeys = {
     "output.line_numbers",
     "output.canned_cycles",
     "output.cutter_compensation",
+    "output.percent_lines",
+    "output.tool_change",
+    "output.tool_change_home",
+    "output.tool_length_offset",
+    "output.coolant_mist",
+    "output.coolant_flood",
+    "output.coolant_off",
 };
 
 constexpr std::array<std::string_view, 7> kTables = {"machine", "spindle", "control", "feed",
@@ -99,6 +107,8 @@ std::string number_text(double v) {
 // every G0 last 1e303 s). Every rate and time has a floor below any real
 // machine; a time may also be 0 (none).
 constexpr double kMaxSpindleRpm = 200000;    // spindle.n_max_rpm
+constexpr double kMinSpindleRpm = 1;         // spindle.n_min_rpm
+constexpr double kMinResolutionRpm = 0.001;  // spindle.s_resolution_rpm
 constexpr double kMinSpindleRate = 1;        // spindle.*celeration_rpm_per_s, rpm/s
 constexpr double kMaxSpindleRate = 1000000;  // spindle.*celeration_rpm_per_s, rpm/s
 constexpr double kMinChangesPerS = 0.001;    // spindle.max_changes_per_s: one per 1000 s
@@ -290,6 +300,12 @@ constexpr std::array<std::pair<std::string_view, SChangeInMotion>, 3> kInMotion 
      {"code", SChangeInMotion::code},
      {"own_block", SChangeInMotion::own_block}}};
 
+constexpr std::array<std::pair<std::string_view, ToolChange>, 2> kToolChanges = {
+    {{"m6", ToolChange::m6}, {"manual", ToolChange::manual}}};
+
+constexpr std::array<std::pair<std::string_view, ToolChangeHome>, 3> kToolChangeHomes = {
+    {{"none", ToolChangeHome::none}, {"g28", ToolChangeHome::g28}, {"g53", ToolChangeHome::g53}}};
+
 bool schema_has(std::string_view key) {
   // [sources] may note a key or a whole table (not itself).
   return std::find(kSchemaKeys.begin(), kSchemaKeys.end(), key) != kSchemaKeys.end() ||
@@ -315,6 +331,16 @@ std::string_view to_string(SChangeInMotion m) {
     if (e == m) return name;
   return "?";
 }
+std::string_view to_string(ToolChange t) {
+  for (const auto& [name, e] : kToolChanges)
+    if (e == t) return name;
+  return "?";
+}
+std::string_view to_string(ToolChangeHome h) {
+  for (const auto& [name, e] : kToolChangeHomes)
+    if (e == h) return name;
+  return "?";
+}
 
 const SourceNote* MachineProfile::source_of(std::string_view key) const {
   const SourceNote* table_note = nullptr;
@@ -332,7 +358,9 @@ namespace {
 SpindleSpec read_spindle(const Reader& r) {
   SpindleSpec s;
   s.n_min_rpm = *r.number("spindle", "n_min_rpm", true);
-  r.require(s.n_min_rpm > 0, "spindle", "n_min_rpm", "must be > 0 rpm (S0 means spindle off)");
+  // Below 1 rpm a whole S is 0, which means spindle off.
+  r.require(s.n_min_rpm >= kMinSpindleRpm, "spindle", "n_min_rpm",
+            cat({"must be at least ", limit_text(kMinSpindleRpm), " rpm"}));
   s.n_max_rpm = *r.number("spindle", "n_max_rpm", true);
   r.require(s.n_max_rpm > 0, "spindle", "n_max_rpm", "must be > 0 rpm");
   r.require(s.n_max_rpm <= kMaxSpindleRpm, "spindle", "n_max_rpm",
@@ -353,7 +381,10 @@ SpindleSpec read_spindle(const Reader& r) {
   r.require(s.deceleration_rpm_per_s <= kMaxSpindleRate, "spindle", "deceleration_rpm_per_s",
             cat({"must be at most ", limit_text(kMaxSpindleRate), " rpm/s"}));
   s.s_resolution_rpm = *r.number("spindle", "s_resolution_rpm", true);
-  r.require(s.s_resolution_rpm > 0, "spindle", "s_resolution_rpm", "must be > 0 rpm");
+  r.require(s.s_resolution_rpm >= kMinResolutionRpm, "spindle", "s_resolution_rpm",
+            cat({"must be at least ", limit_text(kMinResolutionRpm), " rpm"}));
+  r.require(s.s_resolution_rpm <= s.n_max_rpm, "spindle", "s_resolution_rpm",
+            "must be at most spindle.n_max_rpm");
   r.require(
       std::ceil(s.n_min_rpm / s.s_resolution_rpm) <= std::floor(s.n_max_rpm / s.s_resolution_rpm),
       "spindle", "s_resolution_rpm", "leaves no S value between n_min_rpm and n_max_rpm",
@@ -438,8 +469,32 @@ ToolSpec read_tool(const Reader& r) {
   return t;
 }
 
+// An [output] coolant code: "M<n>". An rs274ngc control (LinuxCNC, grbl)
+// knows only M7, M8 and M9; an ISO control takes the machine's own codes,
+// but not one the language already gives a meaning (stop, end, spindle,
+// tool change, subprogram call).
+std::string coolant_code(const Reader& r, std::string_view key, std::string fallback,
+                         OutputFormat format) {
+  const auto text = r.string("output", key, false);
+  if (!text) return fallback;
+  int m = -1;
+  const auto* end = text->data() + text->size();
+  const bool is_m = text->size() >= 2 && text->size() <= 4 && (*text)[0] == 'M' &&
+                    std::from_chars(text->data() + 1, end, m).ptr == end;
+  r.require(is_m, "output", key, "must be an M code such as \"M8\"", codes::bad_choice);
+  if (format == OutputFormat::rs274ngc) {
+    r.require(m >= 7 && m <= 9, "output", key,
+              "must be M7, M8 or M9 with output_format \"rs274ngc\"", codes::bad_choice);
+  }
+  constexpr std::array<int, 10> kTaken = {0, 1, 2, 3, 4, 5, 6, 30, 98, 99};
+  r.require(std::find(kTaken.begin(), kTaken.end(), m) == kTaken.end(), "output", key,
+            "is " + *text + ", a code with another meaning (stop, end, spindle, tool change, call)",
+            codes::bad_choice);
+  return *text;
+}
+
 // [output]: the optional settings of the written program.
-OutputSpec read_output(const Reader& r) {
+OutputSpec read_output(const Reader& r, OutputFormat format) {
   OutputSpec o;
   if (const auto v = r.integer("output", "program_number", false)) {
     r.require(*v >= 1 && *v <= 9999, "output", "program_number", "must be in 1..9999");
@@ -464,6 +519,16 @@ OutputSpec read_output(const Reader& r) {
   o.canned_cycles = r.boolean("output", "canned_cycles", false).value_or(o.canned_cycles);
   o.cutter_compensation =
       r.boolean("output", "cutter_compensation", false).value_or(o.cutter_compensation);
+  o.percent_lines = r.boolean("output", "percent_lines", false).value_or(o.percent_lines);
+  if (r.node("output", "tool_change", false))
+    o.tool_change = r.choice("output", "tool_change", kToolChanges);
+  if (r.node("output", "tool_change_home", false))
+    o.tool_change_home = r.choice("output", "tool_change_home", kToolChangeHomes);
+  o.tool_length_offset =
+      r.boolean("output", "tool_length_offset", false).value_or(o.tool_length_offset);
+  o.coolant_mist = coolant_code(r, "coolant_mist", o.coolant_mist, format);
+  o.coolant_flood = coolant_code(r, "coolant_flood", o.coolant_flood, format);
+  o.coolant_off = coolant_code(r, "coolant_off", o.coolant_off, format);
   return o;
 }
 
@@ -540,7 +605,7 @@ MachineProfile profile_from_toml(std::string_view text, const std::string& file)
   p.control_ = read_control(r);
   p.feed_ = read_feed(r);
   p.tool_ = read_tool(r);
-  p.output_ = read_output(r);
+  p.output_ = read_output(r, p.output_format_);
   p.sources_ = read_sources(r);
   return p;
 }

@@ -78,6 +78,17 @@ struct ToolSpec {
   int default_teeth = 2;  // number of teeth when the command line gives none, >= 1
 };
 
+// How the written program changes tools. m6: T<n> M6, the control's
+// changer; manual: the spindle stopped and a program stop (M0) with the
+// tool named, for a control without a changer or M6 (grbl).
+enum class ToolChange { m6, manual };
+
+// The move up before a tool change the control does not make itself:
+// none (the control's M6 moves: LinuxCNC's TOOL_CHANGE_QUILL_UP), g28
+// (G91 G28 Z0. then G90: Z to the reference point, Fanuc and Mazak posts),
+// g53 (G53 G0 Z0: Z to machine zero in one absolute block).
+enum class ToolChangeHome { none, g28, g53 };
+
 // Options of the G-code written from CL data (see postproc/output/).
 struct OutputSpec {
   int program_number = 1000;           // O word, 1..9999
@@ -89,6 +100,15 @@ struct OutputSpec {
   bool line_numbers = false;           // N words
   bool canned_cycles = false;          // CL hole cycles as G73/G81-G89 (else their moves)
   bool cutter_compensation = true;     // CL CUTCOM as G41/G42 D, G40 (else comments)
+  bool percent_lines = true;           // '%' first and last line (grbl refuses '%')
+  ToolChange tool_change = ToolChange::m6;
+  ToolChangeHome tool_change_home = ToolChangeHome::none;
+  bool tool_length_offset = true;  // G43 H<tool> after a tool change (grbl has no G43 H)
+  // The M codes of CL COOLNT/MIST, FLOOD (and ON), OFF: "M7", "M8", "M9"
+  // unless the control differs (grbl refuses M7 unless built with it).
+  std::string coolant_mist = "M7";
+  std::string coolant_flood = "M8";
+  std::string coolant_off = "M9";
 };
 
 // Provenance of one key ("spindle.n_max_rpm", or a whole table "feed").
@@ -186,5 +206,7 @@ std::string profile_to_toml(const MachineProfile& profile);
 std::string_view to_string(Dialect d);
 std::string_view to_string(OutputFormat f);
 std::string_view to_string(SChangeInMotion m);
+std::string_view to_string(ToolChange t);
+std::string_view to_string(ToolChangeHome h);
 
 }  // namespace vcpost::machines

@@ -163,6 +163,13 @@ std::string profile_to_toml(const MachineProfile& p) {
   w.key("line_numbers", boolean(o.line_numbers));
   w.key("canned_cycles", boolean(o.canned_cycles));
   w.key("cutter_compensation", boolean(o.cutter_compensation));
+  w.key("percent_lines", boolean(o.percent_lines));
+  w.key("tool_change", quote(to_string(o.tool_change)));
+  w.key("tool_change_home", quote(to_string(o.tool_change_home)));
+  w.key("tool_length_offset", boolean(o.tool_length_offset));
+  w.key("coolant_mist", quote(o.coolant_mist));
+  w.key("coolant_flood", quote(o.coolant_flood));
+  w.key("coolant_off", quote(o.coolant_off));
 
   if (!p.sources().empty()) {
     w.raw("\n[sources]\n");

@@ -37,6 +37,8 @@ int main(int argc, char** argv) {
     finish_standard_output();
   } catch (const CLI::ParseError& e) {
     // CLI11 prints help and usage errors itself; usage errors exit 2.
+    // Help goes to standard output alone (`vcpost post --help | head`).
+    standard_output_is_the_only_output();
     const int code = app.exit(e);
     return code == 0 ? exit_ok : exit_input_error;
   } catch (const std::exception& e) {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "postproc/cli/commands.h"
+#include "postproc/gcode/block.h"
 
 namespace vcpost::cli {
 namespace {
@@ -118,6 +119,9 @@ ProgramText::ProgramText(const std::string& path) {
       done += static_cast<std::size_t>(put);
     }
     total += static_cast<std::uint64_t>(got);
+    // A line already past the readers' limit is refused at that line: an
+    // endless one (`tr '\\0' X < /dev/zero`) is copied no further.
+    if (column > gcode::kMaxLineLength + 1) break;
   }
   if (fd != STDIN_FILENO) ::close(fd);
   if (total > 0) map(copy, static_cast<std::size_t>(total), name);

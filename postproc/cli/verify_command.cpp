@@ -102,18 +102,15 @@ void run(const Arguments& args) {
   const ProgramText input_text(args.input), output_text(args.output);
   const std::string_view input = input_text.view(), output = output_text.view();
   const bool cl_input = post::detect_program_kind(input) == post::ProgramKind::cldata;
-  verify::Options options;
   // From CL data vcpost wrote the output in the profile's output format.
-  options.dialect = cl_input ? post::output_dialect_of(profile) : post::dialect_of(profile);
+  verify::Options options = post::cl_output_verify_options(profile);
+  if (!cl_input) options.dialect = post::dialect_of(profile);
   if (!args.dialect.empty()) {
     const auto d = gcode::dialect_from_name(args.dialect);
     if (!d) throw CommandError("verify: --dialect: unknown dialect '" + args.dialect + "'");
     options.dialect = *d;
   }
   options.tolerance_mm = args.tolerance;
-  options.output_decimals = profile.output().decimals;
-  options.output_feed_decimals = profile.output().feed_decimals;
-  options.cutter_compensation = profile.output().cutter_compensation;
   const std::string in_name = args.input == "-" ? "<stdin>" : args.input;
   const std::string out_name = args.output == "-" ? "<stdin>" : args.output;
   if (post::detect_program_kind(output) == post::ProgramKind::cldata)

@@ -53,6 +53,16 @@ Format format_for(const machines::MachineProfile& profile) {
   format.line_numbers = o.line_numbers;
   format.canned_cycles = o.canned_cycles;
   format.cutter_compensation = o.cutter_compensation;
+  format.percent_lines = o.percent_lines;
+  format.tool_length_offset = o.tool_length_offset;
+  format.manual_tool_change = o.tool_change == machines::ToolChange::manual;
+  format.home_before_tool_change =
+      o.tool_change_home == machines::ToolChangeHome::g28   ? HomeMove::g28
+      : o.tool_change_home == machines::ToolChangeHome::g53 ? HomeMove::g53
+                                                            : HomeMove::none;
+  format.coolant_mist = o.coolant_mist;
+  format.coolant_flood = o.coolant_flood;
+  format.coolant_off = o.coolant_off;
   switch (profile.output_format()) {
     case machines::OutputFormat::rs274ngc:
       // LinuxCNC reads `O1000` as a subroutine keyword and G4 X as no dwell
@@ -426,29 +436,16 @@ void GcodeWriter::write(const Event& event) {
           words += words.empty() ? "" : " ";
           words += e.direction == SpindleDirection::clockwise ? "M3" : "M4";
           block(words);
+          spindle_on_ = true;
         } else if constexpr (std::is_same_v<T, SpindleOff>) {
           std::string words = take_pending();
           block(words.empty() ? "M5" : words + " M5");
+          spindle_on_ = false;
         } else if constexpr (std::is_same_v<T, SelectTool>) {
           std::string words = take_pending();
           block((words.empty() ? "" : words + " ") + "T" + std::to_string(e.number));
         } else if constexpr (std::is_same_v<T, ChangeTool>) {
-          end_cycle();
-          end_compensation();
-          comp_wanted_ = CompensationSide::off;  // a tool change ends it
-          tool_ = e.number;
-          if (high_speed_on_) {
-            block("G05 P0");
-            high_speed_on_ = false;
-          }
-          std::string words = take_pending();
-          block((words.empty() ? "" : words + " ") + "T" + std::to_string(e.number) + " M6");
-          if (format_.tool_length_offset) pending_g43_ = e.number;
-          if (format_.high_speed_mode) {
-            block("G05 P2");
-            high_speed_on_ = true;
-          }
-          motion_mode_ = -1;
+          change_tool(e);
         } else if constexpr (std::is_same_v<T, ToolLengthOffset>) {
           if (e.enabled) {
             block("G43 H" + std::to_string(e.register_number.value_or(0)));
@@ -478,9 +475,9 @@ void GcodeWriter::write(const Event& event) {
         } else if constexpr (std::is_same_v<T, Coolant>) {
           std::string words = take_pending();
           words += words.empty() ? "" : " ";
-          words += e.change == CoolantChange::flood_on  ? "M8"
-                   : e.change == CoolantChange::mist_on ? "M7"
-                                                        : "M9";
+          words += e.change == CoolantChange::flood_on  ? format_.coolant_flood
+                   : e.change == CoolantChange::mist_on ? format_.coolant_mist
+                                                        : format_.coolant_off;
           block(words);
         } else if constexpr (std::is_same_v<T, Dwell>) {
           std::string words = take_pending();
@@ -507,6 +504,49 @@ void GcodeWriter::write(const Event& event) {
         }
       },
       event);
+}
+
+void GcodeWriter::change_tool(const program::ChangeTool& change) {
+  end_cycle();
+  end_compensation();
+  comp_wanted_ = CompensationSide::off;  // a tool change ends it
+  tool_ = change.number;
+  if (high_speed_on_) {
+    block("G05 P0");
+    high_speed_on_ = false;
+  }
+  switch (format_.home_before_tool_change) {
+    case HomeMove::none:
+      break;
+    case HomeMove::g28:  // incremental Z0: straight up from here, then to the reference point
+      block("G91 G28 Z0.");
+      block("G90");
+      break;
+    case HomeMove::g53:
+      block("G53 G0 Z0.");
+      break;
+  }
+  if (format_.home_before_tool_change != HomeMove::none) {
+    last_z_.clear();  // Z is no longer where the program left it
+    at_known_ = false;
+  }
+  std::string words = take_pending();
+  if (!words.empty()) words += ' ';
+  const std::string t = "T" + std::to_string(change.number);
+  if (format_.manual_tool_change) {
+    if (spindle_on_) block("M5");
+    comment("TOOL CHANGE: LOAD " + t + ", THEN CYCLE START");
+    block(words + t + " M0");
+  } else {
+    block(words + t + " M6");
+  }
+  spindle_on_ = false;  // M6 stops the spindle too (LinuxCNC, Fanuc machine macros)
+  if (format_.tool_length_offset) pending_g43_ = change.number;
+  if (format_.high_speed_mode) {
+    block("G05 P2");
+    high_speed_on_ = true;
+  }
+  motion_mode_ = -1;
 }
 
 void GcodeWriter::finish() {

@@ -1,10 +1,12 @@
 // Motion events -> 3-axis G-code in the output format of a machine profile
 // (machine.output_format: rs274ngc, fanuc, mazak, and the [output] keys):
-// header (`%`, the O number where the control takes one), tool change,
-// G43, optional high-speed mode (G05 P2) and geometry compensation
-// (G61.1), integer S, M3/M4, coolant, modal G0/G1/G2/G3 and coordinates,
-// fixed decimal format, optional N numbers, the dwell word the control
-// reads (G4 P seconds in rs274ngc, G4 X seconds on Fanuc and Mazak), M30.
+// header (`%`, the O number where the control takes one), tool change
+// (T M6, or by hand: M5, a comment, T M0; before it the move up, G28 or
+// G53, where the control's M6 does not make it), G43, optional high-speed
+// mode (G05 P2) and geometry compensation (G61.1), integer S, M3/M4, the
+// profile's coolant codes, modal G0/G1/G2/G3 and coordinates, fixed
+// decimal format, optional N numbers, the dwell word the control reads
+// (G4 P seconds in rs274ngc, G4 X seconds on Fanuc and Mazak), M30.
 //
 // Units: events are mm, mm/min (or mm/rev), rpm; the program is written in
 // mm (G21). Positions are written as the events give them (CL points are
@@ -59,6 +61,13 @@ enum class DwellWord {
   p_milliseconds  // G04 P1500 (Fanuc without a decimal point)
 };
 
+// The move up before a tool change (see machines::ToolChangeHome).
+enum class HomeMove {
+  none,  // the control's M6 moves itself
+  g28,   // G91 G28 Z0. / G90
+  g53    // G53 G0 Z0.
+};
+
 // The output format of a machine profile (format_for() fills it from one).
 // The defaults are those of the Mazak format.
 struct Format {
@@ -74,7 +83,12 @@ struct Format {
   bool line_numbers = false;           // N words (wrapping after N99999)
   int line_number_start = 10;
   int line_number_step = 10;
-  bool tool_length_offset = true;          // G43 H<tool> on the first move after a tool change
+  bool tool_length_offset = true;  // G43 H<tool> on the first move after a tool change
+  // A tool change as M5 (when the spindle turns), a comment naming the tool
+  // and T<n> M0 (the operator changes it), for a control without M6 (grbl).
+  bool manual_tool_change = false;
+  HomeMove home_before_tool_change = HomeMove::none;
+  std::string coolant_mist = "M7", coolant_flood = "M8", coolant_off = "M9";
   DwellWord dwell = DwellWord::x_seconds;  // also the cycles' P: seconds in rs274ngc, else ms
   bool canned_cycles = false;              // CannedCycle events as cycles (else their moves)
   bool cutter_compensation = true;         // G41/G42 D and G40 (see above; else comments)
@@ -130,6 +144,7 @@ class GcodeWriter {
   void compensation_words(std::string& words, bool straight);
   void end_compensation();
   void end_program();
+  void change_tool(const program::ChangeTool& change);
 
   std::ostream& out_;
   Format format_;
@@ -151,6 +166,7 @@ class GcodeWriter {
   std::string pending_;                      // S words waiting for the next block
   std::optional<int> pending_g43_;           // tool number whose G43 is due
   bool high_speed_on_ = false;
+  bool spindle_on_ = false;  // M3/M4 written since the last M5 or tool change
   program::CompensationSide comp_wanted_ = program::CompensationSide::off;   // as CUTCOM says
   program::CompensationSide comp_written_ = program::CompensationSide::off;  // G40/G41/G42
   std::optional<int> comp_register_;              // CUTCOM's register, for D

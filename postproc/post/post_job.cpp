@@ -500,6 +500,16 @@ gcode::Dialect output_dialect_of(const machines::MachineProfile& profile) {
   return gcode::rs274ngc_dialect();
 }
 
+verify::Options cl_output_verify_options(const machines::MachineProfile& profile) {
+  verify::Options options;
+  options.dialect = output_dialect_of(profile);
+  options.output_decimals = profile.output().decimals;
+  options.output_feed_decimals = profile.output().feed_decimals;
+  options.cutter_compensation = profile.output().cutter_compensation;
+  options.manual_tool_change = profile.output().tool_change == machines::ToolChange::manual;
+  return options;
+}
+
 ProgramKind detect_program_kind(std::string_view text) {
   // The first statement that is not blank or a comment decides. A line is
   // looked at no further than just past the readers' line limit: a longer

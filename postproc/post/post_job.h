@@ -19,6 +19,7 @@
 #include "postproc/plan/spindle_plan.h"
 #include "postproc/post/tool_sections.h"
 #include "postproc/tools/tool_table.h"
+#include "postproc/verify/verify.h"
 
 namespace vcpost::post {
 
@@ -31,6 +32,11 @@ gcode::Dialect dialect_of(const machines::MachineProfile& profile);
 // from dialect_of where the control reads two languages and vcpost writes
 // one (sinumerik-840d: Siemens language in, ISO dialect out).
 gcode::Dialect output_dialect_of(const machines::MachineProfile& profile);
+
+// How `vcpost verify` reads the G-code vcpost wrote from CL data for the
+// profile: its output dialect, grid (decimals), cutter compensation and
+// tool change form. The tolerance stays the default.
+verify::Options cl_output_verify_options(const machines::MachineProfile& profile);
 
 // G-code or APT CL data, recognised by content: CL records are `WORD/...`
 // statements (GOTO/, FEDRAT/, CUTTER/ ...) or bare PARTNO/FINI lines.

@@ -69,10 +69,17 @@ std::optional<Item> side_change(const program::CutterCompensation& c, const prog
 
 class ClItems {
  public:
-  ClItems(std::string_view text, const std::string& name, bool compensation)
-      : in_(std::string(text)), reader_(in_, name), compensation_(compensation) {}
+  ClItems(std::string_view text, const std::string& name, bool compensation, bool manual_change)
+      : in_(std::string(text)),
+        reader_(in_, name),
+        compensation_(compensation),
+        manual_change_(manual_change) {}
 
   std::optional<Item> next() {
+    if (spindle_stop_) {
+      spindle_stop_ = false;
+      return Item{program::SpindleOff{last_}, last_.line, last_.column, std::nullopt, std::nullopt};
+    }
     if (queued_) return std::exchange(queued_, std::nullopt);
     using program::CompensationSide;
     try {
@@ -90,11 +97,20 @@ class ClItems {
           Item item{*event, src.line, src.column, std::move(s_), std::move(f_)};
           s_.reset();
           f_.reset();
-          // The output ends the compensation before a tool change (G40).
-          if (std::holds_alternative<program::ChangeTool>(*event) &&
-              side_ != CompensationSide::off) {
+          const bool change = std::holds_alternative<program::ChangeTool>(*event);
+          const bool spindle_was_on = spindle_on_;
+          if (std::holds_alternative<program::SpindleOn>(*event)) spindle_on_ = true;
+          if (change || std::holds_alternative<program::SpindleOff>(*event)) spindle_on_ = false;
+          // The output ends the compensation before a tool change (G40)...
+          if (change && side_ != CompensationSide::off) {
             queued_ = std::move(item);
+            if (manual_change_ && spindle_was_on) spindle_stop_ = true;
             return side_change({CompensationSide::off, src}, src, side_);
+          }
+          // ... and stops the spindle before a change by hand (M5 before M0).
+          if (change && manual_change_ && spindle_was_on) {
+            queued_ = std::move(item);
+            return Item{program::SpindleOff{src}, src.line, src.column, std::nullopt, std::nullopt};
           }
           return item;
         }
@@ -110,6 +126,9 @@ class ClItems {
   std::istringstream in_;
   cldata::ClReader reader_;
   bool compensation_;
+  bool manual_change_;
+  bool spindle_on_ = false;
+  bool spindle_stop_ = false;  // a spindle stop is due between the G40 and the change
   std::optional<SfValue> s_, f_;
   program::CompensationSide side_ = program::CompensationSide::off;
   std::optional<Item> queued_;
@@ -119,14 +138,33 @@ class ClItems {
 // The output's items. Throws gcode::GcodeError.
 class GcodeItems {
  public:
-  GcodeItems(std::string_view text, const gcode::Dialect& dialect, bool compensation)
-      : interpreter_(text, dialect), compensation_(compensation) {}
+  GcodeItems(std::string_view text, const gcode::Dialect& dialect, bool compensation,
+             bool manual_change)
+      : interpreter_(text, dialect), compensation_(compensation), manual_change_(manual_change) {}
 
   std::optional<Item> next() {
+    if (!held_.empty() && !holding_) {
+      Item item = std::move(held_.front());
+      held_.pop_front();
+      return item;
+    }
     while (true) {
       while (at_ < events_.size()) {
         const Event& e = events_[at_++];
         const auto src = program::source_of(e);
+        // The move up to the tool change position (G28 / G53 Z only) is
+        // the output's own: not compared when a tool change follows it.
+        if (home_block_ && program::is_motion(e)) {
+          held_.push_back(Item{e, src.line, src.column, std::nullopt, std::nullopt});
+          holding_ = true;
+          continue;
+        }
+        if (manual_change_ && tool_word_ && std::holds_alternative<program::ProgramStop>(e)) {
+          held_.clear();
+          holding_ = false;
+          return Item{program::ChangeTool{*tool_word_, src}, src.line, src.column, std::move(s_),
+                      std::nullopt};
+        }
         // Only S/F words: a modal change (G94 after G95) also sets a feed.
         if (std::holds_alternative<program::SetSpindleSpeed>(e)) {
           if (s_word_) s_ = word('S', std::get<program::SetSpindleSpeed>(e).rpm, src);
@@ -146,6 +184,12 @@ class GcodeItems {
           Item item{e, src.line, src.column, std::move(s_), std::move(f)};
           s_.reset();
           if (!f_later) f_.reset();
+          if (std::holds_alternative<program::ChangeTool>(e)) held_.clear();
+          holding_ = false;
+          if (!held_.empty()) {  // no tool change after the move up: compare it
+            held_.push_back(std::move(item));
+            return next();
+          }
           return item;
         }
       }
@@ -153,16 +197,25 @@ class GcodeItems {
       at_ = 0;
       if (done_ || !interpreter_.next(events_)) {
         done_ = true;
+        if (!held_.empty()) {  // a move up at the end: compared
+          holding_ = false;
+          return next();
+        }
         return std::nullopt;
       }
-      bool m5 = false;
+      bool m5 = false, home = false, xy = false;
       s_word_.reset();
       f_word_.reset();
+      tool_word_.reset();
       for (const auto& w : interpreter_.block().words) {
         if (w.letter == 'S' || w.letter == 'F')
           (w.letter == 'S' ? s_word_ : f_word_) = Span{w.begin, w.end, w.column};
         m5 = m5 || (w.letter == 'M' && w.value == 5);
+        home = home || (w.letter == 'G' && (w.value == 28 || w.value == 53));
+        xy = xy || w.letter == 'X' || w.letter == 'Y';
+        if (w.letter == 'T') tool_word_ = static_cast<int>(w.value);
       }
+      home_block_ = home && !xy;
       // M2/M30 stop the spindle themselves (as rs274 reports it); CL FINI
       // says nothing of it, so that implied stop is not compared.
       const bool ends = std::any_of(events_.begin(), events_.end(), [](const Event& e) {
@@ -188,6 +241,11 @@ class GcodeItems {
 
   gcode::Interpreter interpreter_;
   bool compensation_;
+  bool manual_change_;
+  bool home_block_ = false;       // the current block moves Z home (G28 / G53)
+  std::optional<int> tool_word_;  // the current block's T
+  std::deque<Item> held_;         // home moves, until the next item shows a tool change
+  bool holding_ = false;          // held_ may still be dropped
   program::CompensationSide side_ = program::CompensationSide::off;
   std::vector<Event> events_;
   std::size_t at_ = 0;
@@ -340,8 +398,8 @@ Result verify_cl(std::string_view cl_text, std::string_view output, const Option
   ChangeSink changes(result, options.on_change);
   Comparer comparer(result.tolerance_mm, half_step, options.output_feed_decimals, result, changes,
                     sink);
-  ClItems cl(cl_text, input_name, options.cutter_compensation);
-  GcodeItems out(output, options.dialect, options.cutter_compensation);
+  ClItems cl(cl_text, input_name, options.cutter_compensation, options.manual_tool_change);
+  GcodeItems out(output, options.dialect, options.cutter_compensation, options.manual_tool_change);
   while (true) {
     const std::optional<Item> a = cl.next();
     std::optional<Item> b;

@@ -119,6 +119,10 @@ struct Options {
   // CL only: compare CUTCOM with the output's G40/G41/G42; false for a
   // profile that writes CUTCOM as comments (output.cutter_compensation).
   bool cutter_compensation = true;
+  // CL only: the output changes tools by hand (output.tool_change =
+  // "manual"): M5 when the spindle turns, then T<n> M0, compared as the
+  // CL's tool change (a spindle stop before it when the CL's spindle turns).
+  bool manual_tool_change = false;
   std::size_t max_violations = 1000;  // kept in Result::violations (all are counted)
   // When set, each change is handed here, in output order, instead of being
   // kept in Result::changes (memory stays flat on long programs).

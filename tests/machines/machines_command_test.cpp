@@ -66,6 +66,13 @@ void expect_same(const MachineProfile& a, const MachineProfile& b) {
   EXPECT_EQ(o.line_numbers, q.line_numbers);
   EXPECT_EQ(o.canned_cycles, q.canned_cycles);
   EXPECT_EQ(o.cutter_compensation, q.cutter_compensation);
+  EXPECT_EQ(o.percent_lines, q.percent_lines);
+  EXPECT_EQ(o.tool_change, q.tool_change);
+  EXPECT_EQ(o.tool_change_home, q.tool_change_home);
+  EXPECT_EQ(o.tool_length_offset, q.tool_length_offset);
+  EXPECT_EQ(o.coolant_mist, q.coolant_mist);
+  EXPECT_EQ(o.coolant_flood, q.coolant_flood);
+  EXPECT_EQ(o.coolant_off, q.coolant_off);
   ASSERT_EQ(a.sources().size(), b.sources().size());
   for (std::size_t i = 0; i < a.sources().size(); ++i) {
     EXPECT_EQ(a.sources()[i].key, b.sources()[i].key);
@@ -88,7 +95,7 @@ name = "odd \"quoted\" \\ name"
 dialect = "fanuc"
 output_format = "mazak"
 [spindle]
-n_min_rpm = 0.1
+n_min_rpm = 1.5
 n_max_rpm = 1e5
 acceleration_rpm_per_s = 333.33333333333331
 deceleration_rpm_per_s = 1.001
@@ -130,8 +137,8 @@ TEST(MachinesCommand, ShowPrintsALoadableProfileWithItsSources) {
   const auto r = run("machines show mazak-3axis");
   EXPECT_EQ(r.exit_code, 0) << r.out;
   expect_same(builtin_profile("mazak-3axis"), profile_from_toml(r.out, "shown.toml"));
-  // 29 keys, all with an "assumed" note in the shipped file.
-  EXPECT_NE(r.out.find("31 keys: 31 assumed"), std::string::npos) << r.out;
+  // 38 keys, all with an "assumed" note in the shipped file.
+  EXPECT_NE(r.out.find("38 keys: 38 assumed"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("n_max_rpm = 12000"), std::string::npos);
   EXPECT_NE(r.out.find("change_code = \"G117\""), std::string::npos);
 }

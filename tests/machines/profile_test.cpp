@@ -127,6 +127,51 @@ TEST(ProfileLoading, StopCostAndAtSpeedWindowAreOptionalAndRangeChecked) {
   }
 }
 
+TEST(ProfileLoading, ToolChangeFormAndCoolantCodesAreChoicesChecked) {
+  const auto p = profile_from_toml(std::string(kMinimal), "min.toml");
+  EXPECT_EQ(p.output().tool_change, ToolChange::m6);
+  EXPECT_EQ(p.output().tool_change_home, ToolChangeHome::none);
+  EXPECT_TRUE(p.output().tool_length_offset);
+  EXPECT_TRUE(p.output().percent_lines);
+  EXPECT_EQ(p.output().coolant_mist + p.output().coolant_flood + p.output().coolant_off, "M7M8M9");
+  auto with = [](const std::string& format, const std::string& output) {
+    std::string text = kMinimal;
+    text.replace(text.find("output_format = \"rs274ngc\""), 26,
+                 "output_format = \"" + format + "\"");
+    return text + "[output]\n" + output + "\n";
+  };
+  const auto q = profile_from_toml(
+      with("fanuc",
+           "tool_change = \"manual\"\ntool_change_home = \"g28\"\ntool_length_offset = false\n"
+           "percent_lines = false\ncoolant_flood = \"M88\""),
+      "q.toml");
+  EXPECT_EQ(q.output().tool_change, ToolChange::manual);
+  EXPECT_EQ(q.output().tool_change_home, ToolChangeHome::g28);
+  EXPECT_FALSE(q.output().tool_length_offset);
+  EXPECT_FALSE(q.output().percent_lines);
+  EXPECT_EQ(q.output().coolant_flood, "M88");
+  // An rs274ngc control knows M7-M9 only; no format takes a code that
+  // already means something else, or a word that is not an M code.
+  for (const auto& [format, bad] :
+       std::vector<std::pair<std::string, std::string>>{{"rs274ngc", "coolant_flood = \"M88\""},
+                                                        {"fanuc", "coolant_off = \"M6\""},
+                                                        {"fanuc", "coolant_mist = \"M30\""},
+                                                        {"fanuc", "coolant_mist = \"8\""},
+                                                        {"fanuc", "coolant_mist = \"M8.5\""},
+                                                        {"fanuc", "coolant_mist = \"M\""},
+                                                        {"fanuc", "tool_change = \"auto\""},
+                                                        {"fanuc", "tool_change_home = \"g30\""}}) {
+    SCOPED_TRACE(bad);
+    try {
+      profile_from_toml(with(format, bad), "a.toml");
+      ADD_FAILURE() << "accepted";
+    } catch (const ProfileError& e) {
+      EXPECT_EQ(e.code(), "E5007") << e.what();
+      EXPECT_EQ(e.line(), 25u) << e.what();  // the key's line: kMinimal has 23, [output] 24
+    }
+  }
+}
+
 TEST(BuiltinProfiles, EmbeddedBytesEqualTheFiles) {
   // The build embeds the files; a stale copy would show here.
   for (const auto& p : builtin_profiles()) {

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <regex>
+#include <thread>
 
 #include "tests/postproc/faults/child_process.h"
 
@@ -163,6 +164,58 @@ TEST(HostileInput, StandardInputIsStillRead) {
   EXPECT_EQ(piped.out, file.out);
 }
 
+TEST(HostileInput, EndlessLineOnStandardInputIsCopiedNoFurther) {
+  // Standard input is copied into a temporary file: an endless line (no
+  // newline, no NUL) was copied until the disk was full. Now the copy stops
+  // once the line passes the readers' limit, which then refuses it. The
+  // writer gives up after 1 GB; it is stopped long before by the broken pipe.
+  Folder work, logs;
+  const fs::path fifo = work / "stdin";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::uint64_t written = 0;
+  std::thread writer([&] {
+    sigset_t pipe_signal;
+    sigemptyset(&pipe_signal);
+    sigaddset(&pipe_signal, SIGPIPE);
+    pthread_sigmask(SIG_BLOCK, &pipe_signal, nullptr);  // EPIPE instead of the signal
+    const int fd = ::open(fifo.c_str(), O_WRONLY | O_CLOEXEC);
+    if (fd < 0) return;
+    const std::string block(1 << 16, 'X');
+    while (written < (std::uint64_t{1} << 30)) {
+      const ssize_t put = ::write(fd, block.data(), block.size());
+      if (put <= 0) break;
+      written += static_cast<std::uint64_t>(put);
+    }
+    ::close(fd);
+  });
+  const ChildResult r = run({kVcpost, "moves", "-"}, logs, [&](ChildOptions& o) {
+    o.stdin_file = fifo;
+    o.timeout_s = 60;
+  });
+  writer.join();
+  EXPECT_EQ(r.shell_status(), 2) << r.err;
+  EXPECT_EQ(r.err,
+            "vcpost: error: <stdin>:1:1: error[E1006]: line longer than 65536 bytes, the "
+            "reader's limit\n");
+  EXPECT_LT(written, std::uint64_t{16} << 20) << "the endless line was read on";
+}
+
+TEST(HostileInput, HelpEndsQuietlyWhenTheReaderLeaves) {
+  // `vcpost post --help | head -1` printed "interrupted by SIGPIPE; no
+  // output written" after the lines head showed. The reader is gone before
+  // the help is written here, so the write always meets the closed pipe.
+  Folder logs;
+  int fds[2];
+  ASSERT_EQ(::pipe2(fds, O_CLOEXEC), 0);
+  ::close(fds[0]);
+  const ChildResult r =
+      run({kVcpost, "post", "--help"}, logs, [&](ChildOptions& o) { o.stdout_fd = fds[1]; });
+  ::close(fds[1]);
+  EXPECT_FALSE(r.exited);
+  EXPECT_EQ(r.signal, SIGPIPE);
+  EXPECT_EQ(r.err, "");
+}
+
 TEST(HostileInput, FifoModelIsRefusedNotWaitedFor) {
   // A FIFO as the model blocked forever (its format was sniffed by one
   // open, then read by a second one). Now refused with a message.
@@ -270,7 +323,10 @@ TEST(HostileInput, ProfileRatesHaveFloors) {
       read_file(fs::path(VCPOST_SOURCE_DIR) / "machines/profiles/generic.toml");
   for (const auto& [key, floor] :
        {std::pair<std::string, std::string>{"rapid_mm_per_min", "must be at least 10 mm/min"},
-        {"acceleration_rpm_per_s", "must be at least 1 rpm/s"}}) {
+        {"acceleration_rpm_per_s", "must be at least 1 rpm/s"},
+        // n_min_rpm = 1e-300 let a slow point be written S0 (spindle off).
+        {"n_min_rpm", "must be at least 1 rpm"},
+        {"s_resolution_rpm", "must be at least 0.001 rpm"}}) {
     SCOPED_TRACE(key);
     const std::regex assignment(key + R"( *= *[0-9.eE+-]+)");
     std::smatch m;

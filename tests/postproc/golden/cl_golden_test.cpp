@@ -11,6 +11,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -162,6 +164,55 @@ void expect_rs274_motion(const Posted& p, const std::string& name) {
   }
 }
 
+// The first word of a line that grbl 1.1 refuses, empty when none: its
+// gcode.c takes G0-G3, G4, G10, G17-G21, G28/G30(.1), G38.2-G38.5, G40,
+// G43.1, G49, G53-G59, G61, G80, G90/G91(.1), G92(.1), G93/G94; M0-M5,
+// M8, M9 (M7 only when built with it), M30; the letters F I J K L N P R S T
+// X Y Z; comments in ( ). No '%' line (error 1: expected command letter).
+std::string grbl_refusal(std::string_view line) {
+  static const std::vector<double> g_codes = {
+      0,  1,  2,  3,  4,  10, 17, 18, 19, 20, 21,   28,   30,   40,   49,   53,   54,   55,   56,
+      57, 58, 59, 61, 80, 90, 91, 92, 93, 94, 28.1, 30.1, 38.2, 38.3, 38.4, 38.5, 43.1, 91.1, 92.1};
+  static const std::vector<double> m_codes = {0, 1, 2, 3, 4, 5, 8, 9, 30};
+  std::size_t i = 0;
+  while (i < line.size()) {
+    const char c = line[i];
+    if (c == ' ' || c == '\r') {
+      ++i;
+    } else if (c == '(') {
+      const std::size_t close = line.find(')', i);
+      if (close == std::string_view::npos) return std::string(line.substr(i));
+      i = close + 1;
+    } else {
+      std::size_t end = i + 1;
+      while (end < line.size() && (std::isdigit(static_cast<unsigned char>(line[end])) ||
+                                   line[end] == '.' || line[end] == '-'))
+        ++end;
+      const std::string word(line.substr(i, end - i));
+      if (std::string("FGIJKLMNPRSTXYZ").find(c) == std::string::npos || end == i + 1) return word;
+      const double value = std::stod(word.substr(1));
+      const auto& codes = c == 'G' ? g_codes : m_codes;
+      if ((c == 'G' || c == 'M') && std::none_of(codes.begin(), codes.end(), [&](double v) {
+            return std::abs(v - value) < 1e-9;
+          }))
+        return word;
+      i = end;
+    }
+  }
+  return "";
+}
+
+TEST(GoldenCl, GrblRefusalFindsWhatGrblRefuses) {
+  EXPECT_EQ(grbl_refusal("G43 H2 G0 X1. Y2."), "G43");
+  EXPECT_EQ(grbl_refusal("T2 M6"), "M6");
+  EXPECT_EQ(grbl_refusal("M7"), "M7");
+  EXPECT_EQ(grbl_refusal("%"), "%");
+  EXPECT_EQ(grbl_refusal("G81 X1. Y1. Z-1. R1."), "G81");
+  EXPECT_EQ(grbl_refusal("(TOOL CHANGE: LOAD T2) T2 M0"), "");
+  EXPECT_EQ(grbl_refusal("G21 G17 G40 G49 G80 G90 G94"), "");
+  EXPECT_EQ(grbl_refusal("G1 X-1.5 Y2. Z-0.25 F1200 S9000 M3"), "");
+}
+
 TEST(GoldenCl, EveryCaseEqualsItsStoredResultVerifiesAndRunsInRs274) {
   if (!fs::is_directory(shared_dir)) GTEST_SKIP() << "no shared data at " << shared_dir;
   const bool update = std::getenv("VCPOST_GOLDEN_UPDATE") != nullptr;
@@ -195,15 +246,19 @@ TEST(GoldenCl, EveryCaseEqualsItsStoredResultVerifiesAndRunsInRs274) {
       EXPECT_EQ(fs::exists(program_file) ? read(program_file) : "", program);
       if (p.exit_code != 0) continue;
       ++written;
-      verify::Options options;
-      options.dialect = post::output_dialect_of(profile);
-      options.output_decimals = profile.output().decimals;
-      options.output_feed_decimals = profile.output().feed_decimals;
-      options.cutter_compensation = profile.output().cutter_compensation;
-      const verify::Result v = verify::verify_cl(text, p.program, options, name);
+      const verify::Result v =
+          verify::verify_cl(text, p.program, post::cl_output_verify_options(profile), name);
       EXPECT_TRUE(v.ok()) << (v.violations.empty() ? ""
                                                    : verify::format(v.violations[0], "output"));
       EXPECT_TRUE(v.changes.empty()) << "S/F values differ from the CL's";
+      if (profile_name == "grbl") {  // every line in the words grbl takes
+        std::istringstream lines(p.program);
+        std::size_t number = 0;
+        for (std::string line; std::getline(lines, line);) {
+          ++number;
+          EXPECT_EQ(grbl_refusal(line), "") << "line " << number << ": " << line;
+        }
+      }
       if (profile_name == "linuxcnc-3axis" && cldata::testing::have_rs274()) {
         expect_rs274_motion(p, entry.path().filename().string());
       }

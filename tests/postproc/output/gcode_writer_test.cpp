@@ -10,7 +10,9 @@
 #include <sstream>
 
 #include "postproc/cldata/cl_reader.h"
+#include "postproc/gcode/dialect.h"
 #include "postproc/program/transcript.h"
+#include "postproc/verify/verify.h"
 #include "tests/postproc/cldata/cl_support.h"
 
 namespace vcpost::output {
@@ -101,6 +103,101 @@ TEST(GcodeWriter, HighSpeedModeGeometryCompensationAndLineNumbers) {
       "N110 G64\r\n"
       "N120 M30\r\n";
   EXPECT_EQ(write_program(events, format), expected);
+}
+
+// The tool change as the profile says: a move up before it (G28 / G53),
+// M6 or by hand (M5, a comment, T M0), with or without G43; the coolant
+// codes of the profile. Expected programs written out by hand.
+constexpr const char* kTwoTools =
+    "LOADTL/1\nSPINDL/1000\nCOOLNT/MIST\nFEDRAT/500\nGOTO/1,2,3\nLOADTL/2\nSPINDL/2000\nGOTO/"
+    "4,5,6\n"
+    "COOLNT/OFF\nFINI\n";
+
+TEST(GcodeWriter, ToolChangeWithTheMoveUpBeforeIt) {
+  Format format;  // Mazak-like: O1000, '%'
+  format.home_before_tool_change = HomeMove::g28;
+  EXPECT_EQ(write_program(read_events(kTwoTools), format),
+            "%\n"
+            "O1000\n"
+            "G21 G17 G40 G49 G80 G90 G94\n"
+            "G54\n"
+            "G91 G28 Z0.\n"
+            "G90\n"
+            "T1 M6\n"
+            "S1000 M3\n"
+            "M7\n"
+            "G43 H1\n"
+            "G1 X1. Y2. Z3. F500.\n"
+            "G91 G28 Z0.\n"
+            "G90\n"
+            "T2 M6\n"
+            "S2000 M3\n"
+            "G43 H2\n"
+            "G1 X4. Y5. Z6.\n"
+            "M9\n"
+            "M30\n"
+            "%\n");
+  format.home_before_tool_change = HomeMove::g53;
+  const std::string g53 = write_program(read_events(kTwoTools), format);
+  EXPECT_NE(g53.find("G1 X1. Y2. Z3. F500.\nG53 G0 Z0.\nT2 M6\n"), std::string::npos) << g53;
+}
+
+TEST(GcodeWriter, ToolChangeByHandWithoutG43AndPercent) {
+  Format format;
+  format.program_number.reset();
+  format.percent_lines = false;
+  format.manual_tool_change = true;
+  format.tool_length_offset = false;
+  format.coolant_mist = "M8";
+  EXPECT_EQ(write_program(read_events(kTwoTools), format),
+            "G21 G17 G40 G49 G80 G90 G94\n"
+            "G54\n"
+            "(TOOL CHANGE: LOAD T1, THEN CYCLE START)\n"
+            "T1 M0\n"
+            "S1000 M3\n"
+            "M8\n"
+            "G1 X1. Y2. Z3. F500.\n"
+            "M5\n"
+            "(TOOL CHANGE: LOAD T2, THEN CYCLE START)\n"
+            "T2 M0\n"
+            "S2000 M3\n"
+            "G1 X4. Y5. Z6.\n"
+            "M9\n"
+            "M30\n");
+}
+
+// verify takes the move up right before a tool change, and the change by
+// hand, as the CL's tool change; a move up elsewhere, or one that moves X
+// or Y, is a difference.
+TEST(GcodeWriter, VerifyTakesTheMoveUpAndTheChangeByHand) {
+  Format format;
+  format.home_before_tool_change = HomeMove::g28;
+  const std::string homed = write_program(read_events(kTwoTools), format);
+  verify::Options options;
+  options.dialect = gcode::mazak_dialect();
+  verify::Result v = verify::verify_cl(kTwoTools, homed, options, "two.cl");
+  EXPECT_TRUE(v.ok()) << cldata::testing::first_violation(v);
+
+  std::string stray = homed;  // a move up before a motion, not a tool change
+  stray.replace(stray.find("G1 X4."), 0, "G91 G28 Z0.\nG90\n");
+  EXPECT_FALSE(verify::verify_cl(kTwoTools, stray, options, "two.cl").ok());
+  std::string sideways = homed;  // the move up also moves X
+  sideways.replace(sideways.find("G91 G28 Z0.\nG90\nT2"), 11, "G91 G28 X0. Z0.");
+  EXPECT_FALSE(verify::verify_cl(kTwoTools, sideways, options, "two.cl").ok());
+
+  format = Format{};
+  format.manual_tool_change = true;
+  const std::string by_hand = write_program(read_events(kTwoTools), format);
+  options.manual_tool_change = true;
+  v = verify::verify_cl(kTwoTools, by_hand, options, "two.cl");
+  EXPECT_TRUE(v.ok()) << cldata::testing::first_violation(v);
+  EXPECT_TRUE(v.changes.empty());
+  std::string no_stop = by_hand;  // the spindle still turns at the change
+  no_stop.erase(no_stop.find("M5\n(TOOL"), 3);
+  EXPECT_FALSE(verify::verify_cl(kTwoTools, no_stop, options, "two.cl").ok());
+  std::string other_tool = by_hand;
+  other_tool.replace(other_tool.find("T2 M0"), 2, "T3");
+  EXPECT_FALSE(verify::verify_cl(kTwoTools, other_tool, options, "two.cl").ok());
 }
 
 TEST(GcodeWriter, ArcPlanesAndRefusals) {

@@ -42,7 +42,7 @@ ProfileError::ProfileError(std::string code, std::string file, std::uint32_t lin
 namespace {
 
 // The schema: every table and its keys. Anything else in a file is an error.
-constexpr std::array<std::string_view, 38> kSchemaKeys = {
+constexpr std::array<std::string_view, 39> kSchemaKeys = {
     "machine.name",
     "machine.description",
     "machine.dialect",
@@ -60,6 +60,7 @@ constexpr std::array<std::string_view, 38> kSchemaKeys = {
     "spindle.stops_path_on_change",
     "spindle.stop_cost_s",
     "spindle.at_speed_window_percent",
+    "spindle.s_in_feed",
     "control.block_time_s",
     "feed.f_min_mm_per_min",
     "feed.f_max_mm_per_min",
@@ -300,6 +301,9 @@ constexpr std::array<std::pair<std::string_view, SChangeInMotion>, 3> kInMotion 
      {"code", SChangeInMotion::code},
      {"own_block", SChangeInMotion::own_block}}};
 
+constexpr std::array<std::pair<std::string_view, SInFeed>, 2> kSInFeed = {
+    {{"never", SInFeed::never}, {"priced", SInFeed::priced}}};
+
 constexpr std::array<std::pair<std::string_view, ToolChange>, 2> kToolChanges = {
     {{"m6", ToolChange::m6}, {"manual", ToolChange::manual}}};
 
@@ -329,6 +333,11 @@ std::string_view to_string(OutputFormat f) {
 std::string_view to_string(SChangeInMotion m) {
   for (const auto& [name, e] : kInMotion)
     if (e == m) return name;
+  return "?";
+}
+std::string_view to_string(SInFeed f) {
+  for (const auto& [name, e] : kSInFeed)
+    if (e == f) return name;
   return "?";
 }
 std::string_view to_string(ToolChange t) {
@@ -422,6 +431,13 @@ SpindleSpec read_spindle(const Reader& r) {
     r.require(*v >= 0 && *v < 100, "spindle", "at_speed_window_percent",
               "must be in [0, 100) (0: the control does not wait for the spindle)");
     s.at_speed_window_percent = *v;
+  }
+  if (r.node("spindle", "s_in_feed", false)) {
+    s.s_in_feed = r.choice("spindle", "s_in_feed", kSInFeed);
+    r.require(s.s_in_feed == SInFeed::never || s.stops_path_on_change, "spindle", "s_in_feed",
+              "is \"priced\", but the path does not stop at an S word "
+              "(stops_path_on_change = false): every block may take one",
+              codes::inconsistent);
   }
   return s;
 }

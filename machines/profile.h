@@ -35,6 +35,12 @@ enum class OutputFormat { rs274ngc, fanuc, mazak };
 // own_block: the S word must stand in a block of its own between moves.
 enum class SChangeInMotion { inline_word, code, own_block };
 
+// Where a control whose path stops at an S word (stops_path_on_change) may
+// get one inside a feed stream: never (only where the path stops or leaves
+// the material anyway), or priced: also there, where the cutting time the
+// word brings to nominal vc outweighs the stop it costs (stop_aware_plan.h).
+enum class SInFeed { never, priced };
+
 struct SpindleSpec {
   double n_min_rpm = 100.0;    // lowest speed the spindle holds, > 0 (S0 means off)
   double n_max_rpm = 10000.0;  // highest speed, >= n_min_rpm
@@ -62,6 +68,7 @@ struct SpindleSpec {
   // The control holds the path after an S change until the spindle is within
   // this share of the new speed, percent, 0 <= w < 100; 0: it does not wait.
   double at_speed_window_percent = 0.0;
+  SInFeed s_in_feed = SInFeed::never;  // only with stops_path_on_change
 };
 
 struct FeedSpec {
@@ -206,6 +213,7 @@ std::string profile_to_toml(const MachineProfile& profile);
 std::string_view to_string(Dialect d);
 std::string_view to_string(OutputFormat f);
 std::string_view to_string(SChangeInMotion m);
+std::string_view to_string(SInFeed f);
 std::string_view to_string(ToolChange t);
 std::string_view to_string(ToolChangeHome h);
 

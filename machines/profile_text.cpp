@@ -139,6 +139,7 @@ std::string profile_to_toml(const MachineProfile& p) {
   w.key("stops_path_on_change", boolean(s.stops_path_on_change));
   w.key("stop_cost_s", number(s.stop_cost_s));
   w.key("at_speed_window_percent", number(s.at_speed_window_percent));
+  w.key("s_in_feed", quote(to_string(s.s_in_feed)));
 
   w.table("control");
   w.key("block_time_s", number(p.control().block_time_s));

@@ -39,6 +39,22 @@
 // by at least the hysteresis threshold, and at the first stretch of a run;
 // otherwise the lower S in effect holds (still at or under every ceiling).
 //
+// Priced words (spindle.s_in_feed = "priced"): a closed stretch is also
+// split inside its feed stream where a word is worth its stop. The gain of
+// a split at block k, with each part at its own ceiling (own_A, own_B), is
+// the cutting time it brings to nominal vc: (own_high - own_low) times the
+// sum of dt_i / E_i over the samples of the part with the higher ceiling
+// (a second of cutting at 10 % under vc raised to nominal counts 0.1 s);
+// before a fall the first part counts only up to what the spindle, slowing
+// from the split on, brings under the second part's ceilings (the control
+// does not wait for it: the fall must come early).
+// Its cost is the stop: stop_cost_s, plus, with an at-speed window w, the
+// wait for the spindle to come within w of the new speed (|change| less w
+// of the new S, at the acceleration or deceleration). The best split whose
+// gain exceeds its cost is made, each part then the same way; parts are at
+// least 1 / max_changes_per_s long. The parts become stretches as above
+// (their S then under the slew bounds, which the gain leaves out).
+//
 // Bounds per block: none / resolution / hysteresis / n_max / n_min as in
 // spindle_plan.h; beyond the band, `stretch` (a lower need elsewhere in the
 // stretch holds S down) or `slew` (the deceleration bound above did).
@@ -75,6 +91,12 @@ struct StopAwareBlock {
   bool all_rapid = true;
   double ceiling_min = 0.0;  // lowest ceiling E of its cutting samples
   std::size_t stretch = 0;   // absolute stretch index
+  // What a priced split needs to rebuild its parts' needs and gains.
+  double cut_fall = 0.0;     // lowest E_i + deceleration * t_i of its cutting samples
+  double far_own = 0.0;      // lowest E of its samples far from the model
+  double far_fall = 0.0;     // lowest E_i + deceleration * t_i of those
+  double weight = 0.0;       // sum of dt_i / E_i over its cutting samples, s/rpm
+  double program_rpm = 0.0;  // the program's S at its start
 };
 
 // The stop-aware plan while the timeline streams in: the same interface as
@@ -121,6 +143,12 @@ class StopAwarePlanner
   void open_stretch(double start_s, double program_rpm, bool run_first);
   void decide(bool run_end);
   void assign();
+  // Priced words: the closed stretch at the back of stretches_q_, whose
+  // blocks end before blocks_[to], split where words are worth their stops.
+  void split_priced(std::size_t to);
+  std::vector<std::size_t> priced_splits(std::size_t from, std::size_t to, double start_s,
+                                         double end_s) const;
+  double stop_cost(double s_from, double s_to) const;
 
   machines::SpindleSpec spec_;
   double g_min_, g_max_;

@@ -189,6 +189,7 @@ class Finisher {
     close_placement();
     SPlacement& placement = summary_.s_placement;
     placement.at_stops = spindle_.stops_path_on_change;
+    placement.priced = placement.at_stops && spindle_.s_in_feed == machines::SInFeed::priced;
     placement.stop_cost_s = spindle_.stop_cost_s;
     for (const auto& section : placement.sections) {
       placement.s_words += section.s_words;

@@ -72,6 +72,7 @@ struct SectionPlacement {
 
 struct SPlacement {
   bool at_stops = false;   // the control stops the path at an S word: words only at stops
+  bool priced = false;     // ... and in feed streams where worth the stop (spindle.s_in_feed)
   double stop_cost_s = 0;  // the profile's cost of one stop
   std::uint64_t s_words = 0, in_feed = 0, stops = 0;
   double time_cost_s = 0;

@@ -158,7 +158,9 @@ json s_placement_json(const post::SPlacement& p) {
                         {"within_10_percent_before", within_10(s.before)},
                         {"within_10_percent_after", within_10(s.after)}});
   }
-  return {{"mode", p.at_stops ? "at_stops" : "inline"},
+  return {{"mode", !p.at_stops ? "inline"
+                   : p.priced  ? "priced"
+                               : "at_stops"},
           {"s_words", p.s_words},
           {"in_feed", p.in_feed},
           {"stops", p.stops},

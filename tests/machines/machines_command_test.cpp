@@ -51,6 +51,7 @@ void expect_same(const MachineProfile& a, const MachineProfile& b) {
   EXPECT_EQ(s.stops_path_on_change, t.stops_path_on_change);
   EXPECT_EQ(s.stop_cost_s, t.stop_cost_s);
   EXPECT_EQ(s.at_speed_window_percent, t.at_speed_window_percent);
+  EXPECT_EQ(s.s_in_feed, t.s_in_feed);
   EXPECT_EQ(a.control().block_time_s, b.control().block_time_s);
   EXPECT_EQ(a.feed().f_min_mm_per_min, b.feed().f_min_mm_per_min);
   EXPECT_EQ(a.feed().f_max_mm_per_min, b.feed().f_max_mm_per_min);
@@ -137,8 +138,8 @@ TEST(MachinesCommand, ShowPrintsALoadableProfileWithItsSources) {
   const auto r = run("machines show mazak-3axis");
   EXPECT_EQ(r.exit_code, 0) << r.out;
   expect_same(builtin_profile("mazak-3axis"), profile_from_toml(r.out, "shown.toml"));
-  // 38 keys, all with an "assumed" note in the shipped file.
-  EXPECT_NE(r.out.find("38 keys: 38 assumed"), std::string::npos) << r.out;
+  // 39 keys, all with an "assumed" note in the shipped file.
+  EXPECT_NE(r.out.find("39 keys: 39 assumed"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("n_max_rpm = 12000"), std::string::npos);
   EXPECT_NE(r.out.find("change_code = \"G117\""), std::string::npos);
 }

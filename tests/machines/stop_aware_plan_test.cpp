@@ -128,6 +128,81 @@ TEST(StopAwarePlan, AReversalAndADwellAreStopsAndTheRateLimitMergesStretches) {
   EXPECT_DOUBLE_EQ(plan.blocks[4].planned_rpm, 5000);
 }
 
+// Priced words (s_in_feed = "priced"): one rapid, then a feed stream of
+// 20 one-second blocks, one sample each; the last block has no time of its
+// own (its end is its start). A split at b11 gives each part its own
+// ceiling; the gain is the cutting time brought to nominal vc, the change
+// times the sum of dt / E over the higher part; the cost is the stop.
+std::vector<Sample> two_levels(double first, double second) {
+  std::vector<Sample> samples = {at(0.0, 0, {}, true)};
+  for (std::size_t k = 1; k <= 20; ++k)
+    samples.push_back(at(static_cast<double>(k), k, k <= 10 ? first : second));
+  return samples;
+}
+
+TEST(StopAwarePlan, PricedWordRisesWhereTheGainOutweighsTheStop) {
+  // 3000 then 6000 rpm: at b11 the gain is 3000 * 9 * (1 / 6000) = 4.5 s
+  // (b11-b19 one second each, b20 none); a later block gains less, an
+  // earlier one nothing (its second part still holds a 3000 ceiling).
+  SpindleSpec spec = stopping_spec();
+  spec.s_in_feed = machines::SInFeed::priced;
+  spec.stop_cost_s = 0.1;
+  auto plan = plan_spindle(two_levels(3000, 6000), spec);
+  ASSERT_EQ(plan.blocks.size(), 21u);
+  EXPECT_EQ(plan.s_words, 2u);
+  for (std::size_t k = 0; k <= 20; ++k) {
+    SCOPED_TRACE(k);
+    EXPECT_DOUBLE_EQ(plan.blocks[k].planned_rpm, k <= 10 ? 3000 : 6000);
+    EXPECT_EQ(plan.blocks[k].s_word, k == 0 || k == 11);
+  }
+  EXPECT_FALSE(plan.blocks[11].stop_place);  // a word in the feed stream: a paid stop
+  // A stop of 4.6 s costs more than the 4.5 s won: one S for the stream.
+  spec.stop_cost_s = 4.6;
+  plan = plan_spindle(two_levels(3000, 6000), spec);
+  EXPECT_EQ(plan.s_words, 1u);
+  for (const auto& b : plan.blocks) EXPECT_DOUBLE_EQ(b.planned_rpm, 3000);
+  // With a 10 % at-speed window the control also waits for the spindle to
+  // reach 5400 from 3000: 2.4 s at 1000 rpm/s, 4.8 s at 500 rpm/s.
+  spec.stop_cost_s = 0.1;
+  spec.at_speed_window_percent = 10;
+  EXPECT_EQ(plan_spindle(two_levels(3000, 6000), spec).s_words, 2u);  // 2.5 s < 4.5 s
+  spec.acceleration_rpm_per_s = 500;
+  EXPECT_EQ(plan_spindle(two_levels(3000, 6000), spec).s_words, 1u);  // 4.9 s > 4.5 s
+  // Never (the default) keeps the stream whole whatever the gain.
+  spec.s_in_feed = machines::SInFeed::never;
+  spec.at_speed_window_percent = 0;
+  EXPECT_EQ(plan_spindle(two_levels(3000, 6000), spec).s_words, 1u);
+}
+
+TEST(StopAwarePlan, PricedWordsFallEarlyEnoughForTheSpindle) {
+  // 6000 then 3000 rpm from b11 (t = 11). The control does not wait for the
+  // spindle, which slows at 1000 rpm/s: before a fall written at t_k the
+  // first part holds at most 3000 + 1000 * (11 - t_k). Gains of a first
+  // split: k = 11: 0; k = 10: 1000 * 9 / 6000 = 1.5 s; k = 9: 2000 * 8 / 6000
+  // = 2.67 s; k = 8: 3000 * 7 / 6000 = 3.5 s (b1-b7); k = 7: 3000 * 6 / 6000
+  // = 3 s. So b8. In b8-b20 then: k = 9: (5000 - 3000) / 6000 = 0.33 s, k =
+  // 10: (4000 - 3000) * 2 / 6000 = 0.33 s (the first wins the tie), so b9;
+  // in b9-b20: k = 10: 1000 / 6000 = 0.17 s > 0.1 s, so b10. The S steps
+  // down with the spindle: 6000, 5000 (b8), 4000 (b9), 3000 (b10), each
+  // second at 1000 rpm/s.
+  SpindleSpec spec = stopping_spec();
+  spec.s_in_feed = machines::SInFeed::priced;
+  spec.stop_cost_s = 0.1;
+  const auto plan = plan_spindle(two_levels(6000, 3000), spec);
+  ASSERT_EQ(plan.blocks.size(), 21u);
+  EXPECT_EQ(plan.s_words, 4u);
+  for (std::size_t k = 0; k <= 20; ++k) {
+    SCOPED_TRACE(k);
+    const double s = k <= 7 ? 6000 : k == 8 ? 5000 : k == 9 ? 4000 : 3000;
+    EXPECT_DOUBLE_EQ(plan.blocks[k].planned_rpm, s);
+    EXPECT_EQ(plan.blocks[k].s_word, k == 0 || (k >= 8 && k <= 10));
+  }
+  // At a stop cost of 0.2 s the step at b10 (0.17 s) no longer pays: words
+  // at b0, b8 and b9.
+  spec.stop_cost_s = 0.2;
+  EXPECT_EQ(plan_spindle(two_levels(6000, 3000), spec).s_words, 3u);
+}
+
 // ---- Random timelines against an independent computation.
 
 double grid_floor(const SpindleSpec& spec, double x) {
@@ -265,6 +340,7 @@ TEST(StopAwarePlan, RandomTimelinesMatchTheBruteForceStretches) {
     SCOPED_TRACE(round);
     auto spec = testing::property_spec(round, rng);
     spec.stops_path_on_change = true;
+    spec.s_in_feed = machines::SInFeed::never;  // fanuc-3axis-sar prices words
     const auto samples = timeline(spec, rng, round % 3 == 0 ? 0.05 : 1.0);
     const auto plan = plan_spindle(samples, spec);
     const auto expected = reference(samples, spec);
@@ -280,6 +356,7 @@ TEST(StopAwarePlan, EverySWordIsAtAnAllowedPlaceAndNoneInsideAFeedStream) {
     SCOPED_TRACE(round);
     auto spec = testing::property_spec(round, rng);
     spec.stops_path_on_change = true;
+    spec.s_in_feed = machines::SInFeed::never;  // fanuc-3axis-sar prices words
     const auto samples = timeline(spec, rng, 1.0);
     const auto plan = plan_spindle(samples, spec);
     const auto blocks = blocks_of(samples);
@@ -306,6 +383,10 @@ TEST(StopAwarePlan, TheSpindleNeverRunsAboveACeiling) {
     SCOPED_TRACE(round);
     auto spec = testing::property_spec(round, rng);
     spec.stops_path_on_change = true;
+    if (round % 4 == 1) {  // priced words too: their parts keep the slew bounds
+      spec.s_in_feed = machines::SInFeed::priced;
+      spec.stop_cost_s = 0.01 * (round % 7);
+    }
     const double g_min = grid_ceil(spec, spec.n_min_rpm), g_max = grid_floor(spec, spec.n_max_rpm);
     const auto samples = timeline(spec, rng, round % 2 ? 0.05 : 1.0);
     const auto plan = plan_spindle(samples, spec);

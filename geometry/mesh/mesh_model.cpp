@@ -11,6 +11,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <tuple>
 #include <utility>
@@ -144,6 +145,20 @@ struct MeshModel::Builder {
     std::uint32_t face;
   };
 
+  // The corners of a subtree's slots [base, base + size) side by side in
+  // slot order (three per slot), rewritten level by level as the subtree
+  // is split: below a few ten thousand triangles the fits read them from
+  // here rather than through the triangles (a copy of all the corners at
+  // once took 72 bytes a face, 720 MB for 10 M triangles).
+  struct Scratch {
+    std::uint32_t base;
+    std::unique_ptr<double[]> xyz[3];
+    Scratch(std::uint32_t begin, std::uint32_t end) : base(begin) {
+      for (auto& c : xyz) c.reset(new double[3 * std::size_t{end - begin}]);
+    }
+  };
+  static constexpr std::uint32_t scratch_size = 1u << 16;
+
   MeshModel& m;
   const std::vector<std::array<std::uint32_t, 3>>& triangles;  // until the slots hold them
   std::unique_ptr<Item[]> items;                               // in slot order
@@ -158,14 +173,17 @@ struct MeshModel::Builder {
   void slots();
   template <class F>
   void for_each_corner(std::uint32_t begin, std::uint32_t end, F&& f) const;
-  void gather(std::uint32_t begin, std::uint32_t end, bool corners, Moments& moments);
-  void fit_node(Node& node, std::uint32_t begin, std::uint32_t end, const Moments& moments) const;
+  void gather(std::uint32_t begin, std::uint32_t end, bool corners, Moments& moments,
+              Scratch* scratch);
+  void fit_node(Node& node, std::uint32_t begin, std::uint32_t end, const Moments& moments,
+                const Scratch* scratch) const;
   std::uint32_t split(std::uint32_t begin, std::uint32_t end, const Moments& moments);
-  void top(std::uint32_t begin, std::uint32_t end, const Moments& moments, std::uint32_t own);
+  void top(std::uint32_t begin, std::uint32_t end, const Moments& moments, std::uint32_t own,
+           Scratch* scratch);
   void expanded(std::uint32_t begin, std::uint32_t end, const Moments& moments, std::uint32_t wide,
-                int lane, std::uint32_t own_left, std::uint32_t own_right);
+                int lane, std::uint32_t own_left, std::uint32_t own_right, Scratch* scratch);
   void lane(std::uint32_t begin, std::uint32_t end, const Moments& moments, std::uint32_t wide,
-            int lane, std::uint32_t own);
+            int lane, std::uint32_t own, Scratch* scratch);
   std::uint32_t count_wide(std::uint32_t size);
   void clear_lanes(std::uint32_t wide);
   void set_lane(std::uint32_t wide, int lane, const Node& box, std::uint32_t child,
@@ -356,12 +374,12 @@ void MeshModel::Builder::tree() {
   m.wide_.resize(count_wide(nf));
   Moments all;
   if (nf <= leaf_size) {
-    gather(0, nf, true, all);
+    gather(0, nf, true, all, nullptr);
     clear_lanes(0);
-    lane(0, nf, all, 0, 0, 0);
+    lane(0, nf, all, 0, 0, 0, nullptr);
   } else {
-    gather(0, nf, false, all);
-    top(0, nf, all, 0);
+    gather(0, nf, false, all, nullptr);
+    top(0, nf, all, 0, nullptr);
   }
 }
 
@@ -402,9 +420,10 @@ void MeshModel::Builder::for_each_corner(std::uint32_t begin, std::uint32_t end,
 }
 
 // The moments of slots [begin, end): the centroids' box, and with
-// `corners` the corners' sums and extents.
+// `corners` the corners' sums and extents (the corners copied into
+// `scratch` on the way, when there is one).
 void MeshModel::Builder::gather(std::uint32_t begin, std::uint32_t end, bool corners,
-                                Moments& moments) {
+                                Moments& moments, Scratch* scratch) {
   const Item* const item = items.get();
   Eigen::Vector3d cl = moments.centroids.min(), ch = moments.centroids.max();
   for (std::uint32_t s = begin; s < end; ++s) {
@@ -417,7 +436,18 @@ void MeshModel::Builder::gather(std::uint32_t begin, std::uint32_t end, bool cor
   double s0 = moments.sum[0], s1 = moments.sum[1], s2 = moments.sum[2];
   double l0 = moments.lo[0], l1 = moments.lo[1], l2 = moments.lo[2];
   double h0 = moments.hi[0], h1 = moments.hi[1], h2 = moments.hi[2];
+  const std::size_t first = scratch == nullptr ? 0 : 3 * std::size_t{begin - scratch->base};
+  double* const xs = scratch == nullptr ? nullptr : scratch->xyz[0].get() + first;
+  double* const ys = scratch == nullptr ? nullptr : scratch->xyz[1].get() + first;
+  double* const zs = scratch == nullptr ? nullptr : scratch->xyz[2].get() + first;
+  std::size_t j = 0;
   for_each_corner(begin, end, [&](double x, double y, double z) {
+    if (xs != nullptr) {
+      xs[j] = x;
+      ys[j] = y;
+      zs[j] = z;
+      ++j;
+    }
     s0 += x;
     s1 += y;
     s2 += z;
@@ -473,7 +503,7 @@ void both(std::uint32_t size, const A& a, const B& b) {
 // Top node over slots [begin, end) (more than a leaf), its lanes in wide
 // node `own` and their subtrees' wide nodes after it.
 void MeshModel::Builder::top(std::uint32_t begin, std::uint32_t end, const Moments& moments,
-                             std::uint32_t own) {
+                             std::uint32_t own, Scratch* scratch) {
   clear_lanes(own);
   const std::uint32_t mid = split(begin, end, moments);
   std::uint32_t next = own + 1;
@@ -500,13 +530,13 @@ void MeshModel::Builder::top(std::uint32_t begin, std::uint32_t end, const Momen
         }
       }
     }
-    gather(c.begin, c.end, size <= leaf_size, c.moments);
+    gather(c.begin, c.end, size <= leaf_size, c.moments, scratch);
   }
   const auto run = [&](const Child& c) {
     if (c.end - c.begin <= leaf_size) {
-      lane(c.begin, c.end, c.moments, own, c.lane, 0);
+      lane(c.begin, c.end, c.moments, own, c.lane, 0, scratch);
     } else {
-      expanded(c.begin, c.end, c.moments, own, c.lane, c.own[0], c.own[1]);
+      expanded(c.begin, c.end, c.moments, own, c.lane, c.own[0], c.own[1], scratch);
     }
   };
   both(
@@ -517,28 +547,42 @@ void MeshModel::Builder::top(std::uint32_t begin, std::uint32_t end, const Momen
 // and `lane` + 1 of wide node `wide`.
 void MeshModel::Builder::expanded(std::uint32_t begin, std::uint32_t end, const Moments& moments,
                                   std::uint32_t wide, int lane_index, std::uint32_t own_left,
-                                  std::uint32_t own_right) {
+                                  std::uint32_t own_right, Scratch* scratch) {
   const std::uint32_t mid = split(begin, end, moments);
   Moments left, right;
-  gather(begin, mid, true, left);
-  gather(mid, end, true, right);
+  gather(begin, mid, true, left, scratch);
+  gather(mid, end, true, right, scratch);
   both(
-      end - begin, [&] { lane(begin, mid, left, wide, lane_index, own_left); },
-      [&] { lane(mid, end, right, wide, lane_index + 1, own_right); });
+      end - begin, [&] { lane(begin, mid, left, wide, lane_index, own_left, scratch); },
+      [&] { lane(mid, end, right, wide, lane_index + 1, own_right, scratch); });
 }
 
 // Lane `lane` of wide node `wide`: the box of slots [begin, end), whose
 // corners are in place with their moments; an inner lane is the top of
 // wide node `own`.
 void MeshModel::Builder::lane(std::uint32_t begin, std::uint32_t end, const Moments& moments,
-                              std::uint32_t wide, int lane_index, std::uint32_t own) {
+                              std::uint32_t wide, int lane_index, std::uint32_t own,
+                              Scratch* scratch) {
+  // A subtree small enough gets its scratch (the corners copied once more
+  // here: the moments were taken on the way to this lane).
+  std::optional<Scratch> own_scratch;
+  if (scratch == nullptr && end - begin <= scratch_size) {
+    scratch = &own_scratch.emplace(begin, end);
+    std::size_t j = 0;
+    for_each_corner(begin, end, [&](double x, double y, double z) {
+      scratch->xyz[0][j] = x;
+      scratch->xyz[1][j] = y;
+      scratch->xyz[2][j] = z;
+      ++j;
+    });
+  }
   Node box;
-  fit_node(box, begin, end, moments);
+  fit_node(box, begin, end, moments, scratch);
   if (end - begin <= leaf_size) {
     set_lane(wide, lane_index, box, begin, end - begin);
   } else {
     set_lane(wide, lane_index, box, own, 0);
-    top(begin, end, moments, own);
+    top(begin, end, moments, own, scratch);
   }
 }
 
@@ -549,9 +593,20 @@ void MeshModel::Builder::lane(std::uint32_t begin, std::uint32_t end, const Mome
 // every corner exactly; node_distance_squared allows for the rounded frame
 // being orthonormal only to float precision.
 void MeshModel::Builder::fit_node(Node& node, std::uint32_t begin, std::uint32_t end,
-                                  const Moments& moments) const {
+                                  const Moments& moments, const Scratch* scratch) const {
   const std::size_t n = 3 * std::size_t{end - begin};
-  const auto corners = [&](auto&& f) { for_each_corner(begin, end, f); };
+  // The corners in slot order, from the scratch when there is one.
+  const auto corners = [&](auto&& f) {
+    if (scratch == nullptr) {
+      for_each_corner(begin, end, f);
+      return;
+    }
+    const std::size_t first = 3 * std::size_t{begin - scratch->base};
+    const double* const xs = scratch->xyz[0].get() + first;
+    const double* const ys = scratch->xyz[1].get() + first;
+    const double* const zs = scratch->xyz[2].get() + first;
+    for (std::size_t i = 0; i < n; ++i) f(xs[i], ys[i], zs[i]);
+  };
   Eigen::Vector3d mean(moments.sum[0], moments.sum[1], moments.sum[2]);
   mean /= static_cast<double>(n);
   // Entry by entry, as `covariance += d * d.transpose()` adds them (written

@@ -11,6 +11,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <tuple>
 #include <utility>
@@ -87,46 +88,22 @@ struct Moments {
   Moments() { centroids.setEmpty(); }
 };
 
-// lo, hi = the extents of the corners (xs, ys, zs)[0, n) along the rows of
-// `axes`: axes * x summed as Eigen sums that product (rows 0 and 1 left to
-// right, row 2 its last two terms first), so the extents are the ones the
-// Eigen expression gives. Two corners at a time (GCC/Clang vector
-// extension); a zero extent, whose sign depends on the order the minimum
-// is taken in, is measured again one corner at a time.
-void project(const double* xs, const double* ys, const double* zs, std::size_t n,
-             const Eigen::Matrix3d& axes, Eigen::Vector3d& lo, Eigen::Vector3d& hi) {
-  using D2 = double __attribute__((vector_size(16)));
-  const auto load = [](const double* p) {
-    D2 v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-  };
+// lo, hi = the extents of the corners that for_each_corner(f) passes to f
+// along the rows of `axes`: axes * x summed as Eigen sums that product
+// (rows 0 and 1 left to right, row 2 its last two terms first), so the
+// extents are the ones the Eigen expression gives. Minima and maxima do not
+// depend on the order they are taken in, but for the sign of a zero: a zero
+// extent is measured again, in the corners' order.
+template <class Corners>
+void project(const Corners& for_each_corner, const Eigen::Matrix3d& axes, Eigen::Vector3d& lo,
+             Eigen::Vector3d& hi) {
   const double a00 = axes(0, 0), a01 = axes(0, 1), a02 = axes(0, 2);
   const double a10 = axes(1, 0), a11 = axes(1, 1), a12 = axes(1, 2);
   const double a20 = axes(2, 0), a21 = axes(2, 1), a22 = axes(2, 2);
   constexpr double inf = std::numeric_limits<double>::infinity();
-  D2 lo0 = {inf, inf}, lo1 = lo0, lo2 = lo0, hi0 = -lo0, hi1 = hi0, hi2 = hi0;
-  std::size_t i = 0;
-  for (; i + 2 <= n; i += 2) {
-    const D2 x = load(xs + i), y = load(ys + i), z = load(zs + i);
-    const D2 q0 = (a00 * x + a01 * y) + a02 * z;
-    const D2 q1 = (a10 * x + a11 * y) + a12 * z;
-    const D2 q2 = a20 * x + (a21 * y + a22 * z);
-    lo0 = q0 < lo0 ? q0 : lo0;
-    lo1 = q1 < lo1 ? q1 : lo1;
-    lo2 = q2 < lo2 ? q2 : lo2;
-    hi0 = q0 > hi0 ? q0 : hi0;
-    hi1 = q1 > hi1 ? q1 : hi1;
-    hi2 = q2 > hi2 ? q2 : hi2;
-  }
-  // The rest in scalars (locals: writing through lo and hi on every corner
-  // stalls on store forwarding).
-  double l0 = std::min(lo0[0], lo0[1]), l1 = std::min(lo1[0], lo1[1]),
-         l2 = std::min(lo2[0], lo2[1]);
-  double h0 = std::max(hi0[0], hi0[1]), h1 = std::max(hi1[0], hi1[1]),
-         h2 = std::max(hi2[0], hi2[1]);
-  const auto one = [&](std::size_t k) {
-    const double x = xs[k], y = ys[k], z = zs[k];
+  // Locals: writing through lo and hi on every corner stalls on store forwarding.
+  double l0 = inf, l1 = inf, l2 = inf, h0 = -inf, h1 = -inf, h2 = -inf;
+  const auto one = [&](double x, double y, double z) {
     const double q0 = (a00 * x + a01 * y) + a02 * z;
     const double q1 = (a10 * x + a11 * y) + a12 * z;
     const double q2 = a20 * x + (a21 * y + a22 * z);
@@ -137,11 +114,11 @@ void project(const double* xs, const double* ys, const double* zs, std::size_t n
     h1 = std::max(h1, q1);
     h2 = std::max(h2, q2);
   };
-  for (; i < n; ++i) one(i);
+  for_each_corner(one);
   if (l0 == 0 || l1 == 0 || l2 == 0 || h0 == 0 || h1 == 0 || h2 == 0) {
     l0 = l1 = l2 = inf;
     h0 = h1 = h2 = -inf;
-    for (std::size_t k = 0; k < n; ++k) one(k);
+    for_each_corner(one);
   }
   lo = {l0, l1, l2};
   hi = {h0, h1, h2};
@@ -168,134 +145,216 @@ struct MeshModel::Builder {
     std::uint32_t face;
   };
 
+  // The corners of a subtree's slots [base, base + size) side by side in
+  // slot order (three per slot), rewritten level by level as the subtree
+  // is split: below a few ten thousand triangles the fits read them from
+  // here rather than through the triangles (a copy of all the corners at
+  // once took 72 bytes a face, 720 MB for 10 M triangles).
+  struct Scratch {
+    std::uint32_t base;
+    std::unique_ptr<double[]> xyz[3];
+    Scratch(std::uint32_t begin, std::uint32_t end) : base(begin) {
+      for (auto& c : xyz) c.reset(new double[3 * std::size_t{end - begin}]);
+    }
+  };
+  static constexpr std::uint32_t scratch_size = 1u << 16;
+
   MeshModel& m;
-  std::unique_ptr<Item[]> items;                       // in slot order
-  std::unique_ptr<double[]> corners[3];                // x, y, z of three per item, in slot order
+  const std::vector<std::array<std::uint32_t, 3>>& triangles;  // until the slots hold them
+  std::unique_ptr<Item[]> items;                               // in slot order
   std::map<std::uint32_t, std::uint32_t> wide_counts;  // by subtree size; read only in build
 
-  explicit Builder(MeshModel& model) : m(model) {}
+  Builder(MeshModel& model, const std::vector<std::array<std::uint32_t, 3>>& t)
+      : m(model), triangles(t) {}
 
-  void normals();
+  void edges();
+  void vertex_normals();
   void tree();
   void slots();
-  void gather(std::uint32_t begin, std::uint32_t end, bool copy, Moments& moments);
+  template <class F>
+  void for_each_corner(std::uint32_t begin, std::uint32_t end, F&& f) const;
+  void gather(std::uint32_t begin, std::uint32_t end, bool corners, Moments& moments,
+              Scratch* scratch);
+  void fit_node(Node& node, std::uint32_t begin, std::uint32_t end, const Moments& moments,
+                const Scratch* scratch) const;
   std::uint32_t split(std::uint32_t begin, std::uint32_t end, const Moments& moments);
-  void top(std::uint32_t begin, std::uint32_t end, const Moments& moments, std::uint32_t own);
+  void top(std::uint32_t begin, std::uint32_t end, const Moments& moments, std::uint32_t own,
+           Scratch* scratch);
   void expanded(std::uint32_t begin, std::uint32_t end, const Moments& moments, std::uint32_t wide,
-                int lane, std::uint32_t own_left, std::uint32_t own_right);
+                int lane, std::uint32_t own_left, std::uint32_t own_right, Scratch* scratch);
   void lane(std::uint32_t begin, std::uint32_t end, const Moments& moments, std::uint32_t wide,
-            int lane, std::uint32_t own);
-  void fit_node(Node& node, std::uint32_t begin, std::uint32_t end, const Moments& moments) const;
+            int lane, std::uint32_t own, Scratch* scratch);
   std::uint32_t count_wide(std::uint32_t size);
   void clear_lanes(std::uint32_t wide);
   void set_lane(std::uint32_t wide, int lane, const Node& box, std::uint32_t child,
                 std::uint32_t count);
 };
 
-MeshModel::MeshModel(StlMesh mesh) : mesh_(std::move(mesh)) {
-  const std::size_t nf = mesh_.triangles.size();
-  const std::size_t nv = mesh_.vertices.size();
+MeshModel::Vertices::Vertices(std::vector<Eigen::Vector3d>&& points) {
+  const bool floats = std::all_of(points.begin(), points.end(), [](const Eigen::Vector3d& p) {
+    return p.cast<float>().cast<double>() == p;
+  });
+  if (!floats) {
+    double_ = std::move(points);
+    return;
+  }
+  single_.resize(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) single_[i] = points[i].cast<float>();
+  std::vector<Eigen::Vector3d>().swap(points);
+}
+
+MeshModel::MeshModel(StlMesh mesh) : vertices_(std::move(mesh.vertices)) {
+  std::vector<std::array<std::uint32_t, 3>> triangles = std::move(mesh.triangles);
+  const std::size_t nf = triangles.size();
+  const std::size_t nv = vertices_.size();
   if (nf == 0) throw std::invalid_argument("MeshModel: the mesh has no triangles");
-  if (nf >= std::numeric_limits<std::uint32_t>::max() / 2)
-    throw std::invalid_argument("MeshModel: too many triangles");
+  if (nf >= kMaxFaces) throw std::invalid_argument("MeshModel: too many triangles");
   if (nv >= std::numeric_limits<std::uint32_t>::max())
     throw std::invalid_argument("MeshModel: too many vertices");
-  for (const auto& t : mesh_.triangles)
+  for (const auto& t : triangles)
     for (auto i : t)
       if (i >= nv) throw std::invalid_argument("MeshModel: corner index out of range");
 
   bounds_.setEmpty();
-  for (const auto& p : mesh_.vertices) bounds_.extend(p);
+  for (std::size_t v = 0; v < nv; ++v) bounds_.extend(vertices_[v]);
 
-  // The normals and the tree are independent; the slots need both.
-  Builder builder(*this);
-  tbb::parallel_invoke([&] { builder.normals(); }, [&] { builder.tree(); });
+  // One phase after the other, each on oneTBB's threads, so that their
+  // scratch memory is not held at once (the 10 M-triangle mould peaked at
+  // 2.6 GB with the normals and the tree built side by side). The
+  // triangles go once the slots hold them; the vertex normals, last (they
+  // would be held through the tree), read the corners from the slots.
+  Builder builder(*this, triangles);
+  builder.edges();
+  builder.tree();
   builder.slots();
+  std::vector<std::array<std::uint32_t, 3>>().swap(triangles);
+  builder.vertex_normals();
 }
 
-// Normals: facets, then the pseudo-normals that tell inside from outside
-// at edges (sum of the faces sharing the edge) and vertices (angle-weighted).
-// The sums are taken in face order, corner by corner: their rounding
-// depends on the order.
-void MeshModel::Builder::normals() {
-  const auto& vertices = m.mesh_.vertices;
-  const auto& triangles = m.mesh_.triangles;
-  const std::size_t nf = triangles.size();
-  const std::size_t nv = vertices.size();
-  // Facet normals only while the pseudo-normals are summed (24 bytes a
-  // face; queries recompute the few they need).
-  std::vector<Eigen::Vector3d> facet_normal(nf);
-  m.edge_of_side_.resize(nf);
-  m.vertex_normal_.assign(nv, Eigen::Vector3d::Zero());
-  std::vector<std::array<double, 3>> angles(nf);  // of each corner
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nf, face_grain), [&](const auto& range) {
-    for (std::size_t f = range.begin(); f < range.end(); ++f) {
-      const auto& t = triangles[f];
-      facet_normal[f] = unit_normal(vertices[t[0]], vertices[t[1]], vertices[t[2]]);
-      for (int k = 0; k < 3; ++k) {
-        const Eigen::Vector3d e1 = vertices[t[(k + 1) % 3]] - vertices[t[k]];
-        const Eigen::Vector3d e2 = vertices[t[(k + 2) % 3]] - vertices[t[k]];
-        angles[f][k] = std::atan2(e1.cross(e2).norm(), e1.dot(e2));
+// Angle-weighted vertex normals. The sums are taken in face order, corner
+// by corner (their rounding depends on the order); the facet normals and
+// corner angles are computed a block of faces at a time, in parallel, so
+// that no array of them per face is needed.
+void MeshModel::Builder::vertex_normals() {
+  const std::size_t nf = m.slots_.size();
+  m.vertex_normal_.assign(m.vertices_.size(), Eigen::Vector3d::Zero());
+  constexpr std::size_t block = 16 * face_grain;
+  std::vector<Eigen::Vector3d> facet(std::min(nf, block));
+  std::vector<std::array<double, 3>> angles(facet.size());
+  for (std::size_t first = 0; first < nf; first += block) {
+    const std::size_t last = std::min(nf, first + block);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(first, last, face_grain), [&](const auto& r) {
+      for (std::size_t f = r.begin(); f < r.end(); ++f) {
+        const std::uint32_t* t = m.corners_of(static_cast<std::uint32_t>(f));
+        const Eigen::Vector3d p[3] = {m.vertices_[t[0]], m.vertices_[t[1]], m.vertices_[t[2]]};
+        facet[f - first] = unit_normal(p[0], p[1], p[2]);
+        for (int k = 0; k < 3; ++k) {
+          const Eigen::Vector3d e1 = p[(k + 1) % 3] - p[k];
+          const Eigen::Vector3d e2 = p[(k + 2) % 3] - p[k];
+          angles[f - first][k] = std::atan2(e1.cross(e2).norm(), e1.dot(e2));
+        }
       }
+    });
+    for (std::size_t f = first; f < last; ++f) {
+      const std::uint32_t* t = m.corners_of(static_cast<std::uint32_t>(f));
+      for (int k = 0; k < 3; ++k) m.vertex_normal_[t[k]] += angles[f - first][k] * facet[f - first];
     }
-  });
-  for (std::size_t f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k) m.vertex_normal_[triangles[f][k]] += angles[f][k] * facet_normal[f];
+  }
   for (auto& n : m.vertex_normal_) {
     const double len = n.norm();
     n = len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::UnitZ();
   }
+}
+
+// What makes the pseudo-normals that tell inside from outside at edges
+// (the sum of the facet normals of the faces sharing the edge, in face
+// order): the face across each side, or the sum itself for an edge of
+// three faces or more.
+void MeshModel::Builder::edges() {
+  const auto nf = static_cast<std::uint32_t>(triangles.size());
+  const std::size_t nv = m.vertices_.size();
+  const auto facet = [&](std::uint32_t f) {
+    const auto& t = triangles[f];
+    return unit_normal(m.vertices_[t[0]], m.vertices_[t[1]], m.vertices_[t[2]]);
+  };
 
   // Edges: the face sides grouped by their lower vertex (a counting sort,
   // which keeps face order), then each group sorted by upper vertex, face
   // and side: a run of equal upper vertices is one edge, in face order.
   struct Side {
-    std::uint32_t upper, face, k;
+    std::uint32_t upper;
+    std::uint32_t face_side;  // 4 face + side (faces are fewer than 2^30)
   };
   std::vector<std::size_t> start(nv + 1, 0);
   for (const auto& t : triangles)
     for (int k = 0; k < 3; ++k) ++start[std::min(t[k], t[(k + 1) % 3]) + 1];
   for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-  std::vector<Side> sides(3 * nf);
+  std::vector<Side> sides(3 * std::size_t{nf});
   {
     std::vector<std::size_t> next(start.begin(), start.end() - 1);
-    for (std::size_t f = 0; f < nf; ++f) {
+    for (std::uint32_t f = 0; f < nf; ++f) {
       const auto& t = triangles[f];
       for (std::uint32_t k = 0; k < 3; ++k) {
         const auto [lo, hi] = std::minmax(t[k], t[(k + 1) % 3]);
-        sides[next[lo]++] = {hi, static_cast<std::uint32_t>(f), k};
+        sides[next[lo]++] = {hi, 4 * f + k};
       }
     }
   }
-  // Two passes over the groups: sort and count the edges (runs), then,
-  // with every group's first edge number known, sum the normals.
-  std::vector<std::size_t> first_edge(nv + 1, 0);
+  // Two passes over the groups: sort them and note each edge of two sides
+  // (the faces across) or one (a border), counting the edges of three or
+  // more; then, with every group's first such edge number known, sum their
+  // normals.
+  m.side_.resize(nf);
+  std::vector<std::size_t> first_shared(nv + 1, 0);
+  const auto run_end = [](const Side* run, const Side* last) {
+    const Side* end = run;
+    while (end != last && end->upper == run->upper) ++end;
+    return end;
+  };
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, face_grain), [&](const auto& range) {
     for (std::size_t v = range.begin(); v < range.end(); ++v) {
-      const auto first = sides.begin() + start[v], last = sides.begin() + start[v + 1];
+      Side* const first = sides.data() + start[v];
+      Side* const last = sides.data() + start[v + 1];
       std::sort(first, last, [](const Side& x, const Side& y) {
-        return std::tie(x.upper, x.face, x.k) < std::tie(y.upper, y.face, y.k);
+        return std::tie(x.upper, x.face_side) < std::tie(y.upper, y.face_side);
       });
-      std::size_t runs = 0;
-      for (auto run = first; run != last; ++run)
-        runs += run == first || run->upper != (run - 1)->upper;
-      first_edge[v + 1] = runs;
+      std::size_t shared = 0;
+      for (const Side* run = first; run != last;) {
+        const Side* const end = run_end(run, last);
+        const std::uint32_t a = run->face_side;
+        if (end - run == 1) {
+          m.side_[a / 4][a % 4] = kBorder;
+        } else if (end - run == 2) {
+          const std::uint32_t b = run[1].face_side;
+          m.side_[a / 4][a % 4] = b / 4;
+          m.side_[b / 4][b % 4] = a / 4;
+        } else {
+          ++shared;
+        }
+        run = end;
+      }
+      first_shared[v + 1] = shared;
     }
   });
-  for (std::size_t v = 0; v < nv; ++v) first_edge[v + 1] += first_edge[v];
-  if (first_edge[nv] >= kNone) throw std::invalid_argument("MeshModel: too many edges");
-  m.edge_normal_.resize(first_edge[nv]);
+  for (std::size_t v = 0; v < nv; ++v) first_shared[v + 1] += first_shared[v];
+  if (first_shared[nv] >= kShared) throw std::invalid_argument("MeshModel: too many edges");
+  m.shared_normal_.resize(first_shared[nv]);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, face_grain), [&](const auto& range) {
     for (std::size_t v = range.begin(); v < range.end(); ++v) {
-      const auto first = sides.begin() + start[v], last = sides.begin() + start[v + 1];
-      auto edge = static_cast<std::uint32_t>(first_edge[v]);
-      for (auto run = first; run != last; ++edge) {
-        auto end = run;
-        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-        for (; end != last && end->upper == run->upper; ++end) sum += facet_normal[end->face];
-        const double len = sum.norm();
-        if (len > 0) m.edge_normal_[edge] = sum / len;
-        for (; run != end; ++run) m.edge_of_side_[run->face][run->k] = len > 0 ? edge : kNone;
+      const Side* const last = sides.data() + start[v + 1];
+      auto edge = static_cast<std::uint32_t>(first_shared[v]);
+      for (const Side* run = sides.data() + start[v]; run != last;) {
+        const Side* const end = run_end(run, last);
+        if (end - run > 2) {
+          Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+          for (const Side* s = run; s != end; ++s) sum += facet(s->face_side / 4);
+          const double len = sum.norm();
+          if (len > 0) m.shared_normal_[edge] = sum / len;
+          for (; run != end; ++run)
+            m.side_[run->face_side / 4][run->face_side % 4] = len > 0 ? kShared + edge : kNone;
+          ++edge;
+        }
+        run = end;
       }
     }
   });
@@ -303,97 +362,102 @@ void MeshModel::Builder::normals() {
 
 // The hierarchy: median split of the centroids along the box's longest axis.
 void MeshModel::Builder::tree() {
-  const auto& vertices = m.mesh_.vertices;
-  const auto& triangles = m.mesh_.triangles;
   const auto nf = static_cast<std::uint32_t>(triangles.size());
   items.reset(new Item[nf]);
-  for (auto& c : corners) c.reset(new double[3 * std::size_t{nf}]);
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, nf, face_grain), [&](const auto& range) {
     for (std::uint32_t f = range.begin(); f < range.end(); ++f) {
       const auto& t = triangles[f];
-      items[f].centroid = (vertices[t[0]] + vertices[t[1]] + vertices[t[2]]) / 3.0;
+      items[f].centroid = (m.vertices_[t[0]] + m.vertices_[t[1]] + m.vertices_[t[2]]) / 3.0;
       items[f].face = f;
     }
   });
   m.wide_.resize(count_wide(nf));
   Moments all;
   if (nf <= leaf_size) {
-    gather(0, nf, true, all);
+    gather(0, nf, true, all, nullptr);
     clear_lanes(0);
-    lane(0, nf, all, 0, 0, 0);
+    lane(0, nf, all, 0, 0, 0, nullptr);
   } else {
-    gather(0, nf, false, all);
-    top(0, nf, all, 0);
+    gather(0, nf, false, all, nullptr);
+    top(0, nf, all, 0, nullptr);
   }
-  // The corners were only for fitting the boxes (72 bytes a face).
-  for (auto& c : corners) c.reset();
 }
 
-// Triangles as the query reads them, in hierarchy order.
+// Triangles as the query reads them, in hierarchy order. The items go
+// before the slots come (their faces copied out first): both at once were
+// the peak of the whole build.
 void MeshModel::Builder::slots() {
-  const auto& triangles = m.mesh_.triangles;
   const auto nf = static_cast<std::uint32_t>(triangles.size());
+  std::vector<std::uint32_t> face(nf);
+  for (std::uint32_t s = 0; s < nf; ++s) face[s] = items[s].face;
+  items.reset();
   m.slots_.resize(nf);
   m.slot_of_face_.resize(nf);
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, nf, face_grain), [&](const auto& range) {
     for (std::uint32_t s = range.begin(); s < range.end(); ++s) {
       Slot& slot = m.slots_[s];
-      slot.face = items[s].face;
+      slot.face = face[s];
       const auto& t = triangles[slot.face];
       for (int k = 0; k < 3; ++k) slot.corner[k] = t[k];
       m.slot_of_face_[slot.face] = s;
     }
   });
-  items.reset();
 }
 
-// The corners of slots [begin, end) copied side by side in slot order,
-// with their moments.
-void MeshModel::Builder::gather(std::uint32_t begin, std::uint32_t end, bool copy,
-                                Moments& moments) {
-  // Locals throughout: stores through the outputs could alias anything else.
-  const Eigen::Vector3d* const vertices = m.mesh_.vertices.data();
-  const std::array<std::uint32_t, 3>* const triangles = m.mesh_.triangles.data();
+// Calls f(x, y, z) with the corners of slots [begin, end), in slot order.
+// They are read where they are, not copied side by side first: a copy of
+// every corner took 72 bytes a face (720 MB for 10 M triangles).
+template <class F>
+void MeshModel::Builder::for_each_corner(std::uint32_t begin, std::uint32_t end, F&& f) const {
+  const std::array<std::uint32_t, 3>* const tri = triangles.data();
   const Item* const item = items.get();
-  const std::size_t first = 3 * std::size_t{begin};
-  double* const xs = corners[0].get() + first;
-  double* const ys = corners[1].get() + first;
-  double* const zs = corners[2].get() + first;
+  for (std::uint32_t s = begin; s < end; ++s) {
+    for (const std::uint32_t i : tri[item[s].face]) {
+      const Eigen::Vector3d v = m.vertices_[i];
+      f(v[0], v[1], v[2]);
+    }
+  }
+}
+
+// The moments of slots [begin, end): the centroids' box, and with
+// `corners` the corners' sums and extents (the corners copied into
+// `scratch` on the way, when there is one).
+void MeshModel::Builder::gather(std::uint32_t begin, std::uint32_t end, bool corners,
+                                Moments& moments, Scratch* scratch) {
+  const Item* const item = items.get();
+  Eigen::Vector3d cl = moments.centroids.min(), ch = moments.centroids.max();
+  for (std::uint32_t s = begin; s < end; ++s) {
+    cl = cl.cwiseMin(item[s].centroid);
+    ch = ch.cwiseMax(item[s].centroid);
+  }
+  moments.centroids = Eigen::AlignedBox3d(cl, ch);
+  if (!corners) return;
+  // Locals throughout: stores through `moments` could alias anything else.
   double s0 = moments.sum[0], s1 = moments.sum[1], s2 = moments.sum[2];
   double l0 = moments.lo[0], l1 = moments.lo[1], l2 = moments.lo[2];
   double h0 = moments.hi[0], h1 = moments.hi[1], h2 = moments.hi[2];
-  Eigen::Vector3d cl = moments.centroids.min(), ch = moments.centroids.max();
-  if (!copy) {
-    for (std::uint32_t s = begin; s < end; ++s) {
-      cl = cl.cwiseMin(item[s].centroid);
-      ch = ch.cwiseMax(item[s].centroid);
-    }
-    moments.centroids = Eigen::AlignedBox3d(cl, ch);
-    return;
-  }
+  const std::size_t first = scratch == nullptr ? 0 : 3 * std::size_t{begin - scratch->base};
+  double* const xs = scratch == nullptr ? nullptr : scratch->xyz[0].get() + first;
+  double* const ys = scratch == nullptr ? nullptr : scratch->xyz[1].get() + first;
+  double* const zs = scratch == nullptr ? nullptr : scratch->xyz[2].get() + first;
   std::size_t j = 0;
-  for (std::uint32_t s = begin; s < end; ++s) {
-    const Item& it = item[s];
-    cl = cl.cwiseMin(it.centroid);
-    ch = ch.cwiseMax(it.centroid);
-    for (auto i : triangles[it.face]) {
-      const double* v = vertices[i].data();
-      const double x = v[0], y = v[1], z = v[2];
+  for_each_corner(begin, end, [&](double x, double y, double z) {
+    if (xs != nullptr) {
       xs[j] = x;
       ys[j] = y;
       zs[j] = z;
       ++j;
-      s0 += x;
-      s1 += y;
-      s2 += z;
-      l0 = std::min(l0, x);
-      l1 = std::min(l1, y);
-      l2 = std::min(l2, z);
-      h0 = std::max(h0, x);
-      h1 = std::max(h1, y);
-      h2 = std::max(h2, z);
     }
-  }
+    s0 += x;
+    s1 += y;
+    s2 += z;
+    l0 = std::min(l0, x);
+    l1 = std::min(l1, y);
+    l2 = std::min(l2, z);
+    h0 = std::max(h0, x);
+    h1 = std::max(h1, y);
+    h2 = std::max(h2, z);
+  });
   moments.sum[0] = s0;
   moments.sum[1] = s1;
   moments.sum[2] = s2;
@@ -403,7 +467,6 @@ void MeshModel::Builder::gather(std::uint32_t begin, std::uint32_t end, bool cop
   moments.hi[0] = h0;
   moments.hi[1] = h1;
   moments.hi[2] = h2;
-  moments.centroids = Eigen::AlignedBox3d(cl, ch);
 }
 
 // The hierarchy is built straight into its wide form (four lanes a node):
@@ -440,7 +503,7 @@ void both(std::uint32_t size, const A& a, const B& b) {
 // Top node over slots [begin, end) (more than a leaf), its lanes in wide
 // node `own` and their subtrees' wide nodes after it.
 void MeshModel::Builder::top(std::uint32_t begin, std::uint32_t end, const Moments& moments,
-                             std::uint32_t own) {
+                             std::uint32_t own, Scratch* scratch) {
   clear_lanes(own);
   const std::uint32_t mid = split(begin, end, moments);
   std::uint32_t next = own + 1;
@@ -467,13 +530,13 @@ void MeshModel::Builder::top(std::uint32_t begin, std::uint32_t end, const Momen
         }
       }
     }
-    gather(c.begin, c.end, size <= leaf_size, c.moments);
+    gather(c.begin, c.end, size <= leaf_size, c.moments, scratch);
   }
   const auto run = [&](const Child& c) {
     if (c.end - c.begin <= leaf_size) {
-      lane(c.begin, c.end, c.moments, own, c.lane, 0);
+      lane(c.begin, c.end, c.moments, own, c.lane, 0, scratch);
     } else {
-      expanded(c.begin, c.end, c.moments, own, c.lane, c.own[0], c.own[1]);
+      expanded(c.begin, c.end, c.moments, own, c.lane, c.own[0], c.own[1], scratch);
     }
   };
   both(
@@ -484,28 +547,42 @@ void MeshModel::Builder::top(std::uint32_t begin, std::uint32_t end, const Momen
 // and `lane` + 1 of wide node `wide`.
 void MeshModel::Builder::expanded(std::uint32_t begin, std::uint32_t end, const Moments& moments,
                                   std::uint32_t wide, int lane_index, std::uint32_t own_left,
-                                  std::uint32_t own_right) {
+                                  std::uint32_t own_right, Scratch* scratch) {
   const std::uint32_t mid = split(begin, end, moments);
   Moments left, right;
-  gather(begin, mid, true, left);
-  gather(mid, end, true, right);
+  gather(begin, mid, true, left, scratch);
+  gather(mid, end, true, right, scratch);
   both(
-      end - begin, [&] { lane(begin, mid, left, wide, lane_index, own_left); },
-      [&] { lane(mid, end, right, wide, lane_index + 1, own_right); });
+      end - begin, [&] { lane(begin, mid, left, wide, lane_index, own_left, scratch); },
+      [&] { lane(mid, end, right, wide, lane_index + 1, own_right, scratch); });
 }
 
 // Lane `lane` of wide node `wide`: the box of slots [begin, end), whose
 // corners are in place with their moments; an inner lane is the top of
 // wide node `own`.
 void MeshModel::Builder::lane(std::uint32_t begin, std::uint32_t end, const Moments& moments,
-                              std::uint32_t wide, int lane_index, std::uint32_t own) {
+                              std::uint32_t wide, int lane_index, std::uint32_t own,
+                              Scratch* scratch) {
+  // A subtree small enough gets its scratch (the corners copied once more
+  // here: the moments were taken on the way to this lane).
+  std::optional<Scratch> own_scratch;
+  if (scratch == nullptr && end - begin <= scratch_size) {
+    scratch = &own_scratch.emplace(begin, end);
+    std::size_t j = 0;
+    for_each_corner(begin, end, [&](double x, double y, double z) {
+      scratch->xyz[0][j] = x;
+      scratch->xyz[1][j] = y;
+      scratch->xyz[2][j] = z;
+      ++j;
+    });
+  }
   Node box;
-  fit_node(box, begin, end, moments);
+  fit_node(box, begin, end, moments, scratch);
   if (end - begin <= leaf_size) {
     set_lane(wide, lane_index, box, begin, end - begin);
   } else {
     set_lane(wide, lane_index, box, own, 0);
-    top(begin, end, moments, own);
+    top(begin, end, moments, own, scratch);
   }
 }
 
@@ -516,25 +593,34 @@ void MeshModel::Builder::lane(std::uint32_t begin, std::uint32_t end, const Mome
 // every corner exactly; node_distance_squared allows for the rounded frame
 // being orthonormal only to float precision.
 void MeshModel::Builder::fit_node(Node& node, std::uint32_t begin, std::uint32_t end,
-                                  const Moments& moments) const {
-  const std::size_t first = 3 * std::size_t{begin}, n = 3 * std::size_t{end - begin};
-  const double* const xs = corners[0].get() + first;
-  const double* const ys = corners[1].get() + first;
-  const double* const zs = corners[2].get() + first;
+                                  const Moments& moments, const Scratch* scratch) const {
+  const std::size_t n = 3 * std::size_t{end - begin};
+  // The corners in slot order, from the scratch when there is one.
+  const auto corners = [&](auto&& f) {
+    if (scratch == nullptr) {
+      for_each_corner(begin, end, f);
+      return;
+    }
+    const std::size_t first = 3 * std::size_t{begin - scratch->base};
+    const double* const xs = scratch->xyz[0].get() + first;
+    const double* const ys = scratch->xyz[1].get() + first;
+    const double* const zs = scratch->xyz[2].get() + first;
+    for (std::size_t i = 0; i < n; ++i) f(xs[i], ys[i], zs[i]);
+  };
   Eigen::Vector3d mean(moments.sum[0], moments.sum[1], moments.sum[2]);
   mean /= static_cast<double>(n);
   // Entry by entry, as `covariance += d * d.transpose()` adds them (written
   // out: Eigen's temporary outer product stalls on store forwarding).
   double c00 = 0, c01 = 0, c02 = 0, c11 = 0, c12 = 0, c22 = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double d0 = xs[i] - mean[0], d1 = ys[i] - mean[1], d2 = zs[i] - mean[2];
+  corners([&](double x, double y, double z) {
+    const double d0 = x - mean[0], d1 = y - mean[1], d2 = z - mean[2];
     c00 += d0 * d0;
     c01 += d0 * d1;
     c02 += d0 * d2;
     c11 += d1 * d1;
     c12 += d1 * d2;
     c22 += d2 * d2;
-  }
+  });
   Eigen::Matrix3d covariance;
   covariance << c00, c01, c02, c01, c11, c12, c02, c12, c22;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
@@ -558,7 +644,7 @@ void MeshModel::Builder::fit_node(Node& node, std::uint32_t begin, std::uint32_t
       lo = *given_lo;
       hi = *given_hi;
     } else {
-      project(xs, ys, zs, n, axes, lo, hi);
+      project(corners, axes, lo, hi);
     }
     // The centre in world coordinates, rounded to float; the extents about it.
     const Eigen::Vector3d mid = transpose_times(axes, (lo + hi) / 2);
@@ -619,8 +705,7 @@ std::uint32_t MeshModel::Builder::count_wide(std::uint32_t size) {
 void MeshModel::Builder::clear_lanes(std::uint32_t wide) {
   WideNode& w = m.wide_[wide];
   for (int l = 0; l < 4; ++l) {
-    w.child[l] = kNone;
-    w.count[l] = 0;
+    w.link[l] = kNone;
     for (int k = 0; k < 3; ++k) {
       for (int j = 0; j < 3; ++j) w.axis[k][j][l] = 0;
       w.offset[k][l] = std::numeric_limits<float>::max();
@@ -650,18 +735,16 @@ void MeshModel::Builder::set_lane(std::uint32_t wide, int lane_index, const Node
     w.half[k][l] =
         round_up(static_cast<double>(box.half[k]) + moved + 1e-6 * std::abs(exact) + 1e-12);
   }
-  w.child[l] = child;
-  w.count[l] = count;
+  w.link[l] = child | count << kCountShift;
 }
 
 // Closest point of one triangle by the Voronoi regions of its corners,
 // edges and interior (the classic region test on the dot products).
 void MeshModel::test_slot(std::uint32_t s, const Eigen::Vector3d& p, Hit& best) const {
   const Slot& slot = slots_[s];
-  const Eigen::Vector3d* const vertices = mesh_.vertices.data();
-  const Eigen::Vector3d& a = vertices[slot.corner[0]];
-  const Eigen::Vector3d& b = vertices[slot.corner[1]];
-  const Eigen::Vector3d& c = vertices[slot.corner[2]];
+  const Eigen::Vector3d a = vertices_[slot.corner[0]];
+  const Eigen::Vector3d b = vertices_[slot.corner[1]];
+  const Eigen::Vector3d c = vertices_[slot.corner[2]];
   const Eigen::Vector3d ap = p - a;
   const Eigen::Vector3d ab = b - a, ac = c - a;
   // The plane is no farther than the triangle: most rejections end here.
@@ -722,8 +805,23 @@ void MeshModel::test_slot(std::uint32_t s, const Eigen::Vector3d& p, Hit& best) 
 }
 
 Eigen::Vector3d MeshModel::facet_normal(int face) const {
-  const auto& t = mesh_.triangles[static_cast<std::size_t>(face)];
-  return unit_normal(mesh_.vertices[t[0]], mesh_.vertices[t[1]], mesh_.vertices[t[2]]);
+  const std::uint32_t* t = corners_of(static_cast<std::uint32_t>(face));
+  return unit_normal(vertices_[t[0]], vertices_[t[1]], vertices_[t[2]]);
+}
+
+// The sum of the facet normals of the faces on the edge of `face`'s side,
+// unit, as the build summed them (two: commutative, so either face's view
+// gives the same bits); the face's own normal where they cancel out.
+Eigen::Vector3d MeshModel::edge_normal(std::uint32_t face, int side) const {
+  const std::uint32_t across = side_[face][static_cast<std::size_t>(side)];
+  if (across == kNone) return facet_normal(static_cast<int>(face));
+  if (across != kBorder && across >= kShared) return shared_normal_[across - kShared];
+  // From zero, as the build: 0 + (-0) is +0, whichever face comes first.
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  sum += facet_normal(static_cast<int>(face));
+  if (across != kBorder) sum += facet_normal(static_cast<int>(across));
+  const double len = sum.norm();
+  return len > 0 ? Eigen::Vector3d(sum / len) : facet_normal(static_cast<int>(face));
 }
 
 geometry::ModelContact MeshModel::make_contact(const Eigen::Vector3d& p, const Hit& hit) const {
@@ -740,11 +838,10 @@ geometry::ModelContact MeshModel::make_contact(const Eigen::Vector3d& p, const H
   Eigen::Vector3d pseudo;
   if (hit.feature <= 3) {
     c.type = geometry::ContactType::edge;
-    const std::uint32_t edge = edge_of_side_[hit.face][hit.feature - 1];
-    pseudo = edge == kNone ? facet_normal(c.face) : edge_normal_[edge];
+    pseudo = edge_normal(hit.face, hit.feature - 1);
   } else {
     c.type = geometry::ContactType::vertex;
-    pseudo = vertex_normal_[mesh_.triangles[hit.face][hit.feature - 4]];
+    pseudo = vertex_normal_[corners_of(hit.face)[hit.feature - 4]];
   }
   const Eigen::Vector3d d = p - hit.point;
   const double len = d.norm();
@@ -789,7 +886,7 @@ std::optional<geometry::ModelContact> MeshModel::closest_point(const Eigen::Vect
   // share is in the half extents).
   const float margin = 1e-6f * (std::abs(px) + std::abs(py) + std::abs(pz));
   constexpr double shrink = 1 - 1e-5;
-  std::uint32_t stack_child[max_stack], stack_count[max_stack];
+  std::uint32_t stack_link[max_stack];
   double stack_d2[max_stack];
   int top = 0;
   const auto open = [&](std::uint32_t index) {
@@ -834,8 +931,7 @@ std::optional<geometry::ModelContact> MeshModel::closest_point(const Eigen::Vect
       }
     }
     for (int i = 0; i < m && top < max_stack; ++i) {
-      stack_child[top] = n.child[order[i]];
-      stack_count[top] = n.count[order[i]];
+      stack_link[top] = n.link[order[i]];
       stack_d2[top++] = static_cast<double>(lb[order[i]]) * shrink;
     }
   };
@@ -843,7 +939,8 @@ std::optional<geometry::ModelContact> MeshModel::closest_point(const Eigen::Vect
   while (top > 0) {
     --top;
     if (stack_d2[top] >= best.d2) continue;
-    const std::uint32_t child = stack_child[top], count = stack_count[top];
+    const std::uint32_t child = stack_link[top] & ((1u << kCountShift) - 1);
+    const std::uint32_t count = stack_link[top] >> kCountShift;
     if (count > 0) {
       for (std::uint32_t s = child; s < child + count; ++s) test_slot(s, p, best);
     } else {

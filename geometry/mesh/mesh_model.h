@@ -32,7 +32,9 @@ namespace vcpost::mesh {
 class MeshModel final : public geometry::SurfaceModel {
  public:
   // Builds the index (O(n log n)), on oneTBB's threads: the index, and so
-  // every answer, is the same bit for bit whatever their number. Throws
+  // every answer, is the same bit for bit whatever their number. The mesh
+  // is taken apart (its corners are kept in single precision when that
+  // loses nothing, its triangles in hierarchy order). Throws
   // std::invalid_argument for a mesh without triangles or with a corner
   // index out of range.
   explicit MeshModel(StlMesh mesh);
@@ -47,9 +49,9 @@ class MeshModel final : public geometry::SurfaceModel {
                                                       double max_distance,
                                                       geometry::ContactHint* hint) const override;
   Eigen::AlignedBox3d bounds() const override { return bounds_; }
-  int face_count() const override { return static_cast<int>(mesh_.triangles.size()); }
+  int face_count() const override { return static_cast<int>(slots_.size()); }
 
-  const StlMesh& mesh() const { return mesh_; }
+  std::size_t vertex_count() const { return vertices_.size(); }
   // Unit facet normal of triangle `face` (UnitZ for a degenerate one).
   Eigen::Vector3d facet_normal(int face) const;
 
@@ -58,11 +60,13 @@ class MeshModel final : public geometry::SurfaceModel {
   // node, their boxes side by side in single precision (structure of
   // arrays), so one pass over the four lanes bounds all children at once.
   struct WideNode {
-    float axis[3][3][4];     // axis[k][j][lane]: component j of axis k
-    float offset[3][4];      // axis[k] . centre
-    float half[3][4];        // half extents along the axes
-    std::uint32_t child[4];  // inner: wide node index; leaf: first slot; empty lane: kNone
-    std::uint32_t count[4];  // leaf: number of triangles (> 0); inner or empty: 0
+    float axis[3][3][4];  // axis[k][j][lane]: component j of axis k
+    float offset[3][4];   // axis[k] . centre
+    float half[3][4];     // half extents along the axes
+    // Inner lane: the wide node's index; leaf: its first slot + (number of
+    // triangles, 1 or 2) << kCountShift; empty lane: kNone. One word, not
+    // two: 16 bytes a node (the 10 M-triangle mould has 3 M of them).
+    std::uint32_t link[4];
     // Left unset: the build fills every field (on its threads; zeroing a
     // few megabytes first would be serial).
     WideNode() {}
@@ -85,21 +89,49 @@ class MeshModel final : public geometry::SurfaceModel {
     std::uint32_t face = 0;
   };
 
+  // The shared corners, in single precision when every coordinate is a
+  // float exactly (a binary STL in mm: half the memory, the same numbers),
+  // else in double; every computation reads them as doubles.
+  class Vertices {
+   public:
+    explicit Vertices(std::vector<Eigen::Vector3d>&& points);
+    Eigen::Vector3d operator[](std::size_t i) const {
+      return single_.empty() ? double_[i] : single_[i].cast<double>();
+    }
+    std::size_t size() const { return single_.empty() ? double_.size() : single_.size(); }
+    bool single() const { return !single_.empty(); }
+
+   private:
+    std::vector<Eigen::Vector3f> single_;
+    std::vector<Eigen::Vector3d> double_;
+  };
+
   // Builds the normals and the hierarchy (mesh_model.cpp).
   struct Builder;
   void test_slot(std::uint32_t slot, const Eigen::Vector3d& p, Hit& best) const;
   geometry::ModelContact make_contact(const Eigen::Vector3d& p, const Hit& hit) const;
+  const std::uint32_t* corners_of(std::uint32_t face) const {
+    return slots_[slot_of_face_[face]].corner;
+  }
+  Eigen::Vector3d edge_normal(std::uint32_t face, int side) const;
 
-  StlMesh mesh_;
+  Vertices vertices_;
   Eigen::AlignedBox3d bounds_;
-  // Edge pseudo-normals, one per edge (not per face side: a side of two
-  // faces is stored once), and per face the edge of each side ab, bc, ca;
-  // kNone where the faces of an edge cancel out (the face's own normal).
-  std::vector<Eigen::Vector3d> edge_normal_;
-  std::vector<std::array<std::uint32_t, 3>> edge_of_side_;
+  // What the edge pseudo-normal of each face side ab, bc, ca is made of:
+  // the face across that edge when the edge has two sides (the normal is
+  // recomputed from the two facets when a contact needs it: no 24 bytes an
+  // edge kept), kBorder when it has one, kShared + i when it has three or
+  // more (shared_normal_[i]); kNone where the faces' normals cancel out.
+  std::vector<std::array<std::uint32_t, 3>> side_;
+  std::vector<Eigen::Vector3d> shared_normal_;
   std::vector<Eigen::Vector3d> vertex_normal_;  // angle-weighted
   std::vector<std::uint32_t> slot_of_face_;
   static constexpr std::uint32_t kNone = 0xffffffffu;  // an empty lane of a WideNode
+  static constexpr int kCountShift = 30;
+  static constexpr std::uint32_t kBorder = 0xfffffffeu;
+  static constexpr std::uint32_t kShared = 0x80000000u;  // faces are fewer than that
+  // Edge sides pack a face and its side in 32 bits, lanes a slot and its count.
+  static constexpr std::size_t kMaxFaces = std::size_t{1} << 30;
   std::vector<Slot> slots_;
   std::vector<WideNode> wide_;
 };

@@ -592,5 +592,59 @@ TEST(MeshModel, SharedCornersGiveTheSoupsContactsAndTheBruteForceOnes) {
   EXPECT_GT(types[1], 10);  // on an edge
 }
 
+// Three faces on one edge (the x axis from 0 to 10): two in z = 0 facing
+// +z on either side, one in y = 0 facing -y. On the shared edge the
+// normal is the edge's pseudo-normal, the sum of the three facet normals
+// (0, -1, 2)/sqrt(5); on a border edge of one face it is that face's.
+TEST(MeshModel, EdgeOfThreeFacesAndBorderEdgesByHand) {
+  StlMesh m;
+  m.vertices = {{0, 0, 0}, {10, 0, 0}, {5, 10, 0}, {5, -10, 0}, {5, 0, 10}};
+  m.triangles = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  const MeshModel model(m);
+  const auto shared = model.closest_point({5, 0, 0}, 1, nullptr);
+  ASSERT_TRUE(shared);
+  EXPECT_EQ(shared->type, geometry::ContactType::edge);
+  EXPECT_LT((shared->normal - Vector3d(0, -1, 2) / std::sqrt(5.0)).norm(), exact);
+  const auto border = model.closest_point({7.5, 5, 0}, 1, nullptr);
+  ASSERT_TRUE(border);
+  EXPECT_EQ(border->type, geometry::ContactType::edge);
+  EXPECT_EQ(border->face, 0);
+  EXPECT_LT((border->normal - Vector3d(0, 0, 1)).norm(), exact);
+}
+
+// A binary STL's corners are floats: the model keeps them in single
+// precision (half the memory) and reads them back as the same doubles. The
+// same mesh with one unused corner that is not a float (inside the bounds,
+// so it changes nothing else) is kept in double precision: the two give
+// the same answers bit for bit, cold and warm, at 4000 points of a walk
+// over the wavy mould (faces, edges and vertices; the edge pseudo-normals
+// are recomputed from the two faces, the vertex ones kept).
+TEST(MeshModel, SinglePrecisionCornersGiveTheDoublePrecisionAnswersBitForBit) {
+  const StlMesh read = parse_stl(to_binary_stl(wavy_mesh(), "wavy"), "wavy.stl");
+  StlMesh widened = read;
+  widened.vertices.emplace_back(50.1, 50.1, 0.1);
+  ASSERT_NE(double(float(0.1)), 0.1);
+  const MeshModel single(read), full(widened);
+  ASSERT_EQ(single.face_count(), full.face_count());
+  ASSERT_EQ(single.bounds().min(), full.bounds().min());
+  ASSERT_EQ(single.bounds().max(), full.bounds().max());
+  const std::vector<Vector3d> walk = wavy_walk(4000, 31);
+  geometry::ContactHint hint_single, hint_full;
+  int types[3] = {0, 0, 0};
+  for (std::size_t i = 0; i < walk.size(); ++i) {
+    for (const bool warm : {false, true}) {
+      const auto a = single.closest_point(walk[i], 20, warm ? &hint_single : nullptr);
+      const auto b = full.closest_point(walk[i], 20, warm ? &hint_full : nullptr);
+      ASSERT_TRUE(a && b) << i;
+      ASSERT_TRUE(bit_equal(*a, *b)) << "query " << i << (warm ? " warm" : " cold");
+      if (!warm) ++types[static_cast<int>(a->type)];
+    }
+  }
+  EXPECT_GT(types[0], 400);  // inside a triangle
+  EXPECT_GT(types[1], 50);   // on an edge
+  EXPECT_GT(types[2], 5);    // on a vertex
+  EXPECT_EQ(hint_single.warm_queries, hint_full.warm_queries);
+}
+
 }  // namespace
 }  // namespace vcpost::mesh

@@ -32,6 +32,9 @@ double parse_size(std::string_view text, std::string_view what, std::string_view
 
 }  // namespace
 
+// parse_tool throws std::invalid_argument: each caller names the option or
+// column and turns it into a vcpost::Error (E1601 in tools/tool_table.cpp,
+// E2001 in cli/deff_command.cpp, vcpost::api::Error in the library).
 Tool parse_tool(std::string_view spec) {
   const auto parts = split(spec, ':');
   const std::string_view kind = parts[0];

@@ -195,6 +195,8 @@ struct MeshModel::Builder {
 MeshModel::MeshModel(StlMesh mesh) : mesh_(std::move(mesh)) {
   const std::size_t nf = mesh_.triangles.size();
   const std::size_t nv = mesh_.vertices.size();
+  // Internal invariant, not the user's input: the STL reader refuses an empty or
+  // oversized mesh first (StlError, E46xx); invalid_argument marks a bug.
   if (nf == 0) throw std::invalid_argument("MeshModel: the mesh has no triangles");
   if (nf >= std::numeric_limits<std::uint32_t>::max() / 2)
     throw std::invalid_argument("MeshModel: too many triangles");

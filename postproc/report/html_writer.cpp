@@ -549,6 +549,8 @@ std::string render_html(const ReportData& data, std::string_view chart_library) 
   std::transform(chart_library.begin(), chart_library.end(), lower.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (lower.find("</script") != std::string::npos) {
+    // Reaches the user through post_options.cpp, which turns it into
+    // vcpost::Error E2004 ("HTML report: ...").
     throw std::invalid_argument("the charting library contains '</script' and cannot be inlined");
   }
   const std::string data_text = script_safe(page_data(data).dump());

@@ -1,10 +1,12 @@
 #include "geometry/tool.h"
 
-#include <charconv>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
+
+#include "core/text.h"
 
 namespace vcpost::geometry {
 namespace {
@@ -20,14 +22,12 @@ std::vector<std::string_view> split(std::string_view text, char separator) {
 }
 
 double parse_size(std::string_view text, std::string_view what, std::string_view spec) {
-  double value = 0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (text.empty() || error != std::errc{} || end != text.data() + text.size() ||
-      !std::isfinite(value)) {
+  const std::optional<double> value = finite_number(text);
+  if (!value) {
     throw std::invalid_argument("tool '" + std::string(spec) + "': " + std::string(what) + " '" +
                                 std::string(text) + "' is not a number");
   }
-  return value;
+  return *value;
 }
 
 }  // namespace

@@ -4,17 +4,13 @@
 #include <charconv>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <sstream>
+
+#include "core/text.h"
 
 namespace vcpost::deff {
 namespace {
-
-std::string_view trim(std::string_view text) {
-  const auto first = text.find_first_not_of(" \t");
-  if (first == std::string_view::npos) return {};
-  const auto last = text.find_last_not_of(" \t");
-  return text.substr(first, last - first + 1);
-}
 
 std::string format_number(double value) {
   std::ostringstream out;
@@ -26,16 +22,12 @@ std::string format_number(double value) {
 }  // namespace
 
 double parse_number(std::string_view text) {
-  std::string_view body = trim(text);
+  std::string_view body = trim(text, kBlanks);
   // from_chars refuses a leading '+', which people do write.
   if (body.size() > 1 && body.front() == '+') body.remove_prefix(1);
-  double value = 0;
-  const auto [end, error] = std::from_chars(body.data(), body.data() + body.size(), value);
-  if (body.empty() || error != std::errc{} || end != body.data() + body.size() ||
-      !std::isfinite(value)) {
-    throw vcpost::Error("E2001", "'" + std::string(text) + "' is not a number");
-  }
-  return value;
+  const std::optional<double> value = finite_number(body);
+  if (!value) throw vcpost::Error("E2001", "'" + std::string(text) + "' is not a number");
+  return *value;
 }
 
 Eigen::Vector3d parse_vector(std::string_view text, std::string_view names) {
@@ -62,7 +54,7 @@ Eigen::Vector3d parse_vector(std::string_view text, std::string_view names) {
 }
 
 geometry::Side parse_side(std::string_view text) {
-  const std::string_view body = trim(text);
+  const std::string_view body = trim(text, kBlanks);
   if (body == "left") return geometry::Side::left;
   if (body == "right") return geometry::Side::right;
   throw vcpost::Error("E2001",
@@ -173,7 +165,7 @@ Sweep parse_sweep(std::string_view text) {
   if (equals == std::string_view::npos) {
     throw vcpost::Error("E2001", "'" + std::string(text) + "': " + form);
   }
-  const std::string_view name = trim(text.substr(0, equals));
+  const std::string_view name = trim(text.substr(0, equals), kBlanks);
   Sweep sweep;
   if (name == "feed-angle" || name == "feed_angle") {
     sweep.parameter = SweepParameter::feed_angle;

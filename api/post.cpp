@@ -126,6 +126,8 @@ PostResult post(std::string_view program, const std::string& program_name, const
       summary = post::post_program(program, program_name, internal(model), internal(profile),
                                    settings, sink, {}, points);
     } catch (const gcode::GcodeError& e) {  // its what() names no file
+      // The message in the command line's format; guarded() (api/translate.h)
+      // reads code and position back into vcpost::api::Error.
       throw std::runtime_error(gcode::format(e.diagnostic(), program_name));
     } catch (const program::TimingError& e) {  // as `vcpost post` reports them
       throw std::runtime_error(program_name + ":" + std::to_string(e.source().line) + ": " +

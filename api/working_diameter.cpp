@@ -18,6 +18,8 @@ geometry::Tool internal_tool(const Tool& tool) {
     case ToolKind::flat:
       return geometry::Tool::flat(tool.diameter);
   }
+  // Inside the library: guarded() (api/translate.h) turns every exception
+  // into vcpost::api::Error.
   throw std::invalid_argument("unknown tool kind");
 }
 
@@ -31,6 +33,7 @@ geometry::CutSetup internal_setup(const CutSetup& setup) {
   out.normal = {setup.normal.x, setup.normal.y, setup.normal.z};
   out.feed = {setup.feed.x, setup.feed.y, setup.feed.z};
   out.side = setup.side == Side::left ? geometry::Side::left : geometry::Side::right;
+  // Turned into vcpost::api::Error by guarded() (api/translate.h).
   if (!(out.normal.norm() > 0)) throw std::invalid_argument("the surface normal is zero");
   if (!(out.feed.norm() > 0)) throw std::invalid_argument("the feed direction is zero");
   return out;

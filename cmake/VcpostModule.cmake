@@ -13,15 +13,22 @@ function(vcpost_warnings target)
   endif()
 endfunction()
 
+# The repository's code includes its headers as "folder/file.h" from the
+# source root. Every target that compiles such code adds the root for
+# itself (PRIVATE): no module hands the whole tree on to its dependents.
+function(vcpost_source_root target)
+  target_include_directories(${target} PRIVATE ${PROJECT_SOURCE_DIR})
+endfunction()
+
 # vcpost_module(NAME <target> [DEPS <public deps>] [PRIVATE_DEPS <private deps>])
 # Builds every .cpp of the calling folder (not its subfolders, which are
 # modules of their own) into a static library; headers are included as
-# "folder/file.h" from the source root.
+# "folder/file.h" from the source root (vcpost_source_root).
 function(vcpost_module)
   cmake_parse_arguments(M "" "NAME" "DEPS;PRIVATE_DEPS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cpp)
   add_library(${M_NAME} STATIC ${sources})
-  target_include_directories(${M_NAME} PUBLIC ${PROJECT_SOURCE_DIR})
+  vcpost_source_root(${M_NAME})
   target_link_libraries(${M_NAME} PUBLIC ${M_DEPS} PRIVATE ${M_PRIVATE_DEPS})
   vcpost_warnings(${M_NAME})
 endfunction()

@@ -17,9 +17,9 @@
 #include <string>
 #include <string_view>
 
-namespace vcpost {
+#include "vcpost/severity.h"
 
-enum class Severity { error, warning };
+namespace vcpost {
 
 std::string_view to_string(Severity severity);  // "error", "warning"
 

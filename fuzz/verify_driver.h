@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/error.h"
 #include "fuzz/finding.h"
 #include "postproc/gcode/diagnostics.h"
 #include "postproc/gcode/dialect.h"
@@ -41,8 +42,14 @@ inline bool within_budget(std::string_view text, const gcode::Dialect& dialect) 
   return true;
 }
 
+// verify's documented refusal of an input that does not read: the G-code
+// (E1...) or CL (E3...) reader's error, passed on as a vcpost::Error.
+inline bool reader_refusal(const vcpost::Error& e) {
+  return e.code().starts_with("E1") || e.code().starts_with("E3");
+}
+
 // With the separator: verifies the two halves as G-code and as CL in /
-// G-code out; any Result or a documented InputError is fine. Without it:
+// G-code out; any Result or a documented reader refusal is fine. Without it:
 // the output is the input with an S word patched into (at most 64 of) the
 // blocks with events the interpreter read, as `post` writes it, and that must
 // verify (a false alarm of verify is a finding).
@@ -59,12 +66,14 @@ inline std::string run_verify(std::string_view data) {
     std::string outcome;
     try {
       outcome = verify::verify_gcode(input, output, options).ok() ? "gcode:ok" : "gcode:differs";
-    } catch (const verify::InputError&) {
+    } catch (const vcpost::Error& e) {
+      if (!reader_refusal(e)) throw;
       outcome = "gcode:input";
     }
     try {
       outcome += verify::verify_cl(input, output, options).ok() ? " cl:ok" : " cl:differs";
-    } catch (const verify::InputError&) {
+    } catch (const vcpost::Error& e) {
+      if (!reader_refusal(e)) throw;
       outcome += " cl:input";
     }
     return outcome;
@@ -91,7 +100,7 @@ inline std::string run_verify(std::string_view data) {
   verify::Result result;
   try {
     result = verify::verify_gcode(data, output, options);
-  } catch (const verify::InputError& e) {
+  } catch (const vcpost::Error& e) {
     throw FuzzFinding(std::string("verify refused an input the interpreter reads: ") + e.what());
   }
   if (!result.ok()) {

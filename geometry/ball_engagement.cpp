@@ -50,7 +50,6 @@ struct FrameCircle {
   Sinusoid along(const FrameVector& l, double constant = 0) const {
     return {l.dot(e1), l.dot(e2), l.dot(centre) + constant};
   }
-  FrameVector at(double t) const { return centre + std::cos(t) * e1 + std::sin(t) * e2; }
 };
 
 struct Ball {

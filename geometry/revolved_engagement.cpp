@@ -144,7 +144,6 @@ class Groove {
 
   double radius() const { return radius_; }
   double c0() const { return c0_; }
-  double c_star() const { return c_star_; }
 
   // The silhouette point with outward normal U = cos(phi) e + sin(phi) N.
   Vector3d silhouette(double phi) const {

@@ -10,6 +10,8 @@ namespace vcpost::geometry {
 namespace {
 
 void require(bool ok, const char* function, const std::string& what) {
+  // A value outside the model's range; callers catch it (report/point_row.cpp:
+  // no cusp height) or pass checked values.
   if (!ok) throw std::invalid_argument(std::string(function) + ": " + what);
 }
 

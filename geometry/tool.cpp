@@ -1,10 +1,12 @@
 #include "geometry/tool.h"
 
-#include <charconv>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
+
+#include "core/text.h"
 
 namespace vcpost::geometry {
 namespace {
@@ -20,18 +22,19 @@ std::vector<std::string_view> split(std::string_view text, char separator) {
 }
 
 double parse_size(std::string_view text, std::string_view what, std::string_view spec) {
-  double value = 0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (text.empty() || error != std::errc{} || end != text.data() + text.size() ||
-      !std::isfinite(value)) {
+  const std::optional<double> value = finite_number(text);
+  if (!value) {
     throw std::invalid_argument("tool '" + std::string(spec) + "': " + std::string(what) + " '" +
                                 std::string(text) + "' is not a number");
   }
-  return value;
+  return *value;
 }
 
 }  // namespace
 
+// parse_tool throws std::invalid_argument: each caller names the option or
+// column and turns it into a vcpost::Error (E1601 in tools/tool_table.cpp,
+// E2001 in cli/deff_command.cpp, vcpost::api::Error in the library).
 Tool parse_tool(std::string_view spec) {
   const auto parts = split(spec, ':');
   const std::string_view kind = parts[0];

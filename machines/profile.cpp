@@ -165,13 +165,13 @@ class Reader {
         if (full.substr(0, name.size()) == name && full[name.size()] == '.')
           known.push_back(full.substr(name.size() + 1));
       }
-      for (const auto& [sub, value] : *node.as_table()) {
+      for (const auto& item : *node.as_table()) {
+        const toml::key& sub = item.first;
         if (std::find(known.begin(), known.end(), sub.str()) == known.end()) {
           fail(codes::unknown_key, sub.source(),
                cat({"unknown key '", name, ".", sub.str(), "' (known in [", name,
                     "]: ", join(known), ")"}));
         }
-        (void)value;
       }
     }
   }

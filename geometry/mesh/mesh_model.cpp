@@ -207,6 +207,8 @@ MeshModel::MeshModel(StlMesh mesh) : vertices_(std::move(mesh.vertices)) {
   std::vector<std::array<std::uint32_t, 3>> triangles = std::move(mesh.triangles);
   const std::size_t nf = triangles.size();
   const std::size_t nv = vertices_.size();
+  // Internal invariant, not the user's input: the STL reader refuses an empty or
+  // oversized mesh first (StlError, E46xx); invalid_argument marks a bug.
   if (nf == 0) throw std::invalid_argument("MeshModel: the mesh has no triangles");
   if (nf >= kMaxFaces) throw std::invalid_argument("MeshModel: too many triangles");
   if (nv >= std::numeric_limits<std::uint32_t>::max())

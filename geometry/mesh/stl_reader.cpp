@@ -210,8 +210,6 @@ class Words {
     return s;
   }
 
-  std::uint32_t line() const { return line_; }
-
  private:
   void skip_space() {
     while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) {

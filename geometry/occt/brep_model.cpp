@@ -183,8 +183,6 @@ class SurfaceEval {
             to_eigen(suu.XYZ()), to_eigen(svv.XYZ()), to_eigen(suv.XYZ())};
   }
 
-  const Handle(Geom_Surface) & surface() const { return surface_; }
-
  private:
   static double wrap(double x, double lo, double hi) {
     const double period = hi - lo;

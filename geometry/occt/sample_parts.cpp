@@ -19,6 +19,9 @@
 #include "geometry/occt/quiet_messenger.h"
 #include "geometry/occt/sample_shapes.h"
 
+// The sample parts are written by vcpost-samplegen and the tests, never by
+// vcpost: their failures stay std::runtime_error, which samplegen's main
+// prints (they are no input of the user's to fix, so carry no code).
 namespace vcpost::occt {
 namespace {
 

@@ -9,10 +9,11 @@
 #include <string>
 
 #include "vcpost/export.h"
+#include "vcpost/severity.h"
 
 namespace vcpost::api {
 
-enum class Severity { error, warning };
+using vcpost::Severity;  // the one enum (vcpost/severity.h)
 
 class VCPOST_API Error : public std::runtime_error {
  public:

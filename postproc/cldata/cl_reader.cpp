@@ -3,7 +3,6 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +10,7 @@
 #include <numbers>
 #include <utility>
 
+#include "core/text.h"
 #include "postproc/cldata/nurbs.h"
 
 namespace vcpost::cldata {
@@ -918,8 +918,7 @@ void ClReader::creo_cutter_comment(const ClRecord& r) {
   t.remove_prefix(2);
   while (!t.empty() && (t.front() == ' ' || t.front() == '\t')) t.remove_prefix(1);
   if (t.size() < 6) return;
-  std::string head(t.substr(0, 6));
-  for (char& c : head) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  const std::string head = to_upper(t.substr(0, 6));
   if (head != "CUTTER") return;
   const auto slash = t.find('/');
   if (slash == std::string_view::npos) return;

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/text.h"
+
 namespace vcpost::cldata {
 
 namespace {
@@ -19,14 +21,6 @@ bool is_word_char(char c) {
 }
 
 bool starts_number(char c) { return (c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.'; }
-
-char upper(char c) { return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c; }
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && is_blank(s.front())) s.remove_prefix(1);
-  while (!s.empty() && is_blank(s.back())) s.remove_suffix(1);
-  return s;
-}
 
 // Majors whose parameter is free text, kept as written.
 bool is_text_major(std::string_view major) {
@@ -119,7 +113,7 @@ std::pair<std::uint32_t, std::uint32_t> ClRecordReader::position_of(
 void ClRecordReader::split_params(ClRecord& record, std::size_t text_begin) {
   record.params.clear();
   const std::string_view all(logical_);
-  if (trim(all.substr(text_begin)).empty()) return;
+  if (trim(all.substr(text_begin), kBlanks).empty()) return;
   std::size_t start = text_begin;
   while (true) {
     std::size_t stop = all.find(',', start);
@@ -184,7 +178,7 @@ bool ClRecordReader::next(ClRecord& record) {
       if (continued) continue;  // comment line between continued lines
       record = ClRecord{};
       record.kind = ClRecordKind::comment;
-      record.text = trim(content.substr(2));
+      record.text = trim(content.substr(2), kBlanks);
       record.source = {line_number_, static_cast<std::uint32_t>(first + 1), line_offset_};
       return true;
     }
@@ -217,19 +211,19 @@ bool ClRecordReader::next(ClRecord& record) {
 
   if (starts_number(all.front())) {
     record.kind = ClRecordKind::points;
-    record.text = trim(all);
+    record.text = trim(all, kBlanks);
     split_params(record, 0);
     return true;
   }
 
   std::size_t i = 0;
   major_.clear();
-  while (i < all.size() && is_word_char(all[i])) major_ += upper(all[i++]);
+  while (i < all.size() && is_word_char(all[i])) major_ += ascii_upper(all[i++]);
   std::size_t j = i;
   while (j < all.size() && is_blank(all[j])) ++j;
   if (major_ == "TOOL" && all.size() - j >= 4) {
     std::string second;
-    for (std::size_t k = j; k < j + 4; ++k) second += upper(all[k]);
+    for (std::size_t k = j; k < j + 4; ++k) second += ascii_upper(all[k]);
     if (second == "PATH") {
       major_ += " PATH";
       i = j + 4;
@@ -250,7 +244,7 @@ bool ClRecordReader::next(ClRecord& record) {
   } else if (j < all.size()) {
     record.separator = ' ';
   }
-  record.text = trim(all.substr(text_begin));
+  record.text = trim(all.substr(text_begin), kBlanks);
   if (is_text_major(major_) || record.separator == '=') {
     record.params.clear();
   } else {

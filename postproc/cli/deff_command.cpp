@@ -61,7 +61,7 @@ CommandError usage(const std::string& option, const std::string& message) {
 double number_option(const std::string& option, const std::string& text) {
   try {
     return parse_number(text);
-  } catch (const InputError& e) {
+  } catch (const vcpost::Error& e) {
     throw usage(option, e.what());
   }
 }
@@ -70,7 +70,7 @@ Eigen::Vector3d vector_option(const std::string& option, const std::string& text
                               const char* names) {
   try {
     return parse_vector(text, names);
-  } catch (const InputError& e) {
+  } catch (const vcpost::Error& e) {
     throw usage(option, e.what());
   }
 }
@@ -120,14 +120,16 @@ void stream_batch(std::istream& in, const std::string& source, bool radius) {
     std::cout << row.text << ',' << cells << '\n';
   }
   if (!header_written) write_header();
-  if (in.bad()) throw InputError(source + ": read error");
+  if (in.bad()) throw vcpost::Error("E2002", source + ": read error");
 }
 
 void run_batch(const Arguments& args) {
   try {
     if (args.batch == "-") return stream_batch(std::cin, "<stdin>", args.radius);
     std::ifstream file(args.batch);
-    if (!file) throw usage("--batch", "cannot open '" + args.batch + "' for reading");
+    if (!file) {
+      throw CommandError("E2002", "--batch: cannot open '" + args.batch + "' for reading");
+    }
     std::error_code error;
     if (std::filesystem::is_regular_file(args.batch, error)) {
       // A file can be read twice: check every row first (without holding
@@ -140,7 +142,7 @@ void run_batch(const Arguments& args) {
       file.seekg(0);
     }
     stream_batch(file, args.batch, args.radius);
-  } catch (const InputError& e) {
+  } catch (const vcpost::Error& e) {
     std::cout.flush();
     throw CommandError(e.code(), e.what());
   }
@@ -207,7 +209,7 @@ SetupRequest read_setup(const Given& given, const Arguments& args) {
   request.ae = number_option("--ae", args.ae);
   try {
     request.side = parse_side(args.side);
-  } catch (const InputError& e) {
+  } catch (const vcpost::Error& e) {
     throw usage("--side", e.what());
   }
   if (args.spindle == "cw") {
@@ -233,7 +235,7 @@ void run_sweep(const Given& given, const Arguments& args, const SetupRequest& re
   Sweep sweep;
   try {
     sweep = parse_sweep(args.sweep);
-  } catch (const InputError& e) {
+  } catch (const vcpost::Error& e) {
     throw usage("--sweep", e.what());
   }
   const std::string swept(to_string(sweep.parameter));

@@ -1,8 +1,8 @@
 #include "postproc/cli/model_loader.h"
 
-#include <cctype>
 #include <fstream>
 
+#include "core/text.h"
 #include "geometry/analytic_surfaces.h"
 #include "geometry/mesh/mesh_model.h"
 #include "geometry/mesh/stl_reader.h"
@@ -24,8 +24,7 @@ bool looks_like_step(const std::filesystem::path& path) {
 // A .step/.stp/.p21 name is a promise of STEP: a file that breaks it gets
 // the STEP loader's message (E41xx), not the STL reader's.
 bool named_step(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = to_lower(path.extension().string());
   return ext == ".step" || ext == ".stp" || ext == ".p21";
 }
 

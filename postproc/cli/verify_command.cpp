@@ -125,13 +125,9 @@ void run(const Arguments& args) {
     else
       options.on_change = [](const verify::Change&) {};
   }
-  verify::Result result;
-  try {
-    result = cl_input ? verify::verify_cl(input, output, options, in_name)
-                      : verify::verify_gcode(input, output, options, in_name);
-  } catch (const verify::InputError& e) {
-    throw CommandError(e.code(), e.what());
-  }
+  // An input that does not read leaves as the reader's vcpost::Error.
+  const verify::Result result = cl_input ? verify::verify_cl(input, output, options, in_name)
+                                         : verify::verify_gcode(input, output, options, in_name);
 
   if (args.json) std::cout << to_json(result).dump(2) << '\n';
   finish_standard_output();

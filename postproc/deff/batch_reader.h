@@ -30,14 +30,14 @@ struct BatchRow {
 };
 
 // Splits one CSV line into cells, unquoting quoted cells ("" is a quote) and
-// trimming blanks around unquoted ones. Throws InputError for an unterminated
+// trimming blanks around unquoted ones. Throws vcpost::Error (E2006) for an unterminated
 // quote or text after a closing quote.
 std::vector<std::string> split_csv_line(const std::string& line);
 
 class BatchReader {
  public:
   // Reads the header. `source` names the input in messages (the path as the
-  // user gave it, or "<stdin>"). Throws InputError "source:line: ..." for an
+  // user gave it, or "<stdin>"). Throws vcpost::Error (E2006) "source:line: ..." for an
   // empty input, a missing, empty or repeated column name.
   // The stream must outlive the reader.
   BatchReader(std::istream& in, std::string source);
@@ -45,7 +45,7 @@ class BatchReader {
   const std::string& header() const { return header_; }
 
   // Reads and checks the next data row; false at the end of the input.
-  // Throws InputError "source:line: column 'ap': ..." for a wrong cell
+  // Throws vcpost::Error (E2006) "source:line: column 'ap': ..." for a wrong cell
   // count, a value that is not a number or is out of range (checked_setup),
   // an unknown tool or a missing corner radius.
   bool next(BatchRow& row);

@@ -4,17 +4,13 @@
 #include <charconv>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <sstream>
+
+#include "core/text.h"
 
 namespace vcpost::deff {
 namespace {
-
-std::string_view trim(std::string_view text) {
-  const auto first = text.find_first_not_of(" \t");
-  if (first == std::string_view::npos) return {};
-  const auto last = text.find_last_not_of(" \t");
-  return text.substr(first, last - first + 1);
-}
 
 std::string format_number(double value) {
   std::ostringstream out;
@@ -26,16 +22,12 @@ std::string format_number(double value) {
 }  // namespace
 
 double parse_number(std::string_view text) {
-  std::string_view body = trim(text);
+  std::string_view body = trim(text, kBlanks);
   // from_chars refuses a leading '+', which people do write.
   if (body.size() > 1 && body.front() == '+') body.remove_prefix(1);
-  double value = 0;
-  const auto [end, error] = std::from_chars(body.data(), body.data() + body.size(), value);
-  if (body.empty() || error != std::errc{} || end != body.data() + body.size() ||
-      !std::isfinite(value)) {
-    throw InputError("'" + std::string(text) + "' is not a number");
-  }
-  return value;
+  const std::optional<double> value = finite_number(body);
+  if (!value) throw vcpost::Error("E2001", "'" + std::string(text) + "' is not a number");
+  return *value;
 }
 
 Eigen::Vector3d parse_vector(std::string_view text, std::string_view names) {
@@ -45,15 +37,16 @@ Eigen::Vector3d parse_vector(std::string_view text, std::string_view names) {
     const std::size_t comma = text.find(',', start);
     const bool last = i == 2;
     if (last != (comma == std::string_view::npos)) {
-      throw InputError("expected three numbers " + std::string(names) + ", got '" +
-                       std::string(text) + "'");
+      throw vcpost::Error("E2001", "expected three numbers " + std::string(names) + ", got '" +
+                                       std::string(text) + "'");
     }
     const std::string_view part = text.substr(start, last ? text.npos : comma - start);
     try {
       vector[i] = parse_number(part);
-    } catch (const InputError&) {
-      throw InputError("expected three numbers " + std::string(names) + ", got '" +
-                       std::string(text) + "' ('" + std::string(part) + "' is not a number)");
+    } catch (const vcpost::Error&) {
+      throw vcpost::Error("E2001", "expected three numbers " + std::string(names) + ", got '" +
+                                       std::string(text) + "' ('" + std::string(part) +
+                                       "' is not a number)");
     }
     start = comma + 1;
   }
@@ -61,10 +54,11 @@ Eigen::Vector3d parse_vector(std::string_view text, std::string_view names) {
 }
 
 geometry::Side parse_side(std::string_view text) {
-  const std::string_view body = trim(text);
+  const std::string_view body = trim(text, kBlanks);
   if (body == "left") return geometry::Side::left;
   if (body == "right") return geometry::Side::right;
-  throw InputError("'" + std::string(text) + "' is not a side (expected left or right)");
+  throw vcpost::Error("E2001",
+                      "'" + std::string(text) + "' is not a side (expected left or right)");
 }
 
 std::string_view to_string(geometry::Side side) {
@@ -169,9 +163,9 @@ Sweep parse_sweep(std::string_view text) {
       "(degrees), e.g. feed-angle=0:360:15";
   const std::size_t equals = text.find('=');
   if (equals == std::string_view::npos) {
-    throw InputError("'" + std::string(text) + "': " + form);
+    throw vcpost::Error("E2001", "'" + std::string(text) + "': " + form);
   }
-  const std::string_view name = trim(text.substr(0, equals));
+  const std::string_view name = trim(text.substr(0, equals), kBlanks);
   Sweep sweep;
   if (name == "feed-angle" || name == "feed_angle") {
     sweep.parameter = SweepParameter::feed_angle;
@@ -180,7 +174,7 @@ Sweep parse_sweep(std::string_view text) {
   } else if (name == "azimuth") {
     sweep.parameter = SweepParameter::azimuth;
   } else {
-    throw InputError("unknown parameter '" + std::string(name) + "': " + form);
+    throw vcpost::Error("E2001", "unknown parameter '" + std::string(name) + "': " + form);
   }
 
   const std::string_view range = text.substr(equals + 1);
@@ -188,24 +182,26 @@ Sweep parse_sweep(std::string_view text) {
   const std::size_t colon2 =
       colon1 == std::string_view::npos ? colon1 : range.find(':', colon1 + 1);
   if (colon2 == std::string_view::npos || range.find(':', colon2 + 1) != std::string_view::npos) {
-    throw InputError("'" + std::string(text) + "': " + form);
+    throw vcpost::Error("E2001", "'" + std::string(text) + "': " + form);
   }
   try {
     sweep.start = parse_number(range.substr(0, colon1));
     sweep.stop = parse_number(range.substr(colon1 + 1, colon2 - colon1 - 1));
     sweep.step = parse_number(range.substr(colon2 + 1));
-  } catch (const InputError& e) {
-    throw InputError("'" + std::string(text) + "': " + e.what() + "; " + form);
+  } catch (const vcpost::Error& e) {
+    throw vcpost::Error("E2001", "'" + std::string(text) + "': " + e.what() + "; " + form);
   }
   if (!(sweep.step > 0)) {
-    throw InputError("'" + std::string(text) + "': the step must be > 0");
+    throw vcpost::Error("E2001", "'" + std::string(text) + "': the step must be > 0");
   }
   if (sweep.stop < sweep.start) {
-    throw InputError("'" + std::string(text) + "': the stop must not be below the start");
+    throw vcpost::Error("E2001",
+                        "'" + std::string(text) + "': the stop must not be below the start");
   }
   if ((sweep.stop - sweep.start) / sweep.step >= static_cast<double>(kMaxSweepPoints)) {
-    throw InputError("'" + std::string(text) + "': more than " + std::to_string(kMaxSweepPoints) +
-                     " values; use a larger step");
+    throw vcpost::Error("E2001", "'" + std::string(text) + "': more than " +
+                                     std::to_string(kMaxSweepPoints) +
+                                     " values; use a larger step");
   }
   return sweep;
 }

@@ -16,21 +16,19 @@
 
 namespace vcpost::deff {
 
-// A value that cannot be used; what() says why, without naming the source.
-// E2001 (a bad option) unless the reader of a batch file gives E2006.
-class InputError : public vcpost::Error {
- public:
-  explicit InputError(const std::string& message, std::string_view code = "E2001")
-      : vcpost::Error(code, message) {}
-};
+// A value that cannot be used is a vcpost::Error whose what() says why,
+// without naming the source: E2001 (a bad option), or E2006 from the
+// reader of a batch file.
 
 // The part of a set-up a SetupError is about, so the caller can name the
 // option (--ap) or the CSV column ('ap') it came from.
 enum class SetupField { diameter, ap, ae, normal, feed };
 
-class SetupError : public InputError {
+// A set-up that fails its checks (E2001), with the field at fault.
+class SetupError : public vcpost::Error {
  public:
-  SetupError(SetupField field, const std::string& message) : InputError(message), field_(field) {}
+  SetupError(SetupField field, const std::string& message)
+      : vcpost::Error("E2001", message), field_(field) {}
   SetupField field() const { return field_; }
 
  private:
@@ -41,14 +39,14 @@ class SetupError : public InputError {
 inline constexpr double kNormalLengthTolerance = 1e-6;
 
 // A finite decimal number, surrounding blanks allowed ("0.3", " -1e-2 ").
-// Throws InputError "'x' is not a number".
+// Throws vcpost::Error (E2001) "'x' is not a number".
 double parse_number(std::string_view text);
 
 // Three numbers separated by commas, e.g. "0,0.4226,0.9063".
-// Throws InputError naming the expected form.
+// Throws vcpost::Error (E2001) naming the expected form.
 Eigen::Vector3d parse_vector(std::string_view text, std::string_view names);
 
-// "left" or "right". Throws InputError.
+// "left" or "right". Throws vcpost::Error (E2001).
 geometry::Side parse_side(std::string_view text);
 
 std::string_view to_string(geometry::Side side);
@@ -84,7 +82,7 @@ struct Sweep {
 inline constexpr std::size_t kMaxSweepPoints = 100000;
 
 // "feed-angle=0:360:15", "tilt=0:60:5", "azimuth=0:180:10". Throws
-// InputError for an unknown parameter, a malformed range, step <= 0,
+// vcpost::Error (E2001) for an unknown parameter, a malformed range, step <= 0,
 // stop < start or more than kMaxSweepPoints values.
 Sweep parse_sweep(std::string_view text);
 

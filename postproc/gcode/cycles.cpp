@@ -27,7 +27,6 @@ class CycleWriter {
         c_.source});
   }
   void stop() { events_.emplace_back(program::ProgramStop{false, c_.source}); }
-  const Eigen::Vector3d& at() const { return at_; }
 
  private:
   const CycleCall& c_;

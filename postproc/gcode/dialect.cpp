@@ -1,8 +1,9 @@
 #include "postproc/gcode/dialect.h"
 
 #include <algorithm>
-#include <cctype>
 #include <string>
+
+#include "core/text.h"
 
 namespace vcpost::gcode {
 
@@ -36,9 +37,7 @@ Dialect sinumerik_dialect() {
 }
 
 std::optional<Dialect> dialect_from_name(std::string_view name) {
-  std::string lower(name);
-  std::transform(lower.begin(), lower.end(), lower.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string lower = to_lower(name);
   if (lower == "rs274ngc" || lower == "linuxcnc" || lower == "ngc") return rs274ngc_dialect();
   if (lower == "fanuc" || lower == "iso") return fanuc_dialect();
   if (lower == "mazak" || lower == "eia") return mazak_dialect();

@@ -951,7 +951,7 @@ void Interpreter::dwell(Step& step) {
     } else if (const Word* sw = step.word('S'); sw && step.state.spindle_rpm > 0) {
       seconds = sw->value / step.state.spindle_rpm * 60.0;
     } else {
-      fail(Code::missing_axis_word, g4->column, "G4 needs F (seconds) or S (spindle turns)");
+      fail(Code::missing_word, g4->column, "G4 needs F (seconds) or S (spindle turns)");
     }
   } else if (step.dwell_x) {
     seconds = step.dwell_x->value;

@@ -29,6 +29,8 @@ void write_patched(std::string_view text, std::span<const WordPatch> patches,
   std::size_t i = 0;
   while (i < patches.size()) {
     const std::uint64_t offset = patches[i].block_offset;
+    // Internal invariant, not the user's input: patches come from the
+    // interpreter's own block offsets, in order (invalid_argument: a bug).
     if (offset < copied || offset > text.size() || (offset > 0 && text[offset - 1] != '\n'))
       throw std::invalid_argument("write_patched: patch offset " + std::to_string(offset) +
                                   " is not the start of a later line");
@@ -47,6 +49,7 @@ void write_patched(std::string_view text, std::span<const WordPatch> patches,
     const bool spaced = line.find(' ') != std::string_view::npos;
     for (; i < patches.size() && patches[i].block_offset == offset; ++i) {
       const WordPatch& p = patches[i];
+      // Internal invariant, not the user's input: the post job patches S and F only.
       if (p.letter != 'S' && p.letter != 'F' && p.letter != 's' && p.letter != 'f')
         throw std::invalid_argument("write_patched: only S and F words are patched");
       if (edit_count == 2)

@@ -476,205 +476,262 @@ void PassTracker::Nearby::push(std::uint64_t run_id, const Run& r) {
   radius.push_back(r.radius);
 }
 
-std::optional<NeighbourPass> PassTracker::nearest(const Entry& current,
-                                                  const Eigen::Vector3d& normal) {
-  std::optional<NeighbourPass> best;
-  const std::uint64_t kept = oldest();
-  if (cutoff_ <= kept) return best;  // everything kept belongs to this pass
-  ++search_;
-  const std::uint64_t run_floor = run_next_ - runs_.size();  // older runs are overwritten
-  // Runs from run_cut_ on start at or after the cutoff: this pass, too close behind.
-  run_cut_ = std::max(run_cut_, run_floor);
-  while (run_cut_ < run_next_ && run(run_cut_).first < cutoff_) ++run_cut_;
-  const Eigen::Vector3d& cc = current.point;
-  const Eigen::Vector3d& feed = current.feed;
-  const Eigen::Vector3d left = normal.cross(feed);
+// One call of nearest(): the current point's frame across the feed, the
+// runs and entries still to be looked at, and the best candidate so far.
+struct PassTracker::Search {
+  Search(const Entry& entry, const Eigen::Vector3d& surface_normal, std::uint64_t oldest_kept,
+         std::uint64_t first_run, double radius)
+      : current(entry),
+        cc(entry.point),
+        feed(entry.feed),
+        normal(surface_normal),
+        left(surface_normal.cross(entry.feed)),
+        kept(oldest_kept),
+        run_floor(first_run),
+        limit2(radius * radius * (1 + 1e-15)) {}
 
-  std::uint64_t evaluating = 0, best_run = 0;          // the run being evaluated, the best one's
+  const Entry& current;
+  const Eigen::Vector3d& cc;
+  const Eigen::Vector3d& feed;
+  const Eigen::Vector3d& normal;
+  const Eigen::Vector3d left;
+  const std::uint64_t kept;       // the oldest kept entry
+  const std::uint64_t run_floor;  // older runs are overwritten
+  std::optional<NeighbourPass> best;
+  std::uint64_t evaluating = 0,
+                best_run = 0;                          // the run being evaluated, the best one's
   std::uint64_t evaluating_entry = 0, best_entry = 0;  // the same for entries
   // Squared distance across beyond which a candidate cannot be the best:
   // a little more than the best's square (or the radius's), so that what
   // passes it is compared exactly and nothing nearer is lost to rounding.
-  double limit2 = radius_ * radius_ * (1 + 1e-15);
-  // Returns whether the candidate was compared with the best (it lies
-  // within the search radius and is not CC itself).
-  auto consider = [&](const Eigen::Vector3d& p) {
-    const Eigen::Vector3d d = p - cc;
-    const double across = std::sqrt(std::pow(left.dot(d), 2) + std::pow(normal.dot(d), 2));
-    if (across > radius_ || across <= 1e-9) return false;
-    if (best && across >= best->ae) return true;
-    best =
-        NeighbourPass{across, left.dot(d) >= 0 ? geometry::Side::left : geometry::Side::right, p};
-    best_run = evaluating;
-    best_entry = evaluating_entry;
-    limit2 = across * across * (1 + 1e-15);
-    return true;
-  };
-  // The candidate of an entry of an earlier, roughly parallel pass: where
-  // that pass crosses the plane across the feed through CC, on the segment
-  // from its previous point; or, when the crossing lies on another segment
-  // (or at a pass end), the point itself if almost abeam.
-  // flat: all candidates of the run lie within `tie` of each other across
-  // the feed, so the first one compared stands for all.
-  // Evaluates the entries from..to (sequences) of run id.
-  auto evaluate_range = [&](std::uint64_t id, bool flat, std::uint64_t s, std::uint64_t end) {
-    evaluating = id;
-    // h of the entry before: the same expression as h1 of that entry, so
-    // it is carried from one entry to the next.
-    double h0 = s > kept && s < end ? feed.dot(ring_[(s - 1) & mask_].point - cc) : 0.0;
-    for (; s < end; ++s) {
-      const Entry& e = ring_[s & mask_];
-      const double h1 = feed.dot(e.point - cc);
-      const double h_before = h0;
-      h0 = h1;
-      if (std::abs(e.feed.dot(feed)) < parallel_cos) continue;
-      evaluating_entry = s;
-      if (e.joined && s > kept) {  // the entry before is kept
-        if ((h_before <= 0) != (h1 <= 0) || h1 == 0) {
-          const Eigen::Vector3d& before = ring_[(s - 1) & mask_].point;
-          // h0 == h1 == 0: the segment lies in the plane
-          const double t = h_before == h1 ? 1.0 : h_before / (h_before - h1);
-          if (consider(before + t * (e.point - before)) && flat) return true;
-          continue;
-        }
-      }
-      if (std::abs(h1) > abeam_) continue;
-      if (!flat) {
-        // Only a nearer candidate matters here, and most are not.
-        const Eigen::Vector3d d = e.point - cc;
-        const double x = left.dot(d), y = normal.dot(d);
-        if (x * x + y * y > limit2) continue;
-      }
-      if (consider(e.point) && flat) return true;
-    }
-    return false;
-  };
-  // Evaluates run id, from its entry `start` on first when that lies in it
-  // (where the last neighbour was: the best comes soon, and the bound on
-  // the others is tight from there on).
-  auto evaluate = [&](std::uint64_t id, bool flat, std::uint64_t start = 0) {
-    const Run& r = run(id);
-    const std::uint64_t end = std::min(r.end, cutoff_);
-    const std::uint64_t s = std::max(r.first, kept);
-    if (start <= s || start >= end) {
-      evaluate_range(id, flat, s, end);
-    } else if (!evaluate_range(id, flat, start, end)) {
-      evaluate_range(id, flat, s, start);
-    }
-  };
-  // Bounds of a closed run across the feed (lowest, highest); none when
-  // all of it lies beyond the abeam allowance along the feed.
-  // flat: whether the highest bound lies within `tie` of the lowest. Runs
-  // whose lowest bound is no better than `worst` are left out.
-  auto measure = [&](const Run& r, double worst) -> std::optional<std::pair<double, bool>> {
-    const Eigen::Vector3d da = r.a - cc, db = r.b - cc;
-    const double ha = feed.dot(da), hb = feed.dot(db);
-    if (std::min(ha, hb) - r.radius > abeam_ || std::max(ha, hb) + r.radius < -abeam_) {
-      return std::nullopt;
-    }
-    const double xa = left.dot(da), ya = normal.dot(da), xb = left.dot(db), yb = normal.dot(db);
-    // Each coordinate across bounds the distance: no division, no root.
-    if (std::min(xa, xb) - r.radius > worst || std::max(xa, xb) + r.radius < -worst ||
-        std::min(ya, yb) - r.radius > worst || std::max(ya, yb) + r.radius < -worst) {
-      return std::nullopt;
-    }
-    // The same with the box of offsets instead of the ball: on a curved
-    // pass the points leave the axis mostly along the normal, which
-    // changes the distance across little where the pass lies beside CC.
-    double boxed = 0;  // (on a straight run the ball is as tight)
-    if (r.radius > tie) {
-      const auto [xl, xh] = spread(left, r.offset_low, r.offset_high);
-      const auto [yl, yh] = spread(normal, r.offset_low, r.offset_high);
-      const double gap_x = std::max({0.0, std::min(xa, xb) + xl, -(std::max(xa, xb) + xh)});
-      const double gap_y = std::max({0.0, std::min(ya, yb) + yl, -(std::max(ya, yb) + yh)});
-      boxed = std::sqrt(gap_x * gap_x + gap_y * gap_y);
-      if (boxed > worst) return std::nullopt;
-    }
-    const double low = std::max(boxed, distance_to_segment(xa, ya, xb, yb) - r.radius);
-    if (low > worst) return std::nullopt;
-    // The distance to a line is convex along the axis: largest at an end.
-    const double high = std::sqrt(std::max(xa * xa + ya * ya, xb * xb + yb * yb)) + r.radius;
-    return std::pair{low, high - low <= tie};
-  };
-  auto worst = [&] { return best ? std::min(radius_, best->ae - tie) : radius_; };
-  // A run that may hold a candidate nearer than the best so far: the open
-  // run (no capsule yet) is evaluated at once, a closed one collected.
-  auto look_at = [&](std::uint64_t id, Run& r) {
-    if (r.mark == search_) return;
-    r.mark = search_;
-    if (r.radius < 0) {
-      evaluate(id, false);
-      return;
-    }
-    const auto bounds = measure(r, worst());
-    if (bounds) candidates_.push_back({bounds->first, id, bounds->second});
-  };
-  auto scan_cell = [&](std::uint32_t head) {
-    for (std::uint32_t n = head; n != none; n = nodes_[n].next) {
-      const std::uint64_t id = run_of(nodes_[n].run);
-      if (id >= run_cut_) continue;  // all of it is this pass, too close behind
-      if (id < run_floor) break;     // overwritten: older ones are too
-      Run& r = run(id);
-      if (r.end <= kept) break;  // forgotten: older ones are too
-      look_at(id, r);
-    }
-  };
-  // The runs listed near the last searches: the same bounds as measure's,
-  // from the copies side by side, before a run itself is read (with room
-  // for rounding: the copies are exact, the differences are taken
-  // differently); then the runs begun since they were listed.
-  auto scan_nearby = [&] {
-    const double fc = feed.dot(cc), lc = left.dot(cc), nc = normal.dot(cc);
-    const std::size_t count = nearby_.id.size();
-    for (std::size_t i = 0; i < count; ++i) {
-      const std::uint64_t id = nearby_.id[i];
-      if (id >= run_cut_ || nearby_.end[i] <= kept) continue;
-      const double ax = nearby_.a[0][i], ay = nearby_.a[1][i], az = nearby_.a[2][i];
-      const double bx = nearby_.b[0][i], by = nearby_.b[1][i], bz = nearby_.b[2][i];
-      const double rad = nearby_.radius[i] + nearby_slack;
-      const double ha = feed.x() * ax + feed.y() * ay + feed.z() * az - fc;
-      const double hb = feed.x() * bx + feed.y() * by + feed.z() * bz - fc;
-      if (std::min(ha, hb) - rad > abeam_ || std::max(ha, hb) + rad < -abeam_) continue;
-      const double w = worst();
-      const double xa = left.x() * ax + left.y() * ay + left.z() * az - lc;
-      const double xb = left.x() * bx + left.y() * by + left.z() * bz - lc;
-      if (std::min(xa, xb) - rad > w || std::max(xa, xb) + rad < -w) continue;
-      const double ya = normal.x() * ax + normal.y() * ay + normal.z() * az - nc;
-      const double yb = normal.x() * bx + normal.y() * by + normal.z() * bz - nc;
-      if (std::min(ya, yb) - rad > w || std::max(ya, yb) + rad < -w) continue;
-      look_at(id, run(id));
-    }
-    for (std::uint64_t id = std::max(nearby_from_, run_floor); id < run_next_ && id < run_cut_;
-         ++id) {
-      Run& r = run(id);
-      if (r.end > kept) look_at(id, r);
-    }
-  };
+  double limit2;
+};
 
-  // The run that held the last neighbour most likely holds this one: with
-  // its candidates first, the bounds below skip most other runs at once.
-  // Its neighbours on the path next, while nothing is found (the neighbour
-  // moves on to them along the pass, either way).
-  if (warm_) {
-    for (const std::uint64_t id : {*warm_, *warm_ - 1, *warm_ + 1}) {
-      if (best || id < run_floor || id >= run_cut_ || run(id).end <= kept) continue;
-      Run& r = run(id);
-      if (r.mark == search_) continue;
-      r.mark = search_;
-      // A run whose points leave its axis by more than the tie is not flat
-      // (measure() would only say so): its candidates are looked at anyway.
-      if (r.radius < 0 || r.radius > tie) {
-        evaluate(id, false, warm_entry_);
-      } else if (const auto bounds = measure(r, radius_)) {
-        evaluate(id, bounds->second, warm_entry_);
+std::optional<NeighbourPass> PassTracker::nearest(const Entry& current,
+                                                  const Eigen::Vector3d& normal) {
+  const std::uint64_t kept = oldest();
+  if (cutoff_ <= kept) return std::nullopt;  // everything kept belongs to this pass
+  ++search_;
+  const std::uint64_t run_floor = run_next_ - runs_.size();  // older runs are overwritten
+  // Runs from run_cut_ on start at or after the cutoff: this pass, too close
+  // behind.
+  run_cut_ = std::max(run_cut_, run_floor);
+  while (run_cut_ < run_next_ && run(run_cut_).first < cutoff_) ++run_cut_;
+  Search s(current, normal, kept, run_floor, radius_);
+  search_warm(s);
+  search_outwards(s);
+  warm_.reset();
+  if (s.best) {
+    warm_ = s.best_run;
+    warm_entry_ = s.best_entry;
+  }
+  return s.best;
+}
+
+// Returns whether the candidate was compared with the best (it lies
+// within the search radius and is not CC itself).
+bool PassTracker::consider(Search& s, const Eigen::Vector3d& p) const {
+  const Eigen::Vector3d d = p - s.cc;
+  const double across = std::sqrt(std::pow(s.left.dot(d), 2) + std::pow(s.normal.dot(d), 2));
+  if (across > radius_ || across <= 1e-9) return false;
+  if (s.best && across >= s.best->ae) return true;
+  s.best =
+      NeighbourPass{across, s.left.dot(d) >= 0 ? geometry::Side::left : geometry::Side::right, p};
+  s.best_run = s.evaluating;
+  s.best_entry = s.evaluating_entry;
+  s.limit2 = across * across * (1 + 1e-15);
+  return true;
+}
+
+// The candidate of an entry of an earlier, roughly parallel pass: where
+// that pass crosses the plane across the feed through CC, on the segment
+// from its previous point; or, when the crossing lies on another segment
+// (or at a pass end), the point itself if almost abeam.
+// flat: all candidates of the run lie within `tie` of each other across
+// the feed, so the first one compared stands for all.
+// Evaluates the entries from..to (sequences) of run id.
+bool PassTracker::evaluate_range(Search& s, std::uint64_t id, bool flat, std::uint64_t from,
+                                 std::uint64_t end) const {
+  const Eigen::Vector3d& cc = s.cc;
+  const Eigen::Vector3d& feed = s.feed;
+  s.evaluating = id;
+  // h of the entry before: the same expression as h1 of that entry, so
+  // it is carried from one entry to the next.
+  double h0 = from > s.kept && from < end ? feed.dot(ring_[(from - 1) & mask_].point - cc) : 0.0;
+  for (std::uint64_t i = from; i < end; ++i) {
+    const Entry& e = ring_[i & mask_];
+    const double h1 = feed.dot(e.point - cc);
+    const double h_before = h0;
+    h0 = h1;
+    if (std::abs(e.feed.dot(feed)) < parallel_cos) continue;
+    s.evaluating_entry = i;
+    if (e.joined && i > s.kept) {  // the entry before is kept
+      if ((h_before <= 0) != (h1 <= 0) || h1 == 0) {
+        const Eigen::Vector3d& before = ring_[(i - 1) & mask_].point;
+        // h0 == h1 == 0: the segment lies in the plane
+        const double t = h_before == h1 ? 1.0 : h_before / (h_before - h1);
+        if (consider(s, before + t * (e.point - before)) && flat) return true;
+        continue;
       }
+    }
+    if (std::abs(h1) > abeam_) continue;
+    if (!flat) {
+      // Only a nearer candidate matters here, and most are not.
+      const Eigen::Vector3d d = e.point - cc;
+      const double x = s.left.dot(d), y = s.normal.dot(d);
+      if (x * x + y * y > s.limit2) continue;
+    }
+    if (consider(s, e.point) && flat) return true;
+  }
+  return false;
+}
+
+// Evaluates run id, from its entry `start` on first when that lies in it
+// (where the last neighbour was: the best comes soon, and the bound on
+// the others is tight from there on).
+void PassTracker::evaluate(Search& s, std::uint64_t id, bool flat, std::uint64_t start) {
+  const Run& r = run(id);
+  const std::uint64_t end = std::min(r.end, cutoff_);
+  const std::uint64_t first = std::max(r.first, s.kept);
+  if (start <= first || start >= end) {
+    evaluate_range(s, id, flat, first, end);
+  } else if (!evaluate_range(s, id, flat, start, end)) {
+    evaluate_range(s, id, flat, first, start);
+  }
+}
+
+// Bounds of a closed run across the feed (lowest, highest); none when
+// all of it lies beyond the abeam allowance along the feed.
+// flat: whether the highest bound lies within `tie` of the lowest. Runs
+// whose lowest bound is no better than `worst` are left out.
+std::optional<std::pair<double, bool>> PassTracker::measure(const Search& s, const Run& r,
+                                                            double worst) const {
+  const Eigen::Vector3d& left = s.left;
+  const Eigen::Vector3d& normal = s.normal;
+  const Eigen::Vector3d da = r.a - s.cc, db = r.b - s.cc;
+  const double ha = s.feed.dot(da), hb = s.feed.dot(db);
+  if (std::min(ha, hb) - r.radius > abeam_ || std::max(ha, hb) + r.radius < -abeam_) {
+    return std::nullopt;
+  }
+  const double xa = left.dot(da), ya = normal.dot(da), xb = left.dot(db), yb = normal.dot(db);
+  // Each coordinate across bounds the distance: no division, no root.
+  if (std::min(xa, xb) - r.radius > worst || std::max(xa, xb) + r.radius < -worst ||
+      std::min(ya, yb) - r.radius > worst || std::max(ya, yb) + r.radius < -worst) {
+    return std::nullopt;
+  }
+  // The same with the box of offsets instead of the ball: on a curved
+  // pass the points leave the axis mostly along the normal, which
+  // changes the distance across little where the pass lies beside CC.
+  double boxed = 0;  // (on a straight run the ball is as tight)
+  if (r.radius > tie) {
+    const auto [xl, xh] = spread(left, r.offset_low, r.offset_high);
+    const auto [yl, yh] = spread(normal, r.offset_low, r.offset_high);
+    const double gap_x = std::max({0.0, std::min(xa, xb) + xl, -(std::max(xa, xb) + xh)});
+    const double gap_y = std::max({0.0, std::min(ya, yb) + yl, -(std::max(ya, yb) + yh)});
+    boxed = std::sqrt(gap_x * gap_x + gap_y * gap_y);
+    if (boxed > worst) return std::nullopt;
+  }
+  const double low = std::max(boxed, distance_to_segment(xa, ya, xb, yb) - r.radius);
+  if (low > worst) return std::nullopt;
+  // The distance to a line is convex along the axis: largest at an end.
+  const double high = std::sqrt(std::max(xa * xa + ya * ya, xb * xb + yb * yb)) + r.radius;
+  return std::pair{low, high - low <= tie};
+}
+
+// How far across a run may lie and still hold a better candidate.
+double PassTracker::worst(const Search& s) const {
+  return s.best ? std::min(radius_, s.best->ae - tie) : radius_;
+}
+
+// A run that may hold a candidate nearer than the best so far: the open
+// run (no capsule yet) is evaluated at once, a closed one collected.
+void PassTracker::look_at(Search& s, std::uint64_t id, Run& r) {
+  if (r.mark == search_) return;
+  r.mark = search_;
+  if (r.radius < 0) {
+    evaluate(s, id, false);
+    return;
+  }
+  const auto bounds = measure(s, r, worst(s));
+  if (bounds) candidates_.push_back({bounds->first, id, bounds->second});
+}
+
+// The runs of a cell's list that are earlier passes and still kept.
+void PassTracker::scan_cell(Search& s, std::uint32_t head) {
+  for (std::uint32_t n = head; n != none; n = nodes_[n].next) {
+    const std::uint64_t id = run_of(nodes_[n].run);
+    if (id >= run_cut_) continue;  // all of it is this pass, too close behind
+    if (id < s.run_floor) break;   // overwritten: older ones are too
+    Run& r = run(id);
+    if (r.end <= s.kept) break;  // forgotten: older ones are too
+    look_at(s, id, r);
+  }
+}
+
+// The runs listed near the last searches: the same bounds as measure's,
+// from the copies side by side, before a run itself is read (with room
+// for rounding: the copies are exact, the differences are taken
+// differently); then the runs begun since they were listed.
+void PassTracker::scan_nearby(Search& s) {
+  const Eigen::Vector3d& cc = s.cc;
+  const Eigen::Vector3d& feed = s.feed;
+  const Eigen::Vector3d& left = s.left;
+  const Eigen::Vector3d& normal = s.normal;
+  const double fc = feed.dot(cc), lc = left.dot(cc), nc = normal.dot(cc);
+  const std::size_t count = nearby_.id.size();
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::uint64_t id = nearby_.id[i];
+    if (id >= run_cut_ || nearby_.end[i] <= s.kept) continue;
+    const double ax = nearby_.a[0][i], ay = nearby_.a[1][i], az = nearby_.a[2][i];
+    const double bx = nearby_.b[0][i], by = nearby_.b[1][i], bz = nearby_.b[2][i];
+    const double rad = nearby_.radius[i] + nearby_slack;
+    const double ha = feed.x() * ax + feed.y() * ay + feed.z() * az - fc;
+    const double hb = feed.x() * bx + feed.y() * by + feed.z() * bz - fc;
+    if (std::min(ha, hb) - rad > abeam_ || std::max(ha, hb) + rad < -abeam_) continue;
+    const double w = worst(s);
+    const double xa = left.x() * ax + left.y() * ay + left.z() * az - lc;
+    const double xb = left.x() * bx + left.y() * by + left.z() * bz - lc;
+    if (std::min(xa, xb) - rad > w || std::max(xa, xb) + rad < -w) continue;
+    const double ya = normal.x() * ax + normal.y() * ay + normal.z() * az - nc;
+    const double yb = normal.x() * bx + normal.y() * by + normal.z() * bz - nc;
+    if (std::min(ya, yb) - rad > w || std::max(ya, yb) + rad < -w) continue;
+    look_at(s, id, run(id));
+  }
+  for (std::uint64_t id = std::max(nearby_from_, s.run_floor); id < run_next_ && id < run_cut_;
+       ++id) {
+    Run& r = run(id);
+    if (r.end > s.kept) look_at(s, id, r);
+  }
+}
+
+// The run that held the last neighbour most likely holds this one: with
+// its candidates first, the bounds below skip most other runs at once.
+// Its neighbours on the path next, while nothing is found (the neighbour
+// moves on to them along the pass, either way).
+void PassTracker::search_warm(Search& s) {
+  if (!warm_) return;
+  for (const std::uint64_t id : {*warm_, *warm_ - 1, *warm_ + 1}) {
+    if (s.best || id < s.run_floor || id >= run_cut_ || run(id).end <= s.kept) continue;
+    Run& r = run(id);
+    if (r.mark == search_) continue;
+    r.mark = search_;
+    // A run whose points leave its axis by more than the tie is not flat
+    // (measure() would only say so): its candidates are looked at anyway.
+    if (r.radius < 0 || r.radius > tie) {
+      evaluate(s, id, false, warm_entry_);
+    } else if (const auto bounds = measure(s, r, radius_)) {
+      evaluate(s, id, bounds->second, warm_entry_);
     }
   }
+}
 
-  // Search outwards: a candidate within r of CC across the feed and within
-  // the abeam allowance along it lies in the box below, and so does a cell
-  // listing its run. Once the best lies within r, nothing outside beats it.
-  double r = best ? best->ae : last_ae_ > 0 ? 1.125 * last_ae_ : cell_;
+// Search outwards: a candidate within r of CC across the feed and within
+// the abeam allowance along it lies in the box below, and so does a cell
+// listing its run. Once the best lies within r, nothing outside beats it.
+void PassTracker::search_outwards(Search& s) {
+  const Eigen::Vector3d& cc = s.cc;
+  const Eigen::Vector3d& feed = s.feed;
+  double r = s.best ? s.best->ae : last_ae_ > 0 ? 1.125 * last_ae_ : cell_;
   for (bool first = true;; first = false) {
     const double reach = std::min(r, radius_);
     // The first search of a step looks at the runs listed for an earlier
@@ -684,8 +741,8 @@ std::optional<NeighbourPass> PassTracker::nearest(const Entry& current,
     bool listed = small && nearby_covers(cc, feed, reach, abeam_);
     if (small && !listed) {
       const Entry* last = next_ > 0 ? entry(next_ - 1) : nullptr;
-      const double step = last && current.joined ? current.path - last->path : 0.0;
-      fill_nearby(cc, normal, feed, reach + nearby_across * std::max(reach, step),
+      const double step = last && s.current.joined ? s.current.path - last->path : 0.0;
+      fill_nearby(cc, s.normal, feed, reach + nearby_across * std::max(reach, step),
                   abeam_ * (1 + nearby_behind),
                   abeam_ + std::max(nearby_ahead * abeam_, nearby_steps * step));
       // (the runs looked at before count as not looked at: the warm ones
@@ -694,31 +751,25 @@ std::optional<NeighbourPass> PassTracker::nearest(const Entry& current,
       listed = true;
     }
     if (listed) {
-      scan_nearby();
+      scan_nearby(s);
     } else {
       std::array<std::int64_t, 3> lo{}, hi{};
       cells_around(cc, feed, reach, abeam_, cell_, lo, hi);
-      for_each_list(lo, hi, scan_cell);
+      for_each_list(lo, hi, [&](std::uint32_t head) { scan_cell(s, head); });
     }
     // Nearest bound first: once a run's bound is no better than the best,
     // neither is any later one.
     std::sort(candidates_.begin(), candidates_.end(),
               [](const Candidate& x, const Candidate& y) { return x.low < y.low; });
     for (const Candidate& c : candidates_) {
-      if (best && c.low > best->ae - tie) break;
-      evaluate(c.run, c.flat);
+      if (s.best && c.low > s.best->ae - tie) break;
+      evaluate(s, c.run, c.flat);
     }
     candidates_.clear();
-    if ((best && best->ae <= reach) || r >= radius_) break;
+    if ((s.best && s.best->ae <= reach) || r >= radius_) break;
     // Nothing at all within r: go to the whole radius at once.
-    r = best ? 2 * r : radius_;
+    r = s.best ? 2 * r : radius_;
   }
-  warm_.reset();
-  if (best) {
-    warm_ = best_run;
-    warm_entry_ = best_entry;
-  }
-  return best;
 }
 
 }  // namespace vcpost::pipeline

@@ -76,8 +76,8 @@ class PassTracker {
   // and within a box of offsets from it, which bound how near across the
   // feed and how far along it they can be.
   struct Run {
-    Eigen::Vector3d a =
-        Eigen::Vector3d::Zero();  // the entry before the first (joined), or the first
+    Eigen::Vector3d a = Eigen::Vector3d::Zero();  // the entry before the first
+                                                  // (joined), or the first
     Eigen::Vector3d b = Eigen::Vector3d::Zero();  // the last entry
     double radius = -1;                           // < 0 while the run is open (no capsule yet)
     std::uint64_t end = 0;                        // one past its last entry
@@ -163,6 +163,19 @@ class PassTracker {
   bool nearby_covers(const Eigen::Vector3d& cc, const Eigen::Vector3d& feed, double across,
                      double along) const;
   std::optional<NeighbourPass> nearest(const Entry& current, const Eigen::Vector3d& normal);
+  // The steps of nearest(), on the state of one search.
+  struct Search;
+  void search_warm(Search& s);
+  void search_outwards(Search& s);
+  void scan_cell(Search& s, std::uint32_t head);
+  void scan_nearby(Search& s);
+  void look_at(Search& s, std::uint64_t id, Run& r);
+  void evaluate(Search& s, std::uint64_t id, bool flat, std::uint64_t start = 0);
+  bool evaluate_range(Search& s, std::uint64_t id, bool flat, std::uint64_t from,
+                      std::uint64_t end) const;
+  bool consider(Search& s, const Eigen::Vector3d& p) const;
+  std::optional<std::pair<double, bool>> measure(const Search& s, const Run& r, double worst) const;
+  double worst(const Search& s) const;
 
   double radius_, min_gap_;
   double cell_;         // grid cell edge, mm: a sixteenth of the search radius
@@ -198,8 +211,9 @@ class PassTracker {
   Nearby nearby_;
   Eigen::Vector3d nearby_cc_ = Eigen::Vector3d::Zero();  // the step it was listed for
   Eigen::Vector3d nearby_feed_ = Eigen::Vector3d::UnitX();
-  double nearby_across_ = 0;                     // its reach across that feed, mm
-  double nearby_behind_ = 0, nearby_ahead_ = 0;  // and along it, back and forth, mm
+  double nearby_across_ = 0;  // its reach across that feed, mm
+  double nearby_behind_ = 0,
+         nearby_ahead_ = 0;        // and along it, back and forth, mm
   std::uint64_t nearby_from_ = 0;  // runs from here on were open or new: looked at directly
   bool nearby_valid_ = false;
 };

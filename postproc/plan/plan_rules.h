@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <optional>
 
 #include "machines/profile.h"
@@ -22,6 +23,9 @@ struct Grid {
 
 // Comparisons of speeds on the grid: well under any resolution.
 constexpr double kEps = 1e-6;
+
+// No bound (yet): the start of a running minimum.
+constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Throws PlanError when sample `index` breaks the contract of spindle_plan.h;
 // `prev` is the sample before it (nullptr for the first).

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <string>
 
 #include "postproc/plan/plan_rules.h"
@@ -12,10 +11,7 @@ namespace vcpost::plan {
 
 using detail::Grid;
 using detail::kEps;
-
-namespace {
-constexpr double kInf = std::numeric_limits<double>::infinity();
-}  // namespace
+using detail::kInf;
 
 bool s_word_allowed(const Sample& first) {
   return first.rapid || first.path_stops || first.tool_change;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <string>
 
 #include "postproc/plan/plan_rules.h"
@@ -12,10 +11,7 @@ namespace vcpost::plan {
 
 using detail::Grid;
 using detail::kEps;
-
-namespace {
-constexpr double kInf = std::numeric_limits<double>::infinity();
-}  // namespace
+using detail::kInf;
 
 double StreamingPlanner::horizon_s(const machines::SpindleSpec& spec) {
   const Grid grid{spec.s_resolution_rpm};

@@ -148,9 +148,6 @@ class StreamingPlanner : public detail::BlockStream<StreamingPlanner, StreamingB
   double hold_;     // shortest time between S words, less a nanosecond
   double horizon_;  // H
 
-  // Intake.
-  std::optional<Sample> last_;
-
   // blocks_base_ is the plan index of blocks_.front().
   std::size_t blocks_base_ = 0;
   std::size_t assign_next_ = 0;  // first block not final

@@ -64,6 +64,8 @@ std::uint64_t ProgramWriter::f_words(std::uint32_t section) const {
 }
 
 void ProgramWriter::add(const Chunk& chunk) {
+  // Internal invariant, not the user's input: the post job hands chunks in
+  // block order; logic_error marks a bug (exit 3, "internal error").
   if (first_pending_ + pending_.size() != chunk.first_block)
     throw std::logic_error("ProgramWriter: chunks out of order");
   if (chunk.repeat_from) hold_from_ = std::min(hold_from_, *chunk.repeat_from);
@@ -77,6 +79,8 @@ const BlockInfo& ProgramWriter::block(std::size_t index) const {
 
 void ProgramWriter::on_final(const plan::BlockPlan& plan,
                              const std::optional<plan::BlockFeed>& feed) {
+  // Internal invariant, not the user's input: the planner finalises only
+  // blocks it was given (logic_error: a bug).
   if (plan.block < first_pending_ || plan.block >= first_pending_ + pending_.size())
     throw std::logic_error("ProgramWriter: a final block that is not held");
   const Planned planned{&plan, feed ? &*feed : nullptr};

@@ -10,6 +10,8 @@
 namespace vcpost::program {
 
 PathClock::PathClock(TimingSettings settings) : settings_(settings) {
+  // Internal invariant, not the user's input: the profile reader refuses these
+  // values first (E5005, with file:line:col); invalid_argument marks a bug.
   if (!(std::isfinite(settings_.rapid_mm_per_min) && settings_.rapid_mm_per_min > 0.0))
     throw std::invalid_argument("rapid rate must be a positive number of mm/min");
   if (!(std::isfinite(settings_.block_seconds) && settings_.block_seconds >= 0.0))

@@ -4,10 +4,10 @@
 // drawing (canvases with ink, script errors) into #selfcheck, which the
 // browser test reads.
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <stdexcept>
 
+#include "core/text.h"
 #include "postproc/report/report.h"
 
 namespace vcpost::report {
@@ -545,10 +545,10 @@ document.body.setAttribute('data-drawn', String(drawn.length));
 }  // namespace
 
 std::string render_html(const ReportData& data, std::string_view chart_library) {
-  std::string lower(chart_library.size(), ' ');
-  std::transform(chart_library.begin(), chart_library.end(), lower.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string lower = to_lower(chart_library);
   if (lower.find("</script") != std::string::npos) {
+    // Reaches the user through post_options.cpp, which turns it into
+    // vcpost::Error E2004 ("HTML report: ...").
     throw std::invalid_argument("the charting library contains '</script' and cannot be inlined");
   }
   const std::string data_text = script_safe(page_data(data).dump());

@@ -8,6 +8,8 @@ namespace vcpost::report {
 
 MinMaxDecimator::MinMaxDecimator(std::size_t series, std::size_t max_buckets)
     : series_(series), max_buckets_(max_buckets) {
+  // Internal invariant, not the user's input: callers pass a fixed bucket count
+  // (invalid_argument: a bug).
   if (max_buckets < 2) throw std::invalid_argument("MinMaxDecimator: max_buckets must be >= 2");
 }
 
@@ -82,6 +84,7 @@ std::vector<PlotPoint> MinMaxDecimator::series(std::size_t k) const {
 PlanGrid::PlanGrid(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, int max_cells) : lo_(lo) {
   const Eigen::Vector2d size = hi - lo;
   if (!(size.x() > 0) || !(size.y() > 0) || max_cells < 1) {
+    // Internal invariant, not the user's input: a report has points, so an extent.
     throw std::invalid_argument("PlanGrid: empty extent");
   }
   cell_ = size.maxCoeff() / max_cells;

@@ -1,7 +1,8 @@
 #include "postproc/report/report.h"
 
 #include <algorithm>
-#include <cctype>
+
+#include "core/text.h"
 
 namespace vcpost::report {
 namespace {
@@ -74,9 +75,7 @@ ReportData ReportCollector::finish(const post::PostSummary& summary, double run_
 std::optional<ReportFormat> format_of(std::string_view file_name) {
   const auto dot = file_name.rfind('.');
   if (dot == std::string_view::npos) return std::nullopt;
-  std::string ext(file_name.substr(dot + 1));
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string ext = to_lower(file_name.substr(dot + 1));
   if (ext == "json") return ReportFormat::json;
   if (ext == "csv") return ReportFormat::csv;
   if (ext == "html" || ext == "htm") return ReportFormat::html;

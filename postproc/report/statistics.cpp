@@ -22,6 +22,8 @@ std::optional<Distribution> distribution(const WeightedQuantiles& q) {
 
 WeightedQuantiles::WeightedQuantiles(double lo, double hi, std::size_t bins)
     : lo_(lo), width_((hi - lo) / static_cast<double>(bins)), weights_(bins, 0.0) {
+  // Internal invariant, not the user's input: the ranges are constants of
+  // the statistics (invalid_argument: a bug).
   if (!(lo < hi) || bins == 0) throw std::invalid_argument("WeightedQuantiles: empty range");
 }
 
@@ -65,6 +67,8 @@ StatisticsAccumulator::StatisticsAccumulator(double vc_nominal, double tool_radi
       ra_(0, 1000 * tool_radius_mm, surface_bins(tool_radius_mm)),
       rz_(0, 1000 * tool_radius_mm, surface_bins(tool_radius_mm)) {
   if (!(vc_nominal > 0) || !(tool_radius_mm > 0)) {
+    // Internal invariant, not the user's input: --vc and the tool are checked
+    // (E2001, E1601) before statistics start.
     throw std::invalid_argument("StatisticsAccumulator: vc_nominal and tool radius must be > 0");
   }
 }

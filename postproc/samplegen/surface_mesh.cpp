@@ -25,6 +25,8 @@ double curve_length(const SampleSurface& s, const Vector2d& uv0, const Vector2d&
 }  // namespace
 
 mesh::StlMesh triangulate_grid(const SampleSurface& surface, int cells_u, int cells_v) {
+  // Internal invariant, not the user's input: samplegen's own parameters
+  // (invalid_argument: a bug).
   if (cells_u < 1 || cells_v < 1) throw std::invalid_argument("triangulate_grid: no cells");
   const Eigen::AlignedBox2d box = surface.domain();
   const Vector2d lo = box.min(), size = box.max() - box.min();
@@ -63,6 +65,7 @@ mesh::StlMesh triangulate_grid(const SampleSurface& surface, int cells_u, int ce
 }
 
 mesh::StlMesh triangulate(const SampleSurface& surface, std::uint64_t triangles) {
+  // Internal invariant, not the user's input: samplegen's own parameters.
   if (triangles < 2) throw std::invalid_argument("triangulate: at least 2 triangles");
   const Eigen::AlignedBox2d box = surface.domain();
   const Vector2d lo = box.min(), hi = box.max(), mid = box.center();

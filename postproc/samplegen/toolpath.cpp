@@ -36,6 +36,7 @@ struct Line {
 template <typename Visit>
 void walk(const PathSpec& spec, Visit&& visit) {
   if (!(spec.stepover > 0) || !(spec.step > 0)) {
+    // Internal invariant, not the user's input: samplegen's own parameters.
     throw std::invalid_argument("toolpath: stepover and step must be positive");
   }
   int pass = 0;

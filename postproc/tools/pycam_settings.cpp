@@ -1,33 +1,14 @@
 #include "postproc/tools/pycam_settings.h"
 
-#include <cctype>
-#include <charconv>
 #include <cmath>
+
+#include "core/text.h"
 
 namespace vcpost::tools {
 namespace {
 
 constexpr std::string_view kStart = "PYCAM_TOOLPATH_SETTINGS: START";
 constexpr std::string_view kEnd = "PYCAM_TOOLPATH_SETTINGS: END";
-
-std::string_view trim(std::string_view text) {
-  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front())))
-    text.remove_prefix(1);
-  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back())))
-    text.remove_suffix(1);
-  return text;
-}
-
-// Python's str(float): "0.79375", "3.0", "1e-05".
-std::optional<double> number(std::string_view text) {
-  double value = 0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (text.empty() || error != std::errc{} || end != text.data() + text.size() ||
-      !std::isfinite(value)) {
-    return std::nullopt;
-  }
-  return value;
-}
 
 CommentTool pycam_note(std::string why) {
   CommentTool out;
@@ -76,7 +57,7 @@ std::optional<CommentTool> PycamSettings::read(std::string_view text, const std:
         shape_ = std::string(value);
         shape_where_ = where;
       } else if (key == "tool_radius" || key == "torus_radius") {
-        const auto v = number(value);
+        const auto v = finite_number(value);  // Python's str(float): "0.79375", "1e-05"
         if (!v) bad_value_ = std::string(key) + " = " + std::string(value);
         (key == "tool_radius" ? radius_ : torus_) = v;
       }

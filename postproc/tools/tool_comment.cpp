@@ -8,34 +8,16 @@
 #include <regex>
 #include <vector>
 
+#include "core/text.h"
+
 namespace vcpost::tools {
 namespace {
-
-std::string upper(std::string_view text) {
-  std::string out(text);
-  for (char& c : out) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return out;
-}
-
-std::string_view trim(std::string_view text) {
-  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front())))
-    text.remove_prefix(1);
-  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back())))
-    text.remove_suffix(1);
-  return text;
-}
 
 // A decimal as CAM posts write it: "6.", ".25", "-19.8", "3".
 std::optional<double> number(std::string_view text) {
   text = trim(text);
   if (!text.empty() && text.front() == '+') text.remove_prefix(1);
-  double value = 0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (text.empty() || error != std::errc{} || end != text.data() + text.size() ||
-      !std::isfinite(value)) {
-    return std::nullopt;
-  }
-  return value;
+  return finite_number(text);
 }
 
 // The value of `key=` (key at the start of a blank-separated token), up to the next blank.
@@ -96,7 +78,8 @@ std::optional<CommentTool> fusion(std::string_view text) {
   double taper = 0;
   if (const auto tp = field(t, "TAPER=")) {
     std::string_view value = *tp;
-    if (value.size() > 3 && upper(value.substr(value.size() - 3)) == "DEG") value.remove_suffix(3);
+    if (value.size() > 3 && to_upper(value.substr(value.size() - 3)) == "DEG")
+      value.remove_suffix(3);
     const auto angle = number(value);
     if (!angle)
       return note(CommentFormat::fusion, "TAPER=" + std::string(*tp) + " is not an angle");
@@ -131,7 +114,7 @@ std::optional<CommentTool> fusion(std::string_view text) {
 
 // Mastercam: <name> TOOL - <n> DIA. OFF. - <d> LEN. - <l> DIA. - <diameter>.
 std::optional<CommentTool> mastercam(std::string_view text) {
-  const std::string u = upper(text);
+  const std::string u = to_upper(text);
   if (u.find("DIA. OFF.") == std::string::npos) return std::nullopt;
   static const std::regex pattern(
       R"(^(.*?)\s*TOOL\s*-\s*(\d+)\s+DIA\.\s*OFF\.\s*-\s*\d+\s+LEN\.\s*-\s*\d+\s+DIA\.\s*-\s*([-+]?[0-9]*\.?[0-9]+)\s*$)");
@@ -157,8 +140,9 @@ std::optional<CommentTool> mastercam(std::string_view text) {
 // Carbide Create: TOOL/MILL,<d>,<corner radius>,<length>,<taper half-angle>.
 std::optional<CommentTool> carbide(std::string_view text) {
   const std::string_view t = trim(text);
-  if (t.size() < 5 || upper(t.substr(0, 5)) != "TOOL/") return std::nullopt;
-  const std::string kind = upper(t.substr(5, t.find(',') - std::min(t.find(','), std::size_t{5})));
+  if (t.size() < 5 || to_upper(t.substr(0, 5)) != "TOOL/") return std::nullopt;
+  const std::string kind =
+      to_upper(t.substr(5, t.find(',') - std::min(t.find(','), std::size_t{5})));
   std::vector<double> values;
   for (std::size_t at = t.find(','); at != std::string_view::npos;) {
     const std::size_t end = t.find(',', at + 1);
@@ -215,7 +199,7 @@ std::string_view to_string(CommentFormat format) {
 }
 
 std::optional<ToolShape> shape_from_type_name(std::string_view name) {
-  const std::string u = upper(name);
+  const std::string u = to_upper(name);
   auto has = [&](std::string_view word) { return u.find(word) != std::string::npos; };
   // Tools that are not cutting on a ball, torus or flat end first: a
   // "tapered ball mill" or a "ball lollipop" is not a ball end mill.

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <optional>
 #include <sstream>
+
+#include "core/text.h"
 
 namespace vcpost::tools {
 namespace {
@@ -18,19 +21,9 @@ int rank(const ToolEntry& entry) {
 std::string quoted(std::string_view text) { return "'" + std::string(text) + "'"; }
 
 double parse_number(std::string_view text, const std::string& what) {
-  double value = 0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (text.empty() || error != std::errc{} || end != text.data() + text.size() ||
-      !std::isfinite(value)) {
-    throw ToolTableError("E1601", what + ": " + quoted(text) + " is not a number");
-  }
-  return value;
-}
-
-std::string_view trim(std::string_view text) {
-  while (!text.empty() && text.front() == ' ') text.remove_prefix(1);
-  while (!text.empty() && text.back() == ' ') text.remove_suffix(1);
-  return text;
+  const std::optional<double> value = finite_number(text);
+  if (!value) throw ToolTableError("E1601", what + ": " + quoted(text) + " is not a number");
+  return *value;
 }
 
 }  // namespace
@@ -145,7 +138,7 @@ std::optional<double> ToolChoices::vc_of(std::optional<int> number) const {
 
 int parse_tool_number(std::string_view text, std::string_view option) {
   const std::string_view original = text;
-  text = trim(text);
+  text = trim(text, " ");
   if (!text.empty() && (text.front() == 'T' || text.front() == 't')) text.remove_prefix(1);
   int value = -1;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);

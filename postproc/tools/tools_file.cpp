@@ -25,13 +25,13 @@ class FileReader {
   }
 
   ToolEntry entry(const toml::table& tool, const toml::source_region& where) const {
-    for (const auto& [key, value] : tool) {
+    for (const auto& item : tool) {
+      const toml::key& key = item.first;
       if (std::find(std::begin(kKeys), std::end(kKeys), key.str()) == std::end(kKeys)) {
         fail("E1604", key.source(),
              "unknown key '" + std::string(key.str()) +
                  "' in [[tool]] (known: number, shape, diameter, corner_radius, teeth, name)");
       }
-      (void)value;
     }
     ToolEntry e;
     e.origin = ToolOrigin::tools_file;

@@ -116,7 +116,7 @@ class ClItems {
         }
       }
     } catch (const cldata::ClError& e) {
-      throw InputError(e.vcpost::Error::code(), e.what());
+      throw vcpost::Error(e.vcpost::Error::code(), e.what());
     }
     // ... and before the program's end.
     return side_change({CompensationSide::off, last_}, last_, side_);

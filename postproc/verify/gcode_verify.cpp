@@ -325,7 +325,7 @@ void compare_events(std::string_view input, std::string_view output, const Optio
     try {
       x = a.next();
     } catch (const gcode::GcodeError& e) {
-      throw InputError(e.code(), gcode::format(e.diagnostic(), input_name));
+      throw vcpost::Error(e.code(), gcode::format(e.diagnostic(), input_name));
     }
     const program::Event* y = nullptr;
     try {
@@ -370,7 +370,7 @@ Result verify_gcode(std::string_view input, std::string_view output, const Optio
       "line longer than " + std::to_string(gcode::kMaxLineLength) + " bytes, the reader's limit";
   if (const std::uint32_t line = first_line_longer_than(input, gcode::kMaxLineLength)) {
     const gcode::Diagnostic d{gcode::Code::line_too_long, Severity::error, line, 1, too_long};
-    throw InputError(gcode::code_id(d.code, d.severity), gcode::format(d, input_name));
+    throw vcpost::Error(gcode::code_id(d.code, d.severity), gcode::format(d, input_name));
   }
   if (const std::uint32_t line = first_line_longer_than(output, gcode::kMaxLineLength)) {
     sink.add(Code::output_unreadable, line, 1, 0,

@@ -129,20 +129,14 @@ struct Options {
   std::function<void(const Change&)> on_change;
 };
 
-// A program that cannot be read at all (the input's parse error, a CL
-// reader error) with the reader's code; what() is
-// "file:line:col: error[E....]: message".
-class InputError : public vcpost::Error {
- public:
-  using vcpost::Error::Error;
-};
-
-// G-code input vs G-code output. Throws InputError when the input does not
+// G-code input vs G-code output. Throws vcpost::Error (the reader's code;
+// what() "file:line:col: error[E....]: message") when the input does not
 // interpret (an output that does not is a violation).
 Result verify_gcode(std::string_view input, std::string_view output, const Options& options,
                     const std::string& input_name = "input");
 
-// APT CL input vs G-code output. Throws InputError when the CL data do not read.
+// APT CL input vs G-code output. Throws vcpost::Error (the CL
+// reader's code) when the CL data do not read.
 Result verify_cl(std::string_view cl_text, std::string_view output, const Options& options,
                  const std::string& input_name = "input");
 

@@ -229,7 +229,7 @@ TEST(VerifyGcode, OutputThatDoesNotInterpretButLooksEqualCannotExist) {
 }
 
 TEST(VerifyGcode, InputThatDoesNotReadIsAnInputError) {
-  EXPECT_THROW(run("G1 X1 F100\nG2 X2\nM30\n", "G1 X1 F100\nG2 X2\nM30\n"), InputError);
+  EXPECT_THROW(run("G1 X1 F100\nG2 X2\nM30\n", "G1 X1 F100\nG2 X2\nM30\n"), vcpost::Error);
 }
 
 TEST(VerifyGcode, EveryCodeIsInTheTable) {
@@ -302,7 +302,7 @@ TEST(VerifyLexer, FirstLineLongerThanTheLimitAsTheReaderCountsIt) {
   try {
     run("G21\n" + long_line, "G21\nM30\n");
     ADD_FAILURE() << "accepted";
-  } catch (const InputError& e) {
+  } catch (const vcpost::Error& e) {
     EXPECT_EQ(e.code(), "E1006");
     EXPECT_STREQ(e.what(),
                  "input:2:1: error[E1006]: line longer than 65536 bytes, the reader's limit");

@@ -139,7 +139,7 @@ TEST(VerifyPrograms, SharedGcodeProgramsPostedVerify) {
         const Result r = verify_gcode(input, input, options);
         EXPECT_TRUE(r.ok());
         EXPECT_TRUE(r.changes.empty());
-      } catch (const InputError& error) {
+      } catch (const vcpost::Error& error) {
         std::printf("  verify refuses it too: %s\n", error.what());
       }
       continue;

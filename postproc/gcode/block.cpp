@@ -1249,6 +1249,37 @@ Control peek_control(std::string_view line, const Dialect& dialect) {
   return reader.peek();
 }
 
+std::size_t word_value_end(std::string_view s, std::size_t k) {
+  const std::size_t start = k;
+  while (k < s.size() && (s[k] == '-' || s[k] == '+')) {  // unary signs, as unary() reads them
+    ++k;
+    while (k < s.size() && is_blank(s[k])) ++k;
+  }
+  if (k < s.size() && s[k] == '[') {
+    int depth = 0;
+    for (; k < s.size(); ++k) {
+      if (s[k] == '[') ++depth;
+      if (s[k] == ']' && --depth == 0) return k + 1;
+    }
+    return s.size();
+  }
+  if (k < s.size() && s[k] == '#') {
+    ++k;
+    if (k < s.size() && s[k] == '<') {
+      while (k < s.size() && s[k] != '>') ++k;
+      return k < s.size() ? k + 1 : k;
+    }
+    while (k < s.size() && (is_digit(s[k]) || s[k] == '#')) ++k;
+    return k;
+  }
+  const std::size_t digits = k;
+  while (k < s.size() && (is_digit(s[k]) || s[k] == '.' ||
+                          (is_blank(s[k]) && k > digits && k + 1 < s.size() &&
+                           (is_digit(s[k + 1]) || s[k + 1] == '.'))))
+    ++k;
+  return k > digits ? k : start;
+}
+
 std::optional<Span> find_word_span(std::string_view line, char letter) {
   letter = upper(letter);
   std::size_t i = 0;
@@ -1273,30 +1304,7 @@ std::optional<Span> find_word_span(std::string_view line, char letter) {
     if (word_start) {
       std::size_t k = i + 1;
       while (k < line.size() && is_blank(line[k])) ++k;
-      if (k < line.size() && (line[k] == '-' || line[k] == '+')) ++k;
-      if (k < line.size() && line[k] == '[') {
-        int d = 0;
-        for (; k < line.size(); ++k) {
-          if (line[k] == '[') ++d;
-          if (line[k] == ']' && --d == 0) {
-            ++k;
-            break;
-          }
-        }
-      } else if (k < line.size() && line[k] == '#') {
-        ++k;
-        if (k < line.size() && line[k] == '<') {
-          while (k < line.size() && line[k] != '>') ++k;
-          ++k;
-        } else {
-          while (k < line.size() && (is_digit(line[k]) || line[k] == '#')) ++k;
-        }
-      } else {
-        while (k < line.size() && (is_digit(line[k]) || line[k] == '.' ||
-                                   (is_blank(line[k]) && k + 1 < line.size() &&
-                                    (is_digit(line[k + 1]) || line[k + 1] == '.'))))
-          ++k;
-      }
+      k = word_value_end(line, k);
       return Span{static_cast<std::uint32_t>(i),
                   static_cast<std::uint32_t>(std::min(k, line.size()))};
     }

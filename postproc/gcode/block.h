@@ -128,6 +128,12 @@ struct Span {
   std::uint32_t begin = 0;
   std::uint32_t end = 0;
 };
+// End of a word's value that starts at `k` (after its letter and the blanks
+// after it), as the reader reads it: unary signs (blanks between them),
+// then a [expression], a #parameter or a literal with blanks between its
+// digits; `k` when no value starts there. The writer's spans and verify's
+// lexer both use it.
+std::size_t word_value_end(std::string_view line, std::size_t k);
 std::optional<Span> find_word_span(std::string_view line, char letter);
 
 }  // namespace vcpost::gcode

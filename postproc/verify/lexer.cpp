@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "postproc/gcode/block.h"
+
 namespace vcpost::verify {
 
 namespace {
@@ -12,36 +14,9 @@ constexpr bool is_alpha(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && 
 constexpr char upper(char c) { return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 32) : c; }
 
 // End of a word's value starting at `k` (after the letter and blanks), or
-// `k` when no value starts there. The same grammar as the writer's word
-// spans: sign, then [expression], #parameter or digits/point with blanks
-// between digits.
-std::size_t value_end(std::string_view s, std::size_t k) {
-  const std::size_t start = k;
-  if (k < s.size() && (s[k] == '-' || s[k] == '+')) ++k;
-  if (k < s.size() && s[k] == '[') {
-    int depth = 0;
-    for (; k < s.size(); ++k) {
-      if (s[k] == '[') ++depth;
-      if (s[k] == ']' && --depth == 0) return k + 1;
-    }
-    return s.size();
-  }
-  if (k < s.size() && s[k] == '#') {
-    ++k;
-    if (k < s.size() && s[k] == '<') {
-      while (k < s.size() && s[k] != '>') ++k;
-      return k < s.size() ? k + 1 : k;
-    }
-    while (k < s.size() && (is_digit(s[k]) || s[k] == '#')) ++k;
-    return k;
-  }
-  const std::size_t digits = k;
-  while (k < s.size() && (is_digit(s[k]) || s[k] == '.' ||
-                          (is_blank(s[k]) && k + 1 < s.size() && k > digits &&
-                           (is_digit(s[k + 1]) || s[k + 1] == '.'))))
-    ++k;
-  return k > digits ? k : start;
-}
+// `k` when no value starts there: the reader's grammar, as the writer's
+// word spans follow it (gcode::word_value_end).
+std::size_t value_end(std::string_view s, std::size_t k) { return gcode::word_value_end(s, k); }
 
 }  // namespace
 

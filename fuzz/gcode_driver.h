@@ -24,6 +24,7 @@ inline gcode::InterpreterLimits fuzz_interpreter_limits() {
   gcode::InterpreterLimits limits;
   limits.max_loop_iterations = 100'000;
   limits.max_blocks = 50'000;
+  limits.max_cycle_moves = 200'000;
   return limits;
 }
 

@@ -1315,6 +1315,13 @@ void Interpreter::canned_cycle(Step& step) {
          "R plane below the hole bottom Z in a canned cycle");
   call.retract_to_r = s.retract_to_r && !(c == 870 && fanuc_like);
   if (call.repeats > 0) {
+    // Each hole: its pecks (three moves each at most) and three more.
+    const bool pecks = (c == 730 || c == 830) && call.q > 0;
+    const double per_hole = 3.0 * ((pecks ? (call.r - call.bottom) / call.q : 0.0) + 1.0) + 3.0;
+    if (per_hole * call.repeats > static_cast<double>(limits_.max_cycle_moves))
+      fail(Code::loop_limit, column,
+           "canned cycle makes more than " + std::to_string(limits_.max_cycle_moves) +
+               " moves in one block (L repeats times pecks)");
     s.position = expand_cycle(call, step.events);
     s.moved = true;
   }

@@ -320,36 +320,23 @@ bool schema_has(std::string_view key) {
 
 std::span<const std::string_view> schema_keys() { return kSchemaKeys; }
 
-std::string_view to_string(Dialect d) {
-  for (const auto& [name, e] : kDialects)
-    if (e == d) return name;
+namespace {
+// The name of `value` in one of the name tables above.
+template <class Enum, std::size_t N>
+std::string_view name_in(const std::array<std::pair<std::string_view, Enum>, N>& names,
+                         Enum value) {
+  for (const auto& [name, e] : names)
+    if (e == value) return name;
   return "?";
 }
-std::string_view to_string(OutputFormat f) {
-  for (const auto& [name, e] : kFormats)
-    if (e == f) return name;
-  return "?";
-}
-std::string_view to_string(SChangeInMotion m) {
-  for (const auto& [name, e] : kInMotion)
-    if (e == m) return name;
-  return "?";
-}
-std::string_view to_string(SInFeed f) {
-  for (const auto& [name, e] : kSInFeed)
-    if (e == f) return name;
-  return "?";
-}
-std::string_view to_string(ToolChange t) {
-  for (const auto& [name, e] : kToolChanges)
-    if (e == t) return name;
-  return "?";
-}
-std::string_view to_string(ToolChangeHome h) {
-  for (const auto& [name, e] : kToolChangeHomes)
-    if (e == h) return name;
-  return "?";
-}
+}  // namespace
+
+std::string_view to_string(Dialect d) { return name_in(kDialects, d); }
+std::string_view to_string(OutputFormat f) { return name_in(kFormats, f); }
+std::string_view to_string(SChangeInMotion m) { return name_in(kInMotion, m); }
+std::string_view to_string(SInFeed f) { return name_in(kSInFeed, f); }
+std::string_view to_string(ToolChange t) { return name_in(kToolChanges, t); }
+std::string_view to_string(ToolChangeHome h) { return name_in(kToolChangeHomes, h); }
 
 const SourceNote* MachineProfile::source_of(std::string_view key) const {
   const SourceNote* table_note = nullptr;

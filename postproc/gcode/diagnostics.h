@@ -45,6 +45,7 @@ enum class Code : std::uint16_t {
   missing_program_end = 1305,  // file ends without M2/M30/% (warning)
   external_macro = 1306,       // G65 to a macro not in the file: taken as not moving (warning)
   loop_limit = 1307,           // a loop runs more than the iteration limit
+  cycle_moves = 1308,          // one canned-cycle block makes more moves than the limit
   // 14xx: G/M codes and modal rules
   unknown_g_code = 1401,
   unknown_m_code = 1402,  // error in RS274NGC; warning in Fanuc/Mazak (machine M codes)

@@ -1319,9 +1319,9 @@ void Interpreter::canned_cycle(Step& step) {
     const bool pecks = (c == 730 || c == 830) && call.q > 0;
     const double per_hole = 3.0 * ((pecks ? (call.r - call.bottom) / call.q : 0.0) + 1.0) + 3.0;
     if (per_hole * call.repeats > static_cast<double>(limits_.max_cycle_moves))
-      fail(Code::loop_limit, column,
+      fail(Code::cycle_moves, column,
            "canned cycle makes more than " + std::to_string(limits_.max_cycle_moves) +
-               " moves in one block (L repeats times pecks)");
+               " moves in one block (L repeats times pecks), the limit");
     s.position = expand_cycle(call, step.events);
     s.moved = true;
   }

@@ -83,10 +83,11 @@ struct InterpreterLimits {
   // programs, set by callers that must end in bounded time (the fuzzers:
   // subroutines calling each other twice double at each level, no loop).
   std::uint64_t max_blocks = std::numeric_limits<std::uint64_t>::max();
-  // Moves one canned-cycle block may make (L repeats times pecks):
-  // unbounded for programs, bounded by the fuzzers (a Fanuc G83 with L320
-  // and Q2, 0.002 mm pecks, makes 3.5 M in one block).
-  std::uint64_t max_cycle_moves = std::numeric_limits<std::uint64_t>::max();
+  // Moves one canned-cycle block may make (L repeats times pecks): its
+  // moves are held at once, so the bound is the block's memory (about
+  // 100 MB). A Fanuc G83 with L320 and Q2, 0.002 mm pecks, makes 3.5 M;
+  // real peck drilling makes thousands. The fuzzers set less.
+  std::uint64_t max_cycle_moves = 1'000'000;
   // Warnings kept (later ones are counted only): memory stays flat even
   // when every block of a long program warns.
   std::size_t max_warnings = 1000;

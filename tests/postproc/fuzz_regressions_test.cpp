@@ -43,10 +43,10 @@ std::set<std::string> files_in(const fs::path& folder) {
 // once reached (those guards, E1401 and E1511, still take values up to 1e12).
 const std::map<std::string, std::string> kGcodeCases = {
     // A Fanuc G83 with L320 repeats and Q2 (0.002 mm pecks: no decimal
-    // point): 3.5 M moves in one block, 6 s under the sanitizers. A legal
-    // program, too slow to fuzz: the driver's interpreter limit on moves per
-    // cycle block (200,000) refuses it before expanding (E1307).
-    {"fanuc_micro_pecks_repeated.ngc", "rs274ngc:E1001 fanuc:E1307 mazak:E1307"},
+    // point): 3.5 M moves in one block, 6 s under the sanitizers. Past the
+    // product's limit of moves per cycle block (1,000,000) and the fuzz
+    // driver's (200,000): refused before expanding (E1308).
+    {"fanuc_micro_pecks_repeated.ngc", "rs274ngc:E1001 fanuc:E1308 mazak:E1308"},
     // G with a 70-digit number (8.9e66): its conversion to a code number
     // overflowed a long (UBSan).
     {"huge_g_code.ngc", "rs274ngc:E1003 fanuc:E1003 mazak:E1003"},

@@ -601,6 +601,36 @@ TEST(HostileInput, ProgramWithoutMotionIsRefusedWithoutEndWarned) {
       << r.err;
 }
 
+TEST(HostileInput, CannedCycleOfMillionsOfPecksIsRefusedInBoundedMemory) {
+  // A G83 with 0.0001 mm pecks down 10 mm, repeated 100 times: 30 M moves
+  // in one block, all held at once (gigabytes, then an OOM kill or
+  // bad_alloc). Now refused before expanding, under a 1 GB address space.
+  Folder work, logs;
+  write(work / "pecks.ngc",
+        "G21 G90 G17 G94\nF300 S2000 M3\nG0 X0 Y0 Z10\n"
+        "G91 G83 X1 Y0 Z-10 R2 Q0.0001 L100\nG90 G80\nM2\n");
+  const std::string where = (work / "pecks.ngc").string() + ":4:";
+  for (const auto& args :
+       {std::vector<std::string>{kVcpost, "moves", (work / "pecks.ngc").string()},
+        dome_job((work / "pecks.ngc").string(), {"-o", "-"})}) {
+    const ChildResult r = run(args, logs, [](ChildOptions& o) {
+      o.memory_limit = kAddressSpaceLimit;
+      o.timeout_s = 20;
+    });
+    EXPECT_EQ(r.shell_status(), 2) << args[1] << ": " << r.err;
+    EXPECT_NE(r.err.find(where), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("error[E1308]: canned cycle makes more than 1000000 moves in one block"),
+              std::string::npos)
+        << args[1] << ": " << r.err;
+  }
+  // The same cycle with 0.1 mm pecks (300 moves a hole) still reads.
+  write(work / "real.ngc",
+        "G21 G90 G17 G94\nF300 S2000 M3\nG0 X0 Y0 Z10\n"
+        "G91 G83 X1 Y0 Z-10 R2 Q0.1 L100\nG90 G80\nM2\n");
+  const ChildResult ok = run({kVcpost, "moves", (work / "real.ngc").string()}, logs);
+  EXPECT_EQ(ok.shell_status(), 0) << ok.err;
+}
+
 TEST(HostileInput, FailingStandardOutputIsExit2) {
   // `> /dev/full`: exit 0 before for all of these; the help promises 2.
   Folder logs;

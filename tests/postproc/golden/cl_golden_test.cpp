@@ -14,9 +14,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdint>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -30,6 +28,7 @@
 #include "postproc/program/transcript.h"
 #include "postproc/verify/verify.h"
 #include "tests/postproc/cldata/cl_support.h"
+#include "tests/postproc/golden/golden_support.h"
 
 namespace vcpost {
 namespace {
@@ -38,58 +37,9 @@ namespace fs = std::filesystem;
 
 const fs::path golden_dir = fs::path(VCPOST_SOURCE_DIR) / "tests/golden";
 const fs::path shared_dir = fs::path(VCPOST_SHARED_DATA_DIR);
-constexpr std::size_t whole_program_lines = 150;  // longer programs: digest, head and tail
-constexpr std::size_t head_tail_lines = 25;
-
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::string trimmed(std::string s) {
-  while (!s.empty() && (s.back() == '\n' || s.back() == '\r' || s.back() == ' ')) s.pop_back();
-  return s;
-}
-
-// FNV-1a, 64 bits: a stable digest with no dependency.
-std::string digest(std::string_view text) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (const unsigned char c : text) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%016llx", static_cast<unsigned long long>(h));
-  return buffer;
-}
-
-std::vector<std::string_view> lines_of(std::string_view text) {
-  std::vector<std::string_view> lines;
-  std::size_t at = 0;
-  while (at < text.size()) {
-    const std::size_t end = text.find('\n', at);
-    const std::size_t stop = end == std::string_view::npos ? text.size() : end + 1;
-    lines.push_back(text.substr(at, stop - at));
-    at = stop;
-  }
-  return lines;
-}
-
-// The stored form of a program: whole when short, else its size, digest,
-// first and last lines.
-std::string stored_program(const std::string& program) {
-  const auto lines = lines_of(program);
-  if (lines.size() <= whole_program_lines) return program;
-  std::string out = "lines " + std::to_string(lines.size()) + " bytes " +
-                    std::to_string(program.size()) + " fnv1a64 " + digest(program) + "\n";
-  out += "-- head\n";
-  for (std::size_t i = 0; i < head_tail_lines; ++i) out += lines[i];
-  out += "-- tail\n";
-  for (std::size_t i = lines.size() - head_tail_lines; i < lines.size(); ++i) out += lines[i];
-  return out;
-}
+using golden::read;
+using golden::stored_program;
+using golden::trimmed;
 
 struct Posted {
   int exit_code = 0;    // as `vcpost` would end: 0 written, 2 refused input
@@ -215,7 +165,7 @@ TEST(GoldenCl, GrblRefusalFindsWhatGrblRefuses) {
 
 TEST(GoldenCl, EveryCaseEqualsItsStoredResultVerifiesAndRunsInRs274) {
   if (!fs::is_directory(shared_dir)) GTEST_SKIP() << "no shared data at " << shared_dir;
-  const bool update = std::getenv("VCPOST_GOLDEN_UPDATE") != nullptr;
+  const bool update = golden::updating();
   int cases = 0, written = 0;
   for (const auto& entry : fs::directory_iterator(golden_dir)) {
     if (!entry.is_directory() || !fs::exists(entry.path() / "input")) continue;

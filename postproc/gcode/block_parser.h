@@ -47,6 +47,7 @@ class BlockParser : public ExpressionReader {
   bool r_assignment_follows() const;  // "R12 = ..." (not an R word)
   void read_r_assignment(Block& out);
   void read_siemens_keyword(Block& out);
+  Word read_keyword_word(char letter, std::size_t start, const char* no_equals);  // CR=, TURN=
   std::string read_quoted_call(std::size_t start, const std::string& key);
   std::vector<std::optional<double>> read_call_arguments(std::size_t start, const std::string& key);
   void skip_parenthesised();

@@ -122,6 +122,23 @@ void BlockParser::skip_parenthesised() {
   fail(Code::bad_expression, i_ == 0 ? 0 : i_ - 1, "'(' not closed with ')'");
 }
 
+// "KEY = expression" after a keyword that began at `start`: the word of
+// `letter` it stands for, spanning the keyword and its value.
+Word BlockParser::read_keyword_word(char letter, std::size_t start, const char* no_equals) {
+  skip_blanks();
+  if (at_end() || s_[i_] != '=') fail(Code::bad_expression, start, no_equals);
+  ++i_;
+  Word w;
+  w.letter = letter;
+  w.column = static_cast<std::uint32_t>(start + 1);
+  w.begin = static_cast<std::uint32_t>(start);
+  w.value = binary(0, start).number;
+  w.decimal_point = true;
+  w.computed = true;
+  w.end = static_cast<std::uint32_t>(i_);
+  return w;
+}
+
 void BlockParser::read_siemens_keyword(Block& out) {
   const std::size_t start = i_;
   std::string key;
@@ -134,34 +151,14 @@ void BlockParser::read_siemens_keyword(Block& out) {
   }
   if (key == "CR") {
     // CR=<radius>: the arc radius (the R word of the other dialects).
-    skip_blanks();
-    if (at_end() || s_[i_] != '=') fail(Code::bad_expression, start, "CR needs '=' and a radius");
-    ++i_;
-    Word w;
-    w.letter = 'R';
-    w.column = column;
-    w.begin = static_cast<std::uint32_t>(start);
-    w.value = binary(0, start).number;
-    w.decimal_point = true;
-    w.computed = true;
-    w.end = static_cast<std::uint32_t>(i_);
-    push_word(out, w);
+    push_word(out, read_keyword_word('R', start, "CR needs '=' and a radius"));
     return;
   }
   if (key == "TURN") {
     // TURN=n: n full turns more than the helix's end point says; the P
     // (turns) word of RS274NGC arcs, which counts them all.
-    skip_blanks();
-    if (at_end() || s_[i_] != '=') fail(Code::bad_expression, start, "TURN needs '=' and a count");
-    ++i_;
-    Word w;
-    w.letter = 'P';
-    w.column = column;
-    w.begin = static_cast<std::uint32_t>(start);
-    w.value = binary(0, start).number + 1.0;
-    w.decimal_point = true;
-    w.computed = true;
-    w.end = static_cast<std::uint32_t>(i_);
+    Word w = read_keyword_word('P', start, "TURN needs '=' and a count");
+    w.value += 1.0;
     push_word(out, w);
     return;
   }

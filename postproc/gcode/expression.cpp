@@ -41,23 +41,13 @@ Value ExpressionReader::unary(std::size_t word_start) {
   fail(Code::bad_expression, i_, std::string("unexpected '") + c + "' where a value is expected");
 }
 
-// Sinumerik: ( expression ).
-Value ExpressionReader::paren() {
+// The expression between the opening character at the cursor and `close`.
+Value ExpressionReader::enclosed(char close, const char* not_closed) {
   const std::size_t open = i_;
   ++i_;
   Value v = binary(0, open);
   skip_blanks();
-  if (at_end() || s_[i_] != ')') fail(Code::bad_expression, open, "'(' not closed with ')'");
-  ++i_;
-  return v;
-}
-
-Value ExpressionReader::bracket() {
-  const std::size_t open = i_;
-  ++i_;
-  Value v = binary(0, open);
-  skip_blanks();
-  if (at_end() || s_[i_] != ']') fail(Code::bad_expression, open, "'[' not closed with ']'");
+  if (at_end() || s_[i_] != close) fail(Code::bad_expression, open, not_closed);
   ++i_;
   return v;
 }

@@ -37,8 +37,8 @@ class ExpressionReader : public Lexer {
   Value unary(std::size_t word_start);
   // Operators of precedence `min_precedence` and up, left to right.
   Value binary(int min_precedence, std::size_t open);
-  Value bracket();  // [ expression ]
-  Value paren();    // Sinumerik: ( expression )
+  Value bracket() { return enclosed(']', "'[' not closed with ']'"); }  // [ expression ]
+  Value paren() { return enclosed(')', "'(' not closed with ')'"); }    // Sinumerik: ( expression )
 
   // A parameter reference after '#': its number, or its normalised name.
   struct Ref {
@@ -75,6 +75,7 @@ class ExpressionReader : public Lexer {
     or_,
     xor_
   };
+  Value enclosed(char close, const char* not_closed);
   Op peek_op(std::size_t& length) const;
   static int precedence(Op op);
   // An operation whose result overflows (or is not a number) fails here, so

@@ -287,6 +287,27 @@ class Reader {
   const std::string& file_;
 };
 
+// The checks of a value against the limits above, worded once: "must be at
+// least <limit><rest>" and "must be at most <limit><rest>"; `rest` is the
+// unit (" rpm") and any note.
+void require_at_least(const Reader& r, double v, double lo, std::string_view tbl,
+                      std::string_view key, std::string_view rest) {
+  r.require(v >= lo, tbl, key, cat({"must be at least ", limit_text(lo), rest}));
+}
+void require_at_most(const Reader& r, double v, double hi, std::string_view tbl,
+                     std::string_view key, std::string_view rest) {
+  r.require(v <= hi, tbl, key, cat({"must be at most ", limit_text(hi), rest}));
+}
+
+// The low end of a range not above its high end, two keys of one table.
+void require_ordered(const Reader& r, std::string_view tbl, std::string_view lo_key, double lo,
+                     std::string_view hi_key, double hi) {
+  r.require(lo <= hi, tbl, lo_key,
+            cat({"(", number_text(lo), ") is greater than ", tbl, ".", hi_key, " (",
+                 number_text(hi), ")"}),
+            codes::inconsistent);
+}
+
 constexpr std::array<std::pair<std::string_view, Dialect>, 4> kDialects = {
     {{"rs274ngc", Dialect::rs274ngc},
      {"fanuc", Dialect::fanuc},
@@ -355,30 +376,23 @@ SpindleSpec read_spindle(const Reader& r) {
   SpindleSpec s;
   s.n_min_rpm = *r.number("spindle", "n_min_rpm", true);
   // Below 1 rpm a whole S is 0, which means spindle off.
-  r.require(s.n_min_rpm >= kMinSpindleRpm, "spindle", "n_min_rpm",
-            cat({"must be at least ", limit_text(kMinSpindleRpm), " rpm"}));
+  require_at_least(r, s.n_min_rpm, kMinSpindleRpm, "spindle", "n_min_rpm", " rpm");
   s.n_max_rpm = *r.number("spindle", "n_max_rpm", true);
   r.require(s.n_max_rpm > 0, "spindle", "n_max_rpm", "must be > 0 rpm");
-  r.require(s.n_max_rpm <= kMaxSpindleRpm, "spindle", "n_max_rpm",
-            cat({"must be at most ", limit_text(kMaxSpindleRpm), " rpm"}));
-  r.require(s.n_min_rpm <= s.n_max_rpm, "spindle", "n_min_rpm",
-            cat({"(", number_text(s.n_min_rpm), ") is greater than spindle.n_max_rpm (",
-                 number_text(s.n_max_rpm), ")"}),
-            codes::inconsistent);
+  require_at_most(r, s.n_max_rpm, kMaxSpindleRpm, "spindle", "n_max_rpm", " rpm");
+  require_ordered(r, "spindle", "n_min_rpm", s.n_min_rpm, "n_max_rpm", s.n_max_rpm);
   s.acceleration_rpm_per_s = *r.number("spindle", "acceleration_rpm_per_s", true);
-  r.require(s.acceleration_rpm_per_s >= kMinSpindleRate, "spindle", "acceleration_rpm_per_s",
-            cat({"must be at least ", limit_text(kMinSpindleRate), " rpm/s"}));
-  r.require(s.acceleration_rpm_per_s <= kMaxSpindleRate, "spindle", "acceleration_rpm_per_s",
-            cat({"must be at most ", limit_text(kMaxSpindleRate), " rpm/s"}));
+  require_at_least(r, s.acceleration_rpm_per_s, kMinSpindleRate, "spindle",
+                   "acceleration_rpm_per_s", " rpm/s");
+  require_at_most(r, s.acceleration_rpm_per_s, kMaxSpindleRate, "spindle", "acceleration_rpm_per_s",
+                  " rpm/s");
   s.deceleration_rpm_per_s = *r.number("spindle", "deceleration_rpm_per_s", true);
-  r.require(s.deceleration_rpm_per_s >= kMinSpindleRate, "spindle", "deceleration_rpm_per_s",
-            cat({"must be at least ", limit_text(kMinSpindleRate),
-                 " rpm/s (a rate, given without sign)"}));
-  r.require(s.deceleration_rpm_per_s <= kMaxSpindleRate, "spindle", "deceleration_rpm_per_s",
-            cat({"must be at most ", limit_text(kMaxSpindleRate), " rpm/s"}));
+  require_at_least(r, s.deceleration_rpm_per_s, kMinSpindleRate, "spindle",
+                   "deceleration_rpm_per_s", " rpm/s (a rate, given without sign)");
+  require_at_most(r, s.deceleration_rpm_per_s, kMaxSpindleRate, "spindle", "deceleration_rpm_per_s",
+                  " rpm/s");
   s.s_resolution_rpm = *r.number("spindle", "s_resolution_rpm", true);
-  r.require(s.s_resolution_rpm >= kMinResolutionRpm, "spindle", "s_resolution_rpm",
-            cat({"must be at least ", limit_text(kMinResolutionRpm), " rpm"}));
+  require_at_least(r, s.s_resolution_rpm, kMinResolutionRpm, "spindle", "s_resolution_rpm", " rpm");
   r.require(s.s_resolution_rpm <= s.n_max_rpm, "spindle", "s_resolution_rpm",
             "must be at most spindle.n_max_rpm");
   r.require(
@@ -396,8 +410,7 @@ SpindleSpec read_spindle(const Reader& r) {
   r.require(s.max_changes_per_s >= kMinChangesPerS, "spindle", "max_changes_per_s",
             cat({"must be at least ", limit_text(kMinChangesPerS), " (one S word per ",
                  limit_text(1 / kMinChangesPerS), " s)"}));
-  r.require(s.max_changes_per_s <= kMaxChangesPerS, "spindle", "max_changes_per_s",
-            cat({"must be at most ", limit_text(kMaxChangesPerS)}));
+  require_at_most(r, s.max_changes_per_s, kMaxChangesPerS, "spindle", "max_changes_per_s", "");
   s.change_in_motion = r.choice("spindle", "change_in_motion", kInMotion);
   s.change_code = r.string("spindle", "change_code", false).value_or("");
   if (s.change_in_motion == SChangeInMotion::code) {
@@ -435,8 +448,7 @@ ControlSpec read_control(const Reader& r) {
   c.block_time_s = *r.number("control", "block_time_s", true);
   r.require(c.block_time_s == 0 || c.block_time_s >= kMinTimeS, "control", "block_time_s",
             cat({"must be 0 or at least ", limit_text(kMinTimeS), " s"}));
-  r.require(c.block_time_s <= kMaxBlockTimeS, "control", "block_time_s",
-            cat({"must be at most ", limit_text(kMaxBlockTimeS), " s"}));
+  require_at_most(r, c.block_time_s, kMaxBlockTimeS, "control", "block_time_s", " s");
   return c;
 }
 
@@ -444,22 +456,15 @@ ControlSpec read_control(const Reader& r) {
 FeedSpec read_feed(const Reader& r) {
   FeedSpec f;
   f.f_min_mm_per_min = *r.number("feed", "f_min_mm_per_min", true);
-  r.require(f.f_min_mm_per_min >= kMinFeed, "feed", "f_min_mm_per_min",
-            cat({"must be at least ", limit_text(kMinFeed), " mm/min"}));
-  r.require(f.f_min_mm_per_min <= kMaxFeed, "feed", "f_min_mm_per_min",
-            cat({"must be at most ", limit_text(kMaxFeed), " mm/min"}));
+  require_at_least(r, f.f_min_mm_per_min, kMinFeed, "feed", "f_min_mm_per_min", " mm/min");
+  require_at_most(r, f.f_min_mm_per_min, kMaxFeed, "feed", "f_min_mm_per_min", " mm/min");
   f.f_max_mm_per_min = *r.number("feed", "f_max_mm_per_min", true);
-  r.require(f.f_min_mm_per_min <= f.f_max_mm_per_min, "feed", "f_min_mm_per_min",
-            cat({"(", number_text(f.f_min_mm_per_min), ") is greater than feed.f_max_mm_per_min (",
-                 number_text(f.f_max_mm_per_min), ")"}),
-            codes::inconsistent);
+  require_ordered(r, "feed", "f_min_mm_per_min", f.f_min_mm_per_min, "f_max_mm_per_min",
+                  f.f_max_mm_per_min);
   f.rapid_mm_per_min = *r.number("feed", "rapid_mm_per_min", true);
-  r.require(f.rapid_mm_per_min >= kMinRapid, "feed", "rapid_mm_per_min",
-            cat({"must be at least ", limit_text(kMinRapid), " mm/min"}));
-  r.require(f.f_max_mm_per_min <= kMaxFeed, "feed", "f_max_mm_per_min",
-            cat({"must be at most ", limit_text(kMaxFeed), " mm/min"}));
-  r.require(f.rapid_mm_per_min <= kMaxFeed, "feed", "rapid_mm_per_min",
-            cat({"must be at most ", limit_text(kMaxFeed), " mm/min"}));
+  require_at_least(r, f.rapid_mm_per_min, kMinRapid, "feed", "rapid_mm_per_min", " mm/min");
+  require_at_most(r, f.f_max_mm_per_min, kMaxFeed, "feed", "f_max_mm_per_min", " mm/min");
+  require_at_most(r, f.rapid_mm_per_min, kMaxFeed, "feed", "rapid_mm_per_min", " mm/min");
   return f;
 }
 

@@ -871,16 +871,7 @@ void ClReader::cutter(const ClRecord& r) {
   if (n == 0 || n > 7) {
     fail(ClCode::wrong_parameters, r, "CUTTER needs 1 to 7 values, has " + std::to_string(n));
   }
-  std::vector<double> v(n);
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const bool angle = i == 4 || i == 5;
-    v[i] = r.params[i].value * (angle ? 1.0 : unit_);
-  }
-  ClCutter c = cutter_from_apt(v);
-  c.source = r.source;
-  if (!c.tool) warn(ClCode::tool_not_modelled, r.source, "CUTTER: " + c.why_not);
-  cutters_.push_back(std::move(c));
-  note_cutter(r);
+  add_cutter(cutter_from_apt(cutter_values(r, 0, n)), r, "CUTTER: ");
 }
 
 void ClReader::tldata(const ClRecord& r) {
@@ -891,22 +882,34 @@ void ClReader::tldata(const ClRecord& r) {
     ClCutter c;
     c.source_word = "TLDATA/" + std::string(r.params[0].text);
     c.why_not = "TLDATA/" + std::string(r.params[0].text) + " is not a milling cutter";
-    c.source = r.source;
-    warn(ClCode::tool_not_modelled, r.source, c.why_not);
-    cutters_.push_back(std::move(c));
-    note_cutter(r);
+    add_cutter(std::move(c), r, "");
     return;
   }
   if (r.params.size() < 3) fail(ClCode::wrong_parameters, r, "TLDATA/MILL needs d and r");
+  add_cutter(cutter_from_tldata_mill(cutter_values(r, 1, r.params.size())), r, "TLDATA/MILL: ");
+}
+
+// Parameters [first, last) of a CUTTER or TLDATA record as the cutter's
+// values: lengths in mm, the angles (parameters 4 and 5 of both records)
+// in degrees as written.
+std::vector<double> ClReader::cutter_values(const ClRecord& r, std::size_t first,
+                                            std::size_t last) const {
   std::vector<double> v;
-  for (std::size_t i = 1; i < r.params.size(); ++i) {
+  v.reserve(last - first);
+  for (std::size_t i = first; i < last; ++i) {
     const double x = number(r, i);
     const bool angle = i == 4 || i == 5;
     v.push_back(angle ? x : x * unit_);
   }
-  ClCutter c = cutter_from_tldata_mill(v);
+  return v;
+}
+
+// A cutter record's cutter: kept (in record order), a warning when the
+// engine cannot model it (`what` names the record), and a tool change
+// when it is another cutter (note_cutter).
+void ClReader::add_cutter(ClCutter c, const ClRecord& r, std::string_view what) {
   c.source = r.source;
-  if (!c.tool) warn(ClCode::tool_not_modelled, r.source, "TLDATA/MILL: " + c.why_not);
+  if (!c.tool) warn(ClCode::tool_not_modelled, r.source, std::string(what) + c.why_not);
   cutters_.push_back(std::move(c));
   note_cutter(r);
 }

@@ -80,6 +80,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "postproc/cldata/cl_codes.h"
@@ -151,6 +152,8 @@ class ClReader {
   void toolno(const ClRecord& r);
   void tool_changed(int number);
   void note_cutter(const ClRecord& r);
+  std::vector<double> cutter_values(const ClRecord& r, std::size_t first, std::size_t last) const;
+  void add_cutter(ClCutter c, const ClRecord& r, std::string_view what);
   void begin_motion(const program::SourceRef& src);
   void load_or_select(const ClRecord& r);
   void units(const ClRecord& r);

@@ -56,10 +56,7 @@ Format format_for(const machines::MachineProfile& profile) {
   format.percent_lines = o.percent_lines;
   format.tool_length_offset = o.tool_length_offset;
   format.manual_tool_change = o.tool_change == machines::ToolChange::manual;
-  format.home_before_tool_change =
-      o.tool_change_home == machines::ToolChangeHome::g28   ? HomeMove::g28
-      : o.tool_change_home == machines::ToolChangeHome::g53 ? HomeMove::g53
-                                                            : HomeMove::none;
+  format.home_before_tool_change = o.tool_change_home;
   format.coolant_mist = o.coolant_mist;
   format.coolant_flood = o.coolant_flood;
   format.coolant_off = o.coolant_off;
@@ -516,17 +513,18 @@ void GcodeWriter::change_tool(const program::ChangeTool& change) {
     high_speed_on_ = false;
   }
   switch (format_.home_before_tool_change) {
-    case HomeMove::none:
+    case machines::ToolChangeHome::none:
       break;
-    case HomeMove::g28:  // incremental Z0: straight up from here, then to the reference point
+    case machines::ToolChangeHome::g28:
+      // Incremental Z0: straight up from here, then to the reference point.
       block("G91 G28 Z0.");
       block("G90");
       break;
-    case HomeMove::g53:
+    case machines::ToolChangeHome::g53:
       block("G53 G0 Z0.");
       break;
   }
-  if (format_.home_before_tool_change != HomeMove::none) {
+  if (format_.home_before_tool_change != machines::ToolChangeHome::none) {
     last_z_.clear();  // Z is no longer where the program left it
     at_known_ = false;
   }

@@ -47,11 +47,8 @@
 #include <string_view>
 
 #include "core/error.h"
+#include "machines/profile.h"
 #include "postproc/program/events.h"
-
-namespace vcpost::machines {
-class MachineProfile;
-}
 
 namespace vcpost::output {
 
@@ -59,13 +56,6 @@ enum class DwellWord {
   x_seconds,      // G04 X1.5 (Mazak, Fanuc)
   p_seconds,      // G04 P1.5 (RS274NGC / LinuxCNC)
   p_milliseconds  // G04 P1500 (Fanuc without a decimal point)
-};
-
-// The move up before a tool change (see machines::ToolChangeHome).
-enum class HomeMove {
-  none,  // the control's M6 moves itself
-  g28,   // G91 G28 Z0. / G90
-  g53    // G53 G0 Z0.
 };
 
 // The output format of a machine profile (format_for() fills it from one).
@@ -87,7 +77,9 @@ struct Format {
   // A tool change as M5 (when the spindle turns), a comment naming the tool
   // and T<n> M0 (the operator changes it), for a control without M6 (grbl).
   bool manual_tool_change = false;
-  HomeMove home_before_tool_change = HomeMove::none;
+  // The move up before a tool change: none (the control's M6 moves
+  // itself), g28 (G91 G28 Z0. / G90) or g53 (G53 G0 Z0.).
+  machines::ToolChangeHome home_before_tool_change = machines::ToolChangeHome::none;
   std::string coolant_mist = "M7", coolant_flood = "M8", coolant_off = "M9";
   DwellWord dwell = DwellWord::x_seconds;  // also the cycles' P: seconds in rs274ngc, else ms
   bool canned_cycles = false;              // CannedCycle events as cycles (else their moves)

@@ -23,7 +23,7 @@
 #include "postproc/post/offset_diagnosis.h"
 #include "postproc/post/path_reader.h"
 #include "postproc/post/program_writer.h"
-#include "postproc/post/vc_bands.h"
+#include "postproc/post/tallies.h"
 
 namespace vcpost::post {
 namespace {
@@ -36,33 +36,6 @@ constexpr double unbounded_rpm = 1e12;
 // threads), which costs little at this size.
 constexpr std::size_t chunk_samples = 2048;
 
-// Cutting-speed statistics, accumulated sample by sample.
-class VcAccumulator {
- public:
-  void add(double d_ref, double weight_s, double rpm, double nominal) {
-    if (std::isnan(d_ref) || weight_s <= 0) return;
-    const double vc = geometry::cutting_speed(d_ref, rpm);
-    out_.min = std::min(out_.min, vc);
-    out_.max = std::max(out_.max, vc);
-    out_.mean += weight_s * vc;
-    bands_.add(vc, nominal, weight_s);
-    weight_ += weight_s;
-  }
-  std::optional<VcStatistics> result() const {
-    if (weight_ <= 0) return std::nullopt;
-    VcStatistics r = out_;
-    r.mean /= weight_;
-    r.within_5_percent = bands_.within_5 / weight_;
-    r.within_10_percent = bands_.within_10 / weight_;
-    return r;
-  }
-
- private:
-  VcStatistics out_{INFINITY, -INFINITY, 0, 0, 0};
-  VcBandTimes bands_;
-  double weight_ = 0;
-};
-
 // What the last stage keeps of an evaluated sample until its block is final.
 struct HeldSample {
   float d_ref = NAN;  // mm; NaN where the tool does not cut
@@ -70,6 +43,13 @@ struct HeldSample {
   std::size_t block = 0;
   double time_s = 0;
 };
+// A held sample's vc at `rpm` into a tally; one that does not cut (d_ref
+// NaN) counts nothing.
+void tally_vc(VcTally& tally, const HeldSample& h, double rpm, double nominal) {
+  if (std::isnan(h.d_ref)) return;
+  tally.add(geometry::cutting_speed(h.d_ref, rpm), nominal, h.weight_s);
+}
+
 // ... and for the points sink, the whole point.
 struct HeldPoint {
   pipeline::PathSample sample;
@@ -90,7 +70,7 @@ constexpr std::size_t max_pending_blocks = 1 << 16;
 struct SectionLedger {
   std::size_t summary_index = 0;  // in PostSummary::sections
   SectionState state = SectionState::kept;
-  VcAccumulator before, after;
+  VcTally before, after;
   std::optional<OffsetHistogram> offsets;  // postable sections
   bool timed = false;                      // start_s set
 };
@@ -184,8 +164,8 @@ class Finisher {
     emit();
     release();
     writer_.finish();
-    summary_.before = before_.result();
-    summary_.after = after_.result();
+    summary_.before = before_.statistics();
+    summary_.after = after_.statistics();
     close_placement();
     SPlacement& placement = summary_.s_placement;
     placement.at_stops = spindle_.stops_path_on_change;
@@ -202,8 +182,8 @@ class Finisher {
       ToolSection* s = summary_section(static_cast<std::uint32_t>(i));
       if (!s) continue;
       s->posted = l.state == SectionState::posted;
-      s->before = l.before.result();
-      s->after = l.after.result();
+      s->before = l.before.statistics();
+      s->after = l.after.statistics();
       s->s_words = writer_.s_words(static_cast<std::uint32_t>(i));
       s->f_words = writer_.f_words(static_cast<std::uint32_t>(i));
       if (l.offsets) {
@@ -266,24 +246,8 @@ class Finisher {
     SectionLedger& ledger = ledgers_[slot.section];
     ToolSection& section = summary_.sections[ledger.summary_index];
     ++section.points;
-    switch (r.contact.status) {
-      case geometry::BallStatus::touching:
-        ++summary_.touching;
-        ++section.touching;
-        break;
-      case geometry::BallStatus::lifted:
-        ++summary_.lifted;
-        ++section.lifted;
-        break;
-      case geometry::BallStatus::gouging:
-        ++summary_.gouging;
-        ++section.gouging;
-        break;
-      case geometry::BallStatus::missed:
-        ++summary_.missed;
-        ++section.missed;
-        break;
-    }
+    summary_.count_contact(r.contact.status);
+    section.count_contact(r.contact.status);
     if (r.contact.status != geometry::BallStatus::missed && ledger.offsets)
       ledger.offsets->add(r.contact.distance_error);
     // Posted from its first touching point: a section that only gouges
@@ -383,8 +347,8 @@ class Finisher {
     if (!placement_) return;
     SectionPlacement& p = placement_->placement;
     p.time_cost_s = static_cast<double>(p.stops) * spindle_.stop_cost_s;
-    p.before = placement_->before.result();
-    p.after = placement_->after.result();
+    p.before = placement_->before.statistics();
+    p.after = placement_->after.statistics();
     summary_.s_placement.sections.push_back(p);
     placement_.reset();
   }
@@ -404,13 +368,13 @@ class Finisher {
     while (!held_.empty() && held_.front().block <= block.block) {
       HeldSample& h = held_.front();
       if (posted) {
-        before_.add(h.d_ref, h.weight_s, program_s, nominal);
-        after_.add(h.d_ref, h.weight_s, block.planned_rpm, nominal);
-        ledger->before.add(h.d_ref, h.weight_s, program_s, nominal);
-        ledger->after.add(h.d_ref, h.weight_s, block.planned_rpm, nominal);
+        tally_vc(before_, h, program_s, nominal);
+        tally_vc(after_, h, block.planned_rpm, nominal);
+        tally_vc(ledger->before, h, program_s, nominal);
+        tally_vc(ledger->after, h, block.planned_rpm, nominal);
         if (placement_) {
-          placement_->before.add(h.d_ref, h.weight_s, program_s, nominal);
-          placement_->after.add(h.d_ref, h.weight_s, block.planned_rpm, nominal);
+          tally_vc(placement_->before, h, program_s, nominal);
+          tally_vc(placement_->after, h, block.planned_rpm, nominal);
           if (!std::isnan(h.d_ref)) placement_->placement.cutting_time_s += h.weight_s;
         }
       }
@@ -448,7 +412,7 @@ class Finisher {
 
   struct Placement {
     SectionPlacement placement;
-    VcAccumulator before, after;
+    VcTally before, after;
   };
 
   SpindlePlanner planner_;
@@ -460,7 +424,7 @@ class Finisher {
   const PointSink& points_;
   PostSummary& summary_;
   double tolerance_;
-  VcAccumulator before_, after_;
+  VcTally before_, after_;
   std::vector<SectionLedger> ledgers_;  // by section index
   std::vector<bool> has_summary_;       // by section index: a ToolSection exists
   std::vector<double> vc_;              // nominal vc by section index (posted ones)

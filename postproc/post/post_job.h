@@ -79,10 +79,10 @@ struct SPlacement {
   std::vector<SectionPlacement> sections;
 };
 
-struct PostSummary {
+// The evaluated samples by contact state are the ContactCounts it derives from.
+struct PostSummary : ContactCounts {
   ProgramKind kind = ProgramKind::gcode;
   std::uint64_t blocks = 0, motion_events = 0, samples = 0;
-  std::uint64_t touching = 0, lifted = 0, gouging = 0, missed = 0;
   std::uint64_t ae_measured = 0, ae_given = 0, ae_first_pass = 0;
   double program_time_s = 0, cutting_time_s = 0;
   std::uint64_t s_words = 0, f_words = 0;

@@ -9,17 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "postproc/post/tallies.h"
 #include "postproc/tools/tool_table.h"
 
 namespace vcpost::post {
-
-// Statistics of the cutting speed over the cutting samples, weighted by
-// cutting time. vc in m/min at the reference diameter.
-struct VcStatistics {
-  double min = 0, max = 0, mean = 0;
-  double within_5_percent = 0;   // share of cutting time with |vc/vc_nom - 1| <= 5 %
-  double within_10_percent = 0;  // ... <= 10 %
-};
 
 // How far the tool sits from the model where it does not touch: the
 // signed distance of the ball from the surface (distance_error of
@@ -37,8 +30,9 @@ struct OffsetDiagnosis {
   std::string causes;    // the likely causes, in words
 };
 
-// One section of the program: from a tool change (or the start) to the next.
-struct ToolSection {
+// One section of the program: from a tool change (or the start) to the next;
+// its points by contact state are the ContactCounts it derives from.
+struct ToolSection : ContactCounts {
   std::uint32_t index = 0;  // 0 before the first tool change, then one per tool change
   std::optional<int> tool;  // T number; empty before any tool change
   std::optional<tools::ToolEntry> entry;  // what decided the tool; empty: nothing names it
@@ -49,9 +43,8 @@ struct ToolSection {
   double vc_nominal = 0;                  // m/min (posted sections)
 
   // Filled as the job runs.
-  double start_s = 0, end_s = 0;  // program time of its first and last motion
-  std::uint64_t points = 0;       // path samples (evaluated when postable)
-  std::uint64_t touching = 0, lifted = 0, gouging = 0, missed = 0;
+  double start_s = 0, end_s = 0;           // program time of its first and last motion
+  std::uint64_t points = 0;                // path samples (evaluated when postable)
   std::uint64_t s_words = 0, f_words = 0;  // written in its blocks
   std::optional<VcStatistics> before, after;
   DepthStatistics gouge, lift;

@@ -47,19 +47,17 @@ json speed_json(const SpeedStatistics& s) {
 }
 
 // The contact tally of a set of points.
-json points_json(std::uint64_t total, std::uint64_t touching, std::uint64_t lifted,
-                 std::uint64_t missed, std::uint64_t gouging) {
+json points_json(std::uint64_t total, const post::ContactCounts& c) {
   return {{"total", total},
-          {"touching", touching},
-          {"lifted", lifted},
-          {"missed", missed},
-          {"gouging", gouging}};
+          {"touching", c.touching},
+          {"lifted", c.lifted},
+          {"missed", c.missed},
+          {"gouging", c.gouging}};
 }
 
 // ... with where each point's ae came from.
-json points_json(std::uint64_t total, std::uint64_t touching, std::uint64_t lifted,
-                 std::uint64_t missed, std::uint64_t gouging, const post::PostSummary& job) {
-  json out = points_json(total, touching, lifted, missed, gouging);
+json points_json(std::uint64_t total, const post::ContactCounts& c, const post::PostSummary& job) {
+  json out = points_json(total, c);
   out["ae_measured"] = job.ae_measured;
   out["ae_given"] = job.ae_given;
   out["ae_first_pass"] = job.ae_first_pass;
@@ -126,8 +124,7 @@ json section_json(const post::ToolSection& section) {
           {"reason", section.reason},
           {"vc_nominal", section.posted ? json(section.vc_nominal) : nullptr},
           {"time_s", {{"start", section.start_s}, {"end", section.end_s}}},
-          {"points", points_json(section.points, section.touching, section.lifted, section.missed,
-                                 section.gouging)},
+          {"points", points_json(section.points, section)},
           {"gouge_depth", depth_json(section.gouge)},
           {"lift_height", depth_json(section.lift)},
           {"offset", offset_json(section.offset)},
@@ -208,7 +205,7 @@ json report_json(const ReportData& data) {
   const post::PostSummary& job = data.summary;
   json out =
       common_json(kReportSchema, data.inputs, true, data.inputs.vc_nominal, job, data.run_time_s);
-  json points = points_json(st.points, st.touching, st.lifted, st.missed, st.gouging, job);
+  json points = points_json(st.points, st, job);
   points["cutting"] = st.cutting_points;
   points["no_contact"] = st.lifted + st.missed;
   points["no_cut"] = st.no_cut;
@@ -229,8 +226,7 @@ json post_summary_json(const ReportInputs& inputs, bool tool_posted,
       common_json(kSummarySchema, inputs, tool_posted,
                   tool_posted ? json(inputs.vc_nominal) : json(nullptr), summary, run_time_s);
   out["motion_events"] = summary.motion_events;
-  out["points"] = points_json(summary.samples, summary.touching, summary.lifted, summary.missed,
-                              summary.gouging, summary);
+  out["points"] = points_json(summary.samples, summary, summary);
   out["before"] = speed_json(summary.before);
   json after = speed_json(summary.after);
   after["time_s"] = {{"clamped_n_max", summary.time_clamped_max_s},

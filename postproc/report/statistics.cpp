@@ -75,20 +75,7 @@ StatisticsAccumulator::StatisticsAccumulator(double vc_nominal, double tool_radi
 
 void StatisticsAccumulator::add(const PointRow& row) {
   ++counts_.points;
-  switch (row.status) {
-    case geometry::BallStatus::touching:
-      ++counts_.touching;
-      break;
-    case geometry::BallStatus::lifted:
-      ++counts_.lifted;
-      break;
-    case geometry::BallStatus::missed:
-      ++counts_.missed;
-      break;
-    case geometry::BallStatus::gouging:
-      ++counts_.gouging;
-      break;
-  }
+  counts_.count_contact(row.status);
   if (row.has(PointFlag::no_cut)) ++counts_.no_cut;
   const double w = row.weight_s;
   counts_.cutting_time_s += w;
@@ -96,7 +83,7 @@ void StatisticsAccumulator::add(const PointRow& row) {
     ++counts_.cutting_points;
     auto add_side = [&](Side& side, double vc) {
       side.vc.add(vc, w);
-      side.bands.add(vc, vc_nominal_, w);
+      side.tally.add(vc, vc_nominal_, w);
     };
     add_side(before_, *row.vc_before);
     add_side(after_, *row.vc_after);
@@ -119,13 +106,12 @@ ReportStatistics StatisticsAccumulator::result() const {
   auto side_result = [](const Side& side, bool with_slew) {
     SpeedStatistics s;
     s.vc = distribution(side.vc);
-    const double total = side.vc.total_weight();
-    if (total > 0) {
-      s.within_5_percent = side.bands.within_5 / total;
-      s.within_10_percent = side.bands.within_10 / total;
+    if (const auto vc = side.tally.statistics()) {
+      s.within_5_percent = vc->within_5_percent;
+      s.within_10_percent = vc->within_10_percent;
     }
-    s.below_nominal_time_s = side.bands.below;
-    s.above_nominal_time_s = side.bands.above;
+    s.below_nominal_time_s = side.tally.bands().below;
+    s.above_nominal_time_s = side.tally.bands().above;
     s.clamped_max_time_s = side.clamped_max;
     s.clamped_min_time_s = side.clamped_min;
     if (with_slew) s.slew_time_s = side.slew;

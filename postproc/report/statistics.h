@@ -8,7 +8,7 @@
 #include <optional>
 #include <vector>
 
-#include "postproc/post/vc_bands.h"
+#include "postproc/post/tallies.h"
 #include "postproc/report/point_row.h"
 
 namespace vcpost::report {
@@ -62,9 +62,10 @@ struct SpeedStatistics {
   std::optional<double> slew_time_s;  // the plan's acceleration limit decided S (after only)
 };
 
-struct ReportStatistics {
+// The points by contact state are the post::ContactCounts it derives from.
+struct ReportStatistics : post::ContactCounts {
   std::uint64_t points = 0, cutting_points = 0;  // cutting: with a working diameter
-  std::uint64_t touching = 0, lifted = 0, missed = 0, gouging = 0, no_cut = 0;
+  std::uint64_t no_cut = 0;
   double cutting_time_s = 0;  // sum of the points' weights
   SpeedStatistics before, after;
   std::optional<Distribution> cusp_um, ra_um, rz_um;
@@ -81,8 +82,8 @@ class StatisticsAccumulator {
 
  private:
   struct Side {
-    WeightedQuantiles vc;
-    post::VcBandTimes bands;
+    WeightedQuantiles vc;  // the distribution's percentiles
+    post::VcTally tally;   // the bands around nominal
     double clamped_max = 0, clamped_min = 0, slew = 0;
     explicit Side(double vc_nominal) : vc(0, 4 * vc_nominal, 40000) {}
   };

@@ -115,7 +115,7 @@ constexpr const char* kTwoTools =
 
 TEST(GcodeWriter, ToolChangeWithTheMoveUpBeforeIt) {
   Format format;  // Mazak-like: O1000, '%'
-  format.home_before_tool_change = HomeMove::g28;
+  format.home_before_tool_change = machines::ToolChangeHome::g28;
   EXPECT_EQ(write_program(read_events(kTwoTools), format),
             "%\n"
             "O1000\n"
@@ -137,7 +137,7 @@ TEST(GcodeWriter, ToolChangeWithTheMoveUpBeforeIt) {
             "M9\n"
             "M30\n"
             "%\n");
-  format.home_before_tool_change = HomeMove::g53;
+  format.home_before_tool_change = machines::ToolChangeHome::g53;
   const std::string g53 = write_program(read_events(kTwoTools), format);
   EXPECT_NE(g53.find("G1 X1. Y2. Z3. F500.\nG53 G0 Z0.\nT2 M6\n"), std::string::npos) << g53;
 }
@@ -171,7 +171,7 @@ TEST(GcodeWriter, ToolChangeByHandWithoutG43AndPercent) {
 // or Y, is a difference.
 TEST(GcodeWriter, VerifyTakesTheMoveUpAndTheChangeByHand) {
   Format format;
-  format.home_before_tool_change = HomeMove::g28;
+  format.home_before_tool_change = machines::ToolChangeHome::g28;
   const std::string homed = write_program(read_events(kTwoTools), format);
   verify::Options options;
   options.dialect = gcode::mazak_dialect();

@@ -625,7 +625,25 @@ void MeshModel::Builder::fit_node(Node& node, std::uint32_t begin, std::uint32_t
   });
   Eigen::Matrix3d covariance;
   covariance << c00, c01, c02, c01, c11, c12, c02, c12, c22;
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+  // The closed-form solver: a third of the iterative one's time (which was
+  // a quarter of the build). Its vectors may be off orthogonal where two
+  // eigenvalues nearly meet, so the frame is made orthonormal again (the
+  // boxes hold the corners whatever the axes; the query's bounds need
+  // them orthonormal): the smallest one kept, the normal of a flat patch.
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
+  solver.computeDirect(covariance);
+  Eigen::Matrix3d principal;
+  {
+    const Eigen::Matrix3d& v = solver.eigenvectors();
+    Eigen::Vector3d a0 = v.col(0);
+    if (!(a0.norm() > 0.5)) a0 = Eigen::Vector3d::UnitZ();
+    a0.normalize();
+    Eigen::Vector3d a2 = v.col(2) - v.col(2).dot(a0) * a0;
+    a2 = a2.norm() > 0.5 ? Eigen::Vector3d(a2.normalized()) : a0.unitOrthogonal();
+    principal.row(0) = a0;
+    principal.row(1) = a2.cross(a0);
+    principal.row(2) = a2;
+  }
   const Eigen::Vector3d box_lo(moments.lo[0], moments.lo[1], moments.lo[2]);
   const Eigen::Vector3d box_hi(moments.hi[0], moments.hi[1], moments.hi[2]);
   const Eigen::AlignedBox3d box(box_lo, box_hi);
@@ -667,7 +685,7 @@ void MeshModel::Builder::fit_node(Node& node, std::uint32_t begin, std::uint32_t
     }
     return volume;
   };
-  const double v_principal = fit(solver.eigenvectors().transpose(), node, nullptr, nullptr);
+  const double v_principal = fit(principal, node, nullptr, nullptr);
   // The x, y, z box is almost never the smaller one; it is fitted only when
   // this lower bound of its floored volume does not already lose: each half
   // extent is at least half the box's side (the 1e-12 covers the rounding

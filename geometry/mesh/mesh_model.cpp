@@ -11,6 +11,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <tuple>
@@ -152,12 +153,17 @@ struct MeshModel::Builder {
   // once took 72 bytes a face, 720 MB for 10 M triangles).
   struct Scratch {
     std::uint32_t base;
-    std::unique_ptr<double[]> xyz[3];
-    Scratch(std::uint32_t begin, std::uint32_t end) : base(begin) {
-      for (auto& c : xyz) c.reset(new double[3 * std::size_t{end - begin}]);
-    }
+    std::unique_ptr<double[]> block;  // 9 scratch_capacity doubles, from spare
+    double* xyz[3];
   };
   static constexpr std::uint32_t scratch_size = 1u << 16;
+  // Blocks of finished subtrees, for the next ones: each subtree's own
+  // new and delete of a few MB went back to the system and came back as
+  // fresh pages for the kernel to zero (10 M triangles: a third of the
+  // 2.8 GB of page faults).
+  std::size_t scratch_capacity = 0;  // 3 min(faces, scratch_size): corners per block
+  std::mutex spare_mutex;
+  std::vector<std::unique_ptr<double[]>> spare;
 
   MeshModel& m;
   const std::vector<std::array<std::uint32_t, 3>>& triangles;  // until the slots hold them
@@ -374,6 +380,7 @@ void MeshModel::Builder::tree() {
     }
   });
   m.wide_.resize(count_wide(nf));
+  scratch_capacity = 3 * std::size_t{std::min(nf, scratch_size)};
   Moments all;
   if (nf <= leaf_size) {
     gather(0, nf, true, all, nullptr);
@@ -439,9 +446,9 @@ void MeshModel::Builder::gather(std::uint32_t begin, std::uint32_t end, bool cor
   double l0 = moments.lo[0], l1 = moments.lo[1], l2 = moments.lo[2];
   double h0 = moments.hi[0], h1 = moments.hi[1], h2 = moments.hi[2];
   const std::size_t first = scratch == nullptr ? 0 : 3 * std::size_t{begin - scratch->base};
-  double* const xs = scratch == nullptr ? nullptr : scratch->xyz[0].get() + first;
-  double* const ys = scratch == nullptr ? nullptr : scratch->xyz[1].get() + first;
-  double* const zs = scratch == nullptr ? nullptr : scratch->xyz[2].get() + first;
+  double* const xs = scratch == nullptr ? nullptr : scratch->xyz[0] + first;
+  double* const ys = scratch == nullptr ? nullptr : scratch->xyz[1] + first;
+  double* const zs = scratch == nullptr ? nullptr : scratch->xyz[2] + first;
   std::size_t j = 0;
   for_each_corner(begin, end, [&](double x, double y, double z) {
     if (xs != nullptr) {
@@ -567,9 +574,20 @@ void MeshModel::Builder::lane(std::uint32_t begin, std::uint32_t end, const Mome
                               Scratch* scratch) {
   // A subtree small enough gets its scratch (the corners copied once more
   // here: the moments were taken on the way to this lane).
-  std::optional<Scratch> own_scratch;
+  Scratch own_scratch;
   if (scratch == nullptr && end - begin <= scratch_size) {
-    scratch = &own_scratch.emplace(begin, end);
+    {
+      const std::lock_guard<std::mutex> lock(spare_mutex);
+      if (!spare.empty()) {
+        own_scratch.block = std::move(spare.back());
+        spare.pop_back();
+      }
+    }
+    if (own_scratch.block == nullptr) own_scratch.block.reset(new double[3 * scratch_capacity]);
+    own_scratch.base = begin;
+    for (std::size_t k = 0; k < 3; ++k)
+      own_scratch.xyz[k] = own_scratch.block.get() + k * scratch_capacity;
+    scratch = &own_scratch;
     std::size_t j = 0;
     for_each_corner(begin, end, [&](double x, double y, double z) {
       scratch->xyz[0][j] = x;
@@ -585,6 +603,10 @@ void MeshModel::Builder::lane(std::uint32_t begin, std::uint32_t end, const Mome
   } else {
     set_lane(wide, lane_index, box, own, 0);
     top(begin, end, moments, own, scratch);
+  }
+  if (own_scratch.block != nullptr) {
+    const std::lock_guard<std::mutex> lock(spare_mutex);
+    spare.push_back(std::move(own_scratch.block));
   }
 }
 
@@ -604,9 +626,9 @@ void MeshModel::Builder::fit_node(Node& node, std::uint32_t begin, std::uint32_t
       return;
     }
     const std::size_t first = 3 * std::size_t{begin - scratch->base};
-    const double* const xs = scratch->xyz[0].get() + first;
-    const double* const ys = scratch->xyz[1].get() + first;
-    const double* const zs = scratch->xyz[2].get() + first;
+    const double* const xs = scratch->xyz[0] + first;
+    const double* const ys = scratch->xyz[1] + first;
+    const double* const zs = scratch->xyz[2] + first;
     for (std::size_t i = 0; i < n; ++i) f(xs[i], ys[i], zs[i]);
   };
   Eigen::Vector3d mean(moments.sum[0], moments.sum[1], moments.sum[2]);

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <random>
 #include <sstream>
@@ -247,6 +248,59 @@ TEST(StlReader, BinaryAndAsciiAgree) {
   ASSERT_TRUE(ca && cb);
   EXPECT_EQ(ca->point, cb->point);
   EXPECT_EQ(ca->face, cb->face);
+}
+
+// Past 2^20 triangles a binary file is welded in two halves side by side:
+// the numbers (first use in file order), triangles, drops and the first
+// bad number's message must be those of one pass.
+TEST(StlReader, LargeBinaryWeldsAsOnePass) {
+  StlMesh m;
+  // Points of a paraboloid: no three on a line, so no flat triangle.
+  for (int x = -300; x <= 300; ++x)
+    for (int y = -300; y <= 300; y += 3) m.vertices.emplace_back(x, y, x * x + y * y);
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<std::uint32_t> pick(0, std::uint32_t(m.vertices.size() - 1));
+  const std::size_t n = (std::size_t{1} << 20) + 4321;
+  std::size_t flat = 0;
+  for (std::size_t t = 0; t < n; ++t) {
+    std::array<std::uint32_t, 3> tri{pick(rng), pick(rng), pick(rng)};
+    if (t % 101 == 0) tri[1] = tri[0];  // two corners the same: dropped
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) ++flat;
+    m.triangles.push_back(tri);
+  }
+  std::string bytes = to_binary_stl(m, "large");
+  const StlMesh got = parse_stl(bytes, "large.stl");
+  std::vector<std::uint32_t> number(m.vertices.size(), 0xffffffffu);
+  std::vector<Vector3d> order;
+  std::vector<std::array<std::uint32_t, 3>> kept;
+  for (const auto& tri : m.triangles) {
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) continue;
+    std::array<std::uint32_t, 3> t{};
+    for (int k = 0; k < 3; ++k) {
+      if (number[tri[k]] == 0xffffffffu) {
+        number[tri[k]] = std::uint32_t(order.size());
+        order.push_back(m.vertices[tri[k]]);
+      }
+      t[k] = number[tri[k]];
+    }
+    kept.push_back(t);
+  }
+  EXPECT_EQ(got.degenerate_dropped, flat);
+  EXPECT_TRUE(got.vertices == order);
+  EXPECT_TRUE(got.triangles == kept);
+  // A bad number in each half: the first one's message.
+  const auto poison = [&](std::size_t t) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    std::memcpy(bytes.data() + 84 + 50 * t + 16, &nan, 4);
+  };
+  poison(n - 10);
+  poison(1000);
+  try {
+    parse_stl(bytes, "large.stl");
+    ADD_FAILURE() << "no error";
+  } catch (const StlError& e) {
+    EXPECT_NE(std::string(e.what()).find("triangle 1001 vertex 1 "), std::string::npos) << e.what();
+  }
 }
 
 TEST(StlReader, AsciiVariantsAndUnits) {

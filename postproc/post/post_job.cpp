@@ -23,6 +23,7 @@
 #include "postproc/post/offset_diagnosis.h"
 #include "postproc/post/path_reader.h"
 #include "postproc/post/program_writer.h"
+#include "postproc/post/speed_statistics.h"
 #include "postproc/post/tallies.h"
 
 namespace vcpost::post {
@@ -36,21 +37,8 @@ constexpr double unbounded_rpm = 1e12;
 // threads), which costs little at this size.
 constexpr std::size_t chunk_samples = 2048;
 
-// What the last stage keeps of an evaluated sample until its block is final.
-struct HeldSample {
-  float d_ref = NAN;  // mm; NaN where the tool does not cut
-  float weight_s = 0;
-  std::size_t block = 0;
-  double time_s = 0;
-};
-// A held sample's vc at `rpm` into a tally; one that does not cut (d_ref
-// NaN) counts nothing.
-void tally_vc(VcTally& tally, const HeldSample& h, double rpm, double nominal) {
-  if (std::isnan(h.d_ref)) return;
-  tally.add(geometry::cutting_speed(h.d_ref, rpm), nominal, h.weight_s);
-}
-
-// ... and for the points sink, the whole point.
+// What the last stage keeps of an evaluated sample for the points sink
+// (the statistics need only the HeldSample), until its block is final.
 struct HeldPoint {
   pipeline::PathSample sample;
   pipeline::PointResult result;
@@ -99,14 +87,16 @@ class SpindlePlanner {
   Any planner_;
 };
 
-// The last, serial stage: counts, feeds the planner, and as blocks become
-// final writes them, accumulates the statistics and hands out the points.
+// The last, serial stage: follows the sections and counts the samples,
+// feeds the planner, and as blocks become final writes them in order (those
+// of a section not yet decided wait), hands their samples to the speed
+// statistics and the points to the sink.
 class Finisher {
  public:
   Finisher(const machines::MachineProfile& profile, const PostSettings& settings,
            ProgramWriter& writer, const PointSink& points, PostSummary& summary)
       : planner_(profile.spindle()),
-        spindle_(profile.spindle()),
+        statistics_(profile.spindle(), summary),
         writer_(writer),
         points_(points),
         summary_(summary),
@@ -164,19 +154,7 @@ class Finisher {
     emit();
     release();
     writer_.finish();
-    summary_.before = before_.statistics();
-    summary_.after = after_.statistics();
-    close_placement();
-    SPlacement& placement = summary_.s_placement;
-    placement.at_stops = spindle_.stops_path_on_change;
-    placement.priced = placement.at_stops && spindle_.s_in_feed == machines::SInFeed::priced;
-    placement.stop_cost_s = spindle_.stop_cost_s;
-    for (const auto& section : placement.sections) {
-      placement.s_words += section.s_words;
-      placement.in_feed += section.in_feed;
-      placement.stops += section.stops;
-      placement.time_cost_s += section.time_cost_s;
-    }
+    statistics_.finish();
     for (std::size_t i = 0; i < ledgers_.size(); ++i) {
       SectionLedger& l = ledgers_[i];
       ToolSection* s = summary_section(static_cast<std::uint32_t>(i));
@@ -326,35 +304,8 @@ class Finisher {
     return section < ledgers_.size() ? ledgers_[section].state : SectionState::kept;
   }
 
-  // The placement section of a block's run (off blocks belong to none).
-  void count_placement(const plan::BlockPlan& block) {
-    if (block.bound == plan::Bound::off) return;
-    if (!placement_ || placement_->placement.run != block.run) {
-      close_placement();
-      placement_.emplace();
-      placement_->placement.run = block.run;
-      placement_->placement.start_s = block.start_s;
-    }
-    if (!block.s_word) return;
-    ++placement_->placement.s_words;
-    if (!block.stop_place) ++placement_->placement.in_feed;
-    // Every S word stops the path on such a control (LinuxCNC stops even
-    // on an unchanged one); at a stop place the path stopped anyway, but
-    // the word still costs its stop time there.
-    if (spindle_.stops_path_on_change) ++placement_->placement.stops;
-  }
-  void close_placement() {
-    if (!placement_) return;
-    SectionPlacement& p = placement_->placement;
-    p.time_cost_s = static_cast<double>(p.stops) * spindle_.stop_cost_s;
-    p.before = placement_->before.statistics();
-    p.after = placement_->after.statistics();
-    summary_.s_placement.sections.push_back(p);
-    placement_.reset();
-  }
-
   void write(const plan::BlockPlan& block) {
-    count_placement(block);
+    statistics_.open_block(block);
     const BlockInfo& info = writer_.block(block.block);
     std::optional<plan::BlockFeed> feed;
     if (feeds_) {
@@ -368,15 +319,8 @@ class Finisher {
     while (!held_.empty() && held_.front().block <= block.block) {
       HeldSample& h = held_.front();
       if (posted) {
-        tally_vc(before_, h, program_s, nominal);
-        tally_vc(after_, h, block.planned_rpm, nominal);
-        tally_vc(ledger->before, h, program_s, nominal);
-        tally_vc(ledger->after, h, block.planned_rpm, nominal);
-        if (placement_) {
-          tally_vc(placement_->before, h, program_s, nominal);
-          tally_vc(placement_->after, h, block.planned_rpm, nominal);
-          if (!std::isnan(h.d_ref)) placement_->placement.cutting_time_s += h.weight_s;
-        }
+        statistics_.add_sample(h, program_s, block.planned_rpm, nominal, ledger->before,
+                               ledger->after);
       }
       if (points_) {
         const HeldPoint& p = held_points_.front();
@@ -388,43 +332,18 @@ class Finisher {
       }
       held_.pop_front();
     }
-    if (posted) {
-      const double duration = block.end_s - block.start_s;
-      switch (block.bound) {
-        case plan::Bound::n_max:
-          summary_.time_clamped_max_s += duration;
-          break;
-        case plan::Bound::n_min:
-          summary_.time_clamped_min_s += duration;
-          break;
-        case plan::Bound::slew:
-          summary_.time_slew_s += duration;
-          break;
-        case plan::Bound::rate:
-          summary_.time_rate_s += duration;
-          break;
-        default:
-          break;
-      }
-    }
+    if (posted) statistics_.add_bound_time(block);
     writer_.on_final(block, feed);
   }
 
-  struct Placement {
-    SectionPlacement placement;
-    VcTally before, after;
-  };
-
   SpindlePlanner planner_;
-  machines::SpindleSpec spindle_;
-  std::optional<Placement> placement_;
+  SpeedStatistics statistics_;
   std::optional<plan::StreamingFeedPlanner> feeds_;
   std::vector<int> teeth_;  // per section: its tool's teeth, 0 where unknown
   ProgramWriter& writer_;
   const PointSink& points_;
   PostSummary& summary_;
   double tolerance_;
-  VcTally before_, after_;
   std::vector<SectionLedger> ledgers_;  // by section index
   std::vector<bool> has_summary_;       // by section index: a ToolSection exists
   std::vector<double> vc_;              // nominal vc by section index (posted ones)

@@ -23,6 +23,7 @@
 #include "postproc/post/offset_diagnosis.h"
 #include "postproc/post/path_reader.h"
 #include "postproc/post/program_writer.h"
+#include "postproc/post/section_ledgers.h"
 #include "postproc/post/speed_statistics.h"
 #include "postproc/post/tallies.h"
 
@@ -44,24 +45,9 @@ struct HeldPoint {
   pipeline::PointResult result;
 };
 
-// Whether a section's S words are rewritten. A postable section is pending
-// until its first point touches the model (posted) or it ends without one
-// (kept: in the air); its final blocks wait meanwhile, so a section in the
-// air keeps its S byte for byte.
-enum class SectionState : std::uint8_t { kept, pending, posted };
-
 // Blocks a pending section may hold back before it is kept as in the air
 // (memory stays bounded on a long path that never touches).
 constexpr std::size_t max_pending_blocks = 1 << 16;
-
-// A section as the last stage follows it.
-struct SectionLedger {
-  std::size_t summary_index = 0;  // in PostSummary::sections
-  SectionState state = SectionState::kept;
-  VcTally before, after;
-  std::optional<OffsetHistogram> offsets;  // postable sections
-  bool timed = false;                      // start_s set
-};
 
 // The planner the profile's control calls for: S words anywhere (inline), or
 // only where the path stops anyway (spindle.stops_path_on_change).
@@ -97,10 +83,10 @@ class Finisher {
            ProgramWriter& writer, const PointSink& points, PostSummary& summary)
       : planner_(profile.spindle()),
         statistics_(profile.spindle(), summary),
+        sections_(summary, settings.point.contact_tolerance),
         writer_(writer),
         points_(points),
-        summary_(summary),
-        tolerance_(settings.point.contact_tolerance) {
+        summary_(summary) {
     if (settings.adjust_feed) {
       feeds_.emplace(settings.fz_mm, settings.teeth.value_or(profile.tool().default_teeth),
                      profile.feed(), std::pow(10.0, -profile.output().feed_decimals));
@@ -109,22 +95,16 @@ class Finisher {
 
   // Whether the writer keeps the blocks of `section` as written.
   bool keeps(std::uint32_t section) const {
-    return section >= ledgers_.size() || ledgers_[section].state != SectionState::posted;
+    return sections_.state(section) != SectionState::posted;
   }
 
   void take(Chunk& chunk) {
     writer_.add(chunk);
-    for (ToolSection& section : chunk.sections) open_section(std::move(section));
+    for (ToolSection& section : chunk.sections) sections_.open(std::move(section));
     std::size_t sample_index = 0;
     for (Slot& slot : chunk.slots) {
       if (slot.section != current_) switch_section(slot.section);
-      if (slot.section < ledgers_.size() && has_summary_[slot.section]) {
-        SectionLedger& l = ledgers_[slot.section];
-        ToolSection& s = summary_.sections[l.summary_index];
-        if (!l.timed) s.start_s = slot.plan.time_s;
-        l.timed = true;
-        s.end_s = slot.plan.time_s;
-      }
+      sections_.stamp(slot.section, slot.plan.time_s);
       switch (slot.kind) {
         case SlotKind::rapid:
           last_target_.reset();
@@ -155,64 +135,21 @@ class Finisher {
     release();
     writer_.finish();
     statistics_.finish();
-    for (std::size_t i = 0; i < ledgers_.size(); ++i) {
-      SectionLedger& l = ledgers_[i];
-      ToolSection* s = summary_section(static_cast<std::uint32_t>(i));
-      if (!s) continue;
-      s->posted = l.state == SectionState::posted;
-      s->before = l.before.statistics();
-      s->after = l.after.statistics();
-      s->s_words = writer_.s_words(static_cast<std::uint32_t>(i));
-      s->f_words = writer_.f_words(static_cast<std::uint32_t>(i));
-      if (l.offsets) {
-        s->gouge = l.offsets->gouge();
-        s->lift = l.offsets->lift();
-        s->offset = l.offsets->diagnosis();
-      }
-    }
+    sections_.finish(writer_);
   }
 
  private:
-  ToolSection* summary_section(std::uint32_t section) {
-    if (section >= ledgers_.size() || !has_summary_[section]) return nullptr;
-    return &summary_.sections[ledgers_[section].summary_index];
-  }
-
-  void open_section(ToolSection section) {
-    const std::uint32_t index = section.index;
-    if (ledgers_.size() <= index) {
-      ledgers_.resize(index + 1);
-      has_summary_.resize(index + 1, false);
-    }
-    SectionLedger& l = ledgers_[index];
-    l.summary_index = summary_.sections.size();
-    l.state = section.postable ? SectionState::pending : SectionState::kept;
-    if (section.postable && section.entry) {
-      l.offsets.emplace(tolerance_, section.entry->diameter / 2);
-      vc_.resize(std::max<std::size_t>(vc_.size(), index + 1), 0.0);
-      vc_[index] = section.vc_nominal;
-    }
-    // The feed coupling takes the section's tool's teeth where its entry
-    // (tools file) gives them, else --teeth or the profile's.
-    teeth_.resize(std::max<std::size_t>(teeth_.size(), index + 1), 0);
-    teeth_[index] = section.entry && section.entry->teeth ? *section.entry->teeth : 0;
-    has_summary_[index] = true;
-    summary_.sections.push_back(std::move(section));
-  }
-
   // The path moves on to `next`: a pending section that never touched is in the air.
   void switch_section(std::uint32_t next) {
-    if (current_ < ledgers_.size() && ledgers_[current_].state == SectionState::pending) {
-      ledgers_[current_].state = SectionState::kept;
-      if (ToolSection* s = summary_section(current_))
-        s->reason = "the path never touches the model: speed kept";
+    if (sections_.state(current_) == SectionState::pending) {
+      sections_.keep(current_, "the path never touches the model: speed kept");
       release();
     }
     current_ = next;
   }
 
   void kept(Slot& slot) {
-    if (ToolSection* s = summary_section(slot.section)) ++s->points;
+    sections_.count_kept(slot.section);
     slot.plan.target_rpm.reset();
     slot.plan.rapid = false;
     last_target_.reset();
@@ -221,19 +158,7 @@ class Finisher {
 
   void sample(Slot& slot, pipeline::PointResult& r) {
     ++summary_.samples;
-    SectionLedger& ledger = ledgers_[slot.section];
-    ToolSection& section = summary_.sections[ledger.summary_index];
-    ++section.points;
-    summary_.count_contact(r.contact.status);
-    section.count_contact(r.contact.status);
-    if (r.contact.status != geometry::BallStatus::missed && ledger.offsets)
-      ledger.offsets->add(r.contact.distance_error);
-    // Posted from its first touching point: a section that only gouges
-    // (a model in other units, another tool) has no cutting speed to keep.
-    if (ledger.state == SectionState::pending &&
-        r.contact.status == geometry::BallStatus::touching) {
-      ledger.state = SectionState::posted;
-    }
+    sections_.count_sample(slot.section, r.contact.status, r.contact.distance_error);
     if (r.engagement) {
       switch (r.ae_source) {
         case pipeline::AeSource::measured:
@@ -272,7 +197,7 @@ class Finisher {
   void emit() {
     for (const plan::BlockPlan& block : final_) {
       if (!waiting_.empty() ||
-          state_of(writer_.block(block.block).section) == SectionState::pending) {
+          sections_.state(writer_.block(block.block).section) == SectionState::pending) {
         waiting_.push_back(block);
         continue;
       }
@@ -280,42 +205,35 @@ class Finisher {
     }
     final_.clear();
     if (waiting_.size() > max_pending_blocks) {
-      const std::uint32_t section = writer_.block(waiting_.front().block).section;
-      ledgers_[section].state = SectionState::kept;
-      if (ToolSection* s = summary_section(section)) {
-        s->reason = "no point touches the model in its first " +
-                    std::to_string(max_pending_blocks) + " blocks: speed kept";
-      }
+      sections_.keep(writer_.block(waiting_.front().block).section,
+                     "no point touches the model in its first " +
+                         std::to_string(max_pending_blocks) + " blocks: speed kept");
     }
     release();
   }
 
   // Writes the waiting blocks whose section is decided.
   void release() {
-    while (!waiting_.empty() &&
-           state_of(writer_.block(waiting_.front().block).section) != SectionState::pending) {
+    while (!waiting_.empty() && sections_.state(writer_.block(waiting_.front().block).section) !=
+                                    SectionState::pending) {
       write(waiting_.front());
       waiting_.pop_front();
     }
     writer_.flush();
   }
 
-  SectionState state_of(std::uint32_t section) const {
-    return section < ledgers_.size() ? ledgers_[section].state : SectionState::kept;
-  }
-
   void write(const plan::BlockPlan& block) {
     statistics_.open_block(block);
     const BlockInfo& info = writer_.block(block.block);
+    SectionLedger* ledger = sections_.ledger(info.section);
     std::optional<plan::BlockFeed> feed;
     if (feeds_) {
-      const int teeth = info.section < teeth_.size() ? teeth_[info.section] : 0;
+      const int teeth = ledger ? ledger->teeth : 0;
       feed = feeds_->next(block, {info.program_f, info.program_s, teeth});
     }
     const double program_s = info.program_s;
-    const bool posted = state_of(info.section) == SectionState::posted;
-    SectionLedger* ledger = info.section < ledgers_.size() ? &ledgers_[info.section] : nullptr;
-    const double nominal = info.section < vc_.size() ? vc_[info.section] : 0.0;
+    const bool posted = sections_.state(info.section) == SectionState::posted;
+    const double nominal = ledger ? ledger->vc_nominal : 0.0;
     while (!held_.empty() && held_.front().block <= block.block) {
       HeldSample& h = held_.front();
       if (posted) {
@@ -338,16 +256,12 @@ class Finisher {
 
   SpindlePlanner planner_;
   SpeedStatistics statistics_;
+  SectionLedgers sections_;
   std::optional<plan::StreamingFeedPlanner> feeds_;
-  std::vector<int> teeth_;  // per section: its tool's teeth, 0 where unknown
   ProgramWriter& writer_;
   const PointSink& points_;
   PostSummary& summary_;
-  double tolerance_;
-  std::vector<SectionLedger> ledgers_;  // by section index
-  std::vector<bool> has_summary_;       // by section index: a ToolSection exists
-  std::vector<double> vc_;              // nominal vc by section index (posted ones)
-  std::uint32_t current_ = 0;           // section of the last slot taken
+  std::uint32_t current_ = 0;  // section of the last slot taken
   std::vector<plan::BlockPlan> final_;
   std::deque<plan::BlockPlan> waiting_;  // final, behind a pending section
   std::deque<HeldSample> held_;

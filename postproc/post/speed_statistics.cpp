@@ -29,9 +29,8 @@ void SpeedStatistics::open_block(const plan::BlockPlan& block) {
   if (spindle_.stops_path_on_change) ++placement_->placement.stops;
 }
 
-void SpeedStatistics::add_sample(const HeldSample& sample, double program_rpm,
-                                 double planned_rpm, double nominal, VcTally& section_before,
-                                 VcTally& section_after) {
+void SpeedStatistics::add_sample(const HeldSample& sample, double program_rpm, double planned_rpm,
+                                 double nominal, VcTally& section_before, VcTally& section_after) {
   if (std::isnan(sample.d_ref)) return;
   tally_vc(before_, sample, program_rpm, nominal);
   tally_vc(after_, sample, planned_rpm, nominal);

@@ -38,8 +38,8 @@ class SpeedStatistics {
   // and at the planned one (after), into the program's, the section's
   // (`section_before`, `section_after`) and the run's tallies. One that
   // does not cut counts nothing.
-  void add_sample(const HeldSample& sample, double program_rpm, double planned_rpm,
-                  double nominal, VcTally& section_before, VcTally& section_after);
+  void add_sample(const HeldSample& sample, double program_rpm, double planned_rpm, double nominal,
+                  VcTally& section_before, VcTally& section_after);
 
   // A posted section's block: its time under the bound that decided its S.
   void add_bound_time(const plan::BlockPlan& block);

@@ -157,12 +157,12 @@ bool BlockParser::read_o_name(std::string& name, bool throwing) {
   if (!at_end() && s_[i_] == '<') {
     const std::size_t open = i_;
     ++i_;
-    while (!at_end() && s_[i_] != '>' && s_[i_] != '(') {  // '(': as in read_name
+    while (!at_end() && s_[i_] != '>' && !starts_comment(s_[i_])) {  // as in read_name
       if (!is_blank(s_[i_]))
         name += static_cast<char>(std::tolower(static_cast<unsigned char>(s_[i_])));
       ++i_;
     }
-    if (at_end() || s_[i_] == '(') {
+    if (at_end() || starts_comment(s_[i_])) {
       if (throwing) fail(Code::bad_expression, open, "O-word name not closed with '>'");
       return false;
     }

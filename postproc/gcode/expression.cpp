@@ -267,14 +267,15 @@ std::string ExpressionReader::read_name() {
   const std::size_t open = i_;
   ++i_;
   std::string key;
-  // '(' starts a comment even inside a name on LinuxCNC ("Unclosed
-  // comment found" in rs274): the name ends unclosed there.
-  while (!at_end() && s_[i_] != '>' && s_[i_] != '(') {
+  // '(' and ';' start a comment even inside a name on LinuxCNC (rs274:
+  // "Unclosed comment found", "Equal sign missing in parameter setting"):
+  // the name ends unclosed there.
+  while (!at_end() && s_[i_] != '>' && !starts_comment(s_[i_])) {
     if (!is_blank(s_[i_]))
       key += static_cast<char>(std::tolower(static_cast<unsigned char>(s_[i_])));
     ++i_;
   }
-  if (at_end() || s_[i_] == '(')
+  if (at_end() || starts_comment(s_[i_]))
     fail(Code::bad_expression, open, "named parameter not closed with '>'");
   ++i_;
   if (key.empty()) fail(Code::bad_expression, open, "empty parameter name");

@@ -121,6 +121,10 @@ const std::map<std::string, std::string> kVerifyCases = {
     // found"); the writer put the S word before that '(', inside the name
     // as the reader saw it. The reader now refuses the name unclosed.
     {"paren_in_parameter_name.ngc", "input"},
+    // ';' inside a #<name>: also a comment's start on LinuxCNC (rs274:
+    // "Equal sign missing in parameter setting"); the reader took it into
+    // the name, the verify lexer ended the line there. Refused unclosed.
+    {"semicolon_in_parameter_name.ngc", "input"},
     // "S++++++#++++1": a parameter whose number is itself a signed value;
     // the word's span ended after the '#'.
     {"signs_in_parameter_number.ngc", "ok"},

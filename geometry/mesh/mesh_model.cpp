@@ -156,7 +156,7 @@ struct MeshModel::Builder {
   // once took 72 bytes a face, 720 MB for 10 M triangles).
   struct Scratch {
     std::uint32_t base;
-    std::unique_ptr<double[]> block;  // 9 scratch_capacity doubles, from spare
+    std::unique_ptr<double[]> block;  // x, y, z: 3 scratch_capacity doubles, reused from spare
     double* xyz[3];
   };
   static constexpr std::uint32_t scratch_size = 1u << 16;

@@ -81,10 +81,6 @@ class MeshBuilder {
     return static_cast<std::size_t>(h ^ (h >> 29));
   }
 
- private:
-  static constexpr std::uint32_t kEmpty = 0xffffffffu;
-
- public:
   // The number of the vertex at p (h = hash(p)), added when new.
   std::uint32_t index_of(const Eigen::Vector3d& p, std::size_t h) {
     const std::size_t mask = table_.size() - 1;
@@ -102,6 +98,8 @@ class MeshBuilder {
   }
 
  private:
+  static constexpr std::uint32_t kEmpty = 0xffffffffu;
+
   // Doubles the table (at most half full) and puts every vertex back.
   void grow() {
     table_.assign(2 * table_.size(), kEmpty);

@@ -228,12 +228,11 @@ class Finisher {
     SectionLedger* ledger = sections_.ledger(info.section);
     std::optional<plan::BlockFeed> feed;
     if (feeds_) {
-      const int teeth = ledger ? ledger->teeth : 0;
-      feed = feeds_->next(block, {info.program_f, info.program_s, teeth});
+      feed = feeds_->next(block, {info.program_f, info.program_s, sections_.teeth(info.section)});
     }
     const double program_s = info.program_s;
     const bool posted = sections_.state(info.section) == SectionState::posted;
-    const double nominal = ledger ? ledger->vc_nominal : 0.0;
+    const double nominal = sections_.nominal_vc(info.section);
     while (!held_.empty() && held_.front().block <= block.block) {
       HeldSample& h = held_.front();
       if (posted) {

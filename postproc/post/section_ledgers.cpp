@@ -8,13 +8,7 @@ void SectionLedgers::open(ToolSection section) {
   SectionLedger& l = ledgers_[index];
   l.summary_index = summary_.sections.size();
   l.state = section.postable ? SectionState::pending : SectionState::kept;
-  if (section.postable && section.entry) {
-    l.offsets.emplace(tolerance_, section.entry->diameter / 2);
-    l.vc_nominal = section.vc_nominal;
-  }
-  // The feed coupling takes the section's tool's teeth where its entry
-  // (tools file) gives them, else --teeth or the profile's.
-  l.teeth = section.entry && section.entry->teeth ? *section.entry->teeth : 0;
+  if (section.postable && section.entry) l.offsets.emplace(tolerance_, section.entry->diameter / 2);
   l.summarised = true;
   summary_.sections.push_back(std::move(section));
 }
@@ -25,29 +19,8 @@ void SectionLedgers::keep(std::uint32_t section, const std::string& reason) {
   if (ToolSection* s = summary_of(section)) s->reason = reason;
 }
 
-void SectionLedgers::stamp(std::uint32_t section, double time_s) {
-  ToolSection* s = summary_of(section);
-  if (!s) return;
-  SectionLedger& l = ledgers_[section];
-  if (!l.timed) s->start_s = time_s;
-  l.timed = true;
-  s->end_s = time_s;
-}
-
 void SectionLedgers::count_kept(std::uint32_t section) {
   if (ToolSection* s = summary_of(section)) ++s->points;
-}
-
-void SectionLedgers::count_sample(std::uint32_t section, geometry::BallStatus status,
-                                  double distance_error) {
-  SectionLedger& ledger = ledgers_[section];
-  ToolSection& s = summary_.sections[ledger.summary_index];
-  ++s.points;
-  summary_.count_contact(status);
-  s.count_contact(status);
-  if (status != geometry::BallStatus::missed && ledger.offsets) ledger.offsets->add(distance_error);
-  if (ledger.state == SectionState::pending && status == geometry::BallStatus::touching)
-    ledger.state = SectionState::posted;
 }
 
 void SectionLedgers::finish(const ProgramWriter& writer) {

@@ -1,7 +1,7 @@
 // The tool sections as the post job's last stage follows them: whether
 // each one's S words are rewritten (pending until its first point touches
 // the model), its entry in the summary, its vc tallies and offset
-// histogram, its nominal vc and its tool's teeth.
+// histogram.
 #pragma once
 
 #include <cstdint>
@@ -30,8 +30,6 @@ struct SectionLedger {
   std::optional<OffsetHistogram> offsets;  // postable sections
   bool timed = false;                      // start_s set
   bool summarised = false;                 // a ToolSection exists
-  double vc_nominal = 0;                   // m/min, posted sections
-  int teeth = 0;                           // its tool's teeth, 0 where unknown
 };
 
 class SectionLedgers {
@@ -52,23 +50,52 @@ class SectionLedgers {
     return section < ledgers_.size() ? &ledgers_[section] : nullptr;
   }
 
+  // Its nominal vc (m/min; 0 unless postable) and its tool's teeth as its
+  // entry (tools file) gives them (0: --teeth or the profile's).
+  double nominal_vc(std::uint32_t section) const {
+    const ToolSection* s = summary_of(section);
+    return s ? s->vc_nominal : 0.0;
+  }
+  int teeth(std::uint32_t section) const {
+    const ToolSection* s = summary_of(section);
+    return s && s->entry && s->entry->teeth ? *s->entry->teeth : 0;
+  }
+
   // A pending section is decided in the air: kept, for `reason`.
   void keep(std::uint32_t section, const std::string& reason);
 
-  // A slot of `section` at program time `time_s`: the section's start and end.
-  void stamp(std::uint32_t section, double time_s);
+  // A slot of `section` at program time `time_s`: the section's start and
+  // end. Inline, as count_sample: both run once a path sample.
+  void stamp(std::uint32_t section, double time_s) {
+    ToolSection* s = summary_of(section);
+    if (!s) return;
+    SectionLedger& l = ledgers_[section];
+    if (!l.timed) s->start_s = time_s;
+    l.timed = true;
+    s->end_s = time_s;
+  }
   // A kept slot (a section not evaluated) counts as one of its points.
   void count_kept(std::uint32_t section);
   // An evaluated sample: its contact into the counts and the offsets, and
   // the section posted from its first touching point (one that only
   // gouges, a model in other units or another tool, has no vc to keep).
-  void count_sample(std::uint32_t section, geometry::BallStatus status, double distance_error);
+  void count_sample(std::uint32_t section, geometry::BallStatus status, double distance_error) {
+    SectionLedger& ledger = ledgers_[section];
+    ToolSection& s = summary_.sections[ledger.summary_index];
+    ++s.points;
+    summary_.count_contact(status);
+    s.count_contact(status);
+    if (status != geometry::BallStatus::missed && ledger.offsets)
+      ledger.offsets->add(distance_error);
+    if (ledger.state == SectionState::pending && status == geometry::BallStatus::touching)
+      ledger.state = SectionState::posted;
+  }
 
   // Every section's results into its summary entry.
   void finish(const ProgramWriter& writer);
 
  private:
-  ToolSection* summary_of(std::uint32_t section) {
+  ToolSection* summary_of(std::uint32_t section) const {
     if (section >= ledgers_.size() || !ledgers_[section].summarised) return nullptr;
     return &summary_.sections[ledgers_[section].summary_index];
   }

@@ -3,22 +3,15 @@
 #include <algorithm>
 
 #include "postproc/gcode/block.h"
+#include "postproc/gcode/lexer.h"
 
 namespace vcpost::verify {
 
-namespace {
-
-constexpr bool is_blank(char c) { return c == ' ' || c == '\t'; }
-constexpr bool is_digit(char c) { return c >= '0' && c <= '9'; }
-constexpr bool is_alpha(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
-constexpr char upper(char c) { return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 32) : c; }
-
-// End of a word's value starting at `k` (after the letter and blanks), or
-// `k` when no value starts there: the reader's grammar, as the writer's
-// word spans follow it (gcode::word_value_end).
-std::size_t value_end(std::string_view s, std::size_t k) { return gcode::word_value_end(s, k); }
-
-}  // namespace
+// The reader's character classes: the proof reads the text as it does.
+using gcode::syntax::is_alpha;
+using gcode::syntax::is_blank;
+using gcode::syntax::is_digit;
+using gcode::syntax::upper;
 
 char Token::letter() const { return kind == TokenKind::word ? upper(text[0]) : '\0'; }
 
@@ -122,7 +115,7 @@ void tokenize(std::string_view s, std::vector<Token>& out) {
       if (depth == 0 && !(i + 1 < s.size() && is_alpha(s[i + 1]))) {
         std::size_t k = i + 1;
         while (k < s.size() && is_blank(s[k])) ++k;
-        const std::size_t end = value_end(s, k);
+        const std::size_t end = gcode::word_value_end(s, k);
         if (end > k) {
           i = end;
           push(TokenKind::word, begin, i);

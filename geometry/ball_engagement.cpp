@@ -342,7 +342,7 @@ struct Rim {
     if (on_ball_only || circle_point_valid(circle)) return circle;
     const ShankRim shank{ball};
     RimPoint best = shank.at(shank.extreme_b_angle(sign));
-    if (shank.z(best) < 0) best = {0, -sign * INFINITY};  // not on the shank part
+    if (shank.z(best) < 0) best = {0, -sign * HUGE_VAL};  // not on the shank part
     const double A = ball.rho * ball.up.x(), B = ball.rho * ball.up.y(), C = -ball.c0 * ball.up.z();
     const double m = std::sqrt(A * A + B * B);
     if (m > 0 && std::abs(C) <= m) {
@@ -359,7 +359,7 @@ struct Rim {
   std::array<RimPoint, 2> at_b(double b) const {
     const double half = sqrt0(ball.rho * ball.rho - b * b);
     if (on_ball_only) return {RimPoint{half, b}, RimPoint{-half, b}};
-    double ahead = -INFINITY, behind = INFINITY;
+    double ahead = -HUGE_VAL, behind = HUGE_VAL;
     auto take = [&](double a) {
       ahead = std::max(ahead, a);
       behind = std::min(behind, a);

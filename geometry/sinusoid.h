@@ -19,7 +19,7 @@ struct AngleInterval {
 };
 
 struct Extremes {
-  double min = INFINITY, max = -INFINITY;
+  double min = HUGE_VAL, max = -HUGE_VAL;
   void add(double value) {
     min = std::min(min, value);
     max = std::max(max, value);

@@ -6,6 +6,7 @@
 // usage: vcpost-help-pages OUT_DIR DATE   (writes OUT_DIR/man1/*.1 and
 // OUT_DIR/completion/vcpost; DATE is the pages' date, e.g. 2026-11-24)
 #include <CLI/CLI.hpp>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -198,7 +199,7 @@ void write_completion(const std::filesystem::path& file, const CLI::App& app) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv) try {
   if (argc != 3) {
     std::cerr << "usage: vcpost-help-pages OUT_DIR DATE\n";
     return 2;
@@ -215,4 +216,7 @@ int main(int argc, char** argv) {
     write_subcommand_page(dir / "man1" / (page_name(*sub) + ".1"), *sub, date);
   write_completion(dir / "completion" / "vcpost", app);
   return 0;
+} catch (const std::exception& e) {  // a page not written: the package build stops here
+  std::cerr << "vcpost-help-pages: " << e.what() << '\n';
+  return 1;
 }

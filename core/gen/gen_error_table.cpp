@@ -6,6 +6,7 @@
 // build instead of reaching a user.
 //
 // usage: gen_error_table CODES.csv GROUPS.csv OUT.inc OUT.md
+#include <algorithm>
 #include <cctype>
 #include <cstdlib>
 #include <fstream>
@@ -93,11 +94,10 @@ bool valid_code(const std::string& code) {
 
 bool valid_name(const std::string& name) {
   if (name.empty() || !std::islower(static_cast<unsigned char>(name[0]))) return false;
-  for (char c : name)
-    if (!std::islower(static_cast<unsigned char>(c)) &&
-        !std::isdigit(static_cast<unsigned char>(c)) && c != '_')
-      return false;
-  return true;
+  return std::ranges::all_of(name, [](char c) {
+    return std::islower(static_cast<unsigned char>(c)) ||
+           std::isdigit(static_cast<unsigned char>(c)) || c == '_';
+  });
 }
 
 }  // namespace

@@ -43,6 +43,13 @@ using geometry::PrincipalCurvatures;
 
 namespace {
 
+// Index a * stride + b of a row-major grid, in size_t: OpenCASCADE counts in
+// int, the product must not be formed in int.
+std::size_t grid_index(int a, int stride, int b = 0) {
+  return static_cast<std::size_t>(a) * static_cast<std::size_t>(stride) +
+         static_cast<std::size_t>(b);
+}
+
 Vector3d to_eigen(const gp_XYZ& p) { return {p.X(), p.Y(), p.Z()}; }
 
 // Position and derivatives up to order 2 of a surface at (u,v).
@@ -68,7 +75,7 @@ struct PolynomialSpan {
     Vector3d y0 = p0, y1 = p0;                         // dP/dy and its x-derivative
     Vector3d yy = p0;                                  // d2P/dy2 / 2
     for (int a = degree_u; a >= 0; --a) {
-      const Vector3d* col = &c[static_cast<std::size_t>(a * nv)];
+      const Vector3d* col = &c[grid_index(a, nv)];
       Vector3d q0 = col[degree_v], q1 = Vector3d::Zero(), q2 = Vector3d::Zero();
       for (int b = degree_v - 1; b >= 0; --b) {
         q2 = q2 * y + q1;
@@ -114,7 +121,7 @@ class SurfaceEval {
     const bool rational = bspline_->IsURational() || bspline_->IsVRational();
     if (!rational) {
       const int du = bspline_->UDegree(), dv = bspline_->VDegree();
-      spans_.reserve(static_cast<std::size_t>(nu * nv));
+      spans_.reserve(grid_index(nu, nv));
       for (int i = 0; i < nu; ++i) {
         for (int j = 0; j < nv; ++j) {
           PolynomialSpan span;
@@ -126,7 +133,7 @@ class SurfaceEval {
           const double hv = (v_knots_[j + 1] - v_knots_[j]) / 2;
           span.inv_hu = 1 / hu;
           span.inv_hv = 1 / hv;
-          span.c.resize(static_cast<std::size_t>((du + 1) * (dv + 1)));
+          span.c.resize(grid_index(du + 1, dv + 1));
           double fa = 1;  // a!
           for (int a = 0; a <= du; ++a) {
             if (a > 0) fa *= a;
@@ -135,7 +142,7 @@ class SurfaceEval {
               if (b > 0) fb *= b;
               const Vector3d d = a + b == 0 ? to_eigen(bspline_->Value(span.um, span.vm).XYZ())
                                             : to_eigen(bspline_->DN(span.um, span.vm, a, b).XYZ());
-              span.c[static_cast<std::size_t>(a * (dv + 1) + b)] =
+              span.c[grid_index(a, dv + 1, b)] =
                   d * (std::pow(hu, a) * std::pow(hv, b) / (fa * fb));
             }
           }
@@ -146,7 +153,7 @@ class SurfaceEval {
     }
     const auto& flat_u = bspline_->UKnotSequence();
     const auto& flat_v = bspline_->VKnotSequence();
-    caches_.reserve(static_cast<std::size_t>(nu * nv));
+    caches_.reserve(grid_index(nu, nv));
     for (int i = 0; i < nu; ++i) {
       for (int j = 0; j < nv; ++j) {
         Handle(BSplSLib_Cache) cache = new BSplSLib_Cache(
@@ -345,8 +352,8 @@ struct BrepModel::Impl {
       const double mid = (f.v0 + f.v1) / 2;
       uv.y() -= f.v_period * std::round((uv.y() - mid) / f.v_period);
     }
-    const Vector2d c(f.u_closed ? uv.x() : std::clamp(uv.x(), f.u0, f.u1),
-                     f.v_closed ? uv.y() : std::clamp(uv.y(), f.v0, f.v1));
+    Vector2d c(f.u_closed ? uv.x() : std::clamp(uv.x(), f.u0, f.u1),
+               f.v_closed ? uv.y() : std::clamp(uv.y(), f.v0, f.v1));
     clamped = c != uv;
     return c;
   }
@@ -382,9 +389,8 @@ struct BrepModel::Impl {
         return Local{uv, s, fix_u || fix_v || at_bound(f, uv)};
       }
       Vector2d step = Vector2d::Zero();
-      if (fix_u && fix_v) {
-        return Local{uv, s, true};
-      } else if (fix_u || fix_v) {
+      if (fix_u && fix_v) return Local{uv, s, true};
+      if (fix_u || fix_v) {
         const int k = fix_u ? 1 : 0;
         double hk = h(k, k);
         const Vector3d& t = fix_u ? s.sv : s.su;
@@ -434,7 +440,7 @@ struct BrepModel::Impl {
                               0, FaceData::kGrid - 1);
     const int gy = std::clamp(static_cast<int>((uv.y() - f.v0) / (f.v1 - f.v0) * FaceData::kGrid),
                               0, FaceData::kGrid - 1);
-    const Trim cell = f.cells[static_cast<std::size_t>(gx * FaceData::kGrid + gy)];
+    const Trim cell = f.cells[grid_index(gx, FaceData::kGrid, gy)];
     if (cell != Trim::boundary) return cell;
     // The polygon decides unless the point is within its chord error of it.
     bool inside = false;
@@ -457,7 +463,7 @@ struct BrepModel::Impl {
       for (std::uint32_t i = f.row_start[row]; i < f.row_start[row + 1]; ++i) {
         cross(f.loops[f.row_segments[i]]);
       }
-      const auto at = static_cast<std::size_t>(gx * FaceData::kGrid + gy);
+      const auto at = grid_index(gx, FaceData::kGrid, gy);
       for (std::uint32_t i = f.cell_start[at]; i < f.cell_start[at + 1]; ++i) {
         near(f.loops[f.cell_segments[i]]);
       }
@@ -764,7 +770,7 @@ void classify_trim(FaceData& f, int wires) {
       for (int y = std::max(y0, 0); y <= std::min(y1, g - 1); ++y) {
         rows[static_cast<std::size_t>(y)].push_back(static_cast<std::uint32_t>(i));
         for (int x = std::max(x0, 0); x <= std::min(x1, g - 1); ++x) {
-          cells[static_cast<std::size_t>(x * g + y)].push_back(static_cast<std::uint32_t>(i));
+          cells[grid_index(x, g, y)].push_back(static_cast<std::uint32_t>(i));
         }
       }
     }
@@ -840,7 +846,7 @@ void tessellate(FaceData& f, const TopoDS_Face& face) {
     double chord = 0;
     for (int i = 0; i < g; ++i) {
       for (int j = 0; j < g; ++j) {
-        const auto at = [&](int a, int b) { return static_cast<std::size_t>(a * (g + 1) + b); };
+        const auto at = [&](int a, int b) { return grid_index(a, g + 1, b); };
         const auto uv = [&](int a, int b) {
           return Vector2d(f.u0 + span_u * a / g, f.v0 + span_v * b / g);
         };

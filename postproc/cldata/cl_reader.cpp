@@ -199,7 +199,7 @@ void ClReader::process(const ClRecord& r) {
 
 // --- one handler per record family ------------------------------------------
 
-void ClReader::rapid(const ClRecord&) { rapid_pending_ = true; }
+void ClReader::rapid(const ClRecord& /*record*/) { rapid_pending_ = true; }
 
 void ClReader::from(const ClRecord& r) {
   require_numbers(r);
@@ -406,7 +406,7 @@ void ClReader::fini(const ClRecord& r) {
   ended_ = true;
 }
 
-void ClReader::end_of_path(const ClRecord&) { end_of_path_ = true; }
+void ClReader::end_of_path(const ClRecord& /*record*/) { end_of_path_ = true; }
 
 // A `$$` comment record: a comment of the output, where it stands (the
 // CAM system's operation names, notes for the operator), blanks trimmed.
@@ -487,8 +487,8 @@ void ClReader::csys(const ClRecord& r) {
   }
   Eigen::Matrix3d rotation;
   Vec offset;
-  for (int row = 0; row < 3; ++row) {
-    for (int col = 0; col < 3; ++col)
+  for (Eigen::Index row = 0; row < 3; ++row) {
+    for (Eigen::Index col = 0; col < 3; ++col)
       rotation(row, col) = number(r, static_cast<std::size_t>(4 * row + col));
     offset[row] = unit_ * number(r, static_cast<std::size_t>(4 * row + 3));
   }
@@ -560,7 +560,7 @@ void ClReader::apt_source(const ClRecord& r) {
 }
 
 // Records with no motion and no state the output needs.
-void ClReader::ignore(const ClRecord&) {}
+void ClReader::ignore(const ClRecord& /*record*/) {}
 
 // The dispatch table, sorted by word (checked at compile time).
 const ClReader::RecordRule* ClReader::find_rule(std::string_view word) {
@@ -641,12 +641,9 @@ const ClReader::RecordRule* ClReader::find_rule(std::string_view word) {
 void ClReader::process_motion_points(const ClRecord& r, bool continuation) {
   require_numbers(r);
   const std::size_t count = r.params.size();
-  std::size_t group = 3;
-  if (multax_) {
-    group = 6;
-  } else if (count == 6) {
-    group = 6;
-  }
+  // Six values per point (x,y,z,i,j,k) in MULTAX mode, and on a 3-axis line
+  // of exactly six: a tool axis written without MULTAX.
+  const std::size_t group = multax_ || count == 6 ? 6 : 3;
   if (count == 0 || count % group != 0) {
     fail(ClCode::wrong_parameters, r,
          std::string(continuation ? "coordinate line" : "GOTO") + " has " + std::to_string(count) +

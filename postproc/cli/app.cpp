@@ -32,7 +32,9 @@ std::optional<std::string> empty_option_value(const std::vector<std::string>& ar
     if (arg.size() > 3 && arg.compare(0, 2, "--") == 0 && arg.back() == '=' &&
         arg.find('=') == arg.size() - 1) {
       const std::string name = arg.substr(0, arg.size() - 1);
-      return name + ": empty value after '=' (give " + name + "=VALUE or " + name + " VALUE)";
+      std::string message = name;
+      message.append(": empty value after '=' (give ").append(name).append("=VALUE or ");
+      return message.append(name).append(" VALUE)");
     }
   }
   return std::nullopt;

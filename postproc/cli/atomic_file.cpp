@@ -154,14 +154,15 @@ AtomicFile::AtomicFile(std::filesystem::path target)
 }
 
 AtomicFile::~AtomicFile() {
-  if (file_) std::fclose(file_);
+  // The temporary is discarded: an error closing it changes nothing.
+  if (file_) (void)std::fclose(file_);
   // Removed before the registration ends, so no signal finds it unregistered.
   if (!temporary_.empty()) ::unlink(temporary_.c_str());
   registration_.release();
 }
 
 void AtomicFile::fail(int error) {
-  if (file_) std::fclose(file_);
+  if (file_) (void)std::fclose(file_);  // discarded, the first error is reported
   file_ = nullptr;
   if (!temporary_.empty()) ::unlink(temporary_.c_str());
   temporary_.clear();

@@ -23,7 +23,7 @@ HeldOutput::HeldOutput(std::size_t memory_limit, std::filesystem::path folder)
     : limit_(memory_limit), folder_(folder.empty() ? default_folder() : std::move(folder)) {}
 
 HeldOutput::~HeldOutput() {
-  if (file_) std::fclose(file_);
+  if (file_) (void)std::fclose(file_);  // a spill file already read back or abandoned
 }
 
 void HeldOutput::fail(const std::string& what, int error) const {

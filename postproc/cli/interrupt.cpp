@@ -1,13 +1,14 @@
 #include "postproc/cli/interrupt.h"
 
 #include <pthread.h>
-#include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cerrno>
 #include <climits>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
@@ -91,12 +92,7 @@ void append_number(char* buf, std::size_t size, std::size_t* used, int n) {
   while (count > 0 && *used + 1 < size) buf[(*used)++] = digits[--count];
 }
 
-bool is_fault(int sig) {
-  for (int fault : kFaults) {
-    if (fault == sig) return true;
-  }
-  return false;
-}
+bool is_fault(int sig) { return std::ranges::find(kFaults, sig) != kFaults.end(); }
 
 // Waits (at most a second) for threads inside create(). Creators block the
 // async signals and hold no lock, so this is a few system calls long; the
@@ -149,7 +145,7 @@ void on_signal(int sig) {
   sigemptyset(&only);
   sigaddset(&only, sig);
   ::pthread_sigmask(SIG_UNBLOCK, &only, nullptr);
-  ::raise(sig);
+  (void)::raise(sig);  // on failure, the _exit below ends the process
   errno = saved_errno;
   ::_exit(128 + sig);  // not reached: the default action of these signals ends the process
 }

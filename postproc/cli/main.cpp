@@ -9,7 +9,8 @@
 #include "postproc/cli/commands.h"
 #include "postproc/cli/interrupt.h"
 
-int main(int argc, char** argv) {
+// The whole body is in the try: building the command line can throw too.
+int main(int argc, char** argv) try {
   using namespace vcpost::cli;
   install_signal_handlers();  // before any thread: interrupts leave no temporary file
   CLI::App app;
@@ -41,13 +42,14 @@ int main(int argc, char** argv) {
     standard_output_is_the_only_output();
     const int code = app.exit(e);
     return code == 0 ? exit_ok : exit_input_error;
-  } catch (const std::exception& e) {
-    // One line: a vcpost::Error is the user's to fix (or a known internal
-    // fault, E9xxx), anything else is an internal error.
-    const bool known = dynamic_cast<const vcpost::Error*>(&e) != nullptr;
-    std::cerr << (known ? "vcpost: error: " : "vcpost: internal error: ") << printable(e.what())
-              << '\n';
-    return exit_code_of(e);
   }
   return exit_ok;
+} catch (const std::exception& e) {
+  using namespace vcpost::cli;
+  // One line: a vcpost::Error is the user's to fix (or a known internal
+  // fault, E9xxx), anything else is an internal error.
+  const bool known = dynamic_cast<const vcpost::Error*>(&e) != nullptr;
+  std::cerr << (known ? "vcpost: error: " : "vcpost: internal error: ") << printable(e.what())
+            << '\n';
+  return exit_code_of(e);
 }

@@ -19,6 +19,17 @@
 
 namespace vcpost::cli {
 
+namespace {
+
+// The events read before an error go out ahead of its message on stderr; a
+// failed flush adds nothing to that error, which is the one reported.
+void write_partial_transcript(std::string_view out) {
+  write_standard_output(out);
+  (void)std::fflush(stdout);
+}
+
+}  // namespace
+
 // APT CL data: the same events from the CL reader, printed the same way.
 template <class Options>
 void print_cl_moves(std::string_view text, const std::string& name,
@@ -37,12 +48,10 @@ void print_cl_moves(std::string_view text, const std::string& name,
       if (!options.count) program::append_transcript(out, *event, print);
     }
   } catch (const cldata::ClError& e) {
-    write_standard_output(out);
-    std::fflush(stdout);
+    write_partial_transcript(out);
     throw CommandError(e.vcpost::Error::code(), e.what());
   } catch (const program::TimingError& e) {
-    write_standard_output(out);
-    std::fflush(stdout);
+    write_partial_transcript(out);
     throw CommandError(e.code(),
                        name + ":" + std::to_string(e.source().line) + ": error: " + e.what());
   }
@@ -126,14 +135,12 @@ void add_moves_command(CLI::App& app) {
         events.clear();
       }
     } catch (const program::TimingError& e) {
-      write_standard_output(out);
-      std::fflush(stdout);
+      write_partial_transcript(out);
       flush_warnings();
       throw CommandError(e.code(), name + ":" + std::to_string(e.source().line) + ":" +
                                        std::to_string(e.source().column) + ": error: " + e.what());
     } catch (const gcode::GcodeError& e) {
-      write_standard_output(out);
-      std::fflush(stdout);
+      write_partial_transcript(out);
       flush_warnings();
       throw CommandError(e.code(), gcode::format(e.diagnostic(), name));
     }

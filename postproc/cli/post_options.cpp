@@ -641,7 +641,7 @@ namespace {
 
 // The nominal vc of the posted sections: one number, or their range.
 std::string vc_words(const post::PostSummary& summary) {
-  double low = INFINITY, high = -INFINITY;
+  double low = HUGE_VAL, high = -HUGE_VAL;
   for (const post::ToolSection& s : summary.sections) {
     if (!s.posted) continue;
     low = std::min(low, s.vc_nominal);

@@ -6,7 +6,7 @@ namespace {
 
 class CycleWriter {
  public:
-  CycleWriter(const CycleCall& c, std::vector<program::Event>& events, Eigen::Vector3d at)
+  CycleWriter(const CycleCall& c, std::vector<program::Event>& events, const Eigen::Vector3d& at)
       : c_(c), events_(events), at_(at) {}
 
   void traverse(double x, double y, double z) {
@@ -49,10 +49,15 @@ void hole(const CycleCall& c, CycleWriter& w, double x, double y, double clear) 
       break;
     case 730:
     case 830: {
-      for (double depth = r - c.q; depth > bottom; depth -= c.q) {
+      // Depth stepped down by Q as rs274 steps it (repeated subtraction, so
+      // the pecks land where LinuxCNC puts them); the count was bounded by
+      // the cycle-move limit before the block ran.
+      double depth = r - c.q;
+      while (depth > bottom) {
         w.feed(x, y, depth);
         if (c.code == 830) w.traverse(x, y, r);
         w.traverse(x, y, depth + c.peck_clearance);
+        depth -= c.q;
       }
       w.feed(x, y, bottom);
       w.traverse(x, y, clear);
@@ -74,13 +79,7 @@ void hole(const CycleCall& c, CycleWriter& w, double x, double y, double clear) 
       w.traverse(x, y, clear);
       break;
     case 860:
-      w.feed(x, y, bottom);
-      w.dwell(c.dwell);
-      w.spindle_off();
-      w.traverse(x, y, clear);
-      w.spindle_on(c.spindle_cw);
-      break;
-    case 760:  // Fanuc fine boring: oriented stop at the bottom, rapid out
+    case 760:  // Fanuc fine boring: oriented stop at the bottom, rapid out, as G86
       w.feed(x, y, bottom);
       w.dwell(c.dwell);
       w.spindle_off();

@@ -217,7 +217,7 @@ std::pair<std::uint64_t, std::uint32_t> Interpreter::find_sub(const std::string&
            " not found in this file");
 }
 
-void Interpreter::call(const std::string& name, std::vector<double> arguments, bool fanuc,
+void Interpreter::call(const std::string& name, const std::vector<double>& arguments, bool fanuc,
                        long repeat) {
   if (frames_.size() >= limits_.max_call_depth)
     fail(Code::call_depth, block_.control.column, "subroutine calls nested too deep");

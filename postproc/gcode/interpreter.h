@@ -152,7 +152,7 @@ class Interpreter {
   void skip_to(const std::string& name, std::initializer_list<ControlKind> stops,
                bool fanuc_nesting);
   std::pair<std::uint64_t, std::uint32_t> find_sub(const std::string& name, bool fanuc);
-  void call(const std::string& name, std::vector<double> arguments, bool fanuc, long repeat);
+  void call(const std::string& name, const std::vector<double>& arguments, bool fanuc, long repeat);
   bool return_from_sub();
   void commit_assignments();
 

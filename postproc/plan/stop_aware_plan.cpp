@@ -157,10 +157,9 @@ void StopAwarePlanner::decide(bool run_end) {
     } else {
       v = *s_;  // no ceiling anywhere ahead in the run: keep the S in effect
     }
-    if (!s_ || st.run_first) {
+    // Forced: the first word of a run, a lower ceiling or the slow-down for one.
+    if (!s_ || st.run_first || v < *s_ - kEps) {
       d.word = true;
-    } else if (v < *s_ - kEps) {
-      d.word = true;  // forced: a lower ceiling or the slow-down for one
     } else {
       d.word = v - *s_ >= change_threshold(spec_, *s_) - kEps;
     }

@@ -1,5 +1,6 @@
 #include "postproc/post/path_reader.h"
 
+#include <algorithm>
 #include <istream>
 #include <optional>
 #include <sstream>
@@ -70,10 +71,9 @@ class EventSource {
       default:
         break;
     }
-    for (const auto& word : block.words) {
-      if ((word.letter == 'M' || word.letter == 'm') && word.value == 98) return true;
-    }
-    return false;
+    return std::ranges::any_of(block.words, [](const auto& word) {
+      return (word.letter == 'M' || word.letter == 'm') && word.value == 98;
+    });
   }
 
   std::optional<std::uint64_t> repeat_from_;

@@ -494,7 +494,7 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
   std::optional<tbb::global_control> parallelism;
   if (threads > cores) parallelism.emplace(tbb::global_control::max_allowed_parallelism, threads);
   // Chunks in flight: enough to keep every thread busy, few enough to bound memory.
-  const auto tokens = static_cast<std::size_t>(2 * threads + 2);
+  const std::size_t tokens = 2 * static_cast<std::size_t>(threads) + 2;
   ChunkPool pool(tokens);
   double next_report = 0.01;
 
@@ -524,7 +524,8 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
     std::size_t sample_index = 0;
     for (const Slot& slot : chunk->slots) {
       pipeline::PointEvaluator* evaluator = chunk->evaluator(slot.section);
-      if (slot.break_pass && evaluator) evaluator->break_pass();
+      if (evaluator == nullptr) continue;  // a section not posted: no pass, no sample
+      if (slot.break_pass) evaluator->break_pass();
       if (slot.kind == SlotKind::sample)
         evaluator->place(slot.sample, chunk->results[sample_index++]);
     }

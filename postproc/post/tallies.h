@@ -86,7 +86,7 @@ class VcTally {
   }
 
  private:
-  double min_ = INFINITY, max_ = -INFINITY;
+  double min_ = HUGE_VAL, max_ = -HUGE_VAL;
   double weighted_sum_ = 0;
   VcBandTimes bands_;
   double weight_s_ = 0;

@@ -10,6 +10,7 @@
 // Exit codes: 0 ok, 2 usage or input error, 3 internal error.
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -220,7 +221,8 @@ void run_samples(const std::string& dir) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+// The whole body is in the try: building the command line can throw too.
+int main(int argc, char** argv) try {
   CLI::App app{
       "vcpost-samplegen: ball-end finishing programs with exact truth over sample surfaces"};
   app.require_subcommand(1);
@@ -267,9 +269,9 @@ int main(int argc, char** argv) {
     std::cerr << "vcpost-samplegen: error: " << e.what()
               << " (the window reaches beyond the surface; give a smaller --window)\n";
     return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "vcpost-samplegen: internal error: " << e.what() << '\n';
-    return 3;
   }
   return 0;
+} catch (const std::exception& e) {
+  std::cerr << "vcpost-samplegen: internal error: " << e.what() << '\n';
+  return 3;
 }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 namespace vcpost::samplegen {
 namespace {
@@ -71,7 +72,7 @@ std::vector<SampleProgram> sample_programs() {
   auto add = [&](const std::string& part, const std::string& stem, const std::string& title,
                  PathSpec path, double rpm, double feed) {
     const auto p = make_part(part);
-    SampleProgram s{part, stem, title, path, {}};
+    SampleProgram s{part, stem, title, std::move(path), {}};
     s.path.tool_radius = p->tool_diameter / 2;
     s.path.chord_tolerance = kSampleChordTolerance;
     s.program.safe_z = p->safe_z;

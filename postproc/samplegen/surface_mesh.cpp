@@ -29,7 +29,8 @@ mesh::StlMesh triangulate_grid(const SampleSurface& surface, int cells_u, int ce
   // (invalid_argument: a bug).
   if (cells_u < 1 || cells_v < 1) throw std::invalid_argument("triangulate_grid: no cells");
   const Eigen::AlignedBox2d box = surface.domain();
-  const Vector2d lo = box.min(), size = box.max() - box.min();
+  const Vector2d& lo = box.min();
+  const Vector2d size = box.max() - box.min();
   mesh::StlMesh m;
   m.vertices.reserve(static_cast<std::size_t>(cells_u + 1) * (cells_v + 1));
   for (int i = 0; i <= cells_u; ++i) {
@@ -68,7 +69,8 @@ mesh::StlMesh triangulate(const SampleSurface& surface, std::uint64_t triangles)
   // Internal invariant, not the user's input: samplegen's own parameters.
   if (triangles < 2) throw std::invalid_argument("triangulate: at least 2 triangles");
   const Eigen::AlignedBox2d box = surface.domain();
-  const Vector2d lo = box.min(), hi = box.max(), mid = box.center();
+  const Vector2d &lo = box.min(), &hi = box.max();
+  const Vector2d mid = box.center();
   // Extents along the middle iso-lines (enough for the sample parts, whose
   // metric does not vary by much across the domain).
   const double along_u = curve_length(surface, {lo.x(), mid.y()}, {hi.x(), mid.y()});

@@ -196,8 +196,8 @@ Vector3d SemiCylinder::normal(const Vector2d& uv) const {
   return {0, std::sin(uv.y()), std::cos(uv.y())};
 }
 
-Vector2d SemiCylinder::closest(const Vector3d& q, const Vector2d&) const {
-  const Vector2d uv(q.x(), std::atan2(q.y(), q.z()));
+Vector2d SemiCylinder::closest(const Vector3d& q, const Vector2d& /*guess*/) const {
+  Vector2d uv(q.x(), std::atan2(q.y(), q.z()));
   if (!inside(domain(), uv, 0) || std::hypot(q.y(), q.z()) == 0) {
     throw SurfaceError("semi-cylinder: the closest point of " + std::to_string(q.x()) + ", " +
                        std::to_string(q.y()) + ", " + std::to_string(q.z()) + " is off the patch");
@@ -205,10 +205,10 @@ Vector2d SemiCylinder::closest(const Vector3d& q, const Vector2d&) const {
   return uv;
 }
 
-Vector2d SemiCylinder::drop(const Vector2d& xy, double r, const Vector2d&) const {
+Vector2d SemiCylinder::drop(const Vector2d& xy, double r, const Vector2d& /*guess*/) const {
   // The centre is at radius + r from the axis: its y is (radius + r) sin v.
   const double s = xy.y() / (radius_ + r);
-  const Vector2d uv(xy.x(), std::asin(std::clamp(s, -1.0, 1.0)));
+  Vector2d uv(xy.x(), std::asin(std::clamp(s, -1.0, 1.0)));
   if (std::abs(s) >= 1 || !inside(domain(), uv, 0)) {
     throw SurfaceError("semi-cylinder: no contact on the patch for the ball above " + text(xy));
   }
@@ -229,7 +229,7 @@ Vector3d Dome::normal(const Vector2d& uv) const {
 Vector2d Dome::closest(const Vector3d& q, const Vector2d& guess) const {
   const double rho = std::hypot(q.x(), q.y());
   // On the axis any azimuth is right; keep the guess's.
-  const Vector2d uv(rho > 0 ? std::atan2(q.y(), q.x()) : guess.x(), std::atan2(rho, q.z()));
+  Vector2d uv(rho > 0 ? std::atan2(q.y(), q.x()) : guess.x(), std::atan2(rho, q.z()));
   if (uv.y() > max_polar_ || q.norm() == 0) {
     throw SurfaceError("dome: the closest point is below the dome's rim");
   }
@@ -239,8 +239,8 @@ Vector2d Dome::closest(const Vector3d& q, const Vector2d& guess) const {
 Vector2d Dome::drop(const Vector2d& xy, double r, const Vector2d& guess) const {
   const double rho = xy.norm();
   const double s = rho / (radius_ + r);
-  const Vector2d uv(rho > 0 ? std::atan2(xy.y(), xy.x()) : guess.x(),
-                    std::asin(std::clamp(s, -1.0, 1.0)));
+  Vector2d uv(rho > 0 ? std::atan2(xy.y(), xy.x()) : guess.x(),
+              std::asin(std::clamp(s, -1.0, 1.0)));
   if (s >= 1 || uv.y() > max_polar_) {
     throw SurfaceError("dome: no contact on the dome for the ball above " + text(xy));
   }

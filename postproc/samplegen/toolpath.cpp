@@ -58,7 +58,7 @@ void walk(const PathSpec& spec, Visit&& visit) {
   if (spec.pattern == Pattern::raster) {
     const double a = spec.angle_deg * std::numbers::pi / 180;
     const Vector2d d(std::cos(a), std::sin(a)), n(-std::sin(a), std::cos(a));
-    double smin = INFINITY, smax = -INFINITY;
+    double smin = HUGE_VAL, smax = -HUGE_VAL;
     for (int c = 0; c < 4; ++c) {
       const double s = n.dot(w.corner(static_cast<Eigen::AlignedBox2d::CornerType>(c)));
       smin = std::min(smin, s);
@@ -68,7 +68,7 @@ void walk(const PathSpec& spec, Visit&& visit) {
       const double s = smin + static_cast<double>(k) * spec.stepover;
       if (s > smax + 1e-9 * spec.stepover) break;
       const Vector2d base = s * n;
-      double t0 = -INFINITY, t1 = INFINITY;
+      double t0 = -HUGE_VAL, t1 = HUGE_VAL;
       bool empty = false;
       for (int i = 0; i < 2; ++i) {
         if (std::abs(d[i]) < 1e-15) {

@@ -47,7 +47,7 @@ bool same_fields(const SetFeedRate& a, const SetFeedRate& b) {
 }
 bool same_fields(const SetSpindleSpeed& a, const SetSpindleSpeed& b) { return a.rpm == b.rpm; }
 bool same_fields(const SpindleOn& a, const SpindleOn& b) { return a.direction == b.direction; }
-bool same_fields(const SpindleOff&, const SpindleOff&) { return true; }
+bool same_fields(const SpindleOff& /*a*/, const SpindleOff& /*b*/) { return true; }
 bool same_fields(const SelectTool& a, const SelectTool& b) { return a.number == b.number; }
 bool same_fields(const ChangeTool& a, const ChangeTool& b) { return a.number == b.number; }
 bool same_fields(const ToolLengthOffset& a, const ToolLengthOffset& b) {
@@ -60,7 +60,7 @@ bool same_fields(const SelectPlane& a, const SelectPlane& b) { return a.plane ==
 bool same_fields(const Coolant& a, const Coolant& b) { return a.change == b.change; }
 bool same_fields(const Dwell& a, const Dwell& b) { return a.seconds == b.seconds; }
 bool same_fields(const ProgramStop& a, const ProgramStop& b) { return a.optional == b.optional; }
-bool same_fields(const ProgramEnd&, const ProgramEnd&) { return true; }
+bool same_fields(const ProgramEnd& /*a*/, const ProgramEnd& /*b*/) { return true; }
 bool same_fields(const Message& a, const Message& b) { return a.text == b.text; }
 bool same_fields(const CannedCycle& a, const CannedCycle& b) {
   return a.code == b.code && a.x == b.x && a.y == b.y && a.top_z == b.top_z && a.r_z == b.r_z &&

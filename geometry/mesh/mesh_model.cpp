@@ -234,15 +234,17 @@ struct MeshModel::Builder {
 
   // The corners of a subtree's slots [base, base + size) side by side in
   // slot order (three per slot), rewritten level by level as the subtree
-  // is split: below a few ten thousand triangles the fits read them from
+  // is split: below a quarter million triangles the fits read them from
   // here rather than through the triangles (a copy of all the corners at
-  // once took 72 bytes a face, 720 MB for 10 M triangles).
+  // once took 72 bytes a face, 720 MB for 10 M triangles; a block is 19 MB,
+  // one a running subtree: 16 MB more at the peak than blocks of 65536,
+  // for two levels fewer of fits reading through the triangles).
   struct Scratch {
     std::uint32_t base;
     std::unique_ptr<double[]> block;  // x, y, z: 3 scratch_capacity doubles, reused from spare
     double* xyz[3];
   };
-  static constexpr std::uint32_t scratch_size = 1u << 16;
+  static constexpr std::uint32_t scratch_size = 1u << 18;
   // Blocks of finished subtrees, for the next ones: each subtree's own
   // new and delete of a few MB went back to the system and came back as
   // fresh pages for the kernel to zero (10 M triangles: a third of the

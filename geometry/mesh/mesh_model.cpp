@@ -12,6 +12,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <tuple>
@@ -357,10 +358,17 @@ void MeshModel::Builder::vertex_normals() {
         const std::uint32_t* t = m.corners_of(static_cast<std::uint32_t>(f));
         const Eigen::Vector3d p[3] = {m.vertices_[t[0]], m.vertices_[t[1]], m.vertices_[t[2]]};
         const Eigen::Vector3d facet = unit_normal(p[0], p[1], p[2]);
-        for (int k = 0; k < 3; ++k) {
+        // The third angle from the other two (they sum to pi): one atan2
+        // less a face, the third of this phase's time.
+        double angle[3];
+        for (int k = 0; k < 2; ++k) {
           const Eigen::Vector3d e1 = p[(k + 1) % 3] - p[k];
           const Eigen::Vector3d e2 = p[(k + 2) % 3] - p[k];
-          weighted[f - first][k] = std::atan2(e1.cross(e2).norm(), e1.dot(e2)) * facet;
+          angle[k] = std::atan2(e1.cross(e2).norm(), e1.dot(e2));
+        }
+        angle[2] = std::max(0.0, std::numbers::pi - angle[0] - angle[1]);
+        for (int k = 0; k < 3; ++k) {
+          weighted[f - first][k] = angle[k] * facet;
           corner[f - first][k] = t[k];
         }
       }

@@ -549,7 +549,9 @@ void MeshModel::Builder::tree() {
 void MeshModel::Builder::slots() {
   const auto nf = static_cast<std::uint32_t>(triangles.size());
   std::vector<std::uint32_t> face(nf);
-  for (std::uint32_t s = 0; s < nf; ++s) face[s] = items[s].face;
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, nf, face_grain), [&](const auto& range) {
+    for (std::uint32_t s = range.begin(); s < range.end(); ++s) face[s] = items[s].face;
+  });
   items.reset();
   m.slots_.resize(nf);
   m.slot_of_face_.resize(nf);

@@ -12,6 +12,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <tuple>
@@ -31,10 +32,17 @@ constexpr std::size_t face_grain = 4096;
 // x rounded to float. The empty asm hides the float from the optimizer:
 // GCC 12 at -O3 was seen to use x itself where a later expression reads the
 // rounded float back as a double (two lanes of a vectorised conversion),
-// which changes the boxes; the build relies on that rounding.
+// which changes the boxes; the build relies on that rounding. On x86-64 the
+// float stays in its SSE register: through memory ("+m"), the store and
+// reload of the fifteen or so roundings of each box cost a twentieth of
+// the build.
 float to_float(double x) {
   float f = static_cast<float>(x);
+#if defined(__x86_64__)
+  __asm__ volatile("" : "+x"(f));
+#else
   __asm__ volatile("" : "+m"(f));
+#endif
   return f;
 }
 
@@ -135,6 +143,82 @@ Eigen::Vector3d unit_normal(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
   return len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::UnitZ();
 }
 
+// The principal frame of the n corners that for_each_corner(f) passes to
+// f (rows: the axes, the one of least spread first), from their covariance
+// about the mean of `moments`.
+template <class Corners>
+Eigen::Matrix3d principal_frame(const Corners& corners, const Moments& moments, std::size_t n) {
+  Eigen::Vector3d mean(moments.sum[0], moments.sum[1], moments.sum[2]);
+  mean /= static_cast<double>(n);
+  // Entry by entry, as `covariance += d * d.transpose()` adds them (written
+  // out: Eigen's temporary outer product stalls on store forwarding).
+  double c00 = 0, c01 = 0, c02 = 0, c11 = 0, c12 = 0, c22 = 0;
+  corners([&](double x, double y, double z) {
+    const double d0 = x - mean[0], d1 = y - mean[1], d2 = z - mean[2];
+    c00 += d0 * d0;
+    c01 += d0 * d1;
+    c02 += d0 * d2;
+    c11 += d1 * d1;
+    c12 += d1 * d2;
+    c22 += d2 * d2;
+  });
+  Eigen::Matrix3d covariance;
+  covariance << c00, c01, c02, c01, c11, c12, c02, c12, c22;
+  // The closed-form solver: a third of the iterative one's time (which was
+  // a quarter of the build). Its vectors may be off orthogonal where two
+  // eigenvalues nearly meet, so the frame is made orthonormal again (the
+  // boxes hold the corners whatever the axes; the query's bounds need
+  // them orthonormal): the smallest one kept, the normal of a flat patch.
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
+  solver.computeDirect(covariance);
+  const Eigen::Matrix3d& v = solver.eigenvectors();
+  Eigen::Vector3d a0 = v.col(0);
+  if (!(a0.norm() > 0.5)) a0 = Eigen::Vector3d::UnitZ();
+  a0.normalize();
+  Eigen::Vector3d a2 = v.col(2) - v.col(2).dot(a0) * a0;
+  a2 = a2.norm() > 0.5 ? Eigen::Vector3d(a2.normalized()) : a0.unitOrthogonal();
+  Eigen::Matrix3d principal;
+  principal.row(0) = a0;
+  principal.row(1) = a2.cross(a0);
+  principal.row(2) = a2;
+  return principal;
+}
+
+// The frame of a leaf (one or two triangles, three corners each, as
+// for_each_corner(f) passes them): the sum of the triangles' area vectors
+// first, then the longest edge, made orthogonal to it (around one triangle
+// that box has the least area, twice the triangle's). As tight as the
+// principal frame on the sample moulds and a fraction of the eigen
+// solver's cost (leaves are most of the fitted nodes). False for a
+// degenerate leaf, which takes the principal frame.
+template <class Corners>
+bool leaf_frame(const Corners& corners, Eigen::Matrix3d& frame) {
+  constexpr int max_corners = 3 * static_cast<int>(leaf_size);
+  Eigen::Vector3d p[max_corners];
+  int n = 0;
+  corners([&](double x, double y, double z) { p[n++] = {x, y, z}; });
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  Eigen::Vector3d longest = Eigen::Vector3d::Zero();
+  for (int t = 0; t < n; t += 3) {
+    normal += (p[t + 1] - p[t]).cross(p[t + 2] - p[t]);
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d e = p[t + (k + 1) % 3] - p[t + k];
+      if (e.squaredNorm() > longest.squaredNorm()) longest = e;
+    }
+  }
+  if (!(normal.norm() > 0)) return false;
+  const Eigen::Vector3d a0 = normal.normalized();
+  // Off the plane by more than 60 degrees (two triangles at a sharp angle):
+  // too short once projected for an orthonormal frame.
+  const Eigen::Vector3d e = longest.normalized();
+  const Eigen::Vector3d a2 = e - e.dot(a0) * a0;
+  if (!(a2.norm() > 0.5)) return false;
+  frame.row(0) = a0;
+  frame.row(2) = a2.normalized();
+  frame.row(1) = frame.row(2).cross(frame.row(0));
+  return true;
+}
+
 }  // namespace
 
 // The index is built in a fixed order of floating-point operations, the
@@ -151,15 +235,17 @@ struct MeshModel::Builder {
 
   // The corners of a subtree's slots [base, base + size) side by side in
   // slot order (three per slot), rewritten level by level as the subtree
-  // is split: below a few ten thousand triangles the fits read them from
+  // is split: below a quarter million triangles the fits read them from
   // here rather than through the triangles (a copy of all the corners at
-  // once took 72 bytes a face, 720 MB for 10 M triangles).
+  // once took 72 bytes a face, 720 MB for 10 M triangles; a block is 19 MB,
+  // one a running subtree: 16 MB more at the peak than blocks of 65536,
+  // for two levels fewer of fits reading through the triangles).
   struct Scratch {
     std::uint32_t base;
     std::unique_ptr<double[]> block;  // x, y, z: 3 scratch_capacity doubles, reused from spare
     double* xyz[3];
   };
-  static constexpr std::uint32_t scratch_size = 1u << 16;
+  static constexpr std::uint32_t scratch_size = 1u << 18;
   // Blocks of finished subtrees, for the next ones: each subtree's own
   // new and delete of a few MB went back to the system and came back as
   // fresh pages for the kernel to zero (10 M triangles: a third of the
@@ -176,6 +262,14 @@ struct MeshModel::Builder {
   Builder(MeshModel& model, const std::vector<std::array<std::uint32_t, 3>>& t)
       : m(model), triangles(t) {}
 
+  // A face side, in the groups edges() sorts them into.
+  struct Side {
+    std::uint32_t upper;      // its upper vertex
+    std::uint32_t face_side;  // 4 face + side (faces are fewer than 2^30)
+    Side() {}                 // left unset: every one is written, on the threads
+    Side(std::uint32_t u, std::uint32_t fs) : upper(u), face_side(fs) {}
+  };
+  void group_sides(std::vector<Side>& sides, std::vector<std::size_t>& start) const;
   void edges();
   void vertex_normals();
   void tree();
@@ -243,38 +337,107 @@ MeshModel::MeshModel(StlMesh mesh) : vertices_(std::move(mesh.vertices)) {
 }
 
 // Angle-weighted vertex normals. The sums are taken in face order, corner
-// by corner (their rounding depends on the order); the facet normals and
-// corner angles are computed a block of faces at a time, in parallel, so
-// that no array of them per face is needed.
+// by corner (their rounding depends on the order). A block of faces at a
+// time: their corners' weighted facet normals computed in parallel (no
+// array of them for every face), then added to the vertices of each of
+// `parts` fixed vertex ranges by a task of its own that reads the whole
+// block (the adding, serial, kept the other thread idle 0.15 s on the
+// 10 M-triangle mould).
 void MeshModel::Builder::vertex_normals() {
   const std::size_t nf = m.slots_.size();
-  m.vertex_normal_.assign(m.vertices_.size(), Eigen::Vector3d::Zero());
+  const std::size_t nv = m.vertices_.size();
+  m.vertex_normal_.assign(nv, Eigen::Vector3d::Zero());
   constexpr std::size_t block = 16 * face_grain;
-  std::vector<Eigen::Vector3d> facet(std::min(nf, block));
-  std::vector<std::array<double, 3>> angles(facet.size());
+  constexpr std::size_t parts = 2;
+  std::vector<std::array<std::uint32_t, 3>> corner(std::min(nf, block));
+  std::vector<std::array<Eigen::Vector3d, 3>> weighted(corner.size());
   for (std::size_t first = 0; first < nf; first += block) {
     const std::size_t last = std::min(nf, first + block);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(first, last, face_grain), [&](const auto& r) {
       for (std::size_t f = r.begin(); f < r.end(); ++f) {
         const std::uint32_t* t = m.corners_of(static_cast<std::uint32_t>(f));
         const Eigen::Vector3d p[3] = {m.vertices_[t[0]], m.vertices_[t[1]], m.vertices_[t[2]]};
-        facet[f - first] = unit_normal(p[0], p[1], p[2]);
-        for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector3d facet = unit_normal(p[0], p[1], p[2]);
+        // The third angle from the other two (they sum to pi): one atan2
+        // less a face, the third of this phase's time.
+        double angle[3];
+        for (int k = 0; k < 2; ++k) {
           const Eigen::Vector3d e1 = p[(k + 1) % 3] - p[k];
           const Eigen::Vector3d e2 = p[(k + 2) % 3] - p[k];
-          angles[f - first][k] = std::atan2(e1.cross(e2).norm(), e1.dot(e2));
+          angle[k] = std::atan2(e1.cross(e2).norm(), e1.dot(e2));
+        }
+        angle[2] = std::max(0.0, std::numbers::pi - angle[0] - angle[1]);
+        for (int k = 0; k < 3; ++k) {
+          weighted[f - first][k] = angle[k] * facet;
+          corner[f - first][k] = t[k];
         }
       }
     });
-    for (std::size_t f = first; f < last; ++f) {
-      const std::uint32_t* t = m.corners_of(static_cast<std::uint32_t>(f));
-      for (int k = 0; k < 3; ++k) m.vertex_normal_[t[k]] += angles[f - first][k] * facet[f - first];
+    tbb::parallel_for(std::size_t{0}, parts, [&](std::size_t part) {
+      const std::size_t lo = nv * part / parts, hi = nv * (part + 1) / parts;
+      for (std::size_t i = 0; i < last - first; ++i)
+        for (int k = 0; k < 3; ++k)
+          if (corner[i][k] >= lo && corner[i][k] < hi)
+            m.vertex_normal_[corner[i][k]] += weighted[i][k];
+    });
+  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, face_grain), [&](const auto& r) {
+    for (std::size_t v = r.begin(); v < r.end(); ++v) {
+      Eigen::Vector3d& n = m.vertex_normal_[v];
+      const double len = n.norm();
+      n = len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::UnitZ();
+    }
+  });
+}
+
+// The face sides grouped by their lower vertex, in face order within each
+// group (group v: sides[start[v], start[v + 1])). A counting sort over a
+// fixed number of face ranges at once: each range counts its sides per
+// vertex, then places them after those of the ranges before it, so the
+// order is the one face by face gives, whatever the threads (serial, it
+// took 0.4 s of the 10 M-triangle mould's index).
+void MeshModel::Builder::group_sides(std::vector<Side>& sides,
+                                     std::vector<std::size_t>& start) const {
+  constexpr std::uint32_t ranges = 4;
+  const auto nf = static_cast<std::uint32_t>(triangles.size());
+  const std::size_t nv = m.vertices_.size();
+  // cursor[r nv + v]: the number of range r's sides in group v, then where
+  // range r puts its next one (32 bits: there are 3 nf < 2^32 sides).
+  std::vector<std::uint32_t> cursor(ranges * nv, 0);
+  const auto each_range = [&](const auto& body) {
+    tbb::parallel_for(std::uint32_t{0}, ranges, [&](std::uint32_t r) {
+      const auto first = static_cast<std::uint32_t>(std::uint64_t{nf} * r / ranges);
+      const auto last = static_cast<std::uint32_t>(std::uint64_t{nf} * (r + 1) / ranges);
+      body(cursor.data() + r * nv, first, last);
+    });
+  };
+  each_range([&](std::uint32_t* count, std::uint32_t first, std::uint32_t last) {
+    for (std::uint32_t f = first; f < last; ++f) {
+      const auto& t = triangles[f];
+      for (int k = 0; k < 3; ++k) ++count[std::min(t[k], t[(k + 1) % 3])];
+    }
+  });
+  start.resize(nv + 1);
+  std::size_t at = 0;
+  for (std::size_t v = 0; v < nv; ++v) {
+    start[v] = at;
+    for (std::size_t r = 0; r < ranges; ++r) {
+      const std::uint32_t count = cursor[r * nv + v];
+      cursor[r * nv + v] = static_cast<std::uint32_t>(at);
+      at += count;
     }
   }
-  for (auto& n : m.vertex_normal_) {
-    const double len = n.norm();
-    n = len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::UnitZ();
-  }
+  start[nv] = at;
+  sides.resize(at);
+  each_range([&](std::uint32_t* next, std::uint32_t first, std::uint32_t last) {
+    for (std::uint32_t f = first; f < last; ++f) {
+      const auto& t = triangles[f];
+      for (std::uint32_t k = 0; k < 3; ++k) {
+        const auto [lo, hi] = std::minmax(t[k], t[(k + 1) % 3]);
+        sides[next[lo]++] = Side(hi, 4 * f + k);
+      }
+    }
+  });
 }
 
 // What makes the pseudo-normals that tell inside from outside at edges
@@ -289,28 +452,12 @@ void MeshModel::Builder::edges() {
     return unit_normal(m.vertices_[t[0]], m.vertices_[t[1]], m.vertices_[t[2]]);
   };
 
-  // Edges: the face sides grouped by their lower vertex (a counting sort,
-  // which keeps face order), then each group sorted by upper vertex, face
-  // and side: a run of equal upper vertices is one edge, in face order.
-  struct Side {
-    std::uint32_t upper;
-    std::uint32_t face_side;  // 4 face + side (faces are fewer than 2^30)
-  };
-  std::vector<std::size_t> start(nv + 1, 0);
-  for (const auto& t : triangles)
-    for (int k = 0; k < 3; ++k) ++start[std::min(t[k], t[(k + 1) % 3]) + 1];
-  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-  std::vector<Side> sides(3 * std::size_t{nf});
-  {
-    std::vector<std::size_t> next(start.begin(), start.end() - 1);
-    for (std::uint32_t f = 0; f < nf; ++f) {
-      const auto& t = triangles[f];
-      for (std::uint32_t k = 0; k < 3; ++k) {
-        const auto [lo, hi] = std::minmax(t[k], t[(k + 1) % 3]);
-        sides[next[lo]++] = {hi, 4 * f + k};
-      }
-    }
-  }
+  // Edges: the face sides grouped by their lower vertex, then each group
+  // sorted by upper vertex, face and side: a run of equal upper vertices is
+  // one edge, in face order.
+  std::vector<Side> sides;
+  std::vector<std::size_t> start;
+  group_sides(sides, start);
   // Two passes over the groups: sort them and note each edge of two sides
   // (the faces across) or one (a border), counting the edges of three or
   // more; then, with every group's first such edge number known, sum their
@@ -402,7 +549,9 @@ void MeshModel::Builder::tree() {
 void MeshModel::Builder::slots() {
   const auto nf = static_cast<std::uint32_t>(triangles.size());
   std::vector<std::uint32_t> face(nf);
-  for (std::uint32_t s = 0; s < nf; ++s) face[s] = items[s].face;
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, nf, face_grain), [&](const auto& range) {
+    for (std::uint32_t s = range.begin(); s < range.end(); ++s) face[s] = items[s].face;
+  });
   items.reset();
   m.slots_.resize(nf);
   m.slot_of_face_.resize(nf);
@@ -424,7 +573,14 @@ template <class F>
 void MeshModel::Builder::for_each_corner(std::uint32_t begin, std::uint32_t end, F&& f) const {
   const std::array<std::uint32_t, 3>* const tri = triangles.data();
   const Item* const item = items.get();
+  // Two steps of indirection, each fetched ahead: the triangle `ahead`
+  // slots early, then its corners half way there (the build's passes over
+  // corners outside the scratch wait on memory otherwise).
+  constexpr std::uint32_t ahead = 16;
   for (std::uint32_t s = begin; s < end; ++s) {
+    if (s + ahead < end) __builtin_prefetch(&tri[item[s + ahead].face]);
+    if (s + ahead / 2 < end)
+      for (const std::uint32_t i : tri[item[s + ahead / 2].face]) m.vertices_.prefetch(i);
     for (const std::uint32_t i : tri[item[s].face]) {
       const Eigen::Vector3d v = m.vertices_[i];
       f(v[0], v[1], v[2]);
@@ -637,41 +793,9 @@ void MeshModel::Builder::fit_node(Node& node, std::uint32_t begin, std::uint32_t
     const double* const zs = scratch->xyz[2] + first;
     for (std::size_t i = 0; i < n; ++i) f(xs[i], ys[i], zs[i]);
   };
-  Eigen::Vector3d mean(moments.sum[0], moments.sum[1], moments.sum[2]);
-  mean /= static_cast<double>(n);
-  // Entry by entry, as `covariance += d * d.transpose()` adds them (written
-  // out: Eigen's temporary outer product stalls on store forwarding).
-  double c00 = 0, c01 = 0, c02 = 0, c11 = 0, c12 = 0, c22 = 0;
-  corners([&](double x, double y, double z) {
-    const double d0 = x - mean[0], d1 = y - mean[1], d2 = z - mean[2];
-    c00 += d0 * d0;
-    c01 += d0 * d1;
-    c02 += d0 * d2;
-    c11 += d1 * d1;
-    c12 += d1 * d2;
-    c22 += d2 * d2;
-  });
-  Eigen::Matrix3d covariance;
-  covariance << c00, c01, c02, c01, c11, c12, c02, c12, c22;
-  // The closed-form solver: a third of the iterative one's time (which was
-  // a quarter of the build). Its vectors may be off orthogonal where two
-  // eigenvalues nearly meet, so the frame is made orthonormal again (the
-  // boxes hold the corners whatever the axes; the query's bounds need
-  // them orthonormal): the smallest one kept, the normal of a flat patch.
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
-  solver.computeDirect(covariance);
   Eigen::Matrix3d principal;
-  {
-    const Eigen::Matrix3d& v = solver.eigenvectors();
-    Eigen::Vector3d a0 = v.col(0);
-    if (!(a0.norm() > 0.5)) a0 = Eigen::Vector3d::UnitZ();
-    a0.normalize();
-    Eigen::Vector3d a2 = v.col(2) - v.col(2).dot(a0) * a0;
-    a2 = a2.norm() > 0.5 ? Eigen::Vector3d(a2.normalized()) : a0.unitOrthogonal();
-    principal.row(0) = a0;
-    principal.row(1) = a2.cross(a0);
-    principal.row(2) = a2;
-  }
+  if (end - begin > leaf_size || !leaf_frame(corners, principal))
+    principal = principal_frame(corners, moments, n);
   const Eigen::Vector3d box_lo(moments.lo[0], moments.lo[1], moments.lo[2]);
   const Eigen::Vector3d box_hi(moments.hi[0], moments.hi[1], moments.hi[2]);
   const Eigen::AlignedBox3d box(box_lo, box_hi);

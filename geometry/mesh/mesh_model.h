@@ -99,6 +99,14 @@ class MeshModel final : public geometry::SurfaceModel {
       return single_.empty() ? double_[i] : single_[i].cast<double>();
     }
     std::size_t size() const { return single_.empty() ? double_.size() : single_.size(); }
+    // Asks for corner i's cache line ahead of its use.
+    void prefetch(std::size_t i) const {
+      if (single_.empty()) {
+        __builtin_prefetch(double_.data() + i);
+      } else {
+        __builtin_prefetch(single_.data() + i);
+      }
+    }
     bool single() const { return !single_.empty(); }
 
    private:

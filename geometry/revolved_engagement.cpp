@@ -143,7 +143,11 @@ class Groove {
     foot_left_ = silhouette(phi_left_);
     foot_right_ = silhouette(phi_right_);
     edge_on_ = std::abs(feed_.z()) <= kEdgeOn;
-    c_star_ = width_level();
+    rim_tilt_ = length_of(normal_.x(), normal_.y());
+    rim_tau_ = std::atan2(normal_.y(), normal_.x());
+    // The shank's lowest point along N is at -R |N_xy|.
+    shank_in_stock_ = c0_ + radius_ * rim_tilt_ > 0;
+    c_star_ = width_level();  // boundary() needs the members above
   }
 
   double radius() const { return radius_; }
@@ -253,9 +257,8 @@ class Groove {
   // half, which holds its point with tangent parallel to the shank's rays).
   // r = R and z = 0 all along it, so `phi` only has to lie on the branch.
   BoundaryPoint rim_boundary(double c, bool left, double phi) const {
-    const double m = length_of(normal_.x(), normal_.y());
-    const double tau = std::atan2(normal_.y(), normal_.x());
-    const double half = std::acos(std::clamp(c / (radius_ * m), -1.0, 1.0));
+    const double tau = rim_tau_;
+    const double half = std::acos(std::clamp(c / (radius_ * rim_tilt_), -1.0, 1.0));
     const Vector3d p1(radius_ * std::cos(tau - half), radius_ * std::sin(tau - half), 0);
     const Vector3d p2(radius_ * std::cos(tau + half), radius_ * std::sin(tau + half), 0);
     const double b1 = side_.dot(p1), b2 = side_.dot(p2);
@@ -387,6 +390,8 @@ class Groove {
   double c_min_ = 0, c0_ = 0, c_star_ = 0;
   Vector3d foot_left_, foot_right_;
   bool edge_on_ = false;
+  bool shank_in_stock_ = true;
+  double rim_tilt_ = 0, rim_tau_ = 0;  // |N_xy| and its azimuth, for rim_boundary
   // boundary()'s last roots on the left and right: a cache, not state.
   mutable std::array<double, 2> warm_start_{kInf, kInf};
 };
@@ -478,14 +483,29 @@ Groove::FaceStretches Groove::face_stretches(double u) const {
     const double c = normal_.dot(p);
     return std::min(side_.dot(p) - boundary(c, true).b - ae_, c - c_min_);
   };
-  const double peak = golden_argmin([&](double v) { return -removed(v); }, lo, hi, 1e-10 * radius_);
-  if (removed(peak) <= 0) {
+  // Any point where it is positive splits the line into two stretches with
+  // one crossing each (it is concave), so the peak is searched for only
+  // when the middle is not removed.
+  double peak = 0.5 * (lo + hi), at_peak = removed(peak);
+  if (!(at_peak > 0)) {
+    peak = golden_argmin([&](double v) { return -removed(v); }, lo, hi, 1e-10 * radius_);
+    at_peak = removed(peak);
+  }
+  if (at_peak <= 0) {
     out.v[out.count++] = {lo, hi};
     return out;
   }
+  // The crossings on each side, from the values already known.
   const double tolerance = 1e-13 * radius_;
-  const double cut_lo = removed(lo) > 0 ? lo : root(removed, lo, peak, tolerance);
-  const double cut_hi = removed(hi) > 0 ? hi : root(removed, peak, hi, tolerance);
+  const auto crossing = [&](double from, double at_from) {
+    if (at_from > 0) return from;
+    const auto [a, b] = from < peak
+                            ? bracket_root(removed, from, peak, at_from, at_peak, tolerance)
+                            : bracket_root(removed, peak, from, at_peak, at_from, tolerance);
+    return 0.5 * (a + b);
+  };
+  const double cut_lo = crossing(lo, removed(lo));
+  const double cut_hi = crossing(hi, removed(hi));
   if (cut_lo > lo) out.v[out.count++] = {lo, cut_lo};
   if (hi > cut_hi) out.v[out.count++] = {cut_hi, hi};
   return out;
@@ -525,7 +545,9 @@ void Groove::curve_extremes(const Curve& point_at_parameter, double lo, double h
     return which == 0 ? x.r : which == 1 ? -x.r : -x.z;
   };
   for (int which = 0; which < 3; ++which) {
-    if (which == 2 && out.z_max > 1e-9 * radius_) continue;  // the shank is already known to cut
+    // z only decides whether the shank cuts: skipped when that is already
+    // known, or impossible (no shank point reaches the stock plane).
+    if (which == 2 && (out.z_max > 1e-9 * radius_ || !shank_in_stock_)) continue;
     for (int i = 0; i <= kSteps; ++i) {
       const double here = objective(v[i], which);
       if (here == kInf || (i > 0 && here > objective(v[i - 1], which)) ||

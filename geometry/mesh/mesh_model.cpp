@@ -37,7 +37,7 @@ constexpr std::size_t face_grain = 4096;
 // reload of the fifteen or so roundings of each box cost a twentieth of
 // the build.
 float to_float(double x) {
-  float f = static_cast<float>(x);
+  auto f = static_cast<float>(x);
 #if defined(__x86_64__)
   __asm__ volatile("" : "+x"(f));
 #else
@@ -266,7 +266,9 @@ struct MeshModel::Builder {
   struct Side {
     std::uint32_t upper;      // its upper vertex
     std::uint32_t face_side;  // 4 face + side (faces are fewer than 2^30)
-    Side() {}                 // left unset: every one is written, on the threads
+    // Left unset (user-provided, so a vector of them is not zero-filled):
+    // every one is written, on the threads.
+    Side() {}  // NOLINT(modernize-use-equals-default)
     Side(std::uint32_t u, std::uint32_t fs) : upper(u), face_side(fs) {}
   };
   void group_sides(std::vector<Side>& sides, std::vector<std::size_t>& start) const;
@@ -277,9 +279,10 @@ struct MeshModel::Builder {
   template <class F>
   void for_each_corner(std::uint32_t begin, std::uint32_t end, F&& f) const;
   void gather(std::uint32_t begin, std::uint32_t end, bool corners, Moments& moments,
-              Scratch* scratch);
+              Scratch* scratch) const;
   void fit_node(Node& node, std::uint32_t begin, std::uint32_t end, const Moments& moments,
                 const Scratch* scratch) const;
+  // Not const: it reorders the slots' items (through `items`).
   std::uint32_t split(std::uint32_t begin, std::uint32_t end, const Moments& moments);
   void top(std::uint32_t begin, std::uint32_t end, const Moments& moments, std::uint32_t own,
            Scratch* scratch);
@@ -521,7 +524,7 @@ void MeshModel::Builder::edges() {
 // The hierarchy: median split of the centroids along the box's longest axis.
 void MeshModel::Builder::tree() {
   const auto nf = static_cast<std::uint32_t>(triangles.size());
-  items.reset(new Item[nf]);
+  items = std::make_unique_for_overwrite<Item[]>(nf);  // every item is written below
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, nf, face_grain), [&](const auto& range) {
     for (std::uint32_t f = range.begin(); f < range.end(); ++f) {
       const auto& t = triangles[f];
@@ -592,7 +595,7 @@ void MeshModel::Builder::for_each_corner(std::uint32_t begin, std::uint32_t end,
 // `corners` the corners' sums and extents (the corners copied into
 // `scratch` on the way, when there is one).
 void MeshModel::Builder::gather(std::uint32_t begin, std::uint32_t end, bool corners,
-                                Moments& moments, Scratch* scratch) {
+                                Moments& moments, Scratch* scratch) const {
   const Item* const item = items.get();
   Eigen::Vector3f fl = moments.centroids.min().cast<float>();
   Eigen::Vector3f fh = moments.centroids.max().cast<float>();
@@ -649,6 +652,7 @@ void MeshModel::Builder::gather(std::uint32_t begin, std::uint32_t end, bool cor
 
 // Splits slots [begin, end) at the median centroid along the longest side
 // of the centroids' box; returns the middle.
+// NOLINTNEXTLINE(readability-make-member-function-const): reorders the items
 std::uint32_t MeshModel::Builder::split(std::uint32_t begin, std::uint32_t end,
                                         const Moments& moments) {
   int axis = 0;
@@ -1052,8 +1056,8 @@ std::optional<geometry::ModelContact> MeshModel::closest_point(const Eigen::Vect
   // ulps of |p|_1 + |offset| (the margin and the grown half extents take
   // that off), and the float axes are orthonormal to ~1e-7 (the final
   // factor takes that back).
-  const float px = static_cast<float>(p.x()), py = static_cast<float>(p.y()),
-              pz = static_cast<float>(p.z());
+  const auto px = static_cast<float>(p.x()), py = static_cast<float>(p.y()),
+             pz = static_cast<float>(p.z());
   // Rounding of axis.p in float: a few ulps of |p|_1 (the offsets' own
   // share is in the half extents).
   const float margin = 1e-6f * (std::abs(px) + std::abs(py) + std::abs(pz));

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "geometry/engagement.h"
+#include "revolved_cases.h"
 #include "revolved_sampler_support.h"
 
 namespace vcpost::geometry {
@@ -157,30 +158,6 @@ TEST(RevolvedEngagement, DegenerateInputIsFlaggedNotThrown) {
     EXPECT_TRUE(evaluate_revolved_engagement(tool, setup(0.5, 0, {0, 0, 1}, {1, 0, 0})).points);
     EXPECT_FALSE(flags(setup(0.5, 1, {0, 0, 1}, {1, 0, 0})).has(EngagementFlag::nothing_engaged));
   }
-}
-
-struct RandomCase {
-  double diameter, corner, ap, ae;
-  Vector3d normal, feed;
-  Side side;
-};
-
-RandomCase random_case(std::mt19937& random, bool flat) {
-  std::uniform_real_distribution<double> unit(0, 1);
-  RandomCase c;
-  c.diameter = 4 + 16 * unit(random);
-  const double radius = c.diameter / 2;
-  c.corner = flat ? 0 : radius * (0.1 + 0.8 * unit(random));
-  c.ap = c.diameter * (0.01 + 0.5 * unit(random) * unit(random));
-  c.ae = c.diameter * (0.02 + 1.1 * unit(random));
-  c.normal = normal_from_angles(80 * kPi / 180 * unit(random), 2 * kPi * unit(random));
-  c.feed = feed_from_angle(2 * kPi * unit(random), c.normal);
-  c.side = unit(random) < 0.5 ? Side::left : Side::right;
-  return c;
-}
-
-Tool tool_of(const RandomCase& c) {
-  return c.corner > 0 ? Tool::bull_nose(c.diameter, c.corner) : Tool::flat(c.diameter);
 }
 
 // The cutting points lie on the rim: on the tool surface and on the stock

@@ -1,6 +1,6 @@
 // The bull-nose and flat engine's D_max and D_min against the reference of
 // revolved_reference_support.h on random set-ups: the random cases of
-// revolved_engagement_test.cpp and the finishing cases of
+// revolved_cases.h and the finishing cases of
 // bench/revolved_engagement_bench.cpp (same generators, same seeds).
 #include <gtest/gtest.h>
 
@@ -15,6 +15,7 @@
 
 #include "geometry/engagement.h"
 #include "geometry/revolved_engagement.h"
+#include "revolved_cases.h"
 #include "revolved_reference_support.h"
 
 namespace vcpost::geometry {
@@ -23,31 +24,10 @@ namespace {
 using Eigen::Vector3d;
 constexpr double kPi = std::numbers::pi;
 
-struct Case {
-  double diameter, corner, ap, ae;
-  Vector3d normal, feed;
-  Side side;
-};
-
-// revolved_engagement_test.cpp's random_case.
-Case random_case(std::mt19937& random, bool flat) {
-  std::uniform_real_distribution<double> unit(0, 1);
-  Case c;
-  c.diameter = 4 + 16 * unit(random);
-  const double radius = c.diameter / 2;
-  c.corner = flat ? 0 : radius * (0.1 + 0.8 * unit(random));
-  c.ap = c.diameter * (0.01 + 0.5 * unit(random) * unit(random));
-  c.ae = c.diameter * (0.02 + 1.1 * unit(random));
-  c.normal = normal_from_angles(80 * kPi / 180 * unit(random), 2 * kPi * unit(random));
-  c.feed = feed_from_angle(2 * kPi * unit(random), c.normal);
-  c.side = unit(random) < 0.5 ? Side::left : Side::right;
-  return c;
-}
-
 // revolved_engagement_bench.cpp's finishing cases: D = 10, bull-nose rc = 2.
-Case finishing_case(std::mt19937& random, bool flat) {
+RandomCase finishing_case(std::mt19937& random, bool flat) {
   std::uniform_real_distribution<double> unit(0, 1);
-  Case c;
+  RandomCase c;
   c.diameter = 10;
   c.corner = flat ? 0 : 2;
   c.normal = normal_from_angles(60 * kPi / 180 * unit(random), 2 * kPi * unit(random));
@@ -58,7 +38,7 @@ Case finishing_case(std::mt19937& random, bool flat) {
   return c;
 }
 
-std::string describe(const Case& c) {
+std::string describe(const RandomCase& c) {
   char text[400];
   std::snprintf(text, sizeof text,
                 "D %.17g rc %.17g ap %.17g ae %.17g N (%.17g, %.17g, %.17g) F (%.17g, %.17g, "
@@ -82,14 +62,9 @@ Agreement compare(const Generator& generate, int count, unsigned seed, double to
   std::mt19937 random(seed);
   Agreement out;
   for (int i = 0; i < count; ++i) {
-    const Case c = generate(random, i % 3 == 0);
-    const Tool tool = c.corner > 0 ? Tool::bull_nose(c.diameter, c.corner) : Tool::flat(c.diameter);
-    CutSetup s;
-    s.ap = c.ap;
-    s.ae = c.ae;
-    s.normal = c.normal;
-    s.feed = c.feed;
-    s.side = c.side;
+    const RandomCase c = generate(random, i % 3 == 0);
+    const Tool tool = tool_of(c);
+    const CutSetup s = setup_of(c);
     const Engagement e = evaluate_revolved_engagement(tool, s);
     const auto reference = [&](testing::ReferenceResolution at) {
       return testing::reference_extremes(c.diameter, c.corner, c.ap, c.ae, c.normal, c.feed,
@@ -139,13 +114,8 @@ TEST(RevolvedReference, ReferenceMatchesTheBallClosedForm) {
   std::mt19937 random(19);
   double worst = 0;
   for (int i = 0; i < 60; ++i) {
-    const Case c = random_case(random, false);
-    CutSetup s;
-    s.ap = c.ap;
-    s.ae = c.ae;
-    s.normal = c.normal;
-    s.feed = c.feed;
-    s.side = c.side;
+    const RandomCase c = random_case(random, false);
+    const CutSetup s = setup_of(c);
     const Engagement ball = evaluate_engagement(Tool::ball(c.diameter), s);
     const testing::ReferenceExtremes ref = testing::reference_extremes(
         c.diameter, c.diameter / 2, c.ap, c.ae, c.normal, c.feed, c.side == Side::left, {16, 64});

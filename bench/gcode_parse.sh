@@ -53,7 +53,7 @@ if command -v rs274 > /dev/null; then
            c, n / c / 1e6, w, n / w / 1e6
     printf "ratio vcpost/rs274: %.1f (CPU), %.1f (wall)\n", c / vc, w / vw }'
   # rs274 must have read the whole file, not stopped at an error.
-  rs274 -g "$work/short.ngc" < /dev/null 2>&1 | grep -q "PROGRAM_END" ||
+  rs274 -g "$work/short.ngc" < /dev/null 2>&1 | grep "PROGRAM_END" >/dev/null ||
     echo "warning: rs274 did not reach PROGRAM_END on the short program"
 else
   echo "rs274 not installed (linuxcnc-uspace): no comparison"

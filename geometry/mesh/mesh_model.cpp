@@ -342,18 +342,13 @@ MeshModel::MeshModel(StlMesh mesh) : vertices_(std::move(mesh.vertices)) {
 // Angle-weighted vertex normals. The sums are taken in face order, corner
 // by corner (their rounding depends on the order). A block of faces at a
 // time: their corners' weighted facet normals computed in parallel (no
-// array of them for every face), then added to the vertices of each of
-// `parts` fixed vertex ranges by a task of its own that reads the whole
-// block (the adding, serial, kept the other thread idle 0.15 s on the
-// 10 M-triangle mould).
+// array of them for every face), then added in face order.
 void MeshModel::Builder::vertex_normals() {
   const std::size_t nf = m.slots_.size();
   const std::size_t nv = m.vertices_.size();
   m.vertex_normal_.assign(nv, Eigen::Vector3d::Zero());
   constexpr std::size_t block = 16 * face_grain;
-  constexpr std::size_t parts = 2;
-  std::vector<std::array<std::uint32_t, 3>> corner(std::min(nf, block));
-  std::vector<std::array<Eigen::Vector3d, 3>> weighted(corner.size());
+  std::vector<std::array<Eigen::Vector3d, 3>> weighted(std::min(nf, block));
   for (std::size_t first = 0; first < nf; first += block) {
     const std::size_t last = std::min(nf, first + block);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(first, last, face_grain), [&](const auto& r) {
@@ -370,19 +365,13 @@ void MeshModel::Builder::vertex_normals() {
           angle[k] = std::atan2(e1.cross(e2).norm(), e1.dot(e2));
         }
         angle[2] = std::max(0.0, std::numbers::pi - angle[0] - angle[1]);
-        for (int k = 0; k < 3; ++k) {
-          weighted[f - first][k] = angle[k] * facet;
-          corner[f - first][k] = t[k];
-        }
+        for (int k = 0; k < 3; ++k) weighted[f - first][k] = angle[k] * facet;
       }
     });
-    tbb::parallel_for(std::size_t{0}, parts, [&](std::size_t part) {
-      const std::size_t lo = nv * part / parts, hi = nv * (part + 1) / parts;
-      for (std::size_t i = 0; i < last - first; ++i)
-        for (int k = 0; k < 3; ++k)
-          if (corner[i][k] >= lo && corner[i][k] < hi)
-            m.vertex_normal_[corner[i][k]] += weighted[i][k];
-    });
+    for (std::size_t f = first; f < last; ++f) {
+      const std::uint32_t* t = m.corners_of(static_cast<std::uint32_t>(f));
+      for (int k = 0; k < 3; ++k) m.vertex_normal_[t[k]] += weighted[f - first][k];
+    }
   }
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, face_grain), [&](const auto& r) {
     for (std::size_t v = r.begin(); v < r.end(); ++v) {

@@ -156,17 +156,10 @@ bool BlockParser::read_o_name(std::string& name, bool throwing) {
   skip_blanks();
   if (!at_end() && s_[i_] == '<') {
     const std::size_t open = i_;
-    ++i_;
-    while (!at_end() && s_[i_] != '>' && !starts_comment(s_[i_])) {  // as in read_name
-      if (!is_blank(s_[i_]))
-        name += static_cast<char>(std::tolower(static_cast<unsigned char>(s_[i_])));
-      ++i_;
-    }
-    if (at_end() || starts_comment(s_[i_])) {
+    if (!read_angle_name(name)) {
       if (throwing) fail(Code::bad_expression, open, "O-word name not closed with '>'");
       return false;
     }
-    ++i_;
     return !name.empty();
   }
   while (!at_end() && (is_digit(s_[i_]) || is_blank(s_[i_]))) {

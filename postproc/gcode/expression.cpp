@@ -265,19 +265,9 @@ std::string ExpressionReader::dialect_hint(const std::string& name) const {
 // After "#<": the normalised name up to '>'.
 std::string ExpressionReader::read_name() {
   const std::size_t open = i_;
-  ++i_;
   std::string key;
-  // '(' and ';' start a comment even inside a name on LinuxCNC (rs274:
-  // "Unclosed comment found", "Equal sign missing in parameter setting"):
-  // the name ends unclosed there.
-  while (!at_end() && s_[i_] != '>' && !starts_comment(s_[i_])) {
-    if (!is_blank(s_[i_]))
-      key += static_cast<char>(std::tolower(static_cast<unsigned char>(s_[i_])));
-    ++i_;
-  }
-  if (at_end() || starts_comment(s_[i_]))
+  if (!read_angle_name(key))
     fail(Code::bad_expression, open, "named parameter not closed with '>'");
-  ++i_;
   if (key.empty()) fail(Code::bad_expression, open, "empty parameter name");
   return key;
 }

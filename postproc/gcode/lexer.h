@@ -9,6 +9,7 @@
 // inline here: the block parser calls it for every word.
 #pragma once
 
+#include <cctype>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -23,8 +24,6 @@ constexpr bool is_blank(char c) { return c == ' ' || c == '\t'; }
 constexpr bool is_digit(char c) { return c >= '0' && c <= '9'; }
 constexpr bool is_alpha(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
 constexpr char upper(char c) { return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 32) : c; }
-// Where LinuxCNC starts a comment, even inside a #<name> or O<name>.
-constexpr bool starts_comment(char c) { return c == '(' || c == ';'; }
 
 // Exact powers of ten (10^22 is the largest exact double).
 inline constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
@@ -52,6 +51,23 @@ class Lexer {
 
   void skip_blanks() {
     while (i_ < s_.size() && is_blank(s_[i_])) ++i_;
+  }
+
+  // A #<name> or O<name> with the cursor on its '<': the name as LinuxCNC
+  // keys it (blanks dropped, lower case) into `name`, the cursor after the
+  // '>'. False when the name is not closed: the line ends, or '(' or ';'
+  // starts a comment, as it does even there on LinuxCNC (rs274: "Unclosed
+  // comment found", "Equal sign missing in parameter setting").
+  bool read_angle_name(std::string& name) {
+    ++i_;
+    while (!at_end() && s_[i_] != '>' && s_[i_] != '(' && s_[i_] != ';') {
+      if (!is_blank(s_[i_]))
+        name += static_cast<char>(std::tolower(static_cast<unsigned char>(s_[i_])));
+      ++i_;
+    }
+    if (at_end() || s_[i_] != '>') return false;
+    ++i_;
+    return true;
   }
 
   // Letters from the cursor, upper-cased ("if" -> "IF").

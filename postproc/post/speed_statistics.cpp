@@ -4,14 +4,6 @@
 
 namespace vcpost::post {
 
-namespace {
-
-void tally_vc(VcTally& tally, const HeldSample& h, double rpm, double nominal) {
-  tally.add(geometry::cutting_speed(h.d_ref, rpm), nominal, h.weight_s);
-}
-
-}  // namespace
-
 void SpeedStatistics::open_block(const plan::BlockPlan& block) {
   if (block.bound == plan::Bound::off) return;
   if (!placement_ || placement_->placement.run != block.run) {
@@ -32,14 +24,18 @@ void SpeedStatistics::open_block(const plan::BlockPlan& block) {
 void SpeedStatistics::add_sample(const HeldSample& sample, double program_rpm, double planned_rpm,
                                  double nominal, VcTally& section_before, VcTally& section_after) {
   if (std::isnan(sample.d_ref)) return;
-  tally_vc(before_, sample, program_rpm, nominal);
-  tally_vc(after_, sample, planned_rpm, nominal);
-  tally_vc(section_before, sample, program_rpm, nominal);
-  tally_vc(section_after, sample, planned_rpm, nominal);
+  // Each speed once, into the program's, the section's and the run's tallies.
+  const double before = geometry::cutting_speed(sample.d_ref, program_rpm);
+  const double after = geometry::cutting_speed(sample.d_ref, planned_rpm);
+  const double weight = sample.weight_s;
+  before_.add(before, nominal, weight);
+  after_.add(after, nominal, weight);
+  section_before.add(before, nominal, weight);
+  section_after.add(after, nominal, weight);
   if (placement_) {
-    tally_vc(placement_->before, sample, program_rpm, nominal);
-    tally_vc(placement_->after, sample, planned_rpm, nominal);
-    placement_->placement.cutting_time_s += sample.weight_s;
+    placement_->before.add(before, nominal, weight);
+    placement_->after.add(after, nominal, weight);
+    placement_->placement.cutting_time_s += weight;
   }
 }
 

@@ -191,7 +191,7 @@ class Groove {
       return {p, side_.dot(p), phi_bottom, 0};
     }
     double a = left ? phi_end : phi_bottom, b = left ? phi_bottom : phi_end;
-    if (corner_ == 0 && !edge_on_) return rim_boundary(c, left, 0.5 * (a + b));
+    if (corner_ == 0 && !edge_on_) return rim_boundary(c, left);
     // Newton's method on c(phi) = c inside the bracket, bisecting whenever a
     // step leaves it (c is monotone on each side of the bottom).
     const double sign = left ? -1.0 : 1.0;  // c decreases along the left branch
@@ -229,7 +229,10 @@ class Groove {
       const double next = phi - g / slope;
       const bool newton = slope != 0 && next > a && next < b;
       phi = newton ? next : 0.5 * (a + b);
-      if (newton && std::abs(g / slope) < 1e-14) {
+      // Converged when the step is round-off and so is the miss in c: near
+      // an edge-on face c(phi) is so steep that a step of 1e-14 still
+      // missed by 1e-5 mm (then the bracket closes onto the steep stretch).
+      if (newton && std::abs(g / slope) < 1e-14 && std::abs(g) < 1e-12 * radius_) {
         a = b = phi;
         break;
       }
@@ -255,15 +258,23 @@ class Groove {
   // N.P = R |N_xy| cos(t - tau) = c, the left one with the smaller b (the
   // branch from the left foot down to the bottom lies on the ellipse's left
   // half, which holds its point with tangent parallel to the shank's rays).
-  // r = R and z = 0 all along it, so `phi` only has to lie on the branch.
-  BoundaryPoint rim_boundary(double c, bool left, double phi) const {
+  // The point's silhouette parameter: the support point of the ellipse
+  // A(disk), A = rows e_xy and N_xy, in the direction v is R A^T v / |A^T v|,
+  // so v is along A^-T P_xy (det A = +-F_z, not zero off edge-on).
+  BoundaryPoint rim_boundary(double c, bool left) const {
     const double tau = rim_tau_;
     const double half = std::acos(std::clamp(c / (radius_ * rim_tilt_), -1.0, 1.0));
     const Vector3d p1(radius_ * std::cos(tau - half), radius_ * std::sin(tau - half), 0);
     const Vector3d p2(radius_ * std::cos(tau + half), radius_ * std::sin(tau + half), 0);
     const double b1 = side_.dot(p1), b2 = side_.dot(p2);
     const bool first = left ? b1 <= b2 : b1 > b2;
-    return first ? BoundaryPoint{p1, b1, phi, 0} : BoundaryPoint{p2, b2, phi, 0};
+    const Vector3d& p = first ? p1 : p2;
+    const double det = side_.x() * normal_.y() - side_.y() * normal_.x();
+    double phi = std::atan2((side_.x() * p.y() - side_.y() * p.x()) / det,
+                            (normal_.y() * p.x() - normal_.x() * p.y()) / det);
+    while (phi < phi_left_) phi += 2 * kPi;
+    while (phi >= phi_left_ + 2 * kPi) phi -= 2 * kPi;
+    return {p, first ? b1 : b2, phi, 0};
   }
 
   // The interval of t over which x0 + t F lies in the tool; empty when the
@@ -374,15 +385,35 @@ class Groove {
   }
 
   void silhouette_extremes(double phi_lo, double phi_hi, RadiusExtremes& out) const;
-  struct FaceStretches {
-    std::array<std::pair<double, double>, 2> v{};
-    int count = 0;
-  };
-  FaceStretches face_stretches(double u) const;
+  void stock_line_extremes(double b_hi, RadiusExtremes& out) const;
+  void shifted_extremes(const BoundaryPoint& left_top, RadiusExtremes& out) const;
+  void shifted_ray_extremes(double c_lo, RadiusExtremes& out) const;
+  void shifted_silhouette_extremes(double phi_top, double phi_star, RadiusExtremes& out) const;
+  bool face_point_engaged(const Vector3d& p, double slack) const;
+  // max(-z - rc, r - R, distance to the corner circle - rc): <= 0 exactly
+  // in the tool, 0 on its surface.
+  double outside_by(const Vector3d& p) const {
+    const double r = length_of(p.x(), p.y());
+    double value = std::max(-p.z() - corner_, r - radius_);
+    if (corner_ > 0 && r > flat_radius_ && p.z() < 0)
+      value = std::max(value, length_of(r - flat_radius_, p.z()) - corner_);
+    return value;
+  }
+  // Whether a surface point with outward normal n leads (F.n >= 0, within
+  // round-off); the face by the sign of F_z, edge-on counting as leading.
+  bool leads(const Vector3d& n) const {
+    if (n.z() == -1) return edge_on_ || feed_.z() < 0;
+    return feed_.dot(n) >= -1e-12;
+  }
+  // The tool's outward normal at a point of its surface (the face's at r <= R0).
+  Vector3d surface_normal(const Vector3d& p) const {
+    const double r = length_of(p.x(), p.y());
+    if (r <= flat_radius_ || !(r > 0)) return -Vector3d::UnitZ();
+    const Vector3d radial(p.x() / r, p.y() / r, 0);
+    if (p.z() >= 0 || !(corner_ > 0)) return radial;
+    return ((r - flat_radius_) * radial + p.z() * Vector3d::UnitZ()).normalized();
+  }
   void face_extremes(RadiusExtremes& out) const;
-  template <class Curve>
-  void curve_extremes(const Curve& point_at_parameter, double lo, double hi,
-                      RadiusExtremes& out) const;
 
   double radius_, flat_radius_, corner_, ae_;
   Vector3d feed_, normal_, side_;
@@ -405,161 +436,207 @@ void Groove::silhouette_extremes(double phi_lo, double phi_hi, RadiusExtremes& o
   }
 }
 
-// The leading flat face in its own plane: lines u = const across it (u
-// along H = z x F, v along H x z), on each the stretch in the stock and
-// outside the previous pass in closed form or by 1-D roots; the extremes
-// of r over u by subdivision and golden-section refinement. In (b, c) the
-// face is a thin ellipse when F is nearly parallel to it, too thin for the
-// boundary curves' subdivision.
+// The stock line c = c0 up to b_hi = bL(c0) + ae: its front points are an arc
+// of the rim (the tool cut by the stock plane), whose ends the other curves
+// add. Along the rim r is stationary only where the rim is tangent to a
+// horizontal circle of the tool, i.e. where the circle's tangent z x P is
+// normal to N too: P in the vertical plane through the axis and N_xy. The
+// tool's section by that plane is convex, so the stock line meets it in two
+// points, found in closed form piece by piece (shank lines, corner circles,
+// face); z is stationary there as well, which the shank test needs.
+void Groove::stock_line_extremes(double b_hi, RadiusExtremes& out) const {
+  const double s = rim_tilt_;
+  if (!(s > 1e-12)) return;  // a level rim: r constant along it
+  const Vector3d radial(normal_.x() / s, normal_.y() / s, 0);
+  const double nz = normal_.z();
+  const double slack = 1e-12 * radius_;
+  // Adds the point rho * radial + z * Z with outward tool normal `n` when it
+  // leads (F.n >= 0) and lies at b <= b_hi (b >= bL(c0) holds on the tool).
+  const auto candidate = [&](double rho, double z, const Vector3d& n) {
+    const Vector3d p = rho * radial + z * Vector3d::UnitZ();
+    const double b = side_.dot(p);
+    if (!leads(n) || b > b_hi + slack) return;
+    out.add(std::abs(rho), z);
+  };
+  // Shank lines rho = +-R, z >= 0.
+  for (const double sign : {1.0, -1.0}) {
+    const double z = (c0_ - sign * radius_ * s) / nz;
+    if (z >= 0) candidate(sign * radius_, z, sign * radial);
+  }
+  // The face z = -rc, |rho| <= R0 (the flat mill's face is at z = 0).
+  const double face_rho = (c0_ + corner_ * nz) / s;
+  if (std::abs(face_rho) <= flat_radius_) candidate(face_rho, -corner_, -Vector3d::UnitZ());
+  if (!(corner_ > 0)) return;
+  // The corner circles: centre (+-R0, 0), radius rc, the outer lower quarter;
+  // on the line z = k (c0 - s rho), k = 1 / N_z: a quadratic in rho.
+  const double k = 1 / nz;
+  for (const double sign : {1.0, -1.0}) {
+    const double centre = sign * flat_radius_;
+    const double qa = 1 + k * k * s * s;
+    const double qb = centre + k * k * s * c0_;  // half of -b
+    const double qc = centre * centre + k * k * c0_ * c0_ - corner_ * corner_;
+    const double disc = qb * qb - qa * qc;
+    if (disc < 0) continue;
+    for (const double root : {-1.0, 1.0}) {
+      const double rho = (qb + root * std::sqrt(disc)) / qa;
+      const double z = k * (c0_ - s * rho);
+      if (sign * (rho - centre) < -slack || z > slack) continue;
+      candidate(rho, z, ((rho - centre) * radial + z * Vector3d::UnitZ()) / corner_);
+    }
+  }
+}
+
+// The shifted silhouette b = bL(c) + ae, c in [c*, c0]: the edge of the
+// previous pass's groove on this tool, i.e. the tool surface cut by the
+// surface the previous tool swept. Along such a curve r is stationary
+// where the curve is tangent to the tool's horizontal circle, and since
+// the curve's tangent is n x u (n the tool's normal, in the meridian plane
+// of P; u the swept surface's), that is where u has no component along the
+// circle: u_xy parallel to P_xy. z is stationary there too (the tangent's
+// z component is n_xy x u_xy). So the extremes are the ends and these
+// points, found in closed form on the shank's ray and by 1-D roots on the
+// silhouette.
+void Groove::shifted_extremes(const BoundaryPoint& left_top, RadiusExtremes& out) const {
+  if (!(c_star_ < c0_)) return;
+  const auto add_front = [&](const Vector3d& x) {
+    if (const auto p = front(side_.dot(x), normal_.dot(x))) out.add(*p);
+  };
+  const BoundaryPoint star = boundary(c_star_, true);
+  add_front(left_top.p + ae_ * side_);
+  add_front(star.p + ae_ * side_);
+  const double c_foot = normal_.dot(foot_left_);
+  if (c_star_ < c_foot && c_foot < c0_) add_front(foot_left_ + ae_ * side_);
+  if (c0_ > c_foot) shifted_ray_extremes(std::max(c_star_, c_foot), out);
+  if (c_star_ < c_foot)
+    shifted_silhouette_extremes(c0_ > c_foot ? phi_left_ : left_top.phi, star.phi, out);
+}
+
+// On the shank's ray the shifted fibres fill the vertical plane m.X = d,
+// m = unit(z x F): the circle tangent to it touches it at P_xy = d m, on
+// the tool's circle of radius |d|.
+void Groove::shifted_ray_extremes(double c_lo, RadiusExtremes& out) const {
+  const double fxy = length_of(feed_.x(), feed_.y());
+  if (!(fxy > 0)) return;
+  const Vector3d m(-feed_.y() / fxy, feed_.x() / fxy, 0);
+  const double d = m.dot(foot_left_ + ae_ * side_);
+  const double reach = std::abs(d) - flat_radius_;
+  if (!(reach < corner_)) return;  // the shank's circles: r = R, no interior extreme
+  const double z = reach <= 0 ? -corner_ : -std::sqrt(corner_ * corner_ - reach * reach);
+  const Vector3d p = d * m + z * Vector3d::UnitZ();
+  const double c = normal_.dot(p), slack = 1e-12 * radius_;
+  if (c < c_lo - slack || c > c0_ + slack || !leads(surface_normal(p))) return;
+  out.add(p);
+}
+
+// On the silhouette, by its parameter phi (the previous tool's silhouette
+// point S(phi) + ae e, fibre along F): the point of the fibre with P_xy
+// parallel to u_xy is in closed form, and the stationary points are where
+// it lies on the tool (outside_by = 0) as the fibre's front point. Sign
+// changes on a subdivision, refined geometrically around the bottom of the
+// face (where the silhouette sweeps across a face nearly parallel to F in
+// a sliver of phi), then regula falsi.
+void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
+                                         RadiusExtremes& out) const {
+  const auto meridian_point = [&](double phi) -> std::optional<Vector3d> {
+    const Vector3d u = std::cos(phi) * side_ + std::sin(phi) * normal_;
+    const double length = length_of(u.x(), u.y());
+    if (!(length > 0)) return std::nullopt;
+    const Vector3d x =
+        (flat_radius_ / length) * Vector3d(u.x(), u.y(), 0) + corner_ * u + ae_ * side_;
+    const double across = feed_.x() * u.y() - feed_.y() * u.x();
+    if (across == 0) return std::nullopt;
+    return x - (x.x() * u.y() - x.y() * u.x()) / across * feed_;
+  };
+  const auto excess = [&](double phi) {
+    const auto p = meridian_point(phi);
+    return p ? outside_by(*p) : kInf;
+  };
+  constexpr int kSteps = 24, kRefinements = 14;
+  std::array<double, kSteps + 1 + 2 * kRefinements> nodes{};
+  std::size_t count = 0;
+  const double lo = std::min(phi_top, phi_star), hi = std::max(phi_top, phi_star);
+  for (int i = 0; i <= kSteps; ++i) nodes[count++] = lo + (hi - lo) * i / kSteps;
+  const double phi_face = omega_ + kPi;
+  if (phi_face > lo && phi_face < hi) {
+    double offset = (hi - lo) / kSteps;
+    for (int k = 0; k < kRefinements; ++k, offset *= 0.1) {
+      if (phi_face - offset > lo) nodes[count++] = phi_face - offset;
+      if (phi_face + offset < hi) nodes[count++] = phi_face + offset;
+    }
+  }
+  std::sort(nodes.begin(), nodes.begin() + static_cast<std::ptrdiff_t>(count));
+  double prev = nodes[0], at_prev = excess(prev);
+  for (std::size_t i = 1; i < count; ++i) {
+    const double x = nodes[i], at_x = excess(x);
+    if (std::isfinite(at_prev) && std::isfinite(at_x) && (at_prev <= 0) != (at_x <= 0)) {
+      const auto [a, b] = bracket_root(excess, prev, x, at_prev, at_x, 1e-15);
+      const auto p = meridian_point(0.5 * (a + b));
+      if (p && std::abs(outside_by(*p)) <= 1e-9 * radius_ && leads(surface_normal(*p))) out.add(*p);
+    }
+    prev = x;
+    at_prev = at_x;
+  }
+}
+
+// Whether the fibre through a face point lies in the groove: in the stock
+// and not strictly inside the previous pass (within `slack`, mm).
+bool Groove::face_point_engaged(const Vector3d& p, double slack) const {
+  const double b = side_.dot(p), c = normal_.dot(p);
+  if (c > c0_ + slack) return false;
+  return c <= c_min_ || b - ae_ <= boundary(c, true).b + slack;
+}
+
+// The least r on a leading face (F_z < 0, or edge-on). r has no extremum
+// inside the face but its centre (r = 0), and the face's edges in the
+// groove are the stock line (stock_line_extremes), the rim (r = R0) and
+// the edge of the previous pass, found here in the face's own plane: the
+// previous tool at ae e + t F cuts the plane in a disk of centre C(t) =
+// ae e_xy + t F_xy and radius rho(t) (its circle at the height of this
+// face), so the removed part is a union of disks and its edge their
+// envelope: Y = C + rho n with n.F_xy = -rho'(t). The point nearest the
+// axis has n = -C/|C|, where g(t) = C.F_xy / |C| - rho'(t) = 0; C.F_xy/|C|
+// grows along the line and rho' (the corner's circles widening as the
+// previous tool sinks) shrinks, so g has one root: bracketed by the
+// stretch of t whose disks reach the face at all.
 void Groove::face_extremes(RadiusExtremes& out) const {
-  // None of the face is in the stock: nothing to do.
-  if (-flat_radius_ * std::hypot(normal_.x(), normal_.y()) - corner_ * normal_.z() > c0_) return;
-  constexpr int kSteps = 48;
-  struct Reach {
-    double nearest = kInf, farthest = -kInf;  // extremes of r on the line
-  };
-  const auto reach = [&](double u) {
-    Reach out_line;
-    const FaceStretches stretches = face_stretches(u);
-    for (int k = 0; k < stretches.count; ++k) {
-      const auto [lo, hi] = stretches.v[k];
-      const double near = lo <= 0 && hi >= 0 ? 0.0 : std::min(std::abs(lo), std::abs(hi));
-      out_line.nearest = std::min(out_line.nearest, length_of(u, near));
-      out_line.farthest = std::max(out_line.farthest, length_of(u, std::max(-lo, hi)));
-    }
-    return out_line;
-  };
-  std::array<double, kSteps + 1> u{};
-  std::array<Reach, kSteps + 1> line{};
-  for (int i = 0; i <= kSteps; ++i) {
-    u[i] = flat_radius_ * (2.0 * i / kSteps - 1);
-    line[i] = reach(u[i]);
-    if (line[i].nearest < kInf) out.add(line[i].nearest, -corner_);
-    if (line[i].farthest > -kInf) out.add(line[i].farthest, -corner_);
+  const Vector3d centre = -corner_ * Vector3d::UnitZ();
+  if (face_point_engaged(centre, 0)) out.add(0, centre.z());
+  const double fx = feed_.x(), fy = feed_.y(), f2 = fx * fx + fy * fy;
+  if (!(f2 > 0)) return;
+  const double cx = ae_ * side_.x(), cy = ae_ * side_.y();
+  const double lift = ae_ * side_.z();              // the previous tool's height over this one
+  const double sink = edge_on_ ? 0.0 : -feed_.z();  // dh/dt of its circle in this plane: > 0
+  // Its circle in this plane is at its own height h(t) = -rc - lift + t sink.
+  const double reach = flat_radius_ + radius_;
+  const double beta = cx * fx + cy * fy, gamma = cx * cx + cy * cy - reach * reach;
+  const double disc = beta * beta - f2 * gamma;
+  if (!(disc > 0)) return;
+  double t_lo = (-beta - std::sqrt(disc)) / f2;
+  const double t_hi = (-beta + std::sqrt(disc)) / f2;
+  if (sink == 0) {
+    if (!(lift < 0)) return;  // the previous tool's bottom at or above this face
+  } else {
+    t_lo = std::max(t_lo, lift / sink);  // below, it does not reach the plane
+    if (!(t_lo < t_hi)) return;
   }
-  for (const bool lowest : {true, false}) {
-    // The face's rim is at R0: it cannot raise a maximum already >= R0.
-    if (!lowest && out.r_max >= flat_radius_) continue;
-    const auto objective = [&](const Reach& x) { return lowest ? x.nearest : -x.farthest; };
-    for (int i = 0; i <= kSteps; ++i) {
-      const double here = objective(line[i]);
-      if (!std::isfinite(here) || (lowest && here == 0) ||
-          (i > 0 && here > objective(line[i - 1])) ||
-          (i < kSteps && here > objective(line[i + 1]))) {
-        continue;
-      }
-      const auto g = [&](double x) { return objective(reach(x)); };
-      const double x =
-          golden_argmin(g, u[std::max(i - 1, 0)], u[std::min(i + 1, kSteps)], 1e-10 * radius_);
-      const double r = std::abs(g(x));
-      if (std::isfinite(r)) out.add(r, -corner_);
-    }
-  }
-}
-
-// On the face line u = const: the stretches of v (at most two) in the
-// stock and not removed by the previous pass.
-Groove::FaceStretches Groove::face_stretches(double u) const {
-  FaceStretches out;
-  const double half = std::sqrt(std::max(0.0, flat_radius_ * flat_radius_ - u * u));
-  if (!(half > 0)) return out;
-  const Vector3d across = Vector3d::UnitZ().cross(feed_).normalized();
-  const Vector3d along = across.cross(Vector3d::UnitZ());
-  const auto at = [&](double v) -> Vector3d {
-    return u * across + v * along - corner_ * Vector3d::UnitZ();
+  const auto height = [&](double t) { return -corner_ - lift + t * sink; };
+  const auto disk_radius = [&](double h) {
+    return h >= 0 ? radius_ : flat_radius_ + std::sqrt(std::max(0.0, corner_ * corner_ - h * h));
   };
-  double lo = -half, hi = half;
-  // Stock: c is linear in v.
-  const double c_lo = normal_.dot(at(lo)), c_hi = normal_.dot(at(hi));
-  if (c_lo > c0_ && c_hi > c0_) return out;
-  if (c_lo > c0_)
-    lo = lo + (c_lo - c0_) / (c_lo - c_hi) * (hi - lo);
-  else if (c_hi > c0_)
-    hi = hi - (c_hi - c0_) / (c_hi - c_lo) * (hi - lo);
-  // Removed: strictly inside Q shifted by ae, i.e. right of bL(c) + ae and
-  // above the bottom level; concave along the line (bL is convex).
-  const auto removed = [&](double v) {
-    const Vector3d p = at(v);
-    const double c = normal_.dot(p);
-    return std::min(side_.dot(p) - boundary(c, true).b - ae_, c - c_min_);
+  const auto g = [&](double t) {
+    const double x = cx + t * fx, y = cy + t * fy, h = height(t);
+    const double widening =
+        h < 0 && sink > 0 ? -h / std::sqrt(corner_ * corner_ - h * h) * sink : 0;
+    return (x * fx + y * fy) / length_of(x, y) - widening;
   };
-  // Any point where it is positive splits the line into two stretches with
-  // one crossing each (it is concave), so the peak is searched for only
-  // when the middle is not removed.
-  double peak = 0.5 * (lo + hi), at_peak = removed(peak);
-  if (!(at_peak > 0)) {
-    peak = golden_argmin([&](double v) { return -removed(v); }, lo, hi, 1e-10 * radius_);
-    at_peak = removed(peak);
-  }
-  if (at_peak <= 0) {
-    out.v[out.count++] = {lo, hi};
-    return out;
-  }
-  // The crossings on each side, from the values already known.
-  const double tolerance = 1e-13 * radius_;
-  const auto crossing = [&](double from, double at_from) {
-    if (at_from > 0) return from;
-    const auto [a, b] = from < peak
-                            ? bracket_root(removed, from, peak, at_from, at_peak, tolerance)
-                            : bracket_root(removed, peak, from, at_peak, at_from, tolerance);
-    return 0.5 * (a + b);
-  };
-  const double cut_lo = crossing(lo, removed(lo));
-  const double cut_hi = crossing(hi, removed(hi));
-  if (cut_lo > lo) out.v[out.count++] = {lo, cut_lo};
-  if (hi > cut_hi) out.v[out.count++] = {cut_hi, hi};
-  return out;
-}
-
-// RadiusExtremes of r (both) and z (largest) of the front points along a curve
-// of G's boundary: evaluation on a fixed subdivision to bracket every local
-// extremum, then golden-section refinement of each.
-template <class Curve>
-void Groove::curve_extremes(const Curve& point_at_parameter, double lo, double hi,
-                            RadiusExtremes& out) const {
-  constexpr int kSteps = 24;
-  struct Value {
-    bool valid = false;
-    double r = 0, z = 0;
-  };
-  const auto value = [&](double s) {
-    const std::optional<Vector3d> p = point_at_parameter(s);
-    if (!p) return Value{};
-    return Value{true, length_of(p->x(), p->y()), p->z()};
-  };
-  if (!(hi > lo)) {
-    if (const Value v = value(lo); v.valid) out.add(v.r, v.z);
-    return;
-  }
-  std::array<double, kSteps + 1> s{};
-  std::array<Value, kSteps + 1> v{};
-  for (int i = 0; i <= kSteps; ++i) {
-    s[i] = lo + (hi - lo) * i / kSteps;
-    v[i] = value(s[i]);
-    if (v[i].valid) out.add(v[i].r, v[i].z);
-  }
-  const double tolerance = 1e-10 * (hi - lo);
-  // objective 0: r (minimise), 1: -r, 2: -z (maximise r and z).
-  const auto objective = [](const Value& x, int which) {
-    if (!x.valid) return kInf;
-    return which == 0 ? x.r : which == 1 ? -x.r : -x.z;
-  };
-  for (int which = 0; which < 3; ++which) {
-    // z only decides whether the shank cuts: skipped when that is already
-    // known, or impossible (no shank point reaches the stock plane).
-    if (which == 2 && (out.z_max > 1e-9 * radius_ || !shank_in_stock_)) continue;
-    for (int i = 0; i <= kSteps; ++i) {
-      const double here = objective(v[i], which);
-      if (here == kInf || (i > 0 && here > objective(v[i - 1], which)) ||
-          (i < kSteps && here > objective(v[i + 1], which))) {
-        continue;
-      }
-      const auto f = [&](double x) { return objective(value(x), which); };
-      const double best =
-          golden_argmin(f, s[std::max(i - 1, 0)], s[std::min(i + 1, kSteps)], tolerance);
-      if (const Value b = value(best); b.valid) out.add(b.r, b.z);
-    }
-  }
+  const double g_lo = g(t_lo), g_hi = g(t_hi);
+  if (!(g_hi > 0)) return;
+  const double t = g_lo >= 0 ? t_lo : root(g, t_lo, t_hi, 1e-15 * (t_hi - t_lo));
+  const double x = cx + t * fx, y = cy + t * fy, distance = length_of(x, y);
+  if (!(distance > 0)) return;
+  const double scale = (distance - disk_radius(height(t))) / distance;
+  const Vector3d p(scale * x, scale * y, -corner_);
+  if (length_of(p.x(), p.y()) <= flat_radius_ && face_point_engaged(p, 1e-9 * radius_)) out.add(p);
 }
 
 RadiusExtremes Groove::extremes() const {
@@ -574,26 +651,10 @@ RadiusExtremes Groove::extremes() const {
   silhouette_extremes(phi_bottom_, right_top.phi, out);
   if (right_top.ray > 0) out.add(right_top.p);
   // The shifted silhouette, from c* up to c0.
-  // Both curves are parametrised by v in [0, 1] with a cosine spacing: the
-  // front point moves like the square root of the distance from a
-  // silhouette end, and this makes it smooth there.
-  const auto spread = [](double lo, double hi, double v) {
-    return lo + (hi - lo) * 0.5 * (1 - std::cos(kPi * v));
-  };
-  if (c_star_ < c0_) {
-    curve_extremes(
-        [&](double v) {
-          const double c = spread(c_star_, c0_, v);
-          return front(boundary(c, true).b + ae_, c);
-        },
-        0.0, 1.0, out);
-  }
+  shifted_extremes(left_top, out);
   // The stock line.
-  const double b_hi = std::min(boundary(c0_, false).b, left_top.b + ae_);
-  curve_extremes([&](double v) { return front(spread(left_top.b, b_hi, v), c0_); }, 0.0, 1.0, out);
-  if (edge_on_ || feed_.z() < 0) {
-    face_extremes(out);
-  }
+  stock_line_extremes(left_top.b + ae_, out);
+  if (edge_on_ || feed_.z() < 0) face_extremes(out);
   out.r_max = std::min(out.r_max, radius_);
   return out;
 }
@@ -793,7 +854,11 @@ Engagement evaluate_revolved_engagement(const Tool& tool, const CutSetup& setup)
   }
   out.d_min = 2 * extremes.r_min;
   out.d_max = 2 * extremes.r_max;
-  if (extremes.z_max > 1e-9 * groove.radius()) out.flags.set(EngagementFlag::shank_engaged);
+  if (extremes.z_max > 1e-9 * groove.radius()) {
+    // The shank's points are at r = R up to round-off of their position.
+    out.flags.set(EngagementFlag::shank_engaged);
+    out.d_max = tool.diameter;
+  }
   return out;
 }
 

@@ -38,6 +38,24 @@ RandomCase finishing_case(std::mt19937& random, bool flat) {
   return c;
 }
 
+// A random case whose feed is nearly parallel to the flat face: F_z =
+// +-10^-k, k = 2..11, the face seen almost edge-on (a floor's normal from a
+// model is rarely exactly vertical). The engine takes |F_z| <= 1e-12 as
+// edge-on (the face leads), the reference only F_z = 0: the two part there.
+RandomCase nearly_level_feed_case(std::mt19937& random, bool flat) {
+  std::uniform_real_distribution<double> unit(0, 1);
+  RandomCase c = random_case(random, flat);
+  c.normal = normal_from_angles(30 * kPi / 180 * unit(random), 2 * kPi * unit(random));
+  const Vector3d level = c.normal.cross(Vector3d::UnitZ()).normalized();  // F_z = 0
+  const Vector3d slope = c.normal.cross(level);                           // unit, in the plane
+  const double f_z =
+      std::pow(10.0, -2 - std::floor(10 * unit(random))) * (unit(random) < 0.5 ? -1 : 1);
+  const double angle = std::asin(std::clamp(f_z / slope.z(), -1.0, 1.0));
+  c.feed =
+      std::cos(angle) * (unit(random) < 0.5 ? level : Vector3d(-level)) + std::sin(angle) * slope;
+  return c;
+}
+
 std::string describe(const RandomCase& c) {
   char text[400];
   std::snprintf(text, sizeof text,
@@ -158,10 +176,13 @@ TEST(RevolvedReference, EngineAgreesWithTheReference) {
   const testing::ReferenceResolution coarse{16, 64};
   const Agreement random = compare(random_case, 200, 41, kTolerance, coarse, true);
   const Agreement finishing = compare(finishing_case, 100, 43, kTolerance, coarse, true);
+  const Agreement level = compare(nearly_level_feed_case, 100, 47, kTolerance, coarse, true);
   report("random", random);
   report("finishing", finishing);
+  report("nearly level feed", level);
   EXPECT_EQ(random.over, 0);
   EXPECT_EQ(finishing.over, 0);
+  EXPECT_EQ(level.over, 0);
 }
 
 // The long run (VCPOST_REFERENCE_CASES cases of each generator, 10000 by
@@ -173,6 +194,7 @@ TEST(RevolvedReference, DISABLED_ManyCases) {
   const unsigned seed = seed_env ? static_cast<unsigned>(std::atoi(seed_env)) : 1;
   report("random", compare(random_case, count, seed, 1e-6, {}, true));
   report("finishing", compare(finishing_case, count, seed + 1, 1e-6, {}, true));
+  report("nearly level feed", compare(nearly_level_feed_case, count, seed + 2, 1e-6, {}, true));
 }
 
 }  // namespace

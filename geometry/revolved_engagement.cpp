@@ -377,11 +377,47 @@ class Groove {
  private:
   // c* = the level below which the groove spans the whole slice (width of Q
   // at most ae); c0 when the whole groove does, c_min when no level does.
+  // The width bR - bL of Q's slices is concave in c (Q is convex), and its
+  // slope is known from the boundary points (db/dc = -tan(phi) on the
+  // silhouette, e_z / N_z on a ray): Newton's method, whose steps on a
+  // concave increasing function land at or below the root, and from below
+  // climb onto it; a step out of the bracket is replaced by the secant of
+  // the bracket, which lands at or above it (a few steps instead of
+  // regula falsi's 22).
   double width_level() const {
-    const auto excess = [&](double c) { return boundary(c, false).b - boundary(c, true).b - ae_; };
-    if (excess(c0_) <= 0) return c0_;
-    if (excess(c_min_) >= 0) return c_min_;
-    return root(excess, c_min_, c0_, 1e-13 * radius_);
+    struct Width {
+      double excess, slope;
+    };
+    const auto width = [&](double c) {
+      const BoundaryPoint l = boundary(c, true), r = boundary(c, false);
+      const auto slope = [&](const BoundaryPoint& p) {
+        return p.ray > 0 ? side_.z() / normal_.z() : -std::tan(p.phi);
+      };
+      return Width{r.b - l.b - ae_, slope(r) - slope(l)};
+    };
+    Width at = width(c0_);
+    if (at.excess <= 0) return c0_;
+    double lo = c_min_, hi = c0_, c = c0_;
+    double excess_lo = width(c_min_).excess, excess_hi = at.excess;
+    if (excess_lo >= 0) return c_min_;
+    const double tolerance = 1e-13 * radius_;
+    for (int i = 0; i < 100 && hi - lo > tolerance; ++i) {
+      const double step = at.excess / at.slope;
+      if (at.excess == 0 || std::abs(step) < tolerance) return c;
+      double next = c - step;
+      if (!(next > lo && next < hi)) next = lo - excess_lo * (hi - lo) / (excess_hi - excess_lo);
+      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+      c = next;
+      at = width(c);
+      if (at.excess < 0) {
+        lo = c;
+        excess_lo = at.excess;
+      } else {
+        hi = c;
+        excess_hi = at.excess;
+      }
+    }
+    return c;
   }
 
   void silhouette_extremes(double phi_lo, double phi_hi, RadiusExtremes& out) const;

@@ -9,8 +9,11 @@
 # and naive_projection in BUILD:
 #   bash bench/scale.sh [BUILD=build/release] [SIZE ...]   (default sizes: 100000 1000000 10000000)
 # (VCPOST=..., SAMPLEGEN=..., NAIVE=... in the environment take those
-# executables from elsewhere than BUILD; TOOL=bull:10:2 posts with that
-# tool instead of ball:10.)
+# executables from elsewhere than BUILD. TOOL=bull:10:2 (any tool of
+# `vcpost post --tool`: ball:D, bull:D:rc, flat:D) generates the programs
+# for that tool, `vcpost-samplegen path --tool`, and posts them with it,
+# instead of ball:10, the wavy part's own ball; a bull-nose or flat program
+# takes longer to generate: its drop-cutter searches the tool's rim.)
 #
 # Every figure is one run measured with GNU time: wall seconds, CPU
 # seconds (user + sys) and peak RSS. Points/s = program points / post wall
@@ -22,7 +25,7 @@
 # naive points/s. A second table gives the same rates per CPU second: on a
 # shared, loaded machine (the load average is printed) wall time grows with
 # the others' work and CPU time much less. The model load time is that of
-# a whole `vcpost post` on a 10-point program (an upper bound: process start
+# a whole `vcpost post` on a 20-point program (an upper bound: process start
 # and the tiny job included). At the end the issue's targets are checked
 # (ok / MISSED) on programs of 1 M points and more; below that the fixed
 # start (the model load above) weighs, and the rates are printed with and
@@ -79,6 +82,7 @@ run() {
 
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //'), $(awk '/MemTotal/ { printf "%.1f GB", $2 / 1048576 }' /proc/meminfo)"
 echo "load average at start: $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "tool: ${TOOL:-ball:10} (programs generated and posted for it)"
 echo "vcpost: $vcpost (repository at $(git -C "$(dirname "$0")/.." rev-parse --short HEAD 2>/dev/null || echo '?'))"
 # How it was built: the figures depend on it.
 cache_value() { sed -n "s/^$1:[A-Z]*=//p" "$build/CMakeCache.txt" 2>/dev/null; }
@@ -96,17 +100,21 @@ gen step step patches "$work/patches.step"
 gen stl stl wavy "$work/wavy.stl" --triangles 100000
 echo "models: wavy.step 1 face, patches.step 100 faces, wavy.stl $(grep -o '[0-9]* triangles' "$work/stl.log")"
 models=(wavy.step patches.step wavy.stl)
-job=(--tool "${TOOL:-ball:10}" --vc 120 --ap 0.3 --machine mazak-3axis -q)
+tool=${TOOL:-ball:10}
+job=(--tool "$tool" --vc 120 --ap 0.3 --machine mazak-3axis -q)
 
-# STEP load: a whole post of a 10-point program.
-gen gen path wavy --points 10 --gcode "$work/tiny.nc"
+# STEP load: a whole post of a program of about 10 points, 1 mm apart in a
+# 3 x 3 mm window: spread over the whole mould, 10 points are 20-25 mm
+# apart and their straight moves cut into the surface and lift off it (a
+# bull-nose post refuses that as a program that does not match the model).
+gen gen path wavy --tool "$tool" --points 10 --window 50,30,53,33 --gcode "$work/tiny.nc"
 declare -A load load_cpu
 for model in wavy.step patches.step wavy.stl; do
   run "load_$model" "$vcpost" post "$work/tiny.nc" --model "$work/$model" "${job[@]}" -o "$work/tiny.out.nc"
   load[$model]=$([ "$t_ok" = 1 ] && echo "$t_wall" || echo fail)
   load_cpu[$model]=$t_cpu
 done
-echo "model load (vcpost post of a 10-point program): wavy.step ${load[wavy.step]} s" \
+echo "model load (vcpost post of a 20-point program): wavy.step ${load[wavy.step]} s" \
   "(CPU ${load_cpu[wavy.step]} s), patches.step ${load[patches.step]} s (CPU ${load_cpu[patches.step]} s)," \
   "wavy.stl ${load[wavy.stl]} s (CPU ${load_cpu[wavy.stl]} s)"
 
@@ -121,7 +129,7 @@ for size in "${sizes[@]}"; do
     fi
   fi
   program=$work/p$size.nc
-  gen gen path wavy --points "$size" --gcode "$program"
+  gen gen path wavy --tool "$tool" --points "$size" --gcode "$program"
   points=$(grep -o '[0-9]* points' "$work/gen.log" | cut -d' ' -f1)
   lines=$(wc -l < "$program")
   echo "program: $points points, $lines lines, $(($(stat -c %s "$program") / 1048576)) MB (load average $(cut -d' ' -f1 /proc/loadavg))"

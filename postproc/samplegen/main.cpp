@@ -1,4 +1,5 @@
-// vcpost-samplegen: ball-end finishing programs over sample surfaces with
+// vcpost-samplegen: finishing programs (ball, bull-nose or flat end mill)
+// over sample surfaces with
 // exact truth, and the STEP files of those surfaces. Thin: argument
 // parsing, files and exit codes; the work is in the samplegen library.
 //
@@ -15,9 +16,11 @@
 #include <fstream>
 #include <iostream>
 #include <numbers>
+#include <stdexcept>
 
 #include "geometry/mesh/stl_reader.h"
 #include "geometry/occt/sample_parts.h"
+#include "geometry/tool.h"
 #include "postproc/samplegen/parts.h"
 #include "postproc/samplegen/surface_mesh.h"
 
@@ -107,8 +110,9 @@ std::uint64_t write_program(const Part& part, const PathSpec& path, const Progra
 
 // The options of `path`.
 struct PathArgs {
-  std::string part_name, pattern = "raster", gcode, cl, truth, title;
-  double diameter = 0, angle = 0, ae = 1, step = 1, rpm = 4000, feed = 800, chord = 0;
+  std::string part_name, pattern = "raster", gcode, cl, truth, title, tool;
+  std::optional<double> diameter;  // --tool-diameter, the ball's
+  double angle = 0, ae = 1, step = 1, rpm = 4000, feed = 800, chord = 0;
   std::uint64_t points = 0;
   int decimals = 6;
   std::vector<double> window;
@@ -120,7 +124,11 @@ CLI::App* add_path_command(CLI::App& app, PathArgs& a) {
   path_cmd->add_option("part", a.part_name, "wavy | patches | cylinder | dome")->required();
   path_cmd->add_option("--pattern", a.pattern, "raster | iso-u | iso-v")
       ->check(CLI::IsMember({"raster", "iso-u", "iso-v"}));
-  path_cmd->add_option("--tool-diameter", a.diameter, "ball diameter, mm (default: the part's)");
+  path_cmd->add_option("--tool-diameter", a.diameter, "ball diameter, mm (default: the part's)")
+      ->check(CLI::PositiveNumber);
+  path_cmd->add_option("--tool", a.tool,
+                       "the tool: ball:D, bull:D:rc or flat:D, mm (default: the part's ball; "
+                       "bull-nose and flat on the raster only)");
   path_cmd->add_option("--angle", a.angle, "raster feed direction in the xy plane, deg from +x");
   path_cmd->add_option("--ae", a.ae, "stepover: mm in xy (raster) or parameter units (iso)")
       ->check(CLI::PositiveNumber);
@@ -151,6 +159,29 @@ CLI::App* add_path_command(CLI::App& app, PathArgs& a) {
   return path_cmd;
 }
 
+// --tool into the path's tool: its radius and, but for a ball, its corner
+// radius. Bull-nose and flat paths are rasters only (PathSpec).
+void set_tool(const PathArgs& a, PathSpec& spec) {
+  if (a.tool.empty()) return;
+  if (a.diameter) {
+    throw UsageError(
+        "give --tool or --tool-diameter, not both (--tool-diameter D is --tool ball:D)");
+  }
+  vcpost::geometry::Tool tool;
+  try {
+    tool = vcpost::geometry::parse_tool(a.tool);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--tool: ") + e.what());
+  }
+  spec.tool_radius = tool.radius();
+  if (tool.kind == vcpost::geometry::ToolKind::ball) return;
+  spec.corner_radius = tool.corner_radius;
+  if (spec.pattern != Pattern::raster) {
+    throw UsageError("--tool " + a.tool + ": a bull-nose or flat end mill is written on the " +
+                     "raster pattern only (--pattern raster)");
+  }
+}
+
 // `path`: one program over a part, with its truth.
 void run_path(const PathArgs& a) {
   const Part part = part_or_throw(a.part_name);
@@ -161,7 +192,8 @@ void run_path(const PathArgs& a) {
   spec.pattern = a.pattern == "raster"  ? Pattern::raster
                  : a.pattern == "iso-u" ? Pattern::iso_u
                                         : Pattern::iso_v;
-  spec.tool_radius = (a.diameter > 0 ? a.diameter : part.tool_diameter) / 2;
+  spec.tool_radius = a.diameter.value_or(part.tool_diameter) / 2;
+  set_tool(a, spec);
   spec.angle_deg = a.angle;
   spec.stepover = a.ae;
   spec.step = a.step;
@@ -185,6 +217,7 @@ void run_path(const PathArgs& a) {
   ProgramSpec program;
   program.title = a.title.empty() ? part.name + " " + a.pattern + " sample" : a.title;
   program.tool_diameter = 2 * spec.tool_radius;
+  program.corner_radius = spec.corner_radius;
   program.safe_z = part.safe_z;
   program.spindle_rpm = a.rpm;
   program.feed = a.feed;
@@ -223,8 +256,7 @@ void run_samples(const std::string& dir) {
 
 // The whole body is in the try: building the command line can throw too.
 int main(int argc, char** argv) try {
-  CLI::App app{
-      "vcpost-samplegen: ball-end finishing programs with exact truth over sample surfaces"};
+  CLI::App app{"vcpost-samplegen: finishing programs with exact truth over sample surfaces"};
   app.require_subcommand(1);
 
   PathArgs path_args;

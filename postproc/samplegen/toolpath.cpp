@@ -7,6 +7,8 @@
 #include <numbers>
 #include <string_view>
 
+#include "postproc/samplegen/tool_placement.h"
+
 namespace vcpost::samplegen {
 namespace {
 
@@ -15,7 +17,7 @@ using Eigen::Vector3d;
 
 // One pass of the pattern: the positions base + t*dir, t from t0 to t1 in
 // `segments` equal steps (from t1 down to t0 when `reverse`); a position is
-// the ball-centre xy (raster) or (u,v) (iso).
+// the tool axis's xy (raster) or (u,v) (iso).
 struct Line {
   int pass = 0;
   Vector2d base, dir;
@@ -110,33 +112,28 @@ double distance_to_segment(const Vector3d& q, const Vector3d& a, const Vector3d&
   return (a + t * ab - q).norm();
 }
 
-// A curve of ball-centre positions on the offset surface, s -> the contact's
-// (u,v) (`guess`: a nearby contact), and the refinement of its chords.
-using ContactAt = std::function<Vector2d(double s, const Vector2d& guess)>;
+// A curve of tool positions (ball centres on the offset surface, or bull-nose
+// and flat tool origins), s -> the tool resting there (`guess`: a nearby
+// placement), and the refinement of its chords.
+using ContactAt = std::function<ToolPlacement(double s, const ToolPlacement& guess)>;
 
 struct Knot {
   double s;
-  Vector2d uv;
-  Vector3d centre;
+  ToolPlacement at;
 };
 
 class ChordRefiner {
  public:
-  ChordRefiner(const SampleSurface& surface, double r, double tolerance)
-      : surface_(surface), r_(r), tolerance_(tolerance) {}
+  explicit ChordRefiner(double tolerance) : tolerance_(tolerance) {}
 
-  Vector3d centre(const Vector2d& uv) const {
-    return surface_.point(uv) + r_ * surface_.normal(uv);
-  }
-
-  // Calls emit(uv) for the points strictly between a and b that keep every
-  // chord within the tolerance of the curve (checked at each chord's middle:
-  // the sagitta of a smooth curve); none when the tolerance is 0.
+  // Calls emit(placement) for the points strictly between a and b that keep
+  // every chord within the tolerance of the curve (checked at each chord's
+  // middle: the sagitta of a smooth curve); none when the tolerance is 0.
   void refine(const ContactAt& contact, const Knot& a, const Knot& b,
-              const std::function<void(const Vector2d&)>& emit, int depth = 4) const {
+              const std::function<void(const ToolPlacement&)>& emit, int depth = 4) const {
     if (!(tolerance_ > 0) || depth == 0) return;
-    const Vector3d middle = centre(contact((a.s + b.s) / 2, a.uv));
-    const double deviation = distance_to_segment(middle, a.centre, b.centre);
+    const Vector3d middle = contact((a.s + b.s) / 2, a.at).origin;
+    const double deviation = distance_to_segment(middle, a.at.origin, b.at.origin);
     if (deviation <= tolerance_) return;
     // The sagitta goes with the square of the chord: n equal parts cut it n^2 times.
     const int n = std::clamp(static_cast<int>(std::ceil(std::sqrt(deviation / tolerance_))), 2, 64);
@@ -145,19 +142,35 @@ class ChordRefiner {
       Knot next = b;
       if (j < n) {
         next.s = a.s + (b.s - a.s) * j / n;
-        next.uv = contact(next.s, previous.uv);
-        next.centre = centre(next.uv);
+        next.at = contact(next.s, previous.at);
       }
       refine(contact, previous, next, emit, depth - 1);
-      if (j < n) emit(next.uv);
+      if (j < n) emit(next.at);
       previous = next;
     }
   }
 
  private:
-  const SampleSurface& surface_;
-  double r_, tolerance_;
+  double tolerance_;
 };
+
+// The tool of a PathSpec as the placement sees it.
+struct ToolShape {
+  double flat_radius = 0;    // R0
+  double corner_radius = 0;  // rc
+  explicit ToolShape(const PathSpec& spec)
+      : flat_radius(spec.corner_radius ? spec.tool_radius - *spec.corner_radius : 0),
+        corner_radius(spec.corner_radius.value_or(spec.tool_radius)) {}
+  bool ball() const { return !(flat_radius > 0); }
+};
+
+// The ball resting on the surface at the contact uv (iso patterns).
+ToolPlacement ball_at(const SampleSurface& surface, double r, const Vector2d& uv) {
+  ToolPlacement placement;
+  placement.uv = uv;
+  placement.origin = surface.point(uv) + r * surface.normal(uv);
+  return placement;
+}
 
 // Concatenation without operator+ (GCC 12 warns falsely, -Wrestrict, on
 // "literal" + std::string).
@@ -178,6 +191,13 @@ std::string fusion_number(double v) {
   std::string text = fixed(v, 3);
   while (text.back() == '0') text.pop_back();
   return text;
+}
+
+// The tool's type as Fusion 360's comments name it (vcpost reads the shape
+// from it: postproc/tools/tool_comment.cpp).
+std::string_view tool_type(const ProgramSpec& spec) {
+  if (!spec.corner_radius) return "ball end mill";
+  return *spec.corner_radius > 0 ? "bull nose end mill" : "flat end mill";
 }
 
 }  // namespace
@@ -203,59 +223,68 @@ std::uint64_t count_points(const PathSpec& spec) {
 
 std::uint64_t generate(const SampleSurface& surface, const PathSpec& spec, int decimals,
                        const std::function<void(const PathPoint&)>& sink) {
-  const double r = spec.tool_radius;
-  const ChordRefiner refiner(surface, r, spec.chord_tolerance);
+  const ToolShape tool(spec);
+  const bool raster = spec.pattern == Pattern::raster;
+  if (!raster && !tool.ball()) {
+    // Internal invariant: the command line refuses it first.
+    throw std::invalid_argument("toolpath: iso-parametric patterns are written for a ball only");
+  }
+  const double rc = tool.corner_radius;
+  const auto drop = [&](const Vector2d& xy, const ToolPlacement& guess) {
+    return drop_tool(surface, tool.flat_radius, rc, xy, guess.uv);
+  };
+  const ChordRefiner refiner(spec.chord_tolerance);
   PathPoint p;
   bool started = false;
   Knot last{};  // the last point emitted (s unused across passes)
-  auto emit = [&](int pass, bool start, bool link, const Vector2d& uv) {
-    const Vector3d centre = refiner.centre(uv);
+  auto emit = [&](int pass, bool start, bool link, const ToolPlacement& at) {
     p.pass = pass;
     p.pass_start = start;
     p.link = link;
-    for (int k = 0; k < 3; ++k) p.tip[k] = round_trip(centre[k] - (k == 2 ? r : 0.0), decimals);
-    p.center = p.tip + Vector3d(0, 0, r);
-    p.uv = surface.closest(p.center, uv);
+    for (int k = 0; k < 3; ++k) p.tip[k] = round_trip(at.origin[k] - (k == 2 ? rc : 0.0), decimals);
+    // The corner's centre as written: the touching core-disc point kept
+    // where the exact placement had it (for a ball the centre, offset 0).
+    p.offset = at.offset;
+    p.center = p.tip + Vector3d(at.offset.x(), at.offset.y(), rc);
+    p.uv = surface.closest(p.center, at.uv);
     p.cc = surface.point(p.uv);
     p.normal = surface.normal(p.uv);
-    p.distance_error = (p.center - p.cc).norm() - r;
+    p.distance_error = (p.center - p.cc).norm() - rc;
     sink(p);
     ++p.index;
-    last = {0, uv, centre};
+    last = {0, at};
   };
   walk(spec, [&](const Line& line) {
-    const ContactAt contact = [&](double s, const Vector2d& guess) -> Vector2d {
+    const ContactAt contact = [&](double s, const ToolPlacement& guess) -> ToolPlacement {
       const Vector2d position = line.along(s);
-      return spec.pattern == Pattern::raster ? surface.drop(position, r, guess) : position;
+      return raster ? drop(position, guess) : ball_at(surface, rc, position);
     };
-    const Vector2d first_guess = line.at(0);
-    Knot knot{0, contact(0, started ? last.uv : first_guess), Vector3d::Zero()};
-    knot.centre = refiner.centre(knot.uv);
+    ToolPlacement first_guess;
+    first_guess.uv = line.at(0);
+    Knot knot{0, contact(0, started ? last.at : first_guess)};
     bool start = true;
     if (started) {
       // The straight link from the previous pass, held on the offset surface:
       // a raster's dropped from above the chord (its xy stays in the
       // window), an iso path's the surface's nearest to the chord's points.
       const Knot from = last;
-      const ContactAt link = [&](double s, const Vector2d& guess) -> Vector2d {
-        const Vector3d c = from.centre + s * (knot.centre - from.centre);
-        return spec.pattern == Pattern::raster ? surface.drop(c.head<2>(), r, guess)
-                                               : surface.closest(c, guess);
+      const ContactAt link = [&](double s, const ToolPlacement& guess) -> ToolPlacement {
+        const Vector3d c = from.at.origin + s * (knot.at.origin - from.at.origin);
+        return raster ? drop(c.head<2>(), guess)
+                      : ball_at(surface, rc, surface.closest(c, guess.uv));
       };
-      refiner.refine(link, {0, from.uv, from.centre}, {1, knot.uv, knot.centre},
-                     [&](const Vector2d& uv) {
-                       emit(line.pass, start, true, uv);
-                       start = false;
-                     });
+      refiner.refine(link, {0, from.at}, {1, knot.at}, [&](const ToolPlacement& at) {
+        emit(line.pass, start, true, at);
+        start = false;
+      });
     }
-    emit(line.pass, start, false, knot.uv);
+    emit(line.pass, start, false, knot.at);
     started = true;
     for (std::uint64_t i = 1; i <= line.segments; ++i) {
-      Knot next{static_cast<double>(i), contact(static_cast<double>(i), knot.uv), Vector3d::Zero()};
-      next.centre = refiner.centre(next.uv);
+      const Knot next{static_cast<double>(i), contact(static_cast<double>(i), knot.at)};
       refiner.refine(contact, knot, next,
-                     [&](const Vector2d& uv) { emit(line.pass, false, false, uv); });
-      emit(line.pass, false, false, next.uv);
+                     [&](const ToolPlacement& at) { emit(line.pass, false, false, at); });
+      emit(line.pass, false, false, next.at);
       knot = next;
     }
   });
@@ -294,9 +323,11 @@ void ProgramWriter::add(const PathPoint& point) {
     gline(cat({"(", comment, "; CL point = tool tip, written by vcpost-samplegen)"}));
     // The tool as Fusion 360's posts describe it, a form vcpost reads: the
     // sample posts with no --tool.
+    const double corner = spec_.corner_radius.value_or(spec_.tool_diameter / 2);
     const std::string d = fusion_number(spec_.tool_diameter);
-    const std::string r = fusion_number(spec_.tool_diameter / 2);
-    gline(cat({"(T", std::to_string(spec_.tool_number), " D=", d, " CR=", r, " - ball end mill)"}));
+    const std::string r = fusion_number(corner);
+    gline(cat({"(T", std::to_string(spec_.tool_number), " D=", d, " CR=", r, " - ",
+               tool_type(spec_), ")"}));
     gline("G21 G90 G17 G94 G40");
     gline(cat({"T", std::to_string(spec_.tool_number), " M6"}));
     gline(cat({"S", fixed(spec_.spindle_rpm, 0), " M3"}));
@@ -308,7 +339,7 @@ void ProgramWriter::add(const PathPoint& point) {
     cline("PARTNO/" + spec_.title);
     cline("UNITS/MM");
     cline(cat({"LOADTL/", std::to_string(spec_.tool_number)}));
-    cline("CUTTER/" + fixed(spec_.tool_diameter, dec) + "," + fixed(spec_.tool_diameter / 2, dec));
+    cline("CUTTER/" + fixed(spec_.tool_diameter, dec) + "," + fixed(corner, dec));
     cline("SPINDL/" + fixed(spec_.spindle_rpm, dec) + ",RPM,CLW");
     cline("FROM/" + x + "," + y + "," + safe);
     if (truth_ != nullptr) {

@@ -2,7 +2,8 @@
 // evaluation, its truth against the closed forms (1e-9), the programs read
 // back by the G-code interpreter and the CL reader, samples/ as the
 // generator writes it today, the 100-face STEP model of "patches" against
-// the truth, and the STL meshes against the surfaces.
+// the truth, the STL meshes against the surfaces, and the bull-nose and
+// flat rasters against hand-computed tool positions and vcpost's post.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -11,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <numbers>
 #include <optional>
 #include <sstream>
@@ -23,7 +25,9 @@
 #include "postproc/samplegen/parts.h"
 #include "postproc/samplegen/surface_mesh.h"
 #include "postproc/samplegen/surfaces.h"
+#include "postproc/samplegen/tool_placement.h"
 #include "postproc/samplegen/toolpath.h"
+#include "tests/postproc/cli_run_support.h"
 #include "tests/postproc/rs274_support.h"
 
 namespace vcpost::samplegen {
@@ -668,6 +672,182 @@ TEST(SampleGenerator, StlGridCellsAreAboutSquare) {
     const Vector3d a = dm.vertices[t[0]], b = dm.vertices[t[1]], c = dm.vertices[t[2]];
     EXPECT_GT((b - a).cross(c - a).dot((a + b + c) / 3), 0);  // outward, to the tool
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(dm.vertices[t[k]].norm(), 40, 1e-12);
+  }
+}
+
+// The tool origin touching a point with its corner, by hand (R0 3, rc 2):
+// the corner circle's centre X + 2n, then 3 mm along n's horizontal part.
+TEST(ToolPlacement, OriginTouchingIsTheHandComputedPosition) {
+  const Vector3d x(1, 2, 3);
+  // n = (0.6, 0, 0.8): X + 2n = (2.2, 2, 4.6), then +3 along x.
+  EXPECT_NEAR((origin_touching(x, Vector3d(0.6, 0, 0.8), 3, 2) - Vector3d(5.2, 2, 4.6)).norm(), 0,
+              1e-12);
+  // n = (-2, -1, 2)/3: |n_xy| = sqrt(5)/3, the horizontal unit (-2, -1)/sqrt(5).
+  const Vector3d n = Vector3d(-2, -1, 2) / 3;
+  const Vector3d hand(1 - 4.0 / 3 - 6 / std::sqrt(5.0), 2 - 2.0 / 3 - 3 / std::sqrt(5.0),
+                      3 + 4.0 / 3);
+  EXPECT_NEAR((origin_touching(x, n, 3, 2) - hand).norm(), 0, 1e-12);
+  // A horizontal spot: the flat part on it, the axis above it.
+  EXPECT_NEAR((origin_touching(x, Vector3d::UnitZ(), 3, 2) - Vector3d(1, 2, 5)).norm(), 0, 1e-12);
+  // A ball (R0 0): its centre; a flat mill (rc 0): the rim on X.
+  EXPECT_NEAR((origin_touching(x, n, 0, 5) - (x + 5 * n)).norm(), 0, 1e-12);
+  EXPECT_NEAR((origin_touching(x, Vector3d(0.6, 0, 0.8), 5, 0) - Vector3d(6, 2, 3)).norm(), 0,
+              1e-12);
+}
+
+// A raster of `tool` over the dome, 12 decimals, axis within 30 mm of the
+// pole (the flat part over the pole included).
+std::vector<PathPoint> dome_raster(double radius, double corner) {
+  const auto part = make_part("dome");
+  PathSpec spec;
+  spec.tool_radius = radius;
+  spec.corner_radius = corner;
+  spec.window = Eigen::AlignedBox2d(Vector2d(-30, -30), Vector2d(30, 30));
+  spec.window_radius = 30;
+  spec.stepover = 2.9;  // passes at y = -30 + 2.9 k: two within R0 = 3 mm of the pole
+  spec.step = 1.3;
+  std::vector<PathPoint> points;
+  generate(*part->surface, spec, 12, [&](const PathPoint& p) { points.push_back(p); });
+  return points;
+}
+
+// Every point of a bull-nose (D10, rc 2) raster over the dome (R40 about
+// the origin) is the tool position computed by hand for its axis: the core
+// circle's point nearest the dome's centre is |p| - R0 off the axis (0 when
+// the axis is within R0 of the pole: the flat part on the pole), at
+// 40 + rc from the centre; the contact X is that point's foot on the
+// sphere and the CL point the origin X + rc n + R0 n_xy/|n_xy| less rc.
+TEST(SampleGenerator, BullNoseRasterIsTheHandComputedToolPosition) {
+  const double r0 = 3, rc = 2, reach = 40 + rc;
+  const auto points = dome_raster(5, rc);
+  ASSERT_GT(points.size(), 500u);
+  int over_the_pole = 0;
+  for (const auto& p : points) {
+    SCOPED_TRACE(p.index);
+    const Vector2d axis = p.tip.head<2>();
+    const double off = std::max(0.0, axis.norm() - r0);
+    const Vector2d radial = axis.norm() > 0 ? Vector2d(axis.normalized()) : Vector2d(1, 0);
+    const Vector3d corner_centre(off * radial.x(), off * radial.y(),
+                                 std::sqrt(reach * reach - off * off));
+    const Vector3d n = corner_centre / reach, x = 40 * n;
+    Vector3d origin = corner_centre;
+    if (off > 0) origin += r0 * Vector3d(radial.x(), radial.y(), 0);
+    if (off == 0) {
+      ++over_the_pole;
+    } else {
+      EXPECT_NEAR((origin.head<2>() - axis).norm(), 0, 1e-9);  // the formula's axis is the axis
+    }
+    EXPECT_NEAR(p.tip.z(), origin.z() - rc, 1e-9);
+    EXPECT_NEAR((p.cc - x).norm(), 0, 1e-9);
+    EXPECT_NEAR((p.normal - n).norm(), 0, 1e-9);
+    EXPECT_NEAR((p.center - corner_centre).norm(), 0, 1e-9);
+    EXPECT_NEAR(p.distance_error, 0, 1e-9);
+  }
+  EXPECT_GT(over_the_pole, 3);
+}
+
+// Lowest height, over a grid of mould points within `radius` of the axis,
+// of a tool resting with its origin at `origin`: the distance of each
+// point from the core disc less rc (negative: inside the tool, or under
+// the shank above the origin's plane).
+double clearance(const WavyBspline& mould, const Vector3d& origin, double radius, double corner) {
+  const double r0 = radius - corner, h = 0.05;
+  double lowest = HUGE_VAL;
+  for (double dx = -radius; dx <= radius; dx += h) {
+    for (double dy = -radius; dy <= radius; dy += h) {
+      const Vector3d x = mould.point(origin.head<2>() + Vector2d(dx, dy));
+      const double rho = std::hypot(dx, dy), dz = x.z() - origin.z();
+      if (rho > radius) continue;
+      if (dz > 0) {
+        lowest = std::min(lowest, -dz);  // under the end's plane or the shank
+        continue;
+      }
+      lowest = std::min(lowest, std::hypot(std::max(rho - r0, 0.0), dz) - corner);
+    }
+  }
+  return lowest;
+}
+
+// Bull-nose and flat rasters over the wavy mould, valleys included (where
+// a tool placed on one contact would cut into the rising sides): no mould
+// point within the tool's reach of the axis is inside the tool (a 0.05 mm
+// grid, 1e-6 mm for the 6-decimal rounding), and the tool touches (within
+// the grid's error).
+TEST(SampleGenerator, BullNoseAndFlatRastersDoNotCutIntoTheMould) {
+  const auto part = make_part("wavy");
+  const auto& mould = dynamic_cast<const WavyBspline&>(*part->surface);
+  for (const double corner : {2.0, 0.0}) {
+    SCOPED_TRACE(corner);
+    PathSpec spec;
+    spec.tool_radius = 5;
+    spec.corner_radius = corner;
+    spec.window = part->raster_window;
+    spec.stepover = 7.3;
+    spec.step = 3.1;
+    std::vector<PathPoint> points;
+    generate(mould, spec, 6, [&](const PathPoint& p) { points.push_back(p); });
+    ASSERT_GT(points.size(), 200u);
+    double worst = HUGE_VAL, loosest = -HUGE_VAL;
+    for (std::size_t i = 0; i < points.size(); i += 3) {
+      const Vector3d origin = points[i].tip + Vector3d(0, 0, corner);
+      const double c = clearance(mould, origin, 5, corner);
+      worst = std::min(worst, c);
+      loosest = std::max(loosest, c);
+    }
+    EXPECT_GE(worst, -1e-6);
+    EXPECT_LE(loosest, 0.05);  // a flat mill's rim contact falls between the grid's points
+  }
+}
+
+// A bull-nose (D10, rc 2) raster over the wavy mould posts as a user runs
+// it, `vcpost post` with no --tool: the G-code's Fusion 360 comment and the
+// CL's CUTTER/ name the bull-nose, and no point gouges (E2011). A few
+// points (about 2 %) read as lifted off: where the contact crosses a valley
+// to the other flank, vcpost's contact search, warm-started on the rim
+// where the last point touched, stops in the distance's local minimum on
+// the old flank, 0.01-0.5 mm off, while the tool touches on the new one (a
+// 0.02 mm grid of the mould put every such point of this program within
+// 0.003 mm of the surface when this test was written). Hence no --strict.
+TEST(SampleGenerator, BullNoseProgramPostsWithoutAGouge) {
+  const auto part = make_part("wavy");
+  const auto& d = dynamic_cast<const WavyBspline&>(*part->surface).data();
+  const TempDir dir;
+  occt::write_bspline_face_step(
+      dir.path / "wavy.step",
+      {d.degree_u, d.degree_v, d.knots_u, d.knots_v, d.count_u, d.count_v, d.poles}, "bull test");
+  PathSpec spec;
+  spec.tool_radius = 5;
+  spec.corner_radius = 2;
+  spec.window = Eigen::AlignedBox2d(Vector2d(20, 15), Vector2d(100, 65));  // valleys and crests
+  spec.stepover = 5;
+  spec.step = 2;
+  spec.chord_tolerance = kSampleChordTolerance;
+  ProgramSpec program;
+  program.title = "wavy bull-nose test";
+  program.tool_diameter = 10;
+  program.corner_radius = 2;
+  {
+    std::ofstream g(dir.path / "bull.nc"), c(dir.path / "bull.cls");
+    ProgramWriter writer(program, &g, &c, nullptr);
+    generate(*part->surface, spec, 6, [&](const PathPoint& p) { writer.add(p); });
+    writer.finish();
+  }
+  for (const char* name : {"bull.nc", "bull.cls"}) {
+    SCOPED_TRACE(name);
+    const auto run = testing::run_vcpost(
+        std::string("post ") + name +
+            " --model wavy.step --vc 120 --ap 0.3 --machine mazak-3axis -o out.nc"
+            " --summary-json s.json",
+        dir.path);
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_EQ(run.err.find("E2011"), std::string::npos) << run.err;
+    const auto summary = nlohmann::json::parse(testing::slurp(dir.path / "s.json"));
+    EXPECT_EQ(summary["inputs"]["tool"], "bull:10:2");  // the tool the program names
+    const auto& points = summary["points"];
+    EXPECT_GT(points["total"].get<int>(), 2000);
+    EXPECT_EQ(points["gouging"], 0);
+    EXPECT_EQ(points["missed"], 0);
+    EXPECT_LE(points["lifted"].get<int>() * 20, points["total"].get<int>());
   }
 }
 

@@ -147,7 +147,7 @@ class Groove {
     rim_tau_ = std::atan2(normal_.y(), normal_.x());
     // The shank's lowest point along N is at -R |N_xy|.
     shank_in_stock_ = c0_ + radius_ * rim_tilt_ > 0;
-    c_star_ = width_level();  // boundary() needs the members above
+    top_ = {boundary(c0_, true), boundary(c0_, false)};  // boundary() needs the members above
   }
 
   double radius() const { return radius_; }
@@ -159,6 +159,21 @@ class Groove {
     const double length = length_of(u.x(), u.y());
     const double scale = length > 0 ? flat_radius_ / length : 0;
     return {scale * u.x() + corner_ * u.x(), scale * u.y() + corner_ * u.y(), corner_ * u.z()};
+  }
+
+  // The silhouette point at phi and its derivative in phi (the edge-on
+  // face's phi, where U_xy = 0, has neither: zeros).
+  std::pair<Vector3d, Vector3d> silhouette_and_tangent(double phi) const {
+    const double cos_phi = std::cos(phi), sin_phi = std::sin(phi);
+    const Vector3d u = cos_phi * side_ + sin_phi * normal_;
+    const Vector3d du = -sin_phi * side_ + cos_phi * normal_;
+    const double length = length_of(u.x(), u.y());
+    if (!(length > 0)) return {Vector3d::Zero(), Vector3d::Zero()};
+    const Vector3d flat(u.x() / length, u.y() / length, 0);  // the unit U_xy
+    const double turn = flat.x() * du.x() + flat.y() * du.y();
+    const Vector3d d_flat((du.x() - turn * flat.x()) / length, (du.y() - turn * flat.y()) / length,
+                          0);
+    return {flat_radius_ * flat + corner_ * u, flat_radius_ * d_flat + corner_ * du};
   }
 
   // r of the silhouette point at phi: R0 + rc |U_xy|, U_z = |w| cos(phi - omega).
@@ -173,6 +188,9 @@ class Groove {
     double phi = 0;  // the silhouette parameter (the ray foot's on a ray)
     double ray = 0;  // height above the ray foot, mm (0 on the lower boundary)
   };
+
+  // Q's left or right boundary point at the stock level c0.
+  const BoundaryPoint& top(bool left) const { return top_[left ? 0 : 1]; }
 
   // The left (smallest b) or right boundary point of Q at level c.
   BoundaryPoint boundary(double c, bool left) const {
@@ -377,6 +395,61 @@ class Groove {
  private:
   // c* = the level below which the groove spans the whole slice (width of Q
   // at most ae); c0 when the whole groove does, c_min when no level does.
+  // c* = the level below which the groove spans the whole slice (width of Q
+  // at most ae): c0 when the whole groove does, c_min when no level does;
+  // with Q's boundary points there.
+  struct WidthLevel {
+    double c;
+    BoundaryPoint left, right;
+  };
+  WidthLevel width_level(const BoundaryPoint& left_top, const BoundaryPoint& right_top) const {
+    if (right_top.b - left_top.b <= ae_) return {c0_, left_top, right_top};
+    const BoundaryPoint left_bottom = boundary(c_min_, true),
+                        right_bottom = boundary(c_min_, false);
+    if (right_bottom.b - left_bottom.b >= ae_) return {c_min_, left_bottom, right_bottom};
+    if (const auto level = width_level_on_silhouette(left_top.phi, right_top.phi)) return *level;
+    const double c =
+        width_level_by_slices(right_top.b - left_top.b - ae_, right_bottom.b - left_bottom.b - ae_);
+    return {c, boundary(c, true), boundary(c, false)};
+  }
+
+  // Both points on the silhouette: two equations, c(phiL) = c(phiR) and
+  // b(phiR) - b(phiL) = ae, for Newton's method in (phiL, phiR) with the
+  // silhouette's tangent in closed form, two sines and cosines a step;
+  // empty when a step leaves the branches (c* on a shank's ray, or an
+  // edge-on face's jump) or it does not settle, and the slices decide.
+  std::optional<WidthLevel> width_level_on_silhouette(double phi_l, double phi_r) const {
+    const double tolerance = 1e-13 * radius_;
+    for (int i = 0; i < 40; ++i) {
+      const auto [p_l, t_l] = silhouette_and_tangent(phi_l);
+      const auto [p_r, t_r] = silhouette_and_tangent(phi_r);
+      const double b_l = side_.dot(p_l), b_r = side_.dot(p_r);
+      const double level_gap = normal_.dot(p_r) - normal_.dot(p_l), width_gap = b_r - b_l - ae_;
+      if (std::abs(level_gap) <= tolerance && std::abs(width_gap) <= tolerance) {
+        const double c = 0.5 * (normal_.dot(p_l) + normal_.dot(p_r));
+        if (!(c > c_min_ && c < c0_)) return std::nullopt;
+        return WidthLevel{c, {p_l, b_l, phi_l, 0}, {p_r, b_r, phi_r, 0}};
+      }
+      const double j00 = -normal_.dot(t_l), j01 = normal_.dot(t_r);
+      const double j10 = -side_.dot(t_l), j11 = side_.dot(t_r);
+      const double det = j00 * j11 - j01 * j10;
+      if (!(std::abs(det) > 0)) return std::nullopt;
+      double d_l = (-level_gap * j11 + j01 * width_gap) / det;
+      double d_r = (-j00 * width_gap + level_gap * j10) / det;
+      // Steps of at most 0.3 rad: the start (the levels at c0) can be far.
+      const double largest = std::max(std::abs(d_l), std::abs(d_r));
+      if (largest > 0.3) {
+        d_l *= 0.3 / largest;
+        d_r *= 0.3 / largest;
+      }
+      phi_l += d_l;
+      phi_r += d_r;
+      if (!(phi_l > phi_left_ && phi_l < phi_bottom_ && phi_r > phi_bottom_ && phi_r < phi_right_))
+        return std::nullopt;
+    }
+    return std::nullopt;
+  }
+
   // The width bR - bL of Q's slices is concave in c (Q is convex), and its
   // slope is known from the boundary points (db/dc = -tan(phi) on the
   // silhouette, e_z / N_z on a ray): Newton's method, whose steps on a
@@ -384,7 +457,7 @@ class Groove {
   // climb onto it; a step out of the bracket is replaced by the secant of
   // the bracket, which lands at or above it (a few steps instead of
   // regula falsi's 22).
-  double width_level() const {
+  double width_level_by_slices(double excess_top, double excess_bottom) const {
     struct Width {
       double excess, slope;
     };
@@ -396,10 +469,8 @@ class Groove {
       return Width{r.b - l.b - ae_, slope(r) - slope(l)};
     };
     Width at = width(c0_);
-    if (at.excess <= 0) return c0_;
     double lo = c_min_, hi = c0_, c = c0_;
-    double excess_lo = width(c_min_).excess, excess_hi = at.excess;
-    if (excess_lo >= 0) return c_min_;
+    double excess_lo = excess_bottom, excess_hi = excess_top;
     const double tolerance = 1e-13 * radius_;
     for (int i = 0; i < 100 && hi - lo > tolerance; ++i) {
       const double step = at.excess / at.slope;
@@ -422,7 +493,8 @@ class Groove {
 
   void silhouette_extremes(double phi_lo, double phi_hi, RadiusExtremes& out) const;
   void stock_line_extremes(double b_hi, RadiusExtremes& out) const;
-  void shifted_extremes(const BoundaryPoint& left_top, RadiusExtremes& out) const;
+  void shifted_extremes(const BoundaryPoint& left_top, const WidthLevel& level,
+                        RadiusExtremes& out) const;
   void shifted_ray_extremes(double c_lo, RadiusExtremes& out) const;
   void shifted_silhouette_extremes(double phi_top, double phi_star, RadiusExtremes& out) const;
   bool face_point_engaged(const Vector3d& p, double slack) const;
@@ -454,7 +526,8 @@ class Groove {
   double radius_, flat_radius_, corner_, ae_;
   Vector3d feed_, normal_, side_;
   double omega_ = 0, phi_left_ = 0, phi_bottom_ = 0, phi_right_ = 0;
-  double c_min_ = 0, c0_ = 0, c_star_ = 0;
+  double c_min_ = 0, c0_ = 0;
+  std::array<BoundaryPoint, 2> top_{};  // boundary(c0, left), boundary(c0, right)
   Vector3d foot_left_, foot_right_;
   bool edge_on_ = false;
   bool shank_in_stock_ = true;
@@ -532,19 +605,25 @@ void Groove::stock_line_extremes(double b_hi, RadiusExtremes& out) const {
 // z component is n_xy x u_xy). So the extremes are the ends and these
 // points, found in closed form on the shank's ray and by 1-D roots on the
 // silhouette.
-void Groove::shifted_extremes(const BoundaryPoint& left_top, RadiusExtremes& out) const {
-  if (!(c_star_ < c0_)) return;
+void Groove::shifted_extremes(const BoundaryPoint& left_top, const WidthLevel& level,
+                              RadiusExtremes& out) const {
+  const double c_star = level.c;
+  if (!(c_star < c0_)) return;
   const auto add_front = [&](const Vector3d& x) {
     if (const auto p = front(side_.dot(x), normal_.dot(x))) out.add(*p);
   };
-  const BoundaryPoint star = boundary(c_star_, true);
   add_front(left_top.p + ae_ * side_);
-  add_front(star.p + ae_ * side_);
+  // At c* > c_min the shifted silhouette ends on the near one: its fibre
+  // touches the tool there (no walk onto a tangent line).
+  if (c_star > c_min_)
+    out.add(level.right.p);
+  else
+    add_front(level.left.p + ae_ * side_);
   const double c_foot = normal_.dot(foot_left_);
-  if (c_star_ < c_foot && c_foot < c0_) add_front(foot_left_ + ae_ * side_);
-  if (c0_ > c_foot) shifted_ray_extremes(std::max(c_star_, c_foot), out);
-  if (c_star_ < c_foot)
-    shifted_silhouette_extremes(c0_ > c_foot ? phi_left_ : left_top.phi, star.phi, out);
+  if (c_star < c_foot && c_foot < c0_) add_front(foot_left_ + ae_ * side_);
+  if (c0_ > c_foot) shifted_ray_extremes(std::max(c_star, c_foot), out);
+  if (c_star < c_foot)
+    shifted_silhouette_extremes(c0_ > c_foot ? phi_left_ : left_top.phi, level.left.phi, out);
 }
 
 // On the shank's ray the shifted fibres fill the vertical plane m.X = d,
@@ -594,8 +673,11 @@ void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
   for (int i = 0; i <= kSteps; ++i) nodes[count++] = lo + (hi - lo) * i / kSteps;
   const double phi_face = omega_ + kPi;
   if (phi_face > lo && phi_face < hi) {
+    // The face spans about |F_z| of phi: refined down to a tenth of that.
+    const int depth = std::clamp(static_cast<int>(std::ceil(-std::log10(std::abs(feed_.z())))) + 2,
+                                 0, kRefinements);
     double offset = (hi - lo) / kSteps;
-    for (int k = 0; k < kRefinements; ++k, offset *= 0.1) {
+    for (int k = 0; k < depth; ++k, offset *= 0.1) {
       if (phi_face - offset > lo) nodes[count++] = phi_face - offset;
       if (phi_face + offset < hi) nodes[count++] = phi_face + offset;
     }
@@ -677,17 +759,16 @@ void Groove::face_extremes(RadiusExtremes& out) const {
 
 RadiusExtremes Groove::extremes() const {
   RadiusExtremes out;
-  const BoundaryPoint left_top = boundary(c0_, true);
+  const BoundaryPoint& left_top = top_[0];
   // The far silhouette (away from the previous pass), from the bottom to c0.
   silhouette_extremes(left_top.phi, phi_bottom_, out);
   if (left_top.ray > 0) out.add(left_top.p);
   // The near silhouette below c*.
-  const double right_level = std::min(c0_, c_star_);
-  const BoundaryPoint right_top = boundary(right_level, false);
-  silhouette_extremes(phi_bottom_, right_top.phi, out);
-  if (right_top.ray > 0) out.add(right_top.p);
+  const WidthLevel level = width_level(left_top, top_[1]);
+  silhouette_extremes(phi_bottom_, level.right.phi, out);
+  if (level.right.ray > 0) out.add(level.right.p);
   // The shifted silhouette, from c* up to c0.
-  shifted_extremes(left_top, out);
+  shifted_extremes(left_top, level, out);
   // The stock line.
   stock_line_extremes(left_top.b + ae_, out);
   if (edge_on_ || feed_.z() < 0) face_extremes(out);
@@ -848,8 +929,8 @@ CuttingPoint cutting_point(const Vector3d& p) { return {p, 2 * std::hypot(p.x(),
 CuttingPoints cutting_points(const Groove& groove, const Engagement& out, Side side, double ae) {
   const bool left = side == Side::left;
   // e = +S0 when left: the smallest s is the left boundary; else the right.
-  const Vector3d low = groove.boundary(groove.c0(), left).p;
-  const Vector3d high = groove.boundary(groove.c0(), !left).p;
+  const Vector3d low = groove.top(left).p;
+  const Vector3d high = groove.top(!left).p;
   const double sign = left ? 1.0 : -1.0;
   const double s_min = out.side_dir.dot(low), s_max = out.side_dir.dot(high);
   CuttingPoints points;

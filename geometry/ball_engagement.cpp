@@ -496,8 +496,9 @@ double ball_mean_diameter(double radius, const CutSetup& setup, const CutFrame& 
   lines.keep_where({R * n.x(), R * n.y(), 0}, ball.c0);  // N.(R u) <= c0 at z = 0
   double shank_area = 0;
   for (int i = 0; i < lines.size(); ++i) {
-    shank_area += integrate_panels([&](double phi) { return R * shank_length(phi); }, lines[i].lo,
-                                   lines[i].hi, tolerance);
+    shank_area += integrate_capped<1>(
+        [&](double phi) { return std::array<double, 1>{R * shank_length(phi)}; }, lines[i].lo,
+        lines[i].hi, 1e-7, tolerance, 24)[0];
   }
   const double area = ball_area + shank_area;
   return area > 0 ? (ball_moment + 2 * R * shank_area) / area : 0;

@@ -94,9 +94,8 @@ Engagement evaluate_engagement(const Tool& tool, const CutSetup& setup,
                                CuttingPointsWanted points = CuttingPointsWanted::yes);
 
 // Area-weighted mean of 2r over the engaged zone, by adaptive quadrature
-// (absolute error well under 1e-3 mm; for the bull-nose and flat end mills
-// capped: a bounded number of evaluations whatever the set-up); empty when
-// nothing is engaged.
+// (absolute error well under 1e-3 mm), capped: a bounded number of
+// evaluations whatever the set-up; empty when nothing is engaged.
 std::optional<double> engaged_mean_diameter(const Tool& tool, const CutSetup& setup);
 
 // Up or down milling from the side of the previous pass and the spindle

@@ -1,6 +1,6 @@
 // Numerical integration for the area-weighted means: a fixed 15-point
-// Kronrod rule for smooth integrands and an adaptive Gauss-Kronrod (7, 15)
-// scheme for integrands with kinks or steep ends.
+// Kronrod rule for smooth integrands and a capped, globally adaptive
+// Gauss-Kronrod (7, 15) scheme for integrands with kinks or steep ends.
 #pragma once
 
 #include <algorithm>
@@ -47,42 +47,12 @@ KronrodResult kronrod15(const Function& f, double lo, double hi) {
   return {kronrod * half, std::abs((kronrod - gauss) * half)};
 }
 
-template <class Function>
-double adaptive(const Function& f, double lo, double hi, double tolerance, int depth) {
-  const KronrodResult whole = kronrod15(f, lo, hi);
-  if (whole.error <= tolerance || depth >= 40) return whole.value;
-  const double mid = 0.5 * (lo + hi);
-  return adaptive(f, lo, mid, 0.5 * tolerance, depth + 1) +
-         adaptive(f, mid, hi, 0.5 * tolerance, depth + 1);
-}
 }  // namespace detail
 
 // Integral of a smooth f over [lo, hi] by the 15-point Kronrod rule.
 template <class Function>
 double kronrod_rule(const Function& f, double lo, double hi) {
   return detail::kronrod15(f, lo, hi).value;
-}
-
-// Integral of f over [lo, hi] to about `tolerance` (absolute), bisecting
-// where the Gauss and Kronrod estimates disagree.
-template <class Function>
-double integrate_adaptive(const Function& f, double lo, double hi, double tolerance) {
-  if (!(hi > lo)) return 0;
-  return detail::adaptive(f, lo, hi, tolerance, 0);
-}
-
-// The same on `panels` equal panels, each adaptive: an integrand that is
-// zero on most of [lo, hi] cannot hide from the first estimates.
-template <class Function>
-double integrate_panels(const Function& f, double lo, double hi, double tolerance,
-                        int panels = 16) {
-  if (!(hi > lo)) return 0;
-  double sum = 0;
-  const double width = (hi - lo) / panels;
-  for (int i = 0; i < panels; ++i) {
-    sum += detail::adaptive(f, lo + i * width, lo + (i + 1) * width, tolerance / panels, 0);
-  }
-  return sum;
 }
 
 // Integrals of the N components of f (returning std::array<double, N>) over

@@ -13,11 +13,14 @@
 // and the engaged edge points are the front points (largest a = F.P) of the
 // tool above G. r has no local extremum inside G except r = 0 (centre of the
 // flat face) and r = R (a plateau that reaches the boundary), so the extremes
-// lie on G's four boundary curves: the silhouette on the far side (closed
-// form), the silhouette on the near side below the width-ae level c*, the
-// shifted silhouette above c*, and the stock line c = c0. The last two are
-// 1-D problems: bracketing on a fixed subdivision, then golden-section
-// refinement of every local extremum, with exact line-tool intersections.
+// lie on G's boundary curves: the silhouette on the far side, the silhouette
+// on the near side below the width-ae level c*, the shifted silhouette above
+// c*, and the stock line c = c0. Along each, r and z are stationary only
+// where the curve is tangent to a horizontal circle of the tool, and these
+// points are found directly: in closed form on the silhouettes, the stock
+// line and the shank's ray, as 1-D roots elsewhere (the shifted silhouette's
+// in its own parameter, the face's in the face's plane); with the curves'
+// ends they are all the candidates.
 #include "geometry/revolved_engagement.h"
 
 #include <Eigen/Geometry>

@@ -30,7 +30,9 @@ Eigen::Vector3d tool_origin(const Eigen::Vector3d& cl_point, const Tool& tool, C
 // exactly ball_contact. For the others the disc point is found by projected
 // gradient steps on the disc (the gradient of the distance is the normal's
 // horizontal part): at most 16 queries, warm-started from hint->rim; the
-// answer is the best disc point met. The surface is searched up to
+// answer is the best disc point met. A lifted answer (a valley's other
+// flank may be the one touched) is searched again from the opposite rim
+// point and from the centre: at most 48 queries. The surface is searched up to
 // 2 R0 + rc + search_margin from each disc point.
 // REQUIRES: tool valid, tolerance >= 0, search_margin >= 0.
 BallContact tool_contact(const SurfaceModel& model, const Tool& tool, const Eigen::Vector3d& origin,

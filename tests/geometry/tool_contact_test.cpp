@@ -123,6 +123,46 @@ TEST(ToolContact, BowlTouchesTheDiscPointFarthestFromItsCentre) {
   }
 }
 
+// A valley of two flanks, steep (60 deg) and shallow (20 deg): the tool
+// rests on the shallow one and clears the steep one by 0.5 mm. Warm-started
+// on the steep side, the descent stops in that flank's own minimum (the
+// rim point against its normal: 0.5 mm, as if lifted); the contact is the
+// least distance over the disc, on the shallow flank.
+TEST(ToolContact, ValleyFindsTheFlankItRestsOn) {
+  constexpr double kPi = 3.14159265358979323846;
+  const double steep = 60 * kPi / 180, shallow = 20 * kPi / 180;
+  PlanePatch left, right;  // meeting along the y axis at z = 0
+  left.u_axis = {-std::cos(steep), 0, std::sin(steep)};
+  left.v_axis = {0, -1, 0};
+  right.u_axis = {std::cos(shallow), 0, std::sin(shallow)};
+  right.v_axis = {0, 1, 0};
+  for (PlanePatch* flank : {&left, &right}) {
+    flank->u_min = 0;
+    flank->u_max = 100;
+    flank->v_min = -100;
+    flank->v_max = 100;
+  }
+  const AnalyticModel model({left, right});
+  const Tool tool = Tool::bull_nose(10, 2);  // R0 3, rc 2
+  // Origin (x, 0, z): the disc point (x + 3, 0, z) at rc from the shallow
+  // flank, (x - 3, 0, z) at rc + 0.5 from the steep one.
+  const Vector3d n_shallow(-std::sin(shallow), 0, std::cos(shallow));
+  const Vector3d n_steep(std::sin(steep), 0, std::cos(steep));
+  Eigen::Matrix2d a;
+  a << n_shallow.x(), n_shallow.z(), n_steep.x(), n_steep.z();
+  const Eigen::Vector2d b(2 - 3 * n_shallow.x(), 2.5 + 3 * n_steep.x());
+  const Eigen::Vector2d xz = a.lu().solve(b);
+  const Vector3d origin(xz.x(), 0, xz.y());
+  ContactHint hint;
+  hint.rim = {-3, 0};  // the last contact was on the steep flank
+  const BallContact contact = tool_contact(model, tool, origin, 0.01, tool.diameter, &hint);
+  ASSERT_TRUE(contact.contact);
+  EXPECT_NEAR(contact.distance_error, 0, 1e-9);
+  expect_near(contact.normal, n_shallow, 1e-9);
+  expect_near(contact.contact->point, origin + Vector3d(3, 0, 0) - 2 * n_shallow, 1e-9);
+  EXPECT_NEAR(hint.rim.x(), 3, 1e-9);
+}
+
 // The ball goes through ball_contact unchanged; tool_origin puts the tip rc
 // below the origin.
 TEST(ToolContact, BallIsBallContactAndOriginsFromTheTip) {

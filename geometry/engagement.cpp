@@ -65,10 +65,7 @@ Engagement evaluate_engagement(const Tool& given, const CutSetup& setup,
                                CuttingPointsWanted points) {
   const Tool tool = as_engine_sees(given);
   if (tool.kind != ToolKind::ball) {
-    // The revolved engine finds the points on its way to D_max: dropped here.
-    Engagement out = evaluate_revolved_engagement(tool, setup);
-    if (points == CuttingPointsWanted::no) out.points.reset();
-    return out;
+    return evaluate_revolved_engagement(tool, setup, points);
   }
   const CutCheck check = check_cut(tool, setup);
   Engagement out;

@@ -954,7 +954,8 @@ CuttingPoints cutting_points(const Groove& groove, const Engagement& out, Side s
 
 }  // namespace
 
-Engagement evaluate_revolved_engagement(const Tool& tool, const CutSetup& setup) {
+Engagement evaluate_revolved_engagement(const Tool& tool, const CutSetup& setup,
+                                        CuttingPointsWanted points) {
   Prepared prepared = prepare(tool, setup);
   Engagement& out = prepared.out;
   if (!prepared.groove) {
@@ -962,7 +963,8 @@ Engagement evaluate_revolved_engagement(const Tool& tool, const CutSetup& setup)
     return out;
   }
   const Groove& groove = *prepared.groove;
-  out.points = cutting_points(groove, out, setup.side, prepared.ae);
+  if (points == CuttingPointsWanted::yes)
+    out.points = cutting_points(groove, out, setup.side, prepared.ae);
   if (!(prepared.ae > 0)) {
     out.flags.set(EngagementFlag::nothing_engaged);
     return out;

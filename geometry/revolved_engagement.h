@@ -10,7 +10,8 @@
 namespace vcpost::geometry {
 
 // REQUIRES: tool.kind is bull_nose or flat, setup as for evaluate_engagement.
-Engagement evaluate_revolved_engagement(const Tool& tool, const CutSetup& setup);
+Engagement evaluate_revolved_engagement(const Tool& tool, const CutSetup& setup,
+                                        CuttingPointsWanted points = CuttingPointsWanted::yes);
 std::optional<double> revolved_mean_diameter(const Tool& tool, const CutSetup& setup);
 
 }  // namespace vcpost::geometry

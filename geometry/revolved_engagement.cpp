@@ -689,8 +689,9 @@ void Groove::shifted_ray_extremes(double c_lo, RadiusExtremes& out) const {
 // a sliver of phi), then regula falsi.
 void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
                                          RadiusExtremes& out) const {
-  const auto meridian_point = [&](double phi) -> std::optional<Vector3d> {
-    const Vector3d u = std::cos(phi) * side_ + std::sin(phi) * normal_;
+  // The point, from the silhouette normal's angle given by its cosine and sine.
+  const auto meridian_point_at = [&](double cos_phi, double sin_phi) -> std::optional<Vector3d> {
+    const Vector3d u = cos_phi * side_ + sin_phi * normal_;
     const double length = length_of(u.x(), u.y());
     if (!(length > 0)) return std::nullopt;
     const Vector3d x =
@@ -699,37 +700,51 @@ void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
     if (across == 0) return std::nullopt;
     return x - (x.x() * u.y() - x.y() * u.x()) / across * feed_;
   };
-  const auto excess = [&](double phi) {
-    const auto p = meridian_point(phi);
+  const auto excess_at = [&](double cos_phi, double sin_phi) {
+    const auto p = meridian_point_at(cos_phi, sin_phi);
     return p ? outside_by(*p) : kInf;
   };
+  const auto excess = [&](double phi) { return excess_at(std::cos(phi), std::sin(phi)); };
   constexpr int kSteps = 24, kRefinements = 14;
-  std::array<double, kSteps + 1 + 2 * kRefinements> nodes{};
+  struct Node {
+    double phi, excess;
+  };
+  std::array<Node, kSteps + 1 + 2 * kRefinements> nodes{};
   std::size_t count = 0;
   const double lo = std::min(phi_top, phi_star), hi = std::max(phi_top, phi_star);
-  for (int i = 0; i <= kSteps; ++i) nodes[count++] = lo + (hi - lo) * i / kSteps;
+  // The even steps by rotation: one sine and cosine for all of them.
+  const double step = (hi - lo) / kSteps, cos_step = std::cos(step), sin_step = std::sin(step);
+  double cos_phi = std::cos(lo), sin_phi = std::sin(lo);
+  for (int i = 0; i <= kSteps; ++i) {
+    nodes[count++] = {lo + step * i, excess_at(cos_phi, sin_phi)};
+    const double turned = cos_phi * cos_step - sin_phi * sin_step;
+    sin_phi = sin_phi * cos_step + cos_phi * sin_step;
+    cos_phi = turned;
+  }
   const double phi_face = omega_ + kPi;
   if (phi_face > lo && phi_face < hi) {
     // The face spans about |F_z| of phi: refined down to a tenth of that.
     const int depth = std::clamp(static_cast<int>(std::ceil(-std::log10(std::abs(feed_.z())))) + 2,
                                  0, kRefinements);
-    double offset = (hi - lo) / kSteps;
+    double offset = step;
     for (int k = 0; k < depth; ++k, offset *= 0.1) {
-      if (phi_face - offset > lo) nodes[count++] = phi_face - offset;
-      if (phi_face + offset < hi) nodes[count++] = phi_face + offset;
+      for (const double phi : {phi_face - offset, phi_face + offset}) {
+        if (phi > lo && phi < hi) nodes[count++] = {phi, excess(phi)};
+      }
     }
   }
-  std::sort(nodes.begin(), nodes.begin() + static_cast<std::ptrdiff_t>(count));
-  double prev = nodes[0], at_prev = excess(prev);
+  std::sort(nodes.begin(), nodes.begin() + static_cast<std::ptrdiff_t>(count),
+            [](const Node& x, const Node& y) { return x.phi < y.phi; });
   for (std::size_t i = 1; i < count; ++i) {
-    const double x = nodes[i], at_x = excess(x);
-    if (std::isfinite(at_prev) && std::isfinite(at_x) && (at_prev <= 0) != (at_x <= 0)) {
-      const auto [a, b] = bracket_root(excess, prev, x, at_prev, at_x, 1e-15);
-      const auto p = meridian_point(0.5 * (a + b));
+    const Node& prev = nodes[i - 1];
+    const Node& here = nodes[i];
+    if (std::isfinite(prev.excess) && std::isfinite(here.excess) &&
+        (prev.excess <= 0) != (here.excess <= 0)) {
+      const auto [a, b] = bracket_root(excess, prev.phi, here.phi, prev.excess, here.excess, 1e-15);
+      const double root = 0.5 * (a + b);
+      const auto p = meridian_point_at(std::cos(root), std::sin(root));
       if (p && std::abs(outside_by(*p)) <= 1e-9 * radius_ && leads(surface_normal(*p))) out.add(*p);
     }
-    prev = x;
-    at_prev = at_x;
   }
 }
 

@@ -232,7 +232,8 @@ class Groove {
       const double guess = phi_bottom_ + sign * std::sqrt(2 * (c - c_min_) / rho);
       if (guess > a && guess < b) phi = guess;
     }
-    double g_a = std::numeric_limits<double>::quiet_NaN(), g_b = g_a;  // c - c at the ends
+    // c(phi) - c at the bracket's ends, NaN until evaluated there.
+    double g_a = std::numeric_limits<double>::quiet_NaN(), g_b = g_a;
     for (int i = 0; i < 200 && b - a > 1e-14; ++i) {
       const double cos_phi = std::cos(phi), sin_phi = std::sin(phi);
       const Vector3d u = cos_phi * side_ + sin_phi * normal_;
@@ -262,33 +263,27 @@ class Groove {
           flat_radius_ / length *
               (normal_.x() * (du.x() - u.x() * along) + normal_.y() * (du.y() - u.y() * along)) +
           corner_ * normal_.dot(du);
-      // Converged when the step is round-off and so is the miss in c. Where
-      // c(phi) is steep (near an edge-on face a step of 1e-14 still missed
-      // by 1e-5 mm) the root lies within a few round-offs of phi: that
-      // bracket's ends are interpolated below (bisecting onto it took up
-      // to 50 steps).
+      // Converged when the step is round-off and so is the miss in c; where
+      // c(phi) is that steep (near an edge-on face a step of 1e-14 still
+      // missed by 1e-5 mm) the bracket is bisected onto the steep stretch,
+      // whose ends are interpolated below.
       const double step = slope != 0 ? g / slope : kInf;
       if (std::abs(step) < 1e-14) {
         if (std::abs(g) < 1e-12 * radius_) {
           a = b = phi;
-        } else {
-          a = std::max(a, phi - 4e-14);
-          b = std::min(b, phi + 4e-14);
+          break;
         }
-        break;
+        phi = 0.5 * (a + b);
+        continue;
       }
       // A step out of the bracket goes to the end it passes when that end
       // was never evaluated (a root at the foot or the bottom is reached in
-      // one step, not by 30 bisections), else to the secant of the ends.
+      // one step, not by 30 bisections), else to the middle (c(phi) jumps
+      // across a face nearly parallel to F: the secant of the ends crawled).
       double next = phi - step;
       if (!(next > a && next < b)) {
         const bool low = !(next > a);
-        if (std::isnan(low ? g_a : g_b) && std::isfinite(next)) {
-          next = low ? a : b;
-        } else {
-          next = a - g_a * (b - a) / (g_b - g_a);
-          if (!(next > a && next < b)) next = 0.5 * (a + b);
-        }
+        next = std::isnan(low ? g_a : g_b) && std::isfinite(next) ? (low ? a : b) : 0.5 * (a + b);
       }
       phi = next;
     }

@@ -185,6 +185,29 @@ TEST(RevolvedReference, EngineAgreesWithTheReference) {
   EXPECT_EQ(level.over, 0);
 }
 
+// Two set-ups of the long run (seed 1000) that a faster boundary search
+// got wrong, D_min off by 1.6e-5 and 1.0e-4 mm: F_z = 1e-11, where c(phi)
+// is steep enough that a Newton step of 1e-14 still misses, and F_z =
+// 1e-6, where c(phi) jumps across the face and a secant of the bracket's
+// ends crawled for 200 steps.
+TEST(RevolvedReference, NearlyLevelFeedsWhereTheBoundarySearchSlipped) {
+  const RandomCase cases[] = {
+      {17.707648906840291, 2.7872248082610862, 2.7444811175865524, 7.0025944413845496,
+       Vector3d(0.11522363940851117, 0.13465154582781788, 0.98417095777493679),
+       Vector3d(0.75979158707903771, -0.65016670493337114, 9.9999999999999994e-12), Side::left},
+      {17.97940572934818, 2.9197395128450707, 0.39206320375925069, 8.2366443778392213,
+       Vector3d(-0.12659781866645711, -0.48156039815618706, 0.86722118011297988),
+       Vector3d(-0.96713762976088735, 0.25425342691789404, 9.9999999999999995e-07), Side::left}};
+  for (const RandomCase& c : cases) {
+    const Engagement e = evaluate_revolved_engagement(tool_of(c), setup_of(c));
+    const testing::ReferenceExtremes ref = testing::reference_extremes(
+        c.diameter, c.corner, c.ap, c.ae, c.normal, c.feed, c.side == Side::left);
+    ASSERT_TRUE(e.d_max && ref.any) << describe(c);
+    EXPECT_NEAR(*e.d_max, ref.d_max, 1e-6) << describe(c);
+    EXPECT_NEAR(*e.d_min, ref.d_min, 1e-6) << describe(c);
+  }
+}
+
 // The long run (VCPOST_REFERENCE_CASES cases of each generator, 10000 by
 // default): --gtest_also_run_disabled_tests --gtest_filter='*ManyCases*'.
 TEST(RevolvedReference, DISABLED_ManyCases) {

@@ -549,7 +549,7 @@ class Groove {
   Vector3d surface_normal(const Vector3d& p) const {
     const double r = length_of(p.x(), p.y());
     if (r <= flat_radius_ || !(r > 0)) return -Vector3d::UnitZ();
-    const Vector3d radial(p.x() / r, p.y() / r, 0);
+    Vector3d radial(p.x() / r, p.y() / r, 0);
     if (p.z() >= 0 || !(corner_ > 0)) return radial;
     return ((r - flat_radius_) * radial + p.z() * Vector3d::UnitZ()).normalized();
   }
@@ -721,8 +721,8 @@ void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
     // The face spans about |F_z| of phi: refined down to a tenth of that.
     const int depth = std::clamp(static_cast<int>(std::ceil(-std::log10(std::abs(feed_.z())))) + 2,
                                  0, kRefinements);
-    double offset = step;
-    for (int k = 0; k < depth; ++k, offset *= 0.1) {
+    for (int k = 0; k < depth; ++k) {
+      const double offset = step * std::pow(0.1, k);
       for (const double phi : {phi_face - offset, phi_face + offset}) {
         if (phi > lo && phi < hi) nodes[count++] = {phi, excess(phi)};
       }

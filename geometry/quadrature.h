@@ -31,15 +31,20 @@ inline constexpr std::array<double, 4> gauss_weights{
 
 }  // namespace detail
 
+// The Kronrod nodes on [0, 1], the centre's 0 last: for the pair functions
+// below that tabulate by node.
+inline constexpr const std::array<double, 8>& kronrod_rule_nodes = detail::kronrod_nodes;
+
 // The 15-point Kronrod rule over [centre - half, centre + half] from f at
-// the centre and the sums pair(dx) = f(centre - dx) + f(centre + dx): for
-// integrands whose two values at +-dx share work (a sinusoid's pair needs
-// one sine and cosine of dx, not two of the nodes).
+// the centre and the sums pair(i, dx) = f(centre - dx) + f(centre + dx),
+// dx = half * kronrod_rule_nodes[i], i = 0 .. 6: for integrands whose two
+// values at +-dx share work (a sinusoid's pair needs one sine and cosine
+// of dx, not two of the nodes), or that tabulate them by node.
 template <class Pair>
 double kronrod_rule_by_pairs(double f_centre, const Pair& pair, double half) {
   double sum = f_centre * detail::kronrod_weights[7];
   for (std::size_t i = 0; i < 7; ++i)
-    sum += detail::kronrod_weights[i] * pair(half * detail::kronrod_nodes[i]);
+    sum += detail::kronrod_weights[i] * pair(i, half * detail::kronrod_nodes[i]);
   return sum * half;
 }
 

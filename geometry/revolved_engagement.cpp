@@ -897,7 +897,9 @@ class Groove::Removal {
         const double norm = std::sqrt(norm2), phi = 1 / norm - 1 / r0;
         if (!(slope > 0) || phi == 0 || (phi > 0 && iteration > 0)) break;
         const double next = std::max(bound, lambda - phi * norm2 * norm / slope);
-        const bool converged = std::abs(next - lambda) <= 1e-15 * next;
+        // Newton's error squares each step: after a step under 1e-8 of
+        // lambda the next one is below round-off (one evaluation fewer).
+        const bool converged = std::abs(next - lambda) <= 1e-8 * next;
         lambda = next;
         if (converged) break;
       }

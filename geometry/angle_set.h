@@ -31,15 +31,23 @@ class AngleSet {
 
   // Keeps the angles where f(t) <= bound.
   void keep_where(const Sinusoid& f, double bound) {
-    const double m = std::sqrt(f.a * f.a + f.b * f.b);
-    const double k = m > 0 ? (bound - f.c) / m : (bound - f.c >= 0 ? 1.0 : -2.0);
+    keep_where_polar(
+        std::sqrt(f.a * f.a + f.b * f.b), [&] { return std::atan2(f.b, f.a); }, f.c, bound);
+  }
+
+  // Keeps the angles where m cos(t - t0) + offset <= bound, m >= 0, t0 =
+  // phase(), called only when the bound cuts the circle: for callers that
+  // know t0 without an atan2 (a family of circles with one phase).
+  template <class Phase>
+  void keep_where_polar(double m, const Phase& phase, double offset, double bound) {
+    const double k = m > 0 ? (bound - offset) / m : (bound - offset >= 0 ? 1.0 : -2.0);
     if (k >= 1) return;  // holds everywhere
     if (k < -1) {
       count_ = 0;
       return;
     }
     // m cos(t - t0) <= m k  <=>  t in [t0 + acos k, t0 + 2 pi - acos k] (mod 2 pi)
-    const double half = std::acos(k), t0 = std::atan2(f.b, f.a);
+    const double half = std::acos(k), t0 = phase();
     intersect_periodic(t0 + half, 2 * std::numbers::pi - 2 * half);
   }
 

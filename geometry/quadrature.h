@@ -1,6 +1,7 @@
 // Numerical integration for the area-weighted means: a fixed 15-point
-// Kronrod rule for smooth integrands and a capped, globally adaptive
-// Gauss-Kronrod (7, 15) scheme for integrands with kinks or steep ends.
+// Kronrod rule for smooth integrands (by symmetric pairs of nodes) and a
+// capped, globally adaptive Gauss-Kronrod (7, 15) scheme for integrands
+// with kinks or steep ends.
 #pragma once
 
 #include <algorithm>
@@ -28,31 +29,23 @@ inline constexpr std::array<double, 4> gauss_weights{
     0.129484966168869693270611432679082, 0.279705391489276667901467771423780,
     0.381830050505118944950369775488975, 0.417959183673469387755102040816327};
 
-struct KronrodResult {
-  double value, error;
-};
-
-template <class Function>
-KronrodResult kronrod15(const Function& f, double lo, double hi) {
-  const double centre = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
-  const double f0 = f(centre);
-  double kronrod = f0 * kronrod_weights[7];
-  double gauss = f0 * gauss_weights[3];
-  for (std::size_t i = 0; i < 7; ++i) {
-    const double dx = half * kronrod_nodes[i];
-    const double pair = f(centre - dx) + f(centre + dx);
-    kronrod += kronrod_weights[i] * pair;
-    if (i % 2 == 1) gauss += gauss_weights[i / 2] * pair;
-  }
-  return {kronrod * half, std::abs((kronrod - gauss) * half)};
-}
-
 }  // namespace detail
 
-// Integral of a smooth f over [lo, hi] by the 15-point Kronrod rule.
-template <class Function>
-double kronrod_rule(const Function& f, double lo, double hi) {
-  return detail::kronrod15(f, lo, hi).value;
+// The Kronrod nodes on [0, 1], the centre's 0 last: for the pair functions
+// below that tabulate by node.
+inline constexpr const std::array<double, 8>& kronrod_rule_nodes = detail::kronrod_nodes;
+
+// The 15-point Kronrod rule over [centre - half, centre + half] from f at
+// the centre and the sums pair(i, dx) = f(centre - dx) + f(centre + dx),
+// dx = half * kronrod_rule_nodes[i], i = 0 .. 6: for integrands whose two
+// values at +-dx share work (a sinusoid's pair needs one sine and cosine
+// of dx, not two of the nodes), or that tabulate them by node.
+template <class Pair>
+double kronrod_rule_by_pairs(double f_centre, const Pair& pair, double half) {
+  double sum = f_centre * detail::kronrod_weights[7];
+  for (std::size_t i = 0; i < 7; ++i)
+    sum += detail::kronrod_weights[i] * pair(i, half * detail::kronrod_nodes[i]);
+  return sum * half;
 }
 
 // Integrals of the N components of f (returning std::array<double, N>) over

@@ -83,30 +83,6 @@ double root(const Function& g, double lo, double hi, double tolerance) {
   return 0.5 * (a + b);
 }
 
-// Argument of the minimum of a unimodal f on [lo, hi] (golden section).
-template <class Function>
-double golden_argmin(const Function& f, double lo, double hi, double tolerance) {
-  const double ratio = 0.5 * (std::sqrt(5.0) - 1);
-  double x1 = hi - ratio * (hi - lo), x2 = lo + ratio * (hi - lo);
-  double f1 = f(x1), f2 = f(x2);
-  while (hi - lo > tolerance) {
-    if (f1 <= f2) {
-      hi = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = hi - ratio * (hi - lo);
-      f1 = f(x1);
-    } else {
-      lo = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = lo + ratio * (hi - lo);
-      f2 = f(x2);
-    }
-  }
-  return f1 <= f2 ? x1 : x2;
-}
-
 // sqrt(x^2 + y^2): the lengths here are mm-sized, far from over- and
 // underflow, and std::hypot's care for them took 40 % of an evaluation.
 double length_of(double x, double y) { return std::sqrt(x * x + y * y); }
@@ -419,10 +395,11 @@ class Groove {
 
   RadiusExtremes extremes() const;
   double mean_diameter() const;
+  // Whether the previous pass removed a tool point (see unremoved_length).
+  class Removal;
   // Length of the angles of `row` (a circle of the tool) that are not
   // removed by the previous pass (see mean_diameter).
-  // lowest_left: a lower bound of bL(c) over [c_min, c0].
-  double unremoved_length(const AngleSet& row, double rho, double z, double lowest_left) const;
+  double unremoved_length(const AngleSet& row, double rho, double z, const Removal& removal) const;
 
  private:
   // c* = the level below which the groove spans the whole slice (width of Q
@@ -823,6 +800,174 @@ RadiusExtremes Groove::extremes() const {
   return out;
 }
 
+// The previous pass removes the tool points P strictly inside the tool
+// shifted by ae along e: seen along F, q = (e.P - ae, N.P) inside Q. Q is
+// the projection along F of the core K = {r <= R0, z >= 0} (the end
+// face's disk swept up the axis) grown by rc, so the test needs no root
+// of the silhouette: the core projects to K' = the ellipse E = A disk(R0),
+// A = rows e_xy and N_xy, swept along w = (e_z, N_z), the axis seen along
+// F; and q is inside Q iff its distance to K' is below rc (the bull-nose),
+// or iff q is in K' (the flat mill, rc = 0): with k = A^-1 q, iff the ray
+// k - s A^-1 w (s >= 0) meets the disk of radius R0. The distance to E is
+// the least-squares problem min |q - A k| over |k| <= R0, in A's singular
+// frame k_i = s_i q_i / (s_i^2 + lambda), lambda >= 0 the root of
+// 1/|k(lambda)| = 1/R0, concave and increasing in lambda: Newton's method
+// from a lower bound climbs onto it monotonically in a few steps, with no
+// sines or cosines (bL(c) by boundary() took about 8 Newton steps of a sine
+// and a cosine each). If the nearest point of E faces w (its outward normal
+// has a positive w component) the nearest point of K' is on one of the
+// sweep's two straight sides instead. A face seen edge-on (|F_z| tiny)
+// makes E a segment: the distance still holds (s_2 = 0), but the flat
+// mill's A^-1 does not, and it keeps the test by boundary().
+class Groove::Removal {
+ public:
+  explicit Removal(const Groove& groove) : groove_(groove) {
+    const Groove& g = groove;
+    Eigen::Matrix2d a;
+    a << g.side_.x(), g.side_.y(), g.normal_.x(), g.normal_.y();
+    const Eigen::Vector2d w(g.side_.z(), g.normal_.z());
+    if (g.corner_ > 0) {
+      mode_ = Mode::corner_distance;
+      // A A^T = U S^2 U^T by the rotation that diagonalises it; the smaller
+      // s from |det A| = |F_z| s1 s2 / s1, not from a difference of squares.
+      const Eigen::Matrix2d m = a * a.transpose();
+      const double angle = 0.5 * std::atan2(2 * m(0, 1), m(0, 0) - m(1, 1));
+      const double cos_a = std::cos(angle), sin_a = std::sin(angle);
+      to_principal_ << cos_a, sin_a, -sin_a, cos_a;
+      const Eigen::Vector2d first = to_principal_.row(0).transpose();
+      singular_[0] = std::sqrt(first.dot(m * first));
+      singular_[1] = std::abs(a.determinant()) / singular_[0];
+      w_principal_ = to_principal_ * w;
+      across_ = Eigen::Vector2d(-w.y(), w.x()).normalized();
+      half_width_ = g.flat_radius_ * (a.transpose() * across_).norm();
+    } else if (std::abs(g.feed_.z()) >= 1e-6) {
+      mode_ = Mode::rim_disk;
+      inverse_ = a.inverse();
+      axis_ = inverse_ * w;
+    }
+    // The least bL(c) up to the stock plane, less a margin for round-off
+    // (tool points with e.P - ae at or below it are never removed): bL is
+    // convex in c, least at Q's leftmost point, the silhouette's point with
+    // normal -e (phi = pi) when it lies on the lower boundary below c0, else
+    // at c0 (the left ray then runs to smaller b as c grows, or the point
+    // lies above the stock).
+    lowest_left_ = g.top(true).b;
+    if (g.phi_left_ <= kPi) {
+      const Vector3d p = g.silhouette(kPi);
+      if (g.normal_.dot(p) <= g.c0_) lowest_left_ = std::min(lowest_left_, g.side_.dot(p));
+    }
+    lowest_left_ -= 1e-9 * g.radius_;
+  }
+
+  double lowest_left() const { return lowest_left_; }
+
+  // > 0 where the previous pass removed the tool point p, <= 0 where it did
+  // not; continuous across the removed part's edge.
+  double margin(const Vector3d& p) const {
+    return margin_at({groove_.side_.dot(p) - groove_.ae_, groove_.normal_.dot(p)});
+  }
+  // The same for q = (e.P - ae, N.P).
+  double margin_at(const Eigen::Vector2d& q) const {
+    const Groove& g = groove_;
+    switch (mode_) {
+      case Mode::corner_distance:
+        return corner_margin(q);
+      case Mode::rim_disk: {
+        const Eigen::Vector2d k = inverse_ * q;
+        const double s = std::max(0.0, k.dot(axis_) / axis_.squaredNorm());
+        return g.flat_radius_ - (k - s * axis_).norm();
+      }
+      case Mode::boundary:
+        break;
+    }
+    return std::min(q.x() - g.boundary(q.y(), true).b, q.y() - g.c_min_ - 1e-12 * g.radius_);
+  }
+
+ private:
+  // rc less the distance from q to K' (see above); far outside, where a
+  // bound already settles the sign, rc less that bound.
+  double corner_margin(const Eigen::Vector2d& q) const {
+    const double rc = groove_.corner_, r0 = groove_.flat_radius_;
+    // K' lies between the sweep's sides: a lower bound of the distance.
+    const double strip = std::abs(q.dot(across_)) - half_width_;
+    if (strip >= rc) return rc - strip;
+    const Eigen::Vector2d u = to_principal_ * q;
+    // |k|^2 and sum s_i^2 u_i^2 / (s_i^2 + lambda)^3 (= -d|k|^2/dlambda / 2);
+    // a zero s_i (E a segment) adds nothing for lambda > 0.
+    const auto norm_and_slope = [&](double lambda) {
+      double norm2 = 0, slope = 0;
+      for (int i = 0; i < 2; ++i) {
+        const double s = singular_[i], d = s * s + lambda;
+        if (!(s > 0)) continue;
+        const double k = s * u[i] / d;
+        norm2 += k * k;
+        slope += k * k / d;
+      }
+      return std::pair{norm2, slope};
+    };
+    // q minus the nearest point of E for this lambda, in the singular frame.
+    const auto offset = [&](double lambda) {
+      Eigen::Vector2d n;
+      for (int i = 0; i < 2; ++i) {
+        const double s = singular_[i];
+        n[i] = s > 0 ? lambda * u[i] / (s * s + lambda) : u[i];
+      }
+      return n;
+    };
+    double lambda = 0;
+    if (norm_and_slope(0).first > r0 * r0) {
+      // A lower bound: each term alone stays under R0 at the root. Started
+      // at the last root (the cells of an arc ask at nearby points); a
+      // start beyond the root steps back below it (the tangent of a concave
+      // function lies above it), and is kept at the bound.
+      double bound = 0;
+      for (int i = 0; i < 2; ++i) {
+        const double s = singular_[i];
+        bound = std::max(bound, s * std::abs(u[i]) / r0 - s * s);
+      }
+      lambda = std::max(bound, warm_start_);
+      // Any unit d with d.w <= 0 bounds the distance from below by
+      // q.d - R0 |S d| (K''s support in d); the start's offset gives one
+      // that, away from Q's edge, settles the sign without the steps.
+      const Eigen::Vector2d start = offset(lambda);
+      const double start_norm = start.norm();
+      if (start.dot(w_principal_) <= 0 && start_norm > 0) {
+        const Eigen::Vector2d d = start / start_norm;
+        const double below = u.dot(d) - r0 * singular_.cwiseProduct(d).norm();
+        if (below >= rc) return rc - below;
+      }
+      for (int iteration = 0; iteration < 60; ++iteration) {
+        const auto [norm2, slope] = norm_and_slope(lambda);
+        const double norm = std::sqrt(norm2), phi = 1 / norm - 1 / r0;
+        if (!(slope > 0) || phi == 0 || (phi > 0 && iteration > 0)) break;
+        const double next = std::max(bound, lambda - phi * norm2 * norm / slope);
+        // Newton's error squares each step: after a step under 1e-8 of
+        // lambda the next one is below round-off (one evaluation fewer).
+        const bool converged = std::abs(next - lambda) <= 1e-8 * next;
+        lambda = next;
+        if (converged) break;
+      }
+      warm_start_ = lambda;
+    }
+    const Eigen::Vector2d n = offset(lambda);
+    if (n.dot(w_principal_) <= 0) return rc - n.norm();
+    return rc - std::max(0.0, strip);
+  }
+
+  enum class Mode { corner_distance, rim_disk, boundary };
+  const Groove& groove_;
+  Mode mode_ = Mode::boundary;
+  double lowest_left_ = 0;
+  Eigen::Matrix2d to_principal_ = Eigen::Matrix2d::Identity();  // U^T of A = U S V^T
+  Eigen::Vector2d singular_ = Eigen::Vector2d::Zero(), w_principal_ = Eigen::Vector2d::Zero();
+  Eigen::Vector2d across_ = Eigen::Vector2d::Zero();  // unit, normal to w
+  double half_width_ = 0;                             // E's half-width across w
+  Eigen::Matrix2d inverse_ = Eigen::Matrix2d::Identity();
+  Eigen::Vector2d axis_ = Eigen::Vector2d::Zero();  // A^-1 w
+  // corner_margin's last lambda: a cache, not state.
+  mutable double warm_start_ = 0;
+};
+
 // Area-weighted mean of 2r, circle by circle: the tool surface is a stack
 // of horizontal circles (the face's of radius rho, the corner's at the
 // angle psi of its normal, the shank's at height z), each with a constant
@@ -833,11 +978,7 @@ RadiusExtremes Groove::extremes() const {
 // the circles bounds the work whatever the set-up.
 double Groove::mean_diameter() const {
   const double tilt = std::hypot(normal_.x(), normal_.y());
-  // bL is convex in c: its least value up to the stock plane, less a margin
-  // for the search's tolerance.
-  const auto left = [&](double c) { return boundary(c, true).b; };
-  const double lowest_left =
-      left(golden_argmin(left, c_min_, c0_, 1e-9 * radius_)) - 1e-9 * radius_;
+  const Removal removal(*this);
   // Circle of radius rho at height z whose outward normal is (s cos t,
   // s sin t, nz); weight = area per radian per unit of the stack parameter.
   const auto circle = [&](double rho, double z, double s, double nz, double weight) {
@@ -845,7 +986,7 @@ double Groove::mean_diameter() const {
     set.keep_where({rho * normal_.x(), rho * normal_.y(), normal_.z() * z}, c0_);
     // Leading side F.n >= 0; the face's normal is -z, seen edge-on it leads.
     set.keep_where({-s * feed_.x(), -s * feed_.y(), -feed_.z() * nz}, s == 0 ? kEdgeOn : 0.0);
-    const double length = set.empty() ? 0 : unremoved_length(set, rho, z, lowest_left);
+    const double length = set.empty() ? 0 : unremoved_length(set, rho, z, removal);
     return std::array<double, 2>{weight * length, weight * 2 * rho * length};
   };
   constexpr double kRelative = 1e-5;
@@ -878,20 +1019,14 @@ double Groove::mean_diameter() const {
   return sum[0] > 0 ? sum[1] / sum[0] : 0.0;
 }
 
-// The previous pass removes the tool points P strictly inside the tool
-// shifted by ae along e: seen along F, (e.P - ae, N.P) inside Q, i.e.
-// e.P - ae > bL(N.P) above the bottom level (e.P - ae < bR holds on the
-// tool anyway). Its ends on each arc: sign changes bracketed on 16 cells,
-// then regula falsi (a removed stretch narrower than a cell can be missed;
-// it weighs at most a cell's share of the circle).
+// The removed stretches' ends on each arc: sign changes of the margin
+// bracketed on 16 cells, then regula falsi (a removed stretch narrower than
+// a cell can be missed; it weighs at most a cell's share of the circle).
 double Groove::unremoved_length(const AngleSet& row, double rho, double z,
-                                double lowest_left) const {
+                                const Removal& removal) const {
   constexpr int kCells = 16;
-  const double level = 1e-12 * radius_;
-  const auto removal = [&](double t) {
-    const Vector3d p(rho * std::cos(t), rho * std::sin(t), z);
-    const double c = normal_.dot(p);
-    return std::min(side_.dot(p) - ae_ - boundary(c, true).b, c - c_min_ - level);
+  const auto removed_by = [&](double t) {
+    return removal.margin({rho * std::cos(t), rho * std::sin(t), z});
   };
   const Sinusoid b_along{rho * side_.x(), rho * side_.y(), side_.z() * z};
   const Sinusoid c_along{rho * normal_.x(), rho * normal_.y(), normal_.z() * z};
@@ -900,25 +1035,31 @@ double Groove::unremoved_length(const AngleSet& row, double rho, double z,
     const double lo = row[i].lo, hi = row[i].hi;
     if (!(hi > lo)) continue;
     // Whole arcs first: never removed when e.P - ae stays at or below the
-    // least bL; wholly removed when it stays above bL over the arc's
-    // levels (bL is convex: its largest value there is at an end).
+    // least bL; wholly removed when its least value is removed at both end
+    // levels of the arc (bL is convex: its largest value there is at an end).
     const Extremes lateral = sinusoid_extremes(b_along, row[i]);
-    if (lateral.max - ae_ <= lowest_left) {
+    if (lateral.max - ae_ <= removal.lowest_left()) {
       length += hi - lo;
       continue;
     }
     const Extremes levels = sinusoid_extremes(c_along, row[i]);
-    if (levels.min - c_min_ > level &&
-        lateral.min - ae_ > std::max(boundary(levels.min, true).b, boundary(levels.max, true).b)) {
+    if (removal.margin_at({lateral.min - ae_, levels.min}) > 0 &&
+        removal.margin_at({lateral.min - ae_, levels.max}) > 0) {
       continue;
     }
-    double t_prev = lo, h_prev = removal(lo);
+    // The cells' ends by rotation: one sine and cosine an arc, not a cell.
+    const double step = (hi - lo) / kCells;
+    const double cos_step = std::cos(step), sin_step = std::sin(step);
+    double cos_t = std::cos(lo), sin_t = std::sin(lo);
+    double t_prev = lo, h_prev = removal.margin({rho * cos_t, rho * sin_t, z});
     for (int k = 1; k <= kCells; ++k) {
-      const double t = lo + (hi - lo) * k / kCells, h = removal(t);
+      std::tie(cos_t, sin_t) =
+          std::pair{cos_t * cos_step - sin_t * sin_step, sin_t * cos_step + cos_t * sin_step};
+      const double t = lo + step * k, h = removal.margin({rho * cos_t, rho * sin_t, z});
       if (h_prev <= 0 && h <= 0) {
         length += t - t_prev;
       } else if (h_prev <= 0 || h <= 0) {
-        const auto [a, b] = bracket_root(removal, t_prev, t, h_prev, h, 1e-13 * (hi - lo));
+        const auto [a, b] = bracket_root(removed_by, t_prev, t, h_prev, h, 1e-13 * (hi - lo));
         const double x = 0.5 * (a + b);
         length += h_prev <= 0 ? x - t_prev : t - x;
       }

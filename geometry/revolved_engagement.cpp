@@ -860,6 +860,9 @@ class Groove::Removal {
   }
 
   double lowest_left() const { return lowest_left_; }
+  // Whether margin() is 1-Lipschitz in the point (rc less a distance seen
+  // along F: the bull-nose's test; the flat mill's is not).
+  bool lipschitz() const { return mode_ == Mode::corner_distance; }
 
   // > 0 where the previous pass removed the tool point p, <= 0 where it did
   // not; continuous across the removed part's edge.
@@ -1028,6 +1031,46 @@ double Groove::unremoved_length(const AngleSet& row, double rho, double z,
   const auto removed_by = [&](double t) {
     return removal.margin({rho * std::cos(t), rho * std::sin(t), z});
   };
+  // The length of a stretch of the other kind hidden inside a cell whose
+  // ends are both kept (not removed) or both removed: 16 cells missed such
+  // stretches, by up to 0.02 mm of the mean on 1 % of random set-ups. Where
+  // the margin is a distance (the bull-nose) it changes by at most rho a
+  // radian along the circle, so with g = +-margin <= 0 at a cell's ends, g
+  // stays below (g_a + g_b + rho (b - a)) / 2 inside: only cells where that
+  // is positive can hide one. They are halved until it is found (its ends
+  // then by regula falsi), the bound rules it out, or 12 halvings are spent
+  // (where the two tools' surfaces nearly touch the bound rules out little,
+  // and halving everywhere took 40 times as long).
+  const auto hidden = [&](double a, double b, double h_a, double h_b, bool kept) {
+    if (!removal.lipschitz()) return 0.0;
+    const double sign = kept ? 1.0 : -1.0;
+    struct Cell {
+      double a, b, g_a, g_b;
+    };
+    std::array<Cell, 48> cells{};
+    std::size_t count = 0;
+    cells[count++] = {a, b, sign * h_a, sign * h_b};
+    double found = 0;
+    int budget = 12;
+    while (count > 0 && budget-- > 0) {
+      const Cell cell = cells[--count];
+      const double bound = 0.5 * (cell.g_a + cell.g_b + rho * (cell.b - cell.a));
+      if (bound <= 0 || 2 * bound < 1e-7 * rho) continue;
+      const double mid = 0.5 * (cell.a + cell.b), g_mid = sign * removed_by(mid);
+      if (g_mid > 0) {
+        const auto g = [&](double t) { return sign * removed_by(t); };
+        const double tolerance = 1e-13 * (b - a);
+        const auto [l_lo, l_hi] = bracket_root(g, cell.a, mid, cell.g_a, g_mid, tolerance);
+        const auto [r_lo, r_hi] = bracket_root(g, mid, cell.b, g_mid, cell.g_b, tolerance);
+        found += 0.5 * (r_lo + r_hi) - 0.5 * (l_lo + l_hi);
+        continue;
+      }
+      if (count + 2 > cells.size()) continue;
+      cells[count++] = {cell.a, mid, cell.g_a, g_mid};
+      cells[count++] = {mid, cell.b, g_mid, cell.g_b};
+    }
+    return found;
+  };
   const Sinusoid b_along{rho * side_.x(), rho * side_.y(), side_.z() * z};
   const Sinusoid c_along{rho * normal_.x(), rho * normal_.y(), normal_.z() * z};
   double length = 0;
@@ -1057,7 +1100,9 @@ double Groove::unremoved_length(const AngleSet& row, double rho, double z,
           std::pair{cos_t * cos_step - sin_t * sin_step, sin_t * cos_step + cos_t * sin_step};
       const double t = lo + step * k, h = removal.margin({rho * cos_t, rho * sin_t, z});
       if (h_prev <= 0 && h <= 0) {
-        length += t - t_prev;
+        length += t - t_prev - hidden(t_prev, t, h_prev, h, true);
+      } else if (h_prev > 0 && h > 0) {
+        length += hidden(t_prev, t, h_prev, h, false);
       } else if (h_prev <= 0 || h <= 0) {
         const auto [a, b] = bracket_root(removed_by, t_prev, t, h_prev, h, 1e-13 * (hi - lo));
         const double x = 0.5 * (a + b);

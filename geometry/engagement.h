@@ -95,10 +95,10 @@ Engagement evaluate_engagement(const Tool& tool, const CutSetup& setup,
 
 // Area-weighted mean of 2r over the engaged zone, by adaptive quadrature,
 // capped: a bounded number of evaluations whatever the set-up; empty when
-// nothing is engaged. Absolute error: well under 1e-3 mm for the ball and
-// the bull-nose (within 1.5e-3 mm of an independent circle-by-circle
-// computation on 300 random bull-nose set-ups, that oracle's own error a
-// few 1e-4 mm); for the flat end mill over 1e-3 mm on about 1 % of random
+// nothing is engaged. Absolute error: well under 1e-3 mm for the ball;
+// about 1e-3 mm for the bull-nose (within 1.5e-3 mm of an independent
+// circle-by-circle computation on 300 random set-ups, that oracle's own
+// error a few 1e-4 mm); for the flat end mill over 1e-3 mm on about 1 % of random
 // set-ups, up to 0.012 mm (a stretch hidden between the 16 points a circle
 // of the tool is sampled on).
 std::optional<double> engaged_mean_diameter(const Tool& tool, const CutSetup& setup);

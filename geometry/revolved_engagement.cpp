@@ -417,8 +417,7 @@ class Groove {
                         right_bottom = boundary(c_min_, false);
     if (right_bottom.b - left_bottom.b >= ae_) return {c_min_, left_bottom, right_bottom};
     if (const auto level = width_level_on_silhouette(left_top.phi, right_top.phi)) return *level;
-    const double c =
-        width_level_by_slices(right_top.b - left_top.b - ae_, right_bottom.b - left_bottom.b - ae_);
+    const double c = width_level_by_slices(right_bottom.b - left_bottom.b - ae_);
     return {c, boundary(c, true), boundary(c, false)};
   }
 
@@ -466,7 +465,7 @@ class Groove {
   // climb onto it; a step out of the bracket is replaced by the secant of
   // the bracket, which lands at or above it (a few steps instead of
   // regula falsi's 22).
-  double width_level_by_slices(double excess_top, double excess_bottom) const {
+  double width_level_by_slices(double excess_bottom) const {
     struct Width {
       double excess, slope;
     };
@@ -479,7 +478,7 @@ class Groove {
     };
     Width at = width(c0_);
     double lo = c_min_, hi = c0_, c = c0_;
-    double excess_lo = excess_bottom, excess_hi = excess_top;
+    double excess_lo = excess_bottom, excess_hi = at.excess;
     const double tolerance = 1e-13 * radius_;
     for (int i = 0; i < 100 && hi - lo > tolerance; ++i) {
       const double step = at.excess / at.slope;
@@ -1047,7 +1046,7 @@ double Groove::unremoved_length(const AngleSet& row, double rho, double z,
     struct Cell {
       double a, b, g_a, g_b;
     };
-    std::array<Cell, 48> cells{};
+    std::array<Cell, 16> cells{};  // 12 halvings hold at most 13
     std::size_t count = 0;
     cells[count++] = {a, b, sign * h_a, sign * h_b};
     double found = 0;

@@ -88,6 +88,11 @@ Engagement extremes(const Tool& tool, const CutSetup& setup) {
   return evaluate_engagement(tool, setup, CuttingPointsWanted::yes);
 }
 
+// Without them, as `vcpost post` evaluates (the D_max policy).
+Engagement extremes_only(const Tool& tool, const CutSetup& setup) {
+  return evaluate_engagement(tool, setup, CuttingPointsWanted::no);
+}
+
 void BM_ExtremesFinishing(benchmark::State& state) {
   run(state, finishing_cases(static_cast<int>(state.range(0)), 1024), extremes);
   label(state, "finishing");
@@ -95,6 +100,10 @@ void BM_ExtremesFinishing(benchmark::State& state) {
 void BM_ExtremesRandom(benchmark::State& state) {
   run(state, random_cases(static_cast<int>(state.range(0)), 1024), extremes);
   label(state, "random");
+}
+void BM_ExtremesOnlyFinishing(benchmark::State& state) {
+  run(state, finishing_cases(static_cast<int>(state.range(0)), 1024), extremes_only);
+  label(state, "finishing, no cutting points");
 }
 void BM_MeanFinishing(benchmark::State& state) {
   run(state, finishing_cases(static_cast<int>(state.range(0)), 256), engaged_mean_diameter);
@@ -106,6 +115,7 @@ void BM_MeanRandom(benchmark::State& state) {
 }
 BENCHMARK(BM_ExtremesFinishing)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ExtremesRandom)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ExtremesOnlyFinishing)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_MeanFinishing)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_MeanRandom)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 

@@ -168,6 +168,13 @@ class Groove {
     double ray = 0;  // height above the ray foot, mm (0 on the lower boundary)
   };
 
+  // The radius of curvature of Q's lower boundary at its bottom: rc + the
+  // ellipse A(disk R0)'s there, R0 det(A)^2 / |A^T N|^3 = R0 F_z^2 / |N_xy|^3
+  // (infinite for a level tool: the face is Q's flat bottom).
+  double bottom_curvature_radius() const {
+    return corner_ + flat_radius_ * feed_.z() * feed_.z() / std::pow(rim_tilt_, 3);
+  }
+
   // Q's left or right boundary point at the stock level c0.
   const BoundaryPoint& top(bool left) const { return top_[left ? 0 : 1]; }
 
@@ -194,17 +201,15 @@ class Groove {
     const double sign = left ? -1.0 : 1.0;  // c decreases along the left branch
     // Started at the last root on this side (the searches ask at nearby
     // levels one after another), the first time from the bottom's
-    // osculating circle: c - c_min = rho (phi - phi_bottom)^2 / 2, rho = rc
-    // + the radius of curvature of the ellipse A(disk R0) at its bottom,
-    // R0 det(A)^2 / |A^T N|^3 = R0 F_z^2 / |N_xy|^3 (finishing set-ups: 27
-    // steps in the 5.8 solves of an evaluation instead of 30 from the
-    // bracket's middle).
+    // osculating circle: c - c_min = rho (phi - phi_bottom)^2 / 2
+    // (finishing set-ups: 27 steps in the 5.8 solves of an evaluation
+    // instead of 30 from the bracket's middle).
     double& warm = warm_start_[left ? 0 : 1];
     double phi = 0.5 * (a + b);
     if (warm > a && warm < b) {
       phi = warm;
     } else if (rim_tilt_ > 1e-6) {
-      const double rho = corner_ + flat_radius_ * feed_.z() * feed_.z() / std::pow(rim_tilt_, 3);
+      const double rho = bottom_curvature_radius();
       const double guess = phi_bottom_ + sign * std::sqrt(2 * (c - c_min_) / rho);
       if (guess > a && guess < b) phi = guess;
     }
@@ -306,7 +311,10 @@ class Groove {
   // The interval of t over which x0 + t F lies in the tool; empty when the
   // line misses it (a line touching it within 1e-9 R counts as touching;
   // the bull-nose's corner only within round-off, see below).
-  std::optional<std::pair<double, double>> line_interval(const Vector3d& x0) const {
+  // With only_front the back end is not walked to (the pair holds the
+  // front twice).
+  std::optional<std::pair<double, double>> line_interval(const Vector3d& x0,
+                                                         bool only_front = false) const {
     const double fxy2 = feed_.x() * feed_.x() + feed_.y() * feed_.y();
     if (!(fxy2 > 1e-24)) return std::nullopt;
     const double beta = x0.x() * feed_.x() + x0.y() * feed_.y();
@@ -371,6 +379,7 @@ class Groove {
     };
     const std::optional<double> hi = walk(t2, -1);
     if (!hi) return std::nullopt;
+    if (only_front) return std::pair{*hi, *hi};
     const std::optional<double> lo = walk(t1, +1);
     if (!lo || *lo > *hi) return std::pair{*hi, *hi};
     return std::pair{*lo, *hi};
@@ -388,9 +397,9 @@ class Groove {
   }
 
   std::optional<Vector3d> front(double b, double c) const {
-    const auto points = fibre(b, c);
-    if (!points) return std::nullopt;
-    return points->first;
+    const auto interval = line_interval(b * side_ + c * normal_, true);
+    if (!interval) return std::nullopt;
+    return point_at(b, c, interval->second);
   }
 
   RadiusExtremes extremes() const;
@@ -416,18 +425,80 @@ class Groove {
     const BoundaryPoint left_bottom = boundary(c_min_, true),
                         right_bottom = boundary(c_min_, false);
     if (right_bottom.b - left_bottom.b >= ae_) return {c_min_, left_bottom, right_bottom};
-    if (const auto level = width_level_on_silhouette(left_top.phi, right_top.phi)) return *level;
+    for (const bool left : {true, false}) {
+      const BoundaryPoint& top = left ? left_top : right_top;
+      const BoundaryPoint& other = left ? right_top : left_top;
+      if (top.ray > 0) {
+        if (const auto level = width_level_beside_ray(left, other.phi)) return *level;
+      }
+    }
+    // A narrow groove has c* just above the bottom: Newton's method starts
+    // there, from the bottom's osculating circle of radius rho (the width
+    // ae a chord of it), rather than from the levels at c0 (the post's
+    // passes ae = 0.02-0.1 mm apart took 3 slices of 2 boundary solves).
+    double phi_l = left_top.phi, phi_r = right_top.phi;
+    if (const double rho = bottom_curvature_radius(); ae_ < rho) {
+      const double half_angle = std::asin(0.5 * ae_ / rho);
+      if (half_angle > 0 && phi_bottom_ - half_angle > phi_l && phi_bottom_ + half_angle < phi_r) {
+        phi_l = phi_bottom_ - half_angle;
+        phi_r = phi_bottom_ + half_angle;
+      }
+    }
+    if (const auto level = width_level_on_silhouette(phi_l, phi_r)) return *level;
     const double c = width_level_by_slices(right_bottom.b - left_bottom.b - ae_);
     return {c, boundary(c, true), boundary(c, false)};
   }
 
+  // The left (or right) point on its shank's ray, the other on the
+  // silhouette at phi: the ray's b is linear in c, so the width at the
+  // silhouette point's level is a function of phi alone, for Newton's
+  // method (most finishing set-ups whose stock plane reaches above a foot
+  // have c* there: the slices took two boundary solves a step). Empty when
+  // a step leaves the branch or c* is below the ray's foot.
+  std::optional<WidthLevel> width_level_beside_ray(bool left_on_ray, double phi) const {
+    const Vector3d& foot = left_on_ray ? foot_left_ : foot_right_;
+    const double c_foot = normal_.dot(foot), b_foot = side_.dot(foot);
+    const double ray_slope = side_.z() / normal_.z();  // db/dc along the ray
+    const double sign = left_on_ray ? 1.0 : -1.0;      // width = sign (b - b_ray)
+    const double lo = left_on_ray ? phi_bottom_ : phi_left_;
+    const double hi = left_on_ray ? phi_right_ : phi_bottom_;
+    const double tolerance = 1e-13 * radius_;
+    if (!(phi > lo && phi < hi)) phi = left_on_ray ? phi_right_ - 1e-9 : phi_left_ + 1e-9;
+    for (int i = 0; i < 40; ++i) {
+      const auto [p, t] = silhouette_and_tangent(phi);
+      const double c = normal_.dot(p), b = side_.dot(p);
+      const double b_ray = b_foot + (c - c_foot) * ray_slope;
+      const double gap = sign * (b - b_ray) - ae_;
+      if (std::abs(gap) <= tolerance) {
+        if (!(c >= c_foot && c > c_min_ && c < c0_)) return std::nullopt;
+        const Vector3d on_ray = foot + (c - c_foot) / normal_.z() * Vector3d::UnitZ();
+        const BoundaryPoint ray_point{on_ray, side_.dot(on_ray),
+                                      left_on_ray ? phi_left_ : phi_right_,
+                                      (c - c_foot) / normal_.z()};
+        const BoundaryPoint silhouette_point{p, b, phi, 0};
+        return left_on_ray ? WidthLevel{c, ray_point, silhouette_point}
+                           : WidthLevel{c, silhouette_point, ray_point};
+      }
+      const double slope = sign * (side_.dot(t) - ray_slope * normal_.dot(t));
+      if (!(std::abs(slope) > 0)) return std::nullopt;
+      const double step = std::clamp(gap / slope, -0.3, 0.3);
+      phi -= step;
+      if (!(phi > lo && phi < hi)) return std::nullopt;
+    }
+    return std::nullopt;
+  }
+
   // Both points on the silhouette: two equations, c(phiL) = c(phiR) and
   // b(phiR) - b(phiL) = ae, for Newton's method in (phiL, phiR) with the
-  // silhouette's tangent in closed form, two sines and cosines a step;
-  // empty when a step leaves the branches (c* on a shank's ray, or an
+  // silhouette's tangent in closed form, two sines and cosines a step. A
+  // step that would leave the branches is shortened to half the way to
+  // their ends (from the levels at c0, the first steps overshot the bottom
+  // on a fifth of the bull-nose finishing set-ups and a third of the flat
+  // ones); empty when that keeps happening (c* on a shank's ray, or an
   // edge-on face's jump) or it does not settle, and the slices decide.
   std::optional<WidthLevel> width_level_on_silhouette(double phi_l, double phi_r) const {
     const double tolerance = 1e-13 * radius_;
+    int shortened = 0;
     for (int i = 0; i < 40; ++i) {
       const auto [p_l, t_l] = silhouette_and_tangent(phi_l);
       const auto [p_r, t_r] = silhouette_and_tangent(phi_r);
@@ -442,16 +513,20 @@ class Groove {
       const double j10 = -side_.dot(t_l), j11 = side_.dot(t_r);
       const double det = j00 * j11 - j01 * j10;
       if (!(std::abs(det) > 0)) return std::nullopt;
-      double d_l = (-level_gap * j11 + j01 * width_gap) / det;
-      double d_r = (-j00 * width_gap + level_gap * j10) / det;
-      // Steps of at most 0.3 rad: the start (the levels at c0) can be far.
-      const double largest = std::max(std::abs(d_l), std::abs(d_r));
-      if (largest > 0.3) {
-        d_l *= 0.3 / largest;
-        d_r *= 0.3 / largest;
-      }
-      phi_l += d_l;
-      phi_r += d_r;
+      const double d_l = (-level_gap * j11 + j01 * width_gap) / det;
+      const double d_r = (-j00 * width_gap + level_gap * j10) / det;
+      // Steps of at most 0.3 rad (the start can be far), and within the branches.
+      double scale = std::min(1.0, 0.3 / std::max(std::abs(d_l), std::abs(d_r)));
+      const auto keep_within = [&](double phi, double d, double lo, double hi) {
+        const double room = d > 0 ? hi - phi : phi - lo;
+        if (std::abs(d) * scale >= room) scale = 0.5 * room / std::abs(d);
+      };
+      const double before = scale;
+      keep_within(phi_l, d_l, phi_left_, phi_bottom_);
+      keep_within(phi_r, d_r, phi_bottom_, phi_right_);
+      if (scale < before && ++shortened > 8) return std::nullopt;
+      phi_l += scale * d_l;
+      phi_r += scale * d_r;
       if (!(phi_l > phi_left_ && phi_l < phi_bottom_ && phi_r > phi_bottom_ && phi_r < phi_right_))
         return std::nullopt;
     }
@@ -505,6 +580,7 @@ class Groove {
                         RadiusExtremes& out) const;
   void shifted_ray_extremes(double c_lo, RadiusExtremes& out) const;
   void shifted_silhouette_extremes(double phi_top, double phi_star, RadiusExtremes& out) const;
+  void flat_shifted_rim_extremes(double phi_lo, double phi_hi, RadiusExtremes& out) const;
   bool face_point_engaged(const Vector3d& p, double slack) const;
   // max(-z - rc, r - R, distance to the corner circle - rc): <= 0 exactly
   // in the tool, 0 on its surface.
@@ -660,6 +736,10 @@ void Groove::shifted_ray_extremes(double c_lo, RadiusExtremes& out) const {
 // a sliver of phi), then regula falsi.
 void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
                                          RadiusExtremes& out) const {
+  if (corner_ == 0 && !edge_on_) {
+    flat_shifted_rim_extremes(std::min(phi_top, phi_star), std::max(phi_top, phi_star), out);
+    return;
+  }
   // The point, from the silhouette normal's angle given by its cosine and sine.
   const auto meridian_point_at = [&](double cos_phi, double sin_phi) -> std::optional<Vector3d> {
     const Vector3d u = cos_phi * side_ + sin_phi * normal_;
@@ -716,6 +796,32 @@ void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
       const auto p = meridian_point_at(std::cos(root), std::sin(root));
       if (p && std::abs(outside_by(*p)) <= 1e-9 * radius_ && leads(surface_normal(*p))) out.add(*p);
     }
+  }
+}
+
+// The flat mill's silhouette is its rim, S = R d (d a unit horizontal
+// vector); the fibre of S + ae e meets the vertical plane through the axis
+// and d at t = -ae (e x d)_z / (F x d)_z, which lies on the face (z = 0,
+// the shank's r - R there is -ae t (e x F)_z, never zero off a level feed)
+// where also t = -ae e_z / F_z: where e_z (F x d)_z = F_z (e x d)_z, i.e.
+// d parallel to e_z F_xy - F_z e_xy. Two directions, no root to search.
+void Groove::flat_shifted_rim_extremes(double phi_lo, double phi_hi, RadiusExtremes& out) const {
+  const double dx = side_.z() * feed_.x() - feed_.z() * side_.x();
+  const double dy = side_.z() * feed_.y() - feed_.z() * side_.y();
+  const double length = length_of(dx, dy);
+  if (!(length > 0)) return;
+  const double det = side_.x() * normal_.y() - side_.y() * normal_.x();
+  const double t = -ae_ * side_.z() / feed_.z();
+  for (const double sign : {1.0, -1.0}) {
+    const double ux = sign * dx / length, uy = sign * dy / length;
+    // The silhouette parameter of S: U_xy = cos(phi) e_xy + sin(phi) N_xy along d.
+    double phi = std::atan2((side_.x() * uy - side_.y() * ux) / det,
+                            (normal_.y() * ux - normal_.x() * uy) / det);
+    while (phi < phi_left_) phi += 2 * kPi;
+    while (phi >= phi_left_ + 2 * kPi) phi -= 2 * kPi;
+    if (phi < phi_lo || phi > phi_hi) continue;
+    const Vector3d p = Vector3d(radius_ * ux, radius_ * uy, 0) + ae_ * side_ + t * feed_;
+    if (std::abs(outside_by(p)) <= 1e-9 * radius_ && leads(surface_normal(p))) out.add(p);
   }
 }
 

@@ -34,6 +34,7 @@
 
 #include "geometry/angle_set.h"
 #include "geometry/quadrature.h"
+#include "geometry/small_angle.h"
 
 namespace vcpost::geometry {
 namespace {
@@ -215,8 +216,11 @@ class Groove {
     }
     // c(phi) - c at the bracket's ends, NaN until evaluated there.
     double g_a = std::numeric_limits<double>::quiet_NaN(), g_b = g_a;
+    // cos and sin of phi, by rotation from those of the last phi.
+    double cos_phi = std::cos(phi), sin_phi = std::sin(phi), phi_at = phi;
     for (int i = 0; i < 200 && b - a > 1e-14; ++i) {
-      const double cos_phi = std::cos(phi), sin_phi = std::sin(phi);
+      std::tie(cos_phi, sin_phi) = rotated(cos_phi, sin_phi, phi - phi_at);
+      phi_at = phi;
       const Vector3d u = cos_phi * side_ + sin_phi * normal_;
       const Vector3d du = -sin_phi * side_ + cos_phi * normal_;
       const double length = length_of(u.x(), u.y());
@@ -755,10 +759,9 @@ void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
     const auto p = meridian_point_at(cos_phi, sin_phi);
     return p ? outside_by(*p) : kInf;
   };
-  const auto excess = [&](double phi) { return excess_at(std::cos(phi), std::sin(phi)); };
   constexpr int kSteps = 24, kRefinements = 14;
   struct Node {
-    double phi, excess;
+    double phi, excess, cos_phi = 1, sin_phi = 0;
   };
   std::array<Node, kSteps + 1 + 2 * kRefinements> nodes{};
   std::size_t count = 0;
@@ -767,7 +770,7 @@ void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
   const double step = (hi - lo) / kSteps, cos_step = std::cos(step), sin_step = std::sin(step);
   double cos_phi = std::cos(lo), sin_phi = std::sin(lo);
   for (int i = 0; i <= kSteps; ++i) {
-    nodes[count++] = {lo + step * i, excess_at(cos_phi, sin_phi)};
+    nodes[count++] = {lo + step * i, excess_at(cos_phi, sin_phi), cos_phi, sin_phi};
     const double turned = cos_phi * cos_step - sin_phi * sin_step;
     sin_phi = sin_phi * cos_step + cos_phi * sin_step;
     cos_phi = turned;
@@ -780,7 +783,9 @@ void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
     for (int k = 0; k < depth; ++k) {
       const double offset = step * std::pow(0.1, k);
       for (const double phi : {phi_face - offset, phi_face + offset}) {
-        if (phi > lo && phi < hi) nodes[count++] = {phi, excess(phi)};
+        if (!(phi > lo && phi < hi)) continue;
+        const double c = std::cos(phi), s = std::sin(phi);
+        nodes[count++] = {phi, excess_at(c, s), c, s};
       }
     }
   }
@@ -791,7 +796,13 @@ void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
     const Node& here = nodes[i];
     if (std::isfinite(prev.excess) && std::isfinite(here.excess) &&
         (prev.excess <= 0) != (here.excess <= 0)) {
-      const auto [a, b] = bracket_root(excess, prev.phi, here.phi, prev.excess, here.excess, 1e-15);
+      // Within the cell by rotation from its left end.
+      const auto excess_in_cell = [&](double phi) {
+        const auto [c, s] = rotated(prev.cos_phi, prev.sin_phi, phi - prev.phi);
+        return excess_at(c, s);
+      };
+      const auto [a, b] =
+          bracket_root(excess_in_cell, prev.phi, here.phi, prev.excess, here.excess, 1e-15);
       const double root = 0.5 * (a + b);
       const auto p = meridian_point_at(std::cos(root), std::sin(root));
       if (p && std::abs(outside_by(*p)) <= 1e-9 * radius_ && leads(surface_normal(*p))) out.add(*p);

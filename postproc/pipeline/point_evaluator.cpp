@@ -66,8 +66,19 @@ void PointEvaluator::place(const PathSample& sample, PointResult& out) {
   const Eigen::Vector3d& n = out.contact.normal;
   const Eigen::Vector3d tangent = sample.direction - sample.direction.dot(n) * n;
   if (tangent.norm() > 1e-9) out.feed = tangent.normalized();
-  const Eigen::Vector3d cc = out.contact.contact->point;
-  const auto neighbour = out.feed.isZero() ? std::nullopt : tracker_.step(cc, n, out.feed);
+  // The passes are followed by the points the model shifts by ae: the
+  // previous pass is this tool moved by ae across the feed. A ball's
+  // contact point moves with its centre; a bull-nose's or flat mill's goes
+  // round the rim as the normal turns, up to 2 R0 across the pass, so those
+  // are followed by the tool's own position (on the wavy raster their
+  // contact points gave ae 0.016-0.1 mm for a 0.077 mm stepover, and the
+  // tracker looked at 400 runs a step instead of 6).
+  const geometry::Tool& tool = settings_.tool;
+  const Eigen::Vector3d tracked =
+      tool.kind == geometry::ToolKind::ball
+          ? out.contact.contact->point
+          : geometry::tool_origin(sample.point, tool, settings_.cl_point);
+  const auto neighbour = out.feed.isZero() ? std::nullopt : tracker_.step(tracked, n, out.feed);
 
   if (settings_.ae && (settings_.ae_override || !neighbour)) {
     out.ae = *settings_.ae;

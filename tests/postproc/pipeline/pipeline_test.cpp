@@ -185,5 +185,48 @@ TEST(PointEvaluator, MeasuresTheChordAcrossTheFeedOnTheCuspHeightCylinder) {
   EXPECT_EQ(measured, 42);
 }
 
+// The same cylinder under a bull-nose (D 10, rc 2): its corner's centre
+// circle rests at 100 + rc from the axis, so the tool's positions of
+// neighbouring passes are a chord of that circle apart, 2 (100 + rc)
+// sin(step / 2): the stepover the model's previous pass (this tool moved
+// across the feed) needs. The contact points are a chord of radius 100
+// apart; on a wavier surface they wander round the rim.
+TEST(PointEvaluator, FollowsABullNosesPassesByTheToolsPosition) {
+  geometry::CylinderPatch cylinder;
+  cylinder.axis = {0, 1, 0};
+  cylinder.reference = {0, 0, 1};
+  cylinder.radius = 100;
+  cylinder.h_min = -50;
+  cylinder.h_max = 50;
+  cylinder.angle_min = -pi / 2;
+  cylinder.angle_max = pi / 2;
+  const geometry::AnalyticModel model({cylinder});
+  PointSettings settings;
+  settings.tool = geometry::Tool::bull_nose(10, 2);
+  settings.ap = 0.2;
+  PointEvaluator evaluator(model, settings);
+  const double step = 0.5 / 100, rc = 2, r0 = 3;
+  int measured = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double angle = k * step;
+    const Vector3d outward(std::sin(angle), 0, std::cos(angle));
+    for (int i = 0; i <= 20; ++i) {
+      const double y = k % 2 == 0 ? -5 + 0.5 * i : 5 - 0.5 * i;
+      // The corner's centre on the side facing the surface sits at 100 + rc
+      // along the outward normal; the tip is rc below the corner centres' plane.
+      const Vector3d tip = Vector3d(r0, y, -rc) + (100 + rc) * outward;
+      const auto r = evaluator.evaluate({tip, Vector3d(0, k % 2 == 0 ? 1 : -1, 0), 0, 1, {}});
+      ASSERT_EQ(r.contact.status, geometry::BallStatus::touching) << k << " " << i;
+      EXPECT_NEAR((r.contact.contact->point - Vector3d(0, y, 0) - 100 * outward).norm(), 0, 1e-6);
+      if (k > 0) {
+        ASSERT_EQ(r.ae_source, AeSource::measured);
+        EXPECT_NEAR(r.ae, 2 * (100 + rc) * std::sin(step / 2), 1e-9);
+        ++measured;
+      }
+    }
+  }
+  EXPECT_EQ(measured, 42);
+}
+
 }  // namespace
 }  // namespace vcpost::pipeline

@@ -49,13 +49,16 @@ double kronrod_rule_by_pairs(double f_centre, const Pair& pair, double half) {
 }
 
 // Integrals of the N components of f (returning std::array<double, N>) over
-// [lo, hi] by globally adaptive Gauss-Kronrod (7, 15): the panel with the
-// largest error estimate is halved until every component's estimate is
-// within relative * |integral| + absolute, or `max_panels` panels are in
-// use. At most 15 (2 max_panels - 1) evaluations of f, whatever f does.
+// [breaks.front(), breaks.back()] by globally adaptive Gauss-Kronrod (7,
+// 15), the panels starting as the stretches between the ascending
+// `breaks` (where f has kinks the error estimate could miss): the panel
+// with the largest error estimate is halved until every component's
+// estimate is within relative * |integral| + absolute, or `max_panels`
+// panels are in use. At most 15 (2 max_panels - 1) evaluations of f,
+// whatever f does.
 template <std::size_t N, class Function>
-std::array<double, N> integrate_capped(const Function& f, double lo, double hi, double relative,
-                                       double absolute, int max_panels) {
+std::array<double, N> integrate_capped(const Function& f, const std::vector<double>& breaks,
+                                       double relative, double absolute, int max_panels) {
   struct Panel {
     double lo, hi;
     std::array<double, N> value, error;
@@ -83,9 +86,11 @@ std::array<double, N> integrate_capped(const Function& f, double lo, double hi, 
     }
     return panel;
   };
-  std::array<double, N> total{};
-  if (!(hi > lo)) return total;
-  std::vector<Panel> panels{rule(lo, hi)};
+  std::vector<Panel> panels;
+  for (std::size_t i = 1; i < breaks.size(); ++i) {
+    if (breaks[i] > breaks[i - 1]) panels.push_back(rule(breaks[i - 1], breaks[i]));
+  }
+  if (panels.empty()) return {};
   for (;;) {
     std::array<double, N> value{}, error{};
     for (const Panel& p : panels) {
@@ -120,6 +125,13 @@ std::array<double, N> integrate_capped(const Function& f, double lo, double hi, 
     panels[worst] = rule(split.lo, mid);
     panels.push_back(rule(mid, split.hi));
   }
+}
+
+// The same over [lo, hi] with no breaks inside.
+template <std::size_t N, class Function>
+std::array<double, N> integrate_capped(const Function& f, double lo, double hi, double relative,
+                                       double absolute, int max_panels) {
+  return integrate_capped<N>(f, std::vector<double>{lo, hi}, relative, absolute, max_panels);
 }
 
 }  // namespace vcpost::geometry

@@ -27,6 +27,7 @@
 #include <cmath>
 #include <numbers>
 #include <utility>
+#include <vector>
 
 #include "geometry/angle_set.h"
 #include "geometry/quadrature.h"
@@ -509,36 +510,27 @@ double ball_mean_diameter(double radius, const CutSetup& setup, const CutFrame& 
   // shape abruptly where an arc appears or vanishes (it grows as a square
   // root) and where the circle passes through the tool's tip (r has a kink
   // there): the stack is cut at those levels, and each piece integrated in
-  // theta, c = mid - half cos(theta), whose nodes gather at the ends so
-  // that the square roots become smooth (a fifth of the slices adaptive
+  // theta (integrate_smoothed_pieces), which makes the square roots smooth
+  // (a fifth of the slices adaptive
   // bisection took, and closer: within 1.2e-6 mm of the same integral to
   // 1e-12 on 3,000 random set-ups, where bisection was within 2.9e-5 mm).
-  std::array<double, 7> cuts{-R, ball.c0, -R * ball.up.z(), R * up_across, -R * up_across};
-  std::size_t count = 5;
+  std::vector<double> cuts{-R * ball.up.z(), R * up_across, -R * up_across};
   if (ball.ae < 2 * R) {
     // Where the previous pass's strip sigma b <= ae - w starts to cut: w = ae / 2.
     const double touch = std::sqrt(R * R - 0.25 * ball.ae * ball.ae);
-    cuts[count++] = touch;
-    cuts[count++] = -touch;
+    cuts.push_back(touch);
+    cuts.push_back(-touch);
   }
-  std::sort(cuts.begin(), cuts.begin() + static_cast<std::ptrdiff_t>(count));
-  std::array<double, 2> ball_part{0, 0};
-  double from = -R;
-  for (std::size_t k = 0; k < count; ++k) {
-    const double to = std::min(cuts[k], ball.c0);
-    if (!(to > from)) continue;
-    const double mid = 0.5 * (from + to), half = 0.5 * (to - from);
-    const auto piece = integrate_capped<2>(
-        [&](double theta) {
-          const Slice slice = ball_slice(mid - half * std::cos(theta));
-          const double jacobian = half * std::sin(theta);
-          return std::array<double, 2>{jacobian * slice.area, jacobian * slice.moment};
-        },
-        0, std::numbers::pi, 1e-7, tolerance, 24);
-    ball_part[0] += piece[0];
-    ball_part[1] += piece[1];
-    from = to;
-  }
+  std::erase_if(cuts, [&](double c) { return !(c > -R && c < ball.c0); });
+  cuts.push_back(-R);
+  cuts.push_back(ball.c0);
+  std::sort(cuts.begin(), cuts.end());
+  const auto ball_part = integrate_smoothed_pieces<2>(
+      [&](double c) {
+        const Slice slice = ball_slice(c);
+        return std::array<double, 2>{slice.area, slice.moment};
+      },
+      cuts, 1e-7, tolerance, 24);
   const double ball_area = ball_part[0], ball_moment = ball_part[1];
 
   // Shank part (r = R): on the vertical line at angle phi, z runs from 0 up

@@ -1195,36 +1195,50 @@ double Groove::mean_diameter() const {
     std::sort(breaks.begin(), breaks.end());
     return breaks;
   };
+  // The bull-nose's stacks are cut where a circle turns tangent to the
+  // stock plane or to the leading side's edge (closed forms; the removed
+  // part's are not) and integrated piece by piece in theta, which smooths
+  // the square roots at the cuts (integrate_smoothed_pieces).
+  const auto integrate = [&](const auto& f, const std::vector<double>& breaks) {
+    return kinks ? integrate_capped<2>(f, breaks, kRelative, absolute, kPanels)
+                 : integrate_smoothed_pieces<2>(f, breaks, kRelative, absolute, kPanels);
+  };
   // The face at z = -rc (its lowest point must reach the stock).
   if (-flat_radius_ * tilt - corner_ * normal_.z() < c0_ && flat_radius_ > 0) {
-    std::vector<double> breaks;
-    if (kinks) {
-      breaks.push_back(std::abs(c0_ + normal_.z() * corner_) / tilt);
-      removal.add_face_breaks(-corner_, breaks);
-    }
-    add(integrate_capped<2>([&](double rho) { return circle(rho, -corner_, 0, -1, rho); },
-                            breaks_within(breaks, 0.0, flat_radius_), kRelative, absolute,
-                            kPanels));
+    std::vector<double> breaks{std::abs(c0_ + normal_.z() * corner_) / tilt};
+    if (kinks) removal.add_face_breaks(-corner_, breaks);
+    add(integrate([&](double rho) { return circle(rho, -corner_, 0, -1, rho); },
+                  breaks_within(breaks, 0.0, flat_radius_)));
   }
   if (corner_ > 0) {
-    add(integrate_capped<2>(
+    // The circle at psi: rho = R0 + rc sin(psi), z = -rc cos(psi). In the
+    // stock wholly where rho |N_xy| <= c0 - N_z z: tangent where
+    // rc |N_xy| sin(psi) -+ rc N_z cos(psi) = +-c0 - R0 |N_xy|; leading
+    // wholly where sin(psi) |F_xy| <= |F_z| cos(psi).
+    std::vector<double> breaks{std::atan2(std::abs(feed_.z()), feed_tilt)};
+    for (const double sign : {1.0, -1.0}) {
+      const double a = corner_ * tilt, b = -sign * corner_ * normal_.z();
+      const double d = sign * c0_ - flat_radius_ * tilt, amplitude = std::hypot(a, b);
+      if (!(amplitude > 0) || std::abs(d) > amplitude) continue;
+      const double centre = std::atan2(a, b), spread = std::acos(d / amplitude);
+      breaks.push_back(centre - spread);
+      breaks.push_back(centre + spread);
+    }
+    add(integrate(
         [&](double psi) {
           const double s = std::sin(psi), rho = flat_radius_ + corner_ * s;
           return circle(rho, -corner_ * std::cos(psi), s, -std::cos(psi), corner_ * rho);
         },
-        0.0, kPi / 2, kRelative, absolute, kPanels));
+        breaks_within(breaks, 0.0, kPi / 2)));
   }
   // The shank, up to the highest level the stock reaches on it.
   const double top = (c0_ + radius_ * tilt) / normal_.z();
   if (top > 0) {
-    std::vector<double> breaks;
-    if (kinks) {
-      // Below this height the whole circle is in the stock.
-      breaks.push_back((c0_ - radius_ * tilt) / normal_.z());
-      removal.add_shank_breaks(breaks);
-    }
-    add(integrate_capped<2>([&](double z) { return circle(radius_, z, 1, 0, radius_); },
-                            breaks_within(breaks, 0.0, top), kRelative, absolute, kPanels));
+    // Below this height the whole circle is in the stock.
+    std::vector<double> breaks{(c0_ - radius_ * tilt) / normal_.z()};
+    if (kinks) removal.add_shank_breaks(breaks);
+    add(integrate([&](double z) { return circle(radius_, z, 1, 0, radius_); },
+                  breaks_within(breaks, 0.0, top)));
   }
   return sum[0] > 0 ? sum[1] / sum[0] : 0.0;
 }

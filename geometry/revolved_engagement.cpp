@@ -125,7 +125,6 @@ class Groove {
     foot_right_ = silhouette(phi_right_);
     edge_on_ = std::abs(feed_.z()) <= kEdgeOn;
     rim_tilt_ = length_of(normal_.x(), normal_.y());
-    rim_tau_ = std::atan2(normal_.y(), normal_.x());
     // The shank's lowest point along N is at -R |N_xy|.
     shank_in_stock_ = c0_ + radius_ * rim_tilt_ > 0;
     top_ = {boundary(c0_, true), boundary(c0_, false)};  // boundary() needs the members above
@@ -298,10 +297,14 @@ class Groove {
   // A(disk), A = rows e_xy and N_xy, in the direction v is R A^T v / |A^T v|,
   // so v is along A^-T P_xy (det A = +-F_z, not zero off edge-on).
   BoundaryPoint rim_boundary(double c, bool left) const {
-    const double tau = rim_tau_;
-    const double half = std::acos(std::clamp(c / (radius_ * rim_tilt_), -1.0, 1.0));
-    const Vector3d p1(radius_ * std::cos(tau - half), radius_ * std::sin(tau - half), 0);
-    const Vector3d p2(radius_ * std::cos(tau + half), radius_ * std::sin(tau + half), 0);
+    // At tau -+ half, cos(half) = c / (R |N_xy|), by the angle sums (no
+    // trigonometry: cos(tau), sin(tau) = N_xy / |N_xy|).
+    const double cos_half = std::clamp(c / (radius_ * rim_tilt_), -1.0, 1.0);
+    const double sin_half = std::sqrt(1 - cos_half * cos_half);
+    const double cos_tau = normal_.x() / rim_tilt_, sin_tau = normal_.y() / rim_tilt_;
+    const double along = radius_ * cos_half, across = radius_ * sin_half;
+    const Vector3d p1(along * cos_tau + across * sin_tau, along * sin_tau - across * cos_tau, 0);
+    const Vector3d p2(along * cos_tau - across * sin_tau, along * sin_tau + across * cos_tau, 0);
     const double b1 = side_.dot(p1), b2 = side_.dot(p2);
     const bool first = left ? b1 <= b2 : b1 > b2;
     const Vector3d& p = first ? p1 : p2;
@@ -430,6 +433,7 @@ class Groove {
     const BoundaryPoint left_bottom = boundary(c_min_, true),
                         right_bottom = boundary(c_min_, false);
     if (right_bottom.b - left_bottom.b >= ae_) return {c_min_, left_bottom, right_bottom};
+    if (const auto level = flat_width_level()) return *level;
     for (const bool left : {true, false}) {
       const BoundaryPoint& top = left ? left_top : right_top;
       const BoundaryPoint& other = left ? right_top : left_top;
@@ -452,6 +456,24 @@ class Groove {
     if (const auto level = width_level_on_silhouette(phi_l, phi_r)) return *level;
     const double c = width_level_by_slices(right_bottom.b - left_bottom.b - ae_);
     return {c, boundary(c, true), boundary(c, false)};
+  }
+
+  // The flat mill's Q is bounded below by the rim's ellipse A disk(R0)
+  // (centre c = 0, half-height h = R0 |N_xy|), whose chords along e are
+  // 2 R0 |F_z| / |N_xy| sqrt(1 - (c / h)^2) wide (the chord through the
+  // centre and the extreme levels' points are conjugate: area pi R0^2
+  // |det A|, det A = +-F_z): c* in closed form, when it lies below both
+  // feet (else a ray bounds a side).
+  std::optional<WidthLevel> flat_width_level() const {
+    if (corner_ != 0 || edge_on_ || !(rim_tilt_ > 0)) return std::nullopt;
+    const double h = flat_radius_ * rim_tilt_;
+    const double chord = 2 * flat_radius_ * std::abs(feed_.z()) / rim_tilt_;
+    if (!(ae_ < chord)) return std::nullopt;
+    const double ratio = ae_ / chord;
+    const double c = -h * std::sqrt(1 - ratio * ratio);
+    if (!(c > c_min_ && c < c0_ && c <= normal_.dot(foot_left_) && c <= normal_.dot(foot_right_)))
+      return std::nullopt;
+    return WidthLevel{c, rim_boundary(c, true), rim_boundary(c, false)};
   }
 
   // The left (or right) point on its shank's ray, the other on the
@@ -620,7 +642,7 @@ class Groove {
   Vector3d foot_left_, foot_right_;
   bool edge_on_ = false;
   bool shank_in_stock_ = true;
-  double rim_tilt_ = 0, rim_tau_ = 0;  // |N_xy| and its azimuth, for rim_boundary
+  double rim_tilt_ = 0;  // |N_xy|
   // boundary()'s last roots on the left and right: a cache, not state.
   mutable std::array<double, 2> warm_start_{kInf, kInf};
 };
@@ -1159,6 +1181,7 @@ double Groove::mean_diameter() const {
   const double tilt = std::hypot(normal_.x(), normal_.y());
   const double feed_tilt = length_of(feed_.x(), feed_.y());
   const double lead_phase = std::atan2(-feed_.y(), -feed_.x());
+  const double level_phase = std::atan2(normal_.y(), normal_.x());
   const Removal removal(*this);
   // Circle of radius rho at height z whose outward normal is (s cos t,
   // s sin t, nz); weight = area per radian per unit of the stack parameter.
@@ -1166,7 +1189,7 @@ double Groove::mean_diameter() const {
     // Both sinusoids keep their phase along the stack (s >= 0): no atan2 a circle.
     AngleSet set({-kPi, kPi});
     set.keep_where_polar(
-        rho * tilt, [&] { return rim_tau_; }, normal_.z() * z, c0_);
+        rho * tilt, [&] { return level_phase; }, normal_.z() * z, c0_);
     // Leading side F.n >= 0; the face's normal is -z, seen edge-on it leads.
     set.keep_where_polar(
         s * feed_tilt, [&] { return lead_phase; }, -feed_.z() * nz, s == 0 ? kEdgeOn : 0.0);

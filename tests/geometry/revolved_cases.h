@@ -38,14 +38,6 @@ inline Tool tool_of(const RandomCase& c) {
   return c.corner > 0 ? Tool::bull_nose(c.diameter, c.corner) : Tool::flat(c.diameter);
 }
 
-inline CutSetup setup_of(const RandomCase& c) {
-  CutSetup s;
-  s.ap = c.ap;
-  s.ae = c.ae;
-  s.normal = c.normal;
-  s.feed = c.feed;
-  s.side = c.side;
-  return s;
-}
+inline CutSetup setup_of(const RandomCase& c) { return {c.ap, c.ae, c.normal, c.feed, c.side}; }
 
 }  // namespace vcpost::geometry

@@ -24,13 +24,7 @@ using Eigen::Vector3d;
 constexpr double kPi = std::numbers::pi;
 
 CutSetup setup(double ap, double ae, Vector3d normal, Vector3d feed, Side side = Side::left) {
-  CutSetup s;
-  s.ap = ap;
-  s.ae = ae;
-  s.normal = normal;
-  s.feed = feed;
-  s.side = side;
-  return s;
+  return {ap, ae, normal, feed, side};
 }
 
 void expect_near(const Vector3d& actual, const Vector3d& expected, double tolerance) {
@@ -169,8 +163,7 @@ TEST(RevolvedEngagement, CuttingPointsLieOnTheRimAtTheRightSides) {
   for (int i = 0; i < 200; ++i) {
     const RandomCase c = random_case(random, i % 3 == 0);
     const Tool tool = tool_of(c);
-    const Engagement e =
-        evaluate_revolved_engagement(tool, setup(c.ap, c.ae, c.normal, c.feed, c.side));
+    const Engagement e = evaluate_revolved_engagement(tool, setup_of(c));
     ASSERT_TRUE(e.points);
     const Vector3d n = e.normal;
     const double radius = c.diameter / 2, flat = radius - c.corner;
@@ -213,7 +206,7 @@ TEST(RevolvedEngagement, BullNoseTendsToTheBall) {
   int compared = 0;
   for (int i = 0; i < 40; ++i) {
     RandomCase c = random_case(random, false);
-    const CutSetup s = setup(c.ap, c.ae, c.normal, c.feed, c.side);
+    const CutSetup s = setup_of(c);
     const Engagement ball = evaluate_engagement(Tool::ball(c.diameter), s);
     const Engagement bull =
         evaluate_revolved_engagement(Tool::bull_nose(c.diameter, c.diameter / 2 - 1e-6), s);
@@ -247,7 +240,7 @@ void compare_with_sampler(bool flat, int cases, unsigned seed) {
   for (int i = 0; i < cases; ++i) {
     const RandomCase c = random_case(random, flat);
     const Tool tool = tool_of(c);
-    const CutSetup s = setup(c.ap, c.ae, c.normal, c.feed, c.side);
+    const CutSetup s = setup_of(c);
     const Engagement e = evaluate_revolved_engagement(tool, s);
     const testing::RevolvedSample sample = testing::sample_revolved(
         c.diameter, c.corner, c.ap, c.ae, c.normal, c.feed, c.side == Side::left, 24);
@@ -303,7 +296,7 @@ TEST(RevolvedEngagement, MeanAgreesWithCircleByCircleOracle) {
   std::mt19937 random(17);
   for (int i = 0; i < 10; ++i) {
     const RandomCase c = random_case(random, i % 3 == 0);
-    const CutSetup s = setup(c.ap, c.ae, c.normal, c.feed, c.side);
+    const CutSetup s = setup_of(c);
     const std::optional<double> mean = revolved_mean_diameter(tool_of(c), s);
     ASSERT_TRUE(mean) << i;
     EXPECT_NEAR(*mean, oracle_mean(c, 300), kMeanTolerance) << i << " " << describe(c);
@@ -329,7 +322,7 @@ TEST(RevolvedEngagement, MeanWhereTheFlatFaceCuts) {
   };
   for (const RandomCase& c : {wall(18.040, 1.652, 8.908, 78.9, -0.849, 1),
                               wall(12.222, 1.478, 4.720, 73.5, -0.808, -1)}) {
-    const CutSetup s = setup(c.ap, c.ae, c.normal, c.feed, c.side);
+    const CutSetup s = setup_of(c);
     const std::optional<double> mean = revolved_mean_diameter(tool_of(c), s);
     ASSERT_TRUE(mean);
     EXPECT_NEAR(*mean, oracle_mean(c, 1200), kMeanTolerance) << describe(c);
@@ -347,7 +340,7 @@ TEST(RevolvedEngagement, BullNoseMeanCountsTheFaceSliver) {
                  0.403,      3.984,
                  normal,     feed_from_angle(2 * kPi * unit(random), normal),
                  Side::right};
-    const CutSetup s = setup(c.ap, c.ae, c.normal, c.feed, c.side);
+    const CutSetup s = setup_of(c);
     const std::optional<double> mean = revolved_mean_diameter(tool_of(c), s);
     ASSERT_TRUE(mean);
     EXPECT_NEAR(*mean, oracle_mean(c), kMeanTolerance) << describe(c);
@@ -397,7 +390,7 @@ TEST(RevolvedEngagement, MeanFinishesOnTheCasesThatHung) {
   std::mt19937 random(29);
   while (cases.size() < 12) cases.push_back(random_case(random, cases.size() % 3 == 0));
   for (const RandomCase& c : cases) {
-    const CutSetup s = setup(c.ap, c.ae, c.normal, c.feed, c.side);
+    const CutSetup s = setup_of(c);
     const std::optional<double> mean = revolved_mean_diameter(tool_of(c), s);
     ASSERT_TRUE(mean);
     EXPECT_NEAR(*mean, oracle_mean(c, 300), 2 * kMeanTolerance) << describe(c);
@@ -413,7 +406,7 @@ TEST(RevolvedEngagement, FullCornerIsTheBall) {
   std::mt19937 random(3);
   for (int i = 0; i < 20; ++i) {
     const RandomCase c = random_case(random, false);
-    const CutSetup s = setup(c.ap, c.ae, c.normal, c.feed, c.side);
+    const CutSetup s = setup_of(c);
     const Engagement ball = evaluate_engagement(Tool::ball(c.diameter), s);
     const Engagement bull = evaluate_engagement(Tool::bull_nose(c.diameter, c.diameter / 2), s);
     EXPECT_EQ(bull.d_max, ball.d_max);

@@ -147,10 +147,8 @@ TEST(PointEvaluator, GivenAeOverridesAndMissesGiveNoTarget) {
             geometry::BallStatus::touching);
 }
 
-TEST(PointEvaluator, MeasuresTheChordAcrossTheFeedOnTheCuspHeightCylinder) {
-  // The Miko-Beno-Mankova semi-cylinder: radius 100 about the y axis, 12 mm
-  // ball, passes along the axis (feed angle 0) 0.5 mm apart on the surface:
-  // the CC points of neighbouring passes are 2 * 100 * sin(0.0025) apart.
+// The Miko-Beno-Mankova semi-cylinder: radius 100 about the y axis.
+geometry::AnalyticModel cusp_height_cylinder() {
   geometry::CylinderPatch cylinder;
   cylinder.axis = {0, 1, 0};
   cylinder.reference = {0, 0, 1};
@@ -159,7 +157,13 @@ TEST(PointEvaluator, MeasuresTheChordAcrossTheFeedOnTheCuspHeightCylinder) {
   cylinder.h_max = 50;
   cylinder.angle_min = -pi / 2;
   cylinder.angle_max = pi / 2;
-  const geometry::AnalyticModel model({cylinder});
+  return geometry::AnalyticModel({cylinder});
+}
+
+TEST(PointEvaluator, MeasuresTheChordAcrossTheFeedOnTheCuspHeightCylinder) {
+  // The cusp-height cylinder under a 12 mm ball, passes along the axis (feed angle 0) 0.5 mm apart
+  // on the surface: the CC points of neighbouring passes are 2 * 100 * sin(0.0025) apart.
+  const geometry::AnalyticModel model = cusp_height_cylinder();
   PointSettings settings;
   settings.tool = geometry::Tool::ball(12);
   settings.ap = 0.2;
@@ -192,15 +196,7 @@ TEST(PointEvaluator, MeasuresTheChordAcrossTheFeedOnTheCuspHeightCylinder) {
 // across the feed) needs. The contact points are a chord of radius 100
 // apart; on a wavier surface they wander round the rim.
 TEST(PointEvaluator, FollowsABullNosesPassesByTheToolsPosition) {
-  geometry::CylinderPatch cylinder;
-  cylinder.axis = {0, 1, 0};
-  cylinder.reference = {0, 0, 1};
-  cylinder.radius = 100;
-  cylinder.h_min = -50;
-  cylinder.h_max = 50;
-  cylinder.angle_min = -pi / 2;
-  cylinder.angle_max = pi / 2;
-  const geometry::AnalyticModel model({cylinder});
+  const geometry::AnalyticModel model = cusp_height_cylinder();
   PointSettings settings;
   settings.tool = geometry::Tool::bull_nose(10, 2);
   settings.ap = 0.2;

@@ -479,9 +479,9 @@ class Groove {
   // The left (or right) point on its shank's ray, the other on the
   // silhouette at phi: the ray's b is linear in c, so the width at the
   // silhouette point's level is a function of phi alone, for Newton's
-  // method (most finishing set-ups whose stock plane reaches above a foot
-  // have c* there: the slices took two boundary solves a step). Empty when
-  // a step leaves the branch or c* is below the ray's foot.
+  // method (a fifth of the flat mill's finishing set-ups have c* there; the
+  // slices took two boundary solves a step). Empty when a step leaves the
+  // branch or c* is below the ray's foot.
   std::optional<WidthLevel> width_level_beside_ray(bool left_on_ray, double phi) const {
     const Vector3d& foot = left_on_ray ? foot_left_ : foot_right_;
     const double c_foot = normal_.dot(foot), b_foot = side_.dot(foot);
@@ -1034,9 +1034,7 @@ class Groove::Removal {
   // Where a circle of remove_from turns tangent to the removed part's edge
   // (its removed length has a square-root kink there): the radii of the
   // face's circles at height z (about o: |o| -+ R0; the band's sides, whose
-  // distances to the axis are |o.across -+ R0|); the heights of the shank's
-  // circles of radius R0 where the disk about o(z) touches them from
-  // outside, |o(z)| = 2 R0, or comes nearest their centre.
+  // distances to the axis are |o.across -+ R0|).
   void add_face_breaks(double z, std::vector<double>& breaks) const {
     const double r0 = groove_.flat_radius_;
     const Eigen::Vector2d o = groove_.ae_ * inverse_.col(0) - z * axis_;
@@ -1044,16 +1042,6 @@ class Groove::Removal {
     for (const double rho :
          {o.norm() - r0, o.norm() + r0, std::abs(across - r0), std::abs(across + r0)})
       breaks.push_back(rho);
-  }
-  void add_shank_breaks(std::vector<double>& breaks) const {
-    const double r0 = groove_.flat_radius_;
-    const Eigen::Vector2d o = groove_.ae_ * inverse_.col(0);  // o(z) = o - z axis
-    const double a2 = axis_.squaredNorm(), half_b = o.dot(axis_);
-    breaks.push_back(half_b / a2);
-    const double disc = half_b * half_b - a2 * (o.squaredNorm() - 4 * r0 * r0);
-    if (disc < 0) return;
-    breaks.push_back((half_b - std::sqrt(disc)) / a2);
-    breaks.push_back((half_b + std::sqrt(disc)) / a2);
   }
   // The flat mill's shank line through P_xy = (x, y): the height above
   // which the previous pass removed it, +inf where it does not. P - o(z) =
@@ -1310,7 +1298,6 @@ double Groove::mean_diameter() const {
   } else if (top > 0) {
     // Below this height the whole circle is in the stock.
     std::vector<double> breaks{(c0_ - radius_ * tilt) / normal_.z()};
-    if (kinks) removal.add_shank_breaks(breaks);
     add(integrate([&](double z) { return circle(radius_, z, 1, 0, radius_); },
                   breaks_within(breaks, 0.0, top)));
   }

@@ -141,10 +141,9 @@ class Groove {
     return {scale * u.x() + corner_ * u.x(), scale * u.y() + corner_ * u.y(), corner_ * u.z()};
   }
 
-  // The silhouette point at phi and its derivative in phi (the edge-on
-  // face's phi, where U_xy = 0, has neither: zeros).
-  std::pair<Vector3d, Vector3d> silhouette_and_tangent(double phi) const {
-    const double cos_phi = std::cos(phi), sin_phi = std::sin(phi);
+  // The silhouette point at phi and its derivative in phi, from cos(phi)
+  // and sin(phi) (the edge-on face's phi, where U_xy = 0, has neither: zeros).
+  std::pair<Vector3d, Vector3d> silhouette_and_tangent(double cos_phi, double sin_phi) const {
     const Vector3d u = cos_phi * side_ + sin_phi * normal_;
     const Vector3d du = -sin_phi * side_ + cos_phi * normal_;
     const double length = length_of(u.x(), u.y());
@@ -491,8 +490,9 @@ class Groove {
     const double hi = left_on_ray ? phi_right_ : phi_bottom_;
     const double tolerance = 1e-13 * radius_;
     if (!(phi > lo && phi < hi)) phi = left_on_ray ? phi_right_ - 1e-9 : phi_left_ + 1e-9;
+    double cos_phi = std::cos(phi), sin_phi = std::sin(phi);  // turned with phi
     for (int i = 0; i < 40; ++i) {
-      const auto [p, t] = silhouette_and_tangent(phi);
+      const auto [p, t] = silhouette_and_tangent(cos_phi, sin_phi);
       const double c = normal_.dot(p), b = side_.dot(p);
       const double b_ray = b_foot + (c - c_foot) * ray_slope;
       const double gap = sign * (b - b_ray) - ae_;
@@ -510,6 +510,7 @@ class Groove {
       if (!(std::abs(slope) > 0)) return std::nullopt;
       const double step = std::clamp(gap / slope, -0.3, 0.3);
       phi -= step;
+      std::tie(cos_phi, sin_phi) = rotated(cos_phi, sin_phi, -step);
       if (!(phi > lo && phi < hi)) return std::nullopt;
     }
     return std::nullopt;
@@ -526,9 +527,12 @@ class Groove {
   std::optional<WidthLevel> width_level_on_silhouette(double phi_l, double phi_r) const {
     const double tolerance = 1e-13 * radius_;
     int shortened = 0;
+    // cos and sin of the two angles, turned with them (steps <= 0.3 rad).
+    double cos_l = std::cos(phi_l), sin_l = std::sin(phi_l);
+    double cos_r = std::cos(phi_r), sin_r = std::sin(phi_r);
     for (int i = 0; i < 40; ++i) {
-      const auto [p_l, t_l] = silhouette_and_tangent(phi_l);
-      const auto [p_r, t_r] = silhouette_and_tangent(phi_r);
+      const auto [p_l, t_l] = silhouette_and_tangent(cos_l, sin_l);
+      const auto [p_r, t_r] = silhouette_and_tangent(cos_r, sin_r);
       const double b_l = side_.dot(p_l), b_r = side_.dot(p_r);
       const double level_gap = normal_.dot(p_r) - normal_.dot(p_l), width_gap = b_r - b_l - ae_;
       if (std::abs(level_gap) <= tolerance && std::abs(width_gap) <= tolerance) {
@@ -554,6 +558,8 @@ class Groove {
       if (scale < before && ++shortened > 8) return std::nullopt;
       phi_l += scale * d_l;
       phi_r += scale * d_r;
+      std::tie(cos_l, sin_l) = rotated(cos_l, sin_l, scale * d_l);
+      std::tie(cos_r, sin_r) = rotated(cos_r, sin_r, scale * d_r);
       if (!(phi_l > phi_left_ && phi_l < phi_bottom_ && phi_r > phi_bottom_ && phi_r < phi_right_))
         return std::nullopt;
     }

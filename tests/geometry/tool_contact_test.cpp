@@ -102,6 +102,29 @@ TEST(ToolContact, SolidSphereTouchesTheDiscPointNearestItsCentre) {
   }
 }
 
+// Down the sphere's side along a path, each contact warm from the last (as
+// a post asks): on the rim at every point, and as exact as a cold start.
+TEST(ToolContact, WarmAlongAPathStaysExactOnTheRim) {
+  SpherePatch sphere;
+  sphere.center = {1, -2, -30};
+  sphere.radius = 25;
+  const AnalyticModel model({sphere});
+  for (const Tool& tool : {Tool::bull_nose(10, 2), Tool::bull_nose(20, 3), Tool::flat(12)}) {
+    ContactHint hint;
+    for (int i = 0; i <= 200; ++i) {
+      // A spiral round the crest, 6-16 mm out, 1 mm above the surface's level there.
+      const double angle = 0.05 * i, reach = 6 + 0.05 * i;
+      const Vector3d origin(1 + reach * std::cos(angle), -2 + reach * std::sin(angle),
+                            -30 + std::sqrt(25.0 * 25.0 - reach * reach) - 1);
+      const Vector3d q = nearest_disc_point(origin, disc_radius(tool), sphere.center);
+      const double expected = (q - sphere.center).norm() - sphere.radius - corner(tool);
+      const BallContact contact = tool_contact(model, tool, origin, 0.01, tool.diameter, &hint);
+      ASSERT_TRUE(contact.contact) << i;
+      EXPECT_NEAR(contact.distance_error, expected, 1e-9) << to_string(tool) << " point " << i;
+    }
+  }
+}
+
 TEST(ToolContact, BowlTouchesTheDiscPointFarthestFromItsCentre) {
   SpherePatch bowl;
   bowl.center = {0, 0, 40};

@@ -1,7 +1,7 @@
 // Cosine and sine of a small angle by their series, and a rotation by it:
 // the Newton and regula falsi steps of the engines move an angle by less
-// than half a radian, where the series is exact to round-off and a fifth
-// the cost of libm's sincos (a fifth of a bull-nose evaluation went there).
+// than half a radian, where the series is exact to round-off and cheaper
+// than libm's sincos (which took a fifth of a bull-nose evaluation).
 #pragma once
 
 #include <array>

@@ -806,9 +806,10 @@ void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
   }
   const double phi_face = omega_ + kPi;
   if (phi_face > lo && phi_face < hi) {
-    // The face spans about |F_z| of phi: refined down to a tenth of that.
-    const int depth = std::clamp(static_cast<int>(std::ceil(-std::log10(std::abs(feed_.z())))) + 2,
-                                 0, kRefinements);
+    // The face spans about |F_z| of phi: refined down to a tenth of that
+    // (clamped as a double: a level feed, F_z = 0, asks for infinitely many).
+    const int depth = static_cast<int>(std::clamp(std::ceil(-std::log10(std::abs(feed_.z()))) + 2,
+                                                  0.0, static_cast<double>(kRefinements)));
     for (int k = 0; k < depth; ++k) {
       const double offset = step * std::pow(0.1, k);
       for (const double phi : {phi_face - offset, phi_face + offset}) {

@@ -2,7 +2,6 @@
 
 #include <array>
 #include <cmath>
-#include <optional>
 
 namespace vcpost::geometry {
 
@@ -71,44 +70,7 @@ BallContact tool_contact(const SurfaceModel& model, const Tool& tool, const Eige
     }
     return Found{slot[best], where[best]};
   };
-  // When the last answer was on the rim, the next one most likely is too:
-  // there the distance is least where the rim point's direction is -g's,
-  // a root of their angle in the rim angle, by the secant (the first step
-  // the descent's own long step) in 3-4 queries where the descent took
-  // 6.5. A root not reached in 8 queries, a level normal (the face may
-  // touch) or no contact go to the descent.
-  const auto along_rim = [&](double angle) -> std::optional<Found> {
-    const auto rim_point = [&](double a) {
-      return Eigen::Vector2d(disc * std::cos(a), disc * std::sin(a));
-    };
-    // The angle from q to -g (0 at the answer).
-    const auto turn = [](const Eigen::Vector2d& q, const Eigen::Vector2d& g) {
-      return std::atan2(g.x() * q.y() - g.y() * q.x(), -q.dot(g));
-    };
-    Eigen::Vector2d q = rim_point(angle);
-    BallContact contact = at(q);
-    double previous = 0, previous_turn = 0;
-    for (int query = 1; query <= 8; ++query) {
-      if (!contact.contact) return std::nullopt;
-      const Eigen::Vector2d g = contact.normal.head<2>();
-      if (!(g.norm() > 1e-9)) return std::nullopt;
-      const double r = turn(q, g);
-      if (std::abs(r) * disc <= converged) return Found{contact, q};
-      double next = angle + r;
-      if (query > 1 && r != previous_turn)
-        next = angle - r * (angle - previous) / (r - previous_turn);
-      previous = angle;
-      previous_turn = r;
-      angle = next;
-      q = rim_point(angle);
-      contact = at(q);
-    }
-    return std::nullopt;
-  };
-  std::optional<Found> rim_answer;
-  if (hint && hint->rim.norm() >= disc * (1 - 1e-9))
-    rim_answer = along_rim(std::atan2(hint->rim.y(), hint->rim.x()));
-  Found found = rim_answer ? *rim_answer : descend(hint ? hint->rim : Eigen::Vector2d::Zero());
+  Found found = descend(hint ? hint->rim : Eigen::Vector2d::Zero());
   // Over a valley the distance has a minimum on each flank, and a descent
   // warm-started on the flank the tool last touched stops on it, lifted,
   // while the tool rests on the other. A lifted answer is checked from the

@@ -27,14 +27,12 @@ Eigen::Vector3d tool_origin(const Eigen::Vector3d& cl_point, const Tool& tool, C
 // BallContact's fields for the ball of radius rc at the core disc point
 // closest to the surface (center = that point, normal = from CC to it,
 // distance_error = the tool's signed distance from the surface). For a ball
-// exactly ball_contact. For the others the disc point is found, when
-// hint->rim is on the rim, by a secant in the rim angle (at most 8
-// queries), else (or when that does not settle) by projected gradient
-// steps on the disc (the gradient of the distance is the normal's
+// exactly ball_contact. For the others the disc point is found by projected
+// gradient steps on the disc (the gradient of the distance is the normal's
 // horizontal part): at most 16 queries, warm-started from hint->rim; the
 // answer is the best disc point met. A lifted answer (a valley's other
 // flank may be the one touched) is searched again from the opposite rim
-// point and from the centre: at most 56 queries. The surface is searched up to
+// point and from the centre: at most 48 queries. The surface is searched up to
 // 2 R0 + rc + search_margin from each disc point.
 // REQUIRES: tool valid, tolerance >= 0, search_margin >= 0.
 BallContact tool_contact(const SurfaceModel& model, const Tool& tool, const Eigen::Vector3d& origin,

@@ -521,16 +521,12 @@ double ball_mean_diameter(double radius, const CutSetup& setup, const CutFrame& 
     cuts.push_back(touch);
     cuts.push_back(-touch);
   }
-  std::erase_if(cuts, [&](double c) { return !(c > -R && c < ball.c0); });
-  cuts.push_back(-R);
-  cuts.push_back(ball.c0);
-  std::sort(cuts.begin(), cuts.end());
   const auto ball_part = integrate_smoothed_pieces<2>(
       [&](double c) {
         const Slice slice = ball_slice(c);
         return std::array<double, 2>{slice.area, slice.moment};
       },
-      cuts, 1e-7, tolerance, 24);
+      breaks_within(std::move(cuts), -R, ball.c0), 1e-7, tolerance, 24);
   const double ball_area = ball_part[0], ball_moment = ball_part[1];
 
   // Shank part (r = R): on the vertical line at angle phi, z runs from 0 up

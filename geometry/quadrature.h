@@ -135,6 +135,16 @@ std::array<double, N> integrate_capped(const Function& f, double lo, double hi, 
   return integrate_capped<N>(f, std::vector<double>{lo, hi}, relative, absolute, max_panels);
 }
 
+// [lo, hi] cut at those of `breaks` strictly inside it: the ascending
+// breaks for integrate_capped and integrate_smoothed_pieces.
+inline std::vector<double> breaks_within(std::vector<double> breaks, double lo, double hi) {
+  std::erase_if(breaks, [&](double x) { return !(x > lo && x < hi); });
+  breaks.push_back(lo);
+  breaks.push_back(hi);
+  std::sort(breaks.begin(), breaks.end());
+  return breaks;
+}
+
 // The integrals over [breaks.front(), breaks.back()] (breaks ascending)
 // piece by piece, each piece [a, b] in theta, x = m - h cos(theta), m and
 // h its middle and half-width: the nodes gather at the ends, where an

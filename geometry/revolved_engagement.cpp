@@ -307,12 +307,18 @@ class Groove {
     const double b1 = side_.dot(p1), b2 = side_.dot(p2);
     const bool first = left ? b1 <= b2 : b1 > b2;
     const Vector3d& p = first ? p1 : p2;
+    return {p, first ? b1 : b2, rim_phi(p.x(), p.y()), 0};
+  }
+
+  // The silhouette parameter of the flat mill's rim point in the direction
+  // (x, y): U_xy = cos(phi) e_xy + sin(phi) N_xy along it, in [phiL, phiL + 2 pi).
+  double rim_phi(double x, double y) const {
     const double det = side_.x() * normal_.y() - side_.y() * normal_.x();
-    double phi = std::atan2((side_.x() * p.y() - side_.y() * p.x()) / det,
-                            (normal_.y() * p.x() - normal_.x() * p.y()) / det);
+    double phi = std::atan2((side_.x() * y - side_.y() * x) / det,
+                            (normal_.y() * x - normal_.x() * y) / det);
     while (phi < phi_left_) phi += 2 * kPi;
     while (phi >= phi_left_ + 2 * kPi) phi -= 2 * kPi;
-    return {p, first ? b1 : b2, phi, 0};
+    return phi;
   }
 
   // The interval of t over which x0 + t F lies in the tool; empty when the
@@ -498,10 +504,7 @@ class Groove {
       const double gap = sign * (b - b_ray) - ae_;
       if (std::abs(gap) <= tolerance) {
         if (!(c >= c_foot && c > c_min_ && c < c0_)) return std::nullopt;
-        const Vector3d on_ray = foot + (c - c_foot) / normal_.z() * Vector3d::UnitZ();
-        const BoundaryPoint ray_point{on_ray, side_.dot(on_ray),
-                                      left_on_ray ? phi_left_ : phi_right_,
-                                      (c - c_foot) / normal_.z()};
+        const BoundaryPoint ray_point = boundary(c, left_on_ray);  // closed form on the ray
         const BoundaryPoint silhouette_point{p, b, phi, 0};
         return left_on_ray ? WidthLevel{c, ray_point, silhouette_point}
                            : WidthLevel{c, silhouette_point, ray_point};
@@ -851,15 +854,10 @@ void Groove::flat_shifted_rim_extremes(double phi_lo, double phi_hi, RadiusExtre
   const double dy = side_.z() * feed_.y() - feed_.z() * side_.y();
   const double length = length_of(dx, dy);
   if (!(length > 0)) return;
-  const double det = side_.x() * normal_.y() - side_.y() * normal_.x();
   const double t = -ae_ * side_.z() / feed_.z();
   for (const double sign : {1.0, -1.0}) {
     const double ux = sign * dx / length, uy = sign * dy / length;
-    // The silhouette parameter of S: U_xy = cos(phi) e_xy + sin(phi) N_xy along d.
-    double phi = std::atan2((side_.x() * uy - side_.y() * ux) / det,
-                            (normal_.y() * ux - normal_.x() * uy) / det);
-    while (phi < phi_left_) phi += 2 * kPi;
-    while (phi >= phi_left_ + 2 * kPi) phi -= 2 * kPi;
+    const double phi = rim_phi(ux, uy);
     if (phi < phi_lo || phi > phi_hi) continue;
     const Vector3d p = Vector3d(radius_ * ux, radius_ * uy, 0) + ae_ * side_ + t * feed_;
     if (std::abs(outside_by(p)) <= 1e-9 * radius_ && leads(surface_normal(p))) out.add(p);
@@ -991,7 +989,9 @@ class Groove::Removal {
       inverse_ = a.inverse();
       axis_ = inverse_ * w;
       axis_unit_ = axis_.normalized();
+      axis_across_ = {-axis_unit_.y(), axis_unit_.x()};
       along_phase_ = std::atan2(axis_unit_.y(), axis_unit_.x());
+      origin_ = g.ae_ * inverse_.col(0);
     }
     // The least bL(c) up to the stock plane, less a margin for round-off
     // (tool points with e.P - ae at or below it are never removed): bL is
@@ -1019,8 +1019,9 @@ class Groove::Removal {
   // o; each condition is a sinusoid's sublevel set on the circle.
   void remove_from(AngleSet& row, double rho, double z) const {
     const double r0 = groove_.flat_radius_;
-    const Eigen::Vector2d o = groove_.ae_ * inverse_.col(0) - z * axis_;
-    const Eigen::Vector2d along = axis_unit_, across(-axis_unit_.y(), axis_unit_.x());
+    const Eigen::Vector2d o = origin_ - z * axis_;
+    const Eigen::Vector2d& along = axis_unit_;
+    const Eigen::Vector2d& across = axis_across_;
     // |P - o|^2 < R0^2, P = rho (cos t, sin t).
     AngleSet disk({-kPi, kPi});
     disk.keep_where({-2 * rho * o.x(), -2 * rho * o.y(), 0}, r0 * r0 - rho * rho - o.squaredNorm());
@@ -1044,8 +1045,8 @@ class Groove::Removal {
   // distances to the axis are |o.across -+ R0|).
   void add_face_breaks(double z, std::vector<double>& breaks) const {
     const double r0 = groove_.flat_radius_;
-    const Eigen::Vector2d o = groove_.ae_ * inverse_.col(0) - z * axis_;
-    const double across = o.dot(Eigen::Vector2d(-axis_unit_.y(), axis_unit_.x()));
+    const Eigen::Vector2d o = origin_ - z * axis_;
+    const double across = o.dot(axis_across_);
     for (const double rho :
          {o.norm() - r0, o.norm() + r0, std::abs(across - r0), std::abs(across + r0)})
       breaks.push_back(rho);
@@ -1058,8 +1059,8 @@ class Groove::Removal {
   // it or in the band beyond; otherwise it misses both.
   double shank_removed_above(double x, double y) const {
     const double r0 = groove_.flat_radius_;
-    const Eigen::Vector2d d = Eigen::Vector2d(x, y) - groove_.ae_ * inverse_.col(0);
-    if (!(std::abs(d.dot(Eigen::Vector2d(-axis_unit_.y(), axis_unit_.x()))) < r0)) return kInf;
+    const Eigen::Vector2d d = Eigen::Vector2d(x, y) - origin_;
+    if (!(std::abs(d.dot(axis_across_)) < r0)) return kInf;
     const double a2 = axis_.squaredNorm(), half_b = d.dot(axis_);
     const double disc = half_b * half_b - a2 * (d.squaredNorm() - r0 * r0);
     return (-half_b - std::sqrt(std::max(0.0, disc))) / a2;
@@ -1069,8 +1070,7 @@ class Groove::Removal {
   // the axis, R cos(t - along - pi/2) - o.across, reaches +-R0.
   void add_shank_line_breaks(std::vector<double>& breaks) const {
     const double r0 = groove_.flat_radius_, radius = groove_.radius_;
-    const Eigen::Vector2d across(-axis_unit_.y(), axis_unit_.x());
-    const double offset = groove_.ae_ * inverse_.col(0).dot(across);
+    const double offset = origin_.dot(axis_across_);
     for (const double side : {r0, -r0}) {
       const double ratio = (side + offset) / radius;
       if (std::abs(ratio) > 1) continue;
@@ -1177,17 +1177,20 @@ class Groove::Removal {
   }
 
   enum class Mode { corner_distance, rim_disk, boundary };
-  const Groove& groove_;
-  Mode mode_ = Mode::boundary;
-  double lowest_left_ = 0;
+  // The vectors and matrices first (16-byte aligned), then the scalars.
   Eigen::Matrix2d to_principal_ = Eigen::Matrix2d::Identity();  // U^T of A = U S V^T
   Eigen::Vector2d singular_ = Eigen::Vector2d::Zero(), w_principal_ = Eigen::Vector2d::Zero();
   Eigen::Vector2d across_ = Eigen::Vector2d::Zero();  // unit, normal to w
-  double half_width_ = 0;                             // E's half-width across w
   Eigen::Matrix2d inverse_ = Eigen::Matrix2d::Identity();
   Eigen::Vector2d axis_ = Eigen::Vector2d::Zero();  // A^-1 w
   Eigen::Vector2d axis_unit_ = Eigen::Vector2d::Zero();
+  Eigen::Vector2d axis_across_ = Eigen::Vector2d::Zero();  // axis_unit_ turned by +90 deg
+  Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();       // o at z = 0: ae A^-1 (1, 0)
+  const Groove& groove_;
+  double lowest_left_ = 0;
+  double half_width_ = 0;   // E's half-width across w
   double along_phase_ = 0;  // the azimuth of axis_
+  Mode mode_ = Mode::boundary;
   // corner_margin's last lambda: a cache, not state.
   mutable double warm_start_ = 0;
 };
@@ -1201,7 +1204,7 @@ class Groove::Removal {
 // pass removes what unremoved_length finds. Capped adaptive quadrature over
 // the circles bounds the work whatever the set-up.
 double Groove::mean_diameter() const {
-  const double tilt = std::hypot(normal_.x(), normal_.y());
+  const double tilt = rim_tilt_;
   const double feed_tilt = length_of(feed_.x(), feed_.y());
   const double lead_phase = std::atan2(-feed_.y(), -feed_.x());
   const double level_phase = std::atan2(normal_.y(), normal_.x());
@@ -1232,15 +1235,6 @@ double Groove::mean_diameter() const {
   // plane or the removed part's edge): inside a panel one fooled its error
   // estimate, 1.2e-3 mm off the circle-by-circle oracle.
   const bool kinks = removal.closed_form();
-  const auto breaks_within = [](std::vector<double> breaks, double lo, double hi) {
-    breaks.erase(
-        std::remove_if(breaks.begin(), breaks.end(), [&](double x) { return !(x > lo && x < hi); }),
-        breaks.end());
-    breaks.push_back(lo);
-    breaks.push_back(hi);
-    std::sort(breaks.begin(), breaks.end());
-    return breaks;
-  };
   // The bull-nose's stacks are cut where a circle turns tangent to the
   // stock plane or to the leading side's edge (closed forms; the removed
   // part's are not) and integrated piece by piece in theta, which smooths

@@ -74,12 +74,17 @@ std::array<double, N> integrate_capped(const Function& f, const std::vector<doub
         gauss[k] += gw * values[k];
       }
     };
-    take(f(centre), detail::kronrod_weights[7], detail::gauss_weights[3]);
+    // Evaluated in one sweep from a to b (an integrand that starts a root
+    // search from its last answer starts next to it), summed as the rule lists them.
+    std::array<std::array<double, N>, 7> below, above;
+    for (std::size_t i = 0; i < 7; ++i) below[i] = f(centre - half * detail::kronrod_nodes[i]);
+    const std::array<double, N> middle = f(centre);
+    for (std::size_t i = 7; i-- > 0;) above[i] = f(centre + half * detail::kronrod_nodes[i]);
+    take(middle, detail::kronrod_weights[7], detail::gauss_weights[3]);
     for (std::size_t i = 0; i < 7; ++i) {
-      const double dx = half * detail::kronrod_nodes[i];
       const double gw = i % 2 == 1 ? detail::gauss_weights[i / 2] : 0.0;
-      take(f(centre - dx), detail::kronrod_weights[i], gw);
-      take(f(centre + dx), detail::kronrod_weights[i], gw);
+      take(below[i], detail::kronrod_weights[i], gw);
+      take(above[i], detail::kronrod_weights[i], gw);
     }
     for (std::size_t k = 0; k < N; ++k) {
       panel.value[k] = kronrod[k] * half;

@@ -132,6 +132,8 @@ class Groove {
 
   double radius() const { return radius_; }
   double c0() const { return c0_; }
+  // Whether the feed is parallel to the end face (see kEdgeOn).
+  bool edge_on() const { return edge_on_; }
 
   // The silhouette point with outward normal U = cos(phi) e + sin(phi) N.
   Vector3d silhouette(double phi) const {
@@ -296,18 +298,24 @@ class Groove {
   // A(disk), A = rows e_xy and N_xy, in the direction v is R A^T v / |A^T v|,
   // so v is along A^-T P_xy (det A = +-F_z, not zero off edge-on).
   BoundaryPoint rim_boundary(double c, bool left) const {
-    // At tau -+ half, cos(half) = c / (R |N_xy|), by the angle sums (no
-    // trigonometry: cos(tau), sin(tau) = N_xy / |N_xy|).
-    const double cos_half = std::clamp(c / (radius_ * rim_tilt_), -1.0, 1.0);
-    const double sin_half = std::sqrt(1 - cos_half * cos_half);
-    const double cos_tau = normal_.x() / rim_tilt_, sin_tau = normal_.y() / rim_tilt_;
-    const double along = radius_ * cos_half, across = radius_ * sin_half;
-    const Vector3d p1(along * cos_tau + across * sin_tau, along * sin_tau - across * cos_tau, 0);
-    const Vector3d p2(along * cos_tau - across * sin_tau, along * sin_tau + across * cos_tau, 0);
+    const auto [p1, p2] = circle_at_level(radius_, 0, c);
     const double b1 = side_.dot(p1), b2 = side_.dot(p2);
     const bool first = left ? b1 <= b2 : b1 > b2;
     const Vector3d& p = first ? p1 : p2;
     return {p, first ? b1 : b2, rim_phi(p.x(), p.y()), 0};
+  }
+
+  // The two points of the horizontal circle of radius rho at height z on
+  // the level N.P = c, where rho |N_xy| cos(t - tau) = c - N_z z: at tau -+
+  // half, by the angle sums (no trigonometry: cos(tau), sin(tau) =
+  // N_xy / |N_xy|). A level the circle misses gives its nearest point twice.
+  std::array<Vector3d, 2> circle_at_level(double rho, double z, double c) const {
+    const double cos_half = std::clamp((c - normal_.z() * z) / (rho * rim_tilt_), -1.0, 1.0);
+    const double sin_half = std::sqrt(1 - cos_half * cos_half);
+    const double cos_tau = normal_.x() / rim_tilt_, sin_tau = normal_.y() / rim_tilt_;
+    const double along = rho * cos_half, across = rho * sin_half;
+    return {Vector3d(along * cos_tau + across * sin_tau, along * sin_tau - across * cos_tau, z),
+            Vector3d(along * cos_tau - across * sin_tau, along * sin_tau + across * cos_tau, z)};
   }
 
   // The silhouette parameter of the flat mill's rim point in the direction
@@ -415,8 +423,12 @@ class Groove {
     return point_at(b, c, interval->second);
   }
 
+  // The bull-nose's front point on the fibre x0 + t F: its r and n.F (0
+  // when the fibre misses). `warm` is the last call's t, kept for the next.
+  std::pair<double, double> front_for_area(const Vector3d& x0, double& warm) const;
   RadiusExtremes extremes() const;
   double mean_diameter() const;
+  double mean_over_groove() const;
   // Whether the previous pass removed a tool point (see unremoved_length).
   class Removal;
   // Length of the angles of `row` (a circle of the tool) that are not
@@ -1305,6 +1317,136 @@ double Groove::mean_diameter() const {
   return sum[0] > 0 ? sum[1] / sum[0] : 0.0;
 }
 
+// The fibre leaves the tool through the shank when it leaves the shank's
+// cylinder at z >= 0, through the face when the face leads (F_z < 0) and
+// the fibre crosses its plane inside the rim (below it is out of the tool),
+// else through the corner: there the distance to the core circle less rc
+// is convex along the fibre, so Newton's method from any point beyond the
+// exit (the cylinder's exit, or the last fibre's t when it lies beyond)
+// walks monotonically onto it; from a point inside, its first step lands
+// beyond it (the tangent stays below a convex function).
+std::pair<double, double> Groove::front_for_area(const Vector3d& x0, double& warm) const {
+  const double fxy2 = feed_.x() * feed_.x() + feed_.y() * feed_.y();
+  const double beta = x0.x() * feed_.x() + x0.y() * feed_.y();
+  const double gamma = x0.x() * x0.x() + x0.y() * x0.y() - radius_ * radius_;
+  const double disc = beta * beta - fxy2 * gamma;
+  if (!(disc > 0 && fxy2 > 0)) return {0, 0};
+  const double root = std::sqrt(disc);
+  double t = (-beta + root) / fxy2;
+  if (x0.z() + t * feed_.z() >= 0) return {radius_, root / radius_};  // (P_xy.F_xy) / R
+  if (feed_.z() < 0) {
+    const double t_face = (-corner_ - x0.z()) / feed_.z();
+    const double x = x0.x() + t_face * feed_.x(), y = x0.y() + t_face * feed_.y();
+    const double rho = length_of(x, y);
+    if (rho <= flat_radius_) return {rho, -feed_.z()};
+    t = std::min(t, t_face);
+  }
+  // The distance to the core K = {r <= R0, z >= 0} less rc, and its slope.
+  const auto excess = [&](double at, double& rho, double& slope) {
+    const double x = x0.x() + at * feed_.x(), y = x0.y() + at * feed_.y();
+    const double z = x0.z() + at * feed_.z();
+    rho = length_of(x, y);
+    const double radial = std::max(0.0, rho - flat_radius_), below = std::min(0.0, z);
+    const double distance = length_of(radial, below);
+    if (!(distance > 0)) {
+      slope = 0;
+      return -corner_;
+    }
+    const double d_radial = radial > 0 ? (x * feed_.x() + y * feed_.y()) / rho : 0;
+    slope = (radial * d_radial + below * feed_.z()) / distance;
+    return distance - corner_;
+  };
+  double rho = 0, slope = 0;
+  if (warm < t) {
+    const double value = excess(warm, rho, slope);
+    if (slope > 0) t = value >= 0 ? warm : warm - value / slope;
+  }
+  for (int i = 0; i < 60; ++i) {
+    const double value = excess(t, rho, slope);
+    if (!(slope > 0)) return {0, 0};
+    const double step = value / slope;
+    t -= step;
+    if (std::abs(step) <= 1e-13 * radius_) break;
+  }
+  warm = t;
+  excess(t, rho, slope);
+  return {rho, slope};
+}
+
+// The bull-nose's mean over the groove G itself (off edge-on): a fibre
+// above (b, c) in G meets the tool's leading side at its front point P,
+// where the tool's area is db dc / (n.F), so
+//   D_mean = integral of 2 r(P) / (n.F)  /  integral of 1 / (n.F)
+// over G = { c_min <= c <= c0, bL(c) <= b <= min(bR(c), bL(c) + ae) }: no
+// removal test at all. n.F vanishes as the square root of the distance to
+// Q's boundary, which integrate_smoothed_pieces absorbs. The integrands
+// have kinks where the front point crosses from one piece of the tool to
+// the next (the face's rim, the shank's foot): the slices are cut there,
+// in closed form, and the levels where those circles turn tangent to a
+// slice, where a boundary turns from the silhouette onto a shank's ray,
+// and at c*.
+double Groove::mean_over_groove() const {
+  // Panels a piece: at most 8 across the levels, 4 along a slice (a few
+  // grazing set-ups ask for many more, chasing round-off; see engagement.h).
+  constexpr double kRelative = 1e-5;
+  constexpr int kLevelPanels = 8, kSlicePanels = 4;
+  const double absolute = 1e-12 * radius_ * radius_;
+  // The front point above (b, c): 1 / (n.F) and 2 r / (n.F) there.
+  double warm = kInf;  // the last front point's t along its fibre
+  const auto at_front = [&](double b, double c) {
+    const auto [rho, lead] = front_for_area(b * side_ + c * normal_, warm);
+    // A fibre within round-off of Q's boundary (a node of a tiny piece):
+    // its n.F is round-off, and its share nothing.
+    if (!(lead > 1e-12)) return std::array<double, 2>{0, 0};
+    return std::array<double, 2>{1 / lead, 2 * rho / lead};
+  };
+  // The horizontal circles where the front point changes piece: the face's
+  // rim (in front only when the face leads) and the shank's foot (its
+  // leading half).
+  struct Junction {
+    double radius, z;
+    bool face;
+  };
+  const std::array<Junction, 2> junctions{{{flat_radius_, -corner_, true}, {radius_, 0.0, false}}};
+  const bool face_leads = feed_.z() < 0;
+  std::vector<double> levels{normal_.dot(foot_left_), normal_.dot(foot_right_)};
+  for (const Junction& j : junctions) {
+    const double centre = normal_.z() * j.z, half = j.radius * rim_tilt_;
+    levels.push_back(centre - half);
+    levels.push_back(centre + half);
+  }
+  const WidthLevel width = width_level(top_[0], top_[1]);
+  levels.push_back(width.c);
+  std::vector<double> cuts;
+  const auto slice = [&](double c) {
+    const double lo = boundary(c, true).b;
+    const double hi = std::min(boundary(c, false).b, lo + ae_);
+    if (!(hi > lo)) return std::array<double, 2>{0, 0};
+    cuts.clear();
+    for (const Junction& j : junctions) {
+      if (j.face && !face_leads) continue;
+      if (!(std::abs(c - normal_.z() * j.z) < j.radius * rim_tilt_)) continue;
+      for (const Vector3d& p : circle_at_level(j.radius, j.z, c)) {
+        if (j.face || p.x() * feed_.x() + p.y() * feed_.y() > 0) cuts.push_back(side_.dot(p));
+      }
+    }
+    // A cut within round-off of an end or of another cut would make a piece
+    // whose nodes all sit on Q's boundary, where n.F is round-off.
+    const std::vector<double> all = breaks_within(cuts, lo, hi);
+    const double gap = 1e-7 * radius_;
+    std::vector<double> pieces{lo};
+    for (std::size_t i = 1; i + 1 < all.size(); ++i) {
+      if (all[i] - pieces.back() >= gap && hi - all[i] >= gap) pieces.push_back(all[i]);
+    }
+    pieces.push_back(hi);
+    return integrate_smoothed_pieces<2>([&](double b) { return at_front(b, c); }, pieces, kRelative,
+                                        absolute, kSlicePanels);
+  };
+  const auto sum = integrate_smoothed_pieces<2>(slice, breaks_within(levels, c_min_, c0_),
+                                                kRelative, absolute, kLevelPanels);
+  return sum[0] > 0 ? sum[1] / sum[0] : 0.0;
+}
+
 // The removed stretches' ends on each arc: the flat mill's in closed form
 // (Removal::remove_from), else sign changes of the margin bracketed on 16
 // cells, then regula falsi (a removed stretch narrower than a cell can be
@@ -1508,6 +1650,8 @@ Engagement evaluate_revolved_engagement(const Tool& tool, const CutSetup& setup,
 std::optional<double> revolved_mean_diameter(const Tool& tool, const CutSetup& setup) {
   const Prepared prepared = prepare(tool, setup);
   if (!prepared.groove || !(prepared.ae > 0)) return std::nullopt;
+  if (tool.kind == ToolKind::bull_nose && !prepared.groove->edge_on())
+    return prepared.groove->mean_over_groove();
   return prepared.groove->mean_diameter();
 }
 

@@ -125,6 +125,32 @@ TEST(RevolvedEngagement, BullNoseFloorMeanInClosedForm) {
   EXPECT_NEAR(*mean, expected, 1e-3);
 }
 
+// The same floor tilted by 1e-7 rad about the feed's y axis: F_z = -+6e-8,
+// so the mean is taken over the groove (not the edge-on face's circles).
+// Feeding down by a hair the face leads and the mean tends to the value
+// above; up by a hair it trails and only the band is left, band_sum /
+// band_area = 7.725728679. Both within 2e-6 mm (the tilt itself moves them
+// by a few 1e-7).
+TEST(RevolvedEngagement, BullNoseMeanTendsToTheFloorsFromEitherSide) {
+  const double R0 = 3, rc = 2, ap = 0.7;
+  const double psi1 = std::acos((rc - ap) / rc);
+  const double band_area = kPi * rc * (R0 * psi1 + rc * (1 - std::cos(psi1)));
+  const double band_sum = 2 * kPi * rc *
+                          (R0 * R0 * psi1 + 2 * R0 * rc * (1 - std::cos(psi1)) +
+                           rc * rc * (psi1 / 2 - std::sin(2 * psi1) / 4));
+  const double face_area = kPi * R0 * R0, face_sum = face_area * 4 * R0 / 3;
+  for (const double tilt : {1e-7, -1e-7}) {
+    const Vector3d normal(std::sin(tilt), 0, std::cos(tilt));
+    const Vector3d feed(0.6 * std::cos(tilt), 0.8, -0.6 * std::sin(tilt));
+    const std::optional<double> mean =
+        revolved_mean_diameter(Tool::bull_nose(10, rc), setup(ap, 15, normal, feed));
+    ASSERT_TRUE(mean);
+    const double expected =
+        tilt > 0 ? (band_sum + face_sum) / (band_area + face_area) : band_sum / band_area;
+    EXPECT_NEAR(*mean, expected, 2e-6) << tilt;
+  }
+}
+
 TEST(RevolvedEngagement, DegenerateInputIsFlaggedNotThrown) {
   const Tool bull = Tool::bull_nose(10, 2), flat = Tool::flat(10);
   for (const Tool& tool : {bull, flat}) {

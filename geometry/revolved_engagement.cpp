@@ -329,6 +329,21 @@ class Groove {
     return phi;
   }
 
+  // The bull-nose's distance from x to its core K = {r <= R0, z >= 0} less
+  // rc (the tool is K grown by rc: <= 0 in the tool), its slope along F
+  // (n.F on the tool's surface) and the r of x.
+  struct Excess {
+    double value, slope, rho;
+  };
+  Excess core_excess(const Vector3d& x) const {
+    const double rho = length_of(x.x(), x.y());
+    const double radial = std::max(0.0, rho - flat_radius_), below = std::min(0.0, x.z());
+    const double distance = length_of(radial, below);
+    if (!(distance > 0)) return {-corner_, 0, rho};
+    const double d_radial = radial > 0 ? (x.x() * feed_.x() + x.y() * feed_.y()) / rho : 0;
+    return {distance - corner_, (radial * d_radial + below * feed_.z()) / distance, rho};
+  }
+
   // The interval of t over which x0 + t F lies in the tool; empty when the
   // line misses it (a line touching it within 1e-9 R counts as touching;
   // the bull-nose's corner only within round-off, see below).
@@ -363,20 +378,7 @@ class Groove {
     // outside on either side walks monotonically onto the crossing (the
     // tangent of a convex function stays below it), or, when the line
     // misses, turns round (slope <= 0) before reaching it.
-    struct Excess {
-      double value, slope;
-    };
-    const auto excess = [&](double t) {
-      const Vector3d x = x0 + t * feed_;
-      const double rho = length_of(x.x(), x.y());
-      const double radial = std::max(0.0, rho - flat_radius_);
-      const double below = std::min(0.0, x.z());
-      const double distance = length_of(radial, below);
-      if (!(distance > 0)) return Excess{-corner_, 0};
-      const double d_radial = radial > 0 ? (x.x() * feed_.x() + x.y() * feed_.y()) / rho : 0;
-      const double d_below = below < 0 ? feed_.z() : 0;
-      return Excess{distance - corner_, (radial * d_radial + below * d_below) / distance};
-    };
+    const auto excess = [&](double t) { return core_excess(x0 + t * feed_); };
     // Only round-off counts as touching the corner, and the walk stops only
     // that near it: a fibre nearly parallel to the corner stays close to it
     // over a long stretch, so a line that misses it by 1e-9 R gave a point
@@ -1341,36 +1343,20 @@ std::pair<double, double> Groove::front_for_area(const Vector3d& x0, double& war
     if (rho <= flat_radius_) return {rho, -feed_.z()};
     t = std::min(t, t_face);
   }
-  // The distance to the core K = {r <= R0, z >= 0} less rc, and its slope.
-  const auto excess = [&](double at, double& rho, double& slope) {
-    const double x = x0.x() + at * feed_.x(), y = x0.y() + at * feed_.y();
-    const double z = x0.z() + at * feed_.z();
-    rho = length_of(x, y);
-    const double radial = std::max(0.0, rho - flat_radius_), below = std::min(0.0, z);
-    const double distance = length_of(radial, below);
-    if (!(distance > 0)) {
-      slope = 0;
-      return -corner_;
-    }
-    const double d_radial = radial > 0 ? (x * feed_.x() + y * feed_.y()) / rho : 0;
-    slope = (radial * d_radial + below * feed_.z()) / distance;
-    return distance - corner_;
-  };
-  double rho = 0, slope = 0;
   if (warm < t) {
-    const double value = excess(warm, rho, slope);
-    if (slope > 0) t = value >= 0 ? warm : warm - value / slope;
+    const Excess e = core_excess(x0 + warm * feed_);
+    if (e.slope > 0) t = e.value >= 0 ? warm : warm - e.value / e.slope;
   }
   for (int i = 0; i < 60; ++i) {
-    const double value = excess(t, rho, slope);
-    if (!(slope > 0)) return {0, 0};
-    const double step = value / slope;
+    const Excess e = core_excess(x0 + t * feed_);
+    if (!(e.slope > 0)) return {0, 0};
+    const double step = e.value / e.slope;
     t -= step;
     if (std::abs(step) <= 1e-13 * radius_) break;
   }
   warm = t;
-  excess(t, rho, slope);
-  return {rho, slope};
+  const Excess e = core_excess(x0 + t * feed_);
+  return {e.rho, e.slope};
 }
 
 // The bull-nose's mean over the groove G itself (off edge-on): a fibre

@@ -18,6 +18,8 @@
 #include <tuple>
 #include <utility>
 
+#include "geometry/mesh/corner_spread.h"
+
 namespace vcpost::mesh {
 namespace {
 
@@ -28,6 +30,21 @@ constexpr int max_stack = 128;
 constexpr std::uint32_t task_size = 2048;
 // Faces per task for the per-face loops.
 constexpr std::size_t face_grain = 4096;
+
+// The middle of slots [begin, end): where a node splits (the median), so
+// the hierarchy's shape is a function of the number of triangles alone.
+std::uint32_t middle(std::uint32_t begin, std::uint32_t end) { return begin + (end - begin) / 2; }
+
+// Runs a and b, as two tasks when the range is big enough to pay for them.
+template <class A, class B>
+void both(std::uint32_t size, const A& a, const B& b) {
+  if (size >= task_size) {
+    tbb::parallel_invoke(a, b);
+  } else {
+    a();
+    b();
+  }
+}
 
 // x rounded to float. The empty asm hides the float from the optimizer:
 // GCC 12 at -O3 was seen to use x itself where a later expression reads the
@@ -87,16 +104,6 @@ struct Node {
   float half[3];
 };
 
-// Sums and extents of corners, taken in slot order.
-struct Moments {
-  double sum[3] = {0, 0, 0};
-  double lo[3] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-                  std::numeric_limits<double>::infinity()};
-  double hi[3] = {-lo[0], -lo[1], -lo[2]};
-  Eigen::AlignedBox3d centroids;  // of the triangles
-  Moments() { centroids.setEmpty(); }
-};
-
 // lo, hi = the extents of the corners that for_each_corner(f) passes to f
 // along the rows of `axes`: axes * x summed as Eigen sums that product
 // (rows 0 and 1 left to right, row 2 its last two terms first), so the
@@ -143,34 +150,16 @@ Eigen::Vector3d unit_normal(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
   return len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::UnitZ();
 }
 
-// The principal frame of the n corners that for_each_corner(f) passes to
-// f (rows: the axes, the one of least spread first), from their covariance
-// about the mean of `moments`.
-template <class Corners>
-Eigen::Matrix3d principal_frame(const Corners& corners, const Moments& moments, std::size_t n) {
-  Eigen::Vector3d mean(moments.sum[0], moments.sum[1], moments.sum[2]);
-  mean /= static_cast<double>(n);
-  // Entry by entry, as `covariance += d * d.transpose()` adds them (written
-  // out: Eigen's temporary outer product stalls on store forwarding).
-  double c00 = 0, c01 = 0, c02 = 0, c11 = 0, c12 = 0, c22 = 0;
-  corners([&](double x, double y, double z) {
-    const double d0 = x - mean[0], d1 = y - mean[1], d2 = z - mean[2];
-    c00 += d0 * d0;
-    c01 += d0 * d1;
-    c02 += d0 * d2;
-    c11 += d1 * d1;
-    c12 += d1 * d2;
-    c22 += d2 * d2;
-  });
-  Eigen::Matrix3d covariance;
-  covariance << c00, c01, c02, c01, c11, c12, c02, c12, c22;
+// The principal frame of a node's corners (rows: the axes, the one of
+// least spread first), from their scatter about the mean.
+Eigen::Matrix3d principal_frame(const CornerSpread& spread) {
   // The closed-form solver: a third of the iterative one's time (which was
   // a quarter of the build). Its vectors may be off orthogonal where two
   // eigenvalues nearly meet, so the frame is made orthonormal again (the
   // boxes hold the corners whatever the axes; the query's bounds need
   // them orthonormal): the smallest one kept, the normal of a flat patch.
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
-  solver.computeDirect(covariance);
+  solver.computeDirect(spread.scatter);
   const Eigen::Matrix3d& v = solver.eigenvectors();
   Eigen::Vector3d a0 = v.col(0);
   if (!(a0.norm() > 0.5)) a0 = Eigen::Vector3d::UnitZ();
@@ -234,12 +223,11 @@ struct MeshModel::Builder {
   };
 
   // The corners of a subtree's slots [base, base + size) side by side in
-  // slot order (three per slot), rewritten level by level as the subtree
-  // is split: below a quarter million triangles the fits read them from
-  // here rather than through the triangles (a copy of all the corners at
-  // once took 72 bytes a face, 720 MB for 10 M triangles; a block is 19 MB,
-  // one a running subtree: 16 MB more at the peak than blocks of 65536,
-  // for two levels fewer of fits reading through the triangles).
+  // slot order (three per slot), copied once the splits have put the slots
+  // in their final order: below a quarter million triangles the fits read
+  // them from here rather than through the triangles (a copy of all the
+  // corners at once took 72 bytes a face, 720 MB for 10 M triangles; a
+  // block is 19 MB, one a running subtree).
   struct Scratch {
     std::uint32_t base;
     std::unique_ptr<double[]> block;  // x, y, z: 3 scratch_capacity doubles, reused from spare
@@ -256,7 +244,8 @@ struct MeshModel::Builder {
 
   MeshModel& m;
   const std::vector<std::array<std::uint32_t, 3>>& triangles;  // until the slots hold them
-  std::unique_ptr<Item[]> items;                               // in slot order
+  std::unique_ptr<Item[]> items;                               // in slot order, while splitting
+  std::unique_ptr<std::uint32_t[]> face_of_slot;               // the items' faces, once split
   std::map<std::uint32_t, std::uint32_t> wide_counts;  // by subtree size; read only in build
 
   Builder(MeshModel& model, const std::vector<std::array<std::uint32_t, 3>>& t)
@@ -278,18 +267,16 @@ struct MeshModel::Builder {
   void slots();
   template <class F>
   void for_each_corner(std::uint32_t begin, std::uint32_t end, F&& f) const;
-  void gather(std::uint32_t begin, std::uint32_t end, bool corners, Moments& moments,
-              Scratch* scratch) const;
-  void fit_node(Node& node, std::uint32_t begin, std::uint32_t end, const Moments& moments,
+  void fit_node(Node& node, std::uint32_t begin, std::uint32_t end, const CornerSpread& spread,
                 const Scratch* scratch) const;
-  // Not const: it reorders the slots' items (through `items`).
-  std::uint32_t split(std::uint32_t begin, std::uint32_t end, const Moments& moments);
-  void top(std::uint32_t begin, std::uint32_t end, const Moments& moments, std::uint32_t own,
-           Scratch* scratch);
-  void expanded(std::uint32_t begin, std::uint32_t end, const Moments& moments, std::uint32_t wide,
-                int lane, std::uint32_t own_left, std::uint32_t own_right, Scratch* scratch);
-  void lane(std::uint32_t begin, std::uint32_t end, const Moments& moments, std::uint32_t wide,
-            int lane, std::uint32_t own, Scratch* scratch);
+  // Not const: they reorder the slots' items (through `items`).
+  void split(std::uint32_t begin, std::uint32_t end);
+  void split_all(std::uint32_t begin, std::uint32_t end);
+  CornerSpread top(std::uint32_t begin, std::uint32_t end, std::uint32_t own, Scratch* scratch);
+  CornerSpread expanded(std::uint32_t begin, std::uint32_t end, std::uint32_t wide, int lane,
+                        std::uint32_t own_left, std::uint32_t own_right, Scratch* scratch);
+  CornerSpread lane(std::uint32_t begin, std::uint32_t end, std::uint32_t wide, int lane,
+                    std::uint32_t own, Scratch* scratch);
   std::uint32_t count_wide(std::uint32_t size);
   void clear_lanes(std::uint32_t wide);
   void set_lane(std::uint32_t wide, int lane, const Node& box, std::uint32_t child,
@@ -342,14 +329,17 @@ MeshModel::MeshModel(StlMesh mesh) : vertices_(std::move(mesh.vertices)) {
 // Angle-weighted vertex normals. The sums are taken in face order, corner
 // by corner (their rounding depends on the order). A block of faces at a
 // time: their corners' weighted facet normals computed in parallel (no
-// array of them for every face), then added in face order.
+// array of them for every face), then added in face order, while the next
+// block's are computed (the adding is serial: alone, it left a thread idle
+// for a third of this phase).
 void MeshModel::Builder::vertex_normals() {
   const std::size_t nf = m.slots_.size();
   const std::size_t nv = m.vertices_.size();
   m.vertex_normal_.assign(nv, Eigen::Vector3d::Zero());
   constexpr std::size_t block = 16 * face_grain;
-  std::vector<std::array<Eigen::Vector3d, 3>> weighted(std::min(nf, block));
-  for (std::size_t first = 0; first < nf; first += block) {
+  using Weighted = std::vector<std::array<Eigen::Vector3d, 3>>;
+  Weighted weighted[2] = {Weighted(std::min(nf, block)), Weighted(std::min(nf, block))};
+  const auto compute = [&](std::size_t first, Weighted& out) {
     const std::size_t last = std::min(nf, first + block);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(first, last, face_grain), [&](const auto& r) {
       for (std::size_t f = r.begin(); f < r.end(); ++f) {
@@ -365,12 +355,24 @@ void MeshModel::Builder::vertex_normals() {
           angle[k] = std::atan2(e1.cross(e2).norm(), e1.dot(e2));
         }
         angle[2] = std::max(0.0, std::numbers::pi - angle[0] - angle[1]);
-        for (int k = 0; k < 3; ++k) weighted[f - first][k] = angle[k] * facet;
+        for (int k = 0; k < 3; ++k) out[f - first][k] = angle[k] * facet;
       }
     });
+  };
+  const auto add = [&](std::size_t first, const Weighted& in) {
+    const std::size_t last = std::min(nf, first + block);
     for (std::size_t f = first; f < last; ++f) {
       const std::uint32_t* t = m.corners_of(static_cast<std::uint32_t>(f));
-      for (int k = 0; k < 3; ++k) m.vertex_normal_[t[k]] += weighted[f - first][k];
+      for (int k = 0; k < 3; ++k) m.vertex_normal_[t[k]] += in[f - first][k];
+    }
+  };
+  compute(0, weighted[0]);
+  for (std::size_t first = 0, b = 0; first < nf; first += block, b ^= 1) {
+    if (first + block < nf) {
+      tbb::parallel_invoke([&] { add(first, weighted[b]); },
+                           [&] { compute(first + block, weighted[b ^ 1]); });
+    } else {
+      add(first, weighted[b]);
     }
   }
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, face_grain), [&](const auto& r) {
@@ -510,7 +512,10 @@ void MeshModel::Builder::edges() {
   });
 }
 
-// The hierarchy: median split of the centroids along the box's longest axis.
+// The hierarchy, in two sweeps: the median splits from the root down (the
+// slots in their final order), then the boxes from the leaves up, each
+// node's principal frame from its children's spreads (the corners are
+// read once a level only to measure the boxes' extents).
 void MeshModel::Builder::tree() {
   const auto nf = static_cast<std::uint32_t>(triangles.size());
   items = std::make_unique_for_overwrite<Item[]>(nf);  // every item is written below
@@ -522,40 +527,39 @@ void MeshModel::Builder::tree() {
       items[f].face = f;
     }
   });
+  split_all(0, nf);
+  // The centroids go before the boxes come: the wide nodes are the build's
+  // biggest array.
+  face_of_slot = std::make_unique_for_overwrite<std::uint32_t[]>(nf);  // all written below
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, nf, face_grain), [&](const auto& range) {
+    for (std::uint32_t s = range.begin(); s < range.end(); ++s) face_of_slot[s] = items[s].face;
+  });
+  items.reset();
   m.wide_.resize(count_wide(nf));
   scratch_capacity = 3 * std::size_t{std::min(nf, scratch_size)};
-  Moments all;
   if (nf <= leaf_size) {
-    gather(0, nf, true, all, nullptr);
     clear_lanes(0);
-    lane(0, nf, all, 0, 0, 0, nullptr);
+    lane(0, nf, 0, 0, 0, nullptr);
   } else {
-    gather(0, nf, false, all, nullptr);
-    top(0, nf, all, 0, nullptr);
+    top(0, nf, 0, nullptr);
   }
 }
 
-// Triangles as the query reads them, in hierarchy order. The items go
-// before the slots come (their faces copied out first): both at once were
-// the peak of the whole build.
+// Triangles as the query reads them, in hierarchy order.
 void MeshModel::Builder::slots() {
   const auto nf = static_cast<std::uint32_t>(triangles.size());
-  std::vector<std::uint32_t> face(nf);
-  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, nf, face_grain), [&](const auto& range) {
-    for (std::uint32_t s = range.begin(); s < range.end(); ++s) face[s] = items[s].face;
-  });
-  items.reset();
   m.slots_.resize(nf);
   m.slot_of_face_.resize(nf);
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, nf, face_grain), [&](const auto& range) {
     for (std::uint32_t s = range.begin(); s < range.end(); ++s) {
       Slot& slot = m.slots_[s];
-      slot.face = face[s];
+      slot.face = face_of_slot[s];
       const auto& t = triangles[slot.face];
       for (int k = 0; k < 3; ++k) slot.corner[k] = t[k];
       m.slot_of_face_[slot.face] = s;
     }
   });
+  face_of_slot.reset();
 }
 
 // Calls f(x, y, z) with the corners of slots [begin, end), in slot order.
@@ -564,119 +568,70 @@ void MeshModel::Builder::slots() {
 template <class F>
 void MeshModel::Builder::for_each_corner(std::uint32_t begin, std::uint32_t end, F&& f) const {
   const std::array<std::uint32_t, 3>* const tri = triangles.data();
-  const Item* const item = items.get();
+  const std::uint32_t* const face = face_of_slot.get();
   // Two steps of indirection, each fetched ahead: the triangle `ahead`
   // slots early, then its corners half way there (the build's passes over
   // corners outside the scratch wait on memory otherwise).
   constexpr std::uint32_t ahead = 16;
   for (std::uint32_t s = begin; s < end; ++s) {
-    if (s + ahead < end) __builtin_prefetch(&tri[item[s + ahead].face]);
+    if (s + ahead < end) __builtin_prefetch(&tri[face[s + ahead]]);
     if (s + ahead / 2 < end)
-      for (const std::uint32_t i : tri[item[s + ahead / 2].face]) m.vertices_.prefetch(i);
-    for (const std::uint32_t i : tri[item[s].face]) {
+      for (const std::uint32_t i : tri[face[s + ahead / 2]]) m.vertices_.prefetch(i);
+    for (const std::uint32_t i : tri[face[s]]) {
       const Eigen::Vector3d v = m.vertices_[i];
       f(v[0], v[1], v[2]);
     }
   }
 }
 
-// The moments of slots [begin, end): the centroids' box, and with
-// `corners` the corners' sums and extents (the corners copied into
-// `scratch` on the way, when there is one).
-void MeshModel::Builder::gather(std::uint32_t begin, std::uint32_t end, bool corners,
-                                Moments& moments, Scratch* scratch) const {
-  const Item* const item = items.get();
-  Eigen::Vector3f fl = moments.centroids.min().cast<float>();
-  Eigen::Vector3f fh = moments.centroids.max().cast<float>();
-  for (std::uint32_t s = begin; s < end; ++s) {
-    fl = fl.cwiseMin(item[s].centroid);
-    fh = fh.cwiseMax(item[s].centroid);
-  }
-  const Eigen::Vector3d cl = fl.cast<double>(), ch = fh.cast<double>();
-  moments.centroids = Eigen::AlignedBox3d(cl, ch);
-  if (!corners) return;
-  // Locals throughout: stores through `moments` could alias anything else.
-  double s0 = moments.sum[0], s1 = moments.sum[1], s2 = moments.sum[2];
-  double l0 = moments.lo[0], l1 = moments.lo[1], l2 = moments.lo[2];
-  double h0 = moments.hi[0], h1 = moments.hi[1], h2 = moments.hi[2];
-  const std::size_t first = scratch == nullptr ? 0 : 3 * std::size_t{begin - scratch->base};
-  double* const xs = scratch == nullptr ? nullptr : scratch->xyz[0] + first;
-  double* const ys = scratch == nullptr ? nullptr : scratch->xyz[1] + first;
-  double* const zs = scratch == nullptr ? nullptr : scratch->xyz[2] + first;
-  std::size_t j = 0;
-  for_each_corner(begin, end, [&](double x, double y, double z) {
-    if (xs != nullptr) {
-      xs[j] = x;
-      ys[j] = y;
-      zs[j] = z;
-      ++j;
-    }
-    s0 += x;
-    s1 += y;
-    s2 += z;
-    l0 = std::min(l0, x);
-    l1 = std::min(l1, y);
-    l2 = std::min(l2, z);
-    h0 = std::max(h0, x);
-    h1 = std::max(h1, y);
-    h2 = std::max(h2, z);
-  });
-  moments.sum[0] = s0;
-  moments.sum[1] = s1;
-  moments.sum[2] = s2;
-  moments.lo[0] = l0;
-  moments.lo[1] = l1;
-  moments.lo[2] = l2;
-  moments.hi[0] = h0;
-  moments.hi[1] = h1;
-  moments.hi[2] = h2;
-}
-
 // The hierarchy is built straight into its wide form (four lanes a node):
 // the wide node over a binary node ("top": the root or an inner lane) has
-// for lanes its children, each inner child replaced by its two children
-// (see lane_sizes). Those replaced children and the root are never fitted,
-// nor are their corners gathered; the lanes' places are known in advance
-// from the subtree sizes, so the halves are built as tasks of their own.
+// for lanes its children, each inner child replaced by its two children.
+// Those replaced children and the root are never fitted; the lanes' places
+// are known in advance from the subtree sizes, so the halves are built as
+// tasks of their own.
 
 // Splits slots [begin, end) at the median centroid along the longest side
-// of the centroids' box; returns the middle.
+// of the centroids' box (the items of each half before middle(), after it).
 // NOLINTNEXTLINE(readability-make-member-function-const): reorders the items
-std::uint32_t MeshModel::Builder::split(std::uint32_t begin, std::uint32_t end,
-                                        const Moments& moments) {
+void MeshModel::Builder::split(std::uint32_t begin, std::uint32_t end) {
+  Item* const first = items.get() + begin;
+  Item* const last = items.get() + end;
+  Eigen::Vector3f lo = first->centroid, hi = first->centroid;
+  for (const Item* it = first + 1; it != last; ++it) {
+    lo = lo.cwiseMin(it->centroid);
+    hi = hi.cwiseMax(it->centroid);
+  }
   int axis = 0;
-  moments.centroids.sizes().maxCoeff(&axis);
-  const std::uint32_t mid = begin + (end - begin) / 2;
+  (hi - lo).maxCoeff(&axis);
   std::nth_element(
-      items.get() + begin, items.get() + mid, items.get() + end,
+      first, items.get() + middle(begin, end), last,
       [axis](const Item& x, const Item& y) { return x.centroid[axis] < y.centroid[axis]; });
-  return mid;
 }
 
-// Runs a and b, as two tasks when the range is big enough to pay for them.
-template <class A, class B>
-void both(std::uint32_t size, const A& a, const B& b) {
-  if (size >= task_size) {
-    tbb::parallel_invoke(a, b);
-  } else {
-    a();
-    b();
-  }
+// Every split below slots [begin, end), down to the leaves.
+void MeshModel::Builder::split_all(std::uint32_t begin, std::uint32_t end) {
+  if (end - begin <= leaf_size) return;
+  split(begin, end);
+  const std::uint32_t mid = middle(begin, end);
+  both(
+      end - begin, [&] { split_all(begin, mid); }, [&] { split_all(mid, end); });
 }
 
 // Top node over slots [begin, end) (more than a leaf), its lanes in wide
-// node `own` and their subtrees' wide nodes after it.
-void MeshModel::Builder::top(std::uint32_t begin, std::uint32_t end, const Moments& moments,
-                             std::uint32_t own, Scratch* scratch) {
+// node `own` and their subtrees' wide nodes after it. Returns the spread
+// of its corners.
+CornerSpread MeshModel::Builder::top(std::uint32_t begin, std::uint32_t end, std::uint32_t own,
+                                     Scratch* scratch) {
   clear_lanes(own);
-  const std::uint32_t mid = split(begin, end, moments);
+  const std::uint32_t mid = middle(begin, end);
   std::uint32_t next = own + 1;
   int next_lane = 0;
   struct Child {
     std::uint32_t begin, end;
     int lane;
     std::uint32_t own[2];  // an inner child's children: their wide nodes
-    Moments moments;
+    CornerSpread spread;
   };
   Child children[2] = {{begin, mid, 0, {0, 0}, {}}, {mid, end, 0, {0, 0}, {}}};
   for (Child& c : children) {
@@ -694,41 +649,38 @@ void MeshModel::Builder::top(std::uint32_t begin, std::uint32_t end, const Momen
         }
       }
     }
-    gather(c.begin, c.end, size <= leaf_size, c.moments, scratch);
   }
-  const auto run = [&](const Child& c) {
-    if (c.end - c.begin <= leaf_size) {
-      lane(c.begin, c.end, c.moments, own, c.lane, 0, scratch);
-    } else {
-      expanded(c.begin, c.end, c.moments, own, c.lane, c.own[0], c.own[1], scratch);
-    }
+  const auto run = [&](Child& c) {
+    c.spread = c.end - c.begin <= leaf_size
+                   ? lane(c.begin, c.end, own, c.lane, 0, scratch)
+                   : expanded(c.begin, c.end, own, c.lane, c.own[0], c.own[1], scratch);
   };
   both(
       end - begin, [&] { run(children[0]); }, [&] { run(children[1]); });
+  return merged(children[0].spread, children[1].spread);
 }
 
 // An inner child of a top node, replaced by its children: lanes `lane`
-// and `lane` + 1 of wide node `wide`.
-void MeshModel::Builder::expanded(std::uint32_t begin, std::uint32_t end, const Moments& moments,
-                                  std::uint32_t wide, int lane_index, std::uint32_t own_left,
-                                  std::uint32_t own_right, Scratch* scratch) {
-  const std::uint32_t mid = split(begin, end, moments);
-  Moments left, right;
-  gather(begin, mid, true, left, scratch);
-  gather(mid, end, true, right, scratch);
+// and `lane` + 1 of wide node `wide`. Returns the spread of its corners.
+CornerSpread MeshModel::Builder::expanded(std::uint32_t begin, std::uint32_t end,
+                                          std::uint32_t wide, int lane_index,
+                                          std::uint32_t own_left, std::uint32_t own_right,
+                                          Scratch* scratch) {
+  const std::uint32_t mid = middle(begin, end);
+  CornerSpread left, right;
   both(
-      end - begin, [&] { lane(begin, mid, left, wide, lane_index, own_left, scratch); },
-      [&] { lane(mid, end, right, wide, lane_index + 1, own_right, scratch); });
+      end - begin, [&] { left = lane(begin, mid, wide, lane_index, own_left, scratch); },
+      [&] { right = lane(mid, end, wide, lane_index + 1, own_right, scratch); });
+  return merged(left, right);
 }
 
-// Lane `lane` of wide node `wide`: the box of slots [begin, end), whose
-// corners are in place with their moments; an inner lane is the top of
-// wide node `own`.
-void MeshModel::Builder::lane(std::uint32_t begin, std::uint32_t end, const Moments& moments,
-                              std::uint32_t wide, int lane_index, std::uint32_t own,
-                              Scratch* scratch) {
-  // A subtree small enough gets its scratch (the corners copied once more
-  // here: the moments were taken on the way to this lane).
+// Lane `lane` of wide node `wide`: the box of slots [begin, end), fitted
+// once its subtree is built (an inner lane is the top of wide node `own`).
+// Returns the spread of its corners.
+CornerSpread MeshModel::Builder::lane(std::uint32_t begin, std::uint32_t end, std::uint32_t wide,
+                                      int lane_index, std::uint32_t own, Scratch* scratch) {
+  // A subtree small enough gets its scratch: its corners copied once, in
+  // their final order.
   Scratch own_scratch;
   if (scratch == nullptr && end - begin <= scratch_size) {
     {
@@ -751,18 +703,24 @@ void MeshModel::Builder::lane(std::uint32_t begin, std::uint32_t end, const Mome
       ++j;
     });
   }
-  Node box;
-  fit_node(box, begin, end, moments, scratch);
-  if (end - begin <= leaf_size) {
-    set_lane(wide, lane_index, box, begin, end - begin);
+  const bool leaf = end - begin <= leaf_size;
+  CornerSpread spread;
+  if (leaf) {
+    // Leaves are always within a scratch (leaf_size < scratch_size).
+    const std::size_t first = 3 * std::size_t{begin - scratch->base};
+    spread = spread_of(scratch->xyz[0] + first, scratch->xyz[1] + first, scratch->xyz[2] + first,
+                       3 * std::size_t{end - begin});
   } else {
-    set_lane(wide, lane_index, box, own, 0);
-    top(begin, end, moments, own, scratch);
+    spread = top(begin, end, own, scratch);
   }
+  Node box;
+  fit_node(box, begin, end, spread, scratch);
+  set_lane(wide, lane_index, box, leaf ? begin : own, leaf ? end - begin : 0);
   if (own_scratch.block != nullptr) {
     const std::lock_guard<std::mutex> lock(spare_mutex);
     spare.push_back(std::move(own_scratch.block));
   }
+  return spread;
 }
 
 // The box of the corners of slots [begin, end): in the principal frame of
@@ -772,7 +730,7 @@ void MeshModel::Builder::lane(std::uint32_t begin, std::uint32_t end, const Mome
 // every corner exactly; node_distance_squared allows for the rounded frame
 // being orthonormal only to float precision.
 void MeshModel::Builder::fit_node(Node& node, std::uint32_t begin, std::uint32_t end,
-                                  const Moments& moments, const Scratch* scratch) const {
+                                  const CornerSpread& spread, const Scratch* scratch) const {
   const std::size_t n = 3 * std::size_t{end - begin};
   // The corners in slot order, from the scratch when there is one.
   const auto corners = [&](auto&& f) {
@@ -788,9 +746,9 @@ void MeshModel::Builder::fit_node(Node& node, std::uint32_t begin, std::uint32_t
   };
   Eigen::Matrix3d principal;
   if (end - begin > leaf_size || !leaf_frame(corners, principal))
-    principal = principal_frame(corners, moments, n);
-  const Eigen::Vector3d box_lo(moments.lo[0], moments.lo[1], moments.lo[2]);
-  const Eigen::Vector3d box_hi(moments.hi[0], moments.hi[1], moments.hi[2]);
+    principal = principal_frame(spread);
+  const Eigen::Vector3d& box_lo = spread.lo;
+  const Eigen::Vector3d& box_hi = spread.hi;
   const Eigen::AlignedBox3d box(box_lo, box_hi);
   const double floor = 1e-3 * std::max(box.diagonal().norm(), 1e-9);
   // Rows of `frame` are the axes; [lo, hi] the corners' extents along the

@@ -23,21 +23,37 @@ struct CornerSpread {
 };
 
 // The spread of n points given as coordinate arrays (two passes: the mean,
-// then the scatter about it).
+// then the scatter about it). Summed in scalars, in point order: each sum
+// is the one Eigen's `mean += p` and `scatter += d d^T` give (the same
+// operations on each entry), without the outer product's temporary, whose
+// store and reload stalled the hierarchy's leaves (most of its nodes).
 inline CornerSpread spread_of(const double* xs, const double* ys, const double* zs, std::size_t n) {
   CornerSpread s;
   if (n == 0) return s;
   s.count = static_cast<double>(n);
+  const double* const c[3] = {xs, ys, zs};
+  double sum[3] = {0, 0, 0}, lo[3], hi[3];
+  for (int k = 0; k < 3; ++k) lo[k] = hi[k] = c[k][0];
   for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3d p(xs[i], ys[i], zs[i]);
-    s.mean += p;
-    s.lo = s.lo.cwiseMin(p);
-    s.hi = s.hi.cwiseMax(p);
+    for (int k = 0; k < 3; ++k) {
+      const double x = c[k][i];
+      sum[k] += x;
+      lo[k] = std::min(lo[k], x);
+      hi[k] = std::max(hi[k], x);
+    }
   }
-  s.mean /= s.count;
+  double mean[3], scatter[3][3] = {};
+  for (int k = 0; k < 3; ++k) mean[k] = sum[k] / s.count;
   for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3d d = Eigen::Vector3d(xs[i], ys[i], zs[i]) - s.mean;
-    s.scatter += d * d.transpose();
+    const double d[3] = {xs[i] - mean[0], ys[i] - mean[1], zs[i] - mean[2]};
+    for (int r = 0; r < 3; ++r)
+      for (int k = 0; k < 3; ++k) scatter[r][k] += d[r] * d[k];
+  }
+  for (int r = 0; r < 3; ++r) {
+    s.mean[r] = mean[r];
+    s.lo[r] = lo[r];
+    s.hi[r] = hi[r];
+    for (int k = 0; k < 3; ++k) s.scatter(r, k) = scatter[r][k];
   }
   return s;
 }

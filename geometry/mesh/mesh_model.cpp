@@ -16,6 +16,7 @@
 #include <optional>
 #include <stdexcept>
 #include <tuple>
+#include <type_traits>
 #include <utility>
 
 #include "geometry/mesh/corner_spread.h"
@@ -65,15 +66,15 @@ float to_float(double x) {
 
 float round_up(double v) {
   float f = to_float(v);
-  if (static_cast<double>(f) < v) {
-    // std::nextafter(f, +infinity) for a finite f, without the library call
-    // (the build rounds a few hundred thousand of these).
-    if (f == 0) return std::numeric_limits<float>::denorm_min();
-    std::uint32_t bits;
-    std::memcpy(&bits, &f, sizeof bits);
-    bits = f > 0 ? bits + 1 : bits - 1;
-    std::memcpy(&f, &bits, sizeof f);
-  }
+  // std::nextafter(f, +infinity) for a finite f when f < v, without the
+  // library call, and chosen without branches: rounded down or up is a
+  // coin toss, which the build's millions of these mispredicted half the
+  // time. A zero of either sign steps to the least denormal (bits 1).
+  std::uint32_t bits;
+  std::memcpy(&bits, &f, sizeof bits);
+  const std::uint32_t next = f > 0 ? bits + 1 : f == 0 ? 1u : bits - 1;
+  bits = static_cast<double>(f) < v ? next : bits;
+  std::memcpy(&f, &bits, sizeof f);
   return f;
 }
 
@@ -138,6 +139,51 @@ void project(const Corners& for_each_corner, const Eigen::Matrix3d& axes, Eigen:
   }
   lo = {l0, l1, l2};
   hi = {h0, h1, h2};
+}
+
+// project() over corners given as coordinate arrays (a scratch): the same
+// products and sums for every corner, two corners at a time (GCC/Clang
+// vector extension: SSE2 on x86-64), the minima and maxima of each lane
+// apart and then merged. Taken in another order, they are the same numbers
+// but for the sign of a zero; a zero extent is measured again corner by
+// corner, in order, as project() does.
+void project_arrays(const double* xs, const double* ys, const double* zs, std::size_t n,
+                    const Eigen::Matrix3d& axes, Eigen::Vector3d& lo, Eigen::Vector3d& hi) {
+  using D2 = double __attribute__((vector_size(16)));
+  const auto load = [](const double* a) {
+    D2 v;
+    std::memcpy(&v, a, sizeof v);
+    return v;
+  };
+  const auto both = [](double x) { return D2{x, x}; };
+  const D2 a00 = both(axes(0, 0)), a01 = both(axes(0, 1)), a02 = both(axes(0, 2));
+  const D2 a10 = both(axes(1, 0)), a11 = both(axes(1, 1)), a12 = both(axes(1, 2));
+  const D2 a20 = both(axes(2, 0)), a21 = both(axes(2, 1)), a22 = both(axes(2, 2));
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  D2 l0 = both(inf), l1 = l0, l2 = l0;
+  D2 h0 = both(-inf), h1 = h0, h2 = h0;
+  // q < l ? q : l lane by lane is std::min(l, q) (minpd on x86-64).
+  const auto two = [&](D2 x, D2 y, D2 z) {
+    const D2 q0 = (a00 * x + a01 * y) + a02 * z;
+    const D2 q1 = (a10 * x + a11 * y) + a12 * z;
+    const D2 q2 = a20 * x + (a21 * y + a22 * z);
+    l0 = q0 < l0 ? q0 : l0;
+    l1 = q1 < l1 ? q1 : l1;
+    l2 = q2 < l2 ? q2 : l2;
+    h0 = q0 > h0 ? q0 : h0;
+    h1 = q1 > h1 ? q1 : h1;
+    h2 = q2 > h2 ? q2 : h2;
+  };
+  std::size_t i = 0;
+  for (; i + 2 <= n; i += 2) two(load(xs + i), load(ys + i), load(zs + i));
+  if (i < n) two(both(xs[i]), both(ys[i]), both(zs[i]));  // an odd last corner in both lanes
+  lo = {std::min(l0[0], l0[1]), std::min(l1[0], l1[1]), std::min(l2[0], l2[1])};
+  hi = {std::max(h0[0], h0[1]), std::max(h1[0], h1[1]), std::max(h2[0], h2[1])};
+  if ((lo.array() != 0).all() && (hi.array() != 0).all()) return;
+  const auto in_order = [&](auto& f) {
+    for (std::size_t k = 0; k < n; ++k) f(xs[k], ys[k], zs[k]);
+  };
+  project(in_order, axes, lo, hi);
 }
 
 // Unit normal of the triangle a, b, c (counterclockwise seen from outside);
@@ -217,8 +263,9 @@ struct MeshModel::Builder {
   struct Item {
     // In single precision: 16 bytes an item, not 32, for the median
     // splits that move them (the centroids only choose where to split;
-    // the boxes are fitted to the corners).
-    Eigen::Vector3f centroid;
+    // the boxes are fitted to the corners). Trivially copyable: the
+    // splits read the centroid and the face as one 16-byte vector.
+    std::array<float, 3> centroid;
     std::uint32_t face;
   };
 
@@ -244,8 +291,7 @@ struct MeshModel::Builder {
 
   MeshModel& m;
   const std::vector<std::array<std::uint32_t, 3>>& triangles;  // until the slots hold them
-  std::unique_ptr<Item[]> items;                               // in slot order, while splitting
-  std::unique_ptr<std::uint32_t[]> face_of_slot;               // the items' faces, once split
+  std::unique_ptr<Item[]> items;  // in slot order, from the splits to the slots
   std::map<std::uint32_t, std::uint32_t> wide_counts;  // by subtree size; read only in build
 
   Builder(MeshModel& model, const std::vector<std::array<std::uint32_t, 3>>& t)
@@ -263,7 +309,8 @@ struct MeshModel::Builder {
   void group_sides(std::vector<Side>& sides, std::vector<std::size_t>& start) const;
   void edges();
   void vertex_normals();
-  void tree();
+  void splits();
+  void boxes();
   void slots();
   template <class F>
   void for_each_corner(std::uint32_t begin, std::uint32_t end, F&& f) const;
@@ -313,16 +360,22 @@ MeshModel::MeshModel(StlMesh mesh) : vertices_(std::move(mesh.vertices)) {
   bounds_.setEmpty();
   for (std::size_t v = 0; v < nv; ++v) bounds_.extend(vertices_[v]);
 
-  // One phase after the other, each on oneTBB's threads, so that their
+  // Phases on oneTBB's threads, mostly one after the other, so that their
   // scratch memory is not held at once (the 10 M-triangle mould peaked at
-  // 2.6 GB with the normals and the tree built side by side). The
-  // triangles go once the slots hold them; the vertex normals, last (they
-  // would be held through the tree), read the corners from the slots.
+  // 2.6 GB with the normals and the tree built side by side). The edges and
+  // the median splits go side by side (the split of the root, and of its
+  // children, is serial: the edges keep the other thread busy meanwhile;
+  // their scratch and the centroids together stay below the later peak).
+  // The slots are laid out once the splits have ordered them and the
+  // triangles go; the boxes then read the corners through the slots, in
+  // order (one indirection less than through the triangles); the vertex
+  // normals, last (they would be held through the tree), read them there
+  // too.
   Builder builder(*this, triangles);
-  builder.edges();
-  builder.tree();
+  tbb::parallel_invoke([&] { builder.edges(); }, [&] { builder.splits(); });
   builder.slots();
   std::vector<std::array<std::uint32_t, 3>>().swap(triangles);
+  builder.boxes();
   builder.vertex_normals();
 }
 
@@ -513,28 +566,27 @@ void MeshModel::Builder::edges() {
 }
 
 // The hierarchy, in two sweeps: the median splits from the root down (the
-// slots in their final order), then the boxes from the leaves up, each
-// node's principal frame from its children's spreads (the corners are
-// read once a level only to measure the boxes' extents).
-void MeshModel::Builder::tree() {
+// slots in their final order: splits()), then, once slots() has laid them
+// out, the boxes from the leaves up (boxes()), each node's principal frame
+// from its children's spreads (the corners are read once a level only to
+// measure the boxes' extents).
+void MeshModel::Builder::splits() {
   const auto nf = static_cast<std::uint32_t>(triangles.size());
   items = std::make_unique_for_overwrite<Item[]>(nf);  // every item is written below
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, nf, face_grain), [&](const auto& range) {
     for (std::uint32_t f = range.begin(); f < range.end(); ++f) {
       const auto& t = triangles[f];
-      items[f].centroid =
+      const Eigen::Vector3f centroid =
           ((m.vertices_[t[0]] + m.vertices_[t[1]] + m.vertices_[t[2]]) / 3.0).cast<float>();
+      items[f].centroid = {centroid[0], centroid[1], centroid[2]};
       items[f].face = f;
     }
   });
   split_all(0, nf);
-  // The centroids go before the boxes come: the wide nodes are the build's
-  // biggest array.
-  face_of_slot = std::make_unique_for_overwrite<std::uint32_t[]>(nf);  // all written below
-  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, nf, face_grain), [&](const auto& range) {
-    for (std::uint32_t s = range.begin(); s < range.end(); ++s) face_of_slot[s] = items[s].face;
-  });
-  items.reset();
+}
+
+void MeshModel::Builder::boxes() {
+  const auto nf = static_cast<std::uint32_t>(m.slots_.size());
   m.wide_.resize(count_wide(nf));
   scratch_capacity = 3 * std::size_t{std::min(nf, scratch_size)};
   if (nf <= leaf_size) {
@@ -545,7 +597,9 @@ void MeshModel::Builder::tree() {
   }
 }
 
-// Triangles as the query reads them, in hierarchy order.
+// Triangles as the query reads them, in hierarchy order (the split items'
+// order), made before the boxes, which read the corners through them. The
+// centroids go here: the wide nodes, the build's biggest array, come next.
 void MeshModel::Builder::slots() {
   const auto nf = static_cast<std::uint32_t>(triangles.size());
   m.slots_.resize(nf);
@@ -553,13 +607,13 @@ void MeshModel::Builder::slots() {
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, nf, face_grain), [&](const auto& range) {
     for (std::uint32_t s = range.begin(); s < range.end(); ++s) {
       Slot& slot = m.slots_[s];
-      slot.face = face_of_slot[s];
+      slot.face = items[s].face;
       const auto& t = triangles[slot.face];
       for (int k = 0; k < 3; ++k) slot.corner[k] = t[k];
       m.slot_of_face_[slot.face] = s;
     }
   });
-  face_of_slot.reset();
+  items.reset();
 }
 
 // Calls f(x, y, z) with the corners of slots [begin, end), in slot order.
@@ -567,17 +621,15 @@ void MeshModel::Builder::slots() {
 // every corner took 72 bytes a face (720 MB for 10 M triangles).
 template <class F>
 void MeshModel::Builder::for_each_corner(std::uint32_t begin, std::uint32_t end, F&& f) const {
-  const std::array<std::uint32_t, 3>* const tri = triangles.data();
-  const std::uint32_t* const face = face_of_slot.get();
-  // Two steps of indirection, each fetched ahead: the triangle `ahead`
-  // slots early, then its corners half way there (the build's passes over
-  // corners outside the scratch wait on memory otherwise).
-  constexpr std::uint32_t ahead = 16;
+  const Slot* const slot = m.slots_.data();
+  // The slots in order, their corners fetched `ahead` slots early (the
+  // build's passes over corners outside the scratch wait on memory
+  // otherwise).
+  constexpr std::uint32_t ahead = 8;
   for (std::uint32_t s = begin; s < end; ++s) {
-    if (s + ahead < end) __builtin_prefetch(&tri[face[s + ahead]]);
-    if (s + ahead / 2 < end)
-      for (const std::uint32_t i : tri[face[s + ahead / 2]]) m.vertices_.prefetch(i);
-    for (const std::uint32_t i : tri[face[s]]) {
+    if (s + ahead < end)
+      for (const std::uint32_t i : slot[s + ahead].corner) m.vertices_.prefetch(i);
+    for (const std::uint32_t i : slot[s].corner) {
       const Eigen::Vector3d v = m.vertices_[i];
       f(v[0], v[1], v[2]);
     }
@@ -597,11 +649,22 @@ void MeshModel::Builder::for_each_corner(std::uint32_t begin, std::uint32_t end,
 void MeshModel::Builder::split(std::uint32_t begin, std::uint32_t end) {
   Item* const first = items.get() + begin;
   Item* const last = items.get() + end;
-  Eigen::Vector3f lo = first->centroid, hi = first->centroid;
+  // The centroid and the face in one load, the face's lane ignored (GCC/
+  // Clang vector extension); c < lo ? c : lo lane by lane, as lo.cwiseMin(c).
+  using F4 = float __attribute__((vector_size(16)));
+  static_assert(sizeof(Item) == sizeof(F4) && std::is_trivially_copyable_v<Item>);
+  const auto load = [](const Item* it) {
+    F4 v;
+    std::memcpy(&v, it, sizeof v);
+    return v;
+  };
+  F4 low = load(first), high = low;
   for (const Item* it = first + 1; it != last; ++it) {
-    lo = lo.cwiseMin(it->centroid);
-    hi = hi.cwiseMax(it->centroid);
+    const F4 c = load(it);
+    low = c < low ? c : low;
+    high = c > high ? c : high;
   }
+  const Eigen::Vector3f lo(low[0], low[1], low[2]), hi(high[0], high[1], high[2]);
   int axis = 0;
   (hi - lo).maxCoeff(&axis);
   std::nth_element(
@@ -766,6 +829,10 @@ void MeshModel::Builder::fit_node(Node& node, std::uint32_t begin, std::uint32_t
     if (given_lo != nullptr) {
       lo = *given_lo;
       hi = *given_hi;
+    } else if (scratch != nullptr) {
+      const std::size_t first = 3 * std::size_t{begin - scratch->base};
+      project_arrays(scratch->xyz[0] + first, scratch->xyz[1] + first, scratch->xyz[2] + first, n,
+                     axes, lo, hi);
     } else {
       project(corners, axes, lo, hi);
     }

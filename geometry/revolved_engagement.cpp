@@ -431,6 +431,8 @@ class Groove {
   RadiusExtremes extremes() const;
   double mean_diameter() const;
   double mean_over_groove() const;
+  // The edge-on end face's area and moment of 2r in the groove (see there).
+  std::array<double, 2> edge_on_face_share() const;
   // Whether the previous pass removed a tool point (see unremoved_length).
   class Removal;
   // Length of the angles of `row` (a circle of the tool) that are not
@@ -958,25 +960,15 @@ RadiusExtremes Groove::extremes() const {
   return out;
 }
 
-// The previous pass removes the tool points P strictly inside the tool
-// shifted by ae along e: seen along F, q = (e.P - ae, N.P) inside Q. Q is
-// the projection along F of the core K = {r <= R0, z >= 0} (the end
-// face's disk swept up the axis) grown by rc, so the test needs no root
-// of the silhouette: the core projects to K' = the ellipse E = A disk(R0),
-// A = rows e_xy and N_xy, swept along w = (e_z, N_z), the axis seen along
-// F; and q is inside Q iff its distance to K' is below rc (the bull-nose),
-// or iff q is in K' (the flat mill, rc = 0): with k = A^-1 q, iff the ray
-// k - s A^-1 w (s >= 0) meets the disk of radius R0. The distance to E is
-// the least-squares problem min |q - A k| over |k| <= R0, in A's singular
-// frame k_i = s_i q_i / (s_i^2 + lambda), lambda >= 0 the root of
-// 1/|k(lambda)| = 1/R0, concave and increasing in lambda: Newton's method
-// from a lower bound climbs onto it monotonically in a few steps, with no
-// sines or cosines (bL(c) by boundary() took about 8 Newton steps of a sine
-// and a cosine each). If the nearest point of E faces w (its outward normal
-// has a positive w component) the nearest point of K' is on one of the
-// sweep's two straight sides instead. A face seen edge-on (|F_z| tiny)
-// makes E a segment: the distance still holds (s_2 = 0), but the flat
-// mill's A^-1 does not, and it keeps the test by boundary().
+// The flat mill's test of what the previous pass removed (its mean goes
+// circle by circle; the bull-nose's needs no such test, see
+// mean_over_groove): P is removed iff it lies strictly inside the tool
+// shifted by ae along e, i.e. seen along F iff q = (e.P - ae, N.P) lies in
+// Q, the projection of the solid K = {r <= R, z >= 0}: the ellipse E =
+// A disk(R), A = rows e_xy and N_xy, swept along w = (e_z, N_z), the axis
+// seen along F. With k = A^-1 q that is iff the ray k - s A^-1 w (s >= 0)
+// meets the disk of radius R. A face seen edge-on (|F_z| tiny) makes A
+// singular: the test then goes by boundary().
 class Groove::Removal {
  public:
   explicit Removal(const Groove& groove) : groove_(groove) {
@@ -984,21 +976,7 @@ class Groove::Removal {
     Eigen::Matrix2d a;
     a << g.side_.x(), g.side_.y(), g.normal_.x(), g.normal_.y();
     const Eigen::Vector2d w(g.side_.z(), g.normal_.z());
-    if (g.corner_ > 0) {
-      mode_ = Mode::corner_distance;
-      // A A^T = U S^2 U^T by the rotation that diagonalises it; the smaller
-      // s from |det A| = |F_z| s1 s2 / s1, not from a difference of squares.
-      const Eigen::Matrix2d m = a * a.transpose();
-      const double angle = 0.5 * std::atan2(2 * m(0, 1), m(0, 0) - m(1, 1));
-      const double cos_a = std::cos(angle), sin_a = std::sin(angle);
-      to_principal_ << cos_a, sin_a, -sin_a, cos_a;
-      const Eigen::Vector2d first = to_principal_.row(0).transpose();
-      singular_[0] = std::sqrt(first.dot(m * first));
-      singular_[1] = std::abs(a.determinant()) / singular_[0];
-      w_principal_ = to_principal_ * w;
-      across_ = Eigen::Vector2d(-w.y(), w.x()).normalized();
-      half_width_ = g.flat_radius_ * (a.transpose() * across_).norm();
-    } else if (std::abs(g.feed_.z()) >= 1e-6) {
+    if (std::abs(g.feed_.z()) >= 1e-6) {
       mode_ = Mode::rim_disk;
       inverse_ = a.inverse();
       axis_ = inverse_ * w;
@@ -1092,10 +1070,6 @@ class Groove::Removal {
         breaks.push_back(along_phase_ + kPi / 2 + sign * std::acos(ratio));
     }
   }
-  // Whether margin() is 1-Lipschitz in the point (rc less a distance seen
-  // along F: the bull-nose's test; the flat mill's by boundary(), edge-on,
-  // is not, and off edge-on it is not sampled).
-  bool lipschitz() const { return mode_ == Mode::corner_distance; }
 
   // > 0 where the previous pass removed the tool point p, <= 0 where it did
   // not; continuous across the removed part's edge.
@@ -1106,8 +1080,6 @@ class Groove::Removal {
   double margin_at(const Eigen::Vector2d& q) const {
     const Groove& g = groove_;
     switch (mode_) {
-      case Mode::corner_distance:
-        return corner_margin(q);
       case Mode::rim_disk: {
         const Eigen::Vector2d k = inverse_ * q;
         const double s = std::max(0.0, k.dot(axis_) / axis_.squaredNorm());
@@ -1120,81 +1092,8 @@ class Groove::Removal {
   }
 
  private:
-  // rc less the distance from q to K' (see above); far outside, where a
-  // bound already settles the sign, rc less that bound.
-  double corner_margin(const Eigen::Vector2d& q) const {
-    const double rc = groove_.corner_, r0 = groove_.flat_radius_;
-    // K' lies between the sweep's sides: a lower bound of the distance.
-    const double strip = std::abs(q.dot(across_)) - half_width_;
-    if (strip >= rc) return rc - strip;
-    const Eigen::Vector2d u = to_principal_ * q;
-    // |k|^2 and sum s_i^2 u_i^2 / (s_i^2 + lambda)^3 (= -d|k|^2/dlambda / 2);
-    // a zero s_i (E a segment) adds nothing for lambda > 0.
-    const auto norm_and_slope = [&](double lambda) {
-      double norm2 = 0, slope = 0;
-      for (int i = 0; i < 2; ++i) {
-        const double s = singular_[i], d = s * s + lambda;
-        if (!(s > 0)) continue;
-        const double k = s * u[i] / d;
-        norm2 += k * k;
-        slope += k * k / d;
-      }
-      return std::pair{norm2, slope};
-    };
-    // q minus the nearest point of E for this lambda, in the singular frame.
-    const auto offset = [&](double lambda) {
-      Eigen::Vector2d n;
-      for (int i = 0; i < 2; ++i) {
-        const double s = singular_[i];
-        n[i] = s > 0 ? lambda * u[i] / (s * s + lambda) : u[i];
-      }
-      return n;
-    };
-    double lambda = 0;
-    if (norm_and_slope(0).first > r0 * r0) {
-      // A lower bound: each term alone stays under R0 at the root. Started
-      // at the last root (the cells of an arc ask at nearby points); a
-      // start beyond the root steps back below it (the tangent of a concave
-      // function lies above it), and is kept at the bound.
-      double bound = 0;
-      for (int i = 0; i < 2; ++i) {
-        const double s = singular_[i];
-        bound = std::max(bound, s * std::abs(u[i]) / r0 - s * s);
-      }
-      lambda = std::max(bound, warm_start_);
-      // Any unit d with d.w <= 0 bounds the distance from below by
-      // q.d - R0 |S d| (K''s support in d); the start's offset gives one
-      // that, away from Q's edge, settles the sign without the steps.
-      const Eigen::Vector2d start = offset(lambda);
-      const double start_norm = start.norm();
-      if (start.dot(w_principal_) <= 0 && start_norm > 0) {
-        const Eigen::Vector2d d = start / start_norm;
-        const double below = u.dot(d) - r0 * singular_.cwiseProduct(d).norm();
-        if (below >= rc) return rc - below;
-      }
-      for (int iteration = 0; iteration < 60; ++iteration) {
-        const auto [norm2, slope] = norm_and_slope(lambda);
-        const double norm = std::sqrt(norm2), phi = 1 / norm - 1 / r0;
-        if (!(slope > 0) || phi == 0 || (phi > 0 && iteration > 0)) break;
-        const double next = std::max(bound, lambda - phi * norm2 * norm / slope);
-        // Newton's error squares each step: after a step under 1e-8 of
-        // lambda the next one is below round-off (one evaluation fewer).
-        const bool converged = std::abs(next - lambda) <= 1e-8 * next;
-        lambda = next;
-        if (converged) break;
-      }
-      warm_start_ = lambda;
-    }
-    const Eigen::Vector2d n = offset(lambda);
-    if (n.dot(w_principal_) <= 0) return rc - n.norm();
-    return rc - std::max(0.0, strip);
-  }
-
-  enum class Mode { corner_distance, rim_disk, boundary };
+  enum class Mode { rim_disk, boundary };
   // The vectors and matrices first (16-byte aligned), then the scalars.
-  Eigen::Matrix2d to_principal_ = Eigen::Matrix2d::Identity();  // U^T of A = U S V^T
-  Eigen::Vector2d singular_ = Eigen::Vector2d::Zero(), w_principal_ = Eigen::Vector2d::Zero();
-  Eigen::Vector2d across_ = Eigen::Vector2d::Zero();  // unit, normal to w
   Eigen::Matrix2d inverse_ = Eigen::Matrix2d::Identity();
   Eigen::Vector2d axis_ = Eigen::Vector2d::Zero();  // A^-1 w
   Eigen::Vector2d axis_unit_ = Eigen::Vector2d::Zero();
@@ -1202,16 +1101,13 @@ class Groove::Removal {
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();       // o at z = 0: ae A^-1 (1, 0)
   const Groove& groove_;
   double lowest_left_ = 0;
-  double half_width_ = 0;   // E's half-width across w
   double along_phase_ = 0;  // the azimuth of axis_
   Mode mode_ = Mode::boundary;
-  // corner_margin's last lambda: a cache, not state.
-  mutable double warm_start_ = 0;
 };
 
-// Area-weighted mean of 2r, circle by circle: the tool surface is a stack
-// of horizontal circles (the face's of radius rho, the corner's at the
-// angle psi of its normal, the shank's at height z), each with a constant
+// The flat mill's area-weighted mean of 2r, circle by circle: the tool
+// surface is a stack of horizontal circles (the face's of radius rho, the
+// shank's at height z), each with a constant
 // r, so the mean needs only the length of the engaged angles on each
 // circle, weighted by its area element. On a circle the stock plane and the
 // leading side are sinusoids (exact angle sets, angle_set.h); the previous
@@ -1249,41 +1145,18 @@ double Groove::mean_diameter() const {
   // plane or the removed part's edge): inside a panel one fooled its error
   // estimate, 1.2e-3 mm off the circle-by-circle oracle.
   const bool kinks = removal.closed_form();
-  // The bull-nose's stacks are cut where a circle turns tangent to the
-  // stock plane or to the leading side's edge (closed forms; the removed
-  // part's are not) and integrated piece by piece in theta, which smooths
-  // the square roots at the cuts (integrate_smoothed_pieces).
+  // Seen edge-on (no closed form of the removed arcs) piece by piece in
+  // theta, which smooths the square roots at the cuts.
   const auto integrate = [&](const auto& f, const std::vector<double>& breaks) {
     return kinks ? integrate_capped<2>(f, breaks, kRelative, absolute, kPanels)
                  : integrate_smoothed_pieces<2>(f, breaks, kRelative, absolute, kPanels);
   };
-  // The face at z = -rc (its lowest point must reach the stock).
-  if (-flat_radius_ * tilt - corner_ * normal_.z() < c0_ && flat_radius_ > 0) {
-    std::vector<double> breaks{std::abs(c0_ + normal_.z() * corner_) / tilt};
-    if (kinks) removal.add_face_breaks(-corner_, breaks);
-    add(integrate([&](double rho) { return circle(rho, -corner_, 0, -1, rho); },
-                  breaks_within(breaks, 0.0, flat_radius_)));
-  }
-  if (corner_ > 0) {
-    // The circle at psi: rho = R0 + rc sin(psi), z = -rc cos(psi). In the
-    // stock wholly where rho |N_xy| <= c0 - N_z z: tangent where
-    // rc |N_xy| sin(psi) -+ rc N_z cos(psi) = +-c0 - R0 |N_xy|; leading
-    // wholly where sin(psi) |F_xy| <= |F_z| cos(psi).
-    std::vector<double> breaks{std::atan2(std::abs(feed_.z()), feed_tilt)};
-    for (const double sign : {1.0, -1.0}) {
-      const double a = corner_ * tilt, b = -sign * corner_ * normal_.z();
-      const double d = sign * c0_ - flat_radius_ * tilt, amplitude = std::hypot(a, b);
-      if (!(amplitude > 0) || std::abs(d) > amplitude) continue;
-      const double centre = std::atan2(a, b), spread = std::acos(d / amplitude);
-      breaks.push_back(centre - spread);
-      breaks.push_back(centre + spread);
-    }
-    add(integrate(
-        [&](double psi) {
-          const double s = std::sin(psi), rho = flat_radius_ + corner_ * s;
-          return circle(rho, -corner_ * std::cos(psi), s, -std::cos(psi), corner_ * rho);
-        },
-        breaks_within(breaks, 0.0, kPi / 2)));
+  // The face at z = 0 (its lowest point must reach the stock).
+  if (-radius_ * tilt < c0_) {
+    std::vector<double> breaks{std::abs(c0_) / tilt};
+    if (kinks) removal.add_face_breaks(0, breaks);
+    add(integrate([&](double rho) { return circle(rho, 0, 0, -1, rho); },
+                  breaks_within(breaks, 0.0, radius_)));
   }
   // The shank, up to the highest level the stock reaches on it.
   const double top = (c0_ + radius_ * tilt) / normal_.z();
@@ -1416,27 +1289,74 @@ double Groove::mean_over_groove() const {
         if (j.face || p.x() * feed_.x() + p.y() * feed_.y() > 0) cuts.push_back(side_.dot(p));
       }
     }
-    // A cut within round-off of an end or of another cut would make a piece
-    // whose nodes all sit on Q's boundary, where n.F is round-off.
-    const std::vector<double> all = breaks_within(cuts, lo, hi);
-    const double gap = 1e-7 * radius_;
-    std::vector<double> pieces{lo};
-    for (std::size_t i = 1; i + 1 < all.size(); ++i) {
-      if (all[i] - pieces.back() >= gap && hi - all[i] >= gap) pieces.push_back(all[i]);
-    }
-    pieces.push_back(hi);
+    const std::vector<double> pieces = breaks_within(cuts, lo, hi);
     return integrate_smoothed_pieces<2>([&](double b) { return at_front(b, c); }, pieces, kRelative,
                                         absolute, kSlicePanels);
   };
-  const auto sum = integrate_smoothed_pieces<2>(slice, breaks_within(levels, c_min_, c0_),
-                                                kRelative, absolute, kLevelPanels);
+  auto sum = integrate_smoothed_pieces<2>(slice, breaks_within(levels, c_min_, c0_), kRelative,
+                                          absolute, kLevelPanels);
+  if (edge_on_) {
+    const auto face = edge_on_face_share();
+    sum[0] += face[0];
+    sum[1] += face[1];
+  }
   return sum[0] > 0 ? sum[1] / sum[0] : 0.0;
 }
 
-// The removed stretches' ends on each arc: the flat mill's in closed form
-// (Removal::remove_from), else sign changes of the margin bracketed on 16
-// cells, then regula falsi (a removed stretch narrower than a cell can be
-// missed; it weighs at most a cell's share of the circle).
+// The end face seen edge-on (F_z = 0) has no area in G, yet MODELS.md's
+// "non-negative component along F" counts it as leading. With F level, N and
+// e lie in the vertical plane across F, so on the face (z = -rc) both the
+// stock's test and the previous pass's depend only on u = P.m, m the
+// horizontal unit across F: N.P = N_m u - N_z rc <= c0; and the previous
+// tool, whose face lies ae e_z higher, removes the strip |u - ae e_m| <
+// rho(h) of its section at the face's height h = -rc - ae e_z (only when
+// e_z < 0: else it passes at or below the face). Over a strip of u the
+// chord |v| <= w = sqrt(R0^2 - u^2) gives the area 2 w and the moment of
+// 2r = 2 sqrt(u^2 + v^2): 2 w R0 + 2 u^2 ln((R0 + w) / |u|).
+std::array<double, 2> Groove::edge_on_face_share() const {
+  const double fxy = length_of(feed_.x(), feed_.y());
+  const Vector3d across(-feed_.y() / fxy, feed_.x() / fxy, 0);
+  const double n_m = normal_.dot(across), e_m = side_.dot(across);
+  // The kept u: the face's chord range, cut by the stock plane.
+  double lo = -flat_radius_, hi = flat_radius_;
+  const double reach = c0_ + normal_.z() * corner_;
+  if (n_m > 0) hi = std::min(hi, reach / n_m);
+  if (n_m < 0) lo = std::max(lo, reach / n_m);
+  if (n_m == 0 && reach < 0) return {0, 0};
+  std::vector<std::pair<double, double>> kept{{lo, hi}};
+  if (const double h = -corner_ - ae_ * side_.z(); side_.z() < 0) {
+    const double half =
+        h >= 0 ? radius_ : flat_radius_ + std::sqrt(std::max(0.0, corner_ * corner_ - h * h));
+    const double cut_lo = ae_ * e_m - half, cut_hi = ae_ * e_m + half;
+    kept = {{lo, std::min(hi, cut_lo)}, {std::max(lo, cut_hi), hi}};
+  }
+  const double r0 = flat_radius_;
+  // The area of the chords over [a, b]: the integral of 2 sqrt(R0^2 - u^2).
+  const auto area_to = [&](double u) {
+    return u * std::sqrt(std::max(0.0, r0 * r0 - u * u)) + r0 * r0 * std::asin(u / r0);
+  };
+  std::array<double, 2> sum{0, 0};
+  for (const auto& [a, b] : kept) {
+    if (!(b > a)) continue;
+    sum[0] += area_to(b) - area_to(a);
+    // The moment by quadrature (smooth but for u^2 ln|u| at 0 and the
+    // square roots at +-R0, which the pieces' ends absorb).
+    sum[1] += integrate_smoothed_pieces<1>(
+        [&](double u) {
+          const double w = std::sqrt(std::max(0.0, r0 * r0 - u * u));
+          const double log_term = u != 0 ? u * u * std::log((r0 + w) / std::abs(u)) : 0.0;
+          return std::array<double, 1>{2 * w * r0 + 2 * log_term};
+        },
+        breaks_within({0.0}, a, b), 1e-10, 1e-14 * r0 * r0 * r0, 8)[0];
+  }
+  return sum;
+}
+
+// The removed stretches' ends on each arc of a flat mill's circle: in
+// closed form (Removal::remove_from), or seen edge-on by sign changes of
+// the margin bracketed on 16 cells, then regula falsi (a removed stretch
+// narrower than a cell can be missed; it weighs at most a cell's share of
+// the circle).
 double Groove::unremoved_length(const AngleSet& row, double rho, double z,
                                 const Removal& removal) const {
   if (removal.closed_form()) {
@@ -1449,46 +1369,6 @@ double Groove::unremoved_length(const AngleSet& row, double rho, double z,
   constexpr int kCells = 16;
   const auto removed_by = [&](double t) {
     return removal.margin({rho * std::cos(t), rho * std::sin(t), z});
-  };
-  // The length of a stretch of the other kind hidden inside a cell whose
-  // ends are both kept (not removed) or both removed: 16 cells missed such
-  // stretches, by up to 0.02 mm of the mean on 1 % of random set-ups. Where
-  // the margin is a distance (the bull-nose) it changes by at most rho a
-  // radian along the circle, so with g = +-margin <= 0 at a cell's ends, g
-  // stays below (g_a + g_b + rho (b - a)) / 2 inside: only cells where that
-  // is positive can hide one. They are halved until it is found (its ends
-  // then by regula falsi), the bound rules it out, or 12 halvings are spent
-  // (where the two tools' surfaces nearly touch the bound rules out little,
-  // and halving everywhere took 40 times as long).
-  const auto hidden = [&](double a, double b, double h_a, double h_b, bool kept) {
-    if (!removal.lipschitz()) return 0.0;
-    const double sign = kept ? 1.0 : -1.0;
-    struct Cell {
-      double a, b, g_a, g_b;
-    };
-    std::array<Cell, 16> cells{};  // 12 halvings hold at most 13
-    std::size_t count = 0;
-    cells[count++] = {a, b, sign * h_a, sign * h_b};
-    double found = 0;
-    int budget = 12;
-    while (count > 0 && budget-- > 0) {
-      const Cell cell = cells[--count];
-      const double bound = 0.5 * (cell.g_a + cell.g_b + rho * (cell.b - cell.a));
-      if (bound <= 0 || 2 * bound < 1e-7 * rho) continue;
-      const double mid = 0.5 * (cell.a + cell.b), g_mid = sign * removed_by(mid);
-      if (g_mid > 0) {
-        const auto g = [&](double t) { return sign * removed_by(t); };
-        const double tolerance = 1e-13 * (b - a);
-        const auto [l_lo, l_hi] = bracket_root(g, cell.a, mid, cell.g_a, g_mid, tolerance);
-        const auto [r_lo, r_hi] = bracket_root(g, mid, cell.b, g_mid, cell.g_b, tolerance);
-        found += 0.5 * (r_lo + r_hi) - 0.5 * (l_lo + l_hi);
-        continue;
-      }
-      if (count + 2 > cells.size()) continue;
-      cells[count++] = {cell.a, mid, cell.g_a, g_mid};
-      cells[count++] = {mid, cell.b, g_mid, cell.g_b};
-    }
-    return found;
   };
   const Sinusoid b_along{rho * side_.x(), rho * side_.y(), side_.z() * z};
   const Sinusoid c_along{rho * normal_.x(), rho * normal_.y(), normal_.z() * z};
@@ -1519,9 +1399,7 @@ double Groove::unremoved_length(const AngleSet& row, double rho, double z,
           std::pair{cos_t * cos_step - sin_t * sin_step, sin_t * cos_step + cos_t * sin_step};
       const double t = lo + step * k, h = removal.margin({rho * cos_t, rho * sin_t, z});
       if (h_prev <= 0 && h <= 0) {
-        length += t - t_prev - hidden(t_prev, t, h_prev, h, true);
-      } else if (h_prev > 0 && h > 0) {
-        length += hidden(t_prev, t, h_prev, h, false);
+        length += t - t_prev;
       } else if (h_prev <= 0 || h <= 0) {
         const auto [a, b] = bracket_root(removed_by, t_prev, t, h_prev, h, 1e-13 * (hi - lo));
         const double x = 0.5 * (a + b);
@@ -1636,8 +1514,7 @@ Engagement evaluate_revolved_engagement(const Tool& tool, const CutSetup& setup,
 std::optional<double> revolved_mean_diameter(const Tool& tool, const CutSetup& setup) {
   const Prepared prepared = prepare(tool, setup);
   if (!prepared.groove || !(prepared.ae > 0)) return std::nullopt;
-  if (tool.kind == ToolKind::bull_nose && !prepared.groove->edge_on())
-    return prepared.groove->mean_over_groove();
+  if (tool.kind == ToolKind::bull_nose) return prepared.groove->mean_over_groove();
   return prepared.groove->mean_diameter();
 }
 

@@ -19,8 +19,9 @@
 // where the curve is tangent to a horizontal circle of the tool, and these
 // points are found directly: in closed form on the silhouettes, the stock
 // line and the shank's ray, as 1-D roots elsewhere (the shifted silhouette's
-// in its own parameter, the face's in the face's plane); with the curves'
-// ends they are all the candidates.
+// as the roots of trigonometric polynomials in its own parameter, counted
+// and bracketed by Descartes' rule; the face's in the face's plane); with
+// the curves' ends they are all the candidates.
 #include "geometry/revolved_engagement.h"
 
 #include <Eigen/Geometry>
@@ -88,6 +89,203 @@ double root(const Function& g, double lo, double hi, double tolerance) {
 // sqrt(x^2 + y^2): the lengths here are mm-sized, far from over- and
 // underflow, and std::hypot's care for them took 40 % of an evaluation.
 double length_of(double x, double y) { return std::sqrt(x * x + y * y); }
+
+// Trigonometric polynomials on an arc of phi, for the roots of the shifted
+// silhouette. On [lo, hi] (hi - lo <= pi), with w = tan((phi - mid) / 2),
+// mid = (lo + hi) / 2, cos(phi - mid) = (1 - w^2) / (1 + w^2) and
+// sin(phi - mid) = 2 w / (1 + w^2): a trigonometric polynomial of degree k
+// in phi times (1 + w^2)^k is a polynomial of degree 2k in w, and phi <->
+// w is one to one on the arc. With w = W (2 tau - 1), W = tan((hi - lo) /
+// 4) <= 1, it is kept in the Bernstein basis of tau in [0, 1], scaled: the
+// coefficients a_i of the form sum a_i (1 - tau)^(N - i) tau^i (the
+// Bernstein coefficients times C(N, i), the same signs), whose products are
+// plain convolutions.
+template <int N>
+struct Form {
+  std::array<double, N + 1> a{};
+};
+
+template <int N, int M>
+Form<N + M> operator*(const Form<N>& x, const Form<M>& y) {
+  Form<N + M> out;
+  for (int i = 0; i <= N; ++i)
+    for (int j = 0; j <= M; ++j) out.a[i + j] += x.a[i] * y.a[j];
+  return out;
+}
+
+template <int N>
+Form<N> operator*(double k, Form<N> x) {
+  for (double& a : x.a) a *= k;
+  return x;
+}
+
+// The forms of cos(phi), sin(phi) and 1 (degree 2) on one arc.
+class ArcForms {
+ public:
+  ArcForms(double lo, double hi) : half_(std::tan(0.25 * (hi - lo))) {
+    const double mid = 0.5 * (lo + hi), w2 = half_ * half_;
+    cos_mid_ = std::cos(mid);
+    sin_mid_ = std::sin(mid);
+    // Bernstein coefficients of 1 - w^2, 2w and 1 + w^2 on [-W, W]: the
+    // values at the ends and f(-W) + W f'(-W) in the middle, scaled.
+    const std::array<double, 3> cos_rel{1 - w2, 2 * (1 + w2), 1 - w2};
+    const std::array<double, 3> sin_rel{-2 * half_, 0, 2 * half_};
+    one_.a = {1 + w2, 2 * (1 - w2), 1 + w2};
+    for (int i = 0; i <= 2; ++i) {
+      cos_.a[i] = cos_mid_ * cos_rel[i] - sin_mid_ * sin_rel[i];
+      sin_.a[i] = sin_mid_ * cos_rel[i] + cos_mid_ * sin_rel[i];
+    }
+  }
+
+  // a cos(phi) + b sin(phi) + k.
+  Form<2> linear(double a, double b, double k) const {
+    Form<2> out;
+    for (int i = 0; i <= 2; ++i) out.a[i] = a * cos_.a[i] + b * sin_.a[i] + k * one_.a[i];
+    return out;
+  }
+  const Form<2>& sin() const { return sin_; }
+  const Form<2>& one() const { return one_; }
+
+  // x + y, the lower degree raised by factors 1 + w^2 (trigonometric
+  // polynomials' forms differ in degree by even numbers).
+  template <int N, int M>
+  Form<std::max(N, M)> sum(const Form<N>& x, const Form<M>& y) const {
+    if constexpr (N < M) {
+      return sum(x * one_, y);
+    } else if constexpr (M < N) {
+      return sum(x, y * one_);
+    } else {
+      Form<N> out = x;
+      for (int i = 0; i <= N; ++i) out.a[i] += y.a[i];
+      return out;
+    }
+  }
+
+  // cos(phi) and sin(phi) at tau.
+  std::pair<double, double> cos_sin_at(double tau) const {
+    const double w = half_ * (2 * tau - 1), w2 = w * w;
+    const double c = (1 - w2) / (1 + w2), s = 2 * w / (1 + w2);
+    return {cos_mid_ * c - sin_mid_ * s, sin_mid_ * c + cos_mid_ * s};
+  }
+
+ private:
+  double half_, cos_mid_ = 1, sin_mid_ = 0;
+  Form<2> cos_, sin_, one_;
+};
+
+// The form's value at tau: Horner's rule in tau with the powers of 1 - tau
+// carried along (no division; every term of the basis is positive on [0, 1]).
+template <int N>
+double form_at(const Form<N>& f, double tau) {
+  const double u = 1 - tau;
+  double sum = f.a[N], power = 1;
+  for (int i = N - 1; i >= 0; --i) {
+    power *= u;
+    sum = sum * tau + f.a[i] * power;
+  }
+  return sum;
+}
+
+// Calls found(tau) at every root of the form in (0, 1), and perhaps at a
+// few points that are not roots. Descartes' rule of signs in the Bernstein
+// basis: the roots in a cell number the sign changes of its coefficients
+// less an even number, so a cell without changes holds none, one with a
+// single change exactly one (its first and last coefficients, the values
+// at its ends, differ in sign: a bracket, closed by Newton's method kept
+// in it); the others are halved (de Casteljau) down to 2^-40, where a cell
+// still ambiguous (a double root, a cluster) gives its middle. A root of
+// odd multiplicity changes the sign of the values and so of the end
+// coefficients around it: round-off in the coefficients cannot hide it.
+template <int N, class Found>
+void form_roots(const Form<N>& f, const Found& found) {
+  struct Cell {
+    std::array<double, N + 1> b;
+    double lo, hi;
+  };
+  constexpr int kMaxDepth = 40;
+  std::array<Cell, kMaxDepth + 8> stack;
+  int size = 0;
+  Cell& first = stack[size++];
+  first.lo = 0;
+  first.hi = 1;
+  double binomial = 1;
+  for (int i = 0; i <= N; ++i) {
+    first.b[i] = f.a[i] / binomial;
+    binomial = binomial * (N - i) / (i + 1);
+  }
+  const auto sign_changes = [](const std::array<double, N + 1>& b) {
+    int changes = 0;
+    double last = 0;
+    for (const double x : b) {
+      if (x == 0) continue;
+      if (last != 0 && (x < 0) != (last < 0)) ++changes;
+      last = x;
+    }
+    return changes;
+  };
+  // The derivative's form (degree N - 1), for Newton's steps.
+  Form<N - 1> slope;
+  double slope_binomial = N;
+  for (int i = 0; i < N; ++i) {
+    slope.a[i] = slope_binomial * (first.b[i + 1] - first.b[i]);
+    slope_binomial = slope_binomial * (N - 1 - i) / (i + 1);
+  }
+  // The root in [lo, hi], where the form changes sign (its values at the
+  // ends g_lo, g_hi): Newton's method kept in the shrinking bracket (a
+  // step leaving it bisects), until a step is below 2e-16 (about a unit in
+  // the last place of tau, 8e-16 in phi at most) or, once below 1e-10, no
+  // longer halves the one before (the values are round-off there): that
+  // step's end is the root.
+  const auto polish = [&](double lo, double hi, double g_lo, double g_hi) {
+    double x = lo - g_lo * (hi - lo) / (g_hi - g_lo), last_step = hi - lo;
+    for (int i = 0; i < 100; ++i) {
+      const double g = form_at(f, x);
+      if (g == 0) return x;
+      if ((g < 0) == (g_lo < 0))
+        lo = x;
+      else
+        hi = x;
+      const double newton = x - g / form_at(slope, x), step = std::abs(newton - x);
+      if (step <= 2e-16 || (step < 1e-10 && step > 0.5 * last_step)) return newton;
+      if (hi - lo <= 2e-16) return 0.5 * (lo + hi);
+      last_step = step;
+      x = newton > lo && newton < hi ? newton : 0.5 * (lo + hi);
+    }
+    return x;
+  };
+  while (size > 0) {
+    const Cell cell = stack[--size];
+    const double b_lo = cell.b[0], b_hi = cell.b[N];
+    // A root on a cell's end (shared with the next cell, whose count
+    // leaves out the zero coefficient).
+    if (b_lo == 0 && cell.lo > 0) found(cell.lo);
+    if (b_hi == 0 && cell.hi < 1) found(cell.hi);
+    const int changes = sign_changes(cell.b);
+    if (changes == 0) continue;
+    if (changes == 1 && b_lo != 0 && b_hi != 0) {
+      found(polish(cell.lo, cell.hi, b_lo, b_hi));
+      continue;
+    }
+    if (cell.hi - cell.lo <= std::ldexp(1.0, -kMaxDepth)) {
+      found(0.5 * (cell.lo + cell.hi));
+      continue;
+    }
+    // de Casteljau at the middle: the left half's coefficients are the
+    // triangle's left edge, the right half's its right edge.
+    Cell& right = stack[size++];
+    Cell& left = stack[size++];
+    std::array<double, N + 1> row = cell.b;
+    for (int k = 0; k <= N; ++k) {
+      left.b[k] = row[0];
+      right.b[N - k] = row[N - k];
+      for (int i = 0; i < N - k; ++i) row[i] = 0.5 * (row[i] + row[i + 1]);
+    }
+    const double middle = 0.5 * (cell.lo + cell.hi);
+    left.lo = cell.lo;
+    left.hi = right.lo = middle;
+    right.hi = cell.hi;
+  }
+}
 
 // Running extremes of r and of z over the engaged points met so far.
 struct RadiusExtremes {
@@ -780,12 +978,30 @@ void Groove::shifted_ray_extremes(double c_lo, RadiusExtremes& out) const {
 }
 
 // On the silhouette, by its parameter phi (the previous tool's silhouette
-// point S(phi) + ae e, fibre along F): the point of the fibre with P_xy
-// parallel to u_xy is in closed form, and the stationary points are where
-// it lies on the tool (outside_by = 0) as the fibre's front point. Sign
-// changes on a subdivision, refined geometrically around the bottom of the
-// face (where the silhouette sweeps across a face nearly parallel to F in
-// a sliver of phi), then regula falsi.
+// point S(phi) + ae e, fibre along F): the point x(phi) of the fibre with
+// x_xy parallel to u_xy is in closed form, and the stationary points are
+// where it lies on the tool (outside_by = 0) as the fibre's front point.
+// With c = cos(phi), s = sin(phi), A = (e x N)_z, B = (F x e)_z, C = (F x
+// N)_z, D = B c + C s: x = S + ae e + t F, t = -ae A s / D, and
+// Delta = x - S has |Delta|^2 = ae^2 + t^2, u.Delta = ae c. x_xy = lambda
+// d, d = u_xy / L, L = |u_xy| = sqrt(1 - v^2), v = u_z = c e_z + s N_z, and
+// M = (lambda - R0) L = rc L^2 + ae (c - e_z v) - t F_z v (from x.u).
+// On each piece of the tool's surface this is a trigonometric polynomial
+// (times powers of D, not zero where x exists):
+// - the face, z = rc v + ae e_z + t F_z = -rc (either side of the axis):
+//   (rc v + rc + ae e_z) D - ae A F_z s, degree 2;
+// - the corner, lambda > R0: |x - R0 d|^2 = |rc u + Delta|^2 = rc^2 gives
+//   ae A^2 s^2 + (ae + 2 rc c) D^2, degree 3;
+// - the corner across the axis, lambda < 0: |x + R0 d|^2 = rc^2, i.e.
+//   (2 rc ae c + ae^2 + t^2 + 4 R0^2) L = -4 R0 M, squared:
+//   G^2 L^2 - 16 R0^2 (M D)^2 D^2, G = (2 rc ae c + ae^2 + 4 R0^2) D^2 +
+//   ae^2 A^2 s^2, degree 8;
+// - the shank, lambda = +-R: M = rc L or M = -(R + R0) L, squared: (M D)^2
+//   - K^2 L^2 D^2, degree 6 (M D itself, degree 3, for the flat mill's
+//   lambda = R, where rc = 0).
+// Every root of the piece's equation is a root of its polynomial; the
+// polynomials' roots on the arc are isolated by form_roots (a count, not a
+// scan), and each is kept if x lies on the tool as a leading point.
 void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
                                          RadiusExtremes& out) const {
   if (corner_ == 0 && !edge_on_) {
@@ -803,59 +1019,84 @@ void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
     if (across == 0) return std::nullopt;
     return x - (x.x() * u.y() - x.y() * u.x()) / across * feed_;
   };
-  const auto excess_at = [&](double cos_phi, double sin_phi) {
-    const auto p = meridian_point_at(cos_phi, sin_phi);
-    return p ? outside_by(*p) : kInf;
-  };
-  constexpr int kSteps = 24, kRefinements = 14;
-  struct Node {
-    double phi, excess, cos_phi = 1, sin_phi = 0;
-  };
-  std::array<Node, kSteps + 1 + 2 * kRefinements> nodes{};
-  std::size_t count = 0;
   const double lo = std::min(phi_top, phi_star), hi = std::max(phi_top, phi_star);
-  // The even steps by rotation: one sine and cosine for all of them.
-  const double step = (hi - lo) / kSteps, cos_step = std::cos(step), sin_step = std::sin(step);
-  double cos_phi = std::cos(lo), sin_phi = std::sin(lo);
-  for (int i = 0; i <= kSteps; ++i) {
-    nodes[count++] = {lo + step * i, excess_at(cos_phi, sin_phi), cos_phi, sin_phi};
-    const double turned = cos_phi * cos_step - sin_phi * sin_step;
-    sin_phi = sin_phi * cos_step + cos_phi * sin_step;
-    cos_phi = turned;
-  }
-  const double phi_face = omega_ + kPi;
-  if (phi_face > lo && phi_face < hi) {
-    // The face spans about |F_z| of phi: refined down to a tenth of that
-    // (clamped as a double: a level feed, F_z = 0, asks for infinitely many).
-    const int depth = static_cast<int>(std::clamp(std::ceil(-std::log10(std::abs(feed_.z()))) + 2,
-                                                  0.0, static_cast<double>(kRefinements)));
-    for (int k = 0; k < depth; ++k) {
-      const double offset = step * std::pow(0.1, k);
-      for (const double phi : {phi_face - offset, phi_face + offset}) {
-        if (!(phi > lo && phi < hi)) continue;
-        const double c = std::cos(phi), s = std::sin(phi);
-        nodes[count++] = {phi, excess_at(c, s), c, s};
-      }
-    }
-  }
-  std::sort(nodes.begin(), nodes.begin() + static_cast<std::ptrdiff_t>(count),
-            [](const Node& x, const Node& y) { return x.phi < y.phi; });
-  for (std::size_t i = 1; i < count; ++i) {
-    const Node& prev = nodes[i - 1];
-    const Node& here = nodes[i];
-    if (std::isfinite(prev.excess) && std::isfinite(here.excess) &&
-        (prev.excess <= 0) != (here.excess <= 0)) {
-      // Within the cell by rotation from its left end.
-      const auto excess_in_cell = [&](double phi) {
-        const auto [c, s] = rotated(prev.cos_phi, prev.sin_phi, phi - prev.phi);
-        return excess_at(c, s);
+  if (!(hi > lo)) return;
+  const double ez = side_.z(), nz = normal_.z(), fz = feed_.z();
+  // A, B and C above.
+  const double en = side_.x() * normal_.y() - side_.y() * normal_.x();
+  const double fe = feed_.x() * side_.y() - feed_.y() * side_.x();
+  const double fn = feed_.x() * normal_.y() - feed_.y() * normal_.x();
+  const double r0 = flat_radius_, rc = corner_, ae = ae_;
+  // Whether the shank can hold a point of the groove (c <= c0 there).
+  const bool shank = c0_ + radius_ * rim_tilt_ > -1e-9 * radius_;
+  // Arcs of at most pi (the left boundary spans no more): W <= tan(pi / 4) = 1.
+  const int arcs = std::max(1, static_cast<int>(std::ceil((hi - lo) / kPi)));
+  for (int arc = 0; arc < arcs; ++arc) {
+    const ArcForms forms(lo + (hi - lo) * arc / arcs, lo + (hi - lo) * (arc + 1) / arcs);
+    // A root of a piece's polynomial counts if x lies on that piece (within
+    // round-off): beyond the face's rim its plane stays within 1e-9 R of the
+    // corner for sqrt(2e-9 R rc), so the surface test alone took the
+    // plane's root there for the corner's (D_min 5.3e-8 mm off, D 10, rc 2).
+    const double slack = 1e-12 * radius_;
+    const auto on_face = [&](const Vector3d& p) {
+      return length_of(p.x(), p.y()) <= flat_radius_ + slack;
+    };
+    const auto on_corner = [&](const Vector3d& p) {
+      return length_of(p.x(), p.y()) >= flat_radius_ - slack && p.z() <= slack;
+    };
+    const auto on_shank = [&](const Vector3d& p) { return p.z() >= -slack; };
+    const auto test = [&](const auto& on_piece) {
+      return [&](double tau) {
+        const auto [cos_phi, sin_phi] = forms.cos_sin_at(tau);
+        const auto p = meridian_point_at(cos_phi, sin_phi);
+        if (p && on_piece(*p) && std::abs(outside_by(*p)) <= 1e-9 * radius_ &&
+            leads(surface_normal(*p)))
+          out.add(*p);
       };
-      const auto [a, b] =
-          bracket_root(excess_in_cell, prev.phi, here.phi, prev.excess, here.excess, 1e-15);
-      const double root = 0.5 * (a + b);
-      const auto p = meridian_point_at(std::cos(root), std::sin(root));
-      if (p && std::abs(outside_by(*p)) <= 1e-9 * radius_ && leads(surface_normal(*p))) out.add(*p);
+    };
+    const Form<2> d = forms.linear(fe, fn, 0), v = forms.linear(ez, nz, 0);
+    const Form<2>& s = forms.sin();
+    // The face.
+    form_roots(forms.sum(forms.linear(rc * ez, rc * nz, rc + ae * ez) * d, (-ae * en * fz) * s),
+               test(on_face));
+    const Form<4> d2 = d * d;
+    if (rc > 0) {
+      // The corner.
+      form_roots(forms.sum((ae * en * en) * (s * s), forms.linear(2 * rc, 0, ae) * d2),
+                 test(on_corner));
     }
+    if (!shank && !(rc > 0 && r0 > 0)) continue;
+    // M D and L^2.
+    const Form<4> l2 = forms.sum(forms.one() * forms.one(), (-1.0) * (v * v));
+    const Form<6> md =
+        forms.sum(forms.sum(rc * l2, forms.linear(ae * (1 - ez * ez), -ae * ez * nz, 0)) * d,
+                  (ae * en * fz) * (s * v));
+    // Whether M <= -k L can hold on the arc (lambda <= R0 - k): L >=
+    // |F_z| (v^2 <= e_z^2 + N_z^2 = 1 - F_z^2), so not where D keeps its
+    // sign and M D + k |F_z| D has that sign on the whole arc.
+    const auto may_cross = [&](double k) {
+      const Form<6> bound = forms.sum(md, (k * std::abs(fz)) * (d * forms.one() * forms.one()));
+      const auto all = [](const auto& form, bool positive) {
+        return std::all_of(form.a.begin(), form.a.end(),
+                           [positive](double x) { return positive ? x > 0 : x < 0; });
+      };
+      const bool positive = d.a[0] > 0;
+      return !(all(d, positive) && all(bound, positive));
+    };
+    if (rc > 0 && r0 > 0 && may_cross(2 * r0)) {
+      // The corner across the axis: lambda <= -R0.
+      const Form<6> g = forms.sum(forms.linear(2 * rc * ae, 0, ae * ae + 4 * r0 * r0) * d2,
+                                  (ae * ae * en * en) * (s * s));
+      form_roots(forms.sum(g * g * l2, (-16 * r0 * r0) * (md * md * d2)), test(on_corner));
+    }
+    if (!shank) continue;
+    if (rc > 0)
+      form_roots(forms.sum(md * md, (-rc * rc) * (l2 * d2)), test(on_shank));
+    else
+      form_roots(md, test(on_shank));
+    const double across = radius_ + r0;
+    if (may_cross(across))
+      form_roots(forms.sum(md * md, (-across * across) * (l2 * d2)), test(on_shank));
   }
 }
 

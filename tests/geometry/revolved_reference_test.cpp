@@ -208,6 +208,27 @@ TEST(RevolvedReference, NearlyLevelFeedsWhereTheBoundarySearchSlipped) {
   }
 }
 
+// A finishing set-up where the shifted silhouette's point of least r lies
+// on the corner 1.3e-4 mm beyond the face's rim: the face plane's root
+// there is within 1e-9 R of the corner too, and taking it for the
+// corner's gave D_min 5.3e-8 mm low. The reference at 1, 4 and 16 times
+// its resolution: 6.000267626425615 mm.
+TEST(RevolvedReference, FacePlaneRootBeyondTheRimIsNotTheCorners) {
+  const RandomCase c{10,
+                     2,
+                     0.11882610663615609,
+                     0.25378939283313817,
+                     Vector3d(-0.018953614697608572, 0.10924054604250671, 0.99383462587607074),
+                     Vector3d(-0.31136794078991203, 0.94393708458448977, -0.10969405541953374),
+                     Side::right};
+  const Engagement e = evaluate_revolved_engagement(tool_of(c), setup_of(c));
+  const testing::ReferenceExtremes ref = testing::reference_extremes(
+      c.diameter, c.corner, c.ap, c.ae, c.normal, c.feed, c.side == Side::left);
+  ASSERT_TRUE(e.d_max && ref.any);
+  EXPECT_NEAR(*e.d_max, ref.d_max, 1e-9);
+  EXPECT_NEAR(*e.d_min, ref.d_min, 1e-9);
+}
+
 // The long run (VCPOST_REFERENCE_CASES cases of each generator, 10000 by
 // default): --gtest_also_run_disabled_tests --gtest_filter='*ManyCases*'.
 TEST(RevolvedReference, DISABLED_ManyCases) {

@@ -98,8 +98,8 @@ Engagement evaluate_engagement(const Tool& tool, const CutSetup& setup,
 // nothing is engaged. Absolute error: for the ball within 1.2e-6 mm of
 // the same integral taken to 1e-12 (3,000 random set-ups); for the
 // bull-nose within 1.3e-5 mm of the same integral taken to 1e-11 (1,300
-// random set-ups; feeds within 1e-9 of level, up to 1e-4 mm; a feed
-// exactly parallel to the end face by circles, about 1e-3 mm); for the
+// random set-ups, and 300 Z-level ones within 1.5e-5 mm; feeds within
+// 1e-9 of level, up to 1e-4 mm); for the
 // flat end mill within 6.4e-4 mm of the circle-by-circle oracle on
 // 900 random set-ups (its circles' removed arcs in closed form; a face seen
 // edge-on, |F_z| < 1e-6, still samples them).

@@ -110,44 +110,38 @@ TEST(RevolvedEngagement, FlatTiltedPeripheryCutsWithFullDiameter) {
 // psi1 = acos((rc - ap) / rc); integrals of the band done by hand:
 // area = pi rc (R0 psi1 + rc (1 - cos psi1)),
 // sum 2r = 2 pi rc (R0^2 psi1 + 2 R0 rc (1 - cos psi1) + rc^2 (psi1/2 - sin(2 psi1)/4)).
-TEST(RevolvedEngagement, BullNoseFloorMeanInClosedForm) {
-  const double R0 = 3, rc = 2, ap = 0.7;
+// The mean with the face and the band's alone.
+std::pair<double, double> floor_means(double R0, double rc, double ap) {
   const double psi1 = std::acos((rc - ap) / rc);
   const double band_area = kPi * rc * (R0 * psi1 + rc * (1 - std::cos(psi1)));
   const double band_sum = 2 * kPi * rc *
                           (R0 * R0 * psi1 + 2 * R0 * rc * (1 - std::cos(psi1)) +
                            rc * rc * (psi1 / 2 - std::sin(2 * psi1) / 4));
   const double face_area = kPi * R0 * R0, face_sum = face_area * 4 * R0 / 3;
-  const double expected = (band_sum + face_sum) / (band_area + face_area);
-  const std::optional<double> mean =
-      revolved_mean_diameter(Tool::bull_nose(10, rc), setup(ap, 15, {0, 0, 1}, {0.6, 0.8, 0}));
-  ASSERT_TRUE(mean);
-  EXPECT_NEAR(*mean, expected, 1e-6);
+  return {(band_sum + face_sum) / (band_area + face_area), band_sum / band_area};
 }
 
-// The same floor tilted by 1e-7 rad about the feed's y axis: F_z = -+6e-8,
-// so the mean is taken over the groove (not the edge-on face's circles).
+// A level feed on the floor: the end face is edge-on and counts as leading.
+TEST(RevolvedEngagement, BullNoseFloorMeanInClosedForm) {
+  const std::optional<double> mean =
+      revolved_mean_diameter(Tool::bull_nose(10, 2), setup(0.7, 15, {0, 0, 1}, {0.6, 0.8, 0}));
+  ASSERT_TRUE(mean);
+  EXPECT_NEAR(*mean, floor_means(3, 2, 0.7).first, 1e-6);
+}
+
+// The same floor tilted by 1e-7 rad about the feed's y axis: F_z = -+6e-8.
 // Feeding down by a hair the face leads and the mean tends to the value
-// above; up by a hair it trails and only the band is left, band_sum /
-// band_area = 7.725728679. Both within 2e-6 mm (the tilt itself moves them
-// by a few 1e-7).
+// above; up by a hair it trails and only the band is left (7.725728679).
+// Both within 2e-6 mm (the tilt itself moves them by a few 1e-7).
 TEST(RevolvedEngagement, BullNoseMeanTendsToTheFloorsFromEitherSide) {
-  const double R0 = 3, rc = 2, ap = 0.7;
-  const double psi1 = std::acos((rc - ap) / rc);
-  const double band_area = kPi * rc * (R0 * psi1 + rc * (1 - std::cos(psi1)));
-  const double band_sum = 2 * kPi * rc *
-                          (R0 * R0 * psi1 + 2 * R0 * rc * (1 - std::cos(psi1)) +
-                           rc * rc * (psi1 / 2 - std::sin(2 * psi1) / 4));
-  const double face_area = kPi * R0 * R0, face_sum = face_area * 4 * R0 / 3;
+  const auto [with_face, band_only] = floor_means(3, 2, 0.7);
   for (const double tilt : {1e-7, -1e-7}) {
     const Vector3d normal(std::sin(tilt), 0, std::cos(tilt));
     const Vector3d feed(0.6 * std::cos(tilt), 0.8, -0.6 * std::sin(tilt));
     const std::optional<double> mean =
-        revolved_mean_diameter(Tool::bull_nose(10, rc), setup(ap, 15, normal, feed));
+        revolved_mean_diameter(Tool::bull_nose(10, 2), setup(0.7, 15, normal, feed));
     ASSERT_TRUE(mean);
-    const double expected =
-        tilt > 0 ? (band_sum + face_sum) / (band_area + face_area) : band_sum / band_area;
-    EXPECT_NEAR(*mean, expected, 2e-6) << tilt;
+    EXPECT_NEAR(*mean, tilt > 0 ? with_face : band_only, 2e-6) << tilt;
   }
 }
 

@@ -1450,7 +1450,7 @@ std::pair<double, double> Groove::front_for_area(const Vector3d& x0, double& war
   const double root = std::sqrt(disc);
   double t = (-beta + root) / fxy2;
   if (x0.z() + t * feed_.z() >= 0) return {radius_, root / radius_};  // (P_xy.F_xy) / R
-  if (feed_.z() < 0) {
+  if (!edge_on_ && feed_.z() < 0) {
     const double t_face = (-corner_ - x0.z()) / feed_.z();
     const double x = x0.x() + t_face * feed_.x(), y = x0.y() + t_face * feed_.y();
     const double rho = length_of(x, y);
@@ -1496,7 +1496,7 @@ double Groove::mean_over_groove() const {
   const auto at_front = [&](double b, double c) {
     const auto [rho, lead] = front_for_area(b * side_ + c * normal_, warm);
     // A fibre within round-off of Q's boundary (a node of a tiny piece):
-    // its n.F is round-off, and its share nothing.
+    // its n.F is round-off; it adds nothing.
     if (!(lead > 1e-12)) return std::array<double, 2>{0, 0};
     return std::array<double, 2>{1 / lead, 2 * rho / lead};
   };
@@ -1508,7 +1508,7 @@ double Groove::mean_over_groove() const {
     bool face;
   };
   const std::array<Junction, 2> junctions{{{flat_radius_, -corner_, true}, {radius_, 0.0, false}}};
-  const bool face_leads = feed_.z() < 0;
+  const bool face_leads = !edge_on_ && feed_.z() < 0;  // edge-on: edge_on_face_share
   std::vector<double> levels{normal_.dot(foot_left_), normal_.dot(foot_right_)};
   for (const Junction& j : junctions) {
     const double centre = normal_.z() * j.z, half = j.radius * rim_tilt_;

@@ -321,7 +321,9 @@ class Groove {
     c0_ = c_min_ + ap;
     foot_left_ = silhouette(phi_left_);
     foot_right_ = silhouette(phi_right_);
+    c_foot_ = {normal_.dot(foot_left_), normal_.dot(foot_right_)};
     edge_on_ = std::abs(feed_.z()) <= kEdgeOn;
+    face_in_front_ = !edge_on_ && feed_.z() < 0;
     rim_tilt_ = length_of(normal_.x(), normal_.y());
     // The shank's lowest point along N is at -R |N_xy|.
     shank_in_stock_ = c0_ + radius_ * rim_tilt_ > 0;
@@ -382,7 +384,7 @@ class Groove {
   BoundaryPoint boundary(double c, bool left) const {
     const double phi_end = left ? phi_left_ : phi_right_;
     const Vector3d& foot = left ? foot_left_ : foot_right_;
-    const double c_foot = normal_.dot(foot);
+    const double c_foot = c_foot_[left ? 0 : 1];
     if (c >= c_foot) {
       const double t = (c - c_foot) / normal_.z();
       const Vector3d p = foot + t * Vector3d::UnitZ();
@@ -542,6 +544,19 @@ class Groove {
     return {distance - corner_, (radial * d_radial + below * feed_.z()) / distance, rho};
   }
 
+  // Where the line x0 + t F crosses the vertical cylinder r = rho: t^2
+  // |F_xy|^2 + 2 beta t + gamma = 0, the crossings (-beta -+ sqrt(disc)) /
+  // |F_xy|^2.
+  struct CylinderCrossing {
+    double fxy2, beta, disc;
+  };
+  CylinderCrossing cylinder_crossing(double x0, double y0, double rho) const {
+    const double fxy2 = feed_.x() * feed_.x() + feed_.y() * feed_.y();
+    const double beta = x0 * feed_.x() + y0 * feed_.y();
+    const double gamma = x0 * x0 + y0 * y0 - rho * rho;
+    return {fxy2, beta, beta * beta - fxy2 * gamma};
+  }
+
   // The interval of t over which x0 + t F lies in the tool; empty when the
   // line misses it (a line touching it within 1e-9 R counts as touching;
   // the bull-nose's corner only within round-off, see below).
@@ -549,11 +564,8 @@ class Groove {
   // front twice).
   std::optional<std::pair<double, double>> line_interval(const Vector3d& x0,
                                                          bool only_front = false) const {
-    const double fxy2 = feed_.x() * feed_.x() + feed_.y() * feed_.y();
+    auto [fxy2, beta, disc] = cylinder_crossing(x0.x(), x0.y(), radius_);
     if (!(fxy2 > 1e-24)) return std::nullopt;
-    const double beta = x0.x() * feed_.x() + x0.y() * feed_.y();
-    const double gamma = x0.x() * x0.x() + x0.y() * x0.y() - radius_ * radius_;
-    double disc = beta * beta - fxy2 * gamma;
     if (disc < 0) {
       if (disc < -1e-9 * radius_ * radius_ * fxy2) return std::nullopt;
       disc = 0;
@@ -690,8 +702,7 @@ class Groove {
     if (!(ae_ < chord)) return std::nullopt;
     const double ratio = ae_ / chord;
     const double c = -h * std::sqrt(1 - ratio * ratio);
-    if (!(c > c_min_ && c < c0_ && c <= normal_.dot(foot_left_) && c <= normal_.dot(foot_right_)))
-      return std::nullopt;
+    if (!(c > c_min_ && c < c0_ && c <= c_foot_[0] && c <= c_foot_[1])) return std::nullopt;
     return WidthLevel{c, rim_boundary(c, true), rim_boundary(c, false)};
   }
 
@@ -703,7 +714,7 @@ class Groove {
   // branch or c* is below the ray's foot.
   std::optional<WidthLevel> width_level_beside_ray(bool left_on_ray, double phi) const {
     const Vector3d& foot = left_on_ray ? foot_left_ : foot_right_;
-    const double c_foot = normal_.dot(foot), b_foot = side_.dot(foot);
+    const double c_foot = c_foot_[left_on_ray ? 0 : 1], b_foot = side_.dot(foot);
     const double ray_slope = side_.z() / normal_.z();  // db/dc along the ray
     const double sign = left_on_ray ? 1.0 : -1.0;      // width = sign (b - b_ray)
     const double lo = left_on_ray ? phi_bottom_ : phi_left_;
@@ -863,7 +874,10 @@ class Groove {
   double c_min_ = 0, c0_ = 0;
   std::array<BoundaryPoint, 2> top_{};  // boundary(c0, left), boundary(c0, right)
   Vector3d foot_left_, foot_right_;
+  std::array<double, 2> c_foot_{};  // N.foot, left and right
   bool edge_on_ = false;
+  // The face leads with an area seen along F (its fibres' front points).
+  bool face_in_front_ = false;
   bool shank_in_stock_ = true;
   double rim_tilt_ = 0;  // |N_xy|
   // boundary()'s last roots on the left and right: a cache, not state.
@@ -953,7 +967,7 @@ void Groove::shifted_extremes(const BoundaryPoint& left_top, const WidthLevel& l
     out.add(level.right.p);
   else
     add_front(level.left.p + ae_ * side_);
-  const double c_foot = normal_.dot(foot_left_);
+  const double c_foot = c_foot_[0];
   if (c_star < c_foot && c_foot < c0_) add_front(foot_left_ + ae_ * side_);
   if (c0_ > c_foot) shifted_ray_extremes(std::max(c_star, c_foot), out);
   if (c_star < c_foot)
@@ -1144,15 +1158,13 @@ bool Groove::face_point_engaged(const Vector3d& p, double slack) const {
 void Groove::face_extremes(RadiusExtremes& out) const {
   const Vector3d centre = -corner_ * Vector3d::UnitZ();
   if (face_point_engaged(centre, 0)) out.add(0, centre.z());
-  const double fx = feed_.x(), fy = feed_.y(), f2 = fx * fx + fy * fy;
-  if (!(f2 > 0)) return;
+  const double fx = feed_.x(), fy = feed_.y();
   const double cx = ae_ * side_.x(), cy = ae_ * side_.y();
   const double lift = ae_ * side_.z();              // the previous tool's height over this one
   const double sink = edge_on_ ? 0.0 : -feed_.z();  // dh/dt of its circle in this plane: > 0
   // Its circle in this plane is at its own height h(t) = -rc - lift + t sink.
-  const double reach = flat_radius_ + radius_;
-  const double beta = cx * fx + cy * fy, gamma = cx * cx + cy * cy - reach * reach;
-  const double disc = beta * beta - f2 * gamma;
+  const auto [f2, beta, disc] = cylinder_crossing(cx, cy, flat_radius_ + radius_);
+  if (!(f2 > 0)) return;
   if (!(disc > 0)) return;
   double t_lo = (-beta - std::sqrt(disc)) / f2;
   const double t_hi = (-beta + std::sqrt(disc)) / f2;
@@ -1442,15 +1454,12 @@ double Groove::mean_diameter() const {
 // walks monotonically onto it; from a point inside, its first step lands
 // beyond it (the tangent stays below a convex function).
 std::pair<double, double> Groove::front_for_area(const Vector3d& x0, double& warm) const {
-  const double fxy2 = feed_.x() * feed_.x() + feed_.y() * feed_.y();
-  const double beta = x0.x() * feed_.x() + x0.y() * feed_.y();
-  const double gamma = x0.x() * x0.x() + x0.y() * x0.y() - radius_ * radius_;
-  const double disc = beta * beta - fxy2 * gamma;
+  const auto [fxy2, beta, disc] = cylinder_crossing(x0.x(), x0.y(), radius_);
   if (!(disc > 0 && fxy2 > 0)) return {0, 0};
   const double root = std::sqrt(disc);
   double t = (-beta + root) / fxy2;
   if (x0.z() + t * feed_.z() >= 0) return {radius_, root / radius_};  // (P_xy.F_xy) / R
-  if (!edge_on_ && feed_.z() < 0) {
+  if (face_in_front_) {
     const double t_face = (-corner_ - x0.z()) / feed_.z();
     const double x = x0.x() + t_face * feed_.x(), y = x0.y() + t_face * feed_.y();
     const double rho = length_of(x, y);
@@ -1508,8 +1517,7 @@ double Groove::mean_over_groove() const {
     bool face;
   };
   const std::array<Junction, 2> junctions{{{flat_radius_, -corner_, true}, {radius_, 0.0, false}}};
-  const bool face_leads = !edge_on_ && feed_.z() < 0;  // edge-on: edge_on_face_share
-  std::vector<double> levels{normal_.dot(foot_left_), normal_.dot(foot_right_)};
+  std::vector<double> levels{c_foot_[0], c_foot_[1]};
   for (const Junction& j : junctions) {
     const double centre = normal_.z() * j.z, half = j.radius * rim_tilt_;
     levels.push_back(centre - half);
@@ -1524,7 +1532,7 @@ double Groove::mean_over_groove() const {
     if (!(hi > lo)) return std::array<double, 2>{0, 0};
     cuts.clear();
     for (const Junction& j : junctions) {
-      if (j.face && !face_leads) continue;
+      if (j.face && !face_in_front_) continue;
       if (!(std::abs(c - normal_.z() * j.z) < j.radius * rim_tilt_)) continue;
       for (const Vector3d& p : circle_at_level(j.radius, j.z, c)) {
         if (j.face || p.x() * feed_.x() + p.y() * feed_.y() > 0) cuts.push_back(side_.dot(p));
@@ -1564,12 +1572,12 @@ std::array<double, 2> Groove::edge_on_face_share() const {
   if (n_m > 0) hi = std::min(hi, reach / n_m);
   if (n_m < 0) lo = std::max(lo, reach / n_m);
   if (n_m == 0 && reach < 0) return {0, 0};
-  std::vector<std::pair<double, double>> kept{{lo, hi}};
+  std::array<std::pair<double, double>, 2> kept{{{lo, hi}, {0, 0}}};
   if (const double h = -corner_ - ae_ * side_.z(); side_.z() < 0) {
     const double half =
         h >= 0 ? radius_ : flat_radius_ + std::sqrt(std::max(0.0, corner_ * corner_ - h * h));
     const double cut_lo = ae_ * e_m - half, cut_hi = ae_ * e_m + half;
-    kept = {{lo, std::min(hi, cut_lo)}, {std::max(lo, cut_hi), hi}};
+    kept = {{{lo, std::min(hi, cut_lo)}, {std::max(lo, cut_hi), hi}}};
   }
   const double r0 = flat_radius_;
   // The area of the chords over [a, b]: the integral of 2 sqrt(R0^2 - u^2).

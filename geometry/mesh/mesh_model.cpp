@@ -155,13 +155,13 @@ void project_arrays(const double* xs, const double* ys, const double* zs, std::s
     std::memcpy(&v, a, sizeof v);
     return v;
   };
-  const auto both = [](double x) { return D2{x, x}; };
-  const D2 a00 = both(axes(0, 0)), a01 = both(axes(0, 1)), a02 = both(axes(0, 2));
-  const D2 a10 = both(axes(1, 0)), a11 = both(axes(1, 1)), a12 = both(axes(1, 2));
-  const D2 a20 = both(axes(2, 0)), a21 = both(axes(2, 1)), a22 = both(axes(2, 2));
+  const auto splat = [](double x) { return D2{x, x}; };  // x in both lanes
+  const D2 a00 = splat(axes(0, 0)), a01 = splat(axes(0, 1)), a02 = splat(axes(0, 2));
+  const D2 a10 = splat(axes(1, 0)), a11 = splat(axes(1, 1)), a12 = splat(axes(1, 2));
+  const D2 a20 = splat(axes(2, 0)), a21 = splat(axes(2, 1)), a22 = splat(axes(2, 2));
   constexpr double inf = std::numeric_limits<double>::infinity();
-  D2 l0 = both(inf), l1 = l0, l2 = l0;
-  D2 h0 = both(-inf), h1 = h0, h2 = h0;
+  D2 l0 = splat(inf), l1 = l0, l2 = l0;
+  D2 h0 = splat(-inf), h1 = h0, h2 = h0;
   // q < l ? q : l lane by lane is std::min(l, q) (minpd on x86-64).
   const auto two = [&](D2 x, D2 y, D2 z) {
     const D2 q0 = (a00 * x + a01 * y) + a02 * z;
@@ -176,7 +176,7 @@ void project_arrays(const double* xs, const double* ys, const double* zs, std::s
   };
   std::size_t i = 0;
   for (; i + 2 <= n; i += 2) two(load(xs + i), load(ys + i), load(zs + i));
-  if (i < n) two(both(xs[i]), both(ys[i]), both(zs[i]));  // an odd last corner in both lanes
+  if (i < n) two(splat(xs[i]), splat(ys[i]), splat(zs[i]));  // an odd last corner in both lanes
   lo = {std::min(l0[0], l0[1]), std::min(l1[0], l1[1]), std::min(l2[0], l2[1])};
   hi = {std::max(h0[0], h0[1]), std::max(h1[0], h1[1]), std::max(h2[0], h2[1])};
   if ((lo.array() != 0).all() && (hi.array() != 0).all()) return;

@@ -80,10 +80,21 @@ std::pair<double, double> bracket_root(const Function& g, double lo, double hi, 
   return {lo, hi};
 }
 
+// The root of g in [lo, hi], where g(lo) < 0 < g(hi): Newton's method on
+// g_and_slope(t) = {g, g'}, a step leaving the bracket bisecting it, until
+// a step is below `tolerance`, whose end is the root.
 template <class Function>
-double root(const Function& g, double lo, double hi, double tolerance) {
-  const auto [a, b] = bracket_root(g, lo, hi, g(lo), g(hi), tolerance);
-  return 0.5 * (a + b);
+double newton_root(const Function& g_and_slope, double lo, double hi, double tolerance) {
+  double t = 0.5 * (lo + hi);
+  for (int i = 0; i < 200 && hi - lo > tolerance; ++i) {
+    const auto [g, slope] = g_and_slope(t);
+    if (g == 0) return t;
+    (g < 0 ? lo : hi) = t;
+    const double next = t - g / slope;
+    if (std::abs(next - t) <= tolerance && next >= lo && next <= hi) return next;
+    t = next > lo && next < hi ? next : 0.5 * (lo + hi);
+  }
+  return t;
 }
 
 // sqrt(x^2 + y^2): the lengths here are mm-sized, far from over- and
@@ -232,12 +243,11 @@ void form_roots(const Form<N>& f, const Found& found) {
   }
   // The root in [lo, hi], where the form changes sign (its values at the
   // ends g_lo, g_hi): Newton's method kept in the shrinking bracket (a
-  // step leaving it bisects), until a step is below 2e-16 (about a unit in
-  // the last place of tau, 8e-16 in phi at most) or, once below 1e-10, no
-  // longer halves the one before (the values are round-off there): that
-  // step's end is the root.
+  // step leaving it bisects), until a step is below 1e-9: that step's end
+  // is the root, within about the step squared (the roots are stationary
+  // points of r and z, which their error moves by its square again).
   const auto polish = [&](double lo, double hi, double g_lo, double g_hi) {
-    double x = lo - g_lo * (hi - lo) / (g_hi - g_lo), last_step = hi - lo;
+    double x = lo - g_lo * (hi - lo) / (g_hi - g_lo);
     for (int i = 0; i < 100; ++i) {
       const double g = form_at(f, x);
       if (g == 0) return x;
@@ -246,9 +256,8 @@ void form_roots(const Form<N>& f, const Found& found) {
       else
         hi = x;
       const double newton = x - g / form_at(slope, x), step = std::abs(newton - x);
-      if (step <= 2e-16 || (step < 1e-10 && step > 0.5 * last_step)) return newton;
+      if (step <= 1e-9) return newton;
       if (hi - lo <= 2e-16) return 0.5 * (lo + hi);
-      last_step = step;
       x = newton > lo && newton < hi ? newton : 0.5 * (lo + hi);
     }
     return x;
@@ -274,11 +283,14 @@ void form_roots(const Form<N>& f, const Found& found) {
     // triangle's left edge, the right half's its right edge.
     Cell& right = stack[size++];
     Cell& left = stack[size++];
-    std::array<double, N + 1> row = cell.b;
+    // (Two rows in turn: averaging a row in place stalled on its own stores.)
+    std::array<std::array<double, N + 1>, 2> rows{cell.b, {}};
     for (int k = 0; k <= N; ++k) {
+      const auto& row = rows[k % 2];
+      auto& next = rows[(k + 1) % 2];
       left.b[k] = row[0];
       right.b[N - k] = row[N - k];
-      for (int i = 0; i < N - k; ++i) row[i] = 0.5 * (row[i] + row[i + 1]);
+      for (int i = 0; i < N - k; ++i) next[i] = 0.5 * (row[i] + row[i + 1]);
     }
     const double middle = 0.5 * (cell.lo + cell.hi);
     left.lo = cell.lo;
@@ -314,13 +326,18 @@ class Groove {
     // +z projects to w = (e_z, N_z); the silhouette normal u(phi) has U_z =
     // |w| cos(phi - omega) <= 0 on the lower boundary phi in [phiL, phiR].
     omega_ = std::atan2(normal_.z(), side_.z());
+    // cos and sin of omega, for the feet at omega + pi/2 and omega + 3 pi/2
+    // and the silhouette's highest-normal point at omega + pi without libm.
+    const double w = length_of(side_.z(), normal_.z());
+    cos_omega_ = w > 0 ? side_.z() / w : 1;
+    sin_omega_ = w > 0 ? normal_.z() / w : 0;
     phi_left_ = omega_ + kPi / 2;
     phi_bottom_ = 1.5 * kPi;
     phi_right_ = omega_ + 1.5 * kPi;
     c_min_ = -flat_radius_ * std::hypot(normal_.x(), normal_.y()) - corner_;
     c0_ = c_min_ + ap;
-    foot_left_ = silhouette(phi_left_);
-    foot_right_ = silhouette(phi_right_);
+    foot_left_ = silhouette_at(-sin_omega_, cos_omega_);
+    foot_right_ = silhouette_at(sin_omega_, -cos_omega_);
     c_foot_ = {normal_.dot(foot_left_), normal_.dot(foot_right_)};
     edge_on_ = std::abs(feed_.z()) <= kEdgeOn;
     face_in_front_ = !edge_on_ && feed_.z() < 0;
@@ -335,9 +352,20 @@ class Groove {
   // Whether the feed is parallel to the end face (see kEdgeOn).
   bool edge_on() const { return edge_on_; }
 
+  // cos(phi) and sin(phi), turned from the bottom phi = 3 pi / 2: by the
+  // series within half a radian of it, where most of the angles asked lie.
+  std::pair<double, double> cos_sin(double phi) const {
+    const auto [c, s] = cos_sin_small(phi - phi_bottom_);
+    return {s, -c};
+  }
+
   // The silhouette point with outward normal U = cos(phi) e + sin(phi) N.
   Vector3d silhouette(double phi) const {
-    const Vector3d u = std::cos(phi) * side_ + std::sin(phi) * normal_;
+    const auto [cos_phi, sin_phi] = cos_sin(phi);
+    return silhouette_at(cos_phi, sin_phi);
+  }
+  Vector3d silhouette_at(double cos_phi, double sin_phi) const {
+    const Vector3d u = cos_phi * side_ + sin_phi * normal_;
     const double length = length_of(u.x(), u.y());
     const double scale = length > 0 ? flat_radius_ / length : 0;
     return {scale * u.x() + corner_ * u.x(), scale * u.y() + corner_ * u.y(), corner_ * u.z()};
@@ -358,9 +386,9 @@ class Groove {
   }
 
   // r of the silhouette point at phi: R0 + rc |U_xy|, U_z = |w| cos(phi - omega).
-  double silhouette_r(double phi) const {
-    const Vector3d u = std::cos(phi) * side_ + std::sin(phi) * normal_;
-    return flat_radius_ + corner_ * std::sqrt(std::max(0.0, 1 - u.z() * u.z()));
+  double silhouette_r(double cos_phi, double sin_phi) const {
+    const double u_z = cos_phi * side_.z() + sin_phi * normal_.z();
+    return flat_radius_ + corner_ * std::sqrt(std::max(0.0, 1 - u_z * u_z));
   }
 
   struct BoundaryPoint {
@@ -374,7 +402,7 @@ class Groove {
   // ellipse A(disk R0)'s there, R0 det(A)^2 / |A^T N|^3 = R0 F_z^2 / |N_xy|^3
   // (infinite for a level tool: the face is Q's flat bottom).
   double bottom_curvature_radius() const {
-    return corner_ + flat_radius_ * feed_.z() * feed_.z() / std::pow(rim_tilt_, 3);
+    return corner_ + flat_radius_ * feed_.z() * feed_.z() / (rim_tilt_ * rim_tilt_ * rim_tilt_);
   }
 
   // Q's left or right boundary point at the stock level c0.
@@ -418,7 +446,8 @@ class Groove {
     // c(phi) - c at the bracket's ends, NaN until evaluated there.
     double g_a = std::numeric_limits<double>::quiet_NaN(), g_b = g_a;
     // cos and sin of phi, by rotation from those of the last phi.
-    double cos_phi = std::cos(phi), sin_phi = std::sin(phi), phi_at = phi;
+    auto [cos_phi, sin_phi] = cos_sin(phi);
+    double phi_at = phi;
     for (int i = 0; i < 200 && b - a > 1e-14; ++i) {
       std::tie(cos_phi, sin_phi) = rotated(cos_phi, sin_phi, phi - phi_at);
       phi_at = phi;
@@ -432,10 +461,12 @@ class Groove {
       const Vector3d p(flat_radius_ * u.x() / length + corner_ * u.x(),
                        flat_radius_ * u.y() / length + corner_ * u.y(), corner_ * u.z());
       const double g = normal_.dot(p) - c;
-      if (g == 0) {
-        a = b = phi;
-        break;
-      }
+      // On the root: the point just evaluated is the answer.
+      const auto root_here = [&] {
+        warm = phi;
+        return BoundaryPoint{p, side_.dot(p), phi, 0};
+      };
+      if (g == 0) return root_here();
       if ((g > 0) == (sign > 0)) {
         b = phi;  // c(phi) beyond c: the root is below phi
         g_b = g;
@@ -455,10 +486,7 @@ class Groove {
       // whose ends are interpolated below.
       const double step = slope != 0 ? g / slope : kInf;
       if (std::abs(step) < 1e-14) {
-        if (std::abs(g) < 1e-12 * radius_) {
-          a = b = phi;
-          break;
-        }
+        if (std::abs(g) < 1e-12 * radius_) return root_here();
         phi = 0.5 * (a + b);
         continue;
       }
@@ -721,7 +749,7 @@ class Groove {
     const double hi = left_on_ray ? phi_right_ : phi_bottom_;
     const double tolerance = 1e-13 * radius_;
     if (!(phi > lo && phi < hi)) phi = left_on_ray ? phi_right_ - 1e-9 : phi_left_ + 1e-9;
-    double cos_phi = std::cos(phi), sin_phi = std::sin(phi);  // turned with phi
+    auto [cos_phi, sin_phi] = cos_sin(phi);  // turned with phi
     for (int i = 0; i < 40; ++i) {
       const auto [p, t] = silhouette_and_tangent(cos_phi, sin_phi);
       const double c = normal_.dot(p), b = side_.dot(p);
@@ -756,8 +784,8 @@ class Groove {
     const double tolerance = 1e-13 * radius_;
     int shortened = 0;
     // cos and sin of the two angles, turned with them (steps <= 0.3 rad).
-    double cos_l = std::cos(phi_l), sin_l = std::sin(phi_l);
-    double cos_r = std::cos(phi_r), sin_r = std::sin(phi_r);
+    auto [cos_l, sin_l] = cos_sin(phi_l);
+    auto [cos_r, sin_r] = cos_sin(phi_r);
     for (int i = 0; i < 40; ++i) {
       const auto [p_l, t_l] = silhouette_and_tangent(cos_l, sin_l);
       const auto [p_r, t_r] = silhouette_and_tangent(cos_r, sin_r);
@@ -871,6 +899,7 @@ class Groove {
   double radius_, flat_radius_, corner_, ae_;
   Vector3d feed_, normal_, side_;
   double omega_ = 0, phi_left_ = 0, phi_bottom_ = 0, phi_right_ = 0;
+  double cos_omega_ = 1, sin_omega_ = 0;
   double c_min_ = 0, c0_ = 0;
   std::array<BoundaryPoint, 2> top_{};  // boundary(c0, left), boundary(c0, right)
   Vector3d foot_left_, foot_right_;
@@ -887,10 +916,15 @@ class Groove {
 // RadiusExtremes of r over the silhouette arc phi in [phi_lo, phi_hi]: r depends
 // on |U_z| only, smallest where |U_z| peaks (phi = omega + pi).
 void Groove::silhouette_extremes(double phi_lo, double phi_hi, RadiusExtremes& out) const {
-  for (const double phi : {phi_lo, phi_hi, omega_ + kPi}) {
-    if (phi < phi_lo || phi > phi_hi) continue;
-    out.add(silhouette_r(phi), silhouette(phi).z());
+  const auto add = [&](double cos_phi, double sin_phi) {
+    const double u_z = cos_phi * side_.z() + sin_phi * normal_.z();
+    out.add(silhouette_r(cos_phi, sin_phi), corner_ * u_z);
+  };
+  for (const double phi : {phi_lo, phi_hi}) {
+    const auto [cos_phi, sin_phi] = cos_sin(phi);
+    add(cos_phi, sin_phi);
   }
+  if (const double top = omega_ + kPi; top >= phi_lo && top <= phi_hi) add(-cos_omega_, -sin_omega_);
 }
 
 // The stock line c = c0 up to b_hi = bL(c0) + ae: its front points are an arc
@@ -1178,15 +1212,23 @@ void Groove::face_extremes(RadiusExtremes& out) const {
   const auto disk_radius = [&](double h) {
     return h >= 0 ? radius_ : flat_radius_ + std::sqrt(std::max(0.0, corner_ * corner_ - h * h));
   };
-  const auto g = [&](double t) {
+  // g and g' = (|F_xy|^2 |C|^2 - (C.F_xy)^2) / |C|^3 + sink^2 rc^2 / (rc^2 - h^2)^(3/2).
+  const auto g_and_slope = [&](double t) {
     const double x = cx + t * fx, y = cy + t * fy, h = height(t);
-    const double widening =
-        h < 0 && sink > 0 ? -h / std::sqrt(corner_ * corner_ - h * h) * sink : 0;
-    return (x * fx + y * fy) / length_of(x, y) - widening;
+    const double length = length_of(x, y), along = x * fx + y * fy;
+    double g = along / length;
+    double slope = (f2 * length * length - along * along) / (length * length * length);
+    if (h < 0 && sink > 0) {
+      const double q = corner_ * corner_ - h * h, root_q = std::sqrt(q);
+      g += h / root_q * sink;
+      slope += sink * sink * corner_ * corner_ / (q * root_q);
+    }
+    return std::pair{g, slope};
   };
-  const double g_lo = g(t_lo), g_hi = g(t_hi);
+  const double g_lo = g_and_slope(t_lo).first, g_hi = g_and_slope(t_hi).first;
   if (!(g_hi > 0)) return;
-  const double t = g_lo >= 0 ? t_lo : root(g, t_lo, t_hi, 1e-15 * (t_hi - t_lo));
+  // r = |C| - rho is stationary at the root: its error moves r by its square.
+  const double t = g_lo >= 0 ? t_lo : newton_root(g_and_slope, t_lo, t_hi, 1e-13 * (t_hi - t_lo));
   const double x = cx + t * fx, y = cy + t * fy, distance = length_of(x, y);
   if (!(distance > 0)) return;
   const double scale = (distance - disk_radius(height(t))) / distance;

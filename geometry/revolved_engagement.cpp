@@ -447,7 +447,7 @@ class Groove {
     double g_a = std::numeric_limits<double>::quiet_NaN(), g_b = g_a;
     // cos and sin of phi, by rotation from those of the last phi.
     auto [cos_phi, sin_phi] = cos_sin(phi);
-    double phi_at = phi;
+    double phi_at = phi, last_step = kInf;
     for (int i = 0; i < 200 && b - a > 1e-14; ++i) {
       std::tie(cos_phi, sin_phi) = rotated(cos_phi, sin_phi, phi - phi_at);
       phi_at = phi;
@@ -474,17 +474,29 @@ class Groove {
         a = phi;
         g_a = g;
       }
-      // d/dphi of R0 U_xy/|U_xy| + rc U.
-      const double along = (u.x() * du.x() + u.y() * du.y()) / (length * length);
-      const double slope =
-          flat_radius_ / length *
-              (normal_.x() * (du.x() - u.x() * along) + normal_.y() * (du.y() - u.y() * along)) +
-          corner_ * normal_.dot(du);
-      // Converged when the step is round-off and so is the miss in c; where
-      // c(phi) is that steep (near an edge-on face a step of 1e-14 still
-      // missed by 1e-5 mm) the bracket is bisected onto the steep stretch,
-      // whose ends are interpolated below.
-      const double step = slope != 0 ? g / slope : kInf;
+      // c' and c'' of c = N.(R0 W + rc U), W = U_xy / |U_xy| = (cos a, sin a):
+      // W' = a' W+, W'' = a'' W+ - a'^2 W (W+ = W turned a quarter), a' =
+      // (U_xy x U_xy') / |U_xy|^2 and, as U'' = -U, a'' = -2 a' (U_xy.U_xy')
+      // / |U_xy|^2; N.U = sin(phi), N.U' = cos(phi).
+      const double l2 = length * length;
+      const double turn = (u.x() * du.y() - u.y() * du.x()) / l2;
+      const double turn_rate = -2 * turn * (u.x() * du.x() + u.y() * du.y()) / l2;
+      const double n_along = (normal_.x() * u.x() + normal_.y() * u.y()) / length;
+      const double n_across = (normal_.y() * u.x() - normal_.x() * u.y()) / length;
+      const double slope = flat_radius_ * turn * n_across + corner_ * cos_phi;
+      const double bend =
+          flat_radius_ * (turn_rate * n_across - turn * turn * n_along) - corner_ * sin_phi;
+      // Halley's step (three correct digits for one: from the osculating
+      // circle's guess two steps, where Newton's took four), Newton's where
+      // Halley's denominator does not keep the step's sign. Converged when
+      // the step is round-off and so is the miss in c; where c(phi) is that
+      // steep (near an edge-on face a step of 1e-14 still missed by 1e-5 mm)
+      // the bracket is bisected onto the steep stretch, whose ends are
+      // interpolated below.
+      const double halley = slope * slope - 0.5 * g * bend;
+      const double step = slope == 0           ? kInf
+                          : halley > 0         ? g * slope / halley
+                                               : g / slope;
       if (std::abs(step) < 1e-14) {
         if (std::abs(g) < 1e-12 * radius_) return root_here();
         phi = 0.5 * (a + b);
@@ -493,12 +505,17 @@ class Groove {
       // A step out of the bracket goes to the end it passes when that end
       // was never evaluated (a root at the foot or the bottom is reached in
       // one step, not by 30 bisections), else to the middle (c(phi) jumps
-      // across a face nearly parallel to F: the secant of the ends crawled).
+      // across a face nearly parallel to F: the secant of the ends crawled);
+      // so does a step not below half the last (across such a jump Halley's
+      // steps went to and fro inside the bracket).
       double next = phi - step;
-      if (!(next > a && next < b)) {
+      if (std::abs(step) > 0.5 * last_step) {
+        next = 0.5 * (a + b);
+      } else if (!(next > a && next < b)) {
         const bool low = !(next > a);
         next = std::isnan(low ? g_a : g_b) && std::isfinite(next) ? (low ? a : b) : 0.5 * (a + b);
       }
+      last_step = std::abs(step);
       phi = next;
     }
     warm = 0.5 * (a + b);

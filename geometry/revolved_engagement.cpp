@@ -494,9 +494,7 @@ class Groove {
       // the bracket is bisected onto the steep stretch, whose ends are
       // interpolated below.
       const double halley = slope * slope - 0.5 * g * bend;
-      const double step = slope == 0           ? kInf
-                          : halley > 0         ? g * slope / halley
-                                               : g / slope;
+      const double step = slope == 0 ? kInf : halley > 0 ? g * slope / halley : g / slope;
       if (std::abs(step) < 1e-14) {
         if (std::abs(g) < 1e-12 * radius_) return root_here();
         phi = 0.5 * (a + b);
@@ -941,7 +939,8 @@ void Groove::silhouette_extremes(double phi_lo, double phi_hi, RadiusExtremes& o
     const auto [cos_phi, sin_phi] = cos_sin(phi);
     add(cos_phi, sin_phi);
   }
-  if (const double top = omega_ + kPi; top >= phi_lo && top <= phi_hi) add(-cos_omega_, -sin_omega_);
+  if (const double top = omega_ + kPi; top >= phi_lo && top <= phi_hi)
+    add(-cos_omega_, -sin_omega_);
 }
 
 // The stock line c = c0 up to b_hi = bL(c0) + ae: its front points are an arc

@@ -1528,12 +1528,21 @@ std::pair<double, double> Groove::front_for_area(const Vector3d& x0, double& war
     const Excess e = core_excess(x0 + warm * feed_);
     if (e.slope > 0) t = e.value >= 0 ? warm : warm - e.value / e.slope;
   }
+  // A step below 1e-9 R ends the walk and the point before it is the
+  // answer: r and n.F within about 1e-9 R, far below the mean's tolerance
+  // (1e-5 relative; the walks went on to 1e-13 R and took one more excess).
+  // Not Halley's steps: from outside they can pass the front, and on a
+  // fibre grazing the tool past its nearest approach to the core, where
+  // the slope turns and the fibre counted as a miss (2e-4 mm off).
   for (int i = 0; i < 60; ++i) {
     const Excess e = core_excess(x0 + t * feed_);
     if (!(e.slope > 0)) return {0, 0};
     const double step = e.value / e.slope;
+    if (std::abs(step) <= 1e-9 * radius_) {
+      warm = t - step;
+      return {e.rho, e.slope};
+    }
     t -= step;
-    if (std::abs(step) <= 1e-13 * radius_) break;
   }
   warm = t;
   const Excess e = core_excess(x0 + t * feed_);

@@ -30,6 +30,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -344,7 +345,7 @@ class Groove {
     rim_tilt_ = length_of(normal_.x(), normal_.y());
     // The shank's lowest point along N is at -R |N_xy|.
     shank_in_stock_ = c0_ + radius_ * rim_tilt_ > 0;
-    top_ = {boundary(c0_, true), boundary(c0_, false)};  // boundary() needs the members above
+    left_top_ = boundary(c0_, true);  // boundary() needs the members above
   }
 
   double radius() const { return radius_; }
@@ -406,7 +407,12 @@ class Groove {
   }
 
   // Q's left or right boundary point at the stock level c0.
-  const BoundaryPoint& top(bool left) const { return top_[left ? 0 : 1]; }
+  // (The right one when first asked: a narrow groove's extremes do without.)
+  const BoundaryPoint& top(bool left) const {
+    if (left) return left_top_;
+    if (!right_top_) right_top_ = boundary(c0_, false);
+    return *right_top_;
+  }
 
   // The left (smallest b) or right boundary point of Q at level c.
   BoundaryPoint boundary(double c, bool left) const {
@@ -702,7 +708,9 @@ class Groove {
     double c;
     BoundaryPoint left, right;
   };
-  WidthLevel width_level(const BoundaryPoint& left_top, const BoundaryPoint& right_top) const {
+  WidthLevel width_level() const {
+    if (const auto level = narrow_width_level()) return *level;
+    const BoundaryPoint &left_top = top(true), &right_top = top(false);
     if (right_top.b - left_top.b <= ae_) return {c0_, left_top, right_top};
     const BoundaryPoint left_bottom = boundary(c_min_, true),
                         right_bottom = boundary(c_min_, false);
@@ -715,21 +723,28 @@ class Groove {
         if (const auto level = width_level_beside_ray(left, other.phi)) return *level;
       }
     }
-    // A narrow groove has c* just above the bottom: Newton's method starts
-    // there, from the bottom's osculating circle of radius rho (the width
-    // ae a chord of it), rather than from the levels at c0 (the post's
-    // passes ae = 0.02-0.1 mm apart took 3 slices of 2 boundary solves).
-    double phi_l = left_top.phi, phi_r = right_top.phi;
-    if (const double rho = bottom_curvature_radius(); ae_ < rho) {
-      const double half_angle = std::asin(0.5 * ae_ / rho);
-      if (half_angle > 0 && phi_bottom_ - half_angle > phi_l && phi_bottom_ + half_angle < phi_r) {
-        phi_l = phi_bottom_ - half_angle;
-        phi_r = phi_bottom_ + half_angle;
-      }
-    }
-    if (const auto level = width_level_on_silhouette(phi_l, phi_r)) return *level;
+    if (const auto level = width_level_on_silhouette(left_top.phi, right_top.phi)) return *level;
     const double c = width_level_by_slices(right_bottom.b - left_bottom.b - ae_);
     return {c, boundary(c, true), boundary(c, false)};
+  }
+
+  // A narrow groove has c* just above the bottom: Newton's method starts
+  // there, from the bottom's osculating circle of radius rho (the width ae
+  // a chord of it), rather than from the levels at c0 (the post's passes
+  // ae = 0.02-0.1 mm apart took 3 slices of 2 boundary solves). Tried
+  // first, on the bull-nose: the width of Q's slices never decreases up
+  // its shank, so a level in (c_min, c0) of width ae is c*, with both its
+  // points on the silhouette (the solve fails where one is on a ray), and
+  // the right boundary at c0 is not needed (a tenth of an evaluation).
+  std::optional<WidthLevel> narrow_width_level() const {
+    if (!(corner_ > 0)) return std::nullopt;
+    const double rho = bottom_curvature_radius();
+    if (!(ae_ < rho)) return std::nullopt;
+    const double half_angle = std::asin(0.5 * ae_ / rho);
+    if (!(half_angle > 0 && phi_bottom_ - half_angle > left_top_.phi &&
+          phi_bottom_ + half_angle < phi_right_))
+      return std::nullopt;
+    return width_level_on_silhouette(phi_bottom_ - half_angle, phi_bottom_ + half_angle);
   }
 
   // The flat mill's Q is bounded below by the rim's ellipse A disk(R0)
@@ -916,7 +931,8 @@ class Groove {
   double omega_ = 0, phi_left_ = 0, phi_bottom_ = 0, phi_right_ = 0;
   double cos_omega_ = 1, sin_omega_ = 0;
   double c_min_ = 0, c0_ = 0;
-  std::array<BoundaryPoint, 2> top_{};  // boundary(c0, left), boundary(c0, right)
+  BoundaryPoint left_top_;                          // boundary(c0, left)
+  mutable std::optional<BoundaryPoint> right_top_;  // boundary(c0, right), see top()
   Vector3d foot_left_, foot_right_;
   std::array<double, 2> c_foot_{};  // N.foot, left and right
   bool edge_on_ = false;
@@ -1254,12 +1270,12 @@ void Groove::face_extremes(RadiusExtremes& out) const {
 
 RadiusExtremes Groove::extremes() const {
   RadiusExtremes out;
-  const BoundaryPoint& left_top = top_[0];
+  const BoundaryPoint& left_top = left_top_;
   // The far silhouette (away from the previous pass), from the bottom to c0.
   silhouette_extremes(left_top.phi, phi_bottom_, out);
   if (left_top.ray > 0) out.add(left_top.p);
   // The near silhouette below c*.
-  const WidthLevel level = width_level(left_top, top_[1]);
+  const WidthLevel level = width_level();
   silhouette_extremes(phi_bottom_, level.right.phi, out);
   if (level.right.ray > 0) out.add(level.right.p);
   // The shifted silhouette, from c* up to c0.
@@ -1590,7 +1606,7 @@ double Groove::mean_over_groove() const {
     levels.push_back(centre - half);
     levels.push_back(centre + half);
   }
-  const WidthLevel width = width_level(top_[0], top_[1]);
+  const WidthLevel width = width_level();
   levels.push_back(width.c);
   std::vector<double> cuts;
   const auto slice = [&](double c) {

@@ -134,10 +134,12 @@ Form<N> operator*(double k, Form<N> x) {
 // The forms of cos(phi), sin(phi) and 1 (degree 2) on one arc.
 class ArcForms {
  public:
-  ArcForms(double lo, double hi) : half_(std::tan(0.25 * (hi - lo))) {
-    const double mid = 0.5 * (lo + hi), w2 = half_ * half_;
-    cos_mid_ = std::cos(mid);
-    sin_mid_ = std::sin(mid);
+  // cos_sin_mid: cos and sin of the arc's middle.
+  ArcForms(double lo, double hi, std::pair<double, double> cos_sin_mid)
+      : cos_mid_(cos_sin_mid.first), sin_mid_(cos_sin_mid.second) {
+    const auto [cos_quarter, sin_quarter] = cos_sin_small(0.25 * (hi - lo));
+    half_ = sin_quarter / cos_quarter;
+    const double w2 = half_ * half_;
     // Bernstein coefficients of 1 - w^2, 2w and 1 + w^2 on [-W, W]: the
     // values at the ends and f(-W) + W f'(-W) in the middle, scaled.
     const std::array<double, 3> cos_rel{1 - w2, 2 * (1 + w2), 1 - w2};
@@ -181,7 +183,7 @@ class ArcForms {
   }
 
  private:
-  double half_, cos_mid_ = 1, sin_mid_ = 0;
+  double cos_mid_ = 1, sin_mid_ = 0, half_ = 0;
   Form<2> cos_, sin_, one_;
 };
 
@@ -659,10 +661,17 @@ class Groove {
       }
       return excess(t).value <= touch ? std::optional<double>(t) : std::nullopt;
     };
-    const std::optional<double> hi = walk(t2, -1);
+    // The walks start where the line enters the slab z >= -rc too, if that
+    // is nearer (still outside the core's rc: a step or two fewer).
+    double front_start = t2, back_start = t1;
+    if (feed_.z() != 0) {
+      const double t_face = (-corner_ - x0.z()) / feed_.z();
+      (feed_.z() < 0 ? front_start : back_start) = std::clamp(t_face, t1, t2);
+    }
+    const std::optional<double> hi = walk(front_start, -1);
     if (!hi) return std::nullopt;
     if (only_front) return std::pair{*hi, *hi};
-    const std::optional<double> lo = walk(t1, +1);
+    const std::optional<double> lo = walk(back_start, +1);
     if (!lo || *lo > *hi) return std::pair{*hi, *hi};
     return std::pair{*lo, *hi};
   }
@@ -1112,7 +1121,8 @@ void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
   // Arcs of at most pi (the left boundary spans no more): W <= tan(pi / 4) = 1.
   const int arcs = std::max(1, static_cast<int>(std::ceil((hi - lo) / kPi)));
   for (int arc = 0; arc < arcs; ++arc) {
-    const ArcForms forms(lo + (hi - lo) * arc / arcs, lo + (hi - lo) * (arc + 1) / arcs);
+    const double arc_lo = lo + (hi - lo) * arc / arcs, arc_hi = lo + (hi - lo) * (arc + 1) / arcs;
+    const ArcForms forms(arc_lo, arc_hi, cos_sin(0.5 * (arc_lo + arc_hi)));
     // A root of a piece's polynomial counts if x lies on that piece (within
     // round-off): beyond the face's rim its plane stays within 1e-9 R of the
     // corner for sqrt(2e-9 R rc), so the surface test alone took the

@@ -63,8 +63,13 @@ struct ContactHint {
   // out saves the second fundamental form on every query).
   bool curvature = true;
   // Bull-nose and flat end mills (tool_contact.h): the previous contact's
-  // core disc point, relative to the disc's centre (xy, mm).
+  // core disc point, relative to the disc's centre (xy, mm); when it and
+  // the one before lay on the rim, the angle the contact turned between
+  // them (rad), the next one's first guess; and the rim solve's last slope
+  // (0: unknown).
   Eigen::Vector2d rim = Eigen::Vector2d::Zero();
+  double rim_turn = 0;
+  double rim_slope = 0;
   // Counters, for reports and benchmarks only.
   std::uint64_t warm_queries = 0;  // answered from the hint
   std::uint64_t cold_queries = 0;  // went through the spatial index
@@ -89,6 +94,11 @@ class SurfaceModel {
   virtual Eigen::AlignedBox3d bounds() const = 0;
 
   virtual int face_count() const = 0;
+
+  // Whether the surface is made of flat facets (a mesh): its normals are
+  // constant over each facet, not smooth (tool_contact.h solves smooth
+  // surfaces' rim contacts by secant steps, facets' by gradient steps).
+  virtual bool faceted() const { return false; }
 
  protected:
   SurfaceModel() = default;

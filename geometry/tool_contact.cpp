@@ -1,7 +1,10 @@
 #include "geometry/tool_contact.h"
 
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 
 namespace vcpost::geometry {
 
@@ -19,6 +22,58 @@ Eigen::Vector2d onto_disc(const Eigen::Vector2d& q, double radius) {
   return length > radius ? Eigen::Vector2d(q * (radius / length)) : q;
 }
 
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+// On the rim the minimum lies where the rim point q faces -g (g the
+// distance's gradient there): q = -R0 g/|g|. Its angle is found as the root
+// of the angle from q to -g, which falls through zero there (the distance
+// along the rim has its minimum), by secant steps from the last two rim
+// points met: superlinear where the fixed-point step q <- -R0 g/|g| (what
+// a long gradient step projected onto the disc amounts to) converges only
+// linearly, slowly where the rim angle turns fast with the normal.
+class RimSecant {
+ public:
+  // `slope`: the residual's slope in angle known from a nearby solve, 0 if none.
+  explicit RimSecant(double slope) : slope_(slope) {}
+
+  // The rim point to try after q (on the rim, g pointing into the disc).
+  Eigen::Vector2d next(const Eigen::Vector2d& q, const Eigen::Vector2d& g) {
+    const double angle = std::atan2(q.y(), q.x());
+    const double residual = std::atan2(cross(q, -g), -q.dot(g));
+    if (known_) slope_ = (residual - residual_) / remainder(angle - angle_);
+    // The residual falls through a minimum; with no slope, or a rising one
+    // (a maximum, or round-off at the root), the fixed-point step.
+    const double step = slope_ < 0 ? std::clamp(-residual / slope_, -max_step, max_step) : residual;
+    known_ = true;
+    angle_ = angle;
+    residual_ = residual;
+    const double to = angle + step;
+    return q.norm() * Eigen::Vector2d(std::cos(to), std::sin(to));
+  }
+
+  // The last slope met, 0 if none.
+  double slope() const { return slope_ < 0 ? slope_ : 0; }
+
+ private:
+  static constexpr double max_step = 1.0;  // rad: a secant through a flat residual goes far
+  static double remainder(double angle) { return std::remainder(angle, 2 * std::numbers::pi); }
+  bool known_ = false;
+  double slope_ = 0, angle_ = 0, residual_ = 0;
+};
+
+bool on_rim(const Eigen::Vector2d& q, double radius) { return q.norm() >= (1 - 1e-12) * radius; }
+
+// The angle from a to b, in (-pi, pi].
+double turn(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return std::atan2(cross(a, b), a.dot(b));
+}
+
+Eigen::Vector2d rotated(const Eigen::Vector2d& q, double angle) {
+  return Eigen::Rotation2Dd(angle) * q;
+}
+
 }  // namespace
 
 BallContact tool_contact(const SurfaceModel& model, const Tool& tool, const Eigen::Vector3d& origin,
@@ -29,6 +84,11 @@ BallContact tool_contact(const SurfaceModel& model, const Tool& tool, const Eige
     return ball_contact(model, origin, tool.radius(), tolerance, search_margin, hint);
   }
   const double reach = 2 * disc + rc + search_margin;
+  // On a smooth surface the rim residual is smooth and secant steps find its
+  // root. On a mesh it is piecewise (a normal per facet) and the distance
+  // along the rim has shallow minima a facet apart, which secant steps jump
+  // between: there the gradient steps alone, as they always were.
+  const bool smooth = !model.faceted();
   const auto at = [&](const Eigen::Vector2d& q) {
     const Eigen::Vector3d centre = origin + Eigen::Vector3d(q.x(), q.y(), 0);
     return classify_ball_contact(centre, rc, tolerance, model.closest_point(centre, reach, hint));
@@ -40,11 +100,16 @@ BallContact tool_contact(const SurfaceModel& model, const Tool& tool, const Eige
   // against g; on the rim a long step is the fixed point q = -R0 g/|g|).
   const double long_step = 1e3 * tool.radius();
   const double converged = 1e-10 * tool.radius();
+  // Distances met this close are equal for all we know: the converged
+  // point wins over one lower by round-off only (up to 1e-8 rad away
+  // along the rim, where the distance is flat).
+  const double round_off = 1e-12 * tool.radius();
   struct Found {
     BallContact contact;
     Eigen::Vector2d where;
+    double rim_slope = 0;
   };
-  const auto descend = [&](const Eigen::Vector2d& start) {
+  const auto descend = [&](const Eigen::Vector2d& start, double rim_slope) {
     // Two slots, the best answer so far and the latest, swapped, not copied.
     std::array<BallContact, 2> slot;
     std::array<Eigen::Vector2d, 2> where;
@@ -54,10 +119,19 @@ BallContact tool_contact(const SurfaceModel& model, const Tool& tool, const Eige
     if (!slot[0].contact) return Found{slot[0], where[0]};
     Eigen::Vector2d q = where[0], g = slot[0].normal.head<2>();
     double alpha = long_step;
+    RimSecant rim(rim_slope);
+    int latest = 0;
     for (int query = 1; query < 16; ++query) {
-      const Eigen::Vector2d next = onto_disc(q - alpha * g, disc);
-      if ((next - q).norm() <= converged) break;
+      const Eigen::Vector2d next = smooth && on_rim(q, disc) && q.dot(g) < 0
+                                       ? rim.next(q, g)
+                                       : onto_disc(q - alpha * g, disc);
+      if ((next - q).norm() <= converged) {
+        if (smooth && slot[latest].distance_error <= slot[best].distance_error + round_off)
+          best = latest;
+        break;
+      }
       const int spare = 1 - best;
+      latest = spare;
       slot[spare] = at(next);
       where[spare] = next;
       if (!slot[spare].contact) break;
@@ -68,9 +142,13 @@ BallContact tool_contact(const SurfaceModel& model, const Tool& tool, const Eige
       g = slot[spare].normal.head<2>();
       if (slot[spare].distance_error < slot[best].distance_error) best = spare;
     }
-    return Found{slot[best], where[best]};
+    return Found{slot[best], where[best], rim.slope()};
   };
-  Found found = descend(hint ? hint->rim : Eigen::Vector2d::Zero());
+  // The rim angle turns smoothly along a path over a smooth face: a rim
+  // contact's next one is first sought that much further round.
+  const double turn_ahead = hint && hint->rim_slope < 0 ? hint->rim_turn : 0;
+  Found found = hint ? descend(rotated(hint->rim, turn_ahead), hint->rim_slope)
+                     : descend(Eigen::Vector2d::Zero(), 0);
   // Over a valley the distance has a minimum on each flank, and a descent
   // warm-started on the flank the tool last touched stops on it, lifted,
   // while the tool rests on the other. A lifted answer is checked from the
@@ -80,13 +158,18 @@ BallContact tool_contact(const SurfaceModel& model, const Tool& tool, const Eige
     const Eigen::Vector2d opposite =
         length > 0 ? Eigen::Vector2d(-disc / length * found.where) : Eigen::Vector2d(disc, 0);
     for (const Eigen::Vector2d& start : {opposite, Eigen::Vector2d(Eigen::Vector2d::Zero())}) {
-      const Found other = descend(start);
+      const Found other = descend(start, 0);
       if (other.contact.contact && other.contact.distance_error < found.contact.distance_error)
         found = other;
       if (found.contact.distance_error <= tolerance) break;
     }
   }
-  if (hint) hint->rim = found.where;
+  if (hint) {
+    const bool rim_to_rim = on_rim(hint->rim, disc) && on_rim(found.where, disc);
+    hint->rim_turn = rim_to_rim ? turn(hint->rim, found.where) : 0;
+    hint->rim_slope = found.rim_slope;
+    hint->rim = found.where;
+  }
   return found.contact;
 }
 

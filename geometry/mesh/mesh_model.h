@@ -50,6 +50,7 @@ class MeshModel final : public geometry::SurfaceModel {
                                                       geometry::ContactHint* hint) const override;
   Eigen::AlignedBox3d bounds() const override { return bounds_; }
   int face_count() const override { return static_cast<int>(slots_.size()); }
+  bool faceted() const override { return true; }
 
   std::size_t vertex_count() const { return vertices_.size(); }
   // Unit facet normal of triangle `face` (UnitZ for a degenerate one).

@@ -151,7 +151,10 @@ TEST(ToolContact, BowlTouchesTheDiscPointFarthestFromItsCentre) {
 // on the steep side, the descent stops in that flank's own minimum (the
 // rim point against its normal: 0.5 mm, as if lifted); the contact is the
 // least distance over the disc, on the shallow flank.
-TEST(ToolContact, ValleyFindsTheFlankItRestsOn) {
+// The bull-nose over a V valley, resting on the shallow flank with its
+// disc point on the steep side `lift` mm farther than rc from the steep
+// flank: the descent warm-started there stops on that flank, lifted.
+void expect_valley_contact_on_the_shallow_flank(double lift) {
   constexpr double kPi = 3.14159265358979323846;
   const double steep = 60 * kPi / 180, shallow = 20 * kPi / 180;
   PlanePatch left, right;  // meeting along the y axis at z = 0
@@ -168,12 +171,12 @@ TEST(ToolContact, ValleyFindsTheFlankItRestsOn) {
   const AnalyticModel model({left, right});
   const Tool tool = Tool::bull_nose(10, 2);  // R0 3, rc 2
   // Origin (x, 0, z): the disc point (x + 3, 0, z) at rc from the shallow
-  // flank, (x - 3, 0, z) at rc + 0.5 from the steep one.
+  // flank, (x - 3, 0, z) at rc + lift from the steep one.
   const Vector3d n_shallow(-std::sin(shallow), 0, std::cos(shallow));
   const Vector3d n_steep(std::sin(steep), 0, std::cos(steep));
   Eigen::Matrix2d a;
   a << n_shallow.x(), n_shallow.z(), n_steep.x(), n_steep.z();
-  const Eigen::Vector2d b(2 - 3 * n_shallow.x(), 2.5 + 3 * n_steep.x());
+  const Eigen::Vector2d b(2 - 3 * n_shallow.x(), 2 + lift + 3 * n_steep.x());
   const Eigen::Vector2d xz = a.lu().solve(b);
   const Vector3d origin(xz.x(), 0, xz.y());
   ContactHint hint;
@@ -184,6 +187,14 @@ TEST(ToolContact, ValleyFindsTheFlankItRestsOn) {
   expect_near(contact.normal, n_shallow, 1e-9);
   expect_near(contact.contact->point, origin + Vector3d(3, 0, 0) - 2 * n_shallow, 1e-9);
   EXPECT_NEAR(hint.rim.x(), 3, 1e-9);
+}
+
+TEST(ToolContact, ValleyFindsTheFlankItRestsOn) { expect_valley_contact_on_the_shallow_flank(0.5); }
+
+// Lifted by 5e-3 mm, within the 0.01 mm tolerance: still the wrong flank
+// (on the wavy raster 200 of 200,912 contacts stopped on one so).
+TEST(ToolContact, ValleyFindsTheFlankItRestsOnWhenTheOtherIsWithinTolerance) {
+  expect_valley_contact_on_the_shallow_flank(5e-3);
 }
 
 // The ball goes through ball_contact unchanged; tool_origin puts the tip rc

@@ -286,15 +286,21 @@ void form_roots(const Form<N>& f, const Found& found) {
     // triangle's left edge, the right half's its right edge.
     Cell& right = stack[size++];
     Cell& left = stack[size++];
-    // (Two rows in turn: averaging a row in place stalled on its own stores.)
-    std::array<std::array<double, N + 1>, 2> rows{cell.b, {}};
-    for (int k = 0; k <= N; ++k) {
-      const auto& row = rows[k % 2];
-      auto& next = rows[(k + 1) % 2];
-      left.b[k] = row[0];
-      right.b[N - k] = row[N - k];
-      for (int i = 0; i < N - k; ++i) next[i] = 0.5 * (row[i] + row[i + 1]);
+    // (In place, unrolled: the row stays in registers; vectorised, the
+    // averaging stalled on its own stores.)
+    std::array<double, N + 1> row = cell.b;
+    [&]<int... K>(std::integer_sequence<int, K...>) {
+      const auto level = [&]<int k>(std::integral_constant<int, k>) {
+        left.b[k] = row[0];
+        right.b[N - k] = row[N - k];
+        [&]<int... I>(std::integer_sequence<int, I...>) {
+          ((row[I] = 0.5 * (row[I] + row[I + 1])), ...);
+        }
+        (std::make_integer_sequence<int, N - k>{});
+      };
+      (level(std::integral_constant<int, K>{}), ...);
     }
+    (std::make_integer_sequence<int, N + 1>{});
     const double middle = 0.5 * (cell.lo + cell.hi);
     left.lo = cell.lo;
     left.hi = right.lo = middle;

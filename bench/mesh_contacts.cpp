@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/record_file.h"
 #include "geometry/mesh/mesh_model.h"
 #include "geometry/mesh/stl_reader.h"
 
@@ -103,26 +104,14 @@ int write(const std::string& stl, const std::string& out, std::size_t n) {
     const Eigen::Vector3d p = c.point + offsets[i % 3] * c.normal;
     records.push_back(record(model.closest_point(p, far, nullptr)));
   }
-  std::ofstream file(out, std::ios::binary);
-  file.write(reinterpret_cast<const char*>(records.data()),
-             static_cast<std::streamsize>(records.size() * sizeof(Record)));
+  const bool written = bench::write_records(out, records);
   std::printf("mesh_contacts: %zu answers written to %s\n", records.size(), out.c_str());
-  return file.good() ? 0 : 2;
-}
-
-std::vector<Record> read(const std::string& name) {
-  std::ifstream file(name, std::ios::binary | std::ios::ate);
-  if (!file) throw std::runtime_error("cannot read " + name);
-  const auto size = static_cast<std::size_t>(file.tellg());
-  std::vector<Record> records(size / sizeof(Record));
-  file.seekg(0);
-  file.read(reinterpret_cast<char*>(records.data()),
-            static_cast<std::streamsize>(records.size() * sizeof(Record)));
-  return records;
+  return written ? 0 : 2;
 }
 
 int compare(const std::string& a_name, const std::string& b_name) {
-  const std::vector<Record> a = read(a_name), b = read(b_name);
+  const std::vector<Record> a = bench::read_records<Record>(a_name),
+                            b = bench::read_records<Record>(b_name);
   if (a.size() != b.size()) {
     std::printf("mesh_contacts: %zu answers against %zu\n", a.size(), b.size());
     return 1;

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/record_file.h"
 #include "geometry/tool_contact.h"
 #include "postproc/cli/model_loader.h"
 
@@ -102,21 +103,8 @@ int write(const std::string& model_name, const std::string& gcode, const std::st
       points.size(), static_cast<double>(hint.warm_queries + hint.cold_queries) / n,
       static_cast<double>(hint.warm_queries) / n, static_cast<double>(hint.cold_queries) / n,
       1e6 * cpu / n);
-  std::ofstream file(out, std::ios::binary);
-  file.write(reinterpret_cast<const char*>(records.data()),
-             static_cast<std::streamsize>(records.size() * sizeof(Record)));
-  return file.good() ? 0 : 2;
-}
-
-std::vector<Record> read(const std::string& name) {
-  std::ifstream file(name, std::ios::binary | std::ios::ate);
-  if (!file) throw std::runtime_error("cannot read " + name);
-  const auto size = static_cast<std::size_t>(file.tellg());
-  std::vector<Record> records(size / sizeof(Record));
-  file.seekg(0);
-  file.read(reinterpret_cast<char*>(records.data()),
-            static_cast<std::streamsize>(records.size() * sizeof(Record)));
-  return records;
+  const bool written = bench::write_records(out, records);
+  return written ? 0 : 2;
 }
 
 double gap(const double (&a)[3], const double (&b)[3]) {
@@ -125,7 +113,8 @@ double gap(const double (&a)[3], const double (&b)[3]) {
 }
 
 int compare(const std::string& a_name, const std::string& b_name) {
-  const std::vector<Record> a = read(a_name), b = read(b_name);
+  const std::vector<Record> a = bench::read_records<Record>(a_name),
+                            b = bench::read_records<Record>(b_name);
   if (a.size() != b.size()) {
     std::printf("tool_contacts: %zu answers against %zu\n", a.size(), b.size());
     return 1;

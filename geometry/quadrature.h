@@ -49,6 +49,26 @@ double kronrod_rule_by_pairs(double f_centre, const Pair& pair, double half) {
   return sum * half;
 }
 
+// f's values (std::array<double, N> each) at the ascending nodes xs: by
+// f.sweep(xs) when f has it (an integrand that walks to its nodes side by
+// side, each walk waiting on square roots the others fill), else one by
+// one in order.
+template <class Function, std::size_t M>
+concept Sweeps = requires(const Function& f, const std::array<double, M>& xs) {
+  f.sweep(xs);
+};
+
+template <std::size_t N, class Function, std::size_t M>
+std::array<std::array<double, N>, M> values_at(const Function& f, const std::array<double, M>& xs) {
+  if constexpr (Sweeps<Function, M>) {
+    return f.sweep(xs);
+  } else {
+    std::array<std::array<double, N>, M> values;
+    for (std::size_t i = 0; i < M; ++i) values[i] = f(xs[i]);
+    return values;
+  }
+}
+
 // Integrals of the N components of f (returning std::array<double, N>) over
 // [breaks.front(), breaks.back()] by globally adaptive Gauss-Kronrod (7,
 // 15), the panels starting as the stretches between the ascending
@@ -76,15 +96,18 @@ std::array<double, N> integrate_capped(const Function& f, const std::vector<doub
     };
     // Evaluated in one sweep from a to b (an integrand that starts a root
     // search from its last answer starts next to it), summed as the rule lists them.
-    std::array<std::array<double, N>, 7> below, above;
-    for (std::size_t i = 0; i < 7; ++i) below[i] = f(centre - half * detail::kronrod_nodes[i]);
-    const std::array<double, N> middle = f(centre);
-    for (std::size_t i = 7; i-- > 0;) above[i] = f(centre + half * detail::kronrod_nodes[i]);
-    take(middle, detail::kronrod_weights[7], detail::gauss_weights[3]);
+    std::array<double, 15> xs;
+    for (std::size_t i = 0; i < 7; ++i) {
+      xs[i] = centre - half * detail::kronrod_nodes[i];
+      xs[14 - i] = centre + half * detail::kronrod_nodes[i];
+    }
+    xs[7] = centre;
+    const std::array<std::array<double, N>, 15> values = values_at<N>(f, xs);
+    take(values[7], detail::kronrod_weights[7], detail::gauss_weights[3]);
     for (std::size_t i = 0; i < 7; ++i) {
       const double gw = i % 2 == 1 ? detail::gauss_weights[i / 2] : 0.0;
-      take(below[i], detail::kronrod_weights[i], gw);
-      take(above[i], detail::kronrod_weights[i], gw);
+      take(values[i], detail::kronrod_weights[i], gw);
+      take(values[14 - i], detail::kronrod_weights[i], gw);
     }
     for (std::size_t k = 0; k < N; ++k) {
       panel.value[k] = kronrod[k] * half;
@@ -157,6 +180,35 @@ inline std::vector<double> breaks_within(std::vector<double> breaks, double lo, 
 // the end becomes smooth in theta. For integrands whose kinks are known
 // (the breaks) and of that kind: a piece then takes one or two panels
 // where bisection took many. At most `max_panels` panels a piece.
+namespace detail {
+// f on one piece in theta (see integrate_smoothed_pieces), sweeping when f does.
+template <std::size_t N, class Function>
+struct SmoothedPiece {
+  const Function& f;
+  double middle, half;
+
+  std::array<double, N> operator()(double theta) const {
+    std::array<double, N> value = f(middle - half * std::cos(theta));
+    const double jacobian = half * std::sin(theta);
+    for (double& v : value) v *= jacobian;
+    return value;
+  }
+
+  template <std::size_t M>
+  std::array<std::array<double, N>, M> sweep(
+      const std::array<double, M>& thetas) const requires Sweeps<Function, M> {
+    std::array<double, M> xs;
+    for (std::size_t i = 0; i < M; ++i) xs[i] = middle - half * std::cos(thetas[i]);
+    std::array<std::array<double, N>, M> values = f.sweep(xs);
+    for (std::size_t i = 0; i < M; ++i) {
+      const double jacobian = half * std::sin(thetas[i]);
+      for (double& v : values[i]) v *= jacobian;
+    }
+    return values;
+  }
+};
+}  // namespace detail
+
 template <std::size_t N, class Function>
 std::array<double, N> integrate_smoothed_pieces(const Function& f,
                                                 const std::vector<double>& breaks, double relative,
@@ -166,14 +218,8 @@ std::array<double, N> integrate_smoothed_pieces(const Function& f,
     const double middle = 0.5 * (breaks[k] + breaks[k + 1]);
     const double half = 0.5 * (breaks[k + 1] - breaks[k]);
     if (!(half > 0)) continue;
-    const auto piece = integrate_capped<N>(
-        [&](double theta) {
-          std::array<double, N> value = f(middle - half * std::cos(theta));
-          const double jacobian = half * std::sin(theta);
-          for (double& v : value) v *= jacobian;
-          return value;
-        },
-        0.0, std::numbers::pi, relative, absolute, max_panels);
+    const auto piece = integrate_capped<N>(detail::SmoothedPiece<N, Function>{f, middle, half}, 0.0,
+                                           std::numbers::pi, relative, absolute, max_panels);
     for (std::size_t i = 0; i < N; ++i) sum[i] += piece[i];
   }
   return sum;

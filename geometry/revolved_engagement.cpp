@@ -699,9 +699,15 @@ class Groove {
     return point_at(b, c, interval->second);
   }
 
-  // The bull-nose's front point on the fibre x0 + t F: its r and n.F (0
-  // when the fibre misses). `warm` is the last call's t, kept for the next.
-  std::pair<double, double> front_for_area(const Vector3d& x0, double& warm) const;
+  // The bull-nose's front point on a fibre, for the mean: its r and n.F
+  // (0 when the fibre misses), walked to a step at a time (see there).
+  class FrontWalk;
+  // The front points of the fibres x0s[i] + t F (a panel's nodes, in order
+  // along a slice). `warm` is the last answer's t, kept for the next call.
+  template <std::size_t M>
+  std::array<std::pair<double, double>, M> fronts_for_area(const std::array<Vector3d, M>& x0s,
+                                                           double& warm) const;
+  struct AlongSlice;
   RadiusExtremes extremes() const;
   double mean_diameter() const;
   double mean_over_groove() const;
@@ -1543,42 +1549,150 @@ double Groove::mean_diameter() const {
 // exit (the cylinder's exit, or the last fibre's t when it lies beyond)
 // walks monotonically onto it; from a point inside, its first step lands
 // beyond it (the tangent stays below a convex function).
-std::pair<double, double> Groove::front_for_area(const Vector3d& x0, double& warm) const {
-  const auto [fxy2, beta, disc] = cylinder_crossing(x0.x(), x0.y(), radius_);
-  if (!(disc > 0 && fxy2 > 0)) return {0, 0};
-  const double root = std::sqrt(disc);
-  double t = (-beta + root) / fxy2;
-  if (x0.z() + t * feed_.z() >= 0) return {radius_, root / radius_};  // (P_xy.F_xy) / R
-  if (face_in_front_) {
-    const double t_face = (-corner_ - x0.z()) / feed_.z();
-    const double x = x0.x() + t_face * feed_.x(), y = x0.y() + t_face * feed_.y();
-    const double rho = length_of(x, y);
-    if (rho <= flat_radius_) return {rho, -feed_.z()};
-    t = std::min(t, t_face);
-  }
-  if (warm < t) {
-    const Excess e = core_excess(x0 + warm * feed_);
-    if (e.slope > 0) t = e.value >= 0 ? warm : warm - e.value / e.slope;
-  }
-  // A step below 1e-9 R ends the walk and the point before it is the
-  // answer: r and n.F within about 1e-9 R, far below the mean's tolerance
-  // (1e-5 relative; the walks went on to 1e-13 R and took one more excess).
-  // Not Halley's steps: from outside they can pass the front, and on a
-  // fibre grazing the tool past its nearest approach to the core, where
-  // the slope turns and the fibre counted as a miss (2e-4 mm off).
-  for (int i = 0; i < 60; ++i) {
-    const Excess e = core_excess(x0 + t * feed_);
-    if (!(e.slope > 0)) return {0, 0};
-    const double step = e.value / e.slope;
-    if (std::abs(step) <= 1e-9 * radius_) {
-      warm = t - step;
-      return {e.rho, e.slope};
+// A fibre's walk to its front point: on the shank and on a leading face in
+// closed form; on the corner Newton's method on the distance to the core,
+// convex along the fibre, from outside (monotone), from the chain's last
+// answer when that lies before the cylinder r = R (Newton's step from a
+// point inside lands outside). A step below 1e-9 R ends the walk and the
+// point before it is the answer: r and n.F within about 1e-9 R, far below
+// the mean's tolerance (1e-5 relative). Not Halley's steps: from outside
+// they can pass the front, and on a fibre grazing the tool past its
+// nearest approach to the core, where the slope turns and the fibre
+// counted as a miss (2e-4 mm off).
+class Groove::FrontWalk {
+ public:
+  FrontWalk(const Groove& groove, const Vector3d& x0, double warm) : groove_(groove), x0_(x0) {
+    const Vector3d& feed = groove.feed_;
+    const auto [fxy2, beta, disc] = groove.cylinder_crossing(x0.x(), x0.y(), groove.radius_);
+    if (!(disc > 0 && fxy2 > 0)) {
+      finish({0, 0});
+      return;
     }
-    t -= step;
+    const double root = std::sqrt(disc);
+    t_ = (-beta + root) / fxy2;
+    if (x0.z() + t_ * feed.z() >= 0) {
+      finish({groove.radius_, root / groove.radius_});  // (P_xy.F_xy) / R
+      return;
+    }
+    if (groove.face_in_front_) {
+      const double t_face = (-groove.corner_ - x0.z()) / feed.z();
+      const double rho = length_of(x0.x() + t_face * feed.x(), x0.y() + t_face * feed.y());
+      if (rho <= groove.flat_radius_) {
+        finish({rho, -feed.z()});
+        return;
+      }
+      t_ = std::min(t_, t_face);
+    }
+    if (warm < t_) {
+      fallback_ = t_;
+      t_ = warm;
+    }
   }
-  warm = t;
-  const Excess e = core_excess(x0 + t * feed_);
-  return {e.rho, e.slope};
+
+  bool done() const { return done_; }
+  std::pair<double, double> result() const { return result_; }
+  // The answer's t (unchanged where the front is in closed form).
+  double t() const { return t_; }
+
+  // One excess evaluation and Newton's step from it.
+  void step() {
+    const Excess e = groove_.core_excess(x0_ + t_ * groove_.feed_);
+    if (!(e.slope > 0)) {
+      if (fallback_ < kInf) {  // the chain's last answer was no start: the cylinder's
+        t_ = std::exchange(fallback_, kInf);
+        return;
+      }
+      return finish({0, 0});
+    }
+    fallback_ = kInf;
+    const double newton = e.value / e.slope;
+    t_ -= newton;
+    if (std::abs(newton) <= 1e-9 * groove_.radius_ || ++steps_ == 60) finish({e.rho, e.slope});
+  }
+
+ private:
+  void finish(std::pair<double, double> result) {
+    result_ = result;
+    done_ = true;
+  }
+
+  const Groove& groove_;
+  Vector3d x0_;
+  double t_ = kInf, fallback_ = kInf;
+  int steps_ = 0;
+  bool done_ = false;
+  std::pair<double, double> result_{0, 0};
+};
+
+// The front points above (b, c), b along a slice at level c, for the
+// mean: 1 / (n.F) and 2 r / (n.F) there, one node at a time or a panel's
+// nodes side by side (quadrature.h's sweep).
+struct Groove::AlongSlice {
+  const Groove& groove;
+  double c;
+  double& warm;
+
+  template <std::size_t M>
+  std::array<std::array<double, 2>, M> sweep(const std::array<double, M>& bs) const {
+    std::array<Vector3d, M> x0s;
+    for (std::size_t i = 0; i < M; ++i) x0s[i] = bs[i] * groove.side_ + c * groove.normal_;
+    const auto fronts = groove.fronts_for_area(x0s, warm);
+    std::array<std::array<double, 2>, M> values;
+    for (std::size_t i = 0; i < M; ++i) {
+      const auto [rho, lead] = fronts[i];
+      // A fibre within round-off of Q's boundary (a node of a tiny
+      // piece): its n.F is round-off; it adds nothing.
+      values[i] = lead > 1e-12 ? std::array<double, 2>{1 / lead, 2 * rho / lead}
+                               : std::array<double, 2>{0, 0};
+    }
+    return values;
+  }
+  std::array<double, 2> operator()(double b) const { return sweep(std::array<double, 1>{b})[0]; }
+};
+
+// Three chains of nodes walked side by side, each node started from its
+// chain's last answer: one walk waits on its square roots and divisions,
+// and the others' fill the wait (a single chain took 4.8 excess
+// evaluations a node, each on the last one's result).
+template <std::size_t M>
+std::array<std::pair<double, double>, M> Groove::fronts_for_area(const std::array<Vector3d, M>& x0s,
+                                                                 double& warm) const {
+  constexpr std::size_t kChains = M < 3 ? M : 3;
+  std::array<std::pair<double, double>, M> out;
+  struct Chain {
+    std::size_t node, end;
+    double warm;
+    std::optional<FrontWalk> walk;
+  };
+  std::array<Chain, kChains> chains;
+  for (std::size_t k = 0; k < kChains; ++k) {
+    chains[k].node = M * k / kChains;
+    chains[k].end = M * (k + 1) / kChains;
+    chains[k].warm = k == 0 ? warm : kInf;
+  }
+  // Starts the chain's next node; false when the chain is through.
+  const auto start = [&](Chain& chain) {
+    while (chain.node < chain.end) {
+      chain.walk.emplace(*this, x0s[chain.node], chain.warm);
+      if (!chain.walk->done()) return true;
+      out[chain.node++] = chain.walk->result();  // in closed form
+    }
+    return false;
+  };
+  std::size_t walking = 0;
+  for (Chain& chain : chains) walking += start(chain) ? 1 : 0;
+  while (walking > 0) {
+    for (Chain& chain : chains) {
+      if (chain.node >= chain.end) continue;
+      chain.walk->step();
+      if (!chain.walk->done()) continue;
+      out[chain.node++] = chain.walk->result();
+      chain.warm = chain.walk->t();
+      if (!start(chain)) --walking;
+    }
+  }
+  if (chains.back().walk) warm = chains.back().walk->t();
+  return out;
 }
 
 // The bull-nose's mean over the groove G itself (off edge-on): a fibre
@@ -1599,15 +1713,7 @@ double Groove::mean_over_groove() const {
   constexpr double kRelative = 1e-5;
   constexpr int kLevelPanels = 8, kSlicePanels = 4;
   const double absolute = 1e-12 * radius_ * radius_;
-  // The front point above (b, c): 1 / (n.F) and 2 r / (n.F) there.
   double warm = kInf;  // the last front point's t along its fibre
-  const auto at_front = [&](double b, double c) {
-    const auto [rho, lead] = front_for_area(b * side_ + c * normal_, warm);
-    // A fibre within round-off of Q's boundary (a node of a tiny piece):
-    // its n.F is round-off; it adds nothing.
-    if (!(lead > 1e-12)) return std::array<double, 2>{0, 0};
-    return std::array<double, 2>{1 / lead, 2 * rho / lead};
-  };
   // The horizontal circles where the front point changes piece: the face's
   // rim (in front only when the face leads) and the shank's foot (its
   // leading half).
@@ -1638,8 +1744,8 @@ double Groove::mean_over_groove() const {
       }
     }
     const std::vector<double> pieces = breaks_within(cuts, lo, hi);
-    return integrate_smoothed_pieces<2>([&](double b) { return at_front(b, c); }, pieces, kRelative,
-                                        absolute, kSlicePanels);
+    return integrate_smoothed_pieces<2>(AlongSlice{*this, c, warm}, pieces, kRelative, absolute,
+                                        kSlicePanels);
   };
   auto sum = integrate_smoothed_pieces<2>(slice, breaks_within(levels, c_min_, c0_), kRelative,
                                           absolute, kLevelPanels);

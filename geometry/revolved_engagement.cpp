@@ -619,33 +619,114 @@ class Groove {
   // the bull-nose's corner only within round-off, see below).
   // With only_front the back end is not walked to (the pair holds the
   // front twice).
+  // The interval of t over which x0 + t F lies in the tool; empty when the
+  // line misses it (a line touching it within 1e-9 R counts as touching;
+  // the bull-nose's corner only within round-off, see CoreWalk).
+  // With only_front the back end is not walked to (the pair holds the
+  // front twice).
   std::optional<std::pair<double, double>> line_interval(const Vector3d& x0,
                                                          bool only_front = false) const {
-    auto [fxy2, beta, disc] = cylinder_crossing(x0.x(), x0.y(), radius_);
-    if (!(fxy2 > 1e-24)) return std::nullopt;
-    if (disc < 0) {
-      if (disc < -1e-9 * radius_ * radius_ * fxy2) return std::nullopt;
-      disc = 0;
-    }
-    const double t1 = (-beta - std::sqrt(disc)) / fxy2, t2 = (-beta + std::sqrt(disc)) / fxy2;
-    if (corner_ == 0) {
-      // Flat: the solid cylinder above the end face z = 0.
-      double lo = t1, hi = t2;
-      if (feed_.z() > 0) lo = std::max(lo, -x0.z() / feed_.z());
-      if (feed_.z() < 0) hi = std::min(hi, -x0.z() / feed_.z());
-      if (feed_.z() == 0 && x0.z() < -1e-12 * radius_) return std::nullopt;
-      if (lo > hi) {
-        if (lo - hi > 1e-9 * radius_) return std::nullopt;
-        lo = hi = 0.5 * (lo + hi);
+    return line_intervals(std::array<Vector3d, 1>{x0}, 1, only_front)[0];
+  }
+
+  // The same for the first `count` of x0s, their walks side by side: one
+  // walk waits on its square roots and divisions, the others fill the wait.
+  template <std::size_t M>
+  std::array<std::optional<std::pair<double, double>>, M> line_intervals(
+      const std::array<Vector3d, M>& x0s, std::size_t count, bool only_front) const {
+    std::array<std::optional<std::pair<double, double>>, M> out;
+    std::array<CoreWalk, 2 * M> walks;
+    std::array<bool, M> walked{};
+    for (std::size_t i = 0; i < count; ++i) {
+      const Vector3d& x0 = x0s[i];
+      auto [fxy2, beta, disc] = cylinder_crossing(x0.x(), x0.y(), radius_);
+      if (!(fxy2 > 1e-24)) continue;
+      if (disc < 0) {
+        if (disc < -1e-9 * radius_ * radius_ * fxy2) continue;
+        disc = 0;
       }
-      return std::pair{lo, hi};
+      const double t1 = (-beta - std::sqrt(disc)) / fxy2, t2 = (-beta + std::sqrt(disc)) / fxy2;
+      if (corner_ == 0) {
+        // Flat: the solid cylinder above the end face z = 0.
+        double lo = t1, hi = t2;
+        if (feed_.z() > 0) lo = std::max(lo, -x0.z() / feed_.z());
+        if (feed_.z() < 0) hi = std::min(hi, -x0.z() / feed_.z());
+        if (feed_.z() == 0 && x0.z() < -1e-12 * radius_) continue;
+        if (lo > hi) {
+          if (lo - hi > 1e-9 * radius_) continue;
+          lo = hi = 0.5 * (lo + hi);
+        }
+        out[i] = std::pair{lo, hi};
+        continue;
+      }
+      // The walks start where the line enters the slab z >= -rc too, if
+      // that is nearer (still outside the core's rc: a step or two fewer).
+      double front_start = t2, back_start = t1;
+      if (feed_.z() != 0) {
+        const double t_face = (-corner_ - x0.z()) / feed_.z();
+        (feed_.z() < 0 ? front_start : back_start) = std::clamp(t_face, t1, t2);
+      }
+      walks[2 * i] = {x0, front_start, -1};
+      walks[2 * i + 1] = {x0, back_start, +1};
+      walks[2 * i + 1].done = only_front;
+      walked[i] = true;
     }
-    // Bull-nose: distance to the core K = {r <= R0, z >= 0} at most rc.
-    // That distance is convex along the line, so Newton's method started
-    // outside on either side walks monotonically onto the crossing (the
-    // tangent of a convex function stays below it), or, when the line
-    // misses, turns round (slope <= 0) before reaching it.
-    const auto excess = [&](double t) { return core_excess(x0 + t * feed_); };
+    for (bool walking = true; walking;) {
+      walking = false;
+      for (std::size_t k = 0; k < 2 * count; ++k) {
+        if (walks[k].done) continue;
+        step(walks[k]);
+        walking = walking || !walks[k].done;
+      }
+    }
+    for (std::size_t i = 0; i < count; ++i) {
+      if (!walked[i]) continue;
+      const std::optional<double> hi = walks[2 * i].at, lo = walks[2 * i + 1].at;
+      if (!hi) continue;
+      out[i] = only_front || !lo || *lo > *hi ? std::pair{*hi, *hi} : std::pair{*lo, *hi};
+    }
+    return out;
+  }
+
+  Vector3d point_at(double b, double c, double t) const {
+    return b * side_ + c * normal_ + t * feed_;
+  }
+
+  // The front (largest a) and back tool points above (bs[i], c), i < count.
+  template <std::size_t M>
+  std::array<std::optional<std::pair<Vector3d, Vector3d>>, M> fibres(
+      const std::array<double, M>& bs, std::size_t count, double c) const {
+    std::array<Vector3d, M> x0s;
+    for (std::size_t i = 0; i < count; ++i) x0s[i] = bs[i] * side_ + c * normal_;
+    const auto intervals = line_intervals(x0s, count, false);
+    std::array<std::optional<std::pair<Vector3d, Vector3d>>, M> out;
+    for (std::size_t i = 0; i < count; ++i) {
+      if (const auto& interval = intervals[i])
+        out[i] =
+            std::pair{point_at(bs[i], c, interval->second), point_at(bs[i], c, interval->first)};
+    }
+    return out;
+  }
+
+  // Bull-nose: a Newton walk along a fibre onto the tool, from outside at t
+  // in `direction` (-1 from the front, +1 from the back), to `at` (empty:
+  // the fibre misses). The distance to the core K = {r <= R0, z >= 0} is
+  // convex along the line, so Newton's method started outside on either
+  // side walks monotonically onto the crossing (the tangent of a convex
+  // function stays below it), or, when the line misses, turns round (slope
+  // <= 0) before reaching it.
+  struct CoreWalk {
+    Vector3d x0 = Vector3d::Zero();
+    double t = 0, direction = 0;
+    bool done = true;
+    std::optional<double> at;
+    int steps = 0;
+    CoreWalk() = default;
+    CoreWalk(const Vector3d& x0_, double t_, double direction_)
+        : x0(x0_), t(t_), direction(direction_), done(false) {}
+  };
+  // One excess evaluation and Newton's step from it.
+  void step(CoreWalk& walk) const {
     // Only round-off counts as touching the corner, and the walk stops only
     // that near it: a fibre nearly parallel to the corner stays close to it
     // over a long stretch, so a line that misses it by 1e-9 R gave a point
@@ -654,49 +735,18 @@ class Groove {
     // mm; at 1e-14 R the largest error seen is 5e-7 mm (1e-15 R is within
     // round-off of the excess and does worse).
     const double touch = 1e-14 * radius_;
-    const auto walk = [&](double t, double direction) -> std::optional<double> {
-      for (int i = 0; i < 100; ++i) {
-        const Excess e = excess(t);
-        if (e.value <= touch) return t;
-        const double slope = direction * e.slope;  // must be negative walking inwards
-        if (!(slope < 0)) return e.value <= touch ? std::optional<double>(t) : std::nullopt;
-        const double step = -e.value / slope;
-        t += direction * step;
-        if (step < 1e-15 * radius_)
-          return e.value <= touch ? std::optional<double>(t) : std::nullopt;
-      }
-      return excess(t).value <= touch ? std::optional<double>(t) : std::nullopt;
-    };
-    // The walks start where the line enters the slab z >= -rc too, if that
-    // is nearer (still outside the core's rc: a step or two fewer).
-    double front_start = t2, back_start = t1;
-    if (feed_.z() != 0) {
-      const double t_face = (-corner_ - x0.z()) / feed_.z();
-      (feed_.z() < 0 ? front_start : back_start) = std::clamp(t_face, t1, t2);
+    const Excess e = core_excess(walk.x0 + walk.t * feed_);
+    walk.done = true;
+    if (e.value <= touch) {
+      walk.at = walk.t;
+      return;
     }
-    const std::optional<double> hi = walk(front_start, -1);
-    if (!hi) return std::nullopt;
-    if (only_front) return std::pair{*hi, *hi};
-    const std::optional<double> lo = walk(back_start, +1);
-    if (!lo || *lo > *hi) return std::pair{*hi, *hi};
-    return std::pair{*lo, *hi};
-  }
-
-  Vector3d point_at(double b, double c, double t) const {
-    return b * side_ + c * normal_ + t * feed_;
-  }
-
-  // The front (largest a) and back tool points above (b, c).
-  std::optional<std::pair<Vector3d, Vector3d>> fibre(double b, double c) const {
-    const auto interval = line_interval(b * side_ + c * normal_);
-    if (!interval) return std::nullopt;
-    return std::pair{point_at(b, c, interval->second), point_at(b, c, interval->first)};
-  }
-
-  std::optional<Vector3d> front(double b, double c) const {
-    const auto interval = line_interval(b * side_ + c * normal_, true);
-    if (!interval) return std::nullopt;
-    return point_at(b, c, interval->second);
+    const double slope = walk.direction * e.slope;  // must be negative walking inwards
+    if (!(slope < 0) || walk.steps == 100) return;
+    const double newton = -e.value / slope;
+    walk.t += walk.direction * newton;
+    ++walk.steps;
+    walk.done = newton < 1e-15 * radius_;
   }
 
   // The bull-nose's front point on a fibre, for the mean: its r and n.F
@@ -1044,8 +1094,11 @@ void Groove::shifted_extremes(const BoundaryPoint& left_top, const WidthLevel& l
                               RadiusExtremes& out) const {
   const double c_star = level.c;
   if (!(c_star < c0_)) return;
+  // (One walk at a time: mostly there is one, and the side-by-side
+  // walks' bookkeeping cost it 2 %.)
   const auto add_front = [&](const Vector3d& x) {
-    if (const auto p = front(side_.dot(x), normal_.dot(x))) out.add(*p);
+    const Vector3d x0 = x - feed_.dot(x) * feed_;
+    if (const auto interval = line_interval(x0, true)) out.add(x0 + interval->second * feed_);
   };
   add_front(left_top.p + ae_ * side_);
   // At c* > c_min the shifted silhouette ends on the near one: its fibre
@@ -1922,15 +1975,21 @@ CuttingPoints cutting_points(const Groove& groove, const Engagement& out, Side s
   CuttingPoints points;
   points.p1 = cutting_point(low);
   points.p2 = cutting_point(high);
-  const auto pair_at = [&](double s, const Vector3d& fallback) {
-    if (s >= s_max || s <= s_min)
-      return std::pair{cutting_point(fallback), cutting_point(fallback)};
-    const auto fibre = groove.fibre(sign * s, groove.c0());
-    if (!fibre) return std::pair{cutting_point(fallback), cutting_point(fallback)};
-    return std::pair{cutting_point(fibre->first), cutting_point(fibre->second)};
-  };
-  std::tie(points.p1a, points.p1b) = pair_at(s_min + ae, high);
-  std::tie(points.p2a, points.p2b) = pair_at(s_max - ae, low);
+  // The primes' fibres at s_min + ae and s_max - ae, walked side by side;
+  // outside (s_min, s_max), or missing, the far rim point stands for both.
+  const std::array<double, 2> s{s_min + ae, s_max - ae};
+  const std::array<Vector3d, 2> fallback{high, low};
+  const auto fibres =
+      groove.fibres(std::array<double, 2>{sign * s[0], sign * s[1]}, 2, groove.c0());
+  std::array<std::pair<CuttingPoint, CuttingPoint>, 2> primes;
+  for (std::size_t i = 0; i < 2; ++i) {
+    const bool inside = s[i] < s_max && s[i] > s_min && fibres[i];
+    primes[i] = inside
+                    ? std::pair{cutting_point(fibres[i]->first), cutting_point(fibres[i]->second)}
+                    : std::pair{cutting_point(fallback[i]), cutting_point(fallback[i])};
+  }
+  std::tie(points.p1a, points.p1b) = primes[0];
+  std::tie(points.p2a, points.p2b) = primes[1];
   points.cut = left ? points.p1 : points.p2;
   return points;
 }

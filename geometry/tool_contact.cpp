@@ -26,6 +26,11 @@ double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return a.x() * b.y() - a.y() * b.x();
 }
 
+// The angle from a to b, in (-pi, pi].
+double turn(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return std::atan2(cross(a, b), a.dot(b));
+}
+
 // On the rim the minimum lies where the rim point q faces -g (g the
 // distance's gradient there): q = -R0 g/|g|. Its angle is found as the root
 // of the angle from q to -g, which falls through zero there (the distance
@@ -41,7 +46,7 @@ class RimSecant {
   // The rim point to try after q (on the rim, g pointing into the disc).
   Eigen::Vector2d next(const Eigen::Vector2d& q, const Eigen::Vector2d& g) {
     const double angle = std::atan2(q.y(), q.x());
-    const double residual = std::atan2(cross(q, -g), -q.dot(g));
+    const double residual = turn(q, -g);
     if (known_) slope_ = (residual - residual_) / remainder(angle - angle_);
     // The residual falls through a minimum; with no slope, or a rising one
     // (a maximum, or round-off at the root), the fixed-point step.
@@ -64,11 +69,6 @@ class RimSecant {
 };
 
 bool on_rim(const Eigen::Vector2d& q, double radius) { return q.norm() >= (1 - 1e-12) * radius; }
-
-// The angle from a to b, in (-pi, pi].
-double turn(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return std::atan2(cross(a, b), a.dot(b));
-}
 
 Eigen::Vector2d rotated(const Eigen::Vector2d& q, double angle) {
   return Eigen::Rotation2Dd(angle) * q;

@@ -1309,6 +1309,7 @@ void Groove::face_extremes(RadiusExtremes& out) const {
   if (!(disc > 0)) return;
   double t_lo = (-beta - std::sqrt(disc)) / f2;
   const double t_hi = (-beta + std::sqrt(disc)) / f2;
+  const double fxy2 = f2;  // (clang 14 cannot capture a structured binding)
   if (sink == 0) {
     if (!(lift < 0)) return;  // the previous tool's bottom at or above this face
   } else {
@@ -1324,7 +1325,7 @@ void Groove::face_extremes(RadiusExtremes& out) const {
     const double x = cx + t * fx, y = cy + t * fy, h = height(t);
     const double length = length_of(x, y), along = x * fx + y * fy;
     double g = along / length;
-    double slope = (f2 * length * length - along * along) / (length * length * length);
+    double slope = (fxy2 * length * length - along * along) / (length * length * length);
     if (h < 0 && sink > 0) {
       const double q = corner_ * corner_ - h * h, root_q = std::sqrt(q);
       g += h / root_q * sink;

@@ -173,13 +173,6 @@ inline std::vector<double> breaks_within(std::vector<double> breaks, double lo, 
   return breaks;
 }
 
-// The integrals over [breaks.front(), breaks.back()] (breaks ascending)
-// piece by piece, each piece [a, b] in theta, x = m - h cos(theta), m and
-// h its middle and half-width: the nodes gather at the ends, where an
-// integrand that grows or vanishes as a square root of the distance to
-// the end becomes smooth in theta. For integrands whose kinks are known
-// (the breaks) and of that kind: a piece then takes one or two panels
-// where bisection took many. At most `max_panels` panels a piece.
 namespace detail {
 // f on one piece in theta (see integrate_smoothed_pieces), sweeping when f does.
 template <std::size_t N, class Function>
@@ -209,6 +202,13 @@ struct SmoothedPiece {
 };
 }  // namespace detail
 
+// The integrals over [breaks.front(), breaks.back()] (breaks ascending)
+// piece by piece, each piece [a, b] in theta, x = m - h cos(theta), m and
+// h its middle and half-width: the nodes gather at the ends, where an
+// integrand that grows or vanishes as a square root of the distance to
+// the end becomes smooth in theta. For integrands whose kinks are known
+// (the breaks) and of that kind: a piece then takes one or two panels
+// where bisection took many. At most `max_panels` panels a piece.
 template <std::size_t N, class Function>
 std::array<double, N> integrate_smoothed_pieces(const Function& f,
                                                 const std::vector<double>& breaks, double relative,

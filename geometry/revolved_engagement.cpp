@@ -343,14 +343,14 @@ class Groove {
     phi_left_ = omega_ + kPi / 2;
     phi_bottom_ = 1.5 * kPi;
     phi_right_ = omega_ + 1.5 * kPi;
-    c_min_ = -flat_radius_ * std::hypot(normal_.x(), normal_.y()) - corner_;
+    rim_tilt_ = length_of(normal_.x(), normal_.y());
+    c_min_ = -flat_radius_ * rim_tilt_ - corner_;
     c0_ = c_min_ + ap;
     foot_left_ = silhouette_at(-sin_omega_, cos_omega_);
     foot_right_ = silhouette_at(sin_omega_, -cos_omega_);
     c_foot_ = {normal_.dot(foot_left_), normal_.dot(foot_right_)};
     edge_on_ = std::abs(feed_.z()) <= kEdgeOn;
     face_in_front_ = !edge_on_ && feed_.z() < 0;
-    rim_tilt_ = length_of(normal_.x(), normal_.y());
     // The shank's lowest point along N is at -R |N_xy|.
     shank_in_stock_ = c0_ + radius_ * rim_tilt_ > 0;
     left_top_ = boundary(c0_, true);  // boundary() needs the members above
@@ -392,12 +392,6 @@ class Groove {
     const Vector3d d_flat((du.x() - turn * flat.x()) / length, (du.y() - turn * flat.y()) / length,
                           0);
     return {flat_radius_ * flat + corner_ * u, flat_radius_ * d_flat + corner_ * du};
-  }
-
-  // r of the silhouette point at phi: R0 + rc |U_xy|, U_z = |w| cos(phi - omega).
-  double silhouette_r(double cos_phi, double sin_phi) const {
-    const double u_z = cos_phi * side_.z() + sin_phi * normal_.z();
-    return flat_radius_ + corner_ * std::sqrt(std::max(0.0, 1 - u_z * u_z));
   }
 
   struct BoundaryPoint {
@@ -616,28 +610,23 @@ class Groove {
 
   // The interval of t over which x0 + t F lies in the tool; empty when the
   // line misses it (a line touching it within 1e-9 R counts as touching;
-  // the bull-nose's corner only within round-off, see below).
-  // With only_front the back end is not walked to (the pair holds the
-  // front twice).
-  // The interval of t over which x0 + t F lies in the tool; empty when the
-  // line misses it (a line touching it within 1e-9 R counts as touching;
   // the bull-nose's corner only within round-off, see CoreWalk).
   // With only_front the back end is not walked to (the pair holds the
   // front twice).
   std::optional<std::pair<double, double>> line_interval(const Vector3d& x0,
                                                          bool only_front = false) const {
-    return line_intervals(std::array<Vector3d, 1>{x0}, 1, only_front)[0];
+    return line_intervals(std::array<Vector3d, 1>{x0}, only_front)[0];
   }
 
-  // The same for the first `count` of x0s, their walks side by side: one
-  // walk waits on its square roots and divisions, the others fill the wait.
+  // The same for several lines, their walks side by side: one walk waits
+  // on its square roots and divisions, the others fill the wait.
   template <std::size_t M>
   std::array<std::optional<std::pair<double, double>>, M> line_intervals(
-      const std::array<Vector3d, M>& x0s, std::size_t count, bool only_front) const {
+      const std::array<Vector3d, M>& x0s, bool only_front) const {
     std::array<std::optional<std::pair<double, double>>, M> out;
     std::array<CoreWalk, 2 * M> walks;
     std::array<bool, M> walked{};
-    for (std::size_t i = 0; i < count; ++i) {
+    for (std::size_t i = 0; i < M; ++i) {
       const Vector3d& x0 = x0s[i];
       auto [fxy2, beta, disc] = cylinder_crossing(x0.x(), x0.y(), radius_);
       if (!(fxy2 > 1e-24)) continue;
@@ -673,13 +662,13 @@ class Groove {
     }
     for (bool walking = true; walking;) {
       walking = false;
-      for (std::size_t k = 0; k < 2 * count; ++k) {
-        if (walks[k].done) continue;
-        step(walks[k]);
-        walking = walking || !walks[k].done;
+      for (CoreWalk& walk : walks) {
+        if (walk.done) continue;
+        step(walk);
+        walking = walking || !walk.done;
       }
     }
-    for (std::size_t i = 0; i < count; ++i) {
+    for (std::size_t i = 0; i < M; ++i) {
       if (!walked[i]) continue;
       const std::optional<double> hi = walks[2 * i].at, lo = walks[2 * i + 1].at;
       if (!hi) continue;
@@ -692,15 +681,15 @@ class Groove {
     return b * side_ + c * normal_ + t * feed_;
   }
 
-  // The front (largest a) and back tool points above (bs[i], c), i < count.
+  // The front (largest a) and back tool points above (bs[i], c).
   template <std::size_t M>
   std::array<std::optional<std::pair<Vector3d, Vector3d>>, M> fibres(
-      const std::array<double, M>& bs, std::size_t count, double c) const {
+      const std::array<double, M>& bs, double c) const {
     std::array<Vector3d, M> x0s;
-    for (std::size_t i = 0; i < count; ++i) x0s[i] = bs[i] * side_ + c * normal_;
-    const auto intervals = line_intervals(x0s, count, false);
+    for (std::size_t i = 0; i < M; ++i) x0s[i] = bs[i] * side_ + c * normal_;
+    const auto intervals = line_intervals(x0s, false);
     std::array<std::optional<std::pair<Vector3d, Vector3d>>, M> out;
-    for (std::size_t i = 0; i < count; ++i) {
+    for (std::size_t i = 0; i < M; ++i) {
       if (const auto& interval = intervals[i])
         out[i] =
             std::pair{point_at(bs[i], c, interval->second), point_at(bs[i], c, interval->first)};
@@ -1016,11 +1005,12 @@ class Groove {
 };
 
 // RadiusExtremes of r over the silhouette arc phi in [phi_lo, phi_hi]: r depends
-// on |U_z| only, smallest where |U_z| peaks (phi = omega + pi).
+// on |U_z| only, smallest where |U_z| peaks (phi = omega + pi). The point at
+// phi has r = R0 + rc |U_xy| and z = rc U_z, U_z = |w| cos(phi - omega).
 void Groove::silhouette_extremes(double phi_lo, double phi_hi, RadiusExtremes& out) const {
   const auto add = [&](double cos_phi, double sin_phi) {
     const double u_z = cos_phi * side_.z() + sin_phi * normal_.z();
-    out.add(silhouette_r(cos_phi, sin_phi), corner_ * u_z);
+    out.add(flat_radius_ + corner_ * std::sqrt(std::max(0.0, 1 - u_z * u_z)), corner_ * u_z);
   };
   for (const double phi : {phi_lo, phi_hi}) {
     const auto [cos_phi, sin_phi] = cos_sin(phi);
@@ -1304,12 +1294,13 @@ void Groove::face_extremes(RadiusExtremes& out) const {
   const double lift = ae_ * side_.z();              // the previous tool's height over this one
   const double sink = edge_on_ ? 0.0 : -feed_.z();  // dh/dt of its circle in this plane: > 0
   // Its circle in this plane is at its own height h(t) = -rc - lift + t sink.
-  const auto [f2, beta, disc] = cylinder_crossing(cx, cy, flat_radius_ + radius_);
+  // (Named members, not a structured binding: clang 14 cannot capture one.)
+  const CylinderCrossing crossing = cylinder_crossing(cx, cy, flat_radius_ + radius_);
+  const double f2 = crossing.fxy2, beta = crossing.beta, disc = crossing.disc;
   if (!(f2 > 0)) return;
   if (!(disc > 0)) return;
   double t_lo = (-beta - std::sqrt(disc)) / f2;
   const double t_hi = (-beta + std::sqrt(disc)) / f2;
-  const double fxy2 = f2;  // (clang 14 cannot capture a structured binding)
   if (sink == 0) {
     if (!(lift < 0)) return;  // the previous tool's bottom at or above this face
   } else {
@@ -1325,7 +1316,7 @@ void Groove::face_extremes(RadiusExtremes& out) const {
     const double x = cx + t * fx, y = cy + t * fy, h = height(t);
     const double length = length_of(x, y), along = x * fx + y * fy;
     double g = along / length;
-    double slope = (fxy2 * length * length - along * along) / (length * length * length);
+    double slope = (f2 * length * length - along * along) / (length * length * length);
     if (h < 0 && sink > 0) {
       const double q = corner_ * corner_ - h * h, root_q = std::sqrt(q);
       g += h / root_q * sink;
@@ -1595,19 +1586,14 @@ double Groove::mean_diameter() const {
   return sum[0] > 0 ? sum[1] / sum[0] : 0.0;
 }
 
-// The fibre leaves the tool through the shank when it leaves the shank's
-// cylinder at z >= 0, through the face when the face leads (F_z < 0) and
-// the fibre crosses its plane inside the rim (below it is out of the tool),
-// else through the corner: there the distance to the core circle less rc
-// is convex along the fibre, so Newton's method from any point beyond the
-// exit (the cylinder's exit, or the last fibre's t when it lies beyond)
-// walks monotonically onto it; from a point inside, its first step lands
-// beyond it (the tangent stays below a convex function).
-// A fibre's walk to its front point: on the shank and on a leading face in
-// closed form; on the corner Newton's method on the distance to the core,
-// convex along the fibre, from outside (monotone), from the chain's last
-// answer when that lies before the cylinder r = R (Newton's step from a
-// point inside lands outside). A step below 1e-9 R ends the walk and the
+// A fibre's walk to its front point. The fibre leaves the tool through the
+// shank when it leaves the shank's cylinder at z >= 0, through the face
+// when the face leads (F_z < 0) and the fibre crosses its plane inside the
+// rim: both in closed form. Else through the corner: there the distance to
+// the core less rc is convex along the fibre, so Newton's method from any
+// point beyond the exit (the cylinder's exit, or the chain's last answer
+// when it lies before that) walks monotonically onto it; from a point
+// inside, its first step lands beyond it. A step below 1e-9 R ends the walk and the
 // point before it is the answer: r and n.F within about 1e-9 R, far below
 // the mean's tolerance (1e-5 relative). Not Halley's steps: from outside
 // they can pass the front, and on a fibre grazing the tool past its
@@ -1980,8 +1966,7 @@ CuttingPoints cutting_points(const Groove& groove, const Engagement& out, Side s
   // outside (s_min, s_max), or missing, the far rim point stands for both.
   const std::array<double, 2> s{s_min + ae, s_max - ae};
   const std::array<Vector3d, 2> fallback{high, low};
-  const auto fibres =
-      groove.fibres(std::array<double, 2>{sign * s[0], sign * s[1]}, 2, groove.c0());
+  const auto fibres = groove.fibres(std::array<double, 2>{sign * s[0], sign * s[1]}, groove.c0());
   std::array<std::pair<CuttingPoint, CuttingPoint>, 2> primes;
   for (std::size_t i = 0; i < 2; ++i) {
     const bool inside = s[i] < s_max && s[i] > s_min && fibres[i];

@@ -65,10 +65,12 @@ struct ContactHint {
   // Bull-nose and flat end mills (tool_contact.h): the previous contact's
   // core disc point, relative to the disc's centre (xy, mm); when it and
   // the one before lay on the rim, the angle the contact turned between
-  // them (rad), the next one's first guess; and the rim solve's last slope
-  // (0: unknown).
+  // them (rad), and how much that turn changed from the turn before (0:
+  // unknown), which give the next one's first guess; and the rim solve's
+  // last slope (0: unknown).
   Eigen::Vector2d rim = Eigen::Vector2d::Zero();
   double rim_turn = 0;
+  double rim_turn_change = 0;
   double rim_slope = 0;
   // Counters, for reports and benchmarks only.
   std::uint64_t warm_queries = 0;  // answered from the hint

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 namespace vcpost::geometry {
 
@@ -100,6 +101,12 @@ BallContact tool_contact(const SurfaceModel& model, const Tool& tool, const Eige
   // against g; on the rim a long step is the fixed point q = -R0 g/|g|).
   const double long_step = 1e3 * tool.radius();
   const double converged = 1e-10 * tool.radius();
+  // Secant steps on the rim converge superlinearly: the point a step
+  // leaves is off the root by about the step, so a step below 1e-8 R ends
+  // the solve with the rim point within about 1e-8 R (5e-8 mm on a 10 mm
+  // tool; the distance, at its minimum, within round-off). Gradient steps
+  // converge only linearly and go on to `converged`.
+  const double rim_converged = 1e-8 * tool.radius();
   // Distances met this close are equal for all we know: the converged
   // point wins over one lower by round-off only (up to 1e-8 rad away
   // along the rim, where the distance is flat).
@@ -122,10 +129,9 @@ BallContact tool_contact(const SurfaceModel& model, const Tool& tool, const Eige
     RimSecant rim(rim_slope);
     int latest = 0;
     for (int query = 1; query < 16; ++query) {
-      const Eigen::Vector2d next = smooth && on_rim(q, disc) && q.dot(g) < 0
-                                       ? rim.next(q, g)
-                                       : onto_disc(q - alpha * g, disc);
-      if ((next - q).norm() <= converged) {
+      const bool secant = smooth && on_rim(q, disc) && q.dot(g) < 0;
+      const Eigen::Vector2d next = secant ? rim.next(q, g) : onto_disc(q - alpha * g, disc);
+      if ((next - q).norm() <= (secant ? rim_converged : converged)) {
         if (smooth && slot[latest].distance_error <= slot[best].distance_error + round_off)
           best = latest;
         break;
@@ -145,8 +151,17 @@ BallContact tool_contact(const SurfaceModel& model, const Tool& tool, const Eige
     return Found{slot[best], where[best], rim.slope()};
   };
   // The rim angle turns smoothly along a path over a smooth face: a rim
-  // contact's next one is first sought that much further round.
-  const double turn_ahead = hint && hint->rim_slope < 0 ? hint->rim_turn : 0;
+  // contact's next one is first sought that much further round, the turn
+  // changed as it changed last time, but by a tenth of the turn at most:
+  // where the turn changes fast (over a valley) the extrapolation
+  // overshoots into the other flank's basin (unbounded, 32 of the
+  // generator's 200,912 bull-nose contacts landed more than 1e-3 mm off
+  // its exact ones, 25 without the change, 23 with it bounded).
+  const double turn_ahead =
+      hint && hint->rim_slope < 0
+          ? hint->rim_turn + std::clamp(hint->rim_turn_change, -0.1 * std::abs(hint->rim_turn),
+                                        0.1 * std::abs(hint->rim_turn))
+          : 0;
   Found found = hint ? descend(rotated(hint->rim, turn_ahead), hint->rim_slope)
                      : descend(Eigen::Vector2d::Zero(), 0);
   // Over a valley the distance has a minimum on each flank, and a descent
@@ -175,7 +190,9 @@ BallContact tool_contact(const SurfaceModel& model, const Tool& tool, const Eige
   }
   if (hint) {
     const bool rim_to_rim = on_rim(hint->rim, disc) && on_rim(found.where, disc);
-    hint->rim_turn = rim_to_rim ? turn(hint->rim, found.where) : 0;
+    const double last_turn =
+        std::exchange(hint->rim_turn, rim_to_rim ? turn(hint->rim, found.where) : 0);
+    hint->rim_turn_change = rim_to_rim && last_turn != 0 ? hint->rim_turn - last_turn : 0;
     hint->rim_slope = found.rim_slope;
     hint->rim = found.where;
   }

@@ -31,13 +31,15 @@ Eigen::Vector3d tool_origin(const Eigen::Vector3d& cl_point, const Tool& tool, C
 // gradient steps on the disc (the gradient of the distance is the normal's
 // horizontal part), on a smooth surface's rim by secant steps on the rim
 // angle: at most 16 queries, warm-started from hint->rim turned as the last
-// contact turned; the answer is the best disc point met (on convergence the
-// last, unless one met is lower by more than round-off). A lifted answer (a
-// valley's other flank may be the one touched) is searched again from the
-// opposite rim point and from the centre: at most 48 queries. Lifted means
-// by more than tolerance / 10 on a smooth surface, by the tolerance on a
-// mesh (SurfaceModel::faceted). The surface is searched up to 2 R0 + rc +
-// search_margin from each disc point.
+// contact turned (plus that turn's change, bounded by a tenth of it), until
+// a step is below 1e-10 R (gradient steps) or 1e-8 R (secant steps, which
+// converge superlinearly); the answer is the best disc point met (on
+// convergence the last, unless one met is lower by more than round-off). A
+// lifted answer (a valley's other flank may be the one touched) is searched
+// again from the opposite rim point and from the centre: at most 48
+// queries. Lifted means by more than tolerance / 10 on a smooth surface, by
+// the tolerance on a mesh (SurfaceModel::faceted). The surface is searched
+// up to 2 R0 + rc + search_margin from each disc point.
 // REQUIRES: tool valid, tolerance >= 0, search_margin >= 0.
 BallContact tool_contact(const SurfaceModel& model, const Tool& tool, const Eigen::Vector3d& origin,
                          double tolerance, double search_margin, ContactHint* hint);

@@ -1949,7 +1949,7 @@ Prepared prepare(const Tool& tool, const CutSetup& setup) {
   return prepared;
 }
 
-CuttingPoint cutting_point(const Vector3d& p) { return {p, 2 * std::hypot(p.x(), p.y())}; }
+CuttingPoint cutting_point(const Vector3d& p) { return {p, 2 * length_of(p.x(), p.y())}; }
 
 // The Mgherony-Miko points on the rim c = c0, in S0 = side_dir coordinates.
 CuttingPoints cutting_points(const Groove& groove, const Engagement& out, Side side, double ae) {

@@ -97,9 +97,12 @@ Engagement evaluate_engagement(const Tool& tool, const CutSetup& setup,
 // capped: a bounded number of evaluations whatever the set-up; empty when
 // nothing is engaged. Absolute error: for the ball within 1.2e-6 mm of
 // the same integral taken to 1e-12 (3,000 random set-ups); for the
-// bull-nose within 1.3e-5 mm of the same integral taken to 1e-11 (1,300
-// random set-ups, and 300 Z-level ones within 1.5e-5 mm; feeds within
-// 1e-9 of level, up to 1e-4 mm); for the
+// bull-nose, round the engaged zone's boundary (Green's theorem on the
+// tool), within 1.3e-6 mm of the area integral taken to 1e-10 (1,440
+// random set-ups), and where the end face is nearly parallel to the feed
+// (|F_z| < 1e-3) by the area itself, within 1.3e-5 mm of it taken to
+// 1e-11 (1,300 random set-ups, and 300 Z-level ones within 1.5e-5 mm;
+// feeds within 1e-9 of level, up to 1e-4 mm); for the
 // flat end mill within 6.4e-4 mm of the circle-by-circle oracle on
 // 900 random set-ups (its circles' removed arcs in closed form; a face seen
 // edge-on, |F_z| < 1e-6, still samples them).

@@ -764,6 +764,19 @@ class Groove {
   double mean_over_boundary() const;
   // The phi in [lo, hi] where the shifted fibre leaves the corner (see there).
   std::vector<double> shifted_junctions(double lo, double hi) const;
+  // The b where the level c crosses a junction of the tool's pieces among
+  // the front points: the face's rim (when the face leads) and the shank's
+  // foot (its leading half), where the integrands along the level have kinks.
+  void add_junction_cuts(double c, std::vector<double>& cuts) const {
+    for (const bool face : {true, false}) {
+      if (face && !face_in_front_) continue;
+      const double rho = face ? flat_radius_ : radius_, z = face ? -corner_ : 0.0;
+      if (!(std::abs(c - normal_.z() * z) < rho * rim_tilt_)) continue;
+      for (const Vector3d& p : circle_at_level(rho, z, c)) {
+        if (face || p.x() * feed_.x() + p.y() * feed_.y() > 0) cuts.push_back(side_.dot(p));
+      }
+    }
+  }
   // The edge-on end face's area and moment of 2r in the groove (see there).
   std::array<double, 2> edge_on_face_share() const;
   // Whether the previous pass removed a tool point (see unremoved_length).
@@ -1823,19 +1836,13 @@ double Groove::mean_over_groove() const {
   constexpr int kLevelPanels = 8, kSlicePanels = 4;
   const double absolute = 1e-12 * radius_ * radius_;
   double warm = kInf;  // the last front point's t along its fibre
-  // The horizontal circles where the front point changes piece: the face's
-  // rim (in front only when the face leads) and the shank's foot (its
-  // leading half).
-  struct Junction {
-    double radius, z;
-    bool face;
-  };
-  const std::array<Junction, 2> junctions{{{flat_radius_, -corner_, true}, {radius_, 0.0, false}}};
+  // The levels where the horizontal circles on which the front point
+  // changes piece (the face's rim and the shank's foot, add_junction_cuts)
+  // turn tangent to a slice.
   std::vector<double> levels{c_foot_[0], c_foot_[1]};
-  for (const Junction& j : junctions) {
-    const double centre = normal_.z() * j.z, half = j.radius * rim_tilt_;
-    levels.push_back(centre - half);
-    levels.push_back(centre + half);
+  for (const auto& [rho, z] : {std::pair{flat_radius_, -corner_}, std::pair{radius_, 0.0}}) {
+    levels.push_back(normal_.z() * z - rho * rim_tilt_);
+    levels.push_back(normal_.z() * z + rho * rim_tilt_);
   }
   const WidthLevel width = width_level();
   levels.push_back(width.c);
@@ -1845,13 +1852,7 @@ double Groove::mean_over_groove() const {
     const double hi = std::min(boundary(c, false).b, lo + ae_);
     if (!(hi > lo)) return std::array<double, 2>{0, 0};
     cuts.clear();
-    for (const Junction& j : junctions) {
-      if (j.face && !face_in_front_) continue;
-      if (!(std::abs(c - normal_.z() * j.z) < j.radius * rim_tilt_)) continue;
-      for (const Vector3d& p : circle_at_level(j.radius, j.z, c)) {
-        if (j.face || p.x() * feed_.x() + p.y() * feed_.y() > 0) cuts.push_back(side_.dot(p));
-      }
-    }
+    add_junction_cuts(c, cuts);
     const std::vector<double> pieces = breaks_within(cuts, lo, hi);
     return integrate_smoothed_pieces<2>(AlongSlice{*this, c, warm}, pieces, kRelative, absolute,
                                         kSlicePanels);
@@ -2049,14 +2050,7 @@ double Groove::mean_over_boundary() const {
   // The stock line, from its right end back to bL(c0), cut where its front
   // point crosses the face's rim or the shank's foot.
   std::vector<double> cuts;
-  for (const bool face : {true, false}) {
-    if (face && !face_in_front_) continue;
-    const double rho = face ? r0 : R, z = face ? -rc : 0.0;
-    if (!(std::abs(c0_ - normal_.z() * z) < rho * rim_tilt_)) continue;
-    for (const Vector3d& p : circle_at_level(rho, z, c0_)) {
-      if (face || p.x() * feed_.x() + p.y() * feed_.y() > 0) cuts.push_back(side_.dot(p));
-    }
-  }
+  add_junction_cuts(c0_, cuts);
   const auto stock = [&](double b) { return at_front(b * side_ + c0_ * normal_, side_); };
   add(stock, level.c < c0_ ? left_top.b + ae_ : top(false).b, left_top.b, std::move(cuts));
   return sum[0] != 0 ? sum[1] / sum[0] : 0.0;

@@ -1868,11 +1868,13 @@ double Groove::mean_over_groove() const {
 }
 
 // The bull-nose's mean by Green's theorem on the tool's surface (where
-// the end face is not nearly parallel to F, kNearlyEdgeOn). Around the axis, with s the meridian's
-// arc length from the face's centre, the 1-forms H1 dtheta and H2 dtheta with dH1/ds = r and dH2/ds
-// = 2 r^2 (r the distance from the axis, theta the angle round it) have the area element dA and 2 r
-// dA as their exterior derivatives, one 1-form on the whole surface (H continuous across the face's
-// rim and the shank's foot, H = 0 on the axis):
+// the end face is not nearly parallel to F, kNearlyEdgeOn). Around the
+// axis, with s the meridian's arc length from the face's centre, the
+// 1-forms H1 dtheta and H2 dtheta with dH1/ds = r and dH2/ds = 2 r^2 (r
+// the distance from the axis, theta the angle round it) have the area
+// element dA and 2 r dA as their exterior derivatives, one 1-form on the
+// whole surface (H continuous across the face's rim and the shank's foot,
+// H = 0 on the axis):
 //   face (r <= R0):  H1 = r^2 / 2,  H2 = 2 r^3 / 3;
 //   corner (r = R0 + rc sin psi, z = -rc cos psi):  H1 = R0^2 / 2 + rc (R0
 //     psi + rc (1 - cos psi)),  H2 = 2 R0^3 / 3 + 2 rc (R0^2 psi + 2 R0 rc (1

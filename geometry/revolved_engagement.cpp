@@ -764,16 +764,27 @@ class Groove {
   double mean_over_boundary() const;
   // The phi in [lo, hi] where the shifted fibre leaves the corner (see there).
   std::vector<double> shifted_junctions(double lo, double hi) const;
-  // The b where the level c crosses a junction of the tool's pieces among
-  // the front points: the face's rim (when the face leads) and the shank's
-  // foot (its leading half), where the integrands along the level have kinks.
+  // The horizontal circles where the tool's pieces meet: the face's rim
+  // and the shank's foot. Where a front point crosses one, the means'
+  // integrands have kinks.
+  struct Junction {
+    double rho, z;
+    bool face;
+  };
+  std::array<Junction, 2> junctions() const {
+    return {{{flat_radius_, -corner_, true}, {radius_, 0.0, false}}};
+  }
+  // Whether the point (x, y) of junction j's circle is a front point: on
+  // the rim when the face leads, on the foot's leading half.
+  bool front_on(const Junction& j, double x, double y) const {
+    return j.face ? face_in_front_ : x * feed_.x() + y * feed_.y() > 0;
+  }
+  // The b where the level c crosses a junction among the front points.
   void add_junction_cuts(double c, std::vector<double>& cuts) const {
-    for (const bool face : {true, false}) {
-      if (face && !face_in_front_) continue;
-      const double rho = face ? flat_radius_ : radius_, z = face ? -corner_ : 0.0;
-      if (!(std::abs(c - normal_.z() * z) < rho * rim_tilt_)) continue;
-      for (const Vector3d& p : circle_at_level(rho, z, c)) {
-        if (face || p.x() * feed_.x() + p.y() * feed_.y() > 0) cuts.push_back(side_.dot(p));
+    for (const Junction& j : junctions()) {
+      if (!(std::abs(c - normal_.z() * j.z) < j.rho * rim_tilt_)) continue;
+      for (const Vector3d& p : circle_at_level(j.rho, j.z, c)) {
+        if (front_on(j, p.x(), p.y())) cuts.push_back(side_.dot(p));
       }
     }
   }
@@ -1282,12 +1293,12 @@ void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
 // h) F_xy, so |x_xy|^2 = rho^2 reads 2 R0 F_z (U_xy.F_z W) = L (F_z^2
 // (rho^2 - R0^2) - |F_z W|^2), squared a trigonometric polynomial of
 // degree 6 in phi (its roots by form_roots, each kept if x lies on the
-// circle and leads). Off edge-on only.
+// circle and leads). Not for a face nearly parallel to F (kNearlyEdgeOn).
 std::vector<double> Groove::shifted_junctions(double lo, double hi) const {
   std::vector<double> out;
-  if (!(hi > lo) || edge_on_) return out;
+  if (!(hi > lo)) return out;
   const Vector3d &e = side_, &n = normal_, &f = feed_;
-  const double fz = f.z();
+  const double fz = f.z(), r0 = flat_radius_;
   const int arcs = std::max(1, static_cast<int>(std::ceil((hi - lo) / kPi)));
   for (int arc = 0; arc < arcs; ++arc) {
     const double arc_lo = lo + (hi - lo) * arc / arcs, arc_hi = lo + (hi - lo) * (arc + 1) / arcs;
@@ -1296,10 +1307,9 @@ std::vector<double> Groove::shifted_junctions(double lo, double hi) const {
     const Form<2> ux = forms.linear(e.x(), n.x(), 0), uy = forms.linear(e.y(), n.y(), 0),
                   uz = forms.linear(e.z(), n.z(), 0);
     const Form<4> l2 = forms.sum(forms.one() * forms.one(), (-1.0) * (uz * uz));
-    for (const bool face : {true, false}) {
-      if (face && !face_in_front_) continue;
-      const double h = face ? -corner_ : 0.0, rho = face ? flat_radius_ : radius_;
-      const double k = ae_ * e.z() - h;
+    for (const Junction& j : junctions()) {
+      if (j.face && !face_in_front_) continue;
+      const double k = ae_ * e.z() - j.z;
       const Form<2> wx =
           forms.linear(corner_ * (fz * e.x() - e.z() * f.x()),
                        corner_ * (fz * n.x() - n.z() * f.x()), ae_ * fz * e.x() - k * f.x());
@@ -1307,17 +1317,16 @@ std::vector<double> Groove::shifted_junctions(double lo, double hi) const {
           forms.linear(corner_ * (fz * e.y() - e.z() * f.y()),
                        corner_ * (fz * n.y() - n.z() * f.y()), ae_ * fz * e.y() - k * f.y());
       const Form<4> dot = forms.sum(ux * wx, uy * wy);
-      const Form<4> rest = forms.sum(
-          (fz * fz * (rho * rho - flat_radius_ * flat_radius_)) * (forms.one() * forms.one()),
-          (-1.0) * forms.sum(wx * wx, wy * wy));
-      const double r0 = flat_radius_;
+      const Form<4> rest =
+          forms.sum((fz * fz * (j.rho * j.rho - r0 * r0)) * (forms.one() * forms.one()),
+                    (-1.0) * forms.sum(wx * wx, wy * wy));
       form_roots(forms.sum((4 * r0 * r0 * fz * fz) * (dot * dot), (-1.0) * (l2 * rest * rest)),
                  [&](double tau) {
                    const double phi = middle + 2 * std::atan(quarter * (2 * tau - 1));
                    const Vector3d x0 = silhouette(phi) + ae_ * e;
-                   const Vector3d x = x0 + (h - x0.z()) / fz * f;
-                   if (std::abs(length_of(x.x(), x.y()) - rho) > 1e-7 * radius_) return;
-                   if (face || x.x() * f.x() + x.y() * f.y() > 0) out.push_back(phi);
+                   const Vector3d x = x0 + (j.z - x0.z()) / fz * f;
+                   if (std::abs(length_of(x.x(), x.y()) - j.rho) > 1e-7 * radius_) return;
+                   if (front_on(j, x.x(), x.y())) out.push_back(phi);
                  });
     }
   }
@@ -1840,9 +1849,9 @@ double Groove::mean_over_groove() const {
   // changes piece (the face's rim and the shank's foot, add_junction_cuts)
   // turn tangent to a slice.
   std::vector<double> levels{c_foot_[0], c_foot_[1]};
-  for (const auto& [rho, z] : {std::pair{flat_radius_, -corner_}, std::pair{radius_, 0.0}}) {
-    levels.push_back(normal_.z() * z - rho * rim_tilt_);
-    levels.push_back(normal_.z() * z + rho * rim_tilt_);
+  for (const Junction& j : junctions()) {
+    levels.push_back(normal_.z() * j.z - j.rho * rim_tilt_);
+    levels.push_back(normal_.z() * j.z + j.rho * rim_tilt_);
   }
   const WidthLevel width = width_level();
   levels.push_back(width.c);
@@ -1983,9 +1992,7 @@ double Groove::mean_over_boundary() const {
       cos_phi = -cos_phi;
       sin_phi = -sin_phi;
     }
-    const double u_z = cos_phi * side_.z() + sin_phi * normal_.z();
-    const double u_xy = std::sqrt(std::max(0.0, 1 - u_z * u_z));
-    return potentials({(r0 + rc * u_xy) * dx, (r0 + rc * u_xy) * dy, rc * u_z});
+    return potentials(silhouette_at(cos_phi, sin_phi));
   };
   // The silhouette from phi a to phi b, by the angle round the axis
   // (monotone along the lower silhouette: U_xy turns one way).
@@ -2028,19 +2035,17 @@ double Groove::mean_over_boundary() const {
   if (level.c < c0_ && c0_ > c_foot) {
     const Vector3d start = foot_left_ + ae_ * side_;
     std::vector<double> cuts;
-    for (const bool face : {true, false}) {
-      if (face && !face_in_front_) continue;
-      // The fibre of start + h z meets the plane z = lift at xy = A + h B.
-      const double lift = face ? -corner_ : 0.0, rho = face ? r0 : R;
-      const double t = (lift - start.z()) / feed_.z();
+    for (const Junction& j : junctions()) {
+      // The fibre of start + h z meets the circle's plane at xy = A + h B.
+      const double t = (j.z - start.z()) / feed_.z();
       const double ax = start.x() + t * feed_.x(), ay = start.y() + t * feed_.y();
       const double bx = -feed_.x() / feed_.z(), by = -feed_.y() / feed_.z();
       const double qa = bx * bx + by * by, qb = ax * bx + ay * by;
-      const double disc = qb * qb - qa * (ax * ax + ay * ay - rho * rho);
+      const double disc = qb * qb - qa * (ax * ax + ay * ay - j.rho * j.rho);
       if (!(qa > 0) || disc < 0) continue;
       for (const double root : {-std::sqrt(disc), std::sqrt(disc)}) {
         const double h = (-qb + root) / qa;
-        if (face || (ax + h * bx) * feed_.x() + (ay + h * by) * feed_.y() > 0) cuts.push_back(h);
+        if (front_on(j, ax + h * bx, ay + h * by)) cuts.push_back(h);
       }
     }
     const auto shifted = [&](double h) {

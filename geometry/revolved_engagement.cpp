@@ -1211,6 +1211,12 @@ void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
   const double r0 = flat_radius_, rc = corner_, ae = ae_;
   // Whether the shank can hold a point of the groove (c <= c0 there).
   const bool shank = c0_ + radius_ * rim_tilt_ > -1e-9 * radius_;
+  // Going uphill (F_z > 0) no point across the axis (x_xy = lambda d,
+  // lambda < 0) leads: with U_z = v <= 0 on the lower boundary, U_xy.F_xy =
+  // -v F_z, there the corner's normal n = -cos(theta) d + sin(theta) z
+  // (theta in [-pi/2, 0]) has n.F = F_z (cos(theta) v / L + sin(theta)) <= 0
+  // and the shank's, -d, has n.F = v F_z / L <= 0.
+  const bool uphill = !edge_on_ && fz > 0;
   // Arcs of at most pi (the left boundary spans no more): W <= tan(pi / 4) = 1.
   const int arcs = std::max(1, static_cast<int>(std::ceil((hi - lo) / kPi)));
   for (int arc = 0; arc < arcs; ++arc) {
@@ -1239,25 +1245,39 @@ void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
     };
     const Form<2> d = forms.linear(fe, fn, 0), v = forms.linear(ez, nz, 0);
     const Form<2>& s = forms.sin();
-    // The face.
-    form_roots(forms.sum(forms.linear(rc * ez, rc * nz, rc + ae * ez) * d, (-ae * en * fz) * s),
-               test(on_face));
+    // The face, where it leads.
+    if (edge_on_ || face_in_front_)
+      form_roots(forms.sum(forms.linear(rc * ez, rc * nz, rc + ae * ez) * d, (-ae * en * fz) * s),
+                 test(on_face));
     const Form<4> d2 = d * d;
     if (rc > 0) {
       // The corner.
       form_roots(forms.sum((ae * en * en) * (s * s), forms.linear(2 * rc, 0, ae) * d2),
                  test(on_corner));
     }
-    if (!shank && !(rc > 0 && r0 > 0)) continue;
+    // Whether M <= -k L can hold on the arc (lambda <= R0 - k): L >=
+    // |F_z| (v^2 <= e_z^2 + N_z^2 = 1 - F_z^2), so not where M > -k |F_z|
+    // on the whole arc. First by a bound: where D keeps its sign (its ends'
+    // signs agree: an arc < pi then holds no zero of D, and one of pi
+    // has ends of opposite signs), M = rc L^2 + ae (c - e_z v) + ae A F_z
+    // s v / D >= -ae (1 + |A F_z| / min |D|), |D| least at an end; this
+    // decides nearly every finishing set-up, for which building M D's form
+    // took a fifth of the evaluation. Else by the form: not where D keeps
+    // its sign and M D + k |F_z| D has that sign on the whole arc.
+    // (D's form at the arc's ends is D (1 + W^2) = D times one's end coefficient.)
+    const double d_lo = d.a[0], d_hi = d.a[2];
+    const double least_d = std::min(std::abs(d_lo), std::abs(d_hi)) / forms.one().a[0];
+    const bool d_keeps_sign = (d_lo > 0 && d_hi > 0) || (d_lo < 0 && d_hi < 0);
+    const double m_low = d_keeps_sign ? -ae * (1 + std::abs(en * fz) / least_d) : -kInf;
+    const bool across_possible = rc > 0 && r0 > 0 && !uphill && !(m_low > -2 * r0 * std::abs(fz));
+    if (!shank && !across_possible) continue;
     // M D and L^2.
     const Form<4> l2 = forms.sum(forms.one() * forms.one(), (-1.0) * (v * v));
     const Form<6> md =
         forms.sum(forms.sum(rc * l2, forms.linear(ae * (1 - ez * ez), -ae * ez * nz, 0)) * d,
                   (ae * en * fz) * (s * v));
-    // Whether M <= -k L can hold on the arc (lambda <= R0 - k): L >=
-    // |F_z| (v^2 <= e_z^2 + N_z^2 = 1 - F_z^2), so not where D keeps its
-    // sign and M D + k |F_z| D has that sign on the whole arc.
     const auto may_cross = [&](double k) {
+      if (m_low > -k * std::abs(fz)) return false;
       const Form<6> bound = forms.sum(md, (k * std::abs(fz)) * (d * forms.one() * forms.one()));
       const auto all = [](const auto& form, bool positive) {
         return std::all_of(form.a.begin(), form.a.end(),
@@ -1266,7 +1286,7 @@ void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
       const bool positive = d.a[0] > 0;
       return !(all(d, positive) && all(bound, positive));
     };
-    if (rc > 0 && r0 > 0 && may_cross(2 * r0)) {
+    if (across_possible && may_cross(2 * r0)) {
       // The corner across the axis: lambda <= -R0.
       const Form<6> g = forms.sum(forms.linear(2 * rc * ae, 0, ae * ae + 4 * r0 * r0) * d2,
                                   (ae * ae * en * en) * (s * s));
@@ -1278,7 +1298,7 @@ void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
     else
       form_roots(md, test(on_shank));
     const double across = radius_ + r0;
-    if (may_cross(across))
+    if (!uphill && may_cross(across))
       form_roots(forms.sum(md * md, (-across * across) * (l2 * d2)), test(on_shank));
   }
 }

@@ -268,7 +268,7 @@ void form_roots(const Form<N>& f, const Found& found) {
       else
         hi = x;
       const double newton = x - g / form_at(slope, x), step = std::abs(newton - x);
-      if (step <= 1e-9) return newton;
+      if (step <= 1e-6) return newton;
       if (hi - lo <= 2e-16) return 0.5 * (lo + hi);
       x = newton > lo && newton < hi ? newton : 0.5 * (lo + hi);
     }
@@ -692,20 +692,65 @@ class Groove {
     return b * side_ + c * normal_ + t * feed_;
   }
 
-  // The front (largest a) and back tool points above (bs[i], c).
-  template <std::size_t M>
-  std::array<std::optional<std::pair<Vector3d, Vector3d>>, M> fibres(
-      const std::array<double, M>& bs, double c) const {
-    std::array<Vector3d, M> x0s;
-    for (std::size_t i = 0; i < M; ++i) x0s[i] = bs[i] * side_ + c * normal_;
-    const auto intervals = line_intervals(x0s, false);
-    std::array<std::optional<std::pair<Vector3d, Vector3d>>, M> out;
-    for (std::size_t i = 0; i < M; ++i) {
-      if (const auto& interval = intervals[i])
-        out[i] =
-            std::pair{point_at(bs[i], c, interval->second), point_at(bs[i], c, interval->first)};
+  // The front and back tool points (the front twice with only_front) of
+  // the fibre at b = top.b + db beside Q's boundary point `top` on the stock
+  // level (db > 0 from the left top, < 0 from the right one); empty where it
+  // misses. The bull-nose's are walked from just outside: near the top the
+  // rim (the tool cut by the stock plane) follows its osculating parabola,
+  // a - a_top = +-sqrt(2 |db| / k), its curvature k = k_n / |U.e| (Meusnier:
+  // the rim's tangent at the top is F, its normal in the plane is along e),
+  // k_n the tool's normal curvature along F, F_mer^2 / rc + F_par^2 L / r
+  // on the corner (F's meridian and parallel parts, L = |U_xy|, r the top's
+  // radius), F_par^2 / R on the shank. From 1.5 times that far the walks
+  // took 2.5 steps where those from the cylinder r = R took 6.5 (finishing
+  // set-ups). A start that is not outside on its side (the walk stops at
+  // once or turns round) falls back to line_interval's starts.
+  std::optional<std::pair<Vector3d, Vector3d>> fibre_beside(const BoundaryPoint& top, double db,
+                                                            bool only_front) const {
+    const double a_top = feed_.dot(top.p);
+    const Vector3d x0 = top.p - a_top * feed_ + db * side_;
+    const auto ends = [&](double front, double back) {
+      return std::optional{std::pair{x0 + front * feed_, x0 + back * feed_}};
+    };
+    if (corner_ > 0) {
+      const auto [cos_phi, sin_phi] = cos_sin(top.phi);
+      const Vector3d u = cos_phi * side_ + sin_phi * normal_;
+      const double r = length_of(top.p.x(), top.p.y());
+      const double f_par = (top.p.x() * feed_.y() - top.p.y() * feed_.x()) / r;
+      const double meridian = top.ray > 0 ? 0.0 : (1 - f_par * f_par) / corner_;
+      const double curvature =
+          (meridian + f_par * f_par * length_of(u.x(), u.y()) / r) / std::abs(cos_phi);
+      const double reach = 1.5 * std::sqrt(2 * std::abs(db) / curvature) + 1e-6 * radius_;
+      if (std::isfinite(reach)) {
+        std::array<CoreWalk, 2> walks{CoreWalk(x0, a_top + reach, -1),
+                                      CoreWalk(x0, a_top - reach, +1)};
+        walks[1].done = only_front;
+        for (bool walking = true; walking;) {
+          walking = false;
+          for (CoreWalk& walk : walks) {
+            if (walk.done) continue;
+            step(walk);
+            walking = walking || !walk.done;
+          }
+        }
+        const auto walked = [](const CoreWalk& walk) { return walk.at && walk.steps > 0; };
+        if (walked(walks[0]) && (only_front || walked(walks[1])))
+          return ends(*walks[0].at, only_front ? *walks[0].at : *walks[1].at);
+      }
     }
-    return out;
+    const auto interval = line_interval(x0, only_front);
+    if (!interval) return std::nullopt;
+    return ends(interval->second, interval->first);
+  }
+
+  // fibre_beside(left top, ae): the shifted silhouette's top and the
+  // fibre of one pair of cutting points, walked once for both.
+  const std::optional<std::pair<Vector3d, Vector3d>>& inner_top_fibre(bool only_front) const {
+    if (!inner_top_fibre_ || (!only_front && inner_top_front_only_)) {
+      inner_top_fibre_ = fibre_beside(left_top_, ae_, only_front);
+      inner_top_front_only_ = only_front;
+    }
+    return *inner_top_fibre_;
   }
 
   // Bull-nose: a Newton walk along a fibre onto the tool, from outside at t
@@ -1038,6 +1083,9 @@ class Groove {
   bool face_in_front_ = false;
   bool shank_in_stock_ = true;
   double rim_tilt_ = 0;  // |N_xy|
+  // inner_top_fibre()'s walk, and whether it left out the back: a cache.
+  mutable std::optional<std::optional<std::pair<Vector3d, Vector3d>>> inner_top_fibre_;
+  mutable bool inner_top_front_only_ = false;
   // boundary()'s last roots on the left and right: a cache, not state.
   mutable std::array<double, 2> warm_start_{kInf, kInf};
 };
@@ -1128,7 +1176,7 @@ void Groove::shifted_extremes(const BoundaryPoint& left_top, const WidthLevel& l
     const Vector3d x0 = x - feed_.dot(x) * feed_;
     if (const auto interval = line_interval(x0, true)) out.add(x0 + interval->second * feed_);
   };
-  add_front(left_top.p + ae_ * side_);
+  if (const auto& fibre = inner_top_fibre(true)) out.add(fibre->first);
   // At c* > c_min the shifted silhouette ends on the near one: its fibre
   // touches the tool there (no walk onto a tangent line).
   if (c_star > c_min_)
@@ -2241,22 +2289,26 @@ CuttingPoints cutting_points(const Groove& groove, const Engagement& out, Side s
   // e = +S0 when left: the smallest s is the left boundary; else the right.
   const Vector3d low = groove.top(left).p;
   const Vector3d high = groove.top(!left).p;
-  const double sign = left ? 1.0 : -1.0;
   const double s_min = out.side_dir.dot(low), s_max = out.side_dir.dot(high);
   CuttingPoints points;
   points.p1 = cutting_point(low);
   points.p2 = cutting_point(high);
-  // The primes' fibres at s_min + ae and s_max - ae, walked side by side;
-  // outside (s_min, s_max), or missing, the far rim point stands for both.
-  const std::array<double, 2> s{s_min + ae, s_max - ae};
+  // The primes' fibres at s_min + ae and s_max - ae, beside the low and
+  // the high top (b = bL + ae beside the left top, bR - ae beside the
+  // right one); outside (s_min, s_max), or missing, the far rim point
+  // stands for both.
+  const bool inside = ae > 0 && s_min + ae < s_max;
+  const auto beside = [&](bool left_top) {
+    return left_top ? groove.inner_top_fibre(false)
+                    : groove.fibre_beside(groove.top(false), -ae, false);
+  };
+  const std::array<bool, 2> tops{left, !left};  // the low top, the high top
   const std::array<Vector3d, 2> fallback{high, low};
-  const auto fibres = groove.fibres(std::array<double, 2>{sign * s[0], sign * s[1]}, groove.c0());
   std::array<std::pair<CuttingPoint, CuttingPoint>, 2> primes;
   for (std::size_t i = 0; i < 2; ++i) {
-    const bool inside = s[i] < s_max && s[i] > s_min && fibres[i];
-    primes[i] = inside
-                    ? std::pair{cutting_point(fibres[i]->first), cutting_point(fibres[i]->second)}
-                    : std::pair{cutting_point(fallback[i]), cutting_point(fallback[i])};
+    const auto fibre = inside ? beside(tops[i]) : std::nullopt;
+    primes[i] = fibre ? std::pair{cutting_point(fibre->first), cutting_point(fibre->second)}
+                      : std::pair{cutting_point(fallback[i]), cutting_point(fallback[i])};
   }
   std::tie(points.p1a, points.p1b) = primes[0];
   std::tie(points.p2a, points.p2b) = primes[1];

@@ -231,11 +231,20 @@ void form_roots(const Form<N>& f, const Found& found) {
   Cell& first = stack[size++];
   first.lo = 0;
   first.hi = 1;
-  double binomial = 1;
-  for (int i = 0; i <= N; ++i) {
-    first.b[i] = f.a[i] / binomial;
-    binomial = binomial * (N - i) / (i + 1);
-  }
+  // 1 / C(N, i) and N C(N - 1, i), fixed at compile time (their divisions
+  // took a tenth of a shifted silhouette's roots).
+  static constexpr auto kBinomials = [] {
+    std::array<std::array<double, N + 1>, 2> out{};
+    double binomial = 1, slope_binomial = N;
+    for (int i = 0; i <= N; ++i) {
+      out[0][i] = 1 / binomial;
+      out[1][i] = slope_binomial;
+      binomial = binomial * (N - i) / (i + 1);
+      slope_binomial = slope_binomial * (N - 1 - i) / (i + 1);
+    }
+    return out;
+  }();
+  for (int i = 0; i <= N; ++i) first.b[i] = f.a[i] * kBinomials[0][i];
   const auto sign_changes = [](const std::array<double, N + 1>& b) {
     int changes = 0;
     double last = 0;
@@ -248,11 +257,7 @@ void form_roots(const Form<N>& f, const Found& found) {
   };
   // The derivative's form (degree N - 1), for Newton's steps.
   Form<N - 1> slope;
-  double slope_binomial = N;
-  for (int i = 0; i < N; ++i) {
-    slope.a[i] = slope_binomial * (first.b[i + 1] - first.b[i]);
-    slope_binomial = slope_binomial * (N - 1 - i) / (i + 1);
-  }
+  for (int i = 0; i < N; ++i) slope.a[i] = kBinomials[1][i] * (first.b[i + 1] - first.b[i]);
   // The root in [lo, hi], where the form changes sign (its values at the
   // ends g_lo, g_hi): Newton's method kept in the shrinking bracket (a
   // step leaving it bisects), until a step is below 1e-9: that step's end
@@ -398,10 +403,11 @@ class Groove {
     const Vector3d du = -sin_phi * side_ + cos_phi * normal_;
     const double length = length_of(u.x(), u.y());
     if (!(length > 0)) return {Vector3d::Zero(), Vector3d::Zero()};
-    const Vector3d flat(u.x() / length, u.y() / length, 0);  // the unit U_xy
+    const double inverse = 1 / length;                         // (one division, not four)
+    const Vector3d flat(u.x() * inverse, u.y() * inverse, 0);  // the unit U_xy
     const double turn = flat.x() * du.x() + flat.y() * du.y();
-    const Vector3d d_flat((du.x() - turn * flat.x()) / length, (du.y() - turn * flat.y()) / length,
-                          0);
+    const Vector3d d_flat((du.x() - turn * flat.x()) * inverse,
+                          (du.y() - turn * flat.y()) * inverse, 0);
     return {flat_radius_ * flat + corner_ * u, flat_radius_ * d_flat + corner_ * du};
   }
 
@@ -477,8 +483,9 @@ class Groove {
         phi = 0.5 * (a + b);
         continue;
       }
-      const Vector3d p(flat_radius_ * u.x() / length + corner_ * u.x(),
-                       flat_radius_ * u.y() / length + corner_ * u.y(), corner_ * u.z());
+      const double inverse = 1 / length;  // (one division, not six)
+      const Vector3d p(flat_radius_ * inverse * u.x() + corner_ * u.x(),
+                       flat_radius_ * inverse * u.y() + corner_ * u.y(), corner_ * u.z());
       const double g = normal_.dot(p) - c;
       // On the root: the point just evaluated is the answer.
       const auto root_here = [&] {
@@ -497,11 +504,11 @@ class Groove {
       // W' = a' W+, W'' = a'' W+ - a'^2 W (W+ = W turned a quarter), a' =
       // (U_xy x U_xy') / |U_xy|^2 and, as U'' = -U, a'' = -2 a' (U_xy.U_xy')
       // / |U_xy|^2; N.U = sin(phi), N.U' = cos(phi).
-      const double l2 = length * length;
-      const double turn = (u.x() * du.y() - u.y() * du.x()) / l2;
-      const double turn_rate = -2 * turn * (u.x() * du.x() + u.y() * du.y()) / l2;
-      const double n_along = (normal_.x() * u.x() + normal_.y() * u.y()) / length;
-      const double n_across = (normal_.y() * u.x() - normal_.x() * u.y()) / length;
+      const double inverse2 = inverse * inverse;
+      const double turn = (u.x() * du.y() - u.y() * du.x()) * inverse2;
+      const double turn_rate = -2 * turn * (u.x() * du.x() + u.y() * du.y()) * inverse2;
+      const double n_along = (normal_.x() * u.x() + normal_.y() * u.y()) * inverse;
+      const double n_across = (normal_.y() * u.x() - normal_.x() * u.y()) * inverse;
       const double slope = flat_radius_ * turn * n_across + corner_ * cos_phi;
       const double bend =
           flat_radius_ * (turn_rate * n_across - turn * turn * n_along) - corner_ * sin_phi;

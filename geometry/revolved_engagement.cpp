@@ -678,14 +678,7 @@ class Groove {
       walks[2 * i + 1].done = only_front;
       walked[i] = true;
     }
-    for (bool walking = true; walking;) {
-      walking = false;
-      for (CoreWalk& walk : walks) {
-        if (walk.done) continue;
-        step(walk);
-        walking = walking || !walk.done;
-      }
-    }
+    walk_side_by_side(walks);
     for (std::size_t i = 0; i < M; ++i) {
       if (!walked[i]) continue;
       const std::optional<double> hi = walks[2 * i].at, lo = walks[2 * i + 1].at;
@@ -732,14 +725,7 @@ class Groove {
         std::array<CoreWalk, 2> walks{CoreWalk(x0, a_top + reach, -1),
                                       CoreWalk(x0, a_top - reach, +1)};
         walks[1].done = only_front;
-        for (bool walking = true; walking;) {
-          walking = false;
-          for (CoreWalk& walk : walks) {
-            if (walk.done) continue;
-            step(walk);
-            walking = walking || !walk.done;
-          }
-        }
+        walk_side_by_side(walks);
         const auto walked = [](const CoreWalk& walk) { return walk.at && walk.steps > 0; };
         if (walked(walks[0]) && (only_front || walked(walks[1])))
           return ends(*walks[0].at, only_front ? *walks[0].at : *walks[1].at);
@@ -799,6 +785,20 @@ class Groove {
     walk.t += walk.direction * newton;
     ++walk.steps;
     walk.done = newton < 1e-15 * radius_;
+  }
+
+  // Steps the walks in turn until all are done: one walk waits on its
+  // square roots and divisions, the others fill the wait.
+  template <std::size_t K>
+  void walk_side_by_side(std::array<CoreWalk, K>& walks) const {
+    for (bool walking = true; walking;) {
+      walking = false;
+      for (CoreWalk& walk : walks) {
+        if (walk.done) continue;
+        step(walk);
+        walking = walking || !walk.done;
+      }
+    }
   }
 
   // The bull-nose's front point on a fibre, for the mean: its r and n.F

@@ -1981,10 +1981,13 @@ double Groove::mean_over_groove() const {
 // kink): the stock line's in closed form (circle_at_level), the shifted
 // silhouette's by shifted_junctions, its part beside the shank's ray
 // where the vertical plane of its fibres meets the circle. No removal
-// test and a one-dimensional quadrature, capped at 8 panels a piece:
+// test and a one-dimensional quadrature, capped at 16 panels a piece:
 // 16-38 us a mean on the bench's set-ups where the area's double
 // quadrature took 180-540 us, within 1.3e-6 mm of that taken to 1e-10
-// (1,440 random set-ups with |F_z| >= 1e-3).
+// (1,440 random set-ups with |F_z| >= 1e-3). Feeds just off the threshold
+// need the 16: with |F_z| in 1e-3..3e-3 (200 set-ups) a cap of 8 left
+// means up to 6.1e-4 mm off (a piece whose front points race round the
+// face's rim), 16 within 3e-5 mm at the same median time.
 double Groove::mean_over_boundary() const {
   const double r0 = flat_radius_, rc = corner_, R = radius_;
   const auto corner_potentials = [&](double cos_psi, double sin_psi,
@@ -2041,7 +2044,7 @@ double Groove::mean_over_boundary() const {
     return along(*p, dx - normal.dot(dx) / lead * feed_);
   };
   constexpr double kRelative = 1e-5;
-  constexpr int kPanels = 8;
+  constexpr int kPanels = 16;
   const double absolute = 1e-14 * R * R * R;
   std::array<double, 2> sum{};
   // Adds f's integral from a to b (either way round), cut at `cuts`.

@@ -492,6 +492,22 @@ TEST(RevolvedEngagement, BullNoseMeanAgreesAcrossTheNearlyEdgeOnThreshold) {
   }
 }
 
+// Just above the threshold (F_z = -1.11e-3, the face leading) a piece of
+// the boundary whose front points race round the face's rim needs more
+// than 8 panels: capped at 8 the mean was 6.939071, 6.1e-4 mm off. The
+// truth is the area integral taken to 1e-11 with 48 panels a piece
+// (6.939681595794; to 1e-10 with 24, 6.939681610187).
+TEST(RevolvedEngagement, BullNoseMeanJustAboveTheNearlyEdgeOnThreshold) {
+  const Tool tool = Tool::bull_nose(14.882618268478423, 6.0915095955964675);
+  const std::optional<double> mean = revolved_mean_diameter(
+      tool,
+      setup(5.0705437834090699, 2.3753093007747843,
+            Vector3d(0.3351681697404289, -0.4868924434315795, 0.80659658226530884),
+            Vector3d(0.82456061777680467, 0.5657725279273832, -0.0011109699333799979), Side::left));
+  ASSERT_TRUE(mean);
+  EXPECT_NEAR(*mean, 6.939681595794, 1e-6);
+}
+
 // bull:D:rc with rc = D/2 is the ball, by parse and by the engines.
 TEST(RevolvedEngagement, FullCornerIsTheBall) {
   const Tool parsed = parse_tool("bull:10:5");

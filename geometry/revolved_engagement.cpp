@@ -55,8 +55,15 @@ constexpr double kEdgeOn = 1e-12;
 // grows as 1 / |F_z|) and the junctions' polynomials lose their roots in
 // round-off: against the area integral taken to 1e-10, at |F_z| ~ 1e-6
 // the boundary's mean was off by up to 0.15 mm, at 1e-4 by 3e-5 mm, from
-// 1e-3 on by at most 9e-7 mm (1,460 random set-ups).
+// 1e-3 on by at most 9e-7 mm (1,460 random set-ups). Going uphill (F_z >
+// 0, the face trailing, none of its points in front) the boundary holds
+// further down, with 32 panels a piece to a relative 1e-6 (the corner's
+// front points still race near the rim): for F_z in 1e-5..1e-3 within
+// 1.4e-5 mm of the area integral taken to 1e-10, as the area's own
+// quadrature (866 random set-ups), at a median 30 us a mean against the
+// area's 435; below 1e-5 up to 1.5e-4 mm off.
 constexpr double kNearlyEdgeOn = 1e-3;
+constexpr double kUphillOffLevel = 1e-5;
 
 // Final bracket [lo, hi] around a sign change of g (g(lo) and g(hi) of
 // opposite signs); Illinois regula falsi with bisection as the fallback. A
@@ -375,8 +382,13 @@ class Groove {
   double radius() const { return radius_; }
   // Whether the feed is parallel to the end face (see kEdgeOn).
   bool edge_on() const { return edge_on_; }
-  // Whether it is nearly so (see kNearlyEdgeOn).
-  bool nearly_edge_on() const { return std::abs(feed_.z()) < kNearlyEdgeOn; }
+  // How the bull-nose's mean is taken (see kNearlyEdgeOn): round the
+  // boundary, round it finely (nearly level uphill), or by the area.
+  enum class MeanRoute { boundary, fine_boundary, area };
+  MeanRoute mean_route() const {
+    if (std::abs(feed_.z()) >= kNearlyEdgeOn) return MeanRoute::boundary;
+    return feed_.z() >= kUphillOffLevel ? MeanRoute::fine_boundary : MeanRoute::area;
+  }
 
   // cos(phi) and sin(phi), turned from the bottom phi = 3 pi / 2: by the
   // series within half a radian of it, where most of the angles asked lie.
@@ -814,7 +826,8 @@ class Groove {
   RadiusExtremes extremes() const;
   double mean_diameter() const;
   double mean_over_groove() const;
-  double mean_over_boundary() const;
+  // relative: the quadrature's tolerance; panels: its cap a piece.
+  double mean_over_boundary(double relative, int panels) const;
   // The phi in [lo, hi] where the shifted fibre leaves the corner (see there).
   std::vector<double> shifted_junctions(double lo, double hi) const;
   // The horizontal circles where the tool's pieces meet: the face's rim
@@ -1902,8 +1915,9 @@ std::array<std::pair<double, double>, M> Groove::fronts_for_area(const std::arra
 }
 
 // The bull-nose's mean over the groove G itself, where the end face is
-// nearly parallel to F (kNearlyEdgeOn; elsewhere mean_over_boundary, 5-15
-// times faster): a fibre above (b, c) in G meets the tool's leading side at
+// nearly parallel to F and F does not go uphill off level
+// (kNearlyEdgeOn; elsewhere mean_over_boundary, 5-15 times faster): a
+// fibre above (b, c) in G meets the tool's leading side at
 // its front point P, where the tool's area is db dc / (n.F), so
 //   D_mean = integral of 2 r(P) / (n.F)  /  integral of 1 / (n.F)
 // over G = { c_min <= c <= c0, bL(c) <= b <= min(bR(c), bL(c) + ae) }: no
@@ -1953,8 +1967,9 @@ double Groove::mean_over_groove() const {
 }
 
 // The bull-nose's mean by Green's theorem on the tool's surface (where
-// the end face is not nearly parallel to F, kNearlyEdgeOn). Around the
-// axis, with s the meridian's arc length from the face's centre, the
+// the end face is not nearly parallel to F, or F goes uphill: see
+// kNearlyEdgeOn). Around the axis, with s the meridian's arc length from
+// the face's centre, the
 // 1-forms H1 dtheta and H2 dtheta with dH1/ds = r and dH2/ds = 2 r^2 (r
 // the distance from the axis, theta the angle round it) have the area
 // element dA and 2 r dA as their exterior derivatives, one 1-form on the
@@ -1981,14 +1996,16 @@ double Groove::mean_over_groove() const {
 // kink): the stock line's in closed form (circle_at_level), the shifted
 // silhouette's by shifted_junctions, its part beside the shank's ray
 // where the vertical plane of its fibres meets the circle. No removal
-// test and a one-dimensional quadrature, capped at 16 panels a piece:
-// 16-38 us a mean on the bench's set-ups where the area's double
-// quadrature took 180-540 us, within 1.3e-6 mm of that taken to 1e-10
-// (1,440 random set-ups with |F_z| >= 1e-3). Feeds just off the threshold
-// need the 16: with |F_z| in 1e-3..3e-3 (200 set-ups) a cap of 8 left
-// means up to 6.1e-4 mm off (a piece whose front points race round the
-// face's rim), 16 within 3e-5 mm at the same median time.
-double Groove::mean_over_boundary() const {
+// test and a one-dimensional quadrature to `relative`, capped at
+// `panels` a piece (1e-5 and 16 off level, 1e-6 and 32 nearly level
+// uphill, see kNearlyEdgeOn): 16-38 us a mean on the bench's set-ups
+// where the area's double quadrature took 180-540 us, within 1.3e-6 mm
+// of that taken to 1e-10 (1,440 random set-ups with |F_z| >= 1e-3).
+// Feeds just off the threshold need the 16: with |F_z| in 1e-3..3e-3 (200
+// set-ups) a cap of 8 left means up to 6.1e-4 mm off (a piece whose front
+// points race round the face's rim), 16 within 3e-5 mm at the same median
+// time.
+double Groove::mean_over_boundary(double relative, int panels) const {
   const double r0 = flat_radius_, rc = corner_, R = radius_;
   const auto corner_potentials = [&](double cos_psi, double sin_psi,
                                      double psi) -> std::array<double, 2> {
@@ -2043,16 +2060,14 @@ double Groove::mean_over_boundary() const {
     last = {*p, normal, lead};
     return along(*p, dx - normal.dot(dx) / lead * feed_);
   };
-  constexpr double kRelative = 1e-5;
-  constexpr int kPanels = 16;
   const double absolute = 1e-14 * R * R * R;
   std::array<double, 2> sum{};
   // Adds f's integral from a to b (either way round), cut at `cuts`.
   const auto add = [&](const auto& f, double a, double b, std::vector<double> cuts = {}) {
     if (a == b) return;
     const auto v = integrate_smoothed_pieces<2>(
-        f, breaks_within(std::move(cuts), std::min(a, b), std::max(a, b)), kRelative, absolute,
-        kPanels);
+        f, breaks_within(std::move(cuts), std::min(a, b), std::max(a, b)), relative, absolute,
+        panels);
     const double sign = b > a ? 1 : -1;
     sum[0] += sign * v[0];
     sum[1] += sign * v[1];
@@ -2364,7 +2379,14 @@ std::optional<double> revolved_mean_diameter(const Tool& tool, const CutSetup& s
   if (!prepared.groove || !(prepared.ae > 0)) return std::nullopt;
   if (tool.kind == ToolKind::bull_nose) {
     const Groove& groove = *prepared.groove;
-    return groove.nearly_edge_on() ? groove.mean_over_groove() : groove.mean_over_boundary();
+    switch (groove.mean_route()) {
+      case Groove::MeanRoute::boundary:
+        return groove.mean_over_boundary(1e-5, 16);
+      case Groove::MeanRoute::fine_boundary:
+        return groove.mean_over_boundary(1e-6, 32);
+      case Groove::MeanRoute::area:
+        return groove.mean_over_groove();
+    }
   }
   return prepared.groove->mean_diameter();
 }

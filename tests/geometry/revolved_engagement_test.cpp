@@ -508,6 +508,38 @@ TEST(RevolvedEngagement, BullNoseMeanJustAboveTheNearlyEdgeOnThreshold) {
   EXPECT_NEAR(*mean, 6.939681595794, 1e-6);
 }
 
+// Nearly level uphill (F_z 4.2e-5 to 4.5e-4, the face trailing) the mean
+// goes round the boundary with 32 panels a piece: against the area
+// integral taken to 1e-11 with 48 panels a piece.
+TEST(RevolvedEngagement, BullNoseMeanNearlyLevelUphill) {
+  struct Known {
+    double diameter, corner, ap, ae;
+    Vector3d normal, feed;
+    Side side;
+    double mean;
+  };
+  const std::array<Known, 3> cases{{
+      {12.869160148992679, 3.9476911277827713, 1.5821178115409029, 9.3863950346824296,
+       Vector3d(0.16903220077076478, 0.79885404071649102, 0.57728704881845982),
+       Vector3d(-0.97834497601429604, 0.20698093183410957, 4.2007978221886496e-05), Side::right,
+       11.012403730432},
+      {15.777211499449164, 2.6872896703603995, 2.2927111954784833, 5.0311631432145436,
+       Vector3d(-0.89223880276635403, -0.11819883945539747, 0.4358198632341812),
+       Vector3d(0.13154512733144291, -0.99131007920985037, 0.0004542381695103748), Side::right,
+       15.256151982577},
+      {18.409073814211062, 1.028769881218305, 0.41943380202930713, 13.331229475873755,
+       Vector3d(0.20908106448032718, 0.7947116365299921, 0.56984078762369672),
+       Vector3d(-0.96710103503720546, 0.25439257952586214, 5.9263342067688213e-05), Side::right,
+       17.888058955202},
+  }};
+  for (const Known& k : cases) {
+    const std::optional<double> mean = revolved_mean_diameter(
+        Tool::bull_nose(k.diameter, k.corner), setup(k.ap, k.ae, k.normal, k.feed, k.side));
+    ASSERT_TRUE(mean);
+    EXPECT_NEAR(*mean, k.mean, 1e-6) << "D " << k.diameter << " F_z " << k.feed.z();
+  }
+}
+
 // bull:D:rc with rc = D/2 is the ball, by parse and by the engines.
 TEST(RevolvedEngagement, FullCornerIsTheBall) {
   const Tool parsed = parse_tool("bull:10:5");

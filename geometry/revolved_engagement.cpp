@@ -1917,8 +1917,8 @@ std::array<std::pair<double, double>, M> Groove::fronts_for_area(const std::arra
 // The bull-nose's mean over the groove G itself, where the end face is
 // nearly parallel to F and F does not go uphill off level
 // (kNearlyEdgeOn; elsewhere mean_over_boundary, 5-15 times faster): a
-// fibre above (b, c) in G meets the tool's leading side at
-// its front point P, where the tool's area is db dc / (n.F), so
+// fibre above (b, c) in G meets the tool's leading side at its front
+// point P, where the tool's area is db dc / (n.F), so
 //   D_mean = integral of 2 r(P) / (n.F)  /  integral of 1 / (n.F)
 // over G = { c_min <= c <= c0, bL(c) <= b <= min(bR(c), bL(c) + ae) }: no
 // removal test at all. n.F vanishes as the square root of the distance to
@@ -1969,12 +1969,11 @@ double Groove::mean_over_groove() const {
 // The bull-nose's mean by Green's theorem on the tool's surface (where
 // the end face is not nearly parallel to F, or F goes uphill: see
 // kNearlyEdgeOn). Around the axis, with s the meridian's arc length from
-// the face's centre, the
-// 1-forms H1 dtheta and H2 dtheta with dH1/ds = r and dH2/ds = 2 r^2 (r
-// the distance from the axis, theta the angle round it) have the area
-// element dA and 2 r dA as their exterior derivatives, one 1-form on the
-// whole surface (H continuous across the face's rim and the shank's foot,
-// H = 0 on the axis):
+// the face's centre, the 1-forms H1 dtheta and H2 dtheta with dH1/ds = r
+// and dH2/ds = 2 r^2 (r the distance from the axis, theta the angle round
+// it) have the area element dA and 2 r dA as their exterior derivatives,
+// one 1-form on the whole surface (H continuous across the face's rim and
+// the shank's foot, H = 0 on the axis):
 //   face (r <= R0):  H1 = r^2 / 2,  H2 = 2 r^3 / 3;
 //   corner (r = R0 + rc sin psi, z = -rc cos psi):  H1 = R0^2 / 2 + rc (R0
 //     psi + rc (1 - cos psi)),  H2 = 2 R0^3 / 3 + 2 rc (R0^2 psi + 2 R0 rc (1

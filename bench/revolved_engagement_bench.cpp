@@ -11,7 +11,8 @@
 // - random: the tests' random cases (revolved_engagement_test.cpp), where
 //   the issue's figures were taken: D 4..20, rc 0.1..0.9 R, ap up to half
 //   of D, ae up to 1.12 D, tilt up to 80 deg, left and right;
-// - nearly level: the random ones with feeds nearly level (the mean only).
+// - nearly level: the random ones with feeds nearly level (the mean only),
+//   either way and uphill only.
 // And the issue's set-up on which the old mean did not finish in 300 s.
 #include <benchmark/benchmark.h>
 
@@ -72,10 +73,11 @@ std::vector<Case> random_cases(int kind, int count) {
 }
 
 // Nearly level feeds on the random set-ups' tools and widths: |F_z| log-
-// uniform in 1e-6..1e-3, the end face nearly parallel to F, where the
-// bull-nose's mean still goes by the groove's area (not yet within the
-// issue's 50 us).
-std::vector<Case> nearly_level_cases(int kind, int count) {
+// uniform in 1e-6..1e-3, the end face nearly parallel to F, up and down
+// the slope (`uphill`: F_z in 1e-5..1e-3 only). Downhill the bull-nose's
+// mean still goes by the groove's area (not yet within the issue's 50
+// us); uphill from 1e-5 round the boundary.
+std::vector<Case> nearly_level_cases(int kind, int count, bool uphill = false) {
   std::vector<Case> cases = random_cases(kind, count);
   std::mt19937 rng(13);
   std::uniform_real_distribution<double> unit(0, 1);
@@ -83,7 +85,8 @@ std::vector<Case> nearly_level_cases(int kind, int count) {
     const Eigen::Vector3d& n = c.setup.normal;
     const Eigen::Vector3d level = n.cross(Eigen::Vector3d::UnitZ()).normalized();
     const Eigen::Vector3d down = n.cross(level);  // down.z = -sin(tilt)
-    const double f_z = std::pow(10.0, -6 + 3 * unit(rng)) * (unit(rng) < 0.5 ? -1 : 1);
+    const double size = std::pow(10.0, uphill ? -5 + 2 * unit(rng) : -6 + 3 * unit(rng));
+    const double f_z = uphill || unit(rng) < 0.5 ? size : -size;
     const double s = std::clamp(f_z / down.z(), -1.0, 1.0);
     c.setup.feed = std::sqrt(1 - s * s) * level + s * down;
   }
@@ -145,6 +148,12 @@ BENCHMARK(BM_ExtremesOnlyFinishing)->DenseRange(0, 2)->Unit(benchmark::kMicrosec
 BENCHMARK(BM_MeanFinishing)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_MeanRandom)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_MeanNearlyLevel)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
+void BM_MeanNearlyLevelUphill(benchmark::State& state) {
+  run(state, nearly_level_cases(static_cast<int>(state.range(0)), 256, true),
+      engaged_mean_diameter);
+  label(state, "nearly level uphill");
+}
+BENCHMARK(BM_MeanNearlyLevelUphill)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 
 // The issue's set-up on which the old mean did not finish in 300 s.
 void BM_MeanIssueHangCase(benchmark::State& state) {

@@ -74,9 +74,9 @@ std::vector<Case> random_cases(int kind, int count) {
 
 // Nearly level feeds on the random set-ups' tools and widths: |F_z| log-
 // uniform in 1e-6..1e-3, the end face nearly parallel to F, up and down
-// the slope (`uphill`: F_z in 1e-5..1e-3 only). Downhill the bull-nose's
-// mean still goes by the groove's area (not yet within the 50
-// us); uphill from 1e-5 round the boundary.
+// the slope (`uphill`: F_z in 1e-5..1e-3 only). The bull-nose's mean goes
+// round the boundary from |F_z| = 1e-5 and by the groove's area below (not
+// yet within the 50 us).
 std::vector<Case> nearly_level_cases(int kind, int count, bool uphill = false) {
   std::vector<Case> cases = random_cases(kind, count);
   std::mt19937 rng(13);

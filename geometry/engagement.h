@@ -105,10 +105,12 @@ Engagement evaluate_engagement(const Tool& tool, const CutSetup& setup,
 // 1e-11 (1,300 random set-ups, and 300 Z-level ones within 1.5e-5 mm;
 // feeds within 1e-9 of level, up to 1e-4 mm), but up to 5.3e-4 mm off
 // and 0.1-5 ms a mean where nearly level feeds go downhill on the random
-// tools and widths (1,009 set-ups, |F_z| log-uniform in 1e-6..1e-3: 53
-// beyond 1e-4 mm against the area taken to 1e-11 with 48 panels); nearly
-// level uphill (F_z in 1e-5..1e-3) round the boundary again, finer,
-// within 1.4e-5 mm (866 set-ups) in about 30 us; for the
+// tools and widths (|F_z| log-uniform in 1e-6..1e-3: 53 of 1,009 beyond
+// 1e-4 mm against the area taken to 1e-11 with 48 panels). So with
+// |F_z| in 1e-5..1e-3 round the boundary again, finer, in about 40 us:
+// uphill within 1.4e-5 mm (665 random set-ups), downhill within 2.2e-4
+// mm (42 of 681 beyond 1e-5 mm, where the area had 307); below 1e-5 by
+// the area, within 1.3e-4 mm (654); for the
 // flat end mill within 6.4e-4 mm of the circle-by-circle oracle on
 // 900 random set-ups (its circles' removed arcs in closed form; a face seen
 // edge-on, |F_z| < 1e-6, still samples them).

@@ -55,15 +55,18 @@ constexpr double kEdgeOn = 1e-12;
 // grows as 1 / |F_z|) and the junctions' polynomials lose their roots in
 // round-off: against the area integral taken to 1e-10, at |F_z| ~ 1e-6
 // the boundary's mean was off by up to 0.15 mm, at 1e-4 by 3e-5 mm, from
-// 1e-3 on by at most 9e-7 mm (1,460 random set-ups). Going uphill (F_z >
-// 0, the face trailing, none of its points in front) the boundary holds
-// further down, with 32 panels a piece to a relative 1e-6 (the corner's
-// front points still race near the rim): for F_z in 1e-5..1e-3 within
-// 1.4e-5 mm of the area integral taken to 1e-10, as the area's own
-// quadrature (866 random set-ups), at a median 30 us a mean against the
-// area's 435; below 1e-5 up to 1.5e-4 mm off.
+// 1e-3 on by at most 9e-7 mm (1,460 random set-ups). Below, the
+// boundary does better than the area down to |F_z| = 1e-5 with 32 panels
+// a piece to a relative 1e-6 (its pieces were cut short, not its kinks
+// missed: exact kinks by bisection changed nothing): against the area
+// integral taken to 1e-10 on 1,346 random set-ups with |F_z| in
+// 1e-5..1e-3, uphill (the face trailing) 1 of 665 beyond 1e-5 mm, at
+// most 1.4e-5 mm, as the area; downhill 42 of 681, at most 2.2e-4 mm,
+// where the area had 307 and 5.3e-4 mm; a median 38 us a mean against
+// the area's 435. Below 1e-5 the area again (the boundary up to 2.5e-4
+// mm off, the area 1.3e-4).
 constexpr double kNearlyEdgeOn = 1e-3;
-constexpr double kUphillOffLevel = 1e-5;
+constexpr double kOffLevel = 1e-5;
 
 // Final bracket [lo, hi] around a sign change of g (g(lo) and g(hi) of
 // opposite signs); Illinois regula falsi with bisection as the fallback. A
@@ -383,11 +386,13 @@ class Groove {
   // Whether the feed is parallel to the end face (see kEdgeOn).
   bool edge_on() const { return edge_on_; }
   // How the bull-nose's mean is taken (see kNearlyEdgeOn): round the
-  // boundary, round it finely (nearly level uphill), or by the area.
+  // boundary, round it finely (nearly level), or by the area (level).
   enum class MeanRoute { boundary, fine_boundary, area };
   MeanRoute mean_route() const {
-    if (std::abs(feed_.z()) >= kNearlyEdgeOn) return MeanRoute::boundary;
-    return feed_.z() >= kUphillOffLevel ? MeanRoute::fine_boundary : MeanRoute::area;
+    const double slope = std::abs(feed_.z());
+    return slope >= kNearlyEdgeOn ? MeanRoute::boundary
+           : slope >= kOffLevel   ? MeanRoute::fine_boundary
+                                  : MeanRoute::area;
   }
 
   // cos(phi) and sin(phi), turned from the bottom phi = 3 pi / 2: by the
@@ -1915,8 +1920,8 @@ std::array<std::pair<double, double>, M> Groove::fronts_for_area(const std::arra
 }
 
 // The bull-nose's mean over the groove G itself, where the end face is
-// nearly parallel to F and F does not go uphill off level
-// (kNearlyEdgeOn; elsewhere mean_over_boundary, 5-15 times faster): a
+// all but parallel to F, |F_z| < 1e-5 (kNearlyEdgeOn; elsewhere
+// mean_over_boundary, 5-15 times faster): a
 // fibre above (b, c) in G meets the tool's leading side at its front
 // point P, where the tool's area is db dc / (n.F), so
 //   D_mean = integral of 2 r(P) / (n.F)  /  integral of 1 / (n.F)
@@ -1967,7 +1972,7 @@ double Groove::mean_over_groove() const {
 }
 
 // The bull-nose's mean by Green's theorem on the tool's surface (where
-// the end face is not nearly parallel to F, or F goes uphill: see
+// the end face is not all but parallel to F, |F_z| >= 1e-5: see
 // kNearlyEdgeOn). Around the axis, with s the meridian's arc length from
 // the face's centre, the 1-forms H1 dtheta and H2 dtheta with dH1/ds = r
 // and dH2/ds = 2 r^2 (r the distance from the axis, theta the angle round
@@ -1996,8 +2001,8 @@ double Groove::mean_over_groove() const {
 // silhouette's by shifted_junctions, its part beside the shank's ray
 // where the vertical plane of its fibres meets the circle. No removal
 // test and a one-dimensional quadrature to `relative`, capped at
-// `panels` a piece (1e-5 and 16 off level, 1e-6 and 32 nearly level
-// uphill, see kNearlyEdgeOn): 16-38 us a mean on the bench's set-ups
+// `panels` a piece (1e-5 and 16 off level, 1e-6 and 32 nearly level,
+// see kNearlyEdgeOn): 16-38 us a mean on the bench's set-ups
 // where the area's double quadrature took 180-540 us, within 1.3e-6 mm
 // of that taken to 1e-10 (1,440 random set-ups with |F_z| >= 1e-3).
 // Feeds just off the threshold need the 16: with |F_z| in 1e-3..3e-3 (200

@@ -508,17 +508,18 @@ TEST(RevolvedEngagement, BullNoseMeanJustAboveTheNearlyEdgeOnThreshold) {
   EXPECT_NEAR(*mean, 6.939681595794, 1e-6);
 }
 
-// Nearly level uphill (F_z 4.2e-5 to 4.5e-4, the face trailing) the mean
-// goes round the boundary with 32 panels a piece: against the area
-// integral taken to 1e-11 with 48 panels a piece.
-TEST(RevolvedEngagement, BullNoseMeanNearlyLevelUphill) {
+// Nearly level (|F_z| 4.2e-5 to 4.5e-4) the mean goes round the boundary
+// with 32 panels a piece: against the area integral taken to 1e-11 with
+// 48 panels a piece. Three uphill, the face trailing, and one downhill,
+// the face leading, where the area's own quadrature was 2.7e-4 mm off.
+TEST(RevolvedEngagement, BullNoseMeanNearlyLevel) {
   struct Known {
     double diameter, corner, ap, ae;
     Vector3d normal, feed;
     Side side;
     double mean;
   };
-  const std::array<Known, 3> cases{{
+  const std::array<Known, 4> cases{{
       {12.869160148992679, 3.9476911277827713, 1.5821178115409029, 9.3863950346824296,
        Vector3d(0.16903220077076478, 0.79885404071649102, 0.57728704881845982),
        Vector3d(-0.97834497601429604, 0.20698093183410957, 4.2007978221886496e-05), Side::right,
@@ -531,6 +532,10 @@ TEST(RevolvedEngagement, BullNoseMeanNearlyLevelUphill) {
        Vector3d(0.20908106448032718, 0.7947116365299921, 0.56984078762369672),
        Vector3d(-0.96710103503720546, 0.25439257952586214, 5.9263342067688213e-05), Side::right,
        17.888058955202},
+      {11.975841962150351, 3.8298888504112227, 2.5944808094357028, 13.047308644173901,
+       Vector3d(0.12873182205094674, 0.58137527919463938, 0.80338714374378584),
+       Vector3d(0.97642393056202748, -0.21586163559005636, -0.00024921112862644922), Side::right,
+       8.111414009776},
   }};
   for (const Known& k : cases) {
     const std::optional<double> mean = revolved_mean_diameter(

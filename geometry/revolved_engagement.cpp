@@ -1079,10 +1079,12 @@ class Groove {
       value = std::max(value, length_of(r - flat_radius_, p.z()) - corner_);
     return value;
   }
+  // Whether the end face leads: F_z < 0, edge-on counting as leading.
+  bool face_leads() const { return edge_on_ || face_in_front_; }
   // Whether a surface point with outward normal n leads (F.n >= 0, within
-  // round-off); the face by the sign of F_z, edge-on counting as leading.
+  // round-off); the face by face_leads().
   bool leads(const Vector3d& n) const {
-    if (n.z() == -1) return edge_on_ || feed_.z() < 0;
+    if (n.z() == -1) return face_leads();
     return feed_.dot(n) >= -1e-12;
   }
   // The tool's outward normal at a point of its surface (the face's at r <= R0).
@@ -1320,7 +1322,7 @@ void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
     const Form<2> d = forms.linear(fe, fn, 0), v = forms.linear(ez, nz, 0);
     const Form<2>& s = forms.sin();
     // The face, where it leads.
-    if (edge_on_ || face_in_front_)
+    if (face_leads())
       form_roots(forms.sum(forms.linear(rc * ez, rc * nz, rc + ae * ez) * d, (-ae * en * fz) * s),
                  test(on_face));
     const Form<4> d2 = d * d;
@@ -1343,7 +1345,9 @@ void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
     const double least_d = std::min(std::abs(d_lo), std::abs(d_hi)) / forms.one().a[0];
     const bool d_keeps_sign = (d_lo > 0 && d_hi > 0) || (d_lo < 0 && d_hi < 0);
     const double m_low = d_keeps_sign ? -ae * (1 + std::abs(en * fz) / least_d) : -kInf;
-    const bool across_possible = rc > 0 && r0 > 0 && !uphill && !(m_low > -2 * r0 * std::abs(fz));
+    // Ruled out without the form: uphill, or by the bound.
+    const auto ruled_out = [&](double k) { return uphill || m_low > -k * std::abs(fz); };
+    const bool across_possible = rc > 0 && r0 > 0 && !ruled_out(2 * r0);
     if (!shank && !across_possible) continue;
     // M D and L^2.
     const Form<4> l2 = forms.sum(forms.one() * forms.one(), (-1.0) * (v * v));
@@ -1351,7 +1355,6 @@ void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
         forms.sum(forms.sum(rc * l2, forms.linear(ae * (1 - ez * ez), -ae * ez * nz, 0)) * d,
                   (ae * en * fz) * (s * v));
     const auto may_cross = [&](double k) {
-      if (m_low > -k * std::abs(fz)) return false;
       const Form<6> bound = forms.sum(md, (k * std::abs(fz)) * (d * forms.one() * forms.one()));
       const auto all = [](const auto& form, bool positive) {
         return std::all_of(form.a.begin(), form.a.end(),
@@ -1372,7 +1375,7 @@ void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
     else
       form_roots(md, test(on_shank));
     const double across = radius_ + r0;
-    if (!uphill && may_cross(across))
+    if (!ruled_out(across) && may_cross(across))
       form_roots(forms.sum(md * md, (-across * across) * (l2 * d2)), test(on_shank));
   }
 }
@@ -1387,7 +1390,8 @@ void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
 // h) F_xy, so |x_xy|^2 = rho^2 reads 2 R0 F_z (U_xy.F_z W) = L (F_z^2
 // (rho^2 - R0^2) - |F_z W|^2), squared a trigonometric polynomial of
 // degree 6 in phi (its roots by form_roots, each kept if x lies on the
-// circle and leads). Not for a face nearly parallel to F (kNearlyEdgeOn).
+// circle and leads). Not for a face all but parallel to F (|F_z| < 1e-5,
+// see kNearlyEdgeOn), where the polynomials lose their roots in round-off.
 std::vector<double> Groove::shifted_junctions(double lo, double hi) const {
   std::vector<double> out;
   if (!(hi > lo)) return out;
@@ -1531,7 +1535,7 @@ RadiusExtremes Groove::extremes() const {
   shifted_extremes(left_top, level, out);
   // The stock line.
   stock_line_extremes(left_top.b + ae_, out);
-  if (edge_on_ || feed_.z() < 0) face_extremes(out);
+  if (face_leads()) face_extremes(out);
   out.r_max = std::min(out.r_max, radius_);
   return out;
 }

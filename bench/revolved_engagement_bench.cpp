@@ -11,8 +11,8 @@
 // - random: the tests' random cases (revolved_engagement_test.cpp), where
 //   the figures were taken: D 4..20, rc 0.1..0.9 R, ap up to half
 //   of D, ae up to 1.12 D, tilt up to 80 deg, left and right;
-// - nearly level: the random ones with feeds nearly level (the mean only),
-//   either way and uphill only.
+// - level and nearly level: the random ones with feeds level (Z-level
+//   passes) or nearly so (the mean only), either way and uphill only.
 // And the set-up on which the old mean did not finish in 300 s.
 #include <benchmark/benchmark.h>
 
@@ -75,8 +75,8 @@ std::vector<Case> random_cases(int kind, int count) {
 // Nearly level feeds on the random set-ups' tools and widths: |F_z| log-
 // uniform in 1e-6..1e-3, the end face nearly parallel to F, up and down
 // the slope (`uphill`: F_z in 1e-5..1e-3 only). The bull-nose's mean goes
-// round the boundary from |F_z| = 1e-5 and by the groove's area below (not
-// yet within the 50 us).
+// round the boundary from |F_z| = 1e-5 and along the profile below, the
+// feed turned level.
 std::vector<Case> nearly_level_cases(int kind, int count, bool uphill = false) {
   std::vector<Case> cases = random_cases(kind, count);
   std::mt19937 rng(13);
@@ -89,6 +89,17 @@ std::vector<Case> nearly_level_cases(int kind, int count, bool uphill = false) {
     const double f_z = uphill || unit(rng) < 0.5 ? size : -size;
     const double s = std::clamp(f_z / down.z(), -1.0, 1.0);
     c.setup.feed = std::sqrt(1 - s * s) * level + s * down;
+  }
+  return cases;
+}
+
+// Level feeds (F_z = 0: Z-level passes) on the random set-ups, either way
+// along the level line.
+std::vector<Case> level_cases(int kind, int count) {
+  std::vector<Case> cases = random_cases(kind, count);
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const Eigen::Vector3d level = cases[i].setup.normal.cross(Eigen::Vector3d::UnitZ()).normalized();
+    cases[i].setup.feed = i % 2 == 0 ? level : Eigen::Vector3d(-level);
   }
   return cases;
 }
@@ -148,6 +159,11 @@ BENCHMARK(BM_ExtremesOnlyFinishing)->DenseRange(0, 2)->Unit(benchmark::kMicrosec
 BENCHMARK(BM_MeanFinishing)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_MeanRandom)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_MeanNearlyLevel)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
+void BM_MeanLevel(benchmark::State& state) {
+  run(state, level_cases(static_cast<int>(state.range(0)), 256), engaged_mean_diameter);
+  label(state, "level");
+}
+BENCHMARK(BM_MeanLevel)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 void BM_MeanNearlyLevelUphill(benchmark::State& state) {
   run(state, nearly_level_cases(static_cast<int>(state.range(0)), 256, true),
       engaged_mean_diameter);

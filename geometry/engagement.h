@@ -96,24 +96,19 @@ Engagement evaluate_engagement(const Tool& tool, const CutSetup& setup,
 // Area-weighted mean of 2r over the engaged zone, by adaptive quadrature,
 // capped: a bounded number of evaluations whatever the set-up; empty when
 // nothing is engaged. Absolute error: for the ball within 1.2e-6 mm of
-// the same integral taken to 1e-12 (3,000 random set-ups); for the
+// the same integral taken to 1e-12 (3,000 random set-ups). For the
 // bull-nose, round the engaged zone's boundary (Green's theorem on the
-// tool), within 1.3e-6 mm of the area integral taken to 1e-10 (1,440
-// random set-ups; 3e-5 mm with |F_z| in 1e-3..3e-3, 200 set-ups, 3.1e-6
-// in 3e-3..1e-2), and where the end face is nearly parallel to the feed
-// (|F_z| < 1e-3) by the area itself, within 1.3e-5 mm of it taken to
-// 1e-11 (1,300 random set-ups, and 300 Z-level ones within 1.5e-5 mm;
-// feeds within 1e-9 of level, up to 1e-4 mm), but up to 5.3e-4 mm off
-// and 0.1-5 ms a mean where nearly level feeds go downhill on the random
-// tools and widths (|F_z| log-uniform in 1e-6..1e-3: 53 of 1,009 beyond
-// 1e-4 mm against the area taken to 1e-11 with 48 panels). So with
-// |F_z| in 1e-5..1e-3 round the boundary again, finer, in about 40 us:
-// uphill within 1.4e-5 mm (665 random set-ups), downhill within 2.2e-4
-// mm (42 of 681 beyond 1e-5 mm, where the area had 307); below 1e-5 by
-// the area, within 1.3e-4 mm (654); for the
-// flat end mill within 6.4e-4 mm of the circle-by-circle oracle on
-// 900 random set-ups (its circles' removed arcs in closed form; a face seen
-// edge-on, |F_z| < 1e-6, still samples them).
+// tool), within 1.3e-6 mm of the area integral over the groove taken to
+// 1e-10 (1,440 random set-ups; 3e-5 mm with |F_z| in 1e-3..3e-3, 200
+// set-ups, 3.1e-6 in 3e-3..1e-2); where the end face is nearly parallel
+// to the feed (|F_z| in 1e-5..1e-3) finer, uphill within 1.4e-5 mm (665),
+// downhill within 2.2e-4 mm (681). A level feed (F_z = 0, Z-level
+// passes), either tool, goes by one integral along the tool's profile
+// (level_engagement.h): within 6.3e-8 mm of that area integral (400
+// random set-ups), about 10 us a mean; feeds all but level (|F_z| <
+// 1e-5) are turned level first, within 4.2e-4 mm (400). The flat end
+// mill otherwise within 6.4e-4 mm of the circle-by-circle oracle on 900
+// random set-ups (its circles' removed arcs in closed form).
 std::optional<double> engaged_mean_diameter(const Tool& tool, const CutSetup& setup);
 
 // Up or down milling from the side of the previous pass and the spindle

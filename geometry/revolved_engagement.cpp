@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "geometry/angle_set.h"
+#include "geometry/level_engagement.h"
 #include "geometry/quadrature.h"
 #include "geometry/small_angle.h"
 
@@ -48,57 +49,23 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // |F_z| below this counts as a feed parallel to the flat face: the face is
 // then edge-on (part of the silhouette) and handled in closed form.
 constexpr double kEdgeOn = 1e-12;
-// |F_z| below this counts as a face nearly parallel to F for the
-// bull-nose's mean, which then goes by the groove's area
-// (mean_over_groove), not round its boundary (mean_over_boundary): there
-// the front points along the boundary race round the rim (their speed
-// grows as 1 / |F_z|) and the junctions' polynomials lose their roots in
-// round-off: against the area integral taken to 1e-10, at |F_z| ~ 1e-6
-// the boundary's mean was off by up to 0.15 mm, at 1e-4 by 3e-5 mm, from
-// 1e-3 on by at most 9e-7 mm (1,460 random set-ups). Below, the
-// boundary does better than the area down to |F_z| = 1e-5 with 32 panels
-// a piece to a relative 1e-6 (its pieces were cut short, not its kinks
-// missed: exact kinks by bisection changed nothing): against the area
-// integral taken to 1e-10 on 1,346 random set-ups with |F_z| in
-// 1e-5..1e-3, uphill (the face trailing) 1 of 665 beyond 1e-5 mm, at
-// most 1.4e-5 mm, as the area; downhill 42 of 681, at most 2.2e-4 mm,
-// where the area had 307 and 5.3e-4 mm; a median 38 us a mean against
-// the area's 435. Below 1e-5 the area again (the boundary up to 2.5e-4
-// mm off, the area 1.3e-4).
+// The bull-nose's mean goes round the engaged zone's boundary
+// (mean_over_boundary) where |F_z| >= kNearlyEdgeOn. Below, the front
+// points along the boundary race round the face's rim (their speed grows
+// as 1 / |F_z|) and the junctions' polynomials lose their roots in
+// round-off, so the boundary goes finer (32 panels a piece to a relative
+// 1e-6) down to kOffLevel: against the area integral over the groove
+// taken to 1e-10 (a double quadrature of the fibres' front points, the
+// route before; 1,346 random set-ups with |F_z| in 1e-5..1e-3), uphill
+// (the face trailing) 1 of 665 beyond 1e-5 mm, at most 1.4e-5 mm;
+// downhill 42 of 681, at most 2.2e-4 mm. Below kOffLevel both tools go by
+// level_engagement.h with the feed turned level (mean_when_level): at F_z
+// = 0 within 6.3e-8 mm of that area integral (400 random set-ups), with
+// 0 < |F_z| < 1e-5 within 4.2e-4 mm (400; the turn moves the previous
+// tool by up to R |F_z| in height, which its corner near the face feels
+// as a square root), in about 10 us where the area took 0.1-5 ms.
 constexpr double kNearlyEdgeOn = 1e-3;
 constexpr double kOffLevel = 1e-5;
-
-// Final bracket [lo, hi] around a sign change of g (g(lo) and g(hi) of
-// opposite signs); Illinois regula falsi with bisection as the fallback. A
-// discontinuous g collapses the bracket onto its jump, which callers use.
-template <class Function>
-std::pair<double, double> bracket_root(const Function& g, double lo, double hi, double g_lo,
-                                       double g_hi, double tolerance) {
-  int last = 0;
-  for (int i = 0; i < 200 && hi - lo > tolerance; ++i) {
-    double x = 0.5 * (lo + hi);
-    if (g_lo != g_hi) {
-      const double secant = hi - g_hi * (hi - lo) / (g_hi - g_lo);
-      if (secant > lo && secant < hi) x = secant;
-    }
-    // Keep the bracket shrinking by a fixed share even when the secant crawls.
-    if (i % 4 == 3) x = 0.5 * (lo + hi);
-    const double g_x = g(x);
-    if (g_x == 0) return {x, x};
-    if ((g_x < 0) == (g_lo < 0)) {
-      lo = x;
-      g_lo = g_x;
-      if (last == -1) g_hi *= 0.5;
-      last = -1;
-    } else {
-      hi = x;
-      g_hi = g_x;
-      if (last == 1) g_lo *= 0.5;
-      last = 1;
-    }
-  }
-  return {lo, hi};
-}
 
 // The root of g in [lo, hi], where g(lo) < 0 < g(hi): Newton's method on
 // g_and_slope(t) = {g, g'}, a step leaving the bracket bisecting it, until
@@ -385,14 +352,15 @@ class Groove {
   double radius() const { return radius_; }
   // Whether the feed is parallel to the end face (see kEdgeOn).
   bool edge_on() const { return edge_on_; }
-  // How the bull-nose's mean is taken (see kNearlyEdgeOn): round the
-  // boundary, round it finely (nearly level), or by the area (level).
-  enum class MeanRoute { boundary, fine_boundary, area };
+  // How the mean is taken (see kNearlyEdgeOn): the bull-nose's round the
+  // boundary, finely round it (nearly level); either tool's by the profile
+  // (level).
+  enum class MeanRoute { boundary, fine_boundary, level };
   MeanRoute mean_route() const {
     const double slope = std::abs(feed_.z());
     return slope >= kNearlyEdgeOn ? MeanRoute::boundary
            : slope >= kOffLevel   ? MeanRoute::fine_boundary
-                                  : MeanRoute::area;
+                                  : MeanRoute::level;
   }
 
   // cos(phi) and sin(phi), turned from the bottom phi = 3 pi / 2: by the
@@ -819,18 +787,9 @@ class Groove {
     }
   }
 
-  // The bull-nose's front point on a fibre, for the mean: its r and n.F
-  // (0 when the fibre misses), walked to a step at a time (see there).
-  class FrontWalk;
-  // The front points of the fibres x0s[i] + t F (a panel's nodes, in order
-  // along a slice). `warm` is the last answer's t, kept for the next call.
-  template <std::size_t M>
-  std::array<std::pair<double, double>, M> fronts_for_area(const std::array<Vector3d, M>& x0s,
-                                                           double& warm) const;
-  struct AlongSlice;
   RadiusExtremes extremes() const;
   double mean_diameter() const;
-  double mean_over_groove() const;
+  double mean_when_level() const;
   // relative: the quadrature's tolerance; panels: its cap a piece.
   double mean_over_boundary(double relative, int panels) const;
   // The phi in [lo, hi] where the shifted fibre leaves the corner (see there).
@@ -859,13 +818,8 @@ class Groove {
       }
     }
   }
-  // The edge-on end face's area and moment of 2r in the groove (see there).
-  std::array<double, 2> edge_on_face_share() const;
-  // Whether the previous pass removed a tool point (see unremoved_length).
+  // Which tool points the previous pass removed (the flat mill's mean).
   class Removal;
-  // Length of the angles of `row` (a circle of the tool) that are not
-  // removed by the previous pass (see mean_diameter).
-  double unremoved_length(const AngleSet& row, double rho, double z, const Removal& removal) const;
 
  private:
   // c* = the level below which the groove spans the whole slice (width of Q
@@ -1542,13 +1496,13 @@ RadiusExtremes Groove::extremes() const {
 
 // The flat mill's test of what the previous pass removed (its mean goes
 // circle by circle; the bull-nose's needs no such test, see
-// mean_over_groove): P is removed iff it lies strictly inside the tool
+// mean_over_boundary): P is removed iff it lies strictly inside the tool
 // shifted by ae along e, i.e. seen along F iff q = (e.P - ae, N.P) lies in
 // Q, the projection of the solid K = {r <= R, z >= 0}: the ellipse E =
 // A disk(R), A = rows e_xy and N_xy, swept along w = (e_z, N_z), the axis
 // seen along F. With k = A^-1 q that is iff the ray k - s A^-1 w (s >= 0)
-// meets the disk of radius R. A face seen edge-on (|F_z| tiny) makes A
-// singular: the test then goes by boundary().
+// meets the disk of radius R. (A face seen edge-on makes A singular: such
+// feeds, |F_z| < kOffLevel, go by mean_when_level.)
 class Groove::Removal {
  public:
   explicit Removal(const Groove& groove) : groove_(groove) {
@@ -1556,32 +1510,13 @@ class Groove::Removal {
     Eigen::Matrix2d a;
     a << g.side_.x(), g.side_.y(), g.normal_.x(), g.normal_.y();
     const Eigen::Vector2d w(g.side_.z(), g.normal_.z());
-    if (std::abs(g.feed_.z()) >= 1e-6) {
-      mode_ = Mode::rim_disk;
-      inverse_ = a.inverse();
-      axis_ = inverse_ * w;
-      axis_unit_ = axis_.normalized();
-      axis_across_ = {-axis_unit_.y(), axis_unit_.x()};
-      along_phase_ = std::atan2(axis_unit_.y(), axis_unit_.x());
-      origin_ = g.ae_ * inverse_.col(0);
-    }
-    // The least bL(c) up to the stock plane, less a margin for round-off
-    // (tool points with e.P - ae at or below it are never removed): bL is
-    // convex in c, least at Q's leftmost point, the silhouette's point with
-    // normal -e (phi = pi) when it lies on the lower boundary below c0, else
-    // at c0 (the left ray then runs to smaller b as c grows, or the point
-    // lies above the stock).
-    lowest_left_ = g.top(true).b;
-    if (g.phi_left_ <= kPi) {
-      const Vector3d p = g.silhouette(kPi);
-      if (g.normal_.dot(p) <= g.c0_) lowest_left_ = std::min(lowest_left_, g.side_.dot(p));
-    }
-    lowest_left_ -= 1e-9 * g.radius_;
+    inverse_ = a.inverse();
+    axis_ = inverse_ * w;
+    axis_unit_ = axis_.normalized();
+    axis_across_ = {-axis_unit_.y(), axis_unit_.x()};
+    along_phase_ = std::atan2(axis_unit_.y(), axis_unit_.x());
+    origin_ = g.ae_ * inverse_.col(0);
   }
-
-  double lowest_left() const { return lowest_left_; }
-  // Whether remove_from gives the removed angles (the flat mill off edge-on).
-  bool closed_form() const { return mode_ == Mode::rim_disk; }
 
   // Removes from `row` the angles of the circle of radius rho at height z
   // that the previous pass removed, in closed form. k = A^-1 q = P_xy - o,
@@ -1651,28 +1586,7 @@ class Groove::Removal {
     }
   }
 
-  // > 0 where the previous pass removed the tool point p, <= 0 where it did
-  // not; continuous across the removed part's edge.
-  double margin(const Vector3d& p) const {
-    return margin_at({groove_.side_.dot(p) - groove_.ae_, groove_.normal_.dot(p)});
-  }
-  // The same for q = (e.P - ae, N.P).
-  double margin_at(const Eigen::Vector2d& q) const {
-    const Groove& g = groove_;
-    switch (mode_) {
-      case Mode::rim_disk: {
-        const Eigen::Vector2d k = inverse_ * q;
-        const double s = std::max(0.0, k.dot(axis_) / axis_.squaredNorm());
-        return g.flat_radius_ - (k - s * axis_).norm();
-      }
-      case Mode::boundary:
-        break;
-    }
-    return std::min(q.x() - g.boundary(q.y(), true).b, q.y() - g.c_min_ - 1e-12 * g.radius_);
-  }
-
  private:
-  enum class Mode { rim_disk, boundary };
   // The vectors and matrices first (16-byte aligned), then the scalars.
   Eigen::Matrix2d inverse_ = Eigen::Matrix2d::Identity();
   Eigen::Vector2d axis_ = Eigen::Vector2d::Zero();  // A^-1 w
@@ -1680,9 +1594,7 @@ class Groove::Removal {
   Eigen::Vector2d axis_across_ = Eigen::Vector2d::Zero();  // axis_unit_ turned by +90 deg
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();       // o at z = 0: ae A^-1 (1, 0)
   const Groove& groove_;
-  double lowest_left_ = 0;
   double along_phase_ = 0;  // the azimuth of axis_
-  Mode mode_ = Mode::boundary;
 };
 
 // The flat mill's area-weighted mean of 2r, circle by circle: the tool
@@ -1690,8 +1602,8 @@ class Groove::Removal {
 // shank's at height z), each with a constant
 // r, so the mean needs only the length of the engaged angles on each
 // circle, weighted by its area element. On a circle the stock plane and the
-// leading side are sinusoids (exact angle sets, angle_set.h); the previous
-// pass removes what unremoved_length finds. Capped adaptive quadrature over
+// leading side are sinusoids (exact angle sets, angle_set.h), and so are
+// the edges of what the previous pass removed (Removal). Capped adaptive quadrature over
 // the circles bounds the work whatever the set-up.
 double Groove::mean_diameter() const {
   const double tilt = rim_tilt_;
@@ -1709,7 +1621,9 @@ double Groove::mean_diameter() const {
     // Leading side F.n >= 0; the face's normal is -z, seen edge-on it leads.
     set.keep_where_polar(
         s * feed_tilt, [&] { return lead_phase; }, -feed_.z() * nz, s == 0 ? kEdgeOn : 0.0);
-    const double length = set.empty() ? 0 : unremoved_length(set, rho, z, removal);
+    removal.remove_from(set, rho, z);
+    double length = 0;
+    for (int i = 0; i < set.size(); ++i) length += set[i].hi - set[i].lo;
     return std::array<double, 2>{weight * length, weight * 2 * rho * length};
   };
   constexpr double kRelative = 1e-5;
@@ -1720,27 +1634,23 @@ double Groove::mean_diameter() const {
     sum[0] += part[0];
     sum[1] += part[1];
   };
-  // The flat mill's quadrature starts its panels where a circle's engaged
-  // length has a square-root kink (a circle turning tangent to the stock
-  // plane or the removed part's edge): inside a panel one fooled its error
-  // estimate, 1.2e-3 mm off the circle-by-circle oracle.
-  const bool kinks = removal.closed_form();
-  // Seen edge-on (no closed form of the removed arcs) piece by piece in
-  // theta, which smooths the square roots at the cuts.
+  // The quadrature starts its panels where a circle's engaged length has
+  // a square-root kink (a circle turning tangent to the stock plane or the
+  // removed part's edge): inside a panel one fooled its error estimate,
+  // 1.2e-3 mm off the circle-by-circle oracle.
   const auto integrate = [&](const auto& f, const std::vector<double>& breaks) {
-    return kinks ? integrate_capped<2>(f, breaks, kRelative, absolute, kPanels)
-                 : integrate_smoothed_pieces<2>(f, breaks, kRelative, absolute, kPanels);
+    return integrate_capped<2>(f, breaks, kRelative, absolute, kPanels);
   };
   // The face at z = 0 (its lowest point must reach the stock).
   if (-radius_ * tilt < c0_) {
     std::vector<double> breaks{std::abs(c0_) / tilt};
-    if (kinks) removal.add_face_breaks(0, breaks);
+    removal.add_face_breaks(0, breaks);
     add(integrate([&](double rho) { return circle(rho, 0, 0, -1, rho); },
                   breaks_within(breaks, 0.0, radius_)));
   }
   // The shank, up to the highest level the stock reaches on it.
   const double top = (c0_ + radius_ * tilt) / normal_.z();
-  if (top > 0 && kinks && feed_tilt > 0) {
+  if (top > 0 && feed_tilt > 0) {
     // The flat mill's by its vertical lines on the leading half (F.P_xy >=
     // 0), each kept from z = 0 up to the stock plane or to where the
     // previous pass removed it: a closed form a line, fewer lines than
@@ -1768,209 +1678,6 @@ double Groove::mean_diameter() const {
     std::vector<double> breaks{(c0_ - radius_ * tilt) / normal_.z()};
     add(integrate([&](double z) { return circle(radius_, z, 1, 0, radius_); },
                   breaks_within(breaks, 0.0, top)));
-  }
-  return sum[0] > 0 ? sum[1] / sum[0] : 0.0;
-}
-
-// A fibre's walk to its front point. The fibre leaves the tool through the
-// shank when it leaves the shank's cylinder at z >= 0, through the face
-// when the face leads (F_z < 0) and the fibre crosses its plane inside the
-// rim: both in closed form. Else through the corner: there the distance to
-// the core less rc is convex along the fibre, so Newton's method from any
-// point beyond the exit (the cylinder's exit, or the chain's last answer
-// when it lies before that) walks monotonically onto it; from a point
-// inside, its first step lands beyond it. A step below 1e-9 R ends the walk and the
-// point before it is the answer: r and n.F within about 1e-9 R, far below
-// the mean's tolerance (1e-5 relative). Not Halley's steps: from outside
-// they can pass the front, and on a fibre grazing the tool past its
-// nearest approach to the core, where the slope turns and the fibre
-// counted as a miss (2e-4 mm off).
-class Groove::FrontWalk {
- public:
-  FrontWalk(const Groove& groove, const Vector3d& x0, double warm) : groove_(groove), x0_(x0) {
-    const Vector3d& feed = groove.feed_;
-    const auto [fxy2, beta, disc] = groove.cylinder_crossing(x0.x(), x0.y(), groove.radius_);
-    if (!(disc > 0 && fxy2 > 0)) {
-      finish({0, 0});
-      return;
-    }
-    const double root = std::sqrt(disc);
-    t_ = (-beta + root) / fxy2;
-    if (x0.z() + t_ * feed.z() >= 0) {
-      finish({groove.radius_, root / groove.radius_});  // (P_xy.F_xy) / R
-      return;
-    }
-    if (groove.face_in_front_) {
-      const double t_face = (-groove.corner_ - x0.z()) / feed.z();
-      const double rho = length_of(x0.x() + t_face * feed.x(), x0.y() + t_face * feed.y());
-      if (rho <= groove.flat_radius_) {
-        finish({rho, -feed.z()});
-        return;
-      }
-      t_ = std::min(t_, t_face);
-    }
-    if (warm < t_) {
-      fallback_ = t_;
-      t_ = warm;
-    }
-  }
-
-  bool done() const { return done_; }
-  std::pair<double, double> result() const { return result_; }
-  // The answer's t (unchanged where the front is in closed form).
-  double t() const { return t_; }
-
-  // One excess evaluation and Newton's step from it.
-  void step() {
-    const Excess e = groove_.core_excess(x0_ + t_ * groove_.feed_);
-    if (!(e.slope > 0)) {
-      if (fallback_ < kInf) {  // the chain's last answer was no start: the cylinder's
-        t_ = std::exchange(fallback_, kInf);
-        return;
-      }
-      return finish({0, 0});
-    }
-    fallback_ = kInf;
-    const double newton = e.value / e.slope;
-    t_ -= newton;
-    if (std::abs(newton) <= 1e-9 * groove_.radius_ || ++steps_ == 60) finish({e.rho, e.slope});
-  }
-
- private:
-  void finish(std::pair<double, double> result) {
-    result_ = result;
-    done_ = true;
-  }
-
-  const Groove& groove_;
-  Vector3d x0_;
-  double t_ = kInf, fallback_ = kInf;
-  int steps_ = 0;
-  bool done_ = false;
-  std::pair<double, double> result_{0, 0};
-};
-
-// The front points above (b, c), b along a slice at level c, for the
-// mean: 1 / (n.F) and 2 r / (n.F) there, one node at a time or a panel's
-// nodes side by side (quadrature.h's sweep).
-struct Groove::AlongSlice {
-  const Groove& groove;
-  double c;
-  double& warm;
-
-  template <std::size_t M>
-  std::array<std::array<double, 2>, M> sweep(const std::array<double, M>& bs) const {
-    std::array<Vector3d, M> x0s;
-    for (std::size_t i = 0; i < M; ++i) x0s[i] = bs[i] * groove.side_ + c * groove.normal_;
-    const auto fronts = groove.fronts_for_area(x0s, warm);
-    std::array<std::array<double, 2>, M> values;
-    for (std::size_t i = 0; i < M; ++i) {
-      const auto [rho, lead] = fronts[i];
-      // A fibre within round-off of Q's boundary (a node of a tiny
-      // piece): its n.F is round-off; it adds nothing.
-      values[i] = lead > 1e-12 ? std::array<double, 2>{1 / lead, 2 * rho / lead}
-                               : std::array<double, 2>{0, 0};
-    }
-    return values;
-  }
-  std::array<double, 2> operator()(double b) const { return sweep(std::array<double, 1>{b})[0]; }
-};
-
-// Four chains of nodes walked side by side, each node started from its
-// chain's last answer: one walk waits on its square roots and divisions,
-// and the others' fill the wait (a single chain took 4.8 excess
-// evaluations a node, each on the last one's result; on the bench's
-// finishing set-ups 2, 3, 4 and 5 chains took 210, 191, 177 and 188 us a
-// mean).
-template <std::size_t M>
-std::array<std::pair<double, double>, M> Groove::fronts_for_area(const std::array<Vector3d, M>& x0s,
-                                                                 double& warm) const {
-  constexpr std::size_t kChains = M < 4 ? M : 4;
-  std::array<std::pair<double, double>, M> out;
-  struct Chain {
-    std::size_t node, end;
-    double warm;
-    std::optional<FrontWalk> walk;
-  };
-  std::array<Chain, kChains> chains;
-  for (std::size_t k = 0; k < kChains; ++k) {
-    chains[k].node = M * k / kChains;
-    chains[k].end = M * (k + 1) / kChains;
-    chains[k].warm = k == 0 ? warm : kInf;
-  }
-  // Starts the chain's next node; false when the chain is through.
-  const auto start = [&](Chain& chain) {
-    while (chain.node < chain.end) {
-      chain.walk.emplace(*this, x0s[chain.node], chain.warm);
-      if (!chain.walk->done()) return true;
-      out[chain.node++] = chain.walk->result();  // in closed form
-    }
-    return false;
-  };
-  std::size_t walking = 0;
-  for (Chain& chain : chains) walking += start(chain) ? 1 : 0;
-  while (walking > 0) {
-    for (Chain& chain : chains) {
-      if (chain.node >= chain.end) continue;
-      chain.walk->step();
-      if (!chain.walk->done()) continue;
-      out[chain.node++] = chain.walk->result();
-      chain.warm = chain.walk->t();
-      if (!start(chain)) --walking;
-    }
-  }
-  if (chains.back().walk) warm = chains.back().walk->t();
-  return out;
-}
-
-// The bull-nose's mean over the groove G itself, where the end face is
-// all but parallel to F, |F_z| < 1e-5 (kNearlyEdgeOn; elsewhere
-// mean_over_boundary, 5-15 times faster): a
-// fibre above (b, c) in G meets the tool's leading side at its front
-// point P, where the tool's area is db dc / (n.F), so
-//   D_mean = integral of 2 r(P) / (n.F)  /  integral of 1 / (n.F)
-// over G = { c_min <= c <= c0, bL(c) <= b <= min(bR(c), bL(c) + ae) }: no
-// removal test at all. n.F vanishes as the square root of the distance to
-// Q's boundary, which integrate_smoothed_pieces absorbs. The integrands
-// have kinks where the front point crosses from one piece of the tool to
-// the next (the face's rim, the shank's foot): the slices are cut there,
-// in closed form, and the levels where those circles turn tangent to a
-// slice, where a boundary turns from the silhouette onto a shank's ray,
-// and at c*.
-double Groove::mean_over_groove() const {
-  // Panels a piece: at most 8 across the levels, 4 along a slice (a few
-  // grazing set-ups ask for many more, chasing round-off; see engagement.h).
-  constexpr double kRelative = 1e-5;
-  constexpr int kLevelPanels = 8, kSlicePanels = 4;
-  const double absolute = 1e-12 * radius_ * radius_;
-  double warm = kInf;  // the last front point's t along its fibre
-  // The levels where the horizontal circles on which the front point
-  // changes piece (the face's rim and the shank's foot, add_junction_cuts)
-  // turn tangent to a slice.
-  std::vector<double> levels{c_foot_[0], c_foot_[1]};
-  for (const Junction& j : junctions()) {
-    levels.push_back(normal_.z() * j.z - j.rho * rim_tilt_);
-    levels.push_back(normal_.z() * j.z + j.rho * rim_tilt_);
-  }
-  const WidthLevel width = width_level();
-  levels.push_back(width.c);
-  std::vector<double> cuts;
-  const auto slice = [&](double c) {
-    const double lo = boundary(c, true).b;
-    const double hi = std::min(boundary(c, false).b, lo + ae_);
-    if (!(hi > lo)) return std::array<double, 2>{0, 0};
-    cuts.clear();
-    add_junction_cuts(c, cuts);
-    const std::vector<double> pieces = breaks_within(cuts, lo, hi);
-    return integrate_smoothed_pieces<2>(AlongSlice{*this, c, warm}, pieces, kRelative, absolute,
-                                        kSlicePanels);
-  };
-  auto sum = integrate_smoothed_pieces<2>(slice, breaks_within(levels, c_min_, c0_), kRelative,
-                                          absolute, kLevelPanels);
-  if (edge_on_) {
-    const auto face = edge_on_face_share();
-    sum[0] += face[0];
-    sum[1] += face[1];
   }
   return sum[0] > 0 ? sum[1] / sum[0] : 0.0;
 }
@@ -2165,113 +1872,29 @@ double Groove::mean_over_boundary(double relative, int panels) const {
   return sum[0] != 0 ? sum[1] / sum[0] : 0.0;
 }
 
-// The end face seen edge-on (F_z = 0) has no area in G, yet MODELS.md's
-// "non-negative component along F" counts it as leading. With F level, N and
-// e lie in the vertical plane across F, so on the face (z = -rc) both the
-// stock's test and the previous pass's depend only on u = P.m, m the
-// horizontal unit across F: N.P = N_m u - N_z rc <= c0; and the previous
-// tool, whose face lies ae e_z higher, removes the strip |u - ae e_m| <
-// rho(h) of its section at the face's height h = -rc - ae e_z (only when
-// e_z < 0: else it passes at or below the face). Over a strip of u the
-// chord |v| <= w = sqrt(R0^2 - u^2) gives the area 2 w and the moment of
-// 2r = 2 sqrt(u^2 + v^2): 2 w R0 + 2 u^2 ln((R0 + w) / |u|).
-std::array<double, 2> Groove::edge_on_face_share() const {
-  const double fxy = length_of(feed_.x(), feed_.y());
-  const Vector3d across(-feed_.y() / fxy, feed_.x() / fxy, 0);
-  const double n_m = normal_.dot(across), e_m = side_.dot(across);
-  // The kept u: the face's chord range, cut by the stock plane.
-  double lo = -flat_radius_, hi = flat_radius_;
-  const double reach = c0_ + normal_.z() * corner_;
-  if (n_m > 0) hi = std::min(hi, reach / n_m);
-  if (n_m < 0) lo = std::max(lo, reach / n_m);
-  if (n_m == 0 && reach < 0) return {0, 0};
-  std::array<std::pair<double, double>, 2> kept{{{lo, hi}, {0, 0}}};
-  if (const double h = -corner_ - ae_ * side_.z(); side_.z() < 0) {
-    const double half =
-        h >= 0 ? radius_ : flat_radius_ + std::sqrt(std::max(0.0, corner_ * corner_ - h * h));
-    const double cut_lo = ae_ * e_m - half, cut_hi = ae_ * e_m + half;
-    kept = {{{lo, std::min(hi, cut_lo)}, {std::max(lo, cut_hi), hi}}};
+// The mean for a feed parallel to the end face, |F_z| < 1e-5 (see
+// kOffLevel), by level_engagement.h: with F turned level, N and e with it,
+// when it is not quite.
+double Groove::mean_when_level() const {
+  Vector3d normal = normal_, side = side_;
+  const Vector3d level = Vector3d(feed_.x(), feed_.y(), 0).normalized();
+  if (!edge_on_) {
+    const Eigen::Quaterniond turn = Eigen::Quaterniond::FromTwoVectors(feed_, level);
+    normal = turn * normal_;
+    side = turn * side_;
   }
-  const double r0 = flat_radius_;
-  // The area of the chords over [a, b]: the integral of 2 sqrt(R0^2 - u^2).
-  const auto area_to = [&](double u) {
-    return u * std::sqrt(std::max(0.0, r0 * r0 - u * u)) + r0 * r0 * std::asin(u / r0);
-  };
-  std::array<double, 2> sum{0, 0};
-  for (const auto& [a, b] : kept) {
-    if (!(b > a)) continue;
-    sum[0] += area_to(b) - area_to(a);
-    // The moment by quadrature (smooth but for u^2 ln|u| at 0 and the
-    // square roots at +-R0, which the pieces' ends absorb).
-    sum[1] += integrate_smoothed_pieces<1>(
-        [&](double u) {
-          const double w = std::sqrt(std::max(0.0, r0 * r0 - u * u));
-          const double log_term = u != 0 ? u * u * std::log((r0 + w) / std::abs(u)) : 0.0;
-          return std::array<double, 1>{2 * w * r0 + 2 * log_term};
-        },
-        breaks_within({0.0}, a, b), 1e-10, 1e-14 * r0 * r0 * r0, 8)[0];
-  }
-  return sum;
-}
-
-// The removed stretches' ends on each arc of a flat mill's circle: in
-// closed form (Removal::remove_from), or seen edge-on by sign changes of
-// the margin bracketed on 16 cells, then regula falsi (a removed stretch
-// narrower than a cell can be missed; it weighs at most a cell's share of
-// the circle).
-double Groove::unremoved_length(const AngleSet& row, double rho, double z,
-                                const Removal& removal) const {
-  if (removal.closed_form()) {
-    AngleSet kept = row;
-    removal.remove_from(kept, rho, z);
-    double length = 0;
-    for (int i = 0; i < kept.size(); ++i) length += kept[i].hi - kept[i].lo;
-    return length;
-  }
-  constexpr int kCells = 16;
-  const auto removed_by = [&](double t) {
-    return removal.margin({rho * std::cos(t), rho * std::sin(t), z});
-  };
-  const Sinusoid b_along{rho * side_.x(), rho * side_.y(), side_.z() * z};
-  const Sinusoid c_along{rho * normal_.x(), rho * normal_.y(), normal_.z() * z};
-  double length = 0;
-  for (int i = 0; i < row.size(); ++i) {
-    const double lo = row[i].lo, hi = row[i].hi;
-    if (!(hi > lo)) continue;
-    // Whole arcs first: never removed when e.P - ae stays at or below the
-    // least bL; wholly removed when its least value is removed at both end
-    // levels of the arc (bL is convex: its largest value there is at an end).
-    const Extremes lateral = sinusoid_extremes(b_along, row[i]);
-    if (lateral.max - ae_ <= removal.lowest_left()) {
-      length += hi - lo;
-      continue;
-    }
-    const Extremes levels = sinusoid_extremes(c_along, row[i]);
-    if (removal.margin_at({lateral.min - ae_, levels.min}) > 0 &&
-        removal.margin_at({lateral.min - ae_, levels.max}) > 0) {
-      continue;
-    }
-    // The cells' ends by rotation: one sine and cosine an arc, not a cell.
-    const double step = (hi - lo) / kCells;
-    const double cos_step = std::cos(step), sin_step = std::sin(step);
-    double cos_t = std::cos(lo), sin_t = std::sin(lo);
-    double t_prev = lo, h_prev = removal.margin({rho * cos_t, rho * sin_t, z});
-    for (int k = 1; k <= kCells; ++k) {
-      std::tie(cos_t, sin_t) =
-          std::pair{cos_t * cos_step - sin_t * sin_step, sin_t * cos_step + cos_t * sin_step};
-      const double t = lo + step * k, h = removal.margin({rho * cos_t, rho * sin_t, z});
-      if (h_prev <= 0 && h <= 0) {
-        length += t - t_prev;
-      } else if (h_prev <= 0 || h <= 0) {
-        const auto [a, b] = bracket_root(removed_by, t_prev, t, h_prev, h, 1e-13 * (hi - lo));
-        const double x = 0.5 * (a + b);
-        length += h_prev <= 0 ? x - t_prev : t - x;
-      }
-      t_prev = t;
-      h_prev = h;
-    }
-  }
-  return length;
+  LevelCut cut;
+  cut.flat_radius = flat_radius_;
+  cut.corner = corner_;
+  cut.ae = ae_;
+  // ap keeps its meaning, the depth below the tool's lowest point along N.
+  cut.stock_level = c0_ - c_min_ - flat_radius_ * length_of(normal.x(), normal.y()) - corner_;
+  cut.normal = normal;
+  cut.side = side;
+  cut.feed = level;
+  cut.face_leads = edge_on_ || feed_.z() < 0;
+  const auto [area, moment] = level_area_and_moment(cut);
+  return area > 0 ? moment / area : 0.0;
 }
 
 struct Prepared {
@@ -2392,10 +2015,11 @@ std::optional<double> revolved_mean_diameter(const Tool& tool, const CutSetup& s
         return groove.mean_over_boundary(1e-5, 16);
       case Groove::MeanRoute::fine_boundary:
         return groove.mean_over_boundary(1e-6, 32);
-      case Groove::MeanRoute::area:
-        return groove.mean_over_groove();
+      case Groove::MeanRoute::level:
+        return groove.mean_when_level();
     }
   }
+  if (prepared.groove->mean_route() == Groove::MeanRoute::level) return prepared.groove->mean_when_level();
   return prepared.groove->mean_diameter();
 }
 

@@ -1,0 +1,28 @@
+// The engaged zone of a bull-nose or flat end mill fed parallel to its end
+// face (F_z = 0: Z-level passes, rasters over floors): MODELS.md section
+// 2's zone, whose area and mean working diameter then reduce to one
+// integral along the tool's profile of closed-form terms.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+
+namespace vcpost::geometry {
+
+// One level cut, in the tool's frame: the axis along z, lengths in mm from
+// the axis at the height of the corner's centre (the end face at z =
+// -corner).
+struct LevelCut {
+  double flat_radius = 0;  // R0, the end face's radius (R for a flat mill)
+  double corner = 0;       // rc, 0 for a flat mill
+  double ae = 0;           // the previous pass lies ae along `side`
+  double stock_level = 0;  // c0: the stock is N.P <= c0
+  // Unit and normal to each other; feed level (its z is ignored).
+  Eigen::Vector3d normal, side, feed;
+  bool face_leads = true;  // whether the end face counts as leading
+};
+
+// The engaged zone's area (mm^2) and the integral of 2r over it (mm^3).
+std::array<double, 2> level_area_and_moment(const LevelCut& cut);
+
+}  // namespace vcpost::geometry

@@ -52,7 +52,7 @@ struct Bound {
 };
 
 Bound line(double a, double b, double c, double lo) {
-  const double length = std::hypot(a, b);
+  const double length = std::sqrt(a * a + b * b);
   Bound k;
   k.lo = lo;
   k.a = a / length;
@@ -83,7 +83,7 @@ void meet(const Bound& x, const Bound& y, std::vector<Point>& out) {
     return;
   }
   const double dm = y.centre.m - x.centre.m, dz = y.centre.z - x.centre.z;
-  const double d = std::hypot(dm, dz);
+  const double d = std::sqrt(dm * dm + dz * dz);
   if (!(d > 0) || d > x.radius + y.radius || d < std::abs(x.radius - y.radius)) return;
   const double along = (x.radius * x.radius - y.radius * y.radius + d * d) / (2 * d);
   const double off = std::sqrt(std::max(0.0, x.radius * x.radius - along * along));
@@ -96,7 +96,7 @@ class LevelZone {
  public:
   explicit LevelZone(const LevelCut& cut)
       : r0_(cut.flat_radius), rc_(cut.corner), radius_(r0_ + rc_), c0_(cut.stock_level) {
-    const double length = std::hypot(cut.feed.x(), cut.feed.y());
+    const double length = std::sqrt(cut.feed.x() * cut.feed.x() + cut.feed.y() * cut.feed.y());
     const Vector3d across(-cut.feed.y() / length, cut.feed.x() / length, 0);
     normal_ = {cut.normal.dot(across), cut.normal.z()};
     shift_ = {cut.ae * cut.side.dot(across), cut.ae * cut.side.z()};
@@ -109,48 +109,70 @@ class LevelZone {
     return r0_ + std::sqrt(rc_ * rc_ - z * z);
   }
 
-  // The angle round the axis kept on the circle of radius rho at height z.
-  double kept_angle(double rho, double z) const {
-    if (!(rho > 0)) return 0;
-    double lo = -rho, hi = rho;
+  // The profile's half-width at height z on the tool (R0 at its face).
+  double radius_at(double z) const {
+    return z >= 0 ? radius_ : r0_ + std::sqrt(std::max(0.0, rc_ * rc_ - z * z));
+  }
+
+  // The lateral positions m kept at height z within |m| <= half (the
+  // circle's there; the face's chords at z = -rc): in the stock, less
+  // what the previous tool removes at that height (`strict`: only where it
+  // reaches strictly higher, as for the face, which its own face's plane
+  // does not cut). Two intervals, either perhaps empty.
+  using Intervals = std::array<std::pair<double, double>, 2>;
+  Intervals kept(double half, double z, double removed) const {
+    double lo = -half, hi = half;
     const double reach = c0_ - normal_.z * z;
     if (normal_.m > 0) hi = std::min(hi, reach / normal_.m);
     if (normal_.m < 0) lo = std::max(lo, reach / normal_.m);
-    if (normal_.m == 0 && reach < 0) return 0;
-    const auto angle = [rho](double a, double b) {
-      if (!(b > a)) return 0.0;
-      return std::asin(std::clamp(b / rho, -1.0, 1.0)) - std::asin(std::clamp(a / rho, -1.0, 1.0));
-    };
-    const double removed = half_width(z - shift_.z);
-    if (!(removed > 0)) return angle(lo, hi);
-    return angle(lo, std::min(hi, shift_.m - removed)) +
-           angle(std::max(lo, shift_.m + removed), hi);
+    if (normal_.m == 0 && reach < 0) return {};
+    if (!(removed > 0)) return {{{lo, hi}, {0, 0}}};
+    return {{{lo, std::min(hi, shift_.m - removed)}, {std::max(lo, shift_.m + removed), hi}}};
+  }
+  Intervals kept_on_circle(double rho, double z) const {
+    return kept(rho, z, half_width(z - shift_.z));
+  }
+  Intervals kept_on_face() const {
+    return kept(r0_, -rc_, shift_.z < 0 ? half_width(-rc_ - shift_.z) : -1);
+  }
+
+  // The angle round the axis kept on the circle of radius rho at height z.
+  double kept_angle(double rho, double z) const {
+    if (!(rho > 0)) return 0;
+    double angle = 0;
+    for (const auto& [a, b] : kept_on_circle(rho, z)) {
+      if (b > a)
+        angle += std::asin(std::clamp(b / rho, -1.0, 1.0)) - std::asin(std::clamp(a / rho, -1.0, 1.0));
+    }
+    return angle;
   }
 
   // The heights where the kept sets change form: the pieces' ends and the
   // crossings of any two bounds (the profile's, the shifted profile's, the
   // stock line).
   std::vector<double> breaks() const {
-    std::vector<Bound> bounds;
+    std::array<Bound, 9> bounds;
+    std::size_t count = 0;
     for (const Point offset : {Point{0, 0}, shift_}) {
       for (const double side : {-1.0, 1.0}) {
         if (rc_ > 0) {
-          Bound k;
+          Bound& k = bounds[count++];
           k.lo = offset.z - rc_;
           k.hi = offset.z;
           k.centre = {offset.m + side * r0_, offset.z};
           k.radius = rc_;
           k.side = side;
-          bounds.push_back(k);
         }
-        bounds.push_back(line(1, 0, offset.m + side * radius_, offset.z));
+        bounds[count++] = line(1, 0, offset.m + side * radius_, offset.z);
       }
     }
-    bounds.push_back(line(normal_.m, normal_.z, c0_, -kInf));
+    bounds[count++] = line(normal_.m, normal_.z, c0_, -kInf);
     std::vector<double> zs{-rc_, 0.0, shift_.z - rc_, shift_.z};
+    zs.reserve(40);
     std::vector<Point> points;
-    for (std::size_t i = 0; i < bounds.size(); ++i) {
-      for (std::size_t j = i + 1; j < bounds.size(); ++j) {
+    points.reserve(2);
+    for (std::size_t i = 0; i < count; ++i) {
+      for (std::size_t j = i + 1; j < count; ++j) {
         points.clear();
         meet(bounds[i], bounds[j], points);
         for (const Point& p : points)
@@ -210,31 +232,53 @@ class LevelZone {
     return sum;
   }
 
+  // The least and greatest r and the greatest z of the engaged points.
+  // On the sides r = rho(z) grows with z: the lowest and the highest
+  // heights whose circles keep something. A kept set is empty or not all
+  // along a stretch between two breaks (its bounds cross only there), so
+  // the stretch's middle tells. A face's chord reaches the rim (r = R0),
+  // and comes nearest the axis at v = 0.
+  LevelExtremes extremes(bool face_leads) const {
+    const double slack = 1e-12 * radius_;
+    const auto any = [slack](const Intervals& set) {
+      return set[0].second - set[0].first > slack || set[1].second - set[1].first > slack;
+    };
+    LevelExtremes out;
+    const std::vector<double> zs = breaks_within(breaks(), -rc_, std::max(0.0, top()));
+    for (std::size_t k = 0; k + 1 < zs.size(); ++k) {
+      const double middle = 0.5 * (zs[k] + zs[k + 1]);
+      if (!(zs[k + 1] > zs[k]) || !any(kept_on_circle(radius_at(middle), middle))) continue;
+      out.r_min = std::min(out.r_min, radius_at(zs[k]));
+      out.r_max = radius_at(zs[k + 1]);
+      out.z_max = zs[k + 1];
+    }
+    if (const Intervals face = kept_on_face(); face_leads && r0_ > 0 && any(face)) {
+      for (const auto& [a, b] : face) {
+        if (!(b - a > slack)) continue;
+        out.r_min = std::min(out.r_min, a <= 0 && b >= 0 ? 0.0 : std::min(std::abs(a), std::abs(b)));
+        out.r_max = std::max(out.r_max, r0_);
+        out.z_max = std::max(out.z_max, -rc_);
+      }
+    }
+    return out;
+  }
+
   // The end face at z = -rc, seen edge-on: MODELS.md's "non-negative
   // component along F" counts it as leading. On it both the stock's test
   // and the previous pass's depend only on m: N_m m - N_z rc <= c0, and the
-  // previous tool removes |m - ae e_m| < its half-width at this height.
+  // previous tool removes |m - ae e_m| < its half-width at this height
+  // (only where its face runs higher: its face's plane is no inside).
   // Over a strip of m the chord |v| <= w = sqrt(R0^2 - m^2) gives the area
   // 2 w and the moment of 2r = 2 sqrt(m^2 + v^2): 2 w R0 + 2 m^2 ln((R0 +
   // w) / |m|).
   std::array<double, 2> face() const {
-    double lo = -r0_, hi = r0_;
-    const double reach = c0_ + normal_.z * rc_;
-    if (normal_.m > 0) hi = std::min(hi, reach / normal_.m);
-    if (normal_.m < 0) lo = std::max(lo, reach / normal_.m);
-    if (normal_.m == 0 && reach < 0) return {0, 0};
-    std::array<std::pair<double, double>, 2> kept{{{lo, hi}, {0, 0}}};
-    // Only where the previous tool's face runs higher (its face's plane
-    // itself is no inside).
-    if (const double removed = half_width(-rc_ - shift_.z); shift_.z < 0)
-      kept = {{{lo, std::min(hi, shift_.m - removed)}, {std::max(lo, shift_.m + removed), hi}}};
     const double r0 = r0_;
     // The area of the chords over [a, b]: the integral of 2 sqrt(R0^2 - m^2).
     const auto area_to = [r0](double m) {
       return m * std::sqrt(std::max(0.0, r0 * r0 - m * m)) + r0 * r0 * std::asin(m / r0);
     };
     std::array<double, 2> sum{0, 0};
-    for (const auto& [a, b] : kept) {
+    for (const auto& [a, b] : kept_on_face()) {
       if (!(b > a)) continue;
       sum[0] += area_to(b) - area_to(a);
       // By quadrature: smooth but for m^2 ln|m| at 0 and the square roots
@@ -257,6 +301,10 @@ class LevelZone {
 };
 
 }  // namespace
+
+LevelExtremes level_extremes(const LevelCut& cut) {
+  return LevelZone(cut).extremes(cut.face_leads);
+}
 
 std::array<double, 2> level_area_and_moment(const LevelCut& cut) {
   const LevelZone zone(cut);

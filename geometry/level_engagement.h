@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <limits>
 
 namespace vcpost::geometry {
 
@@ -21,6 +22,15 @@ struct LevelCut {
   Eigen::Vector3d normal, side, feed;
   bool face_leads = true;  // whether the end face counts as leading
 };
+
+// The engaged points' least and greatest distance r from the axis and
+// greatest z; r_min > r_max when nothing is engaged.
+struct LevelExtremes {
+  double r_min = std::numeric_limits<double>::infinity();
+  double r_max = -std::numeric_limits<double>::infinity();
+  double z_max = -std::numeric_limits<double>::infinity();
+};
+LevelExtremes level_extremes(const LevelCut& cut);
 
 // The engaged zone's area (mm^2) and the integral of 2r over it (mm^3).
 std::array<double, 2> level_area_and_moment(const LevelCut& cut);

@@ -346,7 +346,6 @@ class Groove {
     face_in_front_ = !edge_on_ && feed_.z() < 0;
     // The shank's lowest point along N is at -R |N_xy|.
     shank_in_stock_ = c0_ + radius_ * rim_tilt_ > 0;
-    left_top_ = boundary(c0_, true);  // boundary() needs the members above
   }
 
   double radius() const { return radius_; }
@@ -411,12 +410,13 @@ class Groove {
     return corner_ + flat_radius_ * feed_.z() * feed_.z() / (rim_tilt_ * rim_tilt_ * rim_tilt_);
   }
 
-  // Q's left or right boundary point at the stock level c0.
-  // (The right one when first asked: a narrow groove's extremes do without.)
+  // Q's left or right boundary point at the stock level c0, when first
+  // asked (a narrow groove's extremes do without the right one, a level
+  // feed's without either).
   const BoundaryPoint& top(bool left) const {
-    if (left) return left_top_;
-    if (!right_top_) right_top_ = boundary(c0_, false);
-    return *right_top_;
+    std::optional<BoundaryPoint>& top = tops_[left ? 0 : 1];
+    if (!top) top = boundary(c0_, left);
+    return *top;
   }
 
   // The left (smallest b) or right boundary point of Q at level c.
@@ -726,7 +726,7 @@ class Groove {
   // fibre of one pair of cutting points, walked once for both.
   const std::optional<std::pair<Vector3d, Vector3d>>& inner_top_fibre(bool only_front) const {
     if (!inner_top_fibre_ || (!only_front && inner_top_front_only_)) {
-      inner_top_fibre_ = fibre_beside(left_top_, ae_, only_front);
+      inner_top_fibre_ = fibre_beside(top(true), ae_, only_front);
       inner_top_front_only_ = only_front;
     }
     return *inner_top_fibre_;
@@ -789,7 +789,11 @@ class Groove {
 
   RadiusExtremes extremes() const;
   double mean_diameter() const;
+  // By level_engagement.h (see level_cut): the mean where |F_z| <
+  // kOffLevel, the extremes where the feed is level.
+  LevelCut level_cut() const;
   double mean_when_level() const;
+  RadiusExtremes level_extremes() const;
   // relative: the quadrature's tolerance; panels: its cap a piece.
   double mean_over_boundary(double relative, int panels) const;
   // The phi in [lo, hi] where the shifted fibre leaves the corner (see there).
@@ -864,7 +868,7 @@ class Groove {
     const double rho = bottom_curvature_radius();
     if (!(ae_ < rho)) return std::nullopt;
     const double half_angle = std::asin(0.5 * ae_ / rho);
-    if (!(half_angle > 0 && phi_bottom_ - half_angle > left_top_.phi &&
+    if (!(half_angle > 0 && phi_bottom_ - half_angle > top(true).phi &&
           phi_bottom_ + half_angle < phi_right_))
       return std::nullopt;
     return width_level_on_silhouette(phi_bottom_ - half_angle, phi_bottom_ + half_angle);
@@ -1056,8 +1060,7 @@ class Groove {
   double omega_ = 0, phi_left_ = 0, phi_bottom_ = 0, phi_right_ = 0;
   double cos_omega_ = 1, sin_omega_ = 0;
   double c_min_ = 0, c0_ = 0;
-  BoundaryPoint left_top_;                          // boundary(c0, left)
-  mutable std::optional<BoundaryPoint> right_top_;  // boundary(c0, right), see top()
+  mutable std::array<std::optional<BoundaryPoint>, 2> tops_;  // left and right, see top()
   Vector3d foot_left_, foot_right_;
   std::array<double, 2> c_foot_{};  // N.foot, left and right
   bool edge_on_ = false;
@@ -1477,7 +1480,7 @@ void Groove::face_extremes(RadiusExtremes& out) const {
 
 RadiusExtremes Groove::extremes() const {
   RadiusExtremes out;
-  const BoundaryPoint& left_top = left_top_;
+  const BoundaryPoint& left_top = top(true);
   // The far silhouette (away from the previous pass), from the bottom to c0.
   silhouette_extremes(left_top.phi, phi_bottom_, out);
   if (left_top.ray > 0) out.add(left_top.p);
@@ -1872,10 +1875,9 @@ double Groove::mean_over_boundary(double relative, int panels) const {
   return sum[0] != 0 ? sum[1] / sum[0] : 0.0;
 }
 
-// The mean for a feed parallel to the end face, |F_z| < 1e-5 (see
-// kOffLevel), by level_engagement.h: with F turned level, N and e with it,
-// when it is not quite.
-double Groove::mean_when_level() const {
+// The cut for level_engagement.h: with F turned level, N and e with it,
+// when it is not quite (the mean where |F_z| < 1e-5, see kOffLevel).
+LevelCut Groove::level_cut() const {
   Vector3d normal = normal_, side = side_;
   const Vector3d level = Vector3d(feed_.x(), feed_.y(), 0).normalized();
   if (!edge_on_) {
@@ -1893,8 +1895,17 @@ double Groove::mean_when_level() const {
   cut.side = side;
   cut.feed = level;
   cut.face_leads = edge_on_ || feed_.z() < 0;
-  const auto [area, moment] = level_area_and_moment(cut);
+  return cut;
+}
+
+double Groove::mean_when_level() const {
+  const auto [area, moment] = level_area_and_moment(level_cut());
   return area > 0 ? moment / area : 0.0;
+}
+
+RadiusExtremes Groove::level_extremes() const {
+  const LevelExtremes level = geometry::level_extremes(level_cut());
+  return {level.r_min, level.r_max, level.z_max};
 }
 
 struct Prepared {
@@ -1990,7 +2001,7 @@ Engagement evaluate_revolved_engagement(const Tool& tool, const CutSetup& setup,
     out.flags.set(EngagementFlag::nothing_engaged);
     return out;
   }
-  const RadiusExtremes extremes = groove.extremes();
+  const RadiusExtremes extremes = groove.edge_on() ? groove.level_extremes() : groove.extremes();
   if (!(extremes.r_max >= extremes.r_min)) {
     out.flags.set(EngagementFlag::nothing_engaged);
     return out;

@@ -159,6 +159,12 @@ BENCHMARK(BM_ExtremesOnlyFinishing)->DenseRange(0, 2)->Unit(benchmark::kMicrosec
 BENCHMARK(BM_MeanFinishing)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_MeanRandom)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_MeanNearlyLevel)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
+// Z-level passes as `vcpost post` evaluates them (no cutting points).
+void BM_ExtremesOnlyLevel(benchmark::State& state) {
+  run(state, level_cases(static_cast<int>(state.range(0)), 1024), extremes_only);
+  label(state, "level, no cutting points");
+}
+BENCHMARK(BM_ExtremesOnlyLevel)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 void BM_MeanLevel(benchmark::State& state) {
   run(state, level_cases(static_cast<int>(state.range(0)), 256), engaged_mean_diameter);
   label(state, "level");

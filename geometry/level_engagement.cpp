@@ -20,6 +20,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <tuple>
 #include <vector>
 
 #include "geometry/quadrature.h"
@@ -100,6 +101,65 @@ class LevelZone {
     const Vector3d across(-cut.feed.y() / length, cut.feed.x() / length, 0);
     normal_ = {cut.normal.dot(across), cut.normal.z()};
     shift_ = {cut.ae * cut.side.dot(across), cut.ae * cut.side.z()};
+    across_ = across;
+    along_ = {cut.feed.x() / length, cut.feed.y() / length, 0};
+    ae_ = cut.ae;
+  }
+
+  // The tool point at lateral position m, height z, v along the feed.
+  Vector3d point(double m, double z, double v = 0) const {
+    return m * across_ + v * along_ + z * Vector3d::UnitZ();
+  }
+
+  // See LevelRim. In (m, z) the stock line N_m m + N_z z = c0 runs along
+  // s = N_z m - N_m z, and it leaves the profile at the rim's s extremes:
+  // there the rim's tangent is along F, at v = 0.
+  LevelRim rim() const {
+    const Bound stock = line(normal_.m, normal_.z, c0_, -kInf);
+    std::vector<Point> points;
+    for (const double side : {-1.0, 1.0}) {
+      if (rc_ > 0) {
+        Bound k;
+        k.lo = -rc_;
+        k.hi = 0;
+        k.centre = {side * r0_, 0};
+        k.radius = rc_;
+        k.side = side;
+        std::vector<Point> met;
+        meet(stock, k, met);
+        for (const Point& p : met)
+          if (k.holds(p)) points.push_back(p);
+      }
+      // The shank's side above its foot.
+      if (normal_.z != 0) {
+        const double m = side * radius_, z = (c0_ - normal_.m * m) / normal_.z;
+        if (z >= 0) points.push_back({m, z});
+      }
+    }
+    // The end face's chord.
+    if (normal_.m != 0) {
+      const double m = (c0_ + normal_.z * rc_) / normal_.m;
+      if (std::abs(m) <= r0_) points.push_back({m, -rc_});
+    }
+    const auto s_of = [&](const Point& p) { return stock.b * p.m - stock.a * p.z; };
+    Point low{0, 0}, high{0, 0};
+    double s_low = kInf, s_high = -kInf;
+    for (const Point& p : points) {
+      if (s_of(p) < s_low) std::tie(low, s_low) = std::pair{p, s_of(p)};
+      if (s_of(p) > s_high) std::tie(high, s_high) = std::pair{p, s_of(p)};
+    }
+    LevelRim out{point(low.m, low.z), point(high.m, high.z), std::nullopt, std::nullopt};
+    if (!(ae_ > 0 && s_low + ae_ < s_high)) return out;
+    // The fibre at (m, z) crosses its circle at v = +-sqrt(rho^2 - m^2).
+    const auto fibre = [&](const Point& from, double ds) {
+      const double m = from.m + ds * stock.b, z = from.z - ds * stock.a;
+      const double rho = radius_at(z);
+      const double v = std::sqrt(std::max(0.0, rho * rho - m * m));
+      return std::pair{point(m, z, v), point(m, z, -v)};
+    };
+    out.beside_low = fibre(low, ae_);
+    out.beside_high = fibre(high, -ae_);
+    return out;
   }
 
   // The profile's half-width at height z (negative below the end face).
@@ -296,11 +356,15 @@ class LevelZone {
 
  private:
   double r0_, rc_, radius_, c0_;
+  Vector3d across_, along_;  // m's direction, F's level direction
+  double ae_ = 0;
   Point normal_{0, 0};  // N in (m, z)
   Point shift_{0, 0};   // ae e in (m, z): the previous tool's offset
 };
 
 }  // namespace
+
+LevelRim level_rim(const LevelCut& cut) { return LevelZone(cut).rim(); }
 
 LevelExtremes level_extremes(const LevelCut& cut) {
   return LevelZone(cut).extremes(cut.face_leads);

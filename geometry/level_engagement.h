@@ -7,6 +7,8 @@
 #include <Eigen/Core>
 #include <array>
 #include <limits>
+#include <optional>
+#include <utility>
 
 namespace vcpost::geometry {
 
@@ -31,6 +33,17 @@ struct LevelExtremes {
   double z_max = -std::numeric_limits<double>::infinity();
 };
 LevelExtremes level_extremes(const LevelCut& cut);
+
+// MODELS.md's rim points for the cutting points: the rim's (the tool cut
+// by the stock plane) points with the least and the greatest s = S0.P (S0
+// = N x F; where the rim runs along F over the end face, the middle of
+// that chord), and the fibres' front and back rim points at s_min + ae
+// and s_max - ae, when those lie between (else empty).
+struct LevelRim {
+  Eigen::Vector3d low, high;
+  std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> beside_low, beside_high;
+};
+LevelRim level_rim(const LevelCut& cut);
 
 // The engaged zone's area (mm^2) and the integral of 2r over it (mm^3).
 std::array<double, 2> level_area_and_moment(const LevelCut& cut);

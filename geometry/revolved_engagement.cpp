@@ -1954,32 +1954,41 @@ CuttingPoint cutting_point(const Vector3d& p) { return {p, 2 * length_of(p.x(), 
 // The Mgherony-Miko points on the rim c = c0, in S0 = side_dir coordinates.
 CuttingPoints cutting_points(const Groove& groove, const Engagement& out, Side side, double ae) {
   const bool left = side == Side::left;
-  // e = +S0 when left: the smallest s is the left boundary; else the right.
-  const Vector3d low = groove.top(left).p;
-  const Vector3d high = groove.top(!left).p;
-  const double s_min = out.side_dir.dot(low), s_max = out.side_dir.dot(high);
+  using Fibre = std::optional<std::pair<Vector3d, Vector3d>>;  // front and back
+  Vector3d low, high;            // the rim points of least and greatest s
+  std::array<Fibre, 2> primes;  // the fibres at s_min + ae and s_max - ae
+  if (groove.edge_on()) {
+    const LevelRim rim = level_rim(groove.level_cut());
+    std::tie(low, high, primes[0], primes[1]) =
+        std::tuple{rim.low, rim.high, rim.beside_low, rim.beside_high};
+  } else {
+    // e = +S0 when left: the smallest s is the left boundary; else the right.
+    low = groove.top(left).p;
+    high = groove.top(!left).p;
+    const double s_min = out.side_dir.dot(low), s_max = out.side_dir.dot(high);
+    // The primes' fibres beside the low and the high top (b = bL + ae
+    // beside the left top, bR - ae beside the right one); outside (s_min,
+    // s_max) there are none.
+    if (ae > 0 && s_min + ae < s_max) {
+      const auto beside = [&](bool left_top) {
+        return left_top ? groove.inner_top_fibre(false)
+                        : groove.fibre_beside(groove.top(false), -ae, false);
+      };
+      primes = {beside(left), beside(!left)};
+    }
+  }
   CuttingPoints points;
   points.p1 = cutting_point(low);
   points.p2 = cutting_point(high);
-  // The primes' fibres at s_min + ae and s_max - ae, beside the low and
-  // the high top (b = bL + ae beside the left top, bR - ae beside the
-  // right one); outside (s_min, s_max), or missing, the far rim point
-  // stands for both.
-  const bool inside = ae > 0 && s_min + ae < s_max;
-  const auto beside = [&](bool left_top) {
-    return left_top ? groove.inner_top_fibre(false)
-                    : groove.fibre_beside(groove.top(false), -ae, false);
-  };
-  const std::array<bool, 2> tops{left, !left};  // the low top, the high top
+  // Without a fibre the far rim point stands for both primes.
   const std::array<Vector3d, 2> fallback{high, low};
-  std::array<std::pair<CuttingPoint, CuttingPoint>, 2> primes;
+  std::array<std::pair<CuttingPoint, CuttingPoint>, 2> pairs;
   for (std::size_t i = 0; i < 2; ++i) {
-    const auto fibre = inside ? beside(tops[i]) : std::nullopt;
-    primes[i] = fibre ? std::pair{cutting_point(fibre->first), cutting_point(fibre->second)}
-                      : std::pair{cutting_point(fallback[i]), cutting_point(fallback[i])};
+    pairs[i] = primes[i] ? std::pair{cutting_point(primes[i]->first), cutting_point(primes[i]->second)}
+                         : std::pair{cutting_point(fallback[i]), cutting_point(fallback[i])};
   }
-  std::tie(points.p1a, points.p1b) = primes[0];
-  std::tie(points.p2a, points.p2b) = primes[1];
+  std::tie(points.p1a, points.p1b) = pairs[0];
+  std::tie(points.p2a, points.p2b) = pairs[1];
   points.cut = left ? points.p1 : points.p2;
   return points;
 }

@@ -222,6 +222,29 @@ TEST(RevolvedEngagement, CuttingPointsLieOnTheRimAtTheRightSides) {
     expect_cutting_points_on_the_rim(random_case(random, i % 3 == 0), i);
 }
 
+// Level feeds (Z-level passes) take the rim points along the tool's
+// profile (level_engagement.h). Where the stock plane cuts the end face,
+// the rim runs along F over it and its s extreme is that chord's middle.
+// Before, the points came from Q's boundary at c0 with the face edge-on:
+// on 20,000 random set-ups one bull-nose point lay 1.3 mm off the stock
+// plane, and another and a flat mill's 460 and 550 mm off the tool.
+TEST(RevolvedEngagement, CuttingPointsOnLevelFeeds) {
+  std::mt19937 random(29);
+  for (int i = 0; i < 300; ++i) {
+    RandomCase c = random_case(random, i % 3 == 0);
+    const Vector3d along = c.normal.cross(Vector3d::UnitZ());
+    if (!(along.norm() > 1e-9)) continue;
+    c.feed = (i % 2 == 0 ? 1.0 : -1.0) * along.normalized();
+    expect_cutting_points_on_the_rim(c, i);
+  }
+  // The set-up whose p2 was 1.3 mm off the stock plane.
+  expect_cutting_points_on_the_rim(
+      {7.6886714424391887, 0.99174572716135245, 1.562248983973263, 1.5768606355840009,
+       Vector3d(0.49377426903021682, 0.50010950303890722, 0.71139121179127052),
+       Vector3d(0.7115995792676314, -0.70258525374941505, 0), Side::right},
+      -1);
+}
+
 // F_z = 0.035 after projection: the end face is nearly edge-on and c(phi)
 // along Q's boundary climbs 3.7 mm over a short stretch of phi. Halley's
 // steps went to and fro across it inside the bracket for 200 steps and p1
@@ -271,11 +294,18 @@ TEST(RevolvedEngagement, BullNoseTendsToTheBall) {
 // points are engaged, so the exact maximum is never below the sampled one
 // (and the minimum never above) beyond round-off; the other way the sampler
 // may miss by its grid spacing.
-void compare_with_sampler(bool flat, int cases, unsigned seed) {
+// `level`: the feed turned level along the surface (Z-level passes),
+// where the extremes go along the tool's profile (level_engagement.h).
+void compare_with_sampler(bool flat, int cases, unsigned seed, bool level = false) {
   std::mt19937 random(seed);
   double worst = 0;
   for (int i = 0; i < cases; ++i) {
-    const RandomCase c = random_case(random, flat);
+    RandomCase c = random_case(random, flat);
+    if (level) {
+      const Vector3d along = c.normal.cross(Vector3d::UnitZ());
+      if (!(along.norm() > 1e-9)) continue;
+      c.feed = (i % 2 == 0 ? 1.0 : -1.0) * along.normalized();
+    }
     const Tool tool = tool_of(c);
     const CutSetup s = setup_of(c);
     const Engagement e = evaluate_revolved_engagement(tool, s);
@@ -311,6 +341,12 @@ void compare_with_sampler(bool flat, int cases, unsigned seed) {
 
 TEST(RevolvedEngagement, BullNoseAgreesWithBruteForce) { compare_with_sampler(false, 200, 3); }
 TEST(RevolvedEngagement, FlatAgreesWithBruteForce) { compare_with_sampler(true, 100, 5); }
+TEST(RevolvedEngagement, BullNoseAgreesWithBruteForceOnLevelFeeds) {
+  compare_with_sampler(false, 100, 7, true);
+}
+TEST(RevolvedEngagement, FlatAgreesWithBruteForceOnLevelFeeds) {
+  compare_with_sampler(true, 60, 9, true);
+}
 
 // The mean against an independent computation by circles of the tool
 // (revolved_sampler_support.h); its own error is a few 1e-4 mm at 300

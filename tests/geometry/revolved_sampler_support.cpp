@@ -131,7 +131,9 @@ RevolvedSample sample_revolved(double diameter, double corner_radius, double ap,
   const auto engaged = [&](Piece piece, double u, double theta) {
     const Vector3d p = surface.point(piece, u, theta);
     if (n.dot(p) > c0 + 1e-12) return false;
-    if (surface.normal(piece, u, theta).dot(f) < 0) return false;
+    // Leading within round-off: a level feed's face is seen edge-on (the
+    // engine's kEdgeOn), whatever sign F_z's 1e-17 of renormalising takes.
+    if (surface.normal(piece, u, theta).dot(f) < -1e-12) return false;
     return !inside_sweep(diameter, corner_radius, p, offset, f);
   };
 

@@ -87,7 +87,10 @@ struct Engagement {
 enum class CuttingPointsWanted { yes, no };
 
 // D_max, D_min and (unless not wanted: then `points` stays empty) the
-// cutting points, exactly (closed form and 1-D root finding).
+// cutting points, exactly (closed form and 1-D root finding; a bull-nose
+// or flat mill fed level, in closed form along its profile). Where the
+// stock plane cuts a level feed's end face along F, the cutting point on
+// that chord is its middle (the point nearest the axis).
 // REQUIRES: tool valid (see parse_tool), |normal| and |feed| > 0.
 // Degenerate set-ups (flags above) return with the flags set, never throw.
 Engagement evaluate_engagement(const Tool& tool, const CutSetup& setup,

@@ -98,7 +98,8 @@ std::vector<Case> nearly_level_cases(int kind, int count, bool uphill = false) {
 std::vector<Case> level_cases(int kind, int count) {
   std::vector<Case> cases = random_cases(kind, count);
   for (std::size_t i = 0; i < cases.size(); ++i) {
-    const Eigen::Vector3d level = cases[i].setup.normal.cross(Eigen::Vector3d::UnitZ()).normalized();
+    const Eigen::Vector3d level =
+        cases[i].setup.normal.cross(Eigen::Vector3d::UnitZ()).normalized();
     cases[i].setup.feed = i % 2 == 0 ? level : Eigen::Vector3d(-level);
   }
   return cases;

@@ -17,6 +17,7 @@
 #include "geometry/level_engagement.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -52,6 +53,13 @@ struct Bound {
   }
 };
 
+// A few bounds, kept on the stack.
+struct Bounds {
+  std::array<Bound, 9> items;
+  std::size_t size = 0;
+  void add(const Bound& k) { items[size++] = k; }
+};
+
 Bound line(double a, double b, double c, double lo) {
   const double length = std::sqrt(a * a + b * b);
   Bound k;
@@ -66,7 +74,8 @@ Bound line(double a, double b, double c, double lo) {
 void meet(const Bound& x, const Bound& y, std::vector<Point>& out) {
   if (x.radius == 0 && y.radius == 0) {
     const double det = x.a * y.b - y.a * x.b;
-    if (std::abs(det) > 1e-12) out.push_back({(x.c * y.b - y.c * x.b) / det, (x.a * y.c - y.a * x.c) / det});
+    if (std::abs(det) > 1e-12)
+      out.push_back({(x.c * y.b - y.c * x.b) / det, (x.a * y.c - y.a * x.c) / det});
     return;
   }
   if (x.radius == 0 || y.radius == 0) {
@@ -76,10 +85,10 @@ void meet(const Bound& x, const Bound& y, std::vector<Point>& out) {
     const double wm = l.c * l.a - k.centre.m, wz = l.c * l.b - k.centre.z;
     const double along = -wm * l.b + wz * l.a;
     // A tangent point may come out a hair off the circle: kept, as a cut.
-    const double disc = std::max(0.0, along * along - (wm * wm + wz * wz - k.radius * k.radius));
-    if (along * along - (wm * wm + wz * wz - k.radius * k.radius) < -1e-12 * k.radius * k.radius)
-      return;
-    for (const double t : {-along - std::sqrt(disc), -along + std::sqrt(disc)})
+    const double disc = along * along - (wm * wm + wz * wz - k.radius * k.radius);
+    if (disc < -1e-12 * k.radius * k.radius) return;
+    const double root = std::sqrt(std::max(0.0, disc));
+    for (const double t : {-along - root, -along + root})
       out.push_back({l.c * l.a - t * l.b, l.c * l.b + t * l.a});
     return;
   }
@@ -111,30 +120,38 @@ class LevelZone {
     return m * across_ + v * along_ + z * Vector3d::UnitZ();
   }
 
+  // The profile's sides shifted by `offset`: its corner's circles (none
+  // for the flat mill) and its shank's lines.
+  void add_profile(const Point& offset, Bounds& bounds) const {
+    for (const double side : {-1.0, 1.0}) {
+      if (rc_ > 0) {
+        Bound k;
+        k.lo = offset.z - rc_;
+        k.hi = offset.z;
+        k.centre = {offset.m + side * r0_, offset.z};
+        k.radius = rc_;
+        k.side = side;
+        bounds.add(k);
+      }
+      bounds.add(line(1, 0, offset.m + side * radius_, offset.z));
+    }
+  }
+
+  Bound stock_line() const { return line(normal_.m, normal_.z, c0_, -kInf); }
+
   // See LevelRim. In (m, z) the stock line N_m m + N_z z = c0 runs along
   // s = N_z m - N_m z, and it leaves the profile at the rim's s extremes:
   // there the rim's tangent is along F, at v = 0.
   LevelRim rim() const {
-    const Bound stock = line(normal_.m, normal_.z, c0_, -kInf);
+    const Bound stock = stock_line();
+    Bounds sides;
+    add_profile({0, 0}, sides);
     std::vector<Point> points;
-    for (const double side : {-1.0, 1.0}) {
-      if (rc_ > 0) {
-        Bound k;
-        k.lo = -rc_;
-        k.hi = 0;
-        k.centre = {side * r0_, 0};
-        k.radius = rc_;
-        k.side = side;
-        std::vector<Point> met;
-        meet(stock, k, met);
-        for (const Point& p : met)
-          if (k.holds(p)) points.push_back(p);
-      }
-      // The shank's side above its foot.
-      if (normal_.z != 0) {
-        const double m = side * radius_, z = (c0_ - normal_.m * m) / normal_.z;
-        if (z >= 0) points.push_back({m, z});
-      }
+    for (std::size_t i = 0; i < sides.size; ++i) {
+      std::vector<Point> met;
+      meet(stock, sides.items[i], met);
+      for (const Point& p : met)
+        if (sides.items[i].holds(p)) points.push_back(p);
     }
     // The end face's chord.
     if (normal_.m != 0) {
@@ -176,9 +193,8 @@ class LevelZone {
 
   // The lateral positions m kept at height z within |m| <= half (the
   // circle's there; the face's chords at z = -rc): in the stock, less
-  // what the previous tool removes at that height (`strict`: only where it
-  // reaches strictly higher, as for the face, which its own face's plane
-  // does not cut). Two intervals, either perhaps empty.
+  // |m - ae e_m| < removed, what the previous tool removes at that height
+  // (none when removed <= 0). Two intervals, either perhaps empty.
   using Intervals = std::array<std::pair<double, double>, 2>;
   Intervals kept(double half, double z, double removed) const {
     double lo = -half, hi = half;
@@ -202,7 +218,8 @@ class LevelZone {
     double angle = 0;
     for (const auto& [a, b] : kept_on_circle(rho, z)) {
       if (b > a)
-        angle += std::asin(std::clamp(b / rho, -1.0, 1.0)) - std::asin(std::clamp(a / rho, -1.0, 1.0));
+        angle +=
+            std::asin(std::clamp(b / rho, -1.0, 1.0)) - std::asin(std::clamp(a / rho, -1.0, 1.0));
     }
     return angle;
   }
@@ -211,32 +228,22 @@ class LevelZone {
   // crossings of any two bounds (the profile's, the shifted profile's, the
   // stock line).
   std::vector<double> breaks() const {
-    std::array<Bound, 9> bounds;
-    std::size_t count = 0;
-    for (const Point offset : {Point{0, 0}, shift_}) {
-      for (const double side : {-1.0, 1.0}) {
-        if (rc_ > 0) {
-          Bound& k = bounds[count++];
-          k.lo = offset.z - rc_;
-          k.hi = offset.z;
-          k.centre = {offset.m + side * r0_, offset.z};
-          k.radius = rc_;
-          k.side = side;
-        }
-        bounds[count++] = line(1, 0, offset.m + side * radius_, offset.z);
-      }
-    }
-    bounds[count++] = line(normal_.m, normal_.z, c0_, -kInf);
+    Bounds bounds;
+    add_profile({0, 0}, bounds);
+    add_profile(shift_, bounds);
+    bounds.add(stock_line());
     std::vector<double> zs{-rc_, 0.0, shift_.z - rc_, shift_.z};
     zs.reserve(40);
     std::vector<Point> points;
     points.reserve(2);
-    for (std::size_t i = 0; i < count; ++i) {
-      for (std::size_t j = i + 1; j < count; ++j) {
+    for (std::size_t i = 0; i < bounds.size; ++i) {
+      const Bound& x = bounds.items[i];
+      for (std::size_t j = i + 1; j < bounds.size; ++j) {
+        const Bound& y = bounds.items[j];
         points.clear();
-        meet(bounds[i], bounds[j], points);
+        meet(x, y, points);
         for (const Point& p : points)
-          if (bounds[i].holds(p) && bounds[j].holds(p)) zs.push_back(p.z);
+          if (x.holds(p) && y.holds(p)) zs.push_back(p.z);
       }
     }
     return zs;
@@ -315,7 +322,8 @@ class LevelZone {
     if (const Intervals face = kept_on_face(); face_leads && r0_ > 0 && any(face)) {
       for (const auto& [a, b] : face) {
         if (!(b - a > slack)) continue;
-        out.r_min = std::min(out.r_min, a <= 0 && b >= 0 ? 0.0 : std::min(std::abs(a), std::abs(b)));
+        out.r_min =
+            std::min(out.r_min, a <= 0 && b >= 0 ? 0.0 : std::min(std::abs(a), std::abs(b)));
         out.r_max = std::max(out.r_max, r0_);
         out.z_max = std::max(out.z_max, -rc_);
       }

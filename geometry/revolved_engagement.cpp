@@ -1955,7 +1955,7 @@ CuttingPoint cutting_point(const Vector3d& p) { return {p, 2 * length_of(p.x(), 
 CuttingPoints cutting_points(const Groove& groove, const Engagement& out, Side side, double ae) {
   const bool left = side == Side::left;
   using Fibre = std::optional<std::pair<Vector3d, Vector3d>>;  // front and back
-  Vector3d low, high;            // the rim points of least and greatest s
+  Vector3d low, high;           // the rim points of least and greatest s
   std::array<Fibre, 2> primes;  // the fibres at s_min + ae and s_max - ae
   if (groove.edge_on()) {
     const LevelRim rim = level_rim(groove.level_cut());
@@ -1984,8 +1984,9 @@ CuttingPoints cutting_points(const Groove& groove, const Engagement& out, Side s
   const std::array<Vector3d, 2> fallback{high, low};
   std::array<std::pair<CuttingPoint, CuttingPoint>, 2> pairs;
   for (std::size_t i = 0; i < 2; ++i) {
-    pairs[i] = primes[i] ? std::pair{cutting_point(primes[i]->first), cutting_point(primes[i]->second)}
-                         : std::pair{cutting_point(fallback[i]), cutting_point(fallback[i])};
+    pairs[i] = primes[i]
+                   ? std::pair{cutting_point(primes[i]->first), cutting_point(primes[i]->second)}
+                   : std::pair{cutting_point(fallback[i]), cutting_point(fallback[i])};
   }
   std::tie(points.p1a, points.p1b) = pairs[0];
   std::tie(points.p2a, points.p2b) = pairs[1];
@@ -2039,7 +2040,8 @@ std::optional<double> revolved_mean_diameter(const Tool& tool, const CutSetup& s
         return groove.mean_when_level();
     }
   }
-  if (prepared.groove->mean_route() == Groove::MeanRoute::level) return prepared.groove->mean_when_level();
+  if (prepared.groove->mean_route() == Groove::MeanRoute::level)
+    return prepared.groove->mean_when_level();
   return prepared.groove->mean_diameter();
 }
 

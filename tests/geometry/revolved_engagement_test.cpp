@@ -586,6 +586,19 @@ TEST(RevolvedEngagement, BullNoseMeanNearlyLevel) {
                1e-6);
 }
 
+// Downhill all but level (F_z = -2.9e-5, the face leading): the rim
+// beside the face runs nearly along F, and the corner's stretch there,
+// taken by b, left the mean 2.2e-4 mm off (whatever the tolerance or the
+// cap); taken by a = F.P it is within 1.2e-6 mm. The truth: the area
+// integral over the groove taken to 1e-11 with 48 panels a piece.
+TEST(RevolvedEngagement, BullNoseMeanDownhillBesideTheRim) {
+  expect_means({{17.215989686101867, 3.4160432027693832, 1.0463543866491187, 7.9799360893731137,
+                 Vector3d(-0.024286032076133078, -0.56585494975695672, 0.82414705270452138),
+                 Vector3d(-0.99908204018987001, 0.042837788675758527, -2.8834315236837832e-05),
+                 Side::left, 13.818341433950}},
+               2e-6);
+}
+
 // Level feeds (F_z = 0: Z-level passes, rasters over floors) go by the
 // integral along the tool's profile (level_engagement.h). Against the area
 // integral over the groove taken to 1e-10 with 24 panels a level and a

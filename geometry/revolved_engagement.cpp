@@ -2141,6 +2141,7 @@ std::optional<double> revolved_mean_diameter(const Tool& tool, const CutSetup& s
         return groove.mean_when_level();
     }
   }
+  // The flat mill: along the profile when level, else circle by circle.
   if (prepared.groove->mean_route() == Groove::MeanRoute::level)
     return prepared.groove->mean_when_level();
   return prepared.groove->mean_diameter();

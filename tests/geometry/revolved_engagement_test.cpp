@@ -494,14 +494,15 @@ TEST(RevolvedEngagement, BullNoseMeanOnZLevelPasses) {
   }
 }
 
-// The bull-nose's mean goes round the engaged zone's boundary unless the
-// end face is nearly parallel to the feed (|F_z| < 1e-3), where it takes
-// the area integral: two independent computations, which must agree on
-// either side of that threshold (the set-ups differ by 2e-9 in F_z there).
-// Random bull-nose set-ups, tilted 10-60 deg, fed up and down the slope.
-// Against the area integral taken to 1e-10, the boundary's means here are
-// within 1.5e-7 mm, the area's (its relative 1e-5) within 4.2e-5 mm.
-TEST(RevolvedEngagement, BullNoseMeanAgreesAcrossTheNearlyEdgeOnThreshold) {
+// The bull-nose's mean changes method at two thresholds of |F_z|: round
+// the boundary to a relative 1e-5 with 16 panels a piece above 1e-3, to
+// 1e-6 with 32 below; along the profile, the feed turned level, below
+// 1e-5. Either side of each the means must agree (the set-ups differ by
+// 2e-9 relative in F_z): random bull-nose set-ups, tilted 10-60 deg, fed
+// up and down the slope. At 1e-3 within 1e-4 mm (against the area
+// integral taken to 1e-10 the boundary's means there are within 1.5e-7
+// mm); at 1e-5 within 5e-4 mm, the turned feed's error (engagement.h).
+void expect_means_agree_across(double threshold, double tolerance) {
   std::mt19937 random(23);
   std::uniform_real_distribution<double> unit(0, 1);
   for (int i = 0; i < 12; ++i) {
@@ -517,15 +518,24 @@ TEST(RevolvedEngagement, BullNoseMeanAgreesAcrossTheNearlyEdgeOnThreshold) {
     const double sign = i % 4 < 2 ? 1.0 : -1.0;
     std::array<double, 2> means{};
     for (std::size_t k = 0; k < 2; ++k) {
-      const double fz = sign * 1e-3 * (k == 0 ? 1 + 1e-6 : 1 - 1e-6);
+      const double fz = sign * threshold * (k == 0 ? 1 + 1e-9 : 1 - 1e-9);
       const double gamma = std::asin(fz / up.z());
       const Vector3d feed = std::cos(gamma) * level + std::sin(gamma) * up;
       const auto mean = revolved_mean_diameter(tool, setup(ap, ae, normal, feed, side));
       ASSERT_TRUE(mean) << i;
       means[k] = *mean;
     }
-    EXPECT_NEAR(means[0], means[1], 1e-4) << i << " D " << diameter << " F_z " << sign * 1e-3;
+    EXPECT_NEAR(means[0], means[1], tolerance)
+        << i << " D " << diameter << " F_z " << sign * threshold;
   }
+}
+
+TEST(RevolvedEngagement, BullNoseMeanAgreesAcrossTheNearlyEdgeOnThreshold) {
+  expect_means_agree_across(1e-3, 1e-4);
+}
+
+TEST(RevolvedEngagement, BullNoseMeanAgreesAcrossTheLevelThreshold) {
+  expect_means_agree_across(1e-5, 5e-4);
 }
 
 // Just above the threshold (F_z = -1.11e-3, the face leading) a piece of

@@ -798,6 +798,10 @@ class Groove {
   RadiusExtremes level_extremes() const;
   // relative: the quadrature's tolerance; panels: its cap a piece.
   double mean_over_boundary(double relative, int panels) const;
+  template <class Add, class Along, class Stock>
+  void stock_line_where_the_face_leads(double b_from, double b_to, const std::vector<double>& cuts,
+                                       const Add& add, const Along& along,
+                                       const Stock& stock) const;
   // The phi in [lo, hi] where the shifted fibre leaves the corner (see there).
   std::vector<double> shifted_junctions(double lo, double hi) const;
   // The horizontal circles where the tool's pieces meet: the face's rim
@@ -1687,6 +1691,103 @@ double Groove::mean_diameter() const {
   return sum[0] > 0 ? sum[1] / sum[0] : 0.0;
 }
 
+// The stock line from b_from to b_to (cut at `cuts`) where the face
+// leads, for mean_over_boundary (its add, along and stock integrand). The
+// stretch of the corner beside the face's rim goes by a = F.P instead of
+// b: there the rim (the tool cut by the stock plane) runs nearly along F,
+// b moving by about F_z to a's 1, and the fibres that graze the rim make
+// an inner layer, about rc F_z^2 wide in b, that b's quadrature chased to
+// its cap. The rim's point at a lies on the line c0 N + a F + b e, walked
+// onto from the stretch's end outside it (the rim is convex: the end on
+// its outer side, -e where the rim faces -e, is outside on every such
+// line), and moves as dP/da = F - (n.F / n.e) e. Where the rim faces
+// along F (n.e = 0) a curve by a turns back: a stretch holding that point
+// is cut there (bisection on n.e's sign).
+template <class Add, class Along, class Stock>
+void Groove::stock_line_where_the_face_leads(double b_from, double b_to,
+                                             const std::vector<double>& cuts, const Add& add,
+                                             const Along& along, const Stock& stock) const {
+  const double R = radius_;
+  std::vector<double> rim_cuts;
+  for (const Vector3d& p : circle_at_level(flat_radius_, -corner_, c0_))
+    rim_cuts.push_back(side_.dot(p));
+  const auto on_rim = [&](double b) {
+    return std::any_of(rim_cuts.begin(), rim_cuts.end(), [&](double r) { return r == b; });
+  };
+  const auto front_at = [&](double b) -> std::optional<Vector3d> {
+    const Vector3d x0 = b * side_ + c0_ * normal_;
+    const auto interval = line_interval(x0, true);
+    if (!interval) return std::nullopt;
+    return x0 + interval->second * feed_;
+  };
+  const auto turn_at = [&](const Vector3d& p) { return surface_normal(p).dot(side_); };
+  // The stretch [lo, hi] of b (front points p_lo, p_hi, n.e of one sign
+  // `turn`) by a, from the end `from_lo` says to the other.
+  const auto add_by_feed = [&](double lo, const Vector3d& p_lo, double hi, const Vector3d& p_hi,
+                               double turn, bool from_lo) {
+    const double outer = turn < 0 ? lo : hi, toward = turn < 0 ? 1.0 : -1.0;
+    const auto by_feed = [&](double a) -> std::array<double, 2> {
+      const Vector3d base = c0_ * normal_ + a * feed_;
+      double b = outer;
+      for (int i = 0; i < 100; ++i) {
+        const Excess e = core_excess_along(base + b * side_, side_);
+        if (e.value <= 1e-14 * R) break;
+        const double slope = toward * e.slope;
+        if (!(slope < 0)) return {0, 0};
+        const double newton = -e.value / slope;
+        b += toward * newton;
+        if (newton < 1e-15 * R) break;
+      }
+      const Vector3d p = base + b * side_;
+      const Vector3d n = surface_normal(p);
+      const double lead = n.dot(feed_), across = n.dot(side_);
+      if (!(lead > 0) || across == 0) return {0, 0};
+      return along(p, feed_ - lead / across * side_);
+    };
+    const double a_lo = feed_.dot(p_lo), a_hi = feed_.dot(p_hi);
+    add(by_feed, from_lo ? a_lo : a_hi, from_lo ? a_hi : a_lo);
+  };
+  const std::vector<double> pieces =
+      breaks_within(cuts, std::min(b_from, b_to), std::max(b_from, b_to));
+  const bool from_lo = b_to > b_from;
+  for (std::size_t k = 0; k + 1 < pieces.size(); ++k) {
+    const double lo = pieces[k], hi = pieces[k + 1];
+    const auto p_lo = front_at(lo), p_hi = front_at(hi), p_mid = front_at(0.5 * (lo + hi));
+    const bool beside_rim = (on_rim(lo) || on_rim(hi)) && p_lo && p_hi && p_mid && p_mid->z() < 0 &&
+                            length_of(p_mid->x(), p_mid->y()) > flat_radius_;
+    const double turn_lo = beside_rim ? turn_at(*p_lo) : 0,
+                 turn_hi = beside_rim ? turn_at(*p_hi) : 0;
+    if (turn_lo * turn_hi > 0) {
+      add_by_feed(lo, *p_lo, hi, *p_hi, turn_lo, from_lo);
+      continue;
+    }
+    std::optional<std::pair<double, Vector3d>> facing_f;  // (b, front point) where n.e = 0
+    if (turn_lo * turn_hi < 0) {
+      double a = lo, b = hi;
+      for (int i = 0; i < 200 && b - a > 1e-15 * R; ++i) {
+        const double middle = 0.5 * (a + b);
+        const auto p = front_at(middle);
+        if (!p) break;
+        ((turn_at(*p) < 0) == (turn_lo < 0) ? a : b) = middle;
+      }
+      if (const auto p = front_at(0.5 * (a + b))) facing_f = std::pair{0.5 * (a + b), *p};
+    }
+    if (!facing_f) {
+      add(stock, from_lo ? lo : hi, from_lo ? hi : lo);
+      continue;
+    }
+    const auto& [cut, p_cut] = *facing_f;
+    // In the order of travel.
+    if (from_lo) {
+      add_by_feed(lo, *p_lo, cut, p_cut, turn_lo, true);
+      add_by_feed(cut, p_cut, hi, *p_hi, turn_hi, true);
+    } else {
+      add_by_feed(cut, p_cut, hi, *p_hi, turn_hi, false);
+      add_by_feed(lo, *p_lo, cut, p_cut, turn_lo, false);
+    }
+  }
+}
+
 // The bull-nose's mean by Green's theorem on the tool's surface (where
 // the end face is not all but parallel to F, |F_z| >= 1e-5: see
 // kNearlyEdgeOn). Around the axis, with s the meridian's arc length from
@@ -1880,98 +1981,10 @@ double Groove::mean_over_boundary(double relative, int panels) const {
   add_junction_cuts(c0_, cuts);
   const auto stock = [&](double b) { return at_front(b * side_ + c0_ * normal_, side_); };
   const double b_from = level.c < c0_ ? left_top.b + ae_ : top(false).b, b_to = left_top.b;
-  if (!face_in_front_ || corner_ == 0) {
+  if (face_in_front_ && corner_ > 0) {
+    stock_line_where_the_face_leads(b_from, b_to, cuts, add, along, stock);
+  } else {
     add(stock, b_from, b_to, std::move(cuts));
-    return sum[0] != 0 ? sum[1] / sum[0] : 0.0;
-  }
-  // Where the face leads, the stretch of the corner beside the face's rim
-  // goes by a = F.P instead of b: there the rim (the tool cut by the stock
-  // plane) runs nearly along F, b moving by about F_z to a's 1, and the
-  // fibres that graze the rim make an inner layer, about rc F_z^2 wide in
-  // b, that b's quadrature chased to its cap. The rim's point at a lies on
-  // the line c0 N + a F + b e, walked onto from the stretch's end outside
-  // it (the rim is convex: the end on its outer side, -e where the rim
-  // faces -e, is outside on every such line), and moves as dP/da = F -
-  // (n.F / n.e) e. Where the rim faces along F (n.e = 0) a curve by a
-  // turns back: a stretch holding that point is cut there (bisection on
-  // n.e's sign).
-  std::vector<double> rim_cuts;
-  for (const Vector3d& p : circle_at_level(flat_radius_, -corner_, c0_))
-    rim_cuts.push_back(side_.dot(p));
-  const auto on_rim = [&](double b) {
-    return std::any_of(rim_cuts.begin(), rim_cuts.end(), [&](double r) { return r == b; });
-  };
-  const auto front_at = [&](double b) -> std::optional<Vector3d> {
-    const Vector3d x0 = b * side_ + c0_ * normal_;
-    const auto interval = line_interval(x0, true);
-    if (!interval) return std::nullopt;
-    return x0 + interval->second * feed_;
-  };
-  const auto turn_at = [&](const Vector3d& p) { return surface_normal(p).dot(side_); };
-  // The stretch [lo, hi] of b (front points p_lo, p_hi, n.e of one sign
-  // `turn`) by a, from the end `from_lo` says to the other.
-  const auto add_by_feed = [&](double lo, const Vector3d& p_lo, double hi, const Vector3d& p_hi,
-                               double turn, bool from_lo) {
-    const double outer = turn < 0 ? lo : hi, toward = turn < 0 ? 1.0 : -1.0;
-    const auto by_feed = [&](double a) -> std::array<double, 2> {
-      const Vector3d base = c0_ * normal_ + a * feed_;
-      double b = outer;
-      for (int i = 0; i < 100; ++i) {
-        const Excess e = core_excess_along(base + b * side_, side_);
-        if (e.value <= 1e-14 * R) break;
-        const double slope = toward * e.slope;
-        if (!(slope < 0)) return {0, 0};
-        const double newton = -e.value / slope;
-        b += toward * newton;
-        if (newton < 1e-15 * R) break;
-      }
-      const Vector3d p = base + b * side_;
-      const Vector3d n = surface_normal(p);
-      const double lead = n.dot(feed_), across = n.dot(side_);
-      if (!(lead > 0) || across == 0) return {0, 0};
-      return along(p, feed_ - lead / across * side_);
-    };
-    const double a_lo = feed_.dot(p_lo), a_hi = feed_.dot(p_hi);
-    add(by_feed, from_lo ? a_lo : a_hi, from_lo ? a_hi : a_lo);
-  };
-  const std::vector<double> pieces =
-      breaks_within(cuts, std::min(b_from, b_to), std::max(b_from, b_to));
-  const bool from_lo = b_to > b_from;
-  for (std::size_t k = 0; k + 1 < pieces.size(); ++k) {
-    const double lo = pieces[k], hi = pieces[k + 1];
-    const auto p_lo = front_at(lo), p_hi = front_at(hi), p_mid = front_at(0.5 * (lo + hi));
-    const bool beside_rim = (on_rim(lo) || on_rim(hi)) && p_lo && p_hi && p_mid && p_mid->z() < 0 &&
-                            length_of(p_mid->x(), p_mid->y()) > flat_radius_;
-    const double turn_lo = beside_rim ? turn_at(*p_lo) : 0,
-                 turn_hi = beside_rim ? turn_at(*p_hi) : 0;
-    if (turn_lo * turn_hi > 0) {
-      add_by_feed(lo, *p_lo, hi, *p_hi, turn_lo, from_lo);
-      continue;
-    }
-    std::optional<std::pair<double, Vector3d>> facing_f;  // (b, front point) where n.e = 0
-    if (turn_lo * turn_hi < 0) {
-      double a = lo, b = hi;
-      for (int i = 0; i < 200 && b - a > 1e-15 * R; ++i) {
-        const double middle = 0.5 * (a + b);
-        const auto p = front_at(middle);
-        if (!p) break;
-        ((turn_at(*p) < 0) == (turn_lo < 0) ? a : b) = middle;
-      }
-      if (const auto p = front_at(0.5 * (a + b))) facing_f = std::pair{0.5 * (a + b), *p};
-    }
-    if (!facing_f) {
-      add(stock, from_lo ? lo : hi, from_lo ? hi : lo);
-      continue;
-    }
-    const auto& [cut, p_cut] = *facing_f;
-    // In the order of travel.
-    if (from_lo) {
-      add_by_feed(lo, *p_lo, cut, p_cut, turn_lo, true);
-      add_by_feed(cut, p_cut, hi, *p_hi, turn_hi, true);
-    } else {
-      add_by_feed(cut, p_cut, hi, *p_hi, turn_hi, false);
-      add_by_feed(lo, *p_lo, cut, p_cut, turn_lo, false);
-    }
   }
   return sum[0] != 0 ? sum[1] / sum[0] : 0.0;
 }

@@ -70,13 +70,21 @@ Bound line(double a, double b, double c, double lo) {
   return k;
 }
 
-// The points common to two bounds' whole circles or lines (then tested).
-void meet(const Bound& x, const Bound& y, std::vector<Point>& out) {
+// At most two points of the (m, z) plane.
+struct Points {
+  std::array<Point, 2> items;
+  int size = 0;
+  void add(const Point& p) { items[size++] = p; }
+};
+
+// The points common to two bounds' whole circles or lines.
+Points meet(const Bound& x, const Bound& y) {
+  Points out;
   if (x.radius == 0 && y.radius == 0) {
     const double det = x.a * y.b - y.a * x.b;
     if (std::abs(det) > 1e-12)
-      out.push_back({(x.c * y.b - y.c * x.b) / det, (x.a * y.c - y.a * x.c) / det});
-    return;
+      out.add({(x.c * y.b - y.c * x.b) / det, (x.a * y.c - y.a * x.c) / det});
+    return out;
   }
   if (x.radius == 0 || y.radius == 0) {
     const Bound& l = x.radius == 0 ? x : y;
@@ -86,20 +94,30 @@ void meet(const Bound& x, const Bound& y, std::vector<Point>& out) {
     const double along = -wm * l.b + wz * l.a;
     // A tangent point may come out a hair off the circle: kept, as a cut.
     const double disc = along * along - (wm * wm + wz * wz - k.radius * k.radius);
-    if (disc < -1e-12 * k.radius * k.radius) return;
+    if (disc < -1e-12 * k.radius * k.radius) return out;
     const double root = std::sqrt(std::max(0.0, disc));
     for (const double t : {-along - root, -along + root})
-      out.push_back({l.c * l.a - t * l.b, l.c * l.b + t * l.a});
-    return;
+      out.add({l.c * l.a - t * l.b, l.c * l.b + t * l.a});
+    return out;
   }
   const double dm = y.centre.m - x.centre.m, dz = y.centre.z - x.centre.z;
   const double d = std::sqrt(dm * dm + dz * dz);
-  if (!(d > 0) || d > x.radius + y.radius || d < std::abs(x.radius - y.radius)) return;
+  if (!(d > 0) || d > x.radius + y.radius || d < std::abs(x.radius - y.radius)) return out;
   const double along = (x.radius * x.radius - y.radius * y.radius + d * d) / (2 * d);
   const double off = std::sqrt(std::max(0.0, x.radius * x.radius - along * along));
   const Point base{x.centre.m + along * dm / d, x.centre.z + along * dz / d};
-  out.push_back({base.m - off * dz / d, base.z + off * dm / d});
-  out.push_back({base.m + off * dz / d, base.z - off * dm / d});
+  out.add({base.m - off * dz / d, base.z + off * dm / d});
+  out.add({base.m + off * dz / d, base.z - off * dm / d});
+  return out;
+}
+
+// The points where two bounds cross: met, then within both's heights and sides.
+Points crossings(const Bound& x, const Bound& y) {
+  const Points met = meet(x, y);
+  Points out;
+  for (int i = 0; i < met.size; ++i)
+    if (x.holds(met.items[i]) && y.holds(met.items[i])) out.add(met.items[i]);
+  return out;
 }
 
 class LevelZone {
@@ -144,26 +162,23 @@ class LevelZone {
   // there the rim's tangent is along F, at v = 0.
   LevelRim rim() const {
     const Bound stock = stock_line();
+    Point low{0, 0}, high{0, 0};
+    double s_low = kInf, s_high = -kInf;
+    const auto consider = [&](const Point& p) {
+      const double s = stock.b * p.m - stock.a * p.z;
+      if (s < s_low) std::tie(low, s_low) = std::pair{p, s};
+      if (s > s_high) std::tie(high, s_high) = std::pair{p, s};
+    };
     Bounds sides;
     add_profile({0, 0}, sides);
-    std::vector<Point> points;
     for (std::size_t i = 0; i < sides.size; ++i) {
-      std::vector<Point> met;
-      meet(stock, sides.items[i], met);
-      for (const Point& p : met)
-        if (sides.items[i].holds(p)) points.push_back(p);
+      const Points crossing = crossings(stock, sides.items[i]);
+      for (int k = 0; k < crossing.size; ++k) consider(crossing.items[k]);
     }
     // The end face's chord.
     if (normal_.m != 0) {
       const double m = (c0_ + normal_.z * rc_) / normal_.m;
-      if (std::abs(m) <= r0_) points.push_back({m, -rc_});
-    }
-    const auto s_of = [&](const Point& p) { return stock.b * p.m - stock.a * p.z; };
-    Point low{0, 0}, high{0, 0};
-    double s_low = kInf, s_high = -kInf;
-    for (const Point& p : points) {
-      if (s_of(p) < s_low) std::tie(low, s_low) = std::pair{p, s_of(p)};
-      if (s_of(p) > s_high) std::tie(high, s_high) = std::pair{p, s_of(p)};
+      if (std::abs(m) <= r0_) consider({m, -rc_});
     }
     LevelRim out{point(low.m, low.z), point(high.m, high.z), std::nullopt, std::nullopt};
     if (!(ae_ > 0 && s_low + ae_ < s_high)) return out;
@@ -187,9 +202,7 @@ class LevelZone {
   }
 
   // The profile's half-width at height z on the tool (R0 at its face).
-  double radius_at(double z) const {
-    return z >= 0 ? radius_ : r0_ + std::sqrt(std::max(0.0, rc_ * rc_ - z * z));
-  }
+  double radius_at(double z) const { return std::max(half_width(z), r0_); }
 
   // The lateral positions m kept at height z within |m| <= half (the
   // circle's there; the face's chords at z = -rc): in the stock, less
@@ -234,16 +247,10 @@ class LevelZone {
     bounds.add(stock_line());
     std::vector<double> zs{-rc_, 0.0, shift_.z - rc_, shift_.z};
     zs.reserve(40);
-    std::vector<Point> points;
-    points.reserve(2);
     for (std::size_t i = 0; i < bounds.size; ++i) {
-      const Bound& x = bounds.items[i];
       for (std::size_t j = i + 1; j < bounds.size; ++j) {
-        const Bound& y = bounds.items[j];
-        points.clear();
-        meet(x, y, points);
-        for (const Point& p : points)
-          if (x.holds(p) && y.holds(p)) zs.push_back(p.z);
+        const Points crossing = crossings(bounds.items[i], bounds.items[j]);
+        for (int k = 0; k < crossing.size; ++k) zs.push_back(crossing.items[k].z);
       }
     }
     return zs;

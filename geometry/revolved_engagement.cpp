@@ -585,13 +585,11 @@ class Groove {
   }
 
   // The bull-nose's distance from x to its core K = {r <= R0, z >= 0} less
-  // rc (the tool is K grown by rc: <= 0 in the tool), its slope along F
-  // (n.F on the tool's surface) and the r of x.
+  // rc (the tool is K grown by rc: <= 0 in the tool), its slope along d
+  // (n.d on the tool's surface) and the r of x.
   struct Excess {
     double value, slope, rho;
   };
-  Excess core_excess(const Vector3d& x) const { return core_excess_along(x, feed_); }
-  // The same with the slope along d.
   Excess core_excess_along(const Vector3d& x, const Vector3d& d) const {
     const double rho = length_of(x.x(), x.y());
     const double radial = std::max(0.0, rho - flat_radius_), below = std::min(0.0, x.z());
@@ -676,6 +674,14 @@ class Groove {
     return out;
   }
 
+  // The front point of the fibre x0 + t F (line_interval's walk); empty
+  // where it misses.
+  std::optional<Vector3d> front_point(const Vector3d& x0) const {
+    const auto interval = line_interval(x0, true);
+    if (!interval) return std::nullopt;
+    return x0 + interval->second * feed_;
+  }
+
   Vector3d point_at(double b, double c, double t) const {
     return b * side_ + c * normal_ + t * feed_;
   }
@@ -747,9 +753,10 @@ class Groove {
     bool done = true;
     std::optional<double> at;
     int steps = 0;
+    const Vector3d* line = nullptr;  // the line's direction: F when null
     CoreWalk() = default;
-    CoreWalk(const Vector3d& x0_, double t_, double direction_)
-        : x0(x0_), t(t_), direction(direction_), done(false) {}
+    CoreWalk(const Vector3d& x0_, double t_, double direction_, const Vector3d* line_ = nullptr)
+        : x0(x0_), t(t_), direction(direction_), done(false), line(line_) {}
   };
   // One excess evaluation and Newton's step from it.
   void step(CoreWalk& walk) const {
@@ -761,7 +768,8 @@ class Groove {
     // mm; at 1e-14 R the largest error seen is 5e-7 mm (1e-15 R is within
     // round-off of the excess and does worse).
     const double touch = 1e-14 * radius_;
-    const Excess e = core_excess(walk.x0 + walk.t * feed_);
+    const Vector3d& line = walk.line ? *walk.line : feed_;
+    const Excess e = core_excess_along(walk.x0 + walk.t * line, line);
     walk.done = true;
     if (e.value <= touch) {
       walk.at = walk.t;
@@ -1165,7 +1173,7 @@ void Groove::shifted_extremes(const BoundaryPoint& left_top, const WidthLevel& l
   // walks' bookkeeping cost it 2 %.)
   const auto add_front = [&](const Vector3d& x) {
     const Vector3d x0 = x - feed_.dot(x) * feed_;
-    if (const auto interval = line_interval(x0, true)) out.add(x0 + interval->second * feed_);
+    if (const auto p = front_point(x0)) out.add(*p);
   };
   if (const auto& fibre = inner_top_fibre(true)) out.add(fibre->first);
   // At c* > c_min the shifted silhouette ends on the near one: its fibre
@@ -1608,12 +1616,12 @@ class Groove::Removal {
 
 // The flat mill's area-weighted mean of 2r, circle by circle: the tool
 // surface is a stack of horizontal circles (the face's of radius rho, the
-// shank's at height z), each with a constant
-// r, so the mean needs only the length of the engaged angles on each
-// circle, weighted by its area element. On a circle the stock plane and the
-// leading side are sinusoids (exact angle sets, angle_set.h), and so are
-// the edges of what the previous pass removed (Removal). Capped adaptive quadrature over
-// the circles bounds the work whatever the set-up.
+// shank's at height z), each with a constant r, so the mean needs only
+// the length of the engaged angles on each circle, weighted by its area
+// element. On a circle the stock plane and the leading side are sinusoids
+// (exact angle sets, angle_set.h), and so are the edges of what the
+// previous pass removed (Removal). Capped adaptive quadrature over the
+// circles bounds the work whatever the set-up.
 double Groove::mean_diameter() const {
   const double tilt = rim_tilt_;
   const double feed_tilt = length_of(feed_.x(), feed_.y());
@@ -1714,12 +1722,7 @@ void Groove::stock_line_where_the_face_leads(double b_from, double b_to,
   const auto on_rim = [&](double b) {
     return std::any_of(rim_cuts.begin(), rim_cuts.end(), [&](double r) { return r == b; });
   };
-  const auto front_at = [&](double b) -> std::optional<Vector3d> {
-    const Vector3d x0 = b * side_ + c0_ * normal_;
-    const auto interval = line_interval(x0, true);
-    if (!interval) return std::nullopt;
-    return x0 + interval->second * feed_;
-  };
+  const auto front_at = [&](double b) { return front_point(b * side_ + c0_ * normal_); };
   const auto turn_at = [&](const Vector3d& p) { return surface_normal(p).dot(side_); };
   // The stretch [lo, hi] of b (front points p_lo, p_hi, n.e of one sign
   // `turn`) by a, from the end `from_lo` says to the other.
@@ -1728,17 +1731,10 @@ void Groove::stock_line_where_the_face_leads(double b_from, double b_to,
     const double outer = turn < 0 ? lo : hi, toward = turn < 0 ? 1.0 : -1.0;
     const auto by_feed = [&](double a) -> std::array<double, 2> {
       const Vector3d base = c0_ * normal_ + a * feed_;
-      double b = outer;
-      for (int i = 0; i < 100; ++i) {
-        const Excess e = core_excess_along(base + b * side_, side_);
-        if (e.value <= 1e-14 * R) break;
-        const double slope = toward * e.slope;
-        if (!(slope < 0)) return {0, 0};
-        const double newton = -e.value / slope;
-        b += toward * newton;
-        if (newton < 1e-15 * R) break;
-      }
-      const Vector3d p = base + b * side_;
+      CoreWalk walk(base, outer, toward, &side_);
+      while (!walk.done) step(walk);
+      if (!walk.at) return {0, 0};
+      const Vector3d p = base + *walk.at * side_;
       const Vector3d n = surface_normal(p);
       const double lead = n.dot(feed_), across = n.dot(side_);
       if (!(lead > 0) || across == 0) return {0, 0};
@@ -1867,9 +1863,7 @@ double Groove::mean_over_boundary(double relative, int panels) const {
       while (!walk.done) step(walk);
       if (walk.at) return x0 + *walk.at * feed_;
     }
-    const auto interval = line_interval(x0, true);
-    if (!interval) return std::nullopt;
-    return x0 + interval->second * feed_;
+    return front_point(x0);
   };
   const auto at_front = [&](const Vector3d& x, const Vector3d& dx) -> std::array<double, 2> {
     const std::optional<Vector3d> p = front_of(x - feed_.dot(x) * feed_);
@@ -2008,7 +2002,7 @@ LevelCut Groove::level_cut() const {
   cut.normal = normal;
   cut.side = side;
   cut.feed = level;
-  cut.face_leads = edge_on_ || feed_.z() < 0;
+  cut.face_leads = face_leads();
   return cut;
 }
 

@@ -178,6 +178,16 @@ TEST(RevolvedEngagement, DegenerateInputIsFlaggedNotThrown) {
 // The cutting points lie on the rim: on the tool surface and on the stock
 // plane; 1 and 2 are the rim's s-extremes (silhouette points, tool normal
 // normal to F); the primes sit at s_min + ae and s_max - ae.
+// The case's feed turned level along the surface (a Z-level pass), the
+// other way round when `reverse`; false where the surface is level (no
+// such direction).
+bool turn_feed_level(RandomCase& c, bool reverse) {
+  const Vector3d along = c.normal.cross(Vector3d::UnitZ());
+  if (!(along.norm() > 1e-9)) return false;
+  c.feed = (reverse ? -1.0 : 1.0) * along.normalized();
+  return true;
+}
+
 void expect_cutting_points_on_the_rim(const RandomCase& c, int i) {
   const Tool tool = tool_of(c);
   const Engagement e = evaluate_revolved_engagement(tool, setup_of(c));
@@ -232,9 +242,7 @@ TEST(RevolvedEngagement, CuttingPointsOnLevelFeeds) {
   std::mt19937 random(29);
   for (int i = 0; i < 300; ++i) {
     RandomCase c = random_case(random, i % 3 == 0);
-    const Vector3d along = c.normal.cross(Vector3d::UnitZ());
-    if (!(along.norm() > 1e-9)) continue;
-    c.feed = (i % 2 == 0 ? 1.0 : -1.0) * along.normalized();
+    if (!turn_feed_level(c, i % 2 == 1)) continue;
     expect_cutting_points_on_the_rim(c, i);
   }
   // The set-up whose p2 was 1.3 mm off the stock plane.
@@ -301,11 +309,7 @@ void compare_with_sampler(bool flat, int cases, unsigned seed, bool level = fals
   double worst = 0;
   for (int i = 0; i < cases; ++i) {
     RandomCase c = random_case(random, flat);
-    if (level) {
-      const Vector3d along = c.normal.cross(Vector3d::UnitZ());
-      if (!(along.norm() > 1e-9)) continue;
-      c.feed = (i % 2 == 0 ? 1.0 : -1.0) * along.normalized();
-    }
+    if (level && !turn_feed_level(c, i % 2 == 1)) continue;
     const Tool tool = tool_of(c);
     const CutSetup s = setup_of(c);
     const Engagement e = evaluate_revolved_engagement(tool, s);

@@ -832,10 +832,8 @@ class Groove {
   RadiusExtremes level_extremes() const;
   // relative: the quadrature's tolerance; panels: its cap a piece.
   double mean_over_boundary(double relative, int panels) const;
-  template <class Add, class Along, class Stock>
-  void stock_line_where_the_face_leads(double b_from, double b_to, const std::vector<double>& cuts,
-                                       const Add& add, const Along& along,
-                                       const Stock& stock) const;
+  // Its sums round the boundary, piece by piece.
+  class BoundaryMean;
   // The phi in [lo, hi] where the shifted fibre leaves the corner (see there).
   std::vector<double> shifted_junctions(double lo, double hi) const;
   // The horizontal circles where the tool's pieces meet: the face's rim
@@ -1742,91 +1740,6 @@ double Groove::mean_diameter() const {
   return sum[0] > 0 ? sum[1] / sum[0] : 0.0;
 }
 
-// The stock line from b_from to b_to (cut at `cuts`) where the face
-// leads, for mean_over_boundary (its add, along and stock integrand). The
-// stretch of the corner beside the face's rim goes by a = F.P instead of
-// b: there the rim (the tool cut by the stock plane) runs nearly along F,
-// b moving by about F_z to a's 1, and the fibres that graze the rim make
-// an inner layer, about rc F_z^2 wide in b, that b's quadrature chased to
-// its cap. The rim's point at a lies on the line c0 N + a F + b e, walked
-// onto from the stretch's end outside it (the rim is convex: the end on
-// its outer side, -e where the rim faces -e, is outside on every such
-// line), and moves as dP/da = F - (n.F / n.e) e. Where the rim faces
-// along F (n.e = 0) a curve by a turns back: a stretch holding that point
-// is cut there (bisection on n.e's sign).
-template <class Add, class Along, class Stock>
-void Groove::stock_line_where_the_face_leads(double b_from, double b_to,
-                                             const std::vector<double>& cuts, const Add& add,
-                                             const Along& along, const Stock& stock) const {
-  const double R = radius_;
-  std::vector<double> rim_cuts;
-  for (const Vector3d& p : circle_at_level(flat_radius_, -corner_, c0_))
-    rim_cuts.push_back(side_.dot(p));
-  const auto on_rim = [&](double b) {
-    return std::any_of(rim_cuts.begin(), rim_cuts.end(), [&](double r) { return r == b; });
-  };
-  const auto front_at = [&](double b) { return front_point(b * side_ + c0_ * normal_); };
-  const auto turn_at = [&](const Vector3d& p) { return surface_normal(p).dot(side_); };
-  // The stretch [lo, hi] of b (front points p_lo, p_hi, n.e of one sign
-  // `turn`) by a, from the end `from_lo` says to the other.
-  const auto add_by_feed = [&](double lo, const Vector3d& p_lo, double hi, const Vector3d& p_hi,
-                               double turn, bool from_lo) {
-    const double outer = turn < 0 ? lo : hi, toward = turn < 0 ? 1.0 : -1.0;
-    const auto by_feed = [&](double a) -> std::array<double, 2> {
-      const Vector3d base = c0_ * normal_ + a * feed_;
-      CoreWalk walk(base, outer, toward, &side_);
-      while (!walk.done) step(walk);
-      if (!walk.at) return {0, 0};
-      const Vector3d p = base + *walk.at * side_;
-      const Vector3d n = surface_normal(p);
-      const double lead = n.dot(feed_), across = n.dot(side_);
-      if (!(lead > 0) || across == 0) return {0, 0};
-      return along(p, feed_ - lead / across * side_);
-    };
-    const double a_lo = feed_.dot(p_lo), a_hi = feed_.dot(p_hi);
-    add(by_feed, from_lo ? a_lo : a_hi, from_lo ? a_hi : a_lo);
-  };
-  const std::vector<double> pieces =
-      breaks_within(cuts, std::min(b_from, b_to), std::max(b_from, b_to));
-  const bool from_lo = b_to > b_from;
-  for (std::size_t k = 0; k + 1 < pieces.size(); ++k) {
-    const double lo = pieces[k], hi = pieces[k + 1];
-    const auto p_lo = front_at(lo), p_hi = front_at(hi), p_mid = front_at(0.5 * (lo + hi));
-    const bool beside_rim = (on_rim(lo) || on_rim(hi)) && p_lo && p_hi && p_mid && p_mid->z() < 0 &&
-                            length_of(p_mid->x(), p_mid->y()) > flat_radius_;
-    const double turn_lo = beside_rim ? turn_at(*p_lo) : 0,
-                 turn_hi = beside_rim ? turn_at(*p_hi) : 0;
-    if (turn_lo * turn_hi > 0) {
-      add_by_feed(lo, *p_lo, hi, *p_hi, turn_lo, from_lo);
-      continue;
-    }
-    std::optional<std::pair<double, Vector3d>> facing_f;  // (b, front point) where n.e = 0
-    if (turn_lo * turn_hi < 0) {
-      double a = lo, b = hi;
-      for (int i = 0; i < 200 && b - a > 1e-15 * R; ++i) {
-        const double middle = 0.5 * (a + b);
-        const auto p = front_at(middle);
-        if (!p) break;
-        ((turn_at(*p) < 0) == (turn_lo < 0) ? a : b) = middle;
-      }
-      if (const auto p = front_at(0.5 * (a + b))) facing_f = std::pair{0.5 * (a + b), *p};
-    }
-    if (!facing_f) {
-      add(stock, from_lo ? lo : hi, from_lo ? hi : lo);
-      continue;
-    }
-    const auto& [cut, p_cut] = *facing_f;
-    // In the order of travel.
-    if (from_lo) {
-      add_by_feed(lo, *p_lo, cut, p_cut, turn_lo, true);
-      add_by_feed(cut, p_cut, hi, *p_hi, turn_hi, true);
-    } else {
-      add_by_feed(cut, p_cut, hi, *p_hi, turn_hi, false);
-      add_by_feed(lo, *p_lo, cut, p_cut, turn_lo, false);
-    }
-  }
-}
-
 // The bull-nose's mean by Green's theorem on the tool's surface (where
 // the end face is not all but parallel to F, |F_z| >= 1e-5: see
 // kNearlyEdgeOn). Around the axis, with s the meridian's arc length from
@@ -1865,100 +1778,26 @@ void Groove::stock_line_where_the_face_leads(double b_from, double b_to,
 // set-ups) a cap of 8 left means up to 6.1e-4 mm off (a piece whose front
 // points race round the face's rim), 16 within 3e-5 mm at the same median
 // time.
-double Groove::mean_over_boundary(double relative, int panels) const {
-  const double r0 = flat_radius_, rc = corner_, R = radius_;
-  const auto corner_potentials = [&](double cos_psi, double sin_psi,
-                                     double psi) -> std::array<double, 2> {
-    return {r0 * r0 / 2 + rc * (r0 * psi + rc * (1 - cos_psi)),
-            2 * r0 * r0 * r0 / 3 + 2 * rc *
-                                       (r0 * r0 * psi + 2 * r0 * rc * (1 - cos_psi) +
-                                        rc * rc * (psi - sin_psi * cos_psi) / 2)};
-  };
-  const std::array<double, 2> at_foot = corner_potentials(0, 1, kPi / 2);
-  const auto potentials = [&](const Vector3d& p) -> std::array<double, 2> {
-    const double r = length_of(p.x(), p.y());
-    if (p.z() >= 0) return {at_foot[0] + R * p.z(), at_foot[1] + 2 * R * R * p.z()};
-    if (r <= r0) return {r * r / 2, 2 * r * r * r / 3};
-    const double out = r - r0, down = -p.z(), length = length_of(out, down);
-    return corner_potentials(down / length, out / length, std::atan2(out, down));
-  };
-  // H dtheta / ds at p moving at dp.
-  const auto along = [&](const Vector3d& p, const Vector3d& dp) -> std::array<double, 2> {
-    const double r2 = p.x() * p.x() + p.y() * p.y();
-    if (!(r2 > 0)) return {0, 0};
-    const double turn = (p.x() * dp.y() - p.y() * dp.x()) / r2;
-    const auto h = potentials(p);
-    return {h[0] * turn, h[1] * turn};
-  };
-  // The same at the front point of the fibre through x, moving at dx.
-  // The front point's walk starts where the fibre meets the tangent plane
-  // of the last front point: the tool is convex, so that plane holds it on
-  // one side and the start lies beyond the front, as the walk needs (two
-  // or three steps from there instead of five or six from the cylinder).
-  struct Front {
-    Vector3d p, normal;
-    double lead = 0;
-  };
-  Front last;
-  const auto front_of = [&](const Vector3d& x0) -> std::optional<Vector3d> {
-    if (last.lead > 1e-3) {
-      CoreWalk walk(x0, last.normal.dot(last.p - x0) / last.lead, -1);
-      while (!walk.done) step(walk);
-      if (walk.at) return x0 + *walk.at * feed_;
-    }
-    return front_point(x0);
-  };
-  const auto at_front = [&](const Vector3d& x, const Vector3d& dx) -> std::array<double, 2> {
-    const std::optional<Vector3d> p = front_of(x - feed_.dot(x) * feed_);
-    last.lead = 0;
-    if (!p) return {0, 0};
-    const Vector3d normal = surface_normal(*p);
-    const double lead = normal.dot(feed_);
-    if (!(lead > 1e-12)) return {0, 0};
-    last = {*p, normal, lead};
-    return along(*p, dx - normal.dot(dx) / lead * feed_);
-  };
-  const double absolute = 1e-14 * R * R * R;
-  std::array<double, 2> sum{};
-  // The pieces' area so far, unsigned: a piece need not be exact beyond
-  // `relative` of that (the pieces' sum is the zone's area, and a sliver
-  // of a piece asked to its own relative tolerance took its cap).
-  double scale = 0;
-  // Adds f's integral from a to b (either way round), cut at `cuts`.
-  const auto add = [&](const auto& f, double a, double b, std::vector<double> cuts = {}) {
-    if (a == b) return;
-    const double absolute_now = std::max(absolute, 0.1 * relative * scale);
-    const auto v = integrate_smoothed_pieces<2>(
-        f, breaks_within(std::move(cuts), std::min(a, b), std::max(a, b)), relative, absolute_now,
-        panels);
-    const double sign = b > a ? 1 : -1;
-    sum[0] += sign * v[0];
-    sum[1] += sign * v[1];
-    scale += std::abs(v[0]);
-  };
-  // The silhouette's normal U with U_xy along (cos theta, sin theta): U is
-  // normal to F, so cos(phi) (e_xy x d) + sin(phi) (N_xy x d) = 0.
-  const auto silhouette_by_azimuth = [&](double theta) -> std::array<double, 2> {
-    const double dx = std::cos(theta), dy = std::sin(theta);
-    const double across_e = side_.x() * dy - side_.y() * dx;
-    const double across_n = normal_.x() * dy - normal_.y() * dx;
-    const double length = length_of(across_e, across_n);
-    double cos_phi = across_n / length, sin_phi = -across_e / length;
-    if (cos_phi * (side_.x() * dx + side_.y() * dy) +
-            sin_phi * (normal_.x() * dx + normal_.y() * dy) <
-        0) {
-      cos_phi = -cos_phi;
-      sin_phi = -sin_phi;
-    }
-    return potentials(silhouette_at(cos_phi, sin_phi));
-  };
+class Groove::BoundaryMean {
+ public:
+  BoundaryMean(const Groove& groove, double relative, int panels)
+      : g_(groove),
+        relative_(relative),
+        panels_(panels),
+        absolute_(1e-14 * groove.radius_ * groove.radius_ * groove.radius_),
+        at_foot_(corner_potentials(0, 1, kPi / 2)) {}
+
+  // The ratio of the sums: the moment over the area.
+  double value() const { return sum_[0] != 0 ? sum_[1] / sum_[0] : 0.0; }
+
   // The silhouette from phi a to phi b, by the angle round the axis
   // (monotone along the lower silhouette: U_xy turns one way).
-  const auto silhouette_piece = [&](double a, double b) {
+  void silhouette(double a, double b) {
     if (a == b) return;
     const auto normal_at = [&](double phi) {
-      const auto [c, s] = cos_sin(phi);
-      return std::pair{Vector3d(c * side_ + s * normal_), Vector3d(-s * side_ + c * normal_)};
+      const auto [c, s] = g_.cos_sin(phi);
+      return std::pair{Vector3d(c * g_.side_ + s * g_.normal_),
+                       Vector3d(-s * g_.side_ + c * g_.normal_)};
     };
     const auto azimuth = [&](double phi) {
       const Vector3d u = normal_at(phi).first;
@@ -1969,61 +1808,269 @@ double Groove::mean_over_boundary(double relative, int panels) const {
     const double from = azimuth(a);
     double span = std::remainder(azimuth(b) - from, 2 * kPi);
     if (span * way < 0) span += way * 2 * kPi;
-    add(silhouette_by_azimuth, from, from + span);
-  };
-  const BoundaryPoint& left_top = top(true);
-  const WidthLevel level = width_level();
-  // The far silhouette, c0 down to the bottom (a ray above its foot adds nothing).
-  silhouette_piece(left_top.ray > 0 ? phi_left_ : left_top.phi, phi_bottom_);
-  // The near one, the bottom up to c*.
-  silhouette_piece(phi_bottom_, level.right.ray > 0 ? phi_right_ : level.right.phi);
-  // The shifted silhouette, c* up to c0: beside the silhouette by phi...
-  const double c_foot = c_foot_[0];
-  if (level.c < c0_ && level.c < c_foot) {
-    const double a = level.left.phi, b = c0_ > c_foot ? phi_left_ : left_top.phi;
-    const auto shifted = [&](double phi) {
-      const auto [c, s] = cos_sin(phi);
-      const auto [p, dp] = silhouette_and_tangent(c, s);
-      return at_front(p + ae_ * side_, dp);
-    };
-    add(shifted, a, b, shifted_junctions(std::min(a, b), std::max(a, b)));
+    add([&](double theta) { return silhouette_by_azimuth(theta); }, from, from + span);
   }
-  // ... and beside the shank's ray by the height h above its foot, cut
-  // where the vertical plane of its fibres meets the junction circles.
-  if (level.c < c0_ && c0_ > c_foot) {
-    const Vector3d start = foot_left_ + ae_ * side_;
+
+  // The shifted silhouette beside the silhouette, from phi a to phi b.
+  void shifted_beside_silhouette(double a, double b) {
+    const auto shifted = [&](double phi) {
+      const auto [c, s] = g_.cos_sin(phi);
+      const auto [p, dp] = g_.silhouette_and_tangent(c, s);
+      return at_front(p + g_.ae_ * g_.side_, dp);
+    };
+    add(shifted, a, b, g_.shifted_junctions(std::min(a, b), std::max(a, b)));
+  }
+
+  // The shifted silhouette beside the shank's ray, by the height h above
+  // its foot from h_from to h_to, cut where the vertical plane of its
+  // fibres meets the junction circles.
+  void shifted_beside_ray(double h_from, double h_to) {
+    const Vector3d& feed = g_.feed_;
+    const Vector3d start = g_.foot_left_ + g_.ae_ * g_.side_;
     std::vector<double> cuts;
-    for (const Junction& j : junctions()) {
+    for (const Junction& j : g_.junctions()) {
       // The fibre of start + h z meets the circle's plane at xy = A + h B.
-      const double t = (j.z - start.z()) / feed_.z();
-      const double ax = start.x() + t * feed_.x(), ay = start.y() + t * feed_.y();
-      const double bx = -feed_.x() / feed_.z(), by = -feed_.y() / feed_.z();
+      const double t = (j.z - start.z()) / feed.z();
+      const double ax = start.x() + t * feed.x(), ay = start.y() + t * feed.y();
+      const double bx = -feed.x() / feed.z(), by = -feed.y() / feed.z();
       const double qa = bx * bx + by * by, qb = ax * bx + ay * by;
       const double disc = qb * qb - qa * (ax * ax + ay * ay - j.rho * j.rho);
       if (!(qa > 0) || disc < 0) continue;
       for (const double root : {-std::sqrt(disc), std::sqrt(disc)}) {
         const double h = (-qb + root) / qa;
-        if (front_on(j, ax + h * bx, ay + h * by)) cuts.push_back(h);
+        if (g_.front_on(j, ax + h * bx, ay + h * by)) cuts.push_back(h);
       }
     }
     const auto shifted = [&](double h) {
       return at_front(start + h * Vector3d::UnitZ(), Vector3d::UnitZ());
     };
-    add(shifted, std::max(0.0, (level.c - c_foot) / normal_.z()), (c0_ - c_foot) / normal_.z(),
-        std::move(cuts));
+    add(shifted, h_from, h_to, std::move(cuts));
   }
-  // The stock line, from its right end back to bL(c0), cut where its front
-  // point crosses the face's rim or the shank's foot.
-  std::vector<double> cuts;
-  add_junction_cuts(c0_, cuts);
-  const auto stock = [&](double b) { return at_front(b * side_ + c0_ * normal_, side_); };
-  const double b_from = level.c < c0_ ? left_top.b + ae_ : top(false).b, b_to = left_top.b;
-  if (face_in_front_ && corner_ > 0) {
-    stock_line_where_the_face_leads(b_from, b_to, cuts, add, along, stock);
-  } else {
-    add(stock, b_from, b_to, std::move(cuts));
+
+  // The stock line from b_from to b_to, cut where its front point crosses
+  // the face's rim or the shank's foot.
+  void stock_line(double b_from, double b_to) {
+    std::vector<double> cuts;
+    g_.add_junction_cuts(g_.c0_, cuts);
+    if (g_.face_in_front_ && g_.corner_ > 0) {
+      stock_line_where_the_face_leads(b_from, b_to, cuts);
+    } else {
+      add([&](double b) { return along_stock(b); }, b_from, b_to, std::move(cuts));
+    }
   }
-  return sum[0] != 0 ? sum[1] / sum[0] : 0.0;
+
+ private:
+  using Sums = std::array<double, 2>;
+
+  // H1 and H2 on the corner at the meridian angle psi.
+  Sums corner_potentials(double cos_psi, double sin_psi, double psi) const {
+    const double r0 = g_.flat_radius_, rc = g_.corner_;
+    return {r0 * r0 / 2 + rc * (r0 * psi + rc * (1 - cos_psi)),
+            2 * r0 * r0 * r0 / 3 + 2 * rc *
+                                       (r0 * r0 * psi + 2 * r0 * rc * (1 - cos_psi) +
+                                        rc * rc * (psi - sin_psi * cos_psi) / 2)};
+  }
+  Sums potentials(const Vector3d& p) const {
+    const double r0 = g_.flat_radius_, R = g_.radius_;
+    const double r = length_of(p.x(), p.y());
+    if (p.z() >= 0) return {at_foot_[0] + R * p.z(), at_foot_[1] + 2 * R * R * p.z()};
+    if (r <= r0) return {r * r / 2, 2 * r * r * r / 3};
+    const double out = r - r0, down = -p.z(), length = length_of(out, down);
+    return corner_potentials(down / length, out / length, std::atan2(out, down));
+  }
+  // H dtheta / ds at p moving at dp.
+  Sums along(const Vector3d& p, const Vector3d& dp) const {
+    const double r2 = p.x() * p.x() + p.y() * p.y();
+    if (!(r2 > 0)) return {0, 0};
+    const double turn = (p.x() * dp.y() - p.y() * dp.x()) / r2;
+    const auto h = potentials(p);
+    return {h[0] * turn, h[1] * turn};
+  }
+
+  // The front point of the fibre through x0. Its walk starts where the
+  // fibre meets the tangent plane of the last front point: the tool is
+  // convex, so that plane holds it on one side and the start lies beyond
+  // the front, as the walk needs (two or three steps from there instead
+  // of five or six from the cylinder).
+  std::optional<Vector3d> front_of(const Vector3d& x0) const {
+    if (last_.lead > 1e-3) {
+      CoreWalk walk(x0, last_.normal.dot(last_.p - x0) / last_.lead, -1);
+      while (!walk.done) g_.step(walk);
+      if (walk.at) return x0 + *walk.at * g_.feed_;
+    }
+    return g_.front_point(x0);
+  }
+  // H dtheta / ds at the front point of the fibre through x, moving at dx.
+  Sums at_front(const Vector3d& x, const Vector3d& dx) {
+    const Vector3d& feed = g_.feed_;
+    const std::optional<Vector3d> p = front_of(x - feed.dot(x) * feed);
+    last_.lead = 0;
+    if (!p) return {0, 0};
+    const Vector3d normal = g_.surface_normal(*p);
+    const double lead = normal.dot(feed);
+    if (!(lead > 1e-12)) return {0, 0};
+    last_ = {*p, normal, lead};
+    return along(*p, dx - normal.dot(dx) / lead * feed);
+  }
+  Sums along_stock(double b) { return at_front(b * g_.side_ + g_.c0_ * g_.normal_, g_.side_); }
+
+  // The silhouette's point with U_xy along (cos theta, sin theta): U is
+  // normal to F, so cos(phi) (e_xy x d) + sin(phi) (N_xy x d) = 0.
+  Sums silhouette_by_azimuth(double theta) const {
+    const Vector3d &e = g_.side_, &n = g_.normal_;
+    const double dx = std::cos(theta), dy = std::sin(theta);
+    const double across_e = e.x() * dy - e.y() * dx;
+    const double across_n = n.x() * dy - n.y() * dx;
+    const double length = length_of(across_e, across_n);
+    double cos_phi = across_n / length, sin_phi = -across_e / length;
+    if (cos_phi * (e.x() * dx + e.y() * dy) + sin_phi * (n.x() * dx + n.y() * dy) < 0) {
+      cos_phi = -cos_phi;
+      sin_phi = -sin_phi;
+    }
+    return potentials(g_.silhouette_at(cos_phi, sin_phi));
+  }
+
+  // Adds f's integral from a to b (either way round), cut at `cuts`. A
+  // piece need not be exact beyond `relative` of the pieces' area so far,
+  // unsigned (the pieces' sum is the zone's area, and a sliver of a piece
+  // asked to its own relative tolerance took its cap).
+  template <class Function>
+  void add(const Function& f, double a, double b, std::vector<double> cuts = {}) {
+    if (a == b) return;
+    const double absolute = std::max(absolute_, 0.1 * relative_ * scale_);
+    const auto v = integrate_smoothed_pieces<2>(
+        f, breaks_within(std::move(cuts), std::min(a, b), std::max(a, b)), relative_, absolute,
+        panels_);
+    const double sign = b > a ? 1 : -1;
+    sum_[0] += sign * v[0];
+    sum_[1] += sign * v[1];
+    scale_ += std::abs(v[0]);
+  }
+
+  // The stock line from b_from to b_to (cut at `cuts`) where the face
+  // leads. The stretch of the corner beside the face's rim goes by a =
+  // F.P instead of b: there the rim (the tool cut by the stock plane) runs nearly along F,
+  // b moving by about F_z to a's 1, and the fibres that graze the rim make
+  // an inner layer, about rc F_z^2 wide in b, that b's quadrature chased to
+  // its cap. The rim's point at a lies on the line c0 N + a F + b e, walked
+  // onto from the stretch's end outside it (the rim is convex: the end on
+  // its outer side, -e where the rim faces -e, is outside on every such
+  // line), and moves as dP/da = F - (n.F / n.e) e. Where the rim faces
+  // along F (n.e = 0) a curve by a turns back: a stretch holding that point
+  // is cut there (bisection on n.e's sign).
+  void stock_line_where_the_face_leads(double b_from, double b_to, const std::vector<double>& cuts);
+  // Its stretch [lo, hi] of b (front points p_lo, p_hi, n.e of one sign
+  // `turn`) by a, from the end `from_lo` says to the other.
+  void stock_line_by_feed(double lo, const Vector3d& p_lo, double hi, const Vector3d& p_hi,
+                          double turn, bool from_lo);
+
+  struct Front {
+    Vector3d p, normal;
+    double lead = 0;
+  };
+  const Groove& g_;
+  double relative_;
+  int panels_;
+  double absolute_;
+  Sums at_foot_;  // the potentials at the shank's foot
+  Sums sum_{};
+  double scale_ = 0;  // the pieces' area so far, unsigned
+  Front last_;        // the last front point met
+};
+
+void Groove::BoundaryMean::stock_line_by_feed(double lo, const Vector3d& p_lo, double hi,
+                                              const Vector3d& p_hi, double turn, bool from_lo) {
+  const Vector3d &feed = g_.feed_, &side = g_.side_;
+  const double outer = turn < 0 ? lo : hi, toward = turn < 0 ? 1.0 : -1.0;
+  const auto by_feed = [&](double a) -> Sums {
+    const Vector3d base = g_.c0_ * g_.normal_ + a * feed;
+    CoreWalk walk(base, outer, toward, &side);
+    while (!walk.done) g_.step(walk);
+    if (!walk.at) return {0, 0};
+    const Vector3d p = base + *walk.at * side;
+    const Vector3d n = g_.surface_normal(p);
+    const double lead = n.dot(feed), across = n.dot(side);
+    if (!(lead > 0) || across == 0) return {0, 0};
+    return along(p, feed - lead / across * side);
+  };
+  const double a_lo = feed.dot(p_lo), a_hi = feed.dot(p_hi);
+  add(by_feed, from_lo ? a_lo : a_hi, from_lo ? a_hi : a_lo);
+}
+
+void Groove::BoundaryMean::stock_line_where_the_face_leads(double b_from, double b_to,
+                                                           const std::vector<double>& cuts) {
+  const double R = g_.radius_;
+  std::vector<double> rim_cuts;
+  for (const Vector3d& p : g_.circle_at_level(g_.flat_radius_, -g_.corner_, g_.c0_))
+    rim_cuts.push_back(g_.side_.dot(p));
+  const auto on_rim = [&](double b) {
+    return std::any_of(rim_cuts.begin(), rim_cuts.end(), [&](double r) { return r == b; });
+  };
+  const auto front_at = [&](double b) {
+    return g_.front_point(b * g_.side_ + g_.c0_ * g_.normal_);
+  };
+  const auto turn_at = [&](const Vector3d& p) { return g_.surface_normal(p).dot(g_.side_); };
+  const std::vector<double> pieces =
+      breaks_within(cuts, std::min(b_from, b_to), std::max(b_from, b_to));
+  const bool from_lo = b_to > b_from;
+  for (std::size_t k = 0; k + 1 < pieces.size(); ++k) {
+    const double lo = pieces[k], hi = pieces[k + 1];
+    const auto p_lo = front_at(lo), p_hi = front_at(hi), p_mid = front_at(0.5 * (lo + hi));
+    const bool beside_rim = (on_rim(lo) || on_rim(hi)) && p_lo && p_hi && p_mid && p_mid->z() < 0 &&
+                            length_of(p_mid->x(), p_mid->y()) > g_.flat_radius_;
+    const double turn_lo = beside_rim ? turn_at(*p_lo) : 0,
+                 turn_hi = beside_rim ? turn_at(*p_hi) : 0;
+    if (turn_lo * turn_hi > 0) {
+      stock_line_by_feed(lo, *p_lo, hi, *p_hi, turn_lo, from_lo);
+      continue;
+    }
+    std::optional<std::pair<double, Vector3d>> facing_f;  // (b, front point) where n.e = 0
+    if (turn_lo * turn_hi < 0) {
+      double a = lo, b = hi;
+      for (int i = 0; i < 200 && b - a > 1e-15 * R; ++i) {
+        const double middle = 0.5 * (a + b);
+        const auto p = front_at(middle);
+        if (!p) break;
+        ((turn_at(*p) < 0) == (turn_lo < 0) ? a : b) = middle;
+      }
+      if (const auto p = front_at(0.5 * (a + b))) facing_f = std::pair{0.5 * (a + b), *p};
+    }
+    if (!facing_f) {
+      add([&](double b) { return along_stock(b); }, from_lo ? lo : hi, from_lo ? hi : lo);
+      continue;
+    }
+    const auto& [cut, p_cut] = *facing_f;
+    // In the order of travel.
+    if (from_lo) {
+      stock_line_by_feed(lo, *p_lo, cut, p_cut, turn_lo, true);
+      stock_line_by_feed(cut, p_cut, hi, *p_hi, turn_hi, true);
+    } else {
+      stock_line_by_feed(cut, p_cut, hi, *p_hi, turn_hi, false);
+      stock_line_by_feed(lo, *p_lo, cut, p_cut, turn_lo, false);
+    }
+  }
+}
+
+// The pieces of the boundary, each added to BoundaryMean's sums.
+double Groove::mean_over_boundary(double relative, int panels) const {
+  BoundaryMean mean(*this, relative, panels);
+  const BoundaryPoint& left_top = top(true);
+  const WidthLevel level = width_level();
+  // The far silhouette, c0 down to the bottom (a ray above its foot adds nothing).
+  mean.silhouette(left_top.ray > 0 ? phi_left_ : left_top.phi, phi_bottom_);
+  // The near one, the bottom up to c*.
+  mean.silhouette(phi_bottom_, level.right.ray > 0 ? phi_right_ : level.right.phi);
+  // The shifted silhouette, c* up to c0: beside the silhouette by phi, and
+  // beside the shank's ray by the height above its foot.
+  const double c_foot = c_foot_[0];
+  if (level.c < c0_ && level.c < c_foot)
+    mean.shifted_beside_silhouette(level.left.phi, c0_ > c_foot ? phi_left_ : left_top.phi);
+  if (level.c < c0_ && c0_ > c_foot)
+    mean.shifted_beside_ray(std::max(0.0, (level.c - c_foot) / normal_.z()),
+                            (c0_ - c_foot) / normal_.z());
+  // The stock line, from its right end back to bL(c0).
+  mean.stock_line(level.c < c0_ ? left_top.b + ae_ : top(false).b, left_top.b);
+  return mean.value();
 }
 
 // The cut for level_engagement.h: with F turned level, N and e with it,

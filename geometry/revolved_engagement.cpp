@@ -1001,19 +1001,24 @@ class Groove {
       // is the level, the points there the tangents' (off by d^2 |p''| / 2,
       // |p''| ~ R / L^2, L = |U_xy|). Saves the confirming evaluation, a
       // quarter of a solve's.
-      const double l_min =
-          std::sqrt(1 - std::max(std::pow(cos_l * side_.z() + sin_l * normal_.z(), 2),
-                                 std::pow(cos_r * side_.z() + sin_r * normal_.z(), 2)));
-      if (std::max(std::abs(d_l), std::abs(d_r)) < 1e-8 * l_min) {
+      const double largest = std::max(std::abs(d_l), std::abs(d_r));
+      const auto least_l = [&] {
+        const double u_l = cos_l * side_.z() + sin_l * normal_.z();
+        const double u_r = cos_r * side_.z() + sin_r * normal_.z();
+        return std::sqrt(1 - std::max(u_l * u_l, u_r * u_r));
+      };
+      if (largest < 1e-8 && largest < 1e-8 * least_l()) {
         const Vector3d q_l = p_l + d_l * t_l, q_r = p_r + d_r * t_r;
         const double c = 0.5 * (normal_.dot(q_l) + normal_.dot(q_r));
-        if (!(c > c_min_ && c < c0_ && phi_l + d_l > phi_left_ && phi_r + d_r < phi_right_))
+        phi_l += d_l;
+        phi_r += d_r;
+        if (!(c > c_min_ && c < c0_ && phi_l > phi_left_ && phi_l < phi_bottom_ &&
+              phi_r > phi_bottom_ && phi_r < phi_right_))
           return std::nullopt;
-        return WidthLevel{
-            c, {q_l, side_.dot(q_l), phi_l + d_l, 0}, {q_r, side_.dot(q_r), phi_r + d_r, 0}};
+        return WidthLevel{c, {q_l, side_.dot(q_l), phi_l, 0}, {q_r, side_.dot(q_r), phi_r, 0}};
       }
       // Steps of at most 0.3 rad (the start can be far), and within the branches.
-      double scale = std::min(1.0, 0.3 / std::max(std::abs(d_l), std::abs(d_r)));
+      double scale = std::min(1.0, 0.3 / largest);
       const auto keep_within = [&](double phi, double d, double lo, double hi) {
         const double room = d > 0 ? hi - phi : phi - lo;
         if (std::abs(d) * scale >= room) scale = 0.5 * room / std::abs(d);

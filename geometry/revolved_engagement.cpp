@@ -1002,12 +1002,13 @@ class Groove {
       // |p''| ~ R / L^2, L = |U_xy|). Saves the confirming evaluation, a
       // quarter of a solve's.
       const double largest = std::max(std::abs(d_l), std::abs(d_r));
-      const auto least_l = [&] {
+      bool small = largest < 1e-8;
+      if (small) {
         const double u_l = cos_l * side_.z() + sin_l * normal_.z();
         const double u_r = cos_r * side_.z() + sin_r * normal_.z();
-        return std::sqrt(1 - std::max(u_l * u_l, u_r * u_r));
-      };
-      if (largest < 1e-8 && largest < 1e-8 * least_l()) {
+        small = largest < 1e-8 * std::sqrt(1 - std::max(u_l * u_l, u_r * u_r));
+      }
+      if (small) {
         const Vector3d q_l = p_l + d_l * t_l, q_r = p_r + d_r * t_r;
         const double c = 0.5 * (normal_.dot(q_l) + normal_.dot(q_r));
         phi_l += d_l;

@@ -104,13 +104,14 @@ Engagement evaluate_engagement(const Tool& tool, const CutSetup& setup,
 // tool), within 1.3e-6 mm of the area integral over the groove taken to
 // 1e-10 (1,440 random set-ups; 3e-5 mm with |F_z| in 1e-3..3e-3, 200
 // set-ups, 3.1e-6 in 3e-3..1e-2); where the end face is nearly parallel
-// to the feed (|F_z| in 1e-5..1e-3) finer, within 1.6e-5 mm (400). A level feed (F_z = 0, Z-level
-// passes), either tool, goes by one integral along the tool's profile
-// (level_engagement.h): within 6.3e-8 mm of that area integral (400
-// random set-ups), about 10 us a mean; feeds all but level (|F_z| <
-// 1e-5) are turned level first, within 4.2e-4 mm (400). The flat end
-// mill otherwise within 6.4e-4 mm of the circle-by-circle oracle on 900
-// random set-ups (its circles' removed arcs in closed form).
+// to the feed (|F_z| in 1e-5..1e-3) finer, within 1.6e-5 mm (400). A
+// level feed (F_z = 0, Z-level passes), either tool, goes by one
+// integral along the tool's profile (level_engagement.h): within 6.3e-8
+// mm of that area integral (400 random set-ups), about 10 us a mean;
+// feeds all but level (|F_z| < 1e-5) are turned level first, within
+// 4.2e-4 mm (400). The flat end mill otherwise within 6.4e-4 mm of the
+// circle-by-circle oracle on 900 random set-ups (its circles' removed
+// arcs in closed form).
 std::optional<double> engaged_mean_diameter(const Tool& tool, const CutSetup& setup);
 
 // Up or down milling from the side of the previous pass and the spindle

@@ -347,8 +347,6 @@ class Groove {
     c_foot_ = {normal_.dot(foot_left_), normal_.dot(foot_right_)};
     edge_on_ = std::abs(feed_.z()) <= kEdgeOn;
     face_in_front_ = !edge_on_ && feed_.z() < 0;
-    // The shank's lowest point along N is at -R |N_xy|.
-    shank_in_stock_ = c0_ + radius_ * rim_tilt_ > 0;
   }
 
   double radius() const { return radius_; }
@@ -393,10 +391,15 @@ class Groove {
     if (!(length > 0)) return {Vector3d::Zero(), Vector3d::Zero()};
     const double inverse = 1 / length;                         // (one division, not four)
     const Vector3d flat(u.x() * inverse, u.y() * inverse, 0);  // the unit U_xy
+    return {flat_radius_ * flat + corner_ * u, silhouette_tangent(u, du, inverse)};
+  }
+  // The same derivative from U, U' and 1 / |U_xy|.
+  Vector3d silhouette_tangent(const Vector3d& u, const Vector3d& du, double inverse) const {
+    const Vector3d flat(u.x() * inverse, u.y() * inverse, 0);  // the unit U_xy
     const double turn = flat.x() * du.x() + flat.y() * du.y();
     const Vector3d d_flat((du.x() - turn * flat.x()) * inverse,
                           (du.y() - turn * flat.y()) * inverse, 0);
-    return {flat_radius_ * flat + corner_ * u, flat_radius_ * d_flat + corner_ * du};
+    return flat_radius_ * d_flat + corner_ * du;
   }
 
   struct BoundaryPoint {
@@ -521,11 +524,7 @@ class Groove {
       // confirming evaluation, a fifth of a solve's.
       if (halley > 0 && std::abs(step) < 1e-8 * length && std::abs(g) < 1e-10 * radius_ &&
           phi - step > a && phi - step < b) {
-        const Vector3d flat(u.x() * inverse, u.y() * inverse, 0);
-        const double along = flat.x() * du.x() + flat.y() * du.y();
-        const Vector3d d_flat((du.x() - along * flat.x()) * inverse,
-                              (du.y() - along * flat.y()) * inverse, 0);
-        const Vector3d root = p - step * (flat_radius_ * d_flat + corner_ * du);
+        const Vector3d root = p - step * silhouette_tangent(u, du, inverse);
         warm = phi - step;
         return {root, side_.dot(root), warm, 0};
       }
@@ -603,17 +602,17 @@ class Groove {
 
   // The bull-nose's distance from x to its core K = {r <= R0, z >= 0} less
   // rc (the tool is K grown by rc: <= 0 in the tool), its slope along d
-  // (n.d on the tool's surface) and the r of x.
+  // (n.d on the tool's surface).
   struct Excess {
-    double value, slope, rho;
+    double value, slope;
   };
   Excess core_excess_along(const Vector3d& x, const Vector3d& d) const {
     const double rho = length_of(x.x(), x.y());
     const double radial = std::max(0.0, rho - flat_radius_), below = std::min(0.0, x.z());
     const double distance = length_of(radial, below);
-    if (!(distance > 0)) return {-corner_, 0, rho};
+    if (!(distance > 0)) return {-corner_, 0};
     const double d_radial = radial > 0 ? (x.x() * d.x() + x.y() * d.y()) / rho : 0;
-    return {distance - corner_, (radial * d_radial + below * d.z()) / distance, rho};
+    return {distance - corner_, (radial * d_radial + below * d.z()) / distance};
   }
 
   // Where the line x0 + t F crosses the vertical cylinder r = rho: t^2
@@ -697,10 +696,6 @@ class Groove {
     const auto interval = line_interval(x0, true);
     if (!interval) return std::nullopt;
     return x0 + interval->second * feed_;
-  }
-
-  Vector3d point_at(double b, double c, double t) const {
-    return b * side_ + c * normal_ + t * feed_;
   }
 
   // The front and back tool points (the front twice with only_front) of
@@ -1125,7 +1120,6 @@ class Groove {
   bool edge_on_ = false;
   // The face leads with an area seen along F (its fibres' front points).
   bool face_in_front_ = false;
-  bool shank_in_stock_ = true;
   double rim_tilt_ = 0;  // |N_xy|
   // inner_top_fibre()'s walk, and whether it left out the back: a cache.
   mutable std::optional<std::optional<std::pair<Vector3d, Vector3d>>> inner_top_fibre_;
@@ -1955,10 +1949,10 @@ class Groove::BoundaryMean {
 
   // The stock line from b_from to b_to (cut at `cuts`) where the face
   // leads. The stretch of the corner beside the face's rim goes by a =
-  // F.P instead of b: there the rim (the tool cut by the stock plane) runs nearly along F,
-  // b moving by about F_z to a's 1, and the fibres that graze the rim make
-  // an inner layer, about rc F_z^2 wide in b, that b's quadrature chased to
-  // its cap. The rim's point at a lies on the line c0 N + a F + b e, walked
+  // F.P instead of b: there the rim (the tool cut by the stock plane) runs
+  // nearly along F, b moving by about F_z to a's 1, and the fibres that
+  // graze the rim make an inner layer, about rc F_z^2 wide in b, that b's
+  // quadrature chased to its cap. The rim's point at a lies on the line c0 N + a F + b e, walked
   // onto from the stretch's end outside it (the rim is convex: the end on
   // its outer side, -e where the rim faces -e, is outside on every such
   // line), and moves as dP/da = F - (n.F / n.e) e. Where the rim faces

@@ -224,5 +224,43 @@ TEST(PointEvaluator, FollowsABullNosesPassesByTheToolsPosition) {
   EXPECT_EQ(measured, 42);
 }
 
+// A Z-level ring round a dome (sphere R40, bull-nose D10 rc 2, contact at
+// 50 deg from the pole) in 64 straight moves: each chord cuts across the
+// level circle by half its turn, 2.8 deg, so its projection onto the
+// tangent plane leaves the level by F_z = -0.049 sin(50 deg) sin(40 deg).
+// A level move is taken along the tangent plane's level direction: F_z = 0
+// exactly and F the ring's tangent at the contact, (-sin, cos, 0) of its
+// azimuth. A ramp (Z changing along the move) keeps the projection.
+TEST(PointEvaluator, FeedsALevelMoveLevel) {
+  geometry::SpherePatch dome;
+  dome.radius = 40;
+  dome.max_polar = 1.4;
+  dome.material_inside = true;
+  const geometry::AnalyticModel model({dome});
+  PointSettings settings;
+  settings.tool = geometry::Tool::bull_nose(10, 2);
+  settings.ap = 0.3;
+  PointEvaluator evaluator(model, settings);
+  const double polar = 50 * pi / 180, rc = 2, r0 = 3, turn = 2 * pi / 64;
+  const auto tip = [&](double azimuth) {
+    const Vector3d radial(std::cos(azimuth), std::sin(azimuth), 0);
+    return Vector3d(((40 + rc) * std::sin(polar) + r0) * radial +
+                    Vector3d(0, 0, (40 + rc) * std::cos(polar) - rc));
+  };
+  for (int i = 1; i <= 64; ++i) {
+    const double azimuth = i * turn;
+    const Vector3d chord = (tip(azimuth) - tip(azimuth - turn)).normalized();
+    ASSERT_EQ(chord.z(), 0);
+    const auto r = evaluator.evaluate({tip(azimuth), chord, 0, 1, {}});
+    ASSERT_EQ(r.contact.status, geometry::BallStatus::touching) << i;
+    EXPECT_EQ(r.feed.z(), 0) << i;
+    EXPECT_NEAR((r.feed - Vector3d(-std::sin(azimuth), std::cos(azimuth), 0)).norm(), 0, 1e-9);
+  }
+  const Vector3d ramp = Vector3d(-std::sin(turn), std::cos(turn), 0.1).normalized();
+  const auto r = evaluator.evaluate({tip(turn), ramp, 0, 1, {}});
+  const Vector3d& n = r.contact.normal;
+  EXPECT_NEAR((r.feed - (ramp - ramp.dot(n) * n).normalized()).norm(), 0, 1e-12);
+}
+
 }  // namespace
 }  // namespace vcpost::pipeline

@@ -49,22 +49,24 @@ geometry::BallContact PointEvaluator::contact(const PathSample& sample,
 }
 
 namespace {
-// A level move (Z constant: Z-level passes, floors) keeps the tool's end
-// face parallel to the feed, so its feed on the surface is the tangent
-// plane's level direction, along the move. Projected onto the tangent
-// plane, its chord, which cuts across the curved level line it follows
-// by half the chord's turn, left the feed that much out of level (|F_z|
-// 3e-3 on 0.6 mm chords round an R40 dome): a bull-nose's face seemed to
-// lead or trail, and the engine took the general route for a level cut.
-// Other moves: the direction projected onto the tangent plane. Zero where
-// neither gives a direction (a move along the normal).
+// A level move (Z constant) along a level line of the surface (Z-level
+// passes) keeps the tool's end face parallel to the feed, so its feed on
+// the surface is the tangent plane's level direction, along the move.
+// Projected onto the tangent plane, its chord, which cuts across the
+// curved level line it follows by half the chord's turn, left the feed
+// that much out of level (|F_z| 3e-3 on 0.6 mm chords round an R40
+// dome): a bull-nose's face seemed to lead or trail, and the engine took
+// the general route for a level cut. Along the level line means within
+// 0.1 rad of it (the chord of a contour turning up to 0.2 rad): a level
+// move across it (a raster's chord over a crest, its ends' Z rounded
+// equal), and any other move, is projected onto the tangent plane. Zero
+// where neither gives a direction (a move along the normal).
 Eigen::Vector3d feed_on_surface(const Eigen::Vector3d& direction, const Eigen::Vector3d& n) {
-  if (direction.z() == 0) {
-    const Eigen::Vector3d level(-n.y(), n.x(), 0);  // z x n
-    if (level.norm() > 1e-9)
-      return level.dot(direction) >= 0 ? level.normalized() : -level.normalized();
-  }
-  const Eigen::Vector3d tangent = direction - direction.dot(n) * n;
+  const Eigen::Vector3d level(-n.y(), n.x(), 0);  // z x n, |n_xy| long
+  const double off_level = direction.dot(n);      // |n_xy| sin(angle to the level line)
+  if (direction.z() == 0 && level.norm() > 1e-9 && std::abs(off_level) <= 0.1 * level.norm())
+    return level.dot(direction) >= 0 ? level.normalized() : -level.normalized();
+  const Eigen::Vector3d tangent = direction - off_level * n;
   return tangent.norm() > 1e-9 ? Eigen::Vector3d(tangent.normalized()) : Eigen::Vector3d::Zero();
 }
 

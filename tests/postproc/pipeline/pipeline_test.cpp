@@ -230,7 +230,8 @@ TEST(PointEvaluator, FollowsABullNosesPassesByTheToolsPosition) {
 // tangent plane leaves the level by F_z = -0.049 sin(50 deg) sin(40 deg).
 // A level move is taken along the tangent plane's level direction: F_z = 0
 // exactly and F the ring's tangent at the contact, (-sin, cos, 0) of its
-// azimuth. A ramp (Z changing along the move) keeps the projection.
+// azimuth. A ramp (Z changing along the move), or a level move 30 deg off
+// the level line (beyond 0.1 rad: not following it), keeps the projection.
 TEST(PointEvaluator, FeedsALevelMoveLevel) {
   geometry::SpherePatch dome;
   dome.radius = 40;
@@ -256,10 +257,13 @@ TEST(PointEvaluator, FeedsALevelMoveLevel) {
     EXPECT_EQ(r.feed.z(), 0) << i;
     EXPECT_NEAR((r.feed - Vector3d(-std::sin(azimuth), std::cos(azimuth), 0)).norm(), 0, 1e-9);
   }
-  const Vector3d ramp = Vector3d(-std::sin(turn), std::cos(turn), 0.1).normalized();
-  const auto r = evaluator.evaluate({tip(turn), ramp, 0, 1, {}});
-  const Vector3d& n = r.contact.normal;
-  EXPECT_NEAR((r.feed - (ramp - ramp.dot(n) * n).normalized()).norm(), 0, 1e-12);
+  const double across = turn + pi / 2 + pi / 6;  // 30 deg inwards of the ring's tangent
+  for (const Vector3d& move : {Vector3d(-std::sin(turn), std::cos(turn), 0.1).normalized(),
+                               Vector3d(std::cos(across), std::sin(across), 0)}) {
+    const auto r = evaluator.evaluate({tip(turn), move, 0, 1, {}});
+    const Vector3d& n = r.contact.normal;
+    EXPECT_NEAR((r.feed - (move - move.dot(n) * n).normalized()).norm(), 0, 1e-12);
+  }
 }
 
 }  // namespace

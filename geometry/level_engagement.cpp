@@ -312,12 +312,12 @@ class LevelZone {
   // along a stretch between two breaks (its bounds cross only there), so
   // the stretch's middle tells. A face's chord reaches the rim (r = R0),
   // and comes nearest the axis at v = 0.
-  LevelExtremes extremes(bool face_leads) const {
+  RadiusExtremes extremes(bool face_leads) const {
     const double slack = 1e-12 * radius_;
     const auto any = [slack](const Intervals& set) {
       return set[0].second - set[0].first > slack || set[1].second - set[1].first > slack;
     };
-    LevelExtremes out;
+    RadiusExtremes out;
     const std::vector<double> zs = breaks_within(breaks(), -rc_, std::max(0.0, top()));
     for (std::size_t k = 0; k + 1 < zs.size(); ++k) {
       const double middle = 0.5 * (zs[k] + zs[k + 1]);
@@ -381,7 +381,7 @@ class LevelZone {
 
 LevelRim level_rim(const LevelCut& cut) { return LevelZone(cut).rim(); }
 
-LevelExtremes level_extremes(const LevelCut& cut) {
+RadiusExtremes level_extremes(const LevelCut& cut) {
   return LevelZone(cut).extremes(cut.face_leads);
 }
 

@@ -5,7 +5,9 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <utility>
@@ -26,13 +28,20 @@ struct LevelCut {
 };
 
 // The engaged points' least and greatest distance r from the axis and
-// greatest z; r_min > r_max when nothing is engaged.
-struct LevelExtremes {
+// greatest z, running over the points met (add); r_min > r_max when
+// nothing is engaged.
+struct RadiusExtremes {
   double r_min = std::numeric_limits<double>::infinity();
   double r_max = -std::numeric_limits<double>::infinity();
   double z_max = -std::numeric_limits<double>::infinity();
+  void add(double r, double z) {
+    r_min = std::min(r_min, r);
+    r_max = std::max(r_max, r);
+    z_max = std::max(z_max, z);
+  }
+  void add(const Eigen::Vector3d& p) { add(std::sqrt(p.x() * p.x() + p.y() * p.y()), p.z()); }
 };
-LevelExtremes level_extremes(const LevelCut& cut);
+RadiusExtremes level_extremes(const LevelCut& cut);
 
 // MODELS.md's rim points for the cutting points: the rim's (the tool cut
 // by the stock plane) points with the least and the greatest s = S0.P (S0

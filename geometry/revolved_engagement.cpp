@@ -304,17 +304,6 @@ void form_roots(const Form<N>& f, const Found& found) {
   }
 }
 
-// Running extremes of r and of z over the engaged points met so far.
-struct RadiusExtremes {
-  double r_min = kInf, r_max = -kInf, z_max = -kInf;
-  void add(double r, double z) {
-    r_min = std::min(r_min, r);
-    r_max = std::max(r_max, r);
-    z_max = std::max(z_max, z);
-  }
-  void add(const Vector3d& p) { add(length_of(p.x(), p.y()), p.z()); }
-};
-
 // The cutting situation of one bull-nose or flat tool in the projected
 // frame described at the top of this file.
 class Groove {
@@ -2125,10 +2114,7 @@ double Groove::mean_when_level() const {
   return area > 0 ? moment / area : 0.0;
 }
 
-RadiusExtremes Groove::level_extremes() const {
-  const LevelExtremes level = geometry::level_extremes(level_cut());
-  return {level.r_min, level.r_max, level.z_max};
-}
+RadiusExtremes Groove::level_extremes() const { return geometry::level_extremes(level_cut()); }
 
 struct Prepared {
   Engagement out;

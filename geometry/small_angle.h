@@ -31,6 +31,19 @@ inline std::pair<double, double> cos_sin_small(double x) {
   return {1 + y * tail(0), x + x * y * tail(1)};
 }
 
+// atan2(y, x): by atan's series where |y| <= 0.1 x (to the 15th power,
+// whose next term is below 6e-18 of it there: the late secant steps' small
+// turns), libm's elsewhere.
+inline double atan2_small(double y, double x) {
+  if (!(x > 0 && std::abs(y) <= 0.1 * x)) return std::atan2(y, x);
+  const double t = y / x, u = t * t, u2 = u * u, u4 = u2 * u2;
+  // atan t = t + t u (the sum over k = 1 .. 7 of c(k) u^(k - 1)), c(k) =
+  // (-1)^k / (2k + 1), summed by Estrin's scheme as above.
+  constexpr auto c = [](int k) { return (k % 2 == 0 ? 1.0 : -1.0) / (2 * k + 1); };
+  const auto pair = [&](int k) { return c(k) + c(k + 1) * u; };
+  return t + t * u * ((pair(1) + pair(3) * u2) + (pair(5) + c(7) * u2) * u4);
+}
+
 // The unit vector (cos_a, sin_a) turned by x.
 inline std::pair<double, double> rotated(double cos_a, double sin_a, double x) {
   const auto [c, s] = cos_sin_small(x);

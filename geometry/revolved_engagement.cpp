@@ -512,9 +512,10 @@ class Groove {
       // the point at its end by Taylor's polynomial of degree 2 is off by
       // step^3 |p'''| / 6 (|p'''| ~ R / L^3): within 2e-13 R, the solve ends
       // there (p'' = R0 W'' - rc U, W'' = a'' W+ - a'^2 W). Saves the
-      // confirming evaluation: 2.95 a solve, 3.3 with the tangent's end
-      // below 1e-8 L. (Beside an edge-on face c' changes by twice itself
-      // over a step of 1e-10: there the test on c'' keeps on solving.)
+      // confirming evaluation: 2.95 iterations a solve where the tangent's
+      // end below 1e-8 L took 3.3. (Beside an edge-on face c' changes by
+      // twice itself over a step of 1e-10: there the test on c'' keeps on
+      // solving.)
       if (halley > 0 && std::abs(step) < 1e-4 * length &&
           std::abs(step * bend) < 1e-4 * std::abs(slope) && phi - step > a && phi - step < b) {
         const double wx = u.x() * inverse, wy = u.y() * inverse;

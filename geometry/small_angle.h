@@ -1,7 +1,9 @@
-// Cosine and sine of a small angle by their series, and a rotation by it:
-// the Newton and regula falsi steps of the engines move an angle by less
-// than half a radian, where the series is exact to round-off and cheaper
-// than libm's sincos (which took a fifth of a bull-nose evaluation).
+// Cosine and sine of a small angle by their series, a rotation by it, and
+// the arc tangent of a small turn: the Newton, Halley and secant steps of
+// the engines and of the tool's contact move an angle by less than half a
+// radian, where the series are exact to round-off and cheaper than libm's
+// sincos and atan2 (which took a fifth of a bull-nose evaluation, and of a
+// bull-nose contact).
 #pragma once
 
 #include <cmath>

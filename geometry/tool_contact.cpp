@@ -47,7 +47,7 @@ class RimSecant {
 
   // The rim point to try after q (on the rim, g pointing into the disc).
   // (The turns and the rotation by the small angles' series: libm's
-  // atan2, cos and sin took a tenth of a bull-nose contact.)
+  // atan2, cos and sin took a fifth of a bull-nose contact.)
   Eigen::Vector2d next(const Eigen::Vector2d& q, const Eigen::Vector2d& g) {
     const double residual = turn(q, -g);
     if (known_) slope_ = (residual - residual_) / turn(last_, q);

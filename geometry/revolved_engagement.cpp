@@ -988,16 +988,24 @@ class Groove {
     // cos and sin of the two angles, turned with them (steps <= 0.3 rad).
     auto [cos_l, sin_l] = cos_sin(phi_l);
     auto [cos_r, sin_r] = cos_sin(phi_r);
+    // The level through the points q_l and q_r at phi_l and phi_r, empty
+    // outside (c_min, c0).
+    const auto level_at = [&](const Vector3d& q_l,
+                              const Vector3d& q_r) -> std::optional<WidthLevel> {
+      const double c = 0.5 * (normal_.dot(q_l) + normal_.dot(q_r));
+      if (!(c > c_min_ && c < c0_)) return std::nullopt;
+      return WidthLevel{c, {q_l, side_.dot(q_l), phi_l, 0}, {q_r, side_.dot(q_r), phi_r, 0}};
+    };
+    const auto within_branches = [&] {
+      return phi_l > phi_left_ && phi_l < phi_bottom_ && phi_r > phi_bottom_ && phi_r < phi_right_;
+    };
     for (int i = 0; i < 40; ++i) {
       const auto [p_l, t_l] = silhouette_and_tangent(cos_l, sin_l);
       const auto [p_r, t_r] = silhouette_and_tangent(cos_r, sin_r);
       const double b_l = side_.dot(p_l), b_r = side_.dot(p_r);
       const double level_gap = normal_.dot(p_r) - normal_.dot(p_l), width_gap = b_r - b_l - ae_;
-      if (std::abs(level_gap) <= tolerance && std::abs(width_gap) <= tolerance) {
-        const double c = 0.5 * (normal_.dot(p_l) + normal_.dot(p_r));
-        if (!(c > c_min_ && c < c0_)) return std::nullopt;
-        return WidthLevel{c, {p_l, b_l, phi_l, 0}, {p_r, b_r, phi_r, 0}};
-      }
+      if (std::abs(level_gap) <= tolerance && std::abs(width_gap) <= tolerance)
+        return level_at(p_l, p_r);
       const double j00 = -normal_.dot(t_l), j01 = normal_.dot(t_r);
       const double j10 = -side_.dot(t_l), j11 = side_.dot(t_r);
       const double det = j00 * j11 - j01 * j10;
@@ -1016,14 +1024,10 @@ class Groove {
         small = largest < 1e-6 * std::sqrt(1 - std::max(u_l * u_l, u_r * u_r));
       }
       if (small) {
-        const Vector3d q_l = p_l + d_l * t_l, q_r = p_r + d_r * t_r;
-        const double c = 0.5 * (normal_.dot(q_l) + normal_.dot(q_r));
         phi_l += d_l;
         phi_r += d_r;
-        if (!(c > c_min_ && c < c0_ && phi_l > phi_left_ && phi_l < phi_bottom_ &&
-              phi_r > phi_bottom_ && phi_r < phi_right_))
-          return std::nullopt;
-        return WidthLevel{c, {q_l, side_.dot(q_l), phi_l, 0}, {q_r, side_.dot(q_r), phi_r, 0}};
+        if (!within_branches()) return std::nullopt;
+        return level_at(p_l + d_l * t_l, p_r + d_r * t_r);
       }
       // Steps of at most 0.3 rad (the start can be far), and within the branches.
       double scale = std::min(1.0, 0.3 / largest);
@@ -1039,8 +1043,7 @@ class Groove {
       phi_r += scale * d_r;
       std::tie(cos_l, sin_l) = rotated(cos_l, sin_l, scale * d_l);
       std::tie(cos_r, sin_r) = rotated(cos_r, sin_r, scale * d_r);
-      if (!(phi_l > phi_left_ && phi_l < phi_bottom_ && phi_r > phi_bottom_ && phi_r < phi_right_))
-        return std::nullopt;
+      if (!within_branches()) return std::nullopt;
     }
     return std::nullopt;
   }
@@ -1151,12 +1154,11 @@ void Groove::silhouette_extremes(const BoundaryPoint& end, bool left, RadiusExtr
   out.add(flat_radius_ + corner_ * rim_tilt_, -corner_ * normal_.z());
   const double top = omega_ + kPi;
   if (left ? top >= end.phi && top <= phi_bottom_ : top >= phi_bottom_ && top <= end.phi) {
-    // U = -(e_z e + N_z N) / |w| there; |U_xy| from its components, not
-    // from sqrt(1 - U_z^2), which cancels where U is nearly vertical.
-    const double w = length_of(side_.z(), normal_.z());
-    const double u_x = side_.z() * side_.x() + normal_.z() * normal_.x();
-    const double u_y = side_.z() * side_.y() + normal_.z() * normal_.y();
-    out.add(flat_radius_ + corner_ * length_of(u_x, u_y) / w, -corner_ * w);
+    // U = -(cos(omega) e + sin(omega) N) there; |U_xy| from its
+    // components, not from sqrt(1 - U_z^2), which cancels where U is
+    // nearly vertical.
+    const Vector3d u = cos_omega_ * side_ + sin_omega_ * normal_;
+    out.add(flat_radius_ + corner_ * length_of(u.x(), u.y()), -corner_ * u.z());
   }
 }
 
@@ -1966,12 +1968,12 @@ class Groove::BoundaryMean {
   // F.P instead of b: there the rim (the tool cut by the stock plane) runs
   // nearly along F, b moving by about F_z to a's 1, and the fibres that
   // graze the rim make an inner layer, about rc F_z^2 wide in b, that b's
-  // quadrature chased to its cap. The rim's point at a lies on the line c0 N + a F + b e, walked
-  // onto from the stretch's end outside it (the rim is convex: the end on
-  // its outer side, -e where the rim faces -e, is outside on every such
-  // line), and moves as dP/da = F - (n.F / n.e) e. Where the rim faces
-  // along F (n.e = 0) a curve by a turns back: a stretch holding that point
-  // is cut there (bisection on n.e's sign).
+  // quadrature chased to its cap. The rim's point at a lies on the line
+  // c0 N + a F + b e, walked onto from the stretch's end outside it (the
+  // rim is convex: the end on its outer side, -e where the rim faces -e,
+  // is outside on every such line), and moves as dP/da = F - (n.F / n.e)
+  // e. Where the rim faces along F (n.e = 0) a curve by a turns back: a
+  // stretch holding that point is cut there (bisection on n.e's sign).
   void stock_line_where_the_face_leads(double b_from, double b_to, const std::vector<double>& cuts);
   // Its stretch [lo, hi] of b (front points p_lo, p_hi, n.e of one sign
   // `turn`) by a, from the end `from_lo` says to the other.

@@ -1,6 +1,6 @@
 #include "geometry/tool_contact.h"
 
-#include <Eigen/Geometry>
+#include <Eigen/Core>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -33,6 +33,12 @@ double turn(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return atan2_small(cross(a, b), a.dot(b));
 }
 
+// q turned by `angle` (by the small angles' series up to half a radian).
+Eigen::Vector2d rotated(const Eigen::Vector2d& q, double angle) {
+  const auto [c, s] = cos_sin_small(angle);
+  return {c * q.x() - s * q.y(), s * q.x() + c * q.y()};
+}
+
 // On the rim the minimum lies where the rim point q faces -g (g the
 // distance's gradient there): q = -R0 g/|g|. Its angle is found as the root
 // of the angle from q to -g, which falls through zero there (the distance
@@ -57,8 +63,7 @@ class RimSecant {
     known_ = true;
     last_ = q;
     residual_ = residual;
-    const auto [c, s] = cos_sin_small(step);
-    return {c * q.x() - s * q.y(), s * q.x() + c * q.y()};
+    return rotated(q, step);
   }
 
   // The last slope met, 0 if none.
@@ -72,10 +77,6 @@ class RimSecant {
 };
 
 bool on_rim(const Eigen::Vector2d& q, double radius) { return q.norm() >= (1 - 1e-12) * radius; }
-
-Eigen::Vector2d rotated(const Eigen::Vector2d& q, double angle) {
-  return Eigen::Rotation2Dd(angle) * q;
-}
 
 }  // namespace
 

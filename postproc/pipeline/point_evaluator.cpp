@@ -62,10 +62,11 @@ namespace {
 // equal), and any other move, is projected onto the tangent plane. Zero
 // where neither gives a direction (a move along the normal).
 Eigen::Vector3d feed_on_surface(const Eigen::Vector3d& direction, const Eigen::Vector3d& n) {
-  const Eigen::Vector3d level(-n.y(), n.x(), 0);  // z x n, |n_xy| long
+  const Eigen::Vector3d level(-n.y(), n.x(), 0);  // z x n
+  const double across = level.norm();             // |n_xy|
   const double off_level = direction.dot(n);      // |n_xy| sin(angle to the level line)
-  if (direction.z() == 0 && level.norm() > 1e-9 && std::abs(off_level) <= 0.1 * level.norm())
-    return level.dot(direction) >= 0 ? level.normalized() : -level.normalized();
+  if (direction.z() == 0 && across > 1e-9 && std::abs(off_level) <= 0.1 * across)
+    return (level.dot(direction) >= 0 ? 1 / across : -1 / across) * level;
   const Eigen::Vector3d tangent = direction - off_level * n;
   return tangent.norm() > 1e-9 ? Eigen::Vector3d(tangent.normalized()) : Eigen::Vector3d::Zero();
 }

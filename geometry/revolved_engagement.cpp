@@ -843,6 +843,16 @@ class Groove {
   class BoundaryMean;
   // The phi in [lo, hi] where the shifted fibre leaves the corner (see there).
   std::vector<double> shifted_junctions(double lo, double hi) const;
+  // Where the shifted fibre of S(phi) + ae e crosses junction j's plane,
+  // how far it misses the circle there (radially) and that miss's slope in phi.
+  struct ShiftedCrossing {
+    Vector3d x;
+    double miss, slope;
+  };
+  struct Junction;
+  ShiftedCrossing shifted_crossing(double phi, const Junction& j) const;
+  // A root of shifted_junctions' form, refined on the miss.
+  double polished_junction(double phi, const Junction& j) const;
   // The horizontal circles where the tool's pieces meet: the face's rim
   // and the shank's foot. Where a front point crosses one, the means'
   // integrands have kinks.
@@ -1448,15 +1458,43 @@ std::vector<double> Groove::shifted_junctions(double lo, double hi) const {
                     (-1.0) * forms.sum(wx * wx, wy * wy));
       form_roots(forms.sum((4 * r0 * r0 * fz * fz) * (dot * dot), (-1.0) * (l2 * rest * rest)),
                  [&](double tau) {
-                   const double phi = middle + 2 * std::atan(quarter * (2 * tau - 1));
-                   const Vector3d x0 = silhouette(phi) + ae_ * e;
-                   const Vector3d x = x0 + (j.z - x0.z()) / fz * f;
+                   const double phi =
+                       polished_junction(middle + 2 * std::atan(quarter * (2 * tau - 1)), j);
+                   if (!(phi > lo && phi < hi)) return;
+                   const Vector3d x = shifted_crossing(phi, j).x;
                    if (std::abs(length_of(x.x(), x.y()) - j.rho) > 1e-7 * radius_) return;
                    if (front_on(j, x.x(), x.y())) out.push_back(phi);
                  });
     }
   }
   return out;
+}
+
+Groove::ShiftedCrossing Groove::shifted_crossing(double phi, const Junction& j) const {
+  const auto [cos_phi, sin_phi] = cos_sin(phi);
+  const auto [p, dp] = silhouette_and_tangent(cos_phi, sin_phi);
+  const Vector3d x0 = p + ae_ * side_;
+  const Vector3d x = x0 + (j.z - x0.z()) / feed_.z() * feed_;
+  const Vector3d dx = dp - dp.z() / feed_.z() * feed_;
+  const double rho = length_of(x.x(), x.y());
+  return {x, rho - j.rho, (x.x() * dx.x() + x.y() * dx.y()) / rho};
+}
+
+// A root of shifted_junctions' polynomial holds only the digits its
+// squared form keeps: with F_z -5e-5 (D 16.6, rc 3.6) the crossing raced
+// round the face's rim at 6e4 mm per radian of phi, so the form's 1.1e-10
+// in phi left it 6.4e-6 mm (8e-7 R) off the circle, the test refused it,
+// and the quadrature chased the uncut kink through 20 more panels.
+// Newton's method on the miss itself, a few steps (the form's root is close).
+double Groove::polished_junction(double phi, const Junction& j) const {
+  for (int k = 0; k < 3; ++k) {
+    const ShiftedCrossing at = shifted_crossing(phi, j);
+    const double step = at.miss / at.slope;
+    if (!(std::abs(step) < 1e-3)) break;  // a flat miss: keep the form's root
+    phi -= step;
+    if (std::abs(step) < 1e-15) break;
+  }
+  return phi;
 }
 
 // The flat mill's silhouette is its rim, S = R d (d a unit horizontal

@@ -103,7 +103,10 @@ Engagement evaluate_engagement(const Tool& tool, const CutSetup& setup,
 // bull-nose, round the engaged zone's boundary (Green's theorem on the
 // tool), within 1.3e-6 mm of the area integral over the groove taken to
 // 1e-10 (1,440 random set-ups; 3e-5 mm with |F_z| in 1e-3..3e-3, 200
-// set-ups, 3.1e-6 in 3e-3..1e-2); where the end face is nearly parallel
+// set-ups, 3.1e-6 in 3e-3..1e-2; of 1,500 more, all but two within 1e-6
+// mm of the same boundary integral taken to 1e-9, one 5.4e-5 mm off both
+// it and the circle-by-circle oracle: one piece's error, 7e-5 mm^2 of
+// 17, was within the 1e-5 tolerance); where the end face is nearly parallel
 // to the feed (|F_z| in 1e-5..1e-3) finer, within 1.6e-5 mm (400). A
 // level feed (F_z = 0, Z-level passes), either tool, goes by one
 // integral along the tool's profile (level_engagement.h): within 6.3e-8

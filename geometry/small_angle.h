@@ -46,7 +46,7 @@ inline double atan2_small(double y, double x) {
   return t + t * u * ((pair(1) + pair(3) * u2) + (pair(5) + c(7) * u2) * u4);
 }
 
-// The unit vector (cos_a, sin_a) turned by x.
+// The vector (cos_a, sin_a) turned by x (any length: the turn is linear).
 inline std::pair<double, double> rotated(double cos_a, double sin_a, double x) {
   const auto [c, s] = cos_sin_small(x);
   return {cos_a * c - sin_a * s, sin_a * c + cos_a * s};

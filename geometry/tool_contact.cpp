@@ -35,8 +35,8 @@ double turn(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
 
 // q turned by `angle` (by the small angles' series up to half a radian).
 Eigen::Vector2d rotated(const Eigen::Vector2d& q, double angle) {
-  const auto [c, s] = cos_sin_small(angle);
-  return {c * q.x() - s * q.y(), s * q.x() + c * q.y()};
+  const auto [x, y] = geometry::rotated(q.x(), q.y(), angle);
+  return {x, y};
 }
 
 // On the rim the minimum lies where the rim point q faces -g (g the

@@ -843,16 +843,6 @@ class Groove {
   class BoundaryMean;
   // The phi in [lo, hi] where the shifted fibre leaves the corner (see there).
   std::vector<double> shifted_junctions(double lo, double hi) const;
-  // Where the shifted fibre of S(phi) + ae e crosses junction j's plane,
-  // how far it misses the circle there (radially) and that miss's slope in phi.
-  struct ShiftedCrossing {
-    Vector3d x;
-    double miss, slope;
-  };
-  struct Junction;
-  ShiftedCrossing shifted_crossing(double phi, const Junction& j) const;
-  // A root of shifted_junctions' form, refined on the miss.
-  double polished_junction(double phi, const Junction& j) const;
   // The horizontal circles where the tool's pieces meet: the face's rim
   // and the shank's foot. Where a front point crosses one, the means'
   // integrands have kinks.
@@ -868,6 +858,15 @@ class Groove {
   bool front_on(const Junction& j, double x, double y) const {
     return j.face ? face_in_front_ : x * feed_.x() + y * feed_.y() > 0;
   }
+  // Where the shifted fibre of S(phi) + ae e crosses junction j's plane,
+  // how far it misses the circle there (radially) and that miss's slope in phi.
+  struct ShiftedCrossing {
+    Vector3d x;
+    double miss, slope;
+  };
+  ShiftedCrossing shifted_crossing(double phi, const Junction& j) const;
+  // A root of shifted_junctions' form, refined on the miss.
+  double polished_junction(double phi, const Junction& j) const;
   // The b where the level c crosses a junction among the front points.
   void add_junction_cuts(double c, std::vector<double>& cuts) const {
     for (const Junction& j : junctions()) {

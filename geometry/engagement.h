@@ -107,7 +107,9 @@ Engagement evaluate_engagement(const Tool& tool, const CutSetup& setup,
 // mm of the same boundary integral taken to 1e-9, one 5.4e-5 mm off both
 // it and the circle-by-circle oracle: one piece's error, 7e-5 mm^2 of
 // 17, was within the 1e-5 tolerance); where the end face is nearly parallel
-// to the feed (|F_z| in 1e-5..1e-3) finer, within 1.6e-5 mm (400). A
+// to the feed (|F_z| in 1e-5..1e-3) finer, within 1.6e-5 mm (400; of
+// 1,429 more, 9 beyond 1e-5 mm of the same boundary integral taken to
+// 1e-9 and 1e-8, which agree within 1e-7 mm there, at most 5.3e-5). A
 // level feed (F_z = 0, Z-level passes), either tool, goes by one
 // integral along the tool's profile (level_engagement.h): within 6.3e-8
 // mm of that area integral (400 random set-ups), about 10 us a mean;

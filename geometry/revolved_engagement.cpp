@@ -1885,7 +1885,24 @@ class Groove::BoundaryMean {
       const auto [p, dp] = g_.silhouette_and_tangent(c, s);
       return at_front(p + g_.ae_ * g_.side_, dp);
     };
-    add(shifted, a, b, g_.shifted_junctions(std::min(a, b), std::max(a, b)));
+    const double lo = std::min(a, b), hi = std::max(a, b);
+    std::vector<double> cuts = g_.shifted_junctions(lo, hi);
+    // At the silhouette's most vertical normal, phi* = omega + pi, |U_xy|
+    // = |F_z|: S(phi) races round the face's rim, and the integrand spikes
+    // like 1 / ((phi - phi*)^2 + F_z^2). Cut there and at 4^k 4 |F_z| either
+    // side (each cut piece a ratio of 4 of the spike's tail): on the
+    // nearly level set-ups that chased it, at most 145 -> 116 us a mean.
+    const double width = std::abs(g_.feed_.z());
+    for (const double turn : {-2 * kPi, 0.0, 2 * kPi}) {
+      const double spike = g_.omega_ + kPi + turn;
+      if (!(spike > lo && spike < hi)) continue;
+      cuts.push_back(spike);
+      for (double d = 4 * width; d > 0 && d < 0.25 * (hi - lo); d *= 4) {
+        cuts.push_back(spike - d);
+        cuts.push_back(spike + d);
+      }
+    }
+    add(shifted, a, b, std::move(cuts));
   }
 
   // The shifted silhouette beside the shank's ray, by the height h above

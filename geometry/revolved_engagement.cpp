@@ -1897,9 +1897,11 @@ class Groove::BoundaryMean {
       const double spike = g_.omega_ + kPi + turn;
       if (!(spike > lo && spike < hi)) continue;
       cuts.push_back(spike);
-      for (double d = 4 * width; d > 0 && d < 0.25 * (hi - lo); d *= 4) {
+      double d = 4 * width;
+      while (d > 0 && d < 0.25 * (hi - lo)) {
         cuts.push_back(spike - d);
         cuts.push_back(spike + d);
+        d *= 4;
       }
     }
     add(shifted, a, b, std::move(cuts));

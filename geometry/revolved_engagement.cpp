@@ -54,15 +54,18 @@ constexpr double kEdgeOn = 1e-12;
 // points along the boundary race round the face's rim (their speed grows
 // as 1 / |F_z|) and the junctions' polynomials lose digits in round-off
 // (their roots are polished: polished_junction), so the boundary goes
-// finer (32 panels a piece to a relative 1e-6) down to kOffLevel: against the area integral over
-// the groove taken to 1e-10 (a double quadrature of the fibres' front points, the route before; 400
-// random set-ups with |F_z| in 1e-5..1e-3), downhill within 1.6e-5 mm (5 of 214 beyond 1e-5),
-// uphill within 1.2e-5 mm (2 of 186), a median 38 us, p90 111 us then (on 1,024 set-ups with |F_z|
-// in 1e-6..1e-3 now a median 20 us, p90 59 us). Below kOffLevel both tools go by level_engagement.h
-// with the feed turned level (mean_when_level): at F_z = 0 within 6.3e-8 mm of that area integral
-// (400 random set-ups), with 0 < |F_z| < 1e-5 within 4.2e-4 mm (400; the turn moves the previous
-// tool by up to R |F_z| in height, which its corner near the face feels
-// as a square root), in about 10 us where the area took 0.1-5 ms.
+// finer (32 panels a piece to a relative 1e-6) down to kOffLevel: against
+// the area integral over the groove taken to 1e-10 (a double quadrature
+// of the fibres' front points, the route before; 400 random set-ups with
+// |F_z| in 1e-5..1e-3), downhill within 1.6e-5 mm (5 of 214 beyond 1e-5),
+// uphill within 1.2e-5 mm (2 of 186), a median 38 us, p90 111 us then
+// (now, on 1,024 set-ups with |F_z| in 1e-6..1e-3, a median 20 us, p90
+// 59 us). Below kOffLevel both tools go by level_engagement.h with the
+// feed turned level (mean_when_level): at F_z = 0 within 6.3e-8 mm of
+// that area integral (400 random set-ups), with 0 < |F_z| < 1e-5 within
+// 4.2e-4 mm (400; the turn moves the previous tool by up to R |F_z| in
+// height, which its corner near the face feels as a square root), in
+// about 10 us where the area took 0.1-5 ms.
 constexpr double kNearlyEdgeOn = 1e-3;
 constexpr double kOffLevel = 1e-5;
 

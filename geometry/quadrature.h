@@ -74,12 +74,14 @@ std::array<std::array<double, N>, M> values_at(const Function& f, const std::arr
 // 15), the panels starting as the stretches between the ascending
 // `breaks` (where f has kinks the error estimate could miss): the panel
 // with the largest error estimate is halved until every component's
-// estimate is within relative * |integral| + absolute, or `max_panels`
-// panels are in use. At most 15 (2 max_panels - 1) evaluations of f,
-// whatever f does.
+// estimate is within relative * |integral| + absolute (absolute a
+// component: components in different units need their own), or
+// `max_panels` panels are in use. At most 15 (2 max_panels - 1)
+// evaluations of f, whatever f does.
 template <std::size_t N, class Function>
 std::array<double, N> integrate_capped(const Function& f, const std::vector<double>& breaks,
-                                       double relative, double absolute, int max_panels) {
+                                       double relative, const std::array<double, N>& absolute,
+                                       int max_panels) {
   struct Panel {
     double lo, hi;
     std::array<double, N> value, error;
@@ -132,7 +134,7 @@ std::array<double, N> integrate_capped(const Function& f, const std::vector<doub
     if (!done) {
       done = true;
       for (std::size_t k = 0; k < N; ++k) {
-        if (error[k] > relative * std::abs(value[k]) + absolute) done = false;
+        if (error[k] > relative * std::abs(value[k]) + absolute[k]) done = false;
       }
     }
     if (done) return value;
@@ -142,7 +144,7 @@ std::array<double, N> integrate_capped(const Function& f, const std::vector<doub
     for (std::size_t i = 0; i < panels.size(); ++i) {
       double share = 0;
       for (std::size_t k = 0; k < N; ++k) {
-        share = std::max(share, panels[i].error[k] / (relative * std::abs(value[k]) + absolute));
+        share = std::max(share, panels[i].error[k] / (relative * std::abs(value[k]) + absolute[k]));
       }
       if (share > worst_share) {
         worst_share = share;
@@ -154,6 +156,15 @@ std::array<double, N> integrate_capped(const Function& f, const std::vector<doub
     panels[worst] = rule(split.lo, mid);
     panels.push_back(rule(mid, split.hi));
   }
+}
+
+// The same with one absolute tolerance for every component.
+template <std::size_t N, class Function>
+std::array<double, N> integrate_capped(const Function& f, const std::vector<double>& breaks,
+                                       double relative, double absolute, int max_panels) {
+  std::array<double, N> each;
+  each.fill(absolute);
+  return integrate_capped<N>(f, breaks, relative, each, max_panels);
 }
 
 // The same over [lo, hi] with no breaks inside.
@@ -209,20 +220,33 @@ struct SmoothedPiece {
 // the end becomes smooth in theta. For integrands whose kinks are known
 // (the breaks) and of that kind: a piece then takes one or two panels
 // where bisection took many. At most `max_panels` panels a piece.
+// (absolute: a component, as integrate_capped's.)
 template <std::size_t N, class Function>
 std::array<double, N> integrate_smoothed_pieces(const Function& f,
                                                 const std::vector<double>& breaks, double relative,
-                                                double absolute, int max_panels) {
+                                                const std::array<double, N>& absolute,
+                                                int max_panels) {
   std::array<double, N> sum{};
   for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
     const double middle = 0.5 * (breaks[k] + breaks[k + 1]);
     const double half = 0.5 * (breaks[k + 1] - breaks[k]);
     if (!(half > 0)) continue;
-    const auto piece = integrate_capped<N>(detail::SmoothedPiece<N, Function>{f, middle, half}, 0.0,
-                                           std::numbers::pi, relative, absolute, max_panels);
+    const auto piece = integrate_capped<N>(detail::SmoothedPiece<N, Function>{f, middle, half},
+                                           std::vector<double>{0.0, std::numbers::pi}, relative,
+                                           absolute, max_panels);
     for (std::size_t i = 0; i < N; ++i) sum[i] += piece[i];
   }
   return sum;
+}
+
+// The same with one absolute tolerance for every component.
+template <std::size_t N, class Function>
+std::array<double, N> integrate_smoothed_pieces(const Function& f,
+                                                const std::vector<double>& breaks, double relative,
+                                                double absolute, int max_panels) {
+  std::array<double, N> each;
+  each.fill(absolute);
+  return integrate_smoothed_pieces<N>(f, breaks, relative, each, max_panels);
 }
 
 }  // namespace vcpost::geometry

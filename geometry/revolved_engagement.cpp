@@ -328,6 +328,7 @@ class Groove {
     cos_omega_ = w > 0 ? side_.z() / w : 1;
     sin_omega_ = w > 0 ? normal_.z() / w : 0;
     phi_left_ = omega_ + kPi / 2;
+    phi_vertical_ = omega_ + kPi;
     phi_bottom_ = 1.5 * kPi;
     phi_right_ = omega_ + 1.5 * kPi;
     rim_tilt_ = length_of(normal_.x(), normal_.y());
@@ -1138,6 +1139,7 @@ class Groove {
   double radius_, flat_radius_, corner_, ae_;
   Vector3d feed_, normal_, side_;
   double omega_ = 0, phi_left_ = 0, phi_bottom_ = 0, phi_right_ = 0;
+  double phi_vertical_ = 0;  // omega + pi: the lower silhouette's most vertical normal
   double cos_omega_ = 1, sin_omega_ = 0;
   double c_min_ = 0, c0_ = 0;
   mutable std::array<std::optional<BoundaryPoint>, 2> tops_;  // left and right, see top()
@@ -1163,7 +1165,7 @@ void Groove::silhouette_extremes(const BoundaryPoint& end, bool left, RadiusExtr
   out.add(end.p);
   if (end.ray > 0) out.add(left ? foot_left_ : foot_right_);
   out.add(flat_radius_ + corner_ * rim_tilt_, -corner_ * normal_.z());
-  const double top = omega_ + kPi;
+  const double top = phi_vertical_;
   if (left ? top >= end.phi && top <= phi_bottom_ : top >= phi_bottom_ && top <= end.phi) {
     // U = -(cos(omega) e + sin(omega) N) there; |U_xy| from its
     // components, not from sqrt(1 - U_z^2), which cancels where U is
@@ -1894,12 +1896,10 @@ class Groove::BoundaryMean {
     // like 1 / ((phi - phi*)^2 + F_z^2). Cut there and at 4^k 4 |F_z| either
     // side (each cut piece a ratio of 4 of the spike's tail): on the
     // nearly level set-ups that chased it, at most 145 -> 117 us a mean.
-    const double width = std::abs(g_.feed_.z());
-    for (const double turn : {-2 * kPi, 0.0, 2 * kPi}) {
-      const double spike = g_.omega_ + kPi + turn;
-      if (!(spike > lo && spike < hi)) continue;
+    const double spike = g_.phi_vertical_;
+    if (spike > lo && spike < hi) {
       cuts.push_back(spike);
-      double d = 4 * width;
+      double d = 4 * std::abs(g_.feed_.z());
       while (d > 0 && d < 0.25 * (hi - lo)) {
         cuts.push_back(spike - d);
         cuts.push_back(spike + d);
@@ -2027,19 +2027,12 @@ class Groove::BoundaryMean {
   void add(const Function& f, double a, double b, std::vector<double> cuts = {}) {
     if (a == b) return;
     const double absolute = std::max(absolute_, 0.1 * relative_ * std::max(scale_, expected_));
-    // The moment in units of R, so that one absolute tolerance weighs the
-    // two sums alike in their ratio (it held the moment, in mm^3, R times
+    // The moment's tolerance R times the area's, so that the two weigh
+    // alike in their ratio (the same one held the moment, in mm^3, R times
     // tighter than the area: p99 123 -> 96 us on the nearly level means).
-    const double unit = g_.radius_;
-    const auto in_units = [&](double x) {
-      Sums sums = f(x);
-      sums[1] /= unit;
-      return sums;
-    };
-    auto v = integrate_smoothed_pieces<2>(
-        in_units, breaks_within(std::move(cuts), std::min(a, b), std::max(a, b)), relative_,
-        absolute, panels_);
-    v[1] *= unit;
+    const auto v = integrate_smoothed_pieces<2>(
+        f, breaks_within(std::move(cuts), std::min(a, b), std::max(a, b)), relative_,
+        Sums{absolute, g_.radius_ * absolute}, panels_);
     const double sign = b > a ? 1 : -1;
     sum_[0] += sign * v[0];
     sum_[1] += sign * v[1];

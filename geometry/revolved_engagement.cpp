@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "geometry/angle_set.h"
+#include "geometry/arc_forms.h"
 #include "geometry/level_engagement.h"
 #include "geometry/quadrature.h"
 #include "geometry/small_angle.h"
@@ -92,219 +93,6 @@ double newton_root(const Function& g_and_slope, double lo, double hi, double g_l
 // sqrt(x^2 + y^2): the lengths here are mm-sized, far from over- and
 // underflow, and std::hypot's care for them took 40 % of an evaluation.
 double length_of(double x, double y) { return std::sqrt(x * x + y * y); }
-
-// Trigonometric polynomials on an arc of phi, for the roots of the shifted
-// silhouette. On [lo, hi] (hi - lo <= pi), with w = tan((phi - mid) / 2),
-// mid = (lo + hi) / 2, cos(phi - mid) = (1 - w^2) / (1 + w^2) and
-// sin(phi - mid) = 2 w / (1 + w^2): a trigonometric polynomial of degree k
-// in phi times (1 + w^2)^k is a polynomial of degree 2k in w, and phi <->
-// w is one to one on the arc. With w = W (2 tau - 1), W = tan((hi - lo) /
-// 4) <= 1, it is kept in the Bernstein basis of tau in [0, 1], scaled: the
-// coefficients a_i of the form sum a_i (1 - tau)^(N - i) tau^i (the
-// Bernstein coefficients times C(N, i), the same signs), whose products are
-// plain convolutions.
-template <int N>
-struct Form {
-  std::array<double, N + 1> a{};
-};
-
-template <int N, int M>
-Form<N + M> operator*(const Form<N>& x, const Form<M>& y) {
-  Form<N + M> out;
-  for (int i = 0; i <= N; ++i)
-    for (int j = 0; j <= M; ++j) out.a[i + j] += x.a[i] * y.a[j];
-  return out;
-}
-
-template <int N>
-Form<N> operator*(double k, Form<N> x) {
-  for (double& a : x.a) a *= k;
-  return x;
-}
-
-// The forms of cos(phi), sin(phi) and 1 (degree 2) on one arc.
-class ArcForms {
- public:
-  // cos_sin_mid: cos and sin of the arc's middle.
-  ArcForms(double lo, double hi, std::pair<double, double> cos_sin_mid)
-      : cos_mid_(cos_sin_mid.first), sin_mid_(cos_sin_mid.second) {
-    const auto [cos_quarter, sin_quarter] = cos_sin_small(0.25 * (hi - lo));
-    half_ = sin_quarter / cos_quarter;
-    const double w2 = half_ * half_;
-    // Bernstein coefficients of 1 - w^2, 2w and 1 + w^2 on [-W, W]: the
-    // values at the ends and f(-W) + W f'(-W) in the middle, scaled.
-    const std::array<double, 3> cos_rel{1 - w2, 2 * (1 + w2), 1 - w2};
-    const std::array<double, 3> sin_rel{-2 * half_, 0, 2 * half_};
-    one_.a = {1 + w2, 2 * (1 - w2), 1 + w2};
-    for (int i = 0; i <= 2; ++i) {
-      cos_.a[i] = cos_mid_ * cos_rel[i] - sin_mid_ * sin_rel[i];
-      sin_.a[i] = sin_mid_ * cos_rel[i] + cos_mid_ * sin_rel[i];
-    }
-  }
-
-  // a cos(phi) + b sin(phi) + k.
-  Form<2> linear(double a, double b, double k) const {
-    Form<2> out;
-    for (int i = 0; i <= 2; ++i) out.a[i] = a * cos_.a[i] + b * sin_.a[i] + k * one_.a[i];
-    return out;
-  }
-  const Form<2>& sin() const { return sin_; }
-  const Form<2>& one() const { return one_; }
-
-  // x + y, the lower degree raised by factors 1 + w^2 (trigonometric
-  // polynomials' forms differ in degree by even numbers).
-  template <int N, int M>
-  Form<std::max(N, M)> sum(const Form<N>& x, const Form<M>& y) const {
-    if constexpr (N < M) {
-      return sum(x * one_, y);
-    } else if constexpr (M < N) {
-      return sum(x, y * one_);
-    } else {
-      Form<N> out = x;
-      for (int i = 0; i <= N; ++i) out.a[i] += y.a[i];
-      return out;
-    }
-  }
-
-  // cos(phi) and sin(phi) at tau.
-  std::pair<double, double> cos_sin_at(double tau) const {
-    const double w = half_ * (2 * tau - 1), w2 = w * w;
-    const double c = (1 - w2) / (1 + w2), s = 2 * w / (1 + w2);
-    return {cos_mid_ * c - sin_mid_ * s, sin_mid_ * c + cos_mid_ * s};
-  }
-
- private:
-  double cos_mid_ = 1, sin_mid_ = 0, half_ = 0;
-  Form<2> cos_, sin_, one_;
-};
-
-// The form's value at tau: Horner's rule in tau with the powers of 1 - tau
-// carried along (no division; every term of the basis is positive on [0, 1]).
-template <int N>
-double form_at(const Form<N>& f, double tau) {
-  const double u = 1 - tau;
-  double sum = f.a[N], power = 1;
-  for (int i = N - 1; i >= 0; --i) {
-    power *= u;
-    sum = sum * tau + f.a[i] * power;
-  }
-  return sum;
-}
-
-// Calls found(tau) at every root of the form in (0, 1), and perhaps at a
-// few points that are not roots. Descartes' rule of signs in the Bernstein
-// basis: the roots in a cell number the sign changes of its coefficients
-// less an even number, so a cell without changes holds none, one with a
-// single change exactly one (its first and last coefficients, the values
-// at its ends, differ in sign: a bracket, closed by Newton's method kept
-// in it); the others are halved (de Casteljau) down to 2^-40, where a cell
-// still ambiguous (a double root, a cluster) gives its middle. A root of
-// odd multiplicity changes the sign of the values and so of the end
-// coefficients around it: round-off in the coefficients cannot hide it.
-template <int N, class Found>
-void form_roots(const Form<N>& f, const Found& found) {
-  struct Cell {
-    std::array<double, N + 1> b;
-    double lo, hi;
-  };
-  constexpr int kMaxDepth = 40;
-  std::array<Cell, kMaxDepth + 8> stack;
-  int size = 0;
-  Cell& first = stack[size++];
-  first.lo = 0;
-  first.hi = 1;
-  // 1 / C(N, i) and N C(N - 1, i), fixed at compile time (their divisions
-  // took a tenth of a shifted silhouette's roots).
-  static constexpr auto kBinomials = [] {
-    std::array<std::array<double, N + 1>, 2> out{};
-    double binomial = 1, slope_binomial = N;
-    for (int i = 0; i <= N; ++i) {
-      out[0][i] = 1 / binomial;
-      out[1][i] = slope_binomial;
-      binomial = binomial * (N - i) / (i + 1);
-      slope_binomial = slope_binomial * (N - 1 - i) / (i + 1);
-    }
-    return out;
-  }();
-  for (int i = 0; i <= N; ++i) first.b[i] = f.a[i] * kBinomials[0][i];
-  const auto sign_changes = [](const std::array<double, N + 1>& b) {
-    int changes = 0;
-    double last = 0;
-    for (const double x : b) {
-      if (x == 0) continue;
-      if (last != 0 && (x < 0) != (last < 0)) ++changes;
-      last = x;
-    }
-    return changes;
-  };
-  // The derivative's form (degree N - 1), for Newton's steps.
-  Form<N - 1> slope;
-  for (int i = 0; i < N; ++i) slope.a[i] = kBinomials[1][i] * (first.b[i + 1] - first.b[i]);
-  // The root in [lo, hi], where the form changes sign (its values at the
-  // ends g_lo, g_hi): Newton's method kept in the shrinking bracket (a
-  // step leaving it bisects), until a step is below 1e-6: that step's end
-  // is the root, within about the step squared (the roots are stationary
-  // points of r and z, which their error moves by its square again; at
-  // 1e-9 the polish took a sixth more steps for the same extremes within
-  // 1e-10 mm).
-  const auto polish = [&](double lo, double hi, double g_lo, double g_hi) {
-    double x = lo - g_lo * (hi - lo) / (g_hi - g_lo);
-    for (int i = 0; i < 100; ++i) {
-      const double g = form_at(f, x);
-      if (g == 0) return x;
-      if ((g < 0) == (g_lo < 0))
-        lo = x;
-      else
-        hi = x;
-      const double newton = x - g / form_at(slope, x), step = std::abs(newton - x);
-      if (step <= 1e-6) return newton;
-      if (hi - lo <= 2e-16) return 0.5 * (lo + hi);
-      x = newton > lo && newton < hi ? newton : 0.5 * (lo + hi);
-    }
-    return x;
-  };
-  while (size > 0) {
-    const Cell cell = stack[--size];
-    const double b_lo = cell.b[0], b_hi = cell.b[N];
-    // A root on a cell's end (shared with the next cell, whose count
-    // leaves out the zero coefficient).
-    if (b_lo == 0 && cell.lo > 0) found(cell.lo);
-    if (b_hi == 0 && cell.hi < 1) found(cell.hi);
-    const int changes = sign_changes(cell.b);
-    if (changes == 0) continue;
-    if (changes == 1 && b_lo != 0 && b_hi != 0) {
-      found(polish(cell.lo, cell.hi, b_lo, b_hi));
-      continue;
-    }
-    if (cell.hi - cell.lo <= std::ldexp(1.0, -kMaxDepth)) {
-      found(0.5 * (cell.lo + cell.hi));
-      continue;
-    }
-    // de Casteljau at the middle: the left half's coefficients are the
-    // triangle's left edge, the right half's its right edge.
-    Cell& right = stack[size++];
-    Cell& left = stack[size++];
-    // (In place, unrolled: the row stays in registers; vectorised, the
-    // averaging stalled on its own stores.)
-    std::array<double, N + 1> row = cell.b;
-    [&]<int... K>(std::integer_sequence<int, K...>) {
-      const auto level = [&]<int k>(std::integral_constant<int, k>) {
-        left.b[k] = row[0];
-        right.b[N - k] = row[N - k];
-        [&]<int... I>(std::integer_sequence<int, I...>) {
-          ((row[I] = 0.5 * (row[I] + row[I + 1])), ...);
-        }
-        (std::make_integer_sequence<int, N - k>{});
-      };
-      (level(std::integral_constant<int, K>{}), ...);
-    }
-    (std::make_integer_sequence<int, N + 1>{});
-    const double middle = 0.5 * (cell.lo + cell.hi);
-    left.lo = cell.lo;
-    left.hi = right.lo = middle;
-    right.hi = cell.hi;
-  }
-}
 
 // The cutting situation of one bull-nose or flat tool in the projected
 // frame described at the top of this file.
@@ -1360,13 +1148,13 @@ void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
           out.add(*p);
       };
     };
-    const Form<2> d = forms.linear(fe, fn, 0), v = forms.linear(ez, nz, 0);
-    const Form<2>& s = forms.sin();
+    const ArcForm<2> d = forms.linear(fe, fn, 0), v = forms.linear(ez, nz, 0);
+    const ArcForm<2>& s = forms.sin();
     // The face, where it leads.
     if (face_leads())
       form_roots(forms.sum(forms.linear(rc * ez, rc * nz, rc + ae * ez) * d, (-ae * en * fz) * s),
                  test(on_face));
-    const Form<4> d2 = d * d;
+    const ArcForm<4> d2 = d * d;
     if (rc > 0) {
       // The corner.
       form_roots(forms.sum((ae * en * en) * (s * s), forms.linear(2 * rc, 0, ae) * d2),
@@ -1391,12 +1179,12 @@ void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
     const bool across_possible = rc > 0 && r0 > 0 && !ruled_out(2 * r0);
     if (!shank && !across_possible) continue;
     // M D and L^2.
-    const Form<4> l2 = forms.sum(forms.one() * forms.one(), (-1.0) * (v * v));
-    const Form<6> md =
+    const ArcForm<4> l2 = forms.sum(forms.one() * forms.one(), (-1.0) * (v * v));
+    const ArcForm<6> md =
         forms.sum(forms.sum(rc * l2, forms.linear(ae * (1 - ez * ez), -ae * ez * nz, 0)) * d,
                   (ae * en * fz) * (s * v));
     const auto may_cross = [&](double k) {
-      const Form<6> bound = forms.sum(md, (k * std::abs(fz)) * (d * forms.one() * forms.one()));
+      const ArcForm<6> bound = forms.sum(md, (k * std::abs(fz)) * (d * forms.one() * forms.one()));
       const auto all = [](const auto& form, bool positive) {
         return std::all_of(form.a.begin(), form.a.end(),
                            [positive](double x) { return positive ? x > 0 : x < 0; });
@@ -1406,8 +1194,8 @@ void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
     };
     if (across_possible && may_cross(2 * r0)) {
       // The corner across the axis: lambda <= -R0.
-      const Form<6> g = forms.sum(forms.linear(2 * rc * ae, 0, ae * ae + 4 * r0 * r0) * d2,
-                                  (ae * ae * en * en) * (s * s));
+      const ArcForm<6> g = forms.sum(forms.linear(2 * rc * ae, 0, ae * ae + 4 * r0 * r0) * d2,
+                                     (ae * ae * en * en) * (s * s));
       form_roots(forms.sum(g * g * l2, (-16 * r0 * r0) * (md * md * d2)), test(on_corner));
     }
     if (!shank) continue;
@@ -1443,20 +1231,20 @@ std::vector<double> Groove::shifted_junctions(double lo, double hi) const {
     const double arc_lo = lo + (hi - lo) * arc / arcs, arc_hi = lo + (hi - lo) * (arc + 1) / arcs;
     const double middle = 0.5 * (arc_lo + arc_hi), quarter = std::tan(0.25 * (arc_hi - arc_lo));
     const ArcForms forms(arc_lo, arc_hi, cos_sin(middle));
-    const Form<2> ux = forms.linear(e.x(), n.x(), 0), uy = forms.linear(e.y(), n.y(), 0),
-                  uz = forms.linear(e.z(), n.z(), 0);
-    const Form<4> l2 = forms.sum(forms.one() * forms.one(), (-1.0) * (uz * uz));
+    const ArcForm<2> ux = forms.linear(e.x(), n.x(), 0), uy = forms.linear(e.y(), n.y(), 0),
+                     uz = forms.linear(e.z(), n.z(), 0);
+    const ArcForm<4> l2 = forms.sum(forms.one() * forms.one(), (-1.0) * (uz * uz));
     for (const Junction& j : junctions()) {
       if (j.face && !face_in_front_) continue;
       const double k = ae_ * e.z() - j.z;
-      const Form<2> wx =
+      const ArcForm<2> wx =
           forms.linear(corner_ * (fz * e.x() - e.z() * f.x()),
                        corner_ * (fz * n.x() - n.z() * f.x()), ae_ * fz * e.x() - k * f.x());
-      const Form<2> wy =
+      const ArcForm<2> wy =
           forms.linear(corner_ * (fz * e.y() - e.z() * f.y()),
                        corner_ * (fz * n.y() - n.z() * f.y()), ae_ * fz * e.y() - k * f.y());
-      const Form<4> dot = forms.sum(ux * wx, uy * wy);
-      const Form<4> rest =
+      const ArcForm<4> dot = forms.sum(ux * wx, uy * wy);
+      const ArcForm<4> rest =
           forms.sum((fz * fz * (j.rho * j.rho - r0 * r0)) * (forms.one() * forms.one()),
                     (-1.0) * forms.sum(wx * wx, wy * wy));
       form_roots(forms.sum((4 * r0 * r0 * fz * fz) * (dot * dot), (-1.0) * (l2 * rest * rest)),

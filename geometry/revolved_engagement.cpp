@@ -94,6 +94,33 @@ double newton_root(const Function& g_and_slope, double lo, double hi, double g_l
 // underflow, and std::hypot's care for them took 40 % of an evaluation.
 double length_of(double x, double y) { return std::sqrt(x * x + y * y); }
 
+// The root of the increasing g in [lo, hi], where g(lo) = g_lo < 0 <= g(hi)
+// = g_hi: regula falsi, Illinois' variant (the end kept twice in a row has
+// its value halved), until the bracket is below `tolerance`.
+template <class Function>
+double illinois_root(const Function& g, double lo, double hi, double g_lo, double g_hi,
+                     double tolerance) {
+  int kept = 0;  // > 0: lo kept that many times in a row, < 0: hi
+  for (int i = 0; i < 200 && hi - lo > tolerance; ++i) {
+    double t = lo - g_lo * (hi - lo) / (g_hi - g_lo);
+    if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
+    const double value = g(t);
+    if (value < 0) {
+      lo = t;
+      g_lo = value;
+      kept = kept < 0 ? kept - 1 : -1;
+      if (kept <= -2) g_hi *= 0.5;
+    } else {
+      hi = t;
+      g_hi = value;
+      kept = kept > 0 ? kept + 1 : 1;
+      if (kept >= 2) g_lo *= 0.5;
+    }
+    if (value == 0) return t;
+  }
+  return 0.5 * (lo + hi);
+}
+
 // The cutting situation of one bull-nose or flat tool in the projected
 // frame described at the top of this file.
 class Groove {
@@ -130,6 +157,7 @@ class Groove {
   }
 
   double radius() const { return radius_; }
+  const Vector3d& side() const { return side_; }  // e, toward the previous pass
   // Whether the feed is parallel to the end face (see kEdgeOn).
   bool edge_on() const { return edge_on_; }
   // How the mean is taken (see kNearlyEdgeOn): the bull-nose's round the
@@ -628,6 +656,13 @@ class Groove {
   LevelCut level_cut() const;
   double mean_when_level() const;
   RadiusExtremes level_extremes() const;
+  // The cusp the previous pass leaves beside this one (MODELS.md section
+  // 3), on a surface whose section across the feed is a circle of signed
+  // curvature k (convex > 0; 0 the tangent plane) touched at the level
+  // c_min at b = contact_b (empty: the bottom's middle; what matters where
+  // the bottom is a face seen edge-on): see revolved_cusp.
+  RevolvedCusp cusp(const Tool& tool, double curvature, std::optional<double> contact_b) const;
+  double plane_roughness(double rz) const;
   // relative: the quadrature's tolerance; panels: its cap a piece.
   double mean_over_boundary(double relative, int panels) const;
   // Its sums round the boundary, piece by piece.
@@ -1989,6 +2024,144 @@ double Groove::mean_when_level() const {
 
 RadiusExtremes Groove::level_extremes() const { return geometry::level_extremes(level_cut()); }
 
+// Ra of the transverse profile on the tangent plane, whose peak is rz over
+// CC (the profile repeats every ae: this tool's right boundary up to the
+// cusp, the previous one's left down from it, and a face seen edge-on in
+// between at the bottom). Its mean line m and Ra = (1 / ae) int |z - m| db
+// over a period, twice the part above m (z - m sums to 0). Below the feet the boundaries are Q's
+// silhouette, and in its parameter phi, int z db = int (c(phi) - c_min) b'(phi) dphi takes no root
+// (only where z crosses m); above a foot, where the profile's sides are rays, by layers: above the
+// level t over CC the profile spans w(t) = ae - width(c_min + t) of the period, so m = (1 / ae)
+// int_0^rz w and Ra = (2 / ae) int_m^rz w.
+double Groove::plane_roughness(double rz) const {
+  const double top = c_min_ + rz;
+  const BoundaryPoint left = boundary(top, true), right = boundary(top, false);
+  const double scale = 1e-12 * radius_ * ae_;
+  if (left.ray == 0 && right.ray == 0) {
+    const auto piece = [&](double from, double to, double mean) {
+      const auto z_db = [&](double phi) {
+        const auto [cos_phi, sin_phi] = cos_sin(phi);
+        const auto [p, dp] = silhouette_and_tangent(cos_phi, sin_phi);
+        return std::array<double, 1>{std::abs(normal_.dot(p) - c_min_ - mean) * side_.dot(dp)};
+      };
+      return integrate_capped<1>(z_db, from, to, 1e-8, scale, 64)[0];
+    };
+    const double bottom = phi_bottom_;
+    const double mean = (piece(left.phi, bottom, 0) + piece(bottom, right.phi, 0)) / ae_;
+    // z - m sums to 0 over a period: |z - m| to twice its part above m.
+    const double left_m = boundary(c_min_ + mean, true).phi,
+                 right_m = boundary(c_min_ + mean, false).phi;
+    return 2 * (piece(left.phi, left_m, mean) + piece(right_m, right.phi, mean)) / ae_;
+  }
+  // In u = sqrt(c - c_min): Q's width grows as sqrt(c - c_min) from its
+  // bottom (a curve's or a face's ends), w(c) dc = w 2 u du is smooth.
+  const auto w = [&](double u) {
+    const double c = c_min_ + u * u;
+    return std::array<double, 1>{2 * u * (ae_ - (boundary(c, false).b - boundary(c, true).b))};
+  };
+  // The boundaries bend where they pass onto the shank's rays.
+  const auto layers = [&](double from, double to) {
+    std::vector<double> feet;
+    for (const double c_foot : c_foot_) {
+      if (c_foot > c_min_) feet.push_back(std::sqrt(c_foot - c_min_));
+    }
+    return integrate_capped<1>(
+        w, breaks_within(feet, std::sqrt(from - c_min_), std::sqrt(to - c_min_)), 1e-8, scale,
+        64)[0];
+  };
+  const double mean = std::clamp(layers(c_min_, top) / ae_, 0.0, rz);
+  return 2 / ae_ * layers(c_min_ + mean, top);
+}
+
+// Seen along F both tools are Q: this one touching the surface at its
+// bottom CC, the previous one shifted by D across the feed to where it
+// touches too, and the cusp is where their outlines meet between the
+// contacts: the end X of the chord of Q parallel to D and as long (X and
+// X - D both on its boundary), the lower of the two. That chord is the
+// width level of the same Q seen in the frame turned about F to e' = D /
+// |D| (N' normal to it): the groove with ae' = |D| and no stock level.
+// - D: on the tangent plane (ae, 0). On the circle of curvature k the
+//   previous pass touches at the arc s from CC, where the surface's normal
+//   has turned by k s about F, so with the point of Q whose outward normal
+//   is minus that one (its silhouette at phi_bottom - k s): D(s) = CC(s) -
+//   that point, and s is where |D(s)| = ae (the pass tracker's ae is the
+//   distance across the feed between the tools' positions).
+// - The height: above CC on the tangent plane, radially above the circle
+//   on a curved surface.
+// - Rz: the cusp's height on the tangent plane (D = (ae, 0)); Ra:
+//   plane_roughness.
+RevolvedCusp Groove::cusp(const Tool& tool, double k, std::optional<double> contact_b) const {
+  RevolvedCusp out;
+  if (!(ae_ > 0)) return out;
+  const double bottom_lo = boundary(c_min_, true).b, bottom_hi = boundary(c_min_, false).b;
+  const double b_cc =
+      contact_b ? std::clamp(*contact_b, bottom_lo, bottom_hi) : 0.5 * (bottom_lo + bottom_hi);
+  // The chord's end X for the shift (db, dc): empty where no chord of Q
+  // is that long (ae beyond the tools' reach, or a frame turned past the
+  // horizontal).
+  const auto meeting = [&](double db, double dc) -> std::optional<Vector3d> {
+    const double length = length_of(db, dc);
+    const Vector3d along = (db * side_ + dc * normal_) / length;
+    const Vector3d across = (db * normal_ - dc * side_) / length;
+    if (!(across.z() > 0)) return std::nullopt;
+    // Q's height below its feet's and a tool's width above: no stock level in reach.
+    const double reach = std::max(c_foot_[0], c_foot_[1]) - c_min_ + 2 * radius_;
+    const Groove turned(tool, feed_, across, along, reach + 2 * radius_, length);
+    const WidthLevel level = turned.width_level();
+    if (!(level.c < turned.c0_)) return std::nullopt;
+    return level.right.p;
+  };
+  // On the tangent plane: Rz, and Ra by layers.
+  const std::optional<Vector3d> flat_cusp = meeting(ae_, 0);
+  if (!flat_cusp) return out;
+  const double flat_level = normal_.dot(*flat_cusp);
+  out.rz = flat_level - c_min_;
+  out.ra = 0;
+  if (*out.rz > 0) out.ra = plane_roughness(*out.rz);
+  if (!(std::abs(k) > 1e-9 / radius_)) {
+    out.height = out.rz;
+    return out;
+  }
+  // D(s), this tool at the origin.
+  const auto shift = [&](double s) {
+    const auto [cos_ks, sin_ks] = cos_sin_small(k * s);
+    const Vector3d p = silhouette(phi_bottom_ - k * s);
+    return std::array<double, 2>{b_cc + sin_ks / k - side_.dot(p),
+                                 c_min_ - (1 - cos_ks) / k - normal_.dot(p)};
+  };
+  const auto miss = [&](double s) {
+    const auto [db, dc] = shift(s);
+    return length_of(db, dc) - ae_;
+  };
+  // s from just beside CC (where a face seen edge-on may already reach
+  // ae: the previous tool's face then covers CC, no cusp) out to where the
+  // normal has turned a quarter turn (a previous pass beyond is none).
+  // Just beside: the normal turned by 1e-10, as boundary() steps beside
+  // the bottom (a face level within round-off, N_xy 1e-14, took the
+  // previous tool's touching point from its middle for its end).
+  const double tolerance = 1e-12 * radius_;
+  const double s_lo = std::max(tolerance, 1e-10 / std::abs(k)), s_max = kPi / 2 / std::abs(k);
+  const double g_lo = miss(s_lo);
+  if (g_lo >= 0) {
+    out.height = 0;
+    return out;
+  }
+  double s_hi = std::min(ae_, s_max), g_hi = miss(s_hi);
+  while (g_hi < 0 && s_hi < s_max) {
+    s_hi = std::min(2 * s_hi, s_max);
+    g_hi = miss(s_hi);
+  }
+  if (g_hi < 0) return out;  // the previous pass beyond the model's reach
+  const double s = illinois_root(miss, s_lo, s_hi, g_lo, g_hi, tolerance);
+  const auto [db, dc] = shift(s);
+  const std::optional<Vector3d> x = meeting(db, dc);
+  if (!x) return out;
+  // Radially above the circle through CC, centre (b_cc, c_min - 1 / k).
+  const double from_centre = length_of(side_.dot(*x) - b_cc, normal_.dot(*x) - c_min_ + 1 / k);
+  out.height = k > 0 ? from_centre - 1 / k : -1 / k - from_centre;
+  return out;
+}
+
 struct Prepared {
   Engagement out;
   std::optional<Groove> groove;
@@ -2105,6 +2278,28 @@ Engagement evaluate_revolved_engagement(const Tool& tool, const CutSetup& setup,
     out.d_max = tool.diameter;
   }
   return out;
+}
+
+RevolvedCusp revolved_cusp(const Tool& tool, const CutSetup& setup, double curvature_across,
+                           const std::optional<Eigen::Vector3d>& contact_offset) {
+  // A contact inside the end face: the surface touches the face's plane
+  // there, its normal is the axis (a crest's model normal may stand off it
+  // by the contact's round-off, 1e-10, which tilted the face and moved the
+  // contact to its edge: cusps of 2-350 um on the wavy sample's crests).
+  CutSetup level = setup;
+  const double face = tool.kind == ToolKind::flat ? tool.radius() : tool.flat_radius();
+  const double face_z = tool.kind == ToolKind::flat ? 0.0 : -tool.corner_radius;
+  const double slack = 1e-6 * tool.radius();
+  if (contact_offset && std::abs(contact_offset->z() - face_z) <= slack &&
+      length_of(contact_offset->x(), contact_offset->y()) < face - slack) {
+    level.normal = Vector3d::UnitZ();
+  }
+  const Prepared prepared = prepare(tool, level);
+  if (!prepared.groove) return {};
+  const Groove& groove = *prepared.groove;
+  std::optional<double> contact_b;
+  if (contact_offset) contact_b = groove.side().dot(*contact_offset);
+  return groove.cusp(tool, curvature_across, contact_b);
 }
 
 std::optional<double> revolved_mean_diameter(const Tool& tool, const CutSetup& setup) {

@@ -328,7 +328,8 @@ report::ReportInputs report_inputs(const PostArguments& args, const post::PostSe
   in.policy = args.policy;
   in.cl_point = args.cl_point;
   in.tool_radius_mm = tool.diameter / 2;
-  in.ball_end = tool.kind == geometry::ToolKind::ball;
+  in.tool_shape = tool;
+  in.cl_kind = settings.point.cl_point;
   in.vc_nominal = vc;
   in.ap_mm = args.ap;
   in.ae_mm = args.ae;

@@ -4,7 +4,9 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "geometry/revolved_engagement.h"
 #include "geometry/surface_quality.h"
+#include "geometry/tool_contact.h"
 
 namespace vcpost::report {
 namespace {
@@ -142,26 +144,42 @@ PointRow make_row(const pipeline::PathSample& sample, const pipeline::PointResul
     row.dev_after = *row.vc_after / inputs.vc_nominal - 1;
   }
 
-  // Surface quality where the ball cuts: the transverse profile (arcs of
-  // the ball every ae); the cusp with the surface's curvature across the
-  // feed where the model knows it (exact faces), flat otherwise (meshes).
-  // No cusp where no earlier pass lies beside this one (first pass: a full
-  // groove) or where the ball is not on the surface.
-  if (inputs.ball_end && result.engagement && result.contact.contact &&
-      result.feed.squaredNorm() > 0 && result.contact.status == geometry::BallStatus::touching &&
+  // Surface quality where the tool cuts: the transverse profile (the
+  // tool's outline across the feed every ae: a ball's arcs in closed form,
+  // other tools' by revolved_cusp); the cusp with the surface's curvature
+  // across the feed where the model knows it (exact faces), flat otherwise
+  // (meshes). No cusp where no earlier pass lies beside this one (first
+  // pass: a full groove) or where the tool is not on the surface.
+  if (result.engagement && result.contact.contact && result.feed.squaredNorm() > 0 &&
+      result.contact.status == geometry::BallStatus::touching &&
       result.ae_source != pipeline::AeSource::first_pass) {
-    const double radius = inputs.tool_radius_mm;
     double k_across = 0;
     if (const auto& curvature = result.contact.contact->curvature) {
       const Eigen::Vector3d across = result.contact.normal.cross(result.feed).normalized();
       const double c1 = curvature->d1.dot(across), c2 = curvature->d2.dot(across);
       k_across = curvature->k1 * c1 * c1 + curvature->k2 * c2 * c2;  // Euler's formula
     }
-    row.cusp_um = cusp_height_um(radius, result.ae, k_across);
-    if (result.ae > 0 && result.ae < 2 * radius) {
-      const auto r = geometry::transverse_roughness(radius, result.ae);
-      row.ra_um = 1000 * r.ra;
-      row.rz_um = 1000 * r.rz;
+    const geometry::Tool& tool = inputs.tool_shape;
+    if (tool.kind == geometry::ToolKind::ball) {
+      const double radius = inputs.tool_radius_mm;
+      row.cusp_um = cusp_height_um(radius, result.ae, k_across);
+      if (result.ae > 0 && result.ae < 2 * radius) {
+        const auto r = geometry::transverse_roughness(radius, result.ae);
+        row.ra_um = 1000 * r.ra;
+        row.rz_um = 1000 * r.rz;
+      }
+    } else {
+      const geometry::CutSetup setup{inputs.ap_mm, result.ae, result.contact.normal, result.feed,
+                                     result.side};
+      const Eigen::Vector3d origin = geometry::tool_origin(sample.point, tool, inputs.cl_kind);
+      const geometry::RevolvedCusp cusp = geometry::revolved_cusp(
+          tool, setup, k_across, Eigen::Vector3d(result.contact.contact->point - origin));
+      const auto in_um = [](const std::optional<double>& mm) {
+        return mm ? std::optional<double>(1000 * *mm) : std::nullopt;
+      };
+      row.cusp_um = in_um(cusp.height);
+      row.ra_um = in_um(cusp.ra);
+      row.rz_um = in_um(cusp.rz);
     }
   }
   return row;

@@ -24,9 +24,10 @@ struct ReportInputs {
   std::string model, model_kind, model_description;
   std::string machine, tool, policy, cl_point;
   double tool_radius_mm = 5;
-  // The surface-quality columns (MODELS.md section 3) model a ball end:
-  // left empty for the bull-nose and flat end mills.
-  bool ball_end = true;
+  // The tool and which of its points the program gives: the surface-quality
+  // columns (MODELS.md section 3) model its outline across the feed.
+  geometry::Tool tool_shape = geometry::Tool::ball(10);
+  geometry::ClPoint cl_kind = geometry::ClPoint::tip;
   double vc_nominal = 120;  // m/min, > 0
   double ap_mm = 0.3;
   std::optional<double> ae_mm;

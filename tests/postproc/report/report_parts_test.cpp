@@ -8,6 +8,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "geometry/revolved_engagement.h"
 #include "postproc/report/csv_writer.h"
 #include "postproc/report/plot_data.h"
 #include "postproc/report/report.h"
@@ -91,6 +92,38 @@ TEST(ReportRow, SpeedsDeviationFlagsAndSurfaceOfATouchingPoint) {
   double ra = 0;
   for (double v : z) ra += std::abs(v - mean) / n;
   EXPECT_NEAR(*row.ra_um, 1000 * ra, 1e-3);  // about 6.43 um
+}
+
+// A bull-nose (D 10, rc 2) on a level floor with passes 7 mm apart: its
+// outline across the feed is the face between quarter circles, so the
+// cusp and Rz are rc - sqrt(rc^2 - (ae / 2 - R0)^2) = 63.51 um, wherever
+// on the face the floor touches it; on a convex sphere (rho 40) the row
+// carries revolved_cusp's cusp for the contact the model gave, and the
+// plane's Rz.
+TEST(ReportRow, BullNoseCuspFromItsOutline) {
+  ReportInputs in = inputs();
+  in.tool_shape = geometry::Tool::bull_nose(10, 2);
+  in.cl_kind = geometry::ClPoint::tip;
+  pipeline::PathSample sample;
+  sample.point = {0.5, 0, 0};  // the tip; the frame's origin 2 mm above it
+  pipeline::PointResult r = touching_point(7.0);
+  r.contact.contact->curvature.reset();
+  const post::PointRecord record{42, 7.5, 0.02, 5000, 12000, plan::Bound::n_max};
+  const PointRow floor = make_row(sample, r, record, in);
+  const double expected = 1000 * (2 - std::sqrt(4 - 0.25));
+  ASSERT_TRUE(floor.cusp_um && floor.rz_um && floor.ra_um);
+  EXPECT_NEAR(*floor.cusp_um, expected, 1e-6);
+  EXPECT_NEAR(*floor.rz_um, expected, 1e-6);
+  EXPECT_GT(*floor.ra_um, 0);
+  EXPECT_LT(*floor.ra_um, *floor.rz_um);
+  const PointRow sphere = make_row(sample, touching_point(7.0), record, in);
+  const geometry::RevolvedCusp cusp =
+      geometry::revolved_cusp(in.tool_shape, {in.ap_mm, 7.0, Vector3d::UnitZ(), Vector3d::UnitX()},
+                              1.0 / 40, Vector3d(-0.5, 0, -2));
+  ASSERT_TRUE(sphere.cusp_um && cusp.height);
+  EXPECT_NEAR(*sphere.cusp_um, 1000 * *cusp.height, 1e-9);
+  EXPECT_GT(*sphere.cusp_um, expected);  // convex: higher than on the plane
+  EXPECT_NEAR(*sphere.rz_um, expected, 1e-6);
 }
 
 TEST(ReportRow, MissedPointHasNoSpeedAndSaysWhy) {

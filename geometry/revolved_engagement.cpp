@@ -662,6 +662,7 @@ class Groove {
   // c_min at b = contact_b (empty: the bottom's middle; what matters where
   // the bottom is a face seen edge-on): see revolved_cusp.
   RevolvedCusp cusp(const Tool& tool, double curvature, std::optional<double> contact_b) const;
+  // Ra of the profile on the tangent plane whose cusp is rz over CC.
   double plane_roughness(double rz) const;
   // relative: the quadrature's tolerance; panels: its cap a piece.
   double mean_over_boundary(double relative, int panels) const;
@@ -2028,11 +2029,12 @@ RadiusExtremes Groove::level_extremes() const { return geometry::level_extremes(
 // CC (the profile repeats every ae: this tool's right boundary up to the
 // cusp, the previous one's left down from it, and a face seen edge-on in
 // between at the bottom). Its mean line m and Ra = (1 / ae) int |z - m| db
-// over a period, twice the part above m (z - m sums to 0). Below the feet the boundaries are Q's
-// silhouette, and in its parameter phi, int z db = int (c(phi) - c_min) b'(phi) dphi takes no root
-// (only where z crosses m); above a foot, where the profile's sides are rays, by layers: above the
-// level t over CC the profile spans w(t) = ae - width(c_min + t) of the period, so m = (1 / ae)
-// int_0^rz w and Ra = (2 / ae) int_m^rz w.
+// over a period, twice the part above m (z - m sums to 0). Below the feet
+// the boundaries are Q's silhouette, and in its parameter phi, int z db =
+// int (c(phi) - c_min) b'(phi) dphi takes no root (only where z crosses
+// m); above a foot, where the profile's sides are rays, by layers: above
+// the level t over CC the profile spans w(t) = ae - width(c_min + t) of
+// the period, so m = (1 / ae) int_0^rz w and Ra = (2 / ae) int_m^rz w.
 double Groove::plane_roughness(double rz) const {
   const double top = c_min_ + rz;
   const BoundaryPoint left = boundary(top, true), right = boundary(top, false);
@@ -2104,14 +2106,14 @@ RevolvedCusp Groove::cusp(const Tool& tool, double k, std::optional<double> cont
     const Vector3d along = (db * side_ + dc * normal_) / length;
     const Vector3d across = (db * normal_ - dc * side_) / length;
     if (!(across.z() > 0)) return std::nullopt;
-    // Q's height below its feet's and a tool's width above: no stock level in reach.
-    const double reach = std::max(c_foot_[0], c_foot_[1]) - c_min_ + 2 * radius_;
-    const Groove turned(tool, feed_, across, along, reach + 2 * radius_, length);
+    // No stock level in reach: ap beyond the feet by twice the tool's width.
+    const double ap = std::max(c_foot_[0], c_foot_[1]) - c_min_ + 4 * radius_;
+    const Groove turned(tool, feed_, across, along, ap, length);
     const WidthLevel level = turned.width_level();
     if (!(level.c < turned.c0_)) return std::nullopt;
     return level.right.p;
   };
-  // On the tangent plane: Rz, and Ra by layers.
+  // On the tangent plane: Rz and Ra.
   const std::optional<Vector3d> flat_cusp = meeting(ae_, 0);
   if (!flat_cusp) return out;
   const double flat_level = normal_.dot(*flat_cusp);
@@ -2284,8 +2286,9 @@ RevolvedCusp revolved_cusp(const Tool& tool, const CutSetup& setup, double curva
                            const std::optional<Eigen::Vector3d>& contact_offset) {
   // A contact inside the end face: the surface touches the face's plane
   // there, its normal is the axis (a crest's model normal may stand off it
-  // by the contact's round-off, 1e-10, which tilted the face and moved the
-  // contact to its edge: cusps of 2-350 um on the wavy sample's crests).
+  // by the contact's round-off, 1e-14..5e-10, which tilted the face and
+  // moved the contact to its edge: cusps of 2-400 um on the wavy sample's
+  // crests).
   CutSetup level = setup;
   const double face = tool.kind == ToolKind::flat ? tool.radius() : tool.flat_radius();
   const double face_z = tool.kind == ToolKind::flat ? 0.0 : -tool.corner_radius;

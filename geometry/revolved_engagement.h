@@ -31,7 +31,7 @@ struct RevolvedCusp {
   std::optional<double> height;
   // Of the profile on the tangent plane, repeating every ae: Rz its peak
   // to valley (the cusp on the plane), Ra its mean deviation from its mean
-  // line (by layers, to a relative 1e-10).
+  // line (by quadrature to a relative 1e-8).
   std::optional<double> ra, rz;
 };
 // contact_offset: the contact point less the tool frame's origin (tool.h),

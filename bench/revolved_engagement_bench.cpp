@@ -13,7 +13,8 @@
 //   of D, ae up to 1.12 D, tilt up to 80 deg, left and right;
 // - level and nearly level: the random ones with feeds level (Z-level
 //   passes) or nearly so (the mean only), either way and uphill only.
-// And the issue's set-up on which the old mean did not finish in 300 s.
+// And the issue's set-up on which the old mean did not finish in 300 s,
+// and the report's cusp of the bull-nose and flat mill (revolved_cusp).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -23,6 +24,7 @@
 #include <vector>
 
 #include "geometry/engagement.h"
+#include "geometry/revolved_engagement.h"
 
 namespace {
 
@@ -177,6 +179,19 @@ void BM_MeanNearlyLevelUphill(benchmark::State& state) {
   label(state, "nearly level uphill");
 }
 BENCHMARK(BM_MeanNearlyLevelUphill)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
+
+// The report's cusp, Ra and Rz of a bull-nose (1) or flat mill (2) on the
+// finishing set-ups: the second argument the surface's curvature across
+// the feed, 1/mm (0: the tangent plane; 0.02: a convex R50 crest).
+void BM_Cusp(benchmark::State& state) {
+  const double curvature = static_cast<double>(state.range(1)) / 100;
+  run(state, finishing_cases(static_cast<int>(state.range(0)), 1024),
+      [&](const Tool& tool, const CutSetup& setup) {
+        return revolved_cusp(tool, setup, curvature);
+      });
+  label(state, curvature == 0 ? "finishing, plane" : "finishing, curved");
+}
+BENCHMARK(BM_Cusp)->ArgsProduct({{1, 2}, {0, 2}})->Unit(benchmark::kMicrosecond);
 
 // The issue's set-up on which the old mean did not finish in 300 s.
 void BM_MeanIssueHangCase(benchmark::State& state) {

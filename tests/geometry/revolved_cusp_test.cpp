@@ -16,6 +16,7 @@
 #include "geometry/engagement.h"
 #include "geometry/revolved_engagement.h"
 #include "geometry/surface_quality.h"
+#include "tool_outline.h"
 
 namespace vcpost::geometry {
 namespace {
@@ -134,36 +135,9 @@ TEST(RevolvedCusp, BallLimitMatchesTheBallFormulas) {
   }
 }
 
-// The tool's outline seen along F, independently: the tool (its end the
-// core disc grown by rc, under the shank's cylinder of radius R) is convex
-// with support function h(v) = max(R0 |v_xy| + rc |v|, R |v_xy|) where v_z
-// <= 0 (infinite upwards), so the lowest c = N.P over its points with e.P
-// = b is c(b) = max over t of (t b - h(t e - N)), a concave maximum found by
-// golden sections.
-struct Outline {
-  Tool tool;
-  Vector3d e, n;
-  double support(const Vector3d& v) const {
-    const double flat = std::hypot(v.x(), v.y());
-    return std::max(tool.flat_radius() * flat + tool.corner_radius * v.norm(),
-                    tool.radius() * flat);
-  }
-  double lowest(double b) const {
-    // t e_z - N_z <= 0 keeps h finite.
-    double lo = -1e3, hi = e.z() > 0 ? n.z() / e.z() : 1e3;
-    if (e.z() < 0) lo = std::max(lo, n.z() / e.z());
-    const auto f = [&](double t) { return t * b - support(t * e - n); };
-    const double golden = (std::sqrt(5.0) - 1) / 2;
-    for (int i = 0; i < 200 && hi - lo > 1e-13; ++i) {
-      const double a = hi - golden * (hi - lo), c = lo + golden * (hi - lo);
-      (f(a) < f(c) ? lo : hi) = f(a) < f(c) ? a : c;
-    }
-    return f(0.5 * (lo + hi));
-  }
-};
-
-// Random tilted and curved set-ups (bull-nose and flat, either side): the
-// cusp where this tool's outline meets the previous one's (on a curved
+// Random tilted and curved set-ups (bull-nose and flat, either side),
+// against the tool's outline from its support function (tool_outline.h):
+// the cusp where this tool's outline meets the previous one's (on a curved
 // surface shifted to touch the circle where the tools are ae apart across
 // the feed, the contact the support point in the surface's normal), its
 // height above the plane or the circle, within 1e-7 mm; Ra and Rz of the
@@ -188,7 +162,7 @@ TEST(RevolvedCusp, TiltedAndCurvedAgainstTheToolsOutline) {
     const RevolvedCusp cusp = revolved_cusp(tool, s, k);
     // e points to the previous pass: N x F on the left.
     const Vector3d e = (side == Side::left ? 1.0 : -1.0) * n.cross(f).normalized();
-    const Outline outline{tool, e, n};
+    const testing::ToolOutline outline{tool, e, n};
     // The contact: the lowest point along N, the support point in -N.
     const auto support_point = [&](const Vector3d& normal) {
       const Vector3d u = -normal;

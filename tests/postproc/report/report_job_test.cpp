@@ -182,7 +182,7 @@ TEST(ReportJob, BullNoseCuspsMatchASimulationOfTheTwoSweeps) {
       continue;
     const Eigen::Vector3d f = r.feed, n = *r.normal, e = n.cross(f), cc = *r.cc;
     const Eigen::Vector3d o1 = r.point + 2 * Eigen::Vector3d::UnitZ();
-    // The previous pass's chord across the plane (X - cc).f = 0.
+    // Where the previous pass's chord crosses the plane (X - o1).f = 0.
     const double y2 = o1.y() - stepover;
     double x0 = -20 + spacing * std::floor((o1.x() + 20) / spacing);
     Eigen::Vector3d o2;

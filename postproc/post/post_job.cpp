@@ -244,7 +244,8 @@ class Finisher {
         points_(p.sample, p.result,
                 PointRecord{p.sample.source.line, h.time_s, h.weight_s, program_s,
                             posted ? block.planned_rpm : program_s,
-                            posted ? block.bound : plan::Bound::program, info.section});
+                            posted ? block.bound : plan::Bound::program, info.section,
+                            sections_.tool(info.section)});
         held_points_.pop_front();
       }
       held_.pop_front();

@@ -102,12 +102,13 @@ struct PostSummary : ContactCounts {
 // One evaluated point of the path with the spindle speed before (the
 // program's) and after (the plan's), for reports.
 struct PointRecord {
-  std::uint32_t line = 0;                 // NC line (CL record) of the block
-  double time_s = 0;                      // from program start
-  double weight_s = 0;                    // cutting time the point stands for
-  double s_before = 0, s_after = 0;       // rpm in effect
-  plan::Bound bound = plan::Bound::none;  // what decided s_after
-  std::uint32_t section = 0;              // ToolSection::index
+  std::uint32_t line = 0;                             // NC line (CL record) of the block
+  double time_s = 0;                                  // from program start
+  double weight_s = 0;                                // cutting time the point stands for
+  double s_before = 0, s_after = 0;                   // rpm in effect
+  plan::Bound bound = plan::Bound::none;              // what decided s_after
+  std::uint32_t section = 0;                          // ToolSection::index
+  std::optional<geometry::Tool> tool = std::nullopt;  // the section's, where it has one
 };
 using PointSink = std::function<void(const pipeline::PathSample&, const pipeline::PointResult&,
                                      const PointRecord&)>;

@@ -60,6 +60,11 @@ class SectionLedgers {
     const ToolSection* s = summary_of(section);
     return s && s->entry && s->entry->teeth ? *s->entry->teeth : 0;
   }
+  // Its tool's shape and size, where its entry gives them.
+  std::optional<geometry::Tool> tool(std::uint32_t section) const {
+    const ToolSection* s = summary_of(section);
+    return s && s->entry ? s->entry->geometry() : std::nullopt;
+  }
 
   // A pending section is decided in the air: kept, for `reason`.
   void keep(std::uint32_t section, const std::string& reason);

@@ -159,9 +159,10 @@ PointRow make_row(const pipeline::PathSample& sample, const pipeline::PointResul
       const double c1 = curvature->d1.dot(across), c2 = curvature->d2.dot(across);
       k_across = curvature->k1 * c1 * c1 + curvature->k2 * c2 * c2;  // Euler's formula
     }
-    const geometry::Tool& tool = inputs.tool_shape;
+    // The point's own section's tool (a program's sections may differ).
+    const geometry::Tool tool = record.tool.value_or(inputs.tool_shape);
     if (tool.kind == geometry::ToolKind::ball) {
-      const double radius = inputs.tool_radius_mm;
+      const double radius = record.tool ? tool.radius() : inputs.tool_radius_mm;
       row.cusp_um = cusp_height_um(radius, result.ae, k_across);
       if (result.ae > 0 && result.ae < 2 * radius) {
         const auto r = geometry::transverse_roughness(radius, result.ae);

@@ -150,9 +150,11 @@ TEST(ReportJob, BullNoseCuspsMatchASimulationOfTheTwoSweeps) {
   settings.point.tool = tool;
   settings.point.ap = 0.3;
   settings.point.vc = 100;
+  // The report's first tool given as a ball: the rows take the bull-nose
+  // from their section (PointRecord::tool).
   ReportInputs in;
-  in.tool_radius_mm = tool.radius();
-  in.tool_shape = tool;
+  in.tool_radius_mm = 5;
+  in.tool_shape = geometry::Tool::ball(10);
   in.vc_nominal = 100;
   in.n_min_rpm = profile.spindle().n_min_rpm;
   in.n_max_rpm = profile.spindle().n_max_rpm;

@@ -99,7 +99,8 @@ TEST(ReportRow, SpeedsDeviationFlagsAndSurfaceOfATouchingPoint) {
 // cusp and Rz are rc - sqrt(rc^2 - (ae / 2 - R0)^2) = 63.51 um, wherever
 // on the face the floor touches it; on a convex sphere (rho 40) the row
 // carries revolved_cusp's cusp for the contact the model gave, and the
-// plane's Rz.
+// plane's Rz; a point whose section's tool differs from the report's
+// first one is drawn with its own.
 TEST(ReportRow, BullNoseCuspFromItsOutline) {
   ReportInputs in = inputs();
   in.tool_shape = geometry::Tool::bull_nose(10, 2);
@@ -124,6 +125,20 @@ TEST(ReportRow, BullNoseCuspFromItsOutline) {
   EXPECT_NEAR(*sphere.cusp_um, 1000 * *cusp.height, 1e-9);
   EXPECT_GT(*sphere.cusp_um, expected);  // convex: higher than on the plane
   EXPECT_NEAR(*sphere.rz_um, expected, 1e-6);
+  // In a program whose first section is a ball, the bull-nose section's
+  // points carry their own tool: the same cusps.
+  in.tool_shape = geometry::Tool::ball(10);
+  post::PointRecord own = record;
+  own.tool = geometry::Tool::bull_nose(10, 2);
+  const PointRow second = make_row(sample, r, own, in);
+  ASSERT_TRUE(second.cusp_um);
+  EXPECT_NEAR(*second.cusp_um, expected, 1e-6);
+  // And a ball section after a bull-nose: the arcs of its own radius (3).
+  in.tool_shape = geometry::Tool::bull_nose(10, 2);
+  own.tool = geometry::Tool::ball(6);
+  const PointRow ball = make_row(sample, touching_point(2.0), own, in);
+  ASSERT_TRUE(ball.rz_um);
+  EXPECT_NEAR(*ball.rz_um, 1000 * (3 - std::sqrt(9 - 1.0)), 1e-6);
 }
 
 TEST(ReportRow, MissedPointHasNoSpeedAndSaysWhy) {

@@ -22,7 +22,6 @@ using namespace vcpost;
 report::ReportInputs inputs() {
   report::ReportInputs in;
   in.program = "bench.nc";
-  in.tool_radius_mm = 5;
   in.vc_nominal = 120;
   in.n_min_rpm = 35;
   in.n_max_rpm = 12000;

@@ -158,13 +158,22 @@ std::array<double, N> integrate_capped(const Function& f, const std::vector<doub
   }
 }
 
+namespace detail {
+// One absolute tolerance for every component.
+template <std::size_t N>
+std::array<double, N> for_each_component(double absolute) {
+  std::array<double, N> each;
+  each.fill(absolute);
+  return each;
+}
+}  // namespace detail
+
 // The same with one absolute tolerance for every component.
 template <std::size_t N, class Function>
 std::array<double, N> integrate_capped(const Function& f, const std::vector<double>& breaks,
                                        double relative, double absolute, int max_panels) {
-  std::array<double, N> each;
-  each.fill(absolute);
-  return integrate_capped<N>(f, breaks, relative, each, max_panels);
+  return integrate_capped<N>(f, breaks, relative, detail::for_each_component<N>(absolute),
+                             max_panels);
 }
 
 // The same over [lo, hi] with no breaks inside.
@@ -244,9 +253,8 @@ template <std::size_t N, class Function>
 std::array<double, N> integrate_smoothed_pieces(const Function& f,
                                                 const std::vector<double>& breaks, double relative,
                                                 double absolute, int max_panels) {
-  std::array<double, N> each;
-  each.fill(absolute);
-  return integrate_smoothed_pieces<N>(f, breaks, relative, each, max_panels);
+  return integrate_smoothed_pieces<N>(f, breaks, relative, detail::for_each_component<N>(absolute),
+                                      max_panels);
 }
 
 }  // namespace vcpost::geometry

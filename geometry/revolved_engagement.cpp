@@ -94,33 +94,6 @@ double newton_root(const Function& g_and_slope, double lo, double hi, double g_l
 // underflow, and std::hypot's care for them took 40 % of an evaluation.
 double length_of(double x, double y) { return std::sqrt(x * x + y * y); }
 
-// The root of the increasing g in [lo, hi], where g(lo) = g_lo < 0 <= g(hi)
-// = g_hi: regula falsi, Illinois' variant (the end kept twice in a row has
-// its value halved), until the bracket is below `tolerance`.
-template <class Function>
-double illinois_root(const Function& g, double lo, double hi, double g_lo, double g_hi,
-                     double tolerance) {
-  int kept = 0;  // > 0: lo kept that many times in a row, < 0: hi
-  for (int i = 0; i < 200 && hi - lo > tolerance; ++i) {
-    double t = lo - g_lo * (hi - lo) / (g_hi - g_lo);
-    if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
-    const double value = g(t);
-    if (value < 0) {
-      lo = t;
-      g_lo = value;
-      kept = kept < 0 ? kept - 1 : -1;
-      if (kept <= -2) g_hi *= 0.5;
-    } else {
-      hi = t;
-      g_hi = value;
-      kept = kept > 0 ? kept + 1 : 1;
-      if (kept >= 2) g_lo *= 0.5;
-    }
-    if (value == 0) return t;
-  }
-  return 0.5 * (lo + hi);
-}
-
 // The cutting situation of one bull-nose or flat tool in the projected
 // frame described at the top of this file.
 class Groove {
@@ -662,8 +635,6 @@ class Groove {
   // c_min at b = contact_b (empty: the bottom's middle; what matters where
   // the bottom is a face seen edge-on): see revolved_cusp.
   RevolvedCusp cusp(const Tool& tool, double curvature, std::optional<double> contact_b) const;
-  // Ra of the profile on the tangent plane whose cusp is rz over CC.
-  double plane_roughness(double rz) const;
   // relative: the quadrature's tolerance; panels: its cap a piece.
   double mean_over_boundary(double relative, int panels) const;
   // Its sums round the boundary, piece by piece.
@@ -708,14 +679,15 @@ class Groove {
 
  private:
   // c* = the level below which the groove spans the whole slice (width of Q
-  // at most ae); c0 when the whole groove does, c_min when no level does.
-  // c* = the level below which the groove spans the whole slice (width of Q
   // at most ae): c0 when the whole groove does, c_min when no level does;
   // with Q's boundary points there.
   struct WidthLevel {
     double c;
     BoundaryPoint left, right;
   };
+  // Ra of the profile on the tangent plane whose cusp is the width level
+  // `cusp` (where Q is ae wide, above its bottom).
+  double plane_roughness(const WidthLevel& cusp) const;
   WidthLevel width_level() const {
     if (const auto level = narrow_width_level()) return *level;
     const BoundaryPoint &left_top = top(true), &right_top = top(false);
@@ -2025,8 +1997,8 @@ double Groove::mean_when_level() const {
 
 RadiusExtremes Groove::level_extremes() const { return geometry::level_extremes(level_cut()); }
 
-// Ra of the transverse profile on the tangent plane, whose peak is rz over
-// CC (the profile repeats every ae: this tool's right boundary up to the
+// Ra of the transverse profile on the tangent plane, whose peak is the
+// cusp at the width level c* (the profile repeats every ae: this tool's right boundary up to the
 // cusp, the previous one's left down from it, and a face seen edge-on in
 // between at the bottom). Its mean line m and Ra = (1 / ae) int |z - m| db
 // over a period, twice the part above m (z - m sums to 0). Below the feet
@@ -2034,10 +2006,11 @@ RadiusExtremes Groove::level_extremes() const { return geometry::level_extremes(
 // int (c(phi) - c_min) b'(phi) dphi takes no root (only where z crosses
 // m); above a foot, where the profile's sides are rays, by layers: above
 // the level t over CC the profile spans w(t) = ae - width(c_min + t) of
-// the period, so m = (1 / ae) int_0^rz w and Ra = (2 / ae) int_m^rz w.
-double Groove::plane_roughness(double rz) const {
-  const double top = c_min_ + rz;
-  const BoundaryPoint left = boundary(top, true), right = boundary(top, false);
+// the period, so m = (1 / ae) int_0^rz w and Ra = (2 / ae) int_m^rz w,
+// rz = c* - c_min.
+double Groove::plane_roughness(const WidthLevel& cusp) const {
+  const double top = cusp.c, rz = top - c_min_;
+  const BoundaryPoint &left = cusp.left, &right = cusp.right;
   const double scale = 1e-12 * radius_ * ae_;
   if (left.ray == 0 && right.ray == 0) {
     const auto piece = [&](double from, double to, double mean) {
@@ -2101,7 +2074,7 @@ RevolvedCusp Groove::cusp(const Tool& tool, double k, std::optional<double> cont
   // The chord's end X for the shift (db, dc): empty where no chord of Q
   // is that long (ae beyond the tools' reach, or a frame turned past the
   // horizontal).
-  const auto meeting = [&](double db, double dc) -> std::optional<Vector3d> {
+  const auto meeting = [&](double db, double dc) -> std::optional<WidthLevel> {
     const double length = length_of(db, dc);
     const Vector3d along = (db * side_ + dc * normal_) / length;
     const Vector3d across = (db * normal_ - dc * side_) / length;
@@ -2111,15 +2084,13 @@ RevolvedCusp Groove::cusp(const Tool& tool, double k, std::optional<double> cont
     const Groove turned(tool, feed_, across, along, ap, length);
     const WidthLevel level = turned.width_level();
     if (!(level.c < turned.c0_)) return std::nullopt;
-    return level.right.p;
+    return level;
   };
-  // On the tangent plane: Rz and Ra.
-  const std::optional<Vector3d> flat_cusp = meeting(ae_, 0);
-  if (!flat_cusp) return out;
-  const double flat_level = normal_.dot(*flat_cusp);
-  out.rz = flat_level - c_min_;
-  out.ra = 0;
-  if (*out.rz > 0) out.ra = plane_roughness(*out.rz);
+  // On the tangent plane (the turned frame is this one): Rz and Ra.
+  const std::optional<WidthLevel> flat = meeting(ae_, 0);
+  if (!flat) return out;
+  out.rz = flat->c - c_min_;
+  out.ra = *out.rz > 0 ? plane_roughness(*flat) : 0.0;
   if (!(std::abs(k) > 1e-9 / radius_)) {
     out.height = out.rz;
     return out;
@@ -2134,6 +2105,16 @@ RevolvedCusp Groove::cusp(const Tool& tool, double k, std::optional<double> cont
   const auto miss = [&](double s) {
     const auto [db, dc] = shift(s);
     return length_of(db, dc) - ae_;
+  };
+  // With its slope: D'(s) = (cos ks, -sin ks) + k (e.S', N.S') at phi_bottom - k s.
+  const auto miss_and_slope = [&](double s) {
+    const auto [db, dc] = shift(s);
+    const auto [cos_ks, sin_ks] = cos_sin_small(k * s);
+    const auto [cos_phi, sin_phi] = cos_sin(phi_bottom_ - k * s);
+    const Vector3d tangent = silhouette_and_tangent(cos_phi, sin_phi).second;
+    const double length = length_of(db, dc);
+    const double d_db = cos_ks + k * side_.dot(tangent), d_dc = -sin_ks + k * normal_.dot(tangent);
+    return std::pair{length - ae_, (db * d_db + dc * d_dc) / length};
   };
   // s from just beside CC (where a face seen edge-on may already reach
   // ae: the previous tool's face then covers CC, no cusp) out to where the
@@ -2154,12 +2135,13 @@ RevolvedCusp Groove::cusp(const Tool& tool, double k, std::optional<double> cont
     g_hi = miss(s_hi);
   }
   if (g_hi < 0) return out;  // the previous pass beyond the model's reach
-  const double s = illinois_root(miss, s_lo, s_hi, g_lo, g_hi, tolerance);
+  const double s = newton_root(miss_and_slope, s_lo, s_hi, g_lo, g_hi, tolerance);
   const auto [db, dc] = shift(s);
-  const std::optional<Vector3d> x = meeting(db, dc);
-  if (!x) return out;
-  // Radially above the circle through CC, centre (b_cc, c_min - 1 / k).
-  const double from_centre = length_of(side_.dot(*x) - b_cc, normal_.dot(*x) - c_min_ + 1 / k);
+  const std::optional<WidthLevel> level = meeting(db, dc);
+  if (!level) return out;
+  // X, radially above the circle through CC, centre (b_cc, c_min - 1 / k).
+  const Vector3d& x = level->right.p;
+  const double from_centre = length_of(side_.dot(x) - b_cc, normal_.dot(x) - c_min_ + 1 / k);
   out.height = k > 0 ? from_centre - 1 / k : -1 / k - from_centre;
   return out;
 }
@@ -2290,11 +2272,10 @@ RevolvedCusp revolved_cusp(const Tool& tool, const CutSetup& setup, double curva
   // moved the contact to its edge: cusps of 2-400 um on the wavy sample's
   // crests).
   CutSetup level = setup;
-  const double face = tool.kind == ToolKind::flat ? tool.radius() : tool.flat_radius();
-  const double face_z = tool.kind == ToolKind::flat ? 0.0 : -tool.corner_radius;
+  // (The face: radius R0, rc below the frame's origin; R and 0 for a flat mill.)
   const double slack = 1e-6 * tool.radius();
-  if (contact_offset && std::abs(contact_offset->z() - face_z) <= slack &&
-      length_of(contact_offset->x(), contact_offset->y()) < face - slack) {
+  if (contact_offset && std::abs(contact_offset->z() + tool.corner_radius) <= slack &&
+      length_of(contact_offset->x(), contact_offset->y()) < tool.flat_radius() - slack) {
     level.normal = Vector3d::UnitZ();
   }
   const Prepared prepared = prepare(tool, level);

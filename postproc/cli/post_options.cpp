@@ -327,7 +327,6 @@ report::ReportInputs report_inputs(const PostArguments& args, const post::PostSe
   in.tool = geometry::to_string(tool);
   in.policy = args.policy;
   in.cl_point = args.cl_point;
-  in.tool_radius_mm = tool.diameter / 2;
   in.tool_shape = tool;
   in.cl_kind = settings.point.cl_point;
   in.vc_nominal = vc;
@@ -341,7 +340,7 @@ report::ReportInputs report_inputs(const PostArguments& args, const post::PostSe
   // Top views over the model's plan grown by the tool radius (programmed
   // points of a touching ball lie within it).
   const Eigen::AlignedBox3d box = model.model->bounds();
-  const double margin = in.tool_radius_mm + 1;
+  const double margin = tool.radius() + 1;
   if (!box.isEmpty()) {
     in.plan_min = box.min().head<2>() - Eigen::Vector2d::Constant(margin);
     in.plan_max = box.max().head<2>() + Eigen::Vector2d::Constant(margin);

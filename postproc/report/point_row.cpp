@@ -162,7 +162,7 @@ PointRow make_row(const pipeline::PathSample& sample, const pipeline::PointResul
     // The point's own section's tool (a program's sections may differ).
     const geometry::Tool tool = record.tool.value_or(inputs.tool_shape);
     if (tool.kind == geometry::ToolKind::ball) {
-      const double radius = record.tool ? tool.radius() : inputs.tool_radius_mm;
+      const double radius = tool.radius();
       row.cusp_um = cusp_height_um(radius, result.ae, k_across);
       if (result.ae > 0 && result.ae < 2 * radius) {
         const auto r = geometry::transverse_roughness(radius, result.ae);

@@ -23,10 +23,10 @@ struct ReportInputs {
   std::string program, program_kind;  // file name, "gcode" | "cldata"
   std::string model, model_kind, model_description;
   std::string machine, tool, policy, cl_point;
-  double tool_radius_mm = 5;
-  // The tool and which of its points the program gives: the surface-quality
-  // columns (MODELS.md section 3) model its outline across the feed (a
-  // point's own section's tool where the job gives it, PointRecord::tool).
+  // The tool (the first section's) and which of its points the program
+  // gives: the surface-quality columns (MODELS.md section 3) model its
+  // outline across the feed (a point's own section's tool where the job
+  // gives it, PointRecord::tool), their histograms span up to its radius.
   geometry::Tool tool_shape = geometry::Tool::ball(10);
   geometry::ClPoint cl_kind = geometry::ClPoint::tip;
   double vc_nominal = 120;  // m/min, > 0

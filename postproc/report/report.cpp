@@ -13,7 +13,7 @@ enum Series : std::size_t { vc_before_k, vc_after_k, s_before_k, s_after_k, seri
 
 ReportCollector::ReportCollector(ReportInputs inputs, std::size_t plot_buckets, int grid_cells)
     : inputs_(std::move(inputs)),
-      statistics_(inputs_.vc_nominal, inputs_.tool_radius_mm),
+      statistics_(inputs_.vc_nominal, inputs_.tool_shape.radius()),
       decimator_(series_count, plot_buckets),
       dev_before_(inputs_.plan_min, inputs_.plan_max, grid_cells),
       dev_after_(inputs_.plan_min, inputs_.plan_max, grid_cells),

@@ -42,7 +42,7 @@ DomeRun run_dome(const std::string& machine, int spindle, double vc) {
   settings.point.vc = vc;
   ReportInputs in;
   in.program = "dome.ngc";
-  in.tool_radius_mm = ball_radius;
+  in.tool_shape = geometry::Tool::ball(2 * ball_radius);
   in.vc_nominal = vc;
   in.n_min_rpm = profile.spindle().n_min_rpm;
   in.n_max_rpm = profile.spindle().n_max_rpm;
@@ -153,7 +153,6 @@ TEST(ReportJob, BullNoseCuspsMatchASimulationOfTheTwoSweeps) {
   // The report's first tool given as a ball: the rows take the bull-nose
   // from their section (PointRecord::tool).
   ReportInputs in;
-  in.tool_radius_mm = 5;
   in.tool_shape = geometry::Tool::ball(10);
   in.vc_nominal = 100;
   in.n_min_rpm = profile.spindle().n_min_rpm;

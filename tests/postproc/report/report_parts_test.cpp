@@ -21,7 +21,6 @@ using Eigen::Vector3d;
 
 ReportInputs inputs() {
   ReportInputs in;
-  in.tool_radius_mm = 5;
   in.vc_nominal = 120;
   in.n_min_rpm = 50;
   in.n_max_rpm = 12000;

@@ -3,9 +3,10 @@
 # post of finishing programs (G-code and APT CL) against their STEP models
 # for a Mazak-like 3-axis machine with an HTML report of each, and the
 # working-diameter model at the paper's set-up. Results go to out/.
+# Installs the demo layer only (scripts/setup.sh demo): no test tools.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/build.sh >/dev/null
+bash scripts/build.sh demo >/dev/null
 vcpost=build/release/postproc/cli/vcpost
 mkdir -p out
 

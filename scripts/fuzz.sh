@@ -19,7 +19,7 @@ shift || true
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(gcode_fuzz cldata_fuzz profile_fuzz verify_fuzz stl_fuzz)
 
-bash scripts/setup.sh
+bash scripts/setup.sh dev  # the dev layer: clang-14 and libFuzzer
 cmake --preset fuzz >/dev/null
 cmake --build --preset fuzz -j "$(nproc)"
 build=build/fuzz

@@ -10,7 +10,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 repo=$PWD
 build=$repo/build/release
-bash scripts/setup.sh
+bash scripts/setup.sh dev  # the dev layer: lintian, dpkg-shlibdeps, man-db
 cmake --preset release >/dev/null
 cmake --build --preset release -j "$(nproc)"
 

@@ -8,7 +8,7 @@
 # (see the README's "Hardening").
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
+bash scripts/setup.sh test  # the test layer: the suite under the sanitizers
 cmake --preset asan >/dev/null
 cmake --build --preset asan -j "$(nproc)"
 

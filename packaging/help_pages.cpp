@@ -104,7 +104,10 @@ void write_header(std::ostream& out, const std::string& name, const std::string&
       << "\" \"User Commands\"\n";
 }
 
-void write_footer(std::ostream& out, const CLI::App& app, const std::vector<std::string>& see) {
+// `reference`: the page of the installed docs that documents the command
+// (docs/commands/NAME.md, or the README for vcpost itself).
+void write_footer(std::ostream& out, const CLI::App& app, const std::vector<std::string>& see,
+                  const std::string& reference) {
   if (!app.get_footer().empty()) {
     out << ".SH \"EXIT STATUS\"\n";
     write_text(out, app.get_footer());
@@ -112,9 +115,9 @@ void write_footer(std::ostream& out, const CLI::App& app, const std::vector<std:
   out << ".SH \"SEE ALSO\"\n";
   for (std::size_t i = 0; i < see.size(); ++i)
     out << ".BR " << roff(see[i]) << " (1)" << (i + 1 < see.size() ? "," : "") << '\n';
-  out << ".PP\nThe README, the machine profile schema and the samples are in\n"
-      << ".IR /usr/share/doc/vcpost "
-      << "and\n.IR /usr/share/vcpost .\n";
+  out << ".PP\nThe reference is\n.IR /usr/share/doc/vcpost/" << roff(reference)
+      << " ;\nthe README, the other documentation and the machine profile schema are in\n"
+      << ".IR /usr/share/doc/vcpost ,\nthe samples in\n.IR /usr/share/vcpost .\n";
 }
 
 void write_subcommand_page(const std::filesystem::path& file, const CLI::App& sub,
@@ -131,7 +134,7 @@ void write_subcommand_page(const std::filesystem::path& file, const CLI::App& su
   out << ".B " << roff(usage) << "\n.SH DESCRIPTION\n";
   write_text(out, sub.get_description());
   write_options(out, formatter, sub);
-  write_footer(out, sub, {"vcpost"});
+  write_footer(out, sub, {"vcpost"}, "docs/commands/" + sub.get_name() + ".md");
 }
 
 void write_main_page(const std::filesystem::path& file, const CLI::App& app,
@@ -154,7 +157,7 @@ void write_main_page(const std::filesystem::path& file, const CLI::App& app,
     see.push_back(page_name(*sub));
   }
   write_options(out, formatter, app);
-  write_footer(out, app, see);
+  write_footer(out, app, see, "README.md");
 }
 
 // Completes subcommands, then the current subcommand's options, the shipped

@@ -8,8 +8,8 @@
 # Prints the executions per target, and a finding's input in base64 (so a
 # CI log alone reproduces it: base64 -d > crash; build/fuzz/fuzz/T crash).
 # The mutation seed is fixed (FUZZ_SEED, default 1) so a run can be repeated
-# exactly; FUZZ_SEED=0 lets libFuzzer pick one. Longer runs: README,
-# "Hardening".
+# exactly; FUZZ_SEED=0 lets libFuzzer pick one. Longer runs:
+# docs/hardening.md.
 # Usage: scripts/fuzz.sh [DURATION] [TARGET...]
 set -euo pipefail
 cd "$(dirname "$0")/.."

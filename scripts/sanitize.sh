@@ -5,7 +5,7 @@
 # errors (LeakSanitizer). Leaks inside third-party libraries we do not build
 # are suppressed by name in scripts/lsan.supp (one comment per entry).
 # Tests that cannot run under ASan skip themselves when VCPOST_SANITIZE=1
-# (see the README's "Hardening").
+# (see docs/hardening.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh test  # the test layer: the suite under the sanitizers

@@ -5,8 +5,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <numbers>
 #include <sstream>
+#include <string_view>
+#include <utility>
 
 #include "postproc/cldata/nurbs.h"
 #include "postproc/program/arc.h"
@@ -593,11 +596,42 @@ TEST(ClReader, ToolChangesWithoutLoadTool) {
   }
 }
 
-TEST(ClReader, CodeTableIsInOrderAndUnique) {
-  const auto table = cl_code_table();
-  for (std::size_t i = 0; i < table.size(); ++i) {
-    EXPECT_EQ(static_cast<std::size_t>(table[i].code), i);
-    for (std::size_t j = 0; j < i; ++j) EXPECT_NE(table[i].id, table[j].id);
+// The reader's codes reach the table's rows through a list in enumerator
+// order (cl_codes.cpp): each enumerator must land on the row of its own
+// name, so a row slipped into the list at the wrong place fails here.
+TEST(ClReader, EveryCodeReachesTheTableRowOfItsName) {
+  const std::pair<ClCode, std::string_view> codes[] = {
+      {ClCode::line_too_long, "line_too_long"},
+      {ClCode::invalid_byte, "invalid_byte"},
+      {ClCode::bad_number, "bad_number"},
+      {ClCode::wrong_parameters, "wrong_parameters"},
+      {ClCode::unexpected_word, "unexpected_word"},
+      {ClCode::truncated_record, "truncated_record"},
+      {ClCode::orphan_points, "orphan_points"},
+      {ClCode::tool_axis_not_z, "tool_axis_not_z"},
+      {ClCode::arc_inconsistent, "arc_inconsistent"},
+      {ClCode::arc_without_goto, "arc_without_goto"},
+      {ClCode::bad_nurbs, "bad_nurbs"},
+      {ClCode::unsupported_cycle, "unsupported_cycle"},
+      {ClCode::apt_source_statement, "apt_source_statement"},
+      {ClCode::no_start_position, "no_start_position"},
+      {ClCode::surface_speed_no_tool, "surface_speed_no_tool"},
+      {ClCode::bad_units, "bad_units"},
+      {ClCode::unsupported_record, "unsupported_record"},
+      {ClCode::unknown_record, "unknown_record"},
+      {ClCode::missing_fini, "missing_fini"},
+      {ClCode::after_fini, "after_fini"},
+      {ClCode::tool_not_modelled, "tool_not_modelled"},
+      {ClCode::ignored_option, "ignored_option"},
+      {ClCode::unknown_word, "unknown_word"},
+      {ClCode::frame_not_identity, "frame_not_identity"},
+      {ClCode::tool_change_without_number, "tool_change_without_number"}};
+  EXPECT_EQ(std::size(codes), cl_code_table().size());
+  for (const auto& [code, name] : codes) {
+    const vcpost::CodeInfo* row = vcpost::find_code(info(code).id);
+    ASSERT_NE(row, nullptr) << name;
+    EXPECT_EQ(row->name, name) << row->id;
+    EXPECT_EQ(row->severity, info(code).severity) << row->id;
   }
 }
 

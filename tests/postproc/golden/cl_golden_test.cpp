@@ -1,5 +1,6 @@
 // Whole-program golden cases of CL -> G-code (tests/golden/README.md): each
-// case names a CL file of ../shared/data; it is posted for every shipped
+// case holds a CL file of its own or names one of ../shared/data (skipped
+// when that folder is absent); it is posted for every shipped
 // profile and the result (exit status, diagnostic, program) must equal the
 // stored one byte for byte. Every program that is written must also pass
 // `vcpost verify` against its CL data, and the linuxcnc-3axis program must
@@ -164,13 +165,20 @@ TEST(GoldenCl, GrblRefusalFindsWhatGrblRefuses) {
 }
 
 TEST(GoldenCl, EveryCaseEqualsItsStoredResultVerifiesAndRunsInRs274) {
-  if (!fs::is_directory(shared_dir)) GTEST_SKIP() << "no shared data at " << shared_dir;
   const bool update = golden::updating();
-  int cases = 0, written = 0;
+  int cases = 0, written = 0, skipped = 0;
   for (const auto& entry : fs::directory_iterator(golden_dir)) {
-    if (!entry.is_directory() || !fs::exists(entry.path() / "input")) continue;
-    const std::string input = trimmed(read(entry.path() / "input"));
-    const fs::path cl_path = shared_dir / input;
+    // A case's CL file is its own (input.cls), or the file of ../shared/data
+    // that `input` names, read where it lies.
+    const fs::path own = entry.path() / "input.cls";
+    const bool has_own = fs::exists(own);
+    if (!entry.is_directory() || (!has_own && !fs::exists(entry.path() / "input"))) continue;
+    const std::string input = has_own ? "input.cls" : trimmed(read(entry.path() / "input"));
+    if (!has_own && !fs::is_directory(shared_dir)) {
+      ++skipped;
+      continue;
+    }
+    const fs::path cl_path = has_own ? own : shared_dir / input;
     const std::string name = cl_path.filename().string();
     SCOPED_TRACE(entry.path().filename().string() + " (" + input + ")");
     ASSERT_TRUE(fs::exists(cl_path)) << cl_path;
@@ -214,7 +222,9 @@ TEST(GoldenCl, EveryCaseEqualsItsStoredResultVerifiesAndRunsInRs274) {
       }
     }
   }
-  EXPECT_GE(cases, 14);
+  if (skipped > 0)
+    std::printf("%d golden CL cases skipped: no shared data at %s\n", skipped, shared_dir.c_str());
+  EXPECT_GE(cases, 3);
   EXPECT_GT(written, 0);
 }
 

@@ -1,6 +1,7 @@
 // Whole-program golden cases of `vcpost post` (tests/golden/README.md):
 // each case folder with a `command` file is a run of the real binary on a
-// sample or a real program of ../shared/data with its model, and its
+// sample, a program of its own or one the sample generator writes first,
+// or a real program of ../shared/data, with its model, and its
 // results must equal the stored ones: the exit status, the standard error,
 // the written program byte for byte (or its digest when long) and the
 // summary JSON (numbers to 1e-9 relative: the last bits of a mean may
@@ -40,12 +41,20 @@ void replace_all(std::string& text, const std::string& from, const std::string& 
   }
 }
 
-// The command's words with the folders put in: {samples}, {shared}, {out}.
-std::vector<std::string> command_words(const std::string& command, const std::string& out) {
+// The folders a case's words name: {samples}, {shared}, {here} (the case's
+// own folder) and {out} (the run's fresh one).
+struct Folders {
+  std::string here;
+  std::string out;
+};
+
+// The words of a command line with the folders put in.
+std::vector<std::string> command_words(const std::string& command, const Folders& folders) {
   std::string text = command;
   replace_all(text, "{samples}", kSamples);
   replace_all(text, "{shared}", kShared);
-  replace_all(text, "{out}", out);
+  replace_all(text, "{here}", folders.here);
+  replace_all(text, "{out}", folders.out);
   std::vector<std::string> words;
   std::istringstream in(text);
   for (std::string word; in >> word;) words.push_back(word);
@@ -53,16 +62,38 @@ std::vector<std::string> command_words(const std::string& command, const std::st
 }
 
 // Paths of this machine written back as the placeholders.
-std::string portable(std::string text, const std::string& out) {
-  replace_all(text, out, "{out}");
+std::string portable(std::string text, const Folders& folders) {
+  replace_all(text, folders.out, "{out}");
+  replace_all(text, folders.here, "{here}");
   replace_all(text, kShared, "{shared}");
   replace_all(text, kSamples, "{samples}");
   return text;
 }
 
+// Runs each line of the case's `generate` file as a command of the sample
+// generator (its inputs, written into {out} before the run); the first
+// failure's message, or empty.
+std::string generate_inputs(const fs::path& file, const Folders& folders) {
+  if (!fs::exists(file)) return "";
+  std::istringstream lines(read(file));
+  for (std::string line; std::getline(lines, line);) {
+    if (trimmed(line).empty()) continue;
+    std::vector<std::string> argv = command_words(line, folders);
+    argv.insert(argv.begin(), VCPOST_SAMPLEGEN);
+    test::ChildOptions options;
+    options.argv = argv;
+    options.stdout_file = fs::path(folders.out) / "generate.out";
+    options.stderr_file = fs::path(folders.out) / "generate.err";
+    options.timeout_s = 60;
+    const test::ChildResult r = test::run_child(options);
+    if (r.shell_status() != 0) return "vcpost-samplegen " + line + ": " + r.err;
+  }
+  return "";
+}
+
 // The summary as stored: paths as placeholders, the run time left out.
-nlohmann::json stored_summary(const std::string& text, const std::string& out) {
-  nlohmann::json summary = nlohmann::json::parse(portable(text, out));
+nlohmann::json stored_summary(const std::string& text, const Folders& folders) {
+  nlohmann::json summary = nlohmann::json::parse(portable(text, folders));
   summary.erase("run_time_s");
   return summary;
 }
@@ -115,8 +146,10 @@ TEST(GoldenProgram, EveryCaseEqualsItsStoredRun) {
     }
     ++cases;
     test::Folder work;
-    const std::string out = work.path().string();
-    std::vector<std::string> argv = command_words(command, out);
+    const Folders folders{dir.string(), work.path().string()};
+    const std::string generated = generate_inputs(dir / "generate", folders);
+    ASSERT_EQ(generated, "");
+    std::vector<std::string> argv = command_words(command, folders);
     argv.insert(argv.begin(), VCPOST_BINARY);
     test::ChildOptions options;
     options.argv = argv;
@@ -125,7 +158,7 @@ TEST(GoldenProgram, EveryCaseEqualsItsStoredRun) {
     options.timeout_s = 120;
     const test::ChildResult r = test::run_child(options);
     const std::string exit_text = "exit " + std::to_string(r.shell_status()) + "\n";
-    const std::string stderr_text = portable(r.err, out);
+    const std::string stderr_text = portable(r.err, folders);
     const bool wrote = fs::exists(work / "program");
     const std::string program = wrote ? golden::stored_program(read(work / "program")) : "";
     const bool summarised = fs::exists(work / "summary.json");
@@ -138,7 +171,7 @@ TEST(GoldenProgram, EveryCaseEqualsItsStoredRun) {
         fs::remove(dir / "program");
       if (summarised)
         write(dir / "summary.json",
-              stored_summary(read(work / "summary.json"), out).dump(2) + "\n");
+              stored_summary(read(work / "summary.json"), folders).dump(2) + "\n");
       else
         fs::remove(dir / "summary.json");
     }
@@ -149,7 +182,7 @@ TEST(GoldenProgram, EveryCaseEqualsItsStoredRun) {
     ASSERT_EQ(fs::exists(dir / "summary.json"), summarised);
     if (summarised) {
       EXPECT_EQ(first_difference(nlohmann::json::parse(read(dir / "summary.json")),
-                                 stored_summary(read(work / "summary.json"), out)),
+                                 stored_summary(read(work / "summary.json"), folders)),
                 "");
     }
   }

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "geometry/analytic_surfaces.h"
 #include "postproc/pipeline/pass_tracker.h"
@@ -87,16 +88,30 @@ TEST(PassTracker, MeasuresStepoverAndSideOnAZigZagRaster) {
   EXPECT_EQ(measured, 3 * 41);
 }
 
-TEST(PassTracker, MemoryIsBoundedAndOldPassesAreForgotten) {
-  PassTracker tracker(10, 40, 50);  // remembers 50 points: less than one 41-point pass + 1
+// Points of the third of three 41-point passes that find a neighbour, and
+// the widths they measure, for a tracker remembering `capacity` points.
+std::vector<double> third_pass_widths(std::size_t capacity) {
+  PassTracker tracker(10, 40, capacity);
   const Vector3d up(0, 0, 1);
-  int found_any = 0;
+  std::vector<double> widths;
   for (const auto& [cc, feed] : zigzag(3, 0.5, 20)) {
-    if (tracker.step(cc, up, feed) && cc.y() == 1.0) ++found_any;
+    const auto found = tracker.step(cc, up, feed);
+    if (found && cc.y() == 1.0) widths.push_back(found->ae);
   }
-  // The third pass sees only the second pass's last points (the first is gone);
-  // those lie at y = 0.5, so whatever is found is 0.5 away.
-  EXPECT_LT(found_any, 41);
+  return widths;
+}
+
+TEST(PassTracker, MemoryIsBoundedAndOldPassesAreForgotten) {
+  // With room for every point the whole third pass finds the second.
+  EXPECT_EQ(third_pass_widths(1000).size(), 41U);
+  // With 50 (less than one pass + 1) the third pass walks back along the
+  // second, whose points it pushes out as it goes: it finds the second
+  // pass's last points and loses the rest, and never the first pass (1 mm
+  // away), which is gone.
+  const std::vector<double> widths = third_pass_widths(50);
+  EXPECT_GT(widths.size(), 0U);
+  EXPECT_LT(widths.size(), 41U);
+  for (const double ae : widths) EXPECT_NEAR(ae, 0.5, 1e-12);
 }
 
 geometry::AnalyticModel level_plane() {

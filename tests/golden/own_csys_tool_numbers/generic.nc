@@ -1,0 +1,29 @@
+%
+G21 G17 G40 G49 G80 G90 G94
+G54
+(a ball raster in a frame turned 90 deg about Z and moved, tools numbered by TOOLNO)
+(TOOL PATH/ROUGH,TOOL,FLAT_12)
+S4000 M3
+T4 M6
+G43 H4 G0 X100. Y50. Z5.
+G1 Z-5. F800.
+Y70.
+X94.
+Y50.
+X88.
+Y70.
+G0 Z30.
+T7
+(TOOL PATH/FINISH,TOOL,BALL_6)
+S9000 M3
+T7 M6
+G43 H7 G0 X100. Y50. Z5.
+G1 Z-4.8 F1200.
+Y70. Z-4.7
+X98.
+Y50. Z-4.8
+G3 X96. Y50. I-1. J0.
+G1 Y70. Z-4.6
+G0 Z30.
+M30
+%

@@ -1,5 +1,5 @@
 // Rules shared by the planner (streaming_plan.cpp) and its whole-timeline
-// reference in the tests (tests/machines/plan_reference_support.cpp), so
+// reference in the tests (tests/postproc/plan/plan_reference_support.cpp), so
 // that both give the same plan to the bit. Internal to the plan module.
 #pragma once
 

@@ -3,7 +3,7 @@
 // memory bounded by the spindle's figures, not by the program's length.
 // plan_spindle() is this planner fed the whole timeline; the tests hold it
 // against a reference that runs every pass over the whole timeline at once
-// (tests/machines/plan_reference_support.cpp).
+// (tests/postproc/plan/plan_reference_support.cpp).
 //
 // Why a window suffices, pass by pass (within one run; a run's end settles
 // everything before it):

@@ -14,7 +14,7 @@
 #include <random>
 
 #include "machines/builtin.h"
-#include "tests/machines/plan_timeline_support.h"
+#include "tests/postproc/plan/plan_timeline_support.h"
 
 namespace vcpost::plan {
 namespace {

@@ -15,8 +15,8 @@
 #include <string>
 
 #include "machines/builtin.h"
-#include "tests/machines/plan_reference_support.h"
-#include "tests/machines/plan_timeline_support.h"
+#include "tests/postproc/plan/plan_reference_support.h"
+#include "tests/postproc/plan/plan_timeline_support.h"
 
 namespace vcpost::plan {
 namespace {

@@ -2,7 +2,7 @@
 // before it ran on the streaming planner: every pass over the whole run, in
 // the plain order of spindle_plan.h's contract. The streaming planner must
 // give the same plan bit for bit (streaming_plan_test.cpp).
-#include "tests/machines/plan_reference_support.h"
+#include "tests/postproc/plan/plan_reference_support.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "tests/machines/plan_timeline_support.h"
+#include "tests/postproc/plan/plan_timeline_support.h"
 
 #include <algorithm>
 

@@ -84,6 +84,11 @@ constexpr std::array<std::string_view, 39> kSchemaKeys = {
     "output.coolant_off",
 };
 
+// [output] keys only the G-code writer reads (see check_heidenhain).
+constexpr std::array<std::string_view, 7> kGcodeOnlyOutputKeys = {
+    "high_speed_mode",  "geometry_compensation", "work_offset", "percent_lines",
+    "tool_change_home", "tool_length_offset",    "line_numbers"};
+
 constexpr std::array<std::string_view, 7> kTables = {"machine", "spindle", "control", "feed",
                                                      "tool",    "output",  "sources"};
 
@@ -308,15 +313,17 @@ void require_ordered(const Reader& r, std::string_view tbl, std::string_view lo_
             codes::inconsistent);
 }
 
-constexpr std::array<std::pair<std::string_view, Dialect>, 4> kDialects = {
+constexpr std::array<std::pair<std::string_view, Dialect>, 5> kDialects = {
     {{"rs274ngc", Dialect::rs274ngc},
      {"fanuc", Dialect::fanuc},
      {"mazak", Dialect::mazak},
-     {"sinumerik", Dialect::sinumerik}}};
-constexpr std::array<std::pair<std::string_view, OutputFormat>, 3> kFormats = {
+     {"sinumerik", Dialect::sinumerik},
+     {"heidenhain", Dialect::heidenhain}}};
+constexpr std::array<std::pair<std::string_view, OutputFormat>, 4> kFormats = {
     {{"rs274ngc", OutputFormat::rs274ngc},
      {"fanuc", OutputFormat::fanuc},
-     {"mazak", OutputFormat::mazak}}};
+     {"mazak", OutputFormat::mazak},
+     {"heidenhain", OutputFormat::heidenhain}}};
 constexpr std::array<std::pair<std::string_view, SChangeInMotion>, 3> kInMotion = {
     {{"inline", SChangeInMotion::inline_word},
      {"code", SChangeInMotion::code},
@@ -589,6 +596,51 @@ std::vector<SourceNote> read_sources(const Reader& r) {
   return notes;
 }
 
+// A Heidenhain control (TNC): it reads and is written Klartext, both or
+// neither (a control's language is read and written by its own dialect);
+// it takes a new S only in `TOOL CALL S`, a block of its own; and the
+// [output] keys of the G-code writer mean nothing in Klartext (no G05,
+// G61.1, G54, '%', G28/G53, G43 H, N words or M0 tool change; the
+// program number names the program: BEGIN PGM <number> MM), so a value
+// given for one is refused rather than silently dropped.
+void check_heidenhain(const Reader& r, Dialect dialect, OutputFormat format,
+                      SChangeInMotion change_in_motion) {
+  const bool reads = dialect == Dialect::heidenhain;
+  const bool writes = format == OutputFormat::heidenhain;
+  if (reads != writes) {
+    r.require(false, "machine", writes ? "output_format" : "dialect",
+              writes ? "is \"heidenhain\" (Klartext), but machine.dialect is a G-code dialect: "
+                       "a control's language is read and written by one dialect"
+                     : "is \"heidenhain\" (Klartext), but machine.output_format is G-code: "
+                       "a control's language is read and written by one dialect",
+              codes::heidenhain_pairing);
+  }
+  if (!reads) return;
+  r.require(change_in_motion == SChangeInMotion::own_block, "spindle", "change_in_motion",
+            "must be \"own_block\" on a Heidenhain control: a TNC takes a new S only in a "
+            "`TOOL CALL S` block of its own",
+            codes::heidenhain_s_block);
+  for (const auto key : kGcodeOnlyOutputKeys) {
+    if (r.node("output", key, false)) {
+      r.require(false, "output", key,
+                "is a G-code setting that Klartext output has no use for (remove it from a "
+                "Heidenhain profile)",
+                codes::heidenhain_output);
+    }
+  }
+  if (const auto compensation = r.boolean("output", "cutter_compensation", false)) {
+    r.require(!*compensation, "output", "cutter_compensation",
+              "must be false on a Heidenhain control: the CL path is the tool centre and "
+              "Klartext output writes CUTCOM as a comment with R0",
+              codes::heidenhain_output);
+  }
+  if (const auto change = r.string("output", "tool_change", false)) {
+    r.require(*change == "m6", "output", "tool_change",
+              "must be \"m6\" (the TNC's TOOL CALL) on a Heidenhain control",
+              codes::heidenhain_output);
+  }
+}
+
 }  // namespace
 
 MachineProfile profile_from_toml(std::string_view text, const std::string& file) {
@@ -614,6 +666,8 @@ MachineProfile profile_from_toml(std::string_view text, const std::string& file)
   p.feed_ = read_feed(r);
   p.tool_ = read_tool(r);
   p.output_ = read_output(r, p.output_format_);
+  check_heidenhain(r, p.dialect_, p.output_format_, p.spindle_.change_in_motion);
+  if (p.output_format_ == OutputFormat::heidenhain) p.output_.cutter_compensation = false;
   p.sources_ = read_sources(r);
   return p;
 }

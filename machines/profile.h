@@ -25,10 +25,12 @@
 
 namespace vcpost::machines {
 
-// The G-code dialect the control reads (same names as `--dialect`).
-enum class Dialect { rs274ngc, fanuc, mazak, sinumerik };
-// The format of G-code written from CL data for this machine.
-enum class OutputFormat { rs274ngc, fanuc, mazak };
+// The language the control reads (same names as `--dialect`): a G-code
+// dialect, or Heidenhain's Klartext.
+enum class Dialect { rs274ngc, fanuc, mazak, sinumerik, heidenhain };
+// The format of the program written from CL data for this machine: G-code
+// of a dialect, or Klartext (heidenhain, postproc/output/klartext_writer.h).
+enum class OutputFormat { rs274ngc, fanuc, mazak, heidenhain };
 // How an S change in a motion block reaches the spindle:
 // inline_word: the S word goes into the motion block as it is;
 // code: the block also needs a code (Mazak's G117);
@@ -158,6 +160,11 @@ inline constexpr std::string_view bad_choice = "E5007";       // dialect not one
 inline constexpr std::string_view bad_source = "E5008";       // [sources] note malformed
 inline constexpr std::string_view unknown_profile = "E5009";  // no built-in profile of that name
 inline constexpr std::string_view unreadable = "E5010";       // file cannot be read
+// A Heidenhain control's profile: Klartext in and out together, S changes
+// in a block of their own (TOOL CALL S), no G-code-only [output] key.
+inline constexpr std::string_view heidenhain_pairing = "E5011";  // dialect vs output_format
+inline constexpr std::string_view heidenhain_s_block = "E5012";  // change_in_motion not own_block
+inline constexpr std::string_view heidenhain_output = "E5013";   // a G-code-only [output] key
 }  // namespace codes
 
 // The validated profile. Immutable: built only by the loaders below.

@@ -155,19 +155,25 @@ std::string profile_to_toml(const MachineProfile& p) {
 
   const auto& o = p.output();
   w.table("output");
+  // Klartext output has no use for the G-code writer's keys (a Heidenhain
+  // profile refuses them): left out, so that the text loads again.
+  const bool gcode = p.output_format() != OutputFormat::heidenhain;
+  const auto gcode_key = [&](std::string_view name, const std::string& value) {
+    if (gcode) w.key(name, value);
+  };
   w.key("program_number", std::to_string(o.program_number));
-  w.key("high_speed_mode", boolean(o.high_speed_mode));
-  w.key("geometry_compensation", boolean(o.geometry_compensation));
-  w.key("work_offset", std::to_string(o.work_offset));
+  gcode_key("high_speed_mode", boolean(o.high_speed_mode));
+  gcode_key("geometry_compensation", boolean(o.geometry_compensation));
+  gcode_key("work_offset", std::to_string(o.work_offset));
   w.key("decimals", std::to_string(o.decimals));
   w.key("feed_decimals", std::to_string(o.feed_decimals));
-  w.key("line_numbers", boolean(o.line_numbers));
+  gcode_key("line_numbers", boolean(o.line_numbers));
   w.key("canned_cycles", boolean(o.canned_cycles));
   w.key("cutter_compensation", boolean(o.cutter_compensation));
-  w.key("percent_lines", boolean(o.percent_lines));
+  gcode_key("percent_lines", boolean(o.percent_lines));
   w.key("tool_change", quote(to_string(o.tool_change)));
-  w.key("tool_change_home", quote(to_string(o.tool_change_home)));
-  w.key("tool_length_offset", boolean(o.tool_length_offset));
+  gcode_key("tool_change_home", quote(to_string(o.tool_change_home)));
+  gcode_key("tool_length_offset", boolean(o.tool_length_offset));
   w.key("coolant_mist", quote(o.coolant_mist));
   w.key("coolant_flood", quote(o.coolant_flood));
   w.key("coolant_off", quote(o.coolant_off));

@@ -70,37 +70,19 @@ Format format_for(const machines::MachineProfile& profile) {
       break;
     case machines::OutputFormat::fanuc:
     case machines::OutputFormat::mazak:
-      format.dwell = DwellWord::x_seconds;  // X with a decimal point: seconds
+    case machines::OutputFormat::heidenhain:  // Klartext has a writer of its own
+      format.dwell = DwellWord::x_seconds;    // X with a decimal point: seconds
       break;
   }
   return format;
 }
 
-OutputError::OutputError(std::string_view code, const std::string& message,
-                         program::SourceRef source)
-    : vcpost::Error(code,
-                    std::to_string(source.line) + ":" + std::to_string(source.column) + ": error[" +
-                        std::string(code) + "]: " + message,
-                    {"", source.line, source.column}),
-      source_(source) {}
-
 GcodeWriter::GcodeWriter(std::ostream& out, Format format)
     : out_(out), format_(std::move(format)), next_n_(format_.line_number_start) {}
 
-// Fixed-point with `decimals` digits, trailing zeros dropped, the point
-// kept ("10.", "-0.5", "0."): the Fanuc/Mazak way of marking mm.
+// Fixed-point, the point kept: the Fanuc/Mazak way of marking mm.
 std::string GcodeWriter::number(double value, int decimals, const SourceRef& source) const {
-  if (!std::isfinite(value) || std::abs(value) >= 1e9) {
-    throw OutputError("E3203", "value cannot be written: " + std::to_string(value), source);
-  }
-  char buffer[64];
-  const auto r =
-      std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed, decimals);
-  std::string s(buffer, r.ptr);
-  if (s.find('.') == std::string::npos) s += '.';
-  while (s.back() == '0') s.pop_back();
-  if (s == "-0.") s = "0.";
-  return s;
+  return fixed_number(value, decimals, source);
 }
 
 void GcodeWriter::block(std::string_view words) {

@@ -46,8 +46,8 @@
 #include <string>
 #include <string_view>
 
-#include "core/error.h"
 #include "machines/profile.h"
+#include "postproc/output/event_writer.h"
 #include "postproc/program/events.h"
 
 namespace vcpost::output {
@@ -95,28 +95,17 @@ struct Format {
 // and the dwell word, [output] the rest.
 Format format_for(const machines::MachineProfile& profile);
 
-// Errors: E3201 arc of more than one turn, E3202 inverse-time feed,
-// E3203 number that cannot be written (not finite or too large).
-class OutputError : public vcpost::Error {
- public:
-  OutputError(std::string_view code, const std::string& message, program::SourceRef source);
-  const program::SourceRef& source() const { return source_; }
-
- private:
-  program::SourceRef source_;
-};
-
 // Streams: each write() appends the blocks of one event; memory does not
 // grow with the program. REQUIRES: `out` outlives the writer.
-class GcodeWriter {
+class GcodeWriter : public EventWriter {
  public:
   GcodeWriter(std::ostream& out, Format format);
 
   // Throws OutputError for an event the format cannot express.
-  void write(const program::Event& event);
+  void write(const program::Event& event) override;
 
   // Ends the program (M30, '%') unless a ProgramEnd event already did.
-  void finish();
+  void finish() override;
 
   std::uint64_t blocks_written() const { return blocks_; }
 

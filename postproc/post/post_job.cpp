@@ -281,6 +281,7 @@ gcode::Dialect dialect_of(const machines::MachineProfile& profile) {
     case machines::Dialect::sinumerik:
       return gcode::sinumerik_dialect();
     case machines::Dialect::rs274ngc:
+    case machines::Dialect::heidenhain:  // Klartext is read by its own reader
       break;
   }
   return gcode::rs274ngc_dialect();
@@ -293,6 +294,7 @@ gcode::Dialect output_dialect_of(const machines::MachineProfile& profile) {
     case machines::OutputFormat::mazak:
       return gcode::mazak_dialect();
     case machines::OutputFormat::rs274ngc:
+    case machines::OutputFormat::heidenhain:  // Klartext is read by its own reader
       break;
   }
   return gcode::rs274ngc_dialect();

@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <variant>
 
-#include "postproc/output/gcode_writer.h"
+#include "postproc/output/event_writer.h"
 
 namespace vcpost::post {
 namespace {
@@ -49,7 +49,7 @@ ProgramWriter::ProgramWriter(std::string_view text, ProgramKind kind,
       consumed_(std::move(consumed)),
       keeps_(std::move(keeps)) {
   if (kind_ == ProgramKind::cldata) {
-    cl_writer_ = std::make_unique<output::GcodeWriter>(cl_buffer_, output::format_for(profile));
+    cl_writer_ = output::make_event_writer(cl_buffer_, profile);
   }
 }
 

@@ -1,7 +1,8 @@
 // The last stage of the post job: decides the output program block by
 // block as the planner declares blocks final, and writes it batch by batch.
-// G-code input: the input text with only S/F words changed; CL input:
-// G-code in the profile's format from the CL events. Internal to the post
+// G-code input: the input text with only S/F words changed; CL input: the
+// program in the profile's output format (G-code or Klartext) from the CL
+// events. Internal to the post
 // module.
 #pragma once
 
@@ -24,7 +25,7 @@
 #include "postproc/post/path_reader.h"
 
 namespace vcpost::output {
-class GcodeWriter;
+class EventWriter;
 }
 
 namespace vcpost::post {
@@ -116,7 +117,7 @@ class ProgramWriter {
   double f_in_effect_ = std::numeric_limits<double>::quiet_NaN();
   std::unordered_map<std::uint64_t, HeldLine> held_lines_;
   std::ostringstream cl_buffer_;
-  std::unique_ptr<output::GcodeWriter> cl_writer_;
+  std::unique_ptr<output::EventWriter> cl_writer_;
   std::function<bool(std::uint32_t)> keeps_;
   std::uint64_t s_words_ = 0, f_words_ = 0;
   // The S (on the grid) that blocks without motion set since the last block

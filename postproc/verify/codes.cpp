@@ -9,12 +9,32 @@ const std::vector<CodeInfo>& code_table() {
   // The findings' codes; their summaries come from the one code table.
   static const std::vector<CodeInfo> table = [] {
     std::vector<CodeInfo> rows;
-    for (Code code :
-         {Code::line_count, Code::line_ending, Code::word_changed, Code::token_added,
-          Code::token_removed, Code::whitespace_changed, Code::comment_changed,
-          Code::word_in_comment, Code::sf_removed, Code::sf_repeated, Code::bad_sf_value,
-          Code::event_differs, Code::event_count, Code::output_unreadable, Code::motion_count,
-          Code::end_point, Code::motion_kind, Code::arc_differs, Code::spindle_or_tool}) {
+    for (Code code : {Code::line_count,
+                      Code::line_ending,
+                      Code::word_changed,
+                      Code::token_added,
+                      Code::token_removed,
+                      Code::whitespace_changed,
+                      Code::comment_changed,
+                      Code::word_in_comment,
+                      Code::sf_removed,
+                      Code::sf_repeated,
+                      Code::bad_sf_value,
+                      Code::event_differs,
+                      Code::event_count,
+                      Code::output_unreadable,
+                      Code::motion_count,
+                      Code::end_point,
+                      Code::motion_kind,
+                      Code::arc_differs,
+                      Code::spindle_or_tool,
+                      Code::klartext_block_changed,
+                      Code::klartext_numbering,
+                      Code::klartext_misplaced_speed,
+                      Code::klartext_block_added,
+                      Code::klartext_bad_value,
+                      Code::klartext_event_differs,
+                      Code::klartext_output_unreadable}) {
       rows.push_back({code, vcpost::code_info(code_id(code)).summary});
     }
     return rows;

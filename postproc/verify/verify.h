@@ -60,6 +60,14 @@ enum class Code : std::uint16_t {
   motion_kind = 7133,      // rapid vs feed vs arc
   arc_differs = 7134,      // arc centre beyond the tolerance, plane or direction
   spindle_or_tool = 7135,  // spindle on/off or tool change different or out of order
+  // 7136-7142: Klartext in, Klartext out
+  klartext_block_changed = 7136,      // bytes changed outside the number, S and F digits
+  klartext_numbering = 7137,          // a block number not the input's plus the inserted blocks
+  klartext_misplaced_speed = 7138,    // an inserted TOOL CALL S not right before a move
+  klartext_block_added = 7139,        // a block (not TOOL CALL S) added, or one removed
+  klartext_bad_value = 7140,          // a new S/F that is not a plain positive number
+  klartext_event_differs = 7141,      // the programs mean other events (S/F aside)
+  klartext_output_unreadable = 7142,  // the output does not read where the input does
 };
 
 struct CodeInfo {
@@ -91,7 +99,7 @@ struct Violation {
   std::string message;
 };
 
-enum class InputKind { gcode, cldata };
+enum class InputKind { gcode, cldata, klartext };
 
 struct Result {
   InputKind kind = InputKind::gcode;

@@ -61,7 +61,7 @@ TEST(BuiltinProfiles, AllAreShippedAndLoad) {
     EXPECT_EQ(profile.origin(), p.path);
   }
   EXPECT_EQ(names, (std::vector<std::string>{"fanuc-3axis-sar", "fanuc-3axis", "generic", "grbl",
-                                             "linuxcnc-3axis", "mazak-3axis",
+                                             "heidenhain-tnc640", "linuxcnc-3axis", "mazak-3axis",
                                              "sinumerik-840d"}));  // by file name
 }
 
@@ -79,6 +79,7 @@ TEST(BuiltinProfiles, HowEachControlTakesAnSWordInMotion) {
         Expected{"fanuc-3axis", false, 0, 0, false},
         Expected{"fanuc-3axis-sar", true, 0.1, 10, true},
         Expected{"sinumerik-840d", false, 0, 0, true}, Expected{"mazak-3axis", false, 0, 0, false},
+        Expected{"heidenhain-tnc640", true, 0.2, 0, false},
         Expected{"generic", false, 0, 0, false}}) {
     SCOPED_TRACE(e.name);
     const auto p = builtin_profile(e.name);
@@ -193,6 +194,48 @@ TEST(BuiltinProfiles, MazakHasTheFiguresOfItsClass) {
   EXPECT_DOUBLE_EQ(m.spindle().acceleration_rpm_per_s, 4000.0);
   EXPECT_DOUBLE_EQ(m.feed().rapid_mm_per_min, 42000.0);
   EXPECT_EQ(m.tool().default_teeth, 2);
+}
+
+// Issue 38: the TNC 640 of a DMC 105 V class machine. Its S changes only in
+// a TOOL CALL S block of its own; no document says whether that block ends
+// the look-ahead, so it is taken as a stop, placed where the path stops
+// anyway or priced, and the note says it was searched for and not found.
+TEST(BuiltinProfiles, HeidenhainTakesSInAToolCallOfItsOwn) {
+  const auto h = builtin_profile("heidenhain-tnc640");
+  EXPECT_EQ(h.dialect(), Dialect::heidenhain);
+  EXPECT_EQ(h.output_format(), OutputFormat::heidenhain);
+  EXPECT_EQ(h.spindle().change_in_motion, SChangeInMotion::own_block);
+  EXPECT_TRUE(h.spindle().stops_path_on_change);
+  EXPECT_EQ(h.spindle().s_in_feed, SInFeed::priced);
+  EXPECT_DOUBLE_EQ(h.spindle().n_max_rpm, 18000.0);  // the A programs ask up to S17189
+  EXPECT_DOUBLE_EQ(h.spindle().s_resolution_rpm, 1.0);
+  EXPECT_DOUBLE_EQ(h.control().block_time_s, 0.0005);
+  EXPECT_FALSE(h.output().cutter_compensation);  // CL paths are the tool centre: R0
+  EXPECT_TRUE(h.source_of("spindle.change_in_motion")->vendor);
+  const auto* stops = h.source_of("spindle.stops_path_on_change");
+  EXPECT_FALSE(stops->vendor);
+  EXPECT_NE(stops->text.find("M120 LOOK AHEAD"), std::string::npos) << stops->text;
+  // `machines show` leaves out the G-code writer's keys, so its text loads.
+  const std::string shown = profile_to_toml(h);
+  EXPECT_EQ(shown.find("high_speed_mode"), std::string::npos);
+  EXPECT_EQ(profile_from_toml(shown, "shown.toml").output_format(), OutputFormat::heidenhain);
+}
+
+TEST(ProfileLoading, HeidenhainRefusesCutterCompensationAndManualToolChange) {
+  std::string text(kMinimal);
+  text.replace(text.find("\"rs274ngc\""), 10, "\"heidenhain\"");
+  text.replace(text.find("\"rs274ngc\""), 10, "\"heidenhain\"");
+  EXPECT_EQ(profile_from_toml(text, "h.toml").dialect(), Dialect::heidenhain);
+  for (const char* bad : {"cutter_compensation = true", "tool_change = \"manual\"",
+                          "line_numbers = true", "tool_change_home = \"g28\""}) {
+    SCOPED_TRACE(bad);
+    try {
+      profile_from_toml(text + "[output]\n" + bad + "\n", "h.toml");
+      ADD_FAILURE() << "accepted";
+    } catch (const ProfileError& e) {
+      EXPECT_EQ(e.code(), "E5013") << e.what();
+    }
+  }
 }
 
 TEST(BuiltinProfiles, EveryKeyHasAStatedSource) {

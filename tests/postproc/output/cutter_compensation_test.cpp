@@ -108,13 +108,14 @@ TEST(CutterCompensation, SideChangesArcsAndToolChanges) {
 }
 
 // grbl has no G41/G42: its profile keeps CUTCOM as comments (the path is
-// the tool centre already); every other shipped profile writes G41/G42.
+// the tool centre already), as does the Klartext writer (R0, never RL/RR);
+// every other shipped profile writes G41/G42.
 TEST(CutterCompensation, GrblKeepsComments) {
   for (const auto& builtin : machines::builtin_profiles()) {
     const std::string name(builtin.name);
     SCOPED_TRACE(name);
     const Format format = format_for(machines::builtin_profile(name));
-    EXPECT_EQ(format.cutter_compensation, name != "grbl");
+    EXPECT_EQ(format.cutter_compensation, name != "grbl" && name != "heidenhain-tnc640");
   }
   Format format = rs274ngc_format();
   format.cutter_compensation = false;

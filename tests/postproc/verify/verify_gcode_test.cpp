@@ -238,7 +238,7 @@ TEST(VerifyGcode, EveryCodeIsInTheTable) {
     EXPECT_EQ(code_id(entry.code).size(), 5u);
     EXPECT_EQ(code_id(entry.code)[0], 'E');
   }
-  EXPECT_EQ(code_table().size(), 19u);
+  EXPECT_EQ(code_table().size(), 26u);
   EXPECT_EQ(code_id(Code::sf_removed), "E7109");
 }
 

@@ -25,6 +25,7 @@
 #include "postproc/cli/distinct_files.h"
 #include "postproc/cli/held_output.h"
 #include "postproc/cli/interrupt.h"
+#include "postproc/cli/model_placement.h"
 #include "postproc/cli/number_options.h"
 #include "postproc/cli/program_text.h"
 #include "postproc/cli/section_words.h"
@@ -360,6 +361,11 @@ void add_job_options(CLI::App& command, PostArguments& args) {
       "--model", args.model,
       "finished-surface model: STEP (mm or inch) or STL (mm); required but for APT CL "
       "input, which without it is translated for --machine with its own speeds");
+  command.add_option(
+      "--model-transform", args.model_transform,
+      "where the model sits in the program's frame: steps applied in order, rx=DEG, ry=DEG, "
+      "rz=DEG, x=MM, y=MM, z=MM, or matrix=16 numbers (e.g. rz=-90 or rx=180,rz=180,z=-22); "
+      "or vcproject:FILE.vcproject (VERICUT's placement of the design STL)");
   command.add_option("--tool", args.tools,
                      "the tool: ball:D, bull:D:rc, flat:D, drill:D or other (mm), for every tool; "
                      "T8=ball:14 for tool 8 (repeatable; default: what the program says, CL "
@@ -443,7 +449,7 @@ std::optional<post::ToolSection> first_section(std::string_view text, const std:
   try {
     return post::first_postable_section(text, name, profile, settings);
   } catch (const post::PostError& e) {
-    throw CommandError(e.what());
+    throw CommandError(e.code(), e.what());
   } catch (const gcode::GcodeError& e) {
     throw CommandError(gcode::format(e.diagnostic(), name));
   } catch (const cldata::ClError& e) {
@@ -553,7 +559,12 @@ JobRun run_job(const PostArguments& args, bool write_program) {
           "--model: required for G-code input (S is rewritten from the toolpath's contact with "
           "the model; without one the program would come out unchanged)");
   }
+  if (translate_only && !args.model_transform.empty())
+    throw CommandError("--model-transform: places a --model; none is given");
+  std::optional<ModelPlacement> placement;
+  if (!args.model_transform.empty()) placement = parse_model_placement(args.model_transform);
   LoadedModel model = translate_only ? no_model() : load_model(args.model);
+  if (placement) place_model(model, *placement);
 
   const bool show_progress = !args.quiet && ::isatty(STDERR_FILENO);
   const post::Progress progress = [&](double done) {

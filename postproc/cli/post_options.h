@@ -21,6 +21,7 @@ inline constexpr double kMinSpacingMm = 0.001;
 
 struct PostArguments {
   std::string program, model, machine = "generic", output, summary_json;
+  std::string model_transform;  // --model-transform: steps or vcproject:FILE
   std::string policy = "max", cl_point = "tip", dialect;
   std::vector<std::string> tools;      // --tool: "ball:10" (every tool) or "T8=ball:14"
   std::string tools_file, post_tools;  // --tools FILE.toml, --post-tools T2,T8

@@ -15,7 +15,7 @@ layer="${1:-dev}"
 demo=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libcli11-dev
-  libtomlplusplus-dev nlohmann-json3-dev libtbb-dev
+  libtomlplusplus-dev nlohmann-json3-dev libtbb-dev libspdlog-dev
   libocct-data-exchange-dev libocct-modeling-algorithms-dev
   libocct-modeling-data-dev libocct-foundation-dev
   # the report's charting library, inlined into its HTML page

@@ -25,6 +25,7 @@
 #include "postproc/cli/distinct_files.h"
 #include "postproc/cli/held_output.h"
 #include "postproc/cli/interrupt.h"
+#include "postproc/cli/log.h"
 #include "postproc/cli/model_placement.h"
 #include "postproc/cli/number_options.h"
 #include "postproc/cli/program_text.h"
@@ -265,16 +266,18 @@ bool has_warnings(const post::PostSummary& summary) {
 }
 
 void print_warnings(const post::PostSummary& summary) {
-  if (summary.missing_end) {
-    std::cerr << "vcpost: warning: the program ends without M2, M30 or a closing '%': is the "
-                 "file complete?\n";
-  }
-  if (summary.gouging > 0)
-    std::cerr << "vcpost: warning: " << summary.gouging << " points gouge the model\n";
+  if (summary.missing_end)
+    log().warn("the program ends without M2, M30 or a closing '%': is the file complete?");
+  if (summary.gouging > 0) log().warn("{} points gouge the model", summary.gouging);
   if (summary.lifted + summary.missed > 0) {
-    std::cerr << "vcpost: warning: " << summary.lifted + summary.missed
-              << " cutting points do not touch the model (their blocks keep the program's S)\n";
+    log().warn("{} cutting points do not touch the model (their blocks keep the program's S)",
+               summary.lifted + summary.missed);
   }
+}
+
+// Seconds since `start`, for the debug level's stage times.
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 // Writes the held program to `out`: its first 4 KB alone, so that once they
@@ -435,6 +438,13 @@ void add_job_options(CLI::App& command, PostArguments& args) {
                   "the output does not depend on it")
       ->check(CLI::Range(0, 256));
   command.add_flag("-q,--quiet", args.quiet, "print nothing but errors");
+  command
+      .add_option("--log-level", args.log_level,
+                  "what goes to standard error besides errors: warning, info (warnings and the "
+                  "end-of-run lines) or debug (also each stage's time and counts)")
+      ->check(CLI::IsMember({"error", "warning", "info", "debug"}))
+      ->capture_default_str();
+  command.add_flag("-v,--verbose", args.verbose, "the same as --log-level debug");
   command.add_flag("--strict", args.strict,
                    "exit 1 when there were warnings (gouges, points without contact)");
 }
@@ -532,10 +542,15 @@ std::string write_reports(const report::ReportData& data, std::vector<ReportFile
 
 JobRun run_job(const PostArguments& args, bool write_program) {
   const auto started = std::chrono::steady_clock::now();
+  // CLI11 admits only the levels' names.
+  set_log_level(args.quiet     ? spdlog::level::err
+                : args.verbose ? spdlog::level::debug
+                               : parse_log_level(args.log_level).value_or(spdlog::level::info));
   require_distinct_files(job_inputs(args), job_outputs(args, write_program));
   ProgramText program(args.program);
   const std::string_view text = program.view();
   const std::string name = args.program == "-" ? "<stdin>" : args.program;
+  log().debug("program {}: {} bytes, read in {:.3f} s", name, text.size(), seconds_since(started));
   const post::PostSettings settings = settings_from(args);
   std::vector<ReportFile> reports = open_reports(args);
   if (!args.summary_json.empty() && args.summary_json != "-") {
@@ -547,7 +562,9 @@ JobRun run_job(const PostArguments& args, bool write_program) {
       chart_library = read_chart_library();
   }
 
+  auto stage = std::chrono::steady_clock::now();
   const machines::MachineProfile profile = load_machine(args.machine);
+  log().debug("machine profile {}: loaded in {:.3f} s", profile.name(), seconds_since(stage));
   // Without a model, CL data is translated for the profile with its own
   // speeds (every section kept): vcpost as a plain 3-axis post-processor.
   const bool translate_only = args.model.empty();
@@ -563,13 +580,25 @@ JobRun run_job(const PostArguments& args, bool write_program) {
     throw CommandError("--model-transform: places a --model; none is given");
   std::optional<ModelPlacement> placement;
   if (!args.model_transform.empty()) placement = parse_model_placement(args.model_transform);
+  stage = std::chrono::steady_clock::now();
   LoadedModel model = translate_only ? no_model() : load_model(args.model);
   if (placement) place_model(model, *placement);
+  if (!translate_only)
+    log().debug("model {}: {}, loaded in {:.3f} s", args.model, model.description,
+                seconds_since(stage));
 
-  const bool show_progress = !args.quiet && ::isatty(STDERR_FILENO);
+  // On a terminal at the info level, one line rewritten in place; at the
+  // debug level a line every tenth of the program instead.
+  const bool show_progress = log().level() == spdlog::level::info && ::isatty(STDERR_FILENO);
+  int tenths_logged = 0;
   const post::Progress progress = [&](double done) {
     if (show_progress)
       std::cerr << "\rvcpost: posting " << static_cast<int>(done * 100) << " %" << std::flush;
+    const int tenths = static_cast<int>(done * 10);
+    if (tenths > tenths_logged) {
+      tenths_logged = tenths;
+      log().debug("posting: {} %", 10 * tenths);
+    }
   };
 
   std::optional<AtomicFile> file;
@@ -603,9 +632,15 @@ JobRun run_job(const PostArguments& args, bool write_program) {
     });
   }
 
+  stage = std::chrono::steady_clock::now();
   const post::PostSummary summary = post_translating_errors(program, name, *model.model, profile,
                                                             settings, sink, progress, points);
   if (show_progress) std::cerr << "\r\x1b[K";
+  log().debug(
+      "posted in {:.3f} s: {} points ({} touching, {} gouging, {} in the air), {} S words, "
+      "{} F words, {} tool sections",
+      seconds_since(stage), summary.samples, summary.touching, summary.gouging,
+      summary.lifted + summary.missed, summary.s_words, summary.f_words, summary.sections.size());
   if (translate_only) {
     require_motion(summary, name);
   } else {
@@ -613,7 +648,7 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   }
   if (args.strict && has_warnings(summary)) {
     // Refused before anything is committed: --strict leaves no file it refused.
-    if (!args.quiet) print_warnings(summary);
+    print_warnings(summary);
     throw CommandError("E2010", "warnings with --strict; nothing written");
   }
   std::string to_stdout;  // written after every file is complete
@@ -621,7 +656,9 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   const double run_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   if (collector) {
+    stage = std::chrono::steady_clock::now();
     to_stdout = write_reports(collector->finish(summary, run_time), reports, chart_library);
+    log().debug("{} reports written in {:.3f} s", reports.size(), seconds_since(stage));
   }
   // The program last: a failed report leaves no posted program behind.
   if (file) file->commit();
@@ -670,20 +707,20 @@ void print_sections(const post::PostSummary& summary) {
                                       [](const post::ToolSection& s) { return s.posted; });
   if (summary.sections.size() <= 1 && all_posted) return;
   for (const post::ToolSection& s : summary.sections) {
-    std::cerr << "vcpost:   line " << s.first_line << ": " << section_name(s) << ": ";
+    std::ostringstream line;  // numbers as the stream writes them (vc: 6 digits)
+    line << "  line " << s.first_line << ": " << section_name(s) << ": ";
     if (s.posted) {
-      std::cerr << "posted at vc " << s.vc_nominal << " m/min, " << s.points << " points, "
-                << s.s_words << " S words";
+      line << "posted at vc " << s.vc_nominal << " m/min, " << s.points << " points, " << s.s_words
+           << " S words";
       if (s.before && s.after) {
-        std::cerr << ", within +-10 %: "
-                  << static_cast<int>(std::round(s.before->within_10_percent * 100))
-                  << " % before, " << static_cast<int>(std::round(s.after->within_10_percent * 100))
-                  << " % after";
+        line << ", within +-10 %: "
+             << static_cast<int>(std::round(s.before->within_10_percent * 100)) << " % before, "
+             << static_cast<int>(std::round(s.after->within_10_percent * 100)) << " % after";
       }
     } else {
-      std::cerr << "kept, " << s.reason << " (" << s.points << " points)";
+      line << "kept, " << s.reason << " (" << s.points << " points)";
     }
-    std::cerr << '\n';
+    log().info("{}", line.str());
   }
 }
 
@@ -694,9 +731,9 @@ void print_depths(const post::PostSummary& summary) {
     const std::string name = summary.sections.size() > 1 ? section_name(s) + ": " : std::string();
     for (const auto& [depth, what] :
          {std::pair{&s.gouge, "gouge depth"}, std::pair{&s.lift, "lift height"}}) {
-      if (depth->points > 0) std::cerr << "vcpost:   " << name << depth_words(*depth, what) << '\n';
+      if (depth->points > 0) log().info("  {}{}", name, depth_words(*depth, what));
     }
-    if (s.offset) std::cerr << "vcpost: warning: " << name << offset_words(*s.offset) << '\n';
+    if (s.offset) log().warn("{}{}", name, offset_words(*s.offset));
   }
 }
 
@@ -720,41 +757,46 @@ void finish_job(const PostArguments& args, const JobRun& run) {
       note_links(out, args.summary_json, notes);
     }
   }
-  if (!args.quiet) {
-    std::cerr << "vcpost: " << summary.samples << " points, " << summary.s_words << " S words";
-    if (args.adjust_feed) std::cerr << ", " << summary.f_words << " F words";
-    if (summary.before && summary.after) {
-      std::cerr << "; cutting time within +-10 % of vc " << vc_words(summary) << " m/min: "
-                << static_cast<int>(std::round(summary.before->within_10_percent * 100))
-                << " % before, "
-                << static_cast<int>(std::round(summary.after->within_10_percent * 100))
-                << " % after";
-    }
-    std::cerr << '\n';
-    print_sections(summary);
-    for (const auto& path : args.reports) {
-      if (path != "-") std::cerr << "vcpost: report written to " << path << '\n';
-    }
-    for (const auto& note : notes) std::cerr << "vcpost: " << note << '\n';
-    if (summary.repeated_lines > 0) {
-      std::cerr << "vcpost: " << summary.repeated_lines
-                << " lines run more than once (subroutines, loops): each has the lowest S (F) "
-                   "of its runs\n";
-    }
-    print_depths(summary);
-    for (const std::string& note : summary.tool_notes)
-      std::cerr << "vcpost: note: " << note << '\n';
-    if (args.model.empty()) {
-      std::cerr << "vcpost: no --model: the CL data is translated for " << run.profile.name()
-                << " with its own speeds\n";
-    } else if (!summary.sections.empty() &&
-               std::none_of(summary.sections.begin(), summary.sections.end(),
-                            [](const post::ToolSection& s) { return s.posted; })) {
-      std::cerr << "vcpost: warning: no section is posted (each section's reason is above): the "
-                   "program keeps its own speeds\n";
-    }
-    print_warnings(summary);
+  std::ostringstream totals;  // vc as the stream writes it
+  totals << summary.samples << " points, " << summary.s_words << " S words";
+  if (args.adjust_feed) totals << ", " << summary.f_words << " F words";
+  if (summary.before && summary.after) {
+    totals << "; cutting time within +-10 % of vc " << vc_words(summary)
+           << " m/min: " << static_cast<int>(std::round(summary.before->within_10_percent * 100))
+           << " % before, " << static_cast<int>(std::round(summary.after->within_10_percent * 100))
+           << " % after";
   }
+  log().info("{}", totals.str());
+  print_sections(summary);
+  for (const auto& path : args.reports) {
+    if (path != "-") log().info("report written to {}", path);
+  }
+  for (const auto& note : notes) {
+    constexpr std::string_view kWarning = "warning: ";
+    if (note.starts_with(kWarning)) {
+      log().warn("{}", note.substr(kWarning.size()));
+    } else {
+      log().info("{}", note);
+    }
+  }
+  if (summary.repeated_lines > 0) {
+    log().info(
+        "{} lines run more than once (subroutines, loops): each has the lowest S (F) of its runs",
+        summary.repeated_lines);
+  }
+  print_depths(summary);
+  for (const std::string& note : summary.tool_notes) log().info("note: {}", note);
+  if (args.model.empty()) {
+    log().info("no --model: the CL data is translated for {} with its own speeds",
+               run.profile.name());
+  } else if (!summary.sections.empty() &&
+             std::none_of(summary.sections.begin(), summary.sections.end(),
+                          [](const post::ToolSection& s) { return s.posted; })) {
+    log().warn(
+        "no section is posted (each section's reason is above): the program keeps its own "
+        "speeds");
+  }
+  print_warnings(summary);
 }
 
 }  // namespace vcpost::cli

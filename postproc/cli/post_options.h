@@ -31,6 +31,8 @@ struct PostArguments {
   std::optional<int> teeth;
   int threads = 0;  // 0: one per core
   bool ae_override = false, adjust_feed = false, quiet = false, strict = false;
+  std::string log_level = "info";  // --log-level; -q (error) and -v (debug) override it
+  bool verbose = false;
   std::vector<std::string> reports;  // report files; the format follows the extension
 };
 
@@ -80,7 +82,7 @@ struct JobRun {
 // never touches the model; nothing is left half-written.
 JobRun run_job(const PostArguments& args, bool write_program);
 
-// The end-of-run lines on stderr (unless --quiet) and the --summary-json
+// The end-of-run lines on stderr (at the info level: not with --quiet) and the --summary-json
 // file. (Warnings with --strict end run_job with exit 1 before any output
 // is committed.)
 void finish_job(const PostArguments& args, const JobRun& run);

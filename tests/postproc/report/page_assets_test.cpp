@@ -1,6 +1,8 @@
 // The report's page as embedded from postproc/report/page/: the build
 // carried each file whole, and the template holds every slot the writer
 // fills exactly once, in the order it fills them.
+#include "postproc/report/page_assets.h"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -8,7 +10,6 @@
 #include <string>
 #include <string_view>
 
-#include "postproc/report/page_assets.h"
 #include "tests/postproc/cli_run_support.h"
 
 namespace {
@@ -25,7 +26,8 @@ std::size_t count(std::string_view text, std::string_view what) {
 }
 
 TEST(ReportPage, EmbedsTheFilesByteForByte) {
-  const std::filesystem::path page = std::filesystem::path(VCPOST_SOURCE_DIR) / "postproc/report/page";
+  const std::filesystem::path page =
+      std::filesystem::path(VCPOST_SOURCE_DIR) / "postproc/report/page";
   EXPECT_EQ(assets::page_html, vcpost::testing::slurp(page / "report.html"));
   EXPECT_EQ(assets::page_css, vcpost::testing::slurp(page / "report.css"));
   EXPECT_EQ(assets::page_js, vcpost::testing::slurp(page / "report.js"));

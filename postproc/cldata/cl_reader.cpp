@@ -993,7 +993,9 @@ void ClReader::cycle(const ClRecord& r) {
     if (program_feed_) set_feed(*program_feed_, r.source);
     return;
   }
-  if (word_is(kind, "INIT")) return;  // SolidWorks' marker before the cycle
+  // SolidWorks' markers before a cycle (CLEAR: its parameters start afresh,
+  // which the next CYCLE/<kind> record does anyway): nothing moves.
+  if (word_is(kind, "INIT") || word_is(kind, "CLEAR")) return;
   if (word_is(kind, "ON")) {
     // CAMWorks writes CYCLE/ON before the cycle itself: nothing to resume yet.
     if (last_cycle_) cycle_ = last_cycle_;

@@ -45,7 +45,7 @@
 //   CYCLE/DRILL, FACE, DEEP, DEEP2, PECK, BRKCHP, TAP, BORE, BORE5, BORE6,
 //       BORE9, REAM (cycle.h): each GOTO while a cycle is on is a hole,
 //       expanded into the moves of the matching canned cycle; CYCLE/OFF
-//       ends it (INIT and CAMWorks' ON around it); others refused (E3112).
+//       ends it (INIT, CLEAR and CAMWorks' ON around it); others refused (E3112).
 //   UNITS|UNIT, TLAXIS, MULTAX           state; any axis other than +Z is
 //                                        refused (E3108): events are 3-axis
 //   CSYS/r11,r12,r13,tx,r21,r22,r23,ty,r31,r32,r33,tz (the 3x4 matrix row

@@ -49,7 +49,7 @@ struct ClCycle {
   double next_peck = 0;   // mm; 0: as first_peck
 };
 
-// Reads CYCLE/<kind>,... (not OFF, ON, INIT: the caller handles those).
+// Reads CYCLE/<kind>,... (not OFF, ON, INIT, CLEAR: the caller handles those).
 // `mm_per_unit` converts the file's lengths. Throws ClError (E3112 for a
 // cycle or word not understood, E3104/E3103 for missing or bad values).
 ClCycle parse_cycle(const ClRecord& record, double mm_per_unit, std::string_view file_name);

@@ -83,6 +83,7 @@ tools::ToolChoices tool_choices(const PostArguments& args) {
   }
   if (!args.post_tools.empty()) choices.post_tools = tools::parse_tool_list(args.post_tools);
   for (const std::string& vc : args.vc) tools::add_vc_option(vc, choices);
+  for (const std::string& stock : args.stock) tools::add_stock_option(stock, choices);
   // Without a model (CL translated as it is) no speed is computed.
   if (!args.model.empty() && !choices.vc && choices.vc_by_tool.empty())
     throw CommandError("--vc: required");
@@ -382,6 +383,11 @@ void add_job_options(CLI::App& command, PostArguments& args) {
   command.add_option("--vc", args.vc,
                      "nominal cutting speed, m/min, for every tool; T2=150 for tool 2 (repeatable; "
                      "required with --model)");
+  command.add_option(
+      "--stock", args.stock,
+      "allowance the CAM left, mm, for every tool (0.3; negative: into the model, e.g. "
+      "-1.2); T3=0.2 for tool 3, T3=0.2:0.1 radial:axial for bull-nose and flat end "
+      "mills (repeatable): contact, ae and the engagement are taken on the model offset by it");
   command
       .add_option("--ap", args.ap,
                   "depth of cut along the surface normal, mm (required with --model)")
@@ -724,6 +730,18 @@ void print_sections(const post::PostSummary& summary) {
   }
 }
 
+// The allowance each evaluated section's contact was taken with, when any.
+void print_allowances(const post::PostSummary& summary) {
+  for (const post::ToolSection& s : summary.sections) {
+    if (!s.postable || s.stock.is_zero()) continue;
+    std::ostringstream line;
+    line << "  " << section_name(s) << ": contact with the model offset by " << s.stock.radial;
+    if (!s.stock.is_uniform()) line << " mm radially, " << s.stock.axial << " axially";
+    line << " mm (--stock)";
+    log().info("{}", line.str());
+  }
+}
+
 // Gouge and lift depths of the evaluated sections, and the diagnosis of a
 // path consistently off the model.
 void print_depths(const post::PostSummary& summary) {
@@ -768,6 +786,7 @@ void finish_job(const PostArguments& args, const JobRun& run) {
   }
   log().info("{}", totals.str());
   print_sections(summary);
+  print_allowances(summary);
   for (const auto& path : args.reports) {
     if (path != "-") log().info("report written to {}", path);
   }

@@ -26,6 +26,7 @@ struct PostArguments {
   std::vector<std::string> tools;      // --tool: "ball:10" (every tool) or "T8=ball:14"
   std::string tools_file, post_tools;  // --tools FILE.toml, --post-tools T2,T8
   std::vector<std::string> vc;         // --vc: "120" (every tool) or "T2=150"
+  std::vector<std::string> stock;      // --stock: "0.3" (every tool), "T3=-1.2" or "T3=0.2:0.1"
   double ap = 0, spacing = 0.5, tolerance = 0.01;
   std::optional<double> ae, fz;
   std::optional<int> teeth;

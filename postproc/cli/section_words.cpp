@@ -44,8 +44,9 @@ std::string lift_words(const post::OffsetDiagnosis& offset, double radius_mm) {
   // The offset is the tool radius: the program's points are the ball centre
   // (OffsetHistogram says so in its causes).
   if (std::abs(offset.offset_mm - radius_mm) <= 0.05) return share + offset.causes;
-  return share + "stock to leave of about " + mm3(offset.offset_mm) +
-         " mm (post the finishing program), or a tool diameter " + mm3(2 * offset.offset_mm) +
+  return share + "stock to leave of about " + mm3(offset.offset_mm) + " mm (post with " +
+         offset.option + ", or post the finishing program), or a tool diameter " +
+         mm3(2 * offset.offset_mm) +
          " mm smaller than the program's (give the program's tool), or a contact tolerance too "
          "tight for it (--contact-tolerance above " +
          mm3(offset.offset_mm) + " mm posts it as it is)";

@@ -17,11 +17,34 @@ std::string mm(double value) {
   return out.str();
 }
 
+// "-1.245": the allowance as an option value, to the um.
+std::string option_value(double value) {
+  std::ostringstream out;
+  out.setf(std::ios::fixed);
+  out.precision(3);
+  out << (std::abs(value) < 5e-4 ? 0.0 : value);
+  return out.str();
+}
+
+// The --stock that moves the surface by `offset` from where `stock` put it:
+// one value, or radial:axial when the section already has two.
+std::string stock_option(const geometry::Allowance& stock, std::optional<int> tool, double offset) {
+  std::string value = option_value(stock.radial + offset);
+  if (!stock.is_uniform()) value += ":" + option_value(stock.axial + offset);
+  // '=' before a negative value: no parser reads it as an option of its own.
+  std::string option = "--stock" + std::string(value.front() == '-' ? "=" : " ") + value;
+  if (tool) option += " (or --stock T" + std::to_string(*tool) + "=" + value + ")";
+  return option;
+}
+
 }  // namespace
 
-OffsetHistogram::OffsetHistogram(double tolerance_mm, double radius_mm)
+OffsetHistogram::OffsetHistogram(double tolerance_mm, double radius_mm, geometry::Allowance stock,
+                                 std::optional<int> tool)
     : tolerance_(tolerance_mm),
       radius_(radius_mm),
+      stock_(stock),
+      tool_(tool),
       bins_(static_cast<std::size_t>(2 * kRange / kBin) + 1, 0) {}
 
 std::size_t OffsetHistogram::bin_of(double value) const {
@@ -115,16 +138,17 @@ std::optional<OffsetDiagnosis> OffsetHistogram::diagnosis() const {
   } else if (std::abs(offset + radius_) <= 0.05) {
     causes << "the offset is minus the tool radius: the program's points are likely the tool tip "
               "(try --cl-point tip)";
-  } else if (offset > 0) {
-    causes << "stock to leave in the CAM (" << mm(offset)
-           << "), a program written for a larger tool than the one given, the CL point (tip or "
-              "centre), "
-              "or the work offset or frame (the path or the model shifted)";
   } else {
-    causes << "negative stock to leave in the CAM (" << mm(-offset)
-           << "), a program written for a smaller tool than the one given, the CL point (tip or "
-              "centre), "
-              "or the work offset or frame (the path or the model shifted)";
+    // An allowance is named only where the tool would be left to take it
+    // (a path deeper than the radius into the model is no glue gap).
+    const bool takes = radius_ + std::min(stock_.radial, stock_.axial) + offset > 0;
+    if (takes) d.option = stock_option(stock_, tool_, offset);
+    causes << (offset > 0 ? "stock to leave in the CAM (" : "negative stock to leave in the CAM (")
+           << mm(std::abs(offset)) << (stock_.is_zero() ? std::string() : " more than --stock gave")
+           << ")" << (takes ? "? post with " + d.option + ";" : ",")
+           << " or a program written for a " << (offset > 0 ? "larger" : "smaller")
+           << " tool than the one given, the CL point (tip or centre), or the work offset or "
+              "frame (the path or the model shifted)";
   }
   d.causes = causes.str();
   return d;

@@ -14,8 +14,11 @@ namespace vcpost::post {
 
 class OffsetHistogram {
  public:
-  // tolerance: the contact tolerance (mm); radius: the tool's (mm).
-  OffsetHistogram(double tolerance_mm, double radius_mm);
+  // tolerance: the contact tolerance (mm); radius: the tool's (mm); stock:
+  // the allowance the distances are measured from, and the section's tool
+  // number, for the option the diagnosis names.
+  OffsetHistogram(double tolerance_mm, double radius_mm, geometry::Allowance stock = {},
+                  std::optional<int> tool = std::nullopt);
 
   // A point near the model: its signed distance from the surface minus R
   // (geometry::BallContact::distance_error), mm.
@@ -36,6 +39,8 @@ class OffsetHistogram {
   DepthStatistics depths(bool gouge) const;
 
   double tolerance_, radius_;
+  geometry::Allowance stock_;
+  std::optional<int> tool_;
   std::vector<std::uint32_t> bins_;
   std::uint64_t points_ = 0;
   double gouge_min_ = 0, gouge_max_ = 0, lift_min_ = 0, lift_max_ = 0;  // |depth|, mm

@@ -16,6 +16,7 @@
 #include <variant>
 #include <vector>
 
+#include "geometry/offset_model.h"
 #include "postproc/cldata/cl_reader.h"
 #include "postproc/gcode/block.h"
 #include "postproc/plan/stop_aware_plan.h"
@@ -406,7 +407,7 @@ class SectionEvaluators {
       point_settings.vc = section.vc_nominal;
       point_settings.cutting_points = cutting_points_;  // only the report reads them
       evaluators_[section.index] =
-          std::make_unique<pipeline::PointEvaluator>(model_, point_settings);
+          std::make_unique<pipeline::PointEvaluator>(model_for(section), point_settings);
     }
     std::uint32_t last = chunk.first_section;
     for (const Slot& slot : chunk.slots) last = std::max(last, slot.section);
@@ -417,9 +418,21 @@ class SectionEvaluators {
   }
 
  private:
+  // The surface the section's tool touches: the model, or the model offset
+  // by the section's allowance (contact, ae and the engagement are then all
+  // measured on the offset surface).
+  const geometry::SurfaceModel& model_for(const ToolSection& section) {
+    if (section.stock.is_zero()) return model_;
+    // Not owned: the job's model outlives every evaluator.
+    const std::shared_ptr<const geometry::SurfaceModel> base(std::shared_ptr<void>(), &model_);
+    offset_models_.push_back(std::make_unique<geometry::OffsetModel>(base, section.stock));
+    return *offset_models_.back();
+  }
+
   const geometry::SurfaceModel& model_;
   const pipeline::PointSettings& point_;
   bool cutting_points_;
+  std::vector<std::unique_ptr<geometry::OffsetModel>> offset_models_;
   std::vector<std::unique_ptr<pipeline::PointEvaluator>> evaluators_;
 };
 

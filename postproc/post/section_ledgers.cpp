@@ -8,7 +8,8 @@ void SectionLedgers::open(ToolSection section) {
   SectionLedger& l = ledgers_[index];
   l.summary_index = summary_.sections.size();
   l.state = section.postable ? SectionState::pending : SectionState::kept;
-  if (section.postable && section.entry) l.offsets.emplace(tolerance_, section.entry->diameter / 2);
+  if (section.postable && section.entry)
+    l.offsets.emplace(tolerance_, section.entry->diameter / 2, section.stock, section.tool);
   l.summarised = true;
   summary_.sections.push_back(std::move(section));
 }

@@ -30,10 +30,38 @@ std::vector<std::string> unused_tool_choices(const tools::ToolChoices& choices,
   if (choices.post_tools)
     for (const int t : *choices.post_tools) check("--post-tools", t);
   for (const auto& [t, vc] : choices.vc_by_tool) check("--vc", t);
+  for (const auto& [t, stock] : choices.stock_by_tool) check("--stock", t);
   for (const tools::ToolEntry& e : choices.table.numbered())
     if (e.origin == tools::ToolOrigin::command_line) check("--tool", *e.number);
   return warnings;
 }
+
+namespace {
+
+// An allowance the tool can take: one value for a ball (its offset is along
+// the normal, the same every way), and no negative value reaching past the
+// tool's radius (nothing of the tool would be left to touch).
+void check_stock(const geometry::Allowance& stock, const tools::ToolEntry& tool,
+                 const std::string& name) {
+  std::ostringstream message;
+  if (tool.shape == tools::ToolShape::ball && !stock.is_uniform()) {
+    message << "--stock " << stock.radial << ":" << stock.axial << " for " << name
+            << ", a ball-end mill: a ball has one allowance, along the surface normal; give one "
+               "value";
+    throw PostError("E6003", message.str());
+  }
+  const double radius = tool.diameter / 2;
+  if (!(radius + stock.radial > 0) || !(radius + stock.axial > 0)) {
+    message << "--stock " << stock.radial;
+    if (!stock.is_uniform()) message << ":" << stock.axial;
+    message << " for " << name << " (" << tool.describe()
+            << "): a negative allowance as deep as the tool's radius " << radius
+            << " mm leaves no tool to touch the model";
+    throw PostError("E6002", message.str());
+  }
+}
+
+}  // namespace
 
 ToolSection decide_section(std::uint32_t index, std::optional<int> number, std::uint32_t first_line,
                            const tools::ToolEntry* tool, const tools::ToolChoices& choices,
@@ -80,6 +108,8 @@ ToolSection decide_section(std::uint32_t index, std::optional<int> number, std::
             << (tool->where.empty() ? std::string() : " at " + tool->where) << ")";
     throw PostError("E2001", message.str());
   }
+  s.stock = choices.stock_of(number);
+  check_stock(s.stock, *tool, name);
   s.postable = true;
   s.vc_nominal = *vc;
   s.reason =

@@ -28,6 +28,10 @@ struct OffsetDiagnosis {
   double offset_mm = 0;  // signed: > 0 above the surface, < 0 into it
   double share = 0;      // of the section's points near the model within +-0.02 mm of it
   std::string causes;    // the likely causes, in words
+  // The allowance option that would post the section as it is, e.g.
+  // "--stock=-1.245 (or --stock T1=-1.245)"; empty where the offset is the
+  // tool radius (the CL point, not stock).
+  std::string option;
 };
 
 // One section of the program: from a tool change (or the start) to the next;
@@ -41,6 +45,7 @@ struct ToolSection : ContactCounts {
   bool posted = false;                    // postable and its path touches the model: S rewritten
   std::string reason;                     // why it is posted or kept, in words
   double vc_nominal = 0;                  // m/min (posted sections)
+  geometry::Allowance stock;              // the allowance its contact is with (--stock)
 
   // Filled as the job runs.
   double start_s = 0, end_s = 0;           // program time of its first and last motion

@@ -123,6 +123,7 @@ json section_json(const post::ToolSection& section) {
           {"posted", section.posted},
           {"reason", section.reason},
           {"vc_nominal", section.posted ? json(section.vc_nominal) : nullptr},
+          {"stock_mm", {{"radial", section.stock.radial}, {"axial", section.stock.axial}}},
           {"time_s", {{"start", section.start_s}, {"end", section.end_s}}},
           {"points", points_json(section.points, section)},
           {"gouge_depth", depth_json(section.gouge)},

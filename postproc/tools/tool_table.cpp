@@ -136,6 +136,14 @@ std::optional<double> ToolChoices::vc_of(std::optional<int> number) const {
   return vc;
 }
 
+geometry::Allowance ToolChoices::stock_of(std::optional<int> number) const {
+  if (number) {
+    const auto it = stock_by_tool.find(*number);
+    if (it != stock_by_tool.end()) return it->second;
+  }
+  return stock.value_or(geometry::Allowance{});
+}
+
 int parse_tool_number(std::string_view text, std::string_view option) {
   const std::string_view original = text;
   text = trim(text, " ");
@@ -218,6 +226,50 @@ void add_vc_option(std::string_view text, ToolChoices& choices) {
     if (choices.vc)
       throw ToolTableError("E1606", "--vc: given twice for every tool (use T<n>=vc for one tool)");
     choices.vc = vc;
+  }
+}
+
+// The largest allowance taken, mm: more is a unit slip (inch as mm, um as mm).
+constexpr double kMaxStockMm = 100;
+
+void add_stock_option(std::string_view text, ToolChoices& choices) {
+  const std::string what = "--stock " + quoted(text);
+  std::optional<int> number;
+  std::string_view value = text;
+  if (const std::size_t eq = text.find('='); eq != std::string_view::npos) {
+    try {
+      number = parse_tool_number(text.substr(0, eq), "--stock");
+    } catch (const ToolTableError& e) {
+      throw ToolTableError("E2012", e.what());
+    }
+    value = text.substr(eq + 1);
+  }
+  const auto mm = [&](std::string_view part) {
+    double v = 0;
+    try {
+      v = parse_number(part, what);
+    } catch (const ToolTableError& e) {
+      throw ToolTableError("E2012", e.what());
+    }
+    if (!(std::abs(v) < kMaxStockMm))
+      throw ToolTableError("E2012", what + ": an allowance of 100 mm or more (a unit slip?)");
+    return v;
+  };
+  geometry::Allowance allowance;
+  if (const std::size_t colon = value.find(':'); colon != std::string_view::npos) {
+    allowance = {mm(value.substr(0, colon)), mm(value.substr(colon + 1))};
+  } else {
+    allowance = geometry::Allowance::uniform(mm(value));
+  }
+  if (number) {
+    if (!choices.stock_by_tool.emplace(*number, allowance).second)
+      throw ToolTableError("E2012",
+                           "--stock: tool T" + std::to_string(*number) + " is given twice");
+  } else {
+    if (choices.stock)
+      throw ToolTableError("E2012",
+                           "--stock: given twice for every tool (use T<n>=MM for one tool)");
+    choices.stock = allowance;
   }
 }
 

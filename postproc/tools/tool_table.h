@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "geometry/offset_model.h"
 #include "geometry/tool.h"
 
 namespace vcpost::tools {
@@ -92,12 +93,16 @@ class ToolTable {
 // What the user chose per tool beyond the table.
 struct ToolChoices {
   ToolTable table;
-  std::optional<double> vc;                    // m/min, every tool's (plain --vc)
-  std::map<int, double> vc_by_tool;            // --vc T2=150
-  std::optional<std::vector<int>> post_tools;  // --post-tools T2,T8; empty: the default rule
+  std::optional<double> vc;                          // m/min, every tool's (plain --vc)
+  std::map<int, double> vc_by_tool;                  // --vc T2=150
+  std::optional<std::vector<int>> post_tools;        // --post-tools T2,T8; empty: the default rule
+  std::optional<geometry::Allowance> stock;          // every tool's (plain --stock)
+  std::map<int, geometry::Allowance> stock_by_tool;  // --stock T3=0.2:0.1
 
   // The nominal cutting speed of tool `number`: its own, else the plain --vc.
   std::optional<double> vc_of(std::optional<int> number) const;
+  // The allowance of tool `number`: its own, else the plain --stock, else none.
+  geometry::Allowance stock_of(std::optional<int> number) const;
 };
 
 // ---- Option values. Each throws ToolTableError naming the option.
@@ -114,5 +119,10 @@ std::vector<int> parse_tool_list(std::string_view text);
 
 // --vc: "150" (every tool) or "T2=150"; m/min, > 0. Adds to `choices`.
 void add_vc_option(std::string_view text, ToolChoices& choices);
+
+// --stock: "0.3" or "-1.245" (every tool), "T3=0.2", "T3=0.2:0.1" (radial
+// and axial, for bull-nose and flat end mills); mm, finite, |value| below
+// 100 mm. Adds to `choices`; E2012 for bad text or a tool given twice.
+void add_stock_option(std::string_view text, ToolChoices& choices);
 
 }  // namespace vcpost::tools

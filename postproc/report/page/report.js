@@ -33,6 +33,13 @@ card('Clamped at n_max', fmt(A.time_s.clamped_n_max, 1) + ' s', 'after; ' + pct(
 card('Slew limit binds', fmt(A.time_s.slew, 1) + ' s', 'spindle acceleration', A.time_s.slew > 0.05 * S.time_s.cutting ? 'warn' : '');
 card('No contact / gouge', S.points.no_contact + ' / ' + S.points.gouging, 'of ' + S.points.total + ' points', S.points.gouging > 0 ? 'bad' : (S.points.no_contact > 0 ? 'warn' : 'good'));
 card('S words written', String(S.words_written.s), S.inputs.adjust_feed ? (S.words_written.f + ' F words') : 'F unchanged');
+S.sections.forEach(function (q) {
+  var a = q.stock_mm;
+  if (!q.posted || !a || (a.radial === 0 && a.axial === 0)) return;
+  var two = a.radial !== a.axial;
+  card('Allowance' + (q.tool_number !== null ? ' T' + q.tool_number : ''), fmt(a.radial, 3) + (two ? ' / ' + fmt(a.axial, 3) : '') + ' mm',
+       (two ? 'radial / axial; ' : '') + 'contact with the model offset by it (--stock)');
+});
 var P = S.s_placement, placed = P.mode === 'at_stops' ? 'at stops' : P.mode === 'priced' ? 'at stops, and in feed where worth the stop' : 'inline';
 card('S words placed ' + placed, String(P.s_words), P.in_feed + ' inside feed streams; ' + P.stops + ' path stops \u00d7 ' +
      fmt(P.stop_cost_s, 3) + ' s = ' + fmt(P.time_cost_s, 2) + ' s on this control', P.mode === 'at_stops' && P.in_feed > 0 ? 'warn' : '');

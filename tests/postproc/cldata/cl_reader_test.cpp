@@ -226,6 +226,24 @@ TEST(ClReader, DrillCycleIsExpandedLikeG81WithRetract) {
   EXPECT_EQ(code_of("CYCLE/TAP,FEDTO,10,RAPTO,3\nFINI\n"), ClCode::unsupported_cycle);  // no feed
 }
 
+// SolidWorks CAM writes CYCLE/CLEAR before a cycle: read as CYCLE/INIT is,
+// the same holes with the same moves.
+TEST(ClReader, CycleClearReadsAsCycleInit) {
+  const auto program = [](const std::string& marker) {
+    return "FEDRAT/500,MMPM\nRAPID\nGOTO/29.06066,116.93934,25.\nCYCLE/" + marker +
+           "\nCYCLE/DRILL,FEDTO,10.,MMPM,275.59,RAPTO,3.,RTRCTO,25.,DWELL,0\n"
+           "GOTO/29.06066,116.93934,0\nCYCLE/OFF\nFINI\n";
+  };
+  const auto with_init = read_events(program("INIT"));
+  const auto with_clear = read_events(program("CLEAR"));
+  const auto feeds = only<StraightFeed>(with_clear);
+  ASSERT_EQ(feeds.size(), 1u);
+  EXPECT_TRUE(feeds[0].start.isApprox(Eigen::Vector3d(29.06066, 116.93934, 3)));
+  EXPECT_TRUE(feeds[0].end.isApprox(Eigen::Vector3d(29.06066, 116.93934, -10)));
+  ASSERT_EQ(with_clear.size(), with_init.size());
+  EXPECT_EQ(only<StraightTraverse>(with_clear).size(), only<StraightTraverse>(with_init).size());
+}
+
 // The z levels of a hole's moves, in order: 'r' rapid, 'f' feed.
 std::string z_levels(const std::vector<Event>& events) {
   std::string out;

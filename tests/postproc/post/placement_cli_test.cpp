@@ -1,6 +1,7 @@
-// `--model-transform` as a user runs it: a plane exported upside down posts
-// once turned over (by steps or by a VERICUT project); bad option text is
-// refused with its reason. The shared
+// `--model-transform` and `--stock` as a user runs them: a plane exported
+// upside down posts once turned over (by steps or by a VERICUT project), a
+// path 1.245 mm into the model is refused with the option that posts it,
+// which then posts it; bad option text is refused with its reason. The shared
 // Heidenhain VERICUT projects place their design STL as their BLK FORMs say.
 #include <gtest/gtest.h>
 
@@ -84,7 +85,31 @@ TEST(PlacementCli, UpsideDownPlanePostsTurnedOverByStepsOrByAProject) {
   EXPECT_EQ(slurp(work / "out2.nc"), slurp(work / "out.nc"));
 }
 
-TEST(PlacementCli, BadOptionTextIsRefusedWithItsCode) {
+TEST(PlacementCli, APathIntoTheModelNamesTheStockThatPostsIt) {
+  Folder work;
+  write_plane_upside_down(work / "plane.stl");
+  write_raster(work / "part.nc", -1.245);
+  const std::string job = std::string(kJob) + "--model-transform rx=180 ";
+  const CliOutcome refused = run_vcpost(job + "-o out.nc", work.path());
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("does not match the model"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("sit 1.245 mm into it: likely negative stock to leave in the CAM "
+                             "(1.245 mm)? post with --stock=-1.245 (or --stock T1=-1.245)"),
+            std::string::npos)
+      << refused.err;
+  EXPECT_FALSE(fs::exists(work / "out.nc"));
+  for (const char* stock : {"--stock=-1.245", "--stock T1=-1.245"}) {
+    const CliOutcome posted =
+        run_vcpost(job + stock + " -o out.nc --summary-json s.json", work.path());
+    ASSERT_EQ(posted.exit_code, 0) << stock << ": " << posted.err;
+    const auto summary = nlohmann::json::parse(slurp(work / "s.json"));
+    EXPECT_EQ(summary["points"]["gouging"], 0) << stock;
+    EXPECT_GE(summary["points"]["touching"].get<int>(), 1700) << stock;
+    EXPECT_EQ(summary["sections"][0]["stock_mm"]["radial"], -1.245) << stock;
+  }
+}
+
+TEST(PlacementCli, BadOptionTextIsRefusedWithItsReason) {
   Folder work;
   write_plane_upside_down(work / "plane.stl");
   write_raster(work / "part.nc", 0);
@@ -94,6 +119,10 @@ TEST(PlacementCli, BadOptionTextIsRefusedWithItsCode) {
       {"--model-transform rz=ninety", "'rz=ninety': 'ninety' is not a number"},
       {"--model-transform matrix=2,0,0,0,0,2,0,0,0,0,2,0,0,0,0,1", "it scales or shears"},
       {"--model-transform vcproject:missing.vcproject", "cannot read 'missing.vcproject'"},
+      {"--model-transform rx=180 --stock 0.1:abc", "'abc' is not a number"},
+      {"--model-transform rx=180 --stock 0.1 --stock 0.2", "given twice for every tool"},
+      {"--model-transform rx=180 --stock 0.2:0.1", "a ball has one allowance"},
+      {"--model-transform rx=180 --stock=-5", "leaves no tool to touch the model"},
   };
   for (const auto& c : cases) {
     const CliOutcome r = run_vcpost(std::string(kJob) + c.options + " -o out.nc", work.path());

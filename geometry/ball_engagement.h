@@ -1,4 +1,4 @@
-// Closed-form engagement of a ball-end mill (MODELS.md section 2).
+// Closed-form engagement of a ball-end mill (docs/models.md §2).
 #pragma once
 
 #include <optional>

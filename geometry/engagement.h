@@ -1,5 +1,5 @@
 // Working (effective) diameter of a milling tool at one toolpath point
-// (MODELS.md section 2): which edge points cut in this pass, and how far
+// (docs/models.md §2): which edge points cut in this pass, and how far
 // from the tool axis they are.
 #pragma once
 

@@ -4,7 +4,7 @@
 // tool sweeps along F is a prism over its section by that plane, the
 // profile |m| <= rho(z): rho = R0 + sqrt(rc^2 - z^2) on the corner (-rc <
 // z < 0), R on the shank. So a point of the tool's side at height z and
-// lateral position m is engaged (MODELS.md, conditions 1-3) iff N_m m +
+// lateral position m is engaged (docs/models.md, conditions 1-3) iff N_m m +
 // N_z z <= c0, (m - ae e_m, z - ae e_z) is not strictly inside the
 // profile, and the point lies on the front half of its horizontal circle,
 // where F.n >= 0. Each circle of radius rho thus keeps the front arcs over
@@ -338,7 +338,7 @@ class LevelZone {
     return out;
   }
 
-  // The end face at z = -rc, seen edge-on: MODELS.md's "non-negative
+  // The end face at z = -rc, seen edge-on: docs/models.md's "non-negative
   // component along F" counts it as leading. On it both the stock's test
   // and the previous pass's depend only on m: N_m m - N_z rc <= c0, and the
   // previous tool removes |m - ae e_m| < its half-width at this height

@@ -1,5 +1,5 @@
 // The engaged zone of a bull-nose or flat end mill fed parallel to its end
-// face (F_z = 0: Z-level passes, rasters over floors): MODELS.md section
+// face (F_z = 0: Z-level passes, rasters over floors): docs/models.md section
 // 2's zone, whose area and mean working diameter then reduce to one
 // integral along the tool's profile of closed-form terms.
 #pragma once
@@ -43,7 +43,7 @@ struct RadiusExtremes {
 };
 RadiusExtremes level_extremes(const LevelCut& cut);
 
-// MODELS.md's rim points for the cutting points: the rim's (the tool cut
+// docs/models.md's rim points for the cutting points: the rim's (the tool cut
 // by the stock plane) points with the least and the greatest s = S0.P (S0
 // = N x F; where the rim runs along F over the end face, the middle of
 // that chord), and the fibres' front and back rim points at s_min + ae

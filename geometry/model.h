@@ -1,5 +1,5 @@
 // The finished-surface model as the rest of vcpost sees it: one closest-point
-// query, plus what MODELS.md section 1 derives from it for a ball-end mill.
+// query, plus what docs/models.md §1 derives from it for a ball-end mill.
 //
 // Units: mm everywhere. Implementations: geometry/analytic_surfaces.h (exact
 // closed forms, for tests and samples), geometry/occt/ (STEP through
@@ -108,7 +108,7 @@ class SurfaceModel {
   SurfaceModel& operator=(const SurfaceModel&) = default;
 };
 
-// Which point of a ball-end mill the toolpath gives (MODELS.md section 1).
+// Which point of a ball-end mill the toolpath gives (docs/models.md §1).
 enum class ClPoint { tip, center };
 
 // Ball centre C from a CL point: C = CL + R*axis for the tip, CL itself for
@@ -126,7 +126,7 @@ enum class BallStatus {
 
 std::string_view to_string(BallStatus status);
 
-// The MODELS.md section 1 quantities at one toolpath point.
+// The docs/models.md §1 quantities at one toolpath point.
 struct BallContact {
   BallStatus status = BallStatus::missed;
   Eigen::Vector3d center = Eigen::Vector3d::Zero();  // C, mm

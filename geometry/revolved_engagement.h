@@ -15,7 +15,7 @@ Engagement evaluate_revolved_engagement(const Tool& tool, const CutSetup& setup,
 std::optional<double> revolved_mean_diameter(const Tool& tool, const CutSetup& setup);
 
 // The cusp and the transverse roughness a bull-nose or flat end mill
-// leaves between this pass and the previous one (MODELS.md section 3, the
+// leaves between this pass and the previous one (docs/models.md §3, the
 // ball's construction for any revolved tool in 3 axes): seen along the
 // feed the tool is its profile Q, the previous pass the same profile
 // shifted across the feed to where it touches the surface, and the cusp is

@@ -1,4 +1,4 @@
-// Surface-quality predictions of ball-end finishing (MODELS.md section 3):
+// Surface-quality predictions of ball-end finishing (docs/models.md §3):
 // cusp (scallop) heights, the theoretical roughness of the arc profile,
 // feed marks of the teeth and the working-diameter band from runout.
 //
@@ -70,7 +70,7 @@ Roughness arc_profile_roughness(double radius, double spacing);
 Roughness transverse_roughness(double radius, double stepover);
 
 // Longitudinal profile (along the feed): arcs of the ball every feed per
-// tooth fz (MODELS.md: the same arc model with fz in place of ae).
+// tooth fz (docs/models.md: the same arc model with fz in place of ae).
 Roughness longitudinal_roughness(double radius, double feed_per_tooth);
 
 // Transverse profile on a surface inclined by alpha across the feed, passes

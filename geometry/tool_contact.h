@@ -6,7 +6,7 @@
 // centre), a flat end mill rc = 0 (the disc is the end face). The tool's
 // distance to the surface is the core disc's distance minus rc, and the
 // touching point CC is the surface point closest to the disc: on the ball
-// the closest point to the centre (MODELS.md section 1), on the bull-nose
+// the closest point to the centre (docs/models.md §1), on the bull-nose
 // the closest point to the torus' core circle or, over a crest, to the
 // disc inside it, on the flat end mill the rim or the face.
 #pragma once

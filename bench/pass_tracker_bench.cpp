@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <numbers>
 #include <vector>
@@ -82,6 +83,35 @@ std::vector<Sample> wavy_raster(double along, double across, double length, std:
   return out;
 }
 
+// One row of `points` points `along` mm apart on the wavy surface above
+// (along x, at y = 20), run `times` times back and forth without a break
+// but the turn: a repeated finishing pass. `jitter` mm moves each point
+// across the row by a pseudo-random amount in [-jitter, jitter], as the
+// contact points of a ball found again from another start do (about 0.03
+// mm at the default contact tolerance); 0 retraces the row exactly, as the
+// tool positions a bull-nose or flat mill is tracked by.
+std::vector<Sample> retraced_row(double along, int points, int times, double jitter) {
+  constexpr double kx = 2 * std::numbers::pi / 40, ky = 2 * std::numbers::pi / 55;
+  const double y0 = 20;
+  std::vector<Sample> out;
+  std::uint64_t lcg = 99991;
+  for (int k = 0; k < times; ++k) {
+    const double sign = k % 2 == 0 ? 1 : -1;
+    for (int i = 0; i < points; ++i) {
+      const double x = sign > 0 ? along * i : along * (points - 1 - i);
+      lcg = lcg * 6364136223846793005ULL + 1442695040888963407ULL;
+      const double y = y0 + jitter * (static_cast<double>(lcg >> 11) * 0x1p-52 - 1);
+      const double z = 4 * std::sin(kx * x) * std::cos(ky * y);
+      const double zx = 4 * kx * std::cos(kx * x) * std::cos(ky * y);
+      const double zy = -4 * ky * std::sin(kx * x) * std::sin(ky * y);
+      const Vector3d normal = Vector3d(-zx, -zy, 1).normalized();
+      const Vector3d feed = (sign * Vector3d(1, 0, zx)).normalized();
+      out.push_back({Vector3d(x, y, z), feed, i == 0, normal});
+    }
+  }
+  return out;
+}
+
 void run(benchmark::State& state, const std::vector<Sample>& path) {
   auto tracker = std::make_unique<PassTracker>(10.0, 40.0, std::size_t{1} << 20);
   std::size_t i = 0;
@@ -138,5 +168,33 @@ void BM_Spiral(benchmark::State& state) {
   run(state, path);
 }
 BENCHMARK(BM_Spiral)->Iterations(200000);
+
+// Passes a hair apart or on top of each other (issue 42), each against an
+// ordinary raster of the same number of points and spacing along the pass
+// (BM_OrdinaryRaster): a 130-point row retraced 1000 times, its contact
+// points jittered and exact; a raster at ae 0.005 mm.
+void BM_OrdinaryRaster(benchmark::State& state) {
+  static const auto path = wavy_raster(0.5, 0.5, 64.5, 130000);
+  run(state, path);
+}
+BENCHMARK(BM_OrdinaryRaster)->Iterations(130000);
+
+void BM_RetracedRowJittered(benchmark::State& state) {
+  static const auto path = retraced_row(0.5, 130, 1000, 0.03);
+  run(state, path);
+}
+BENCHMARK(BM_RetracedRowJittered)->Iterations(130000);
+
+void BM_RetracedRowExact(benchmark::State& state) {
+  static const auto path = retraced_row(0.5, 130, 1000, 0);
+  run(state, path);
+}
+BENCHMARK(BM_RetracedRowExact)->Iterations(130000);
+
+void BM_HairRaster(benchmark::State& state) {
+  static const auto path = wavy_raster(0.5, 0.005, 64.5, 130000);
+  run(state, path);
+}
+BENCHMARK(BM_HairRaster)->Iterations(130000);
 
 }  // namespace

@@ -13,6 +13,30 @@ constexpr double parallel_cos = 0.70710678118654752;  // cos 45 deg
 // contact points of neighbouring passes often lie within ae of each other
 // on the facets, and was no faster elsewhere.)
 constexpr std::uint64_t run_points = 16;
+// The earlier passes a cell's list is read for, newest first: passes
+// retraced or a hair apart pile hundreds into one cell (a row retraced 1000
+// times, a raster at ae 0.005 mm with a 10 mm tool), and every step read
+// them all. Passes a cell apart or more never fill it; where they do, the
+// nearest pass is among the newest (the previous pass of a raster, the last
+// retraces of a row, the jitter of their contact points apart).
+constexpr std::uint64_t cell_passes = 3;
+
+// Counts the passes of a cell's list as it is walked, newest first (a
+// pass's runs lie together there: passes run one after the other).
+class CellPasses {
+ public:
+  // Whether a run of `pass` lies beyond the newest cell_passes passes.
+  bool full(std::uint64_t pass) {
+    if (pass != last_ || count_ == 0) {
+      last_ = pass;
+      ++count_;
+    }
+    return count_ > cell_passes;
+  }
+
+ private:
+  std::uint64_t last_ = 0, count_ = 0;
+};
 // Candidates nearer than the best by no more than this are ties, mm: a run
 // of a straight pass is skipped once one of its twins gave the same ae.
 constexpr double tie = 1e-10;
@@ -225,6 +249,7 @@ void PassTracker::extend_run(const Entry& e, const std::optional<Eigen::Vector3d
     Run fresh;
     fresh.a = before ? *before : e.point;
     fresh.first = next_;
+    fresh.pass = e.pass;
     if (runs_.size() <= mask_) {
       runs_.push_back(fresh);
     } else {
@@ -409,12 +434,14 @@ void PassTracker::fill_nearby(const Eigen::Vector3d& cc, const Eigen::Vector3d& 
   cells_around(cc + 0.5 * (ahead - behind) * feed, feed, across, 0.5 * (ahead + behind), cell_, lo,
                hi);
   for_each_list(lo, hi, [&](std::uint32_t head) {
+    CellPasses earlier;
     for (std::uint32_t n = head; n != none; n = nodes_[n].next) {
       const std::uint64_t id = run_of(nodes_[n].run);
       if (id >= open) continue;   // still growing: looked at directly
       if (id < run_floor) break;  // overwritten: older ones are too
       Run& r = run(id);
-      if (r.end <= kept) break;  // forgotten: older ones are too
+      if (r.end <= kept) break;                          // forgotten: older ones are too
+      if (id < run_cut_ && earlier.full(r.pass)) break;  // crowded: the newest passes only
       if (r.mark == listing) continue;
       r.mark = listing;
       // measure()'s bounds, for the list's reach.
@@ -658,12 +685,14 @@ void PassTracker::look_at(Search& s, std::uint64_t id, Run& r) {
 
 // The runs of a cell's list that are earlier passes and still kept.
 void PassTracker::scan_cell(Search& s, std::uint32_t head) {
+  CellPasses earlier;
   for (std::uint32_t n = head; n != none; n = nodes_[n].next) {
     const std::uint64_t id = run_of(nodes_[n].run);
     if (id >= run_cut_) continue;  // all of it is this pass, too close behind
     if (id < s.run_floor) break;   // overwritten: older ones are too
     Run& r = run(id);
-    if (r.end <= s.kept) break;  // forgotten: older ones are too
+    if (r.end <= s.kept) break;       // forgotten: older ones are too
+    if (earlier.full(r.pass)) break;  // crowded: the newest passes only
     look_at(s, id, r);
   }
 }

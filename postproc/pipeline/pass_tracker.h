@@ -35,6 +35,9 @@ struct NeighbourPass {
 // the feed through CC, and its points within 0.1 search radius of that plane
 // along the feed whose own segment does not cross it (pass ends); the
 // nearest of them across the feed wins (ties within 1e-10 mm: any one).
+// Earlier passes are those of the newest three through each grid cell
+// (retraced or very close passes crowd a cell; the nearest is among the
+// newest), so a step costs about the same whatever the passes' spacing.
 //
 // Cost: the grid indexes short runs of consecutive points (at most 16, and
 // a sixteenth of the search radius long), each with a bounding capsule and
@@ -83,6 +86,7 @@ class PassTracker {
     std::uint64_t end = 0;                        // one past its last entry
     std::uint64_t mark = 0;   // the last search (or listing of nearby runs) that looked at it
     std::uint64_t first = 0;  // sequence of its first entry
+    std::uint64_t pass = 0;   // the pass it belongs to
     // Every point of its segments is a + t (b - a) + o, 0 <= t <= 1, with
     // the offset o in the box offset_low..offset_high (and |o| <= radius);
     // floats rounded outwards (runs are many: memory and cache).

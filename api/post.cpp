@@ -75,7 +75,7 @@ std::optional<VcStatistics> statistics(const std::optional<post::VcStatistics>& 
 
 PostSummary summary_from(const post::PostSummary& s) {
   PostSummary out;
-  out.kind = s.kind == post::ProgramKind::gcode ? "gcode" : "cldata";
+  out.kind = std::string(post::to_string(s.kind));
   out.blocks = s.blocks;
   out.motion_events = s.motion_events;
   out.points = s.samples;

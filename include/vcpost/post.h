@@ -75,7 +75,7 @@ struct VcStatistics {
 };
 
 struct PostSummary {
-  std::string kind;  // "gcode" or "cldata"
+  std::string kind;  // "gcode", "cldata" or "heidenhain"
   std::uint64_t blocks = 0, motion_events = 0, points = 0;
   std::uint64_t touching = 0, lifted = 0, gouging = 0, missed = 0;  // contact of the points
   std::uint64_t ae_measured = 0, ae_given = 0, ae_first_pass = 0;

@@ -13,6 +13,7 @@
 #include "postproc/cli/number_options.h"
 #include "postproc/cli/program_text.h"
 #include "postproc/gcode/interpreter.h"
+#include "postproc/heidenhain/interpreter.h"
 #include "postproc/post/post_job.h"
 #include "postproc/program/timing.h"
 #include "postproc/program/transcript.h"
@@ -68,6 +69,58 @@ void print_cl_moves(std::string_view text, const std::string& name,
   for (const auto& w : reader.warnings()) std::cerr << cldata::format(w, name) << '\n';
 }
 
+// Heidenhain Klartext: the same events from the Klartext reader.
+template <class Options>
+void print_klartext_moves(const ProgramText& text, const std::string& name,
+                          const program::TranscriptOptions& print, const Options& options) {
+  heidenhain::Interpreter interpreter(text.view());
+  std::vector<program::Event> events;
+  std::string out;
+  std::uint64_t event_count = 0;
+  auto show_warnings = [&] {
+    for (const auto& w : interpreter.warnings())
+      std::cerr << printable(heidenhain::format(w, name)) << '\n';
+    if (interpreter.warning_count() > interpreter.warnings().size())
+      std::cerr << name << ": " << interpreter.warning_count() - interpreter.warnings().size()
+                << " more warnings not shown\n";
+  };
+  program::PathClock clock(program::TimingSettings{options.rapid_rate, 0.0});
+  try {
+    while (interpreter.next(events)) {
+      for (const auto& e : events) {
+        if (std::holds_alternative<program::CannedCycle>(e)) continue;  // its moves follow
+        ++event_count;
+        if (options.time) clock.advance(e);
+        if (!options.count) program::append_transcript(out, e, print);
+      }
+      if (out.size() > (1u << 16)) {
+        write_standard_output(out);
+        out.clear();
+      }
+      events.clear();
+    }
+  } catch (const program::TimingError& e) {
+    write_partial_transcript(out);
+    show_warnings();
+    throw CommandError(e.code(), name + ":" + std::to_string(e.source().line) + ":" +
+                                     std::to_string(e.source().column) + ": error: " + e.what());
+  } catch (const heidenhain::KlartextError& e) {
+    write_partial_transcript(out);
+    show_warnings();
+    throw CommandError(e.vcpost::Error::code(), heidenhain::format(e.diagnostic(), name));
+  }
+  write_standard_output(out);
+  if (options.count)
+    std::printf("lines %llu events %llu\n",
+                static_cast<unsigned long long>(interpreter.lines_read()),
+                static_cast<unsigned long long>(event_count));
+  if (options.time)
+    std::printf("# program time %.4f s (rapids at %.0f mm/min)\n", clock.elapsed(),
+                options.rapid_rate);
+  finish_standard_output();
+  show_warnings();
+}
+
 void add_moves_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "moves", "Print the interpreted motion events in rs274's canonical-transcript vocabulary");
@@ -83,7 +136,8 @@ void add_moves_command(CLI::App& app) {
   cmd->add_option("PROGRAM", options->program, "G-code or APT CL program ('-' for stdin)")
       ->required();
   cmd->add_option("--dialect", options->dialect,
-                  "rs274ngc | fanuc (iso) | mazak (eia) | sinumerik (840d)")
+                  "rs274ngc | fanuc (iso) | mazak (eia) | sinumerik (840d) | heidenhain "
+                  "(klartext, tnc; Klartext is also recognised by its BEGIN PGM)")
       ->capture_default_str();
   cmd->add_flag("--source", options->source, "append file:line:col to every line");
   cmd->add_flag("--count", options->count,
@@ -101,8 +155,13 @@ void add_moves_command(CLI::App& app) {
     ProgramText text(options->program);
     const std::string name = options->program == "-" ? "<stdin>" : options->program;
     const program::TranscriptOptions print{options->source, name};
-    if (post::detect_program_kind(text.view()) == post::ProgramKind::cldata) {
+    const post::ProgramKind kind = post::program_kind(text.view(), *dialect);
+    if (kind == post::ProgramKind::cldata) {
       print_cl_moves(text.view(), name, print, *options);
+      return;
+    }
+    if (kind == post::ProgramKind::heidenhain) {
+      print_klartext_moves(text, name, print, *options);
       return;
     }
     gcode::Interpreter interpreter(text.view(), *dialect);

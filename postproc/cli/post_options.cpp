@@ -45,7 +45,7 @@ namespace {
 report::ReportInputs summary_inputs(const PostArguments& args, const JobRun& run) {
   report::ReportInputs in;
   in.program = args.program == "-" ? "<stdin>" : args.program;
-  in.program_kind = run.summary.kind == post::ProgramKind::gcode ? "gcode" : "cldata";
+  in.program_kind = std::string(post::to_string(run.summary.kind));
   in.model = args.model;
   in.model_kind = run.model.kind;
   in.model_description = run.model.description;
@@ -324,7 +324,7 @@ report::ReportInputs report_inputs(const PostArguments& args, const post::PostSe
   if (!(vc > 0)) vc = choices.vc_by_tool.begin()->second;
   report::ReportInputs in;
   in.program = args.program == "-" ? "<stdin>" : args.program;
-  in.program_kind = kind == post::ProgramKind::gcode ? "gcode" : "cldata";
+  in.program_kind = std::string(post::to_string(kind));
   in.model = args.model;
   in.model_kind = model.kind;
   in.model_description = model.description;

@@ -36,12 +36,23 @@ Dialect sinumerik_dialect() {
   return d;
 }
 
+Dialect heidenhain_dialect() {
+  Dialect d;
+  d.kind = DialectKind::heidenhain;
+  d.numbered_parameters = false;
+  d.named_parameters = false;
+  d.o_word_control = false;
+  d.unknown_m_is_error = false;
+  return d;
+}
+
 std::optional<Dialect> dialect_from_name(std::string_view name) {
   const std::string lower = to_lower(name);
   if (lower == "rs274ngc" || lower == "linuxcnc" || lower == "ngc") return rs274ngc_dialect();
   if (lower == "fanuc" || lower == "iso") return fanuc_dialect();
   if (lower == "mazak" || lower == "eia") return mazak_dialect();
   if (lower == "sinumerik" || lower == "840d" || lower == "siemens") return sinumerik_dialect();
+  if (lower == "heidenhain" || lower == "klartext" || lower == "tnc") return heidenhain_dialect();
   return std::nullopt;
 }
 

@@ -7,7 +7,9 @@
 
 namespace vcpost::gcode {
 
-enum class DialectKind { rs274ngc, fanuc, mazak, sinumerik };
+// heidenhain: Klartext, read by its own reader (postproc/heidenhain), not
+// by the G-code interpreter; the kind names it where dialects are chosen.
+enum class DialectKind { rs274ngc, fanuc, mazak, sinumerik, heidenhain };
 
 // What a number without a decimal point means on a length word
 // (X Y Z I J K R): "X1000" = 1000 mm, or 1000 least increments (1.000 mm
@@ -41,9 +43,12 @@ Dialect mazak_dialect();  // Mazak EIA: Fanuc-like, macros, G05 P2, G61.1
 // ';' comments, MSG("..."), CR= arcs, R parameters and X=<expression>,
 // G64/G641/G642, T/D, MCALL CYCLE81-CYCLE89 drilling cycles, M30.
 Dialect sinumerik_dialect();
+// Heidenhain TNC conversational (Klartext): the kind only (see DialectKind).
+Dialect heidenhain_dialect();
 
 // "rs274ngc" (also "linuxcnc", "ngc"), "fanuc" (also "iso"), "mazak"
-// (also "eia"), "sinumerik" (also "840d", "siemens"); nullopt for another name.
+// (also "eia"), "sinumerik" (also "840d", "siemens"), "heidenhain" (also
+// "klartext", "tnc"); nullopt for another name.
 std::optional<Dialect> dialect_from_name(std::string_view name);
 
 }  // namespace vcpost::gcode

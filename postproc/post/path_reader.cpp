@@ -8,6 +8,7 @@
 
 #include "postproc/cldata/cl_reader.h"
 #include "postproc/gcode/interpreter.h"
+#include "postproc/heidenhain/interpreter.h"
 #include "postproc/pipeline/path_sampler.h"
 #include "postproc/program/arc.h"
 #include "postproc/program/timing.h"
@@ -26,6 +27,8 @@ class EventSource {
       : buffer_(text), file_name_(file_name) {
     if (kind == ProgramKind::gcode) {
       gcode_.emplace(text, dialect);
+    } else if (kind == ProgramKind::heidenhain) {
+      klartext_.emplace(text);
     } else {
       stream_.emplace(&buffer_);
       cl_.emplace(*stream_, file_name);
@@ -41,6 +44,16 @@ class EventSource {
       for (const gcode::Comment& comment : block.comments) {
         tools.on_comment(comment.text, file_name_ + ":" + std::to_string(block.line),
                          gcode_->state().inches);
+      }
+      return true;
+    }
+    if (klartext_) {
+      if (!klartext_->next(out)) return false;
+      const heidenhain::Block& block = klartext_->block();
+      repeat_from_ = klartext_->repeat_from();
+      for (const heidenhain::Comment& comment : block.comments) {
+        tools.on_comment(comment.text, file_name_ + ":" + std::to_string(block.line),
+                         klartext_->inches());
       }
       return true;
     }
@@ -80,6 +93,7 @@ class EventSource {
   ViewBuffer buffer_;
   std::optional<std::istream> stream_;
   std::optional<gcode::Interpreter> gcode_;
+  std::optional<heidenhain::Interpreter> klartext_;
   std::optional<cldata::ClReader> cl_;
   std::string file_name_;
   std::size_t cutters_seen_ = 0;
@@ -142,7 +156,7 @@ class BlockCounter {
   explicit BlockCounter(ProgramKind kind) : kind_(kind) {}
   bool starts_block(const program::SourceRef& source, bool motion, bool tool_change) const {
     if (!started_) return true;
-    if (kind_ == ProgramKind::gcode) return source.offset != last_offset_;
+    if (kind_ != ProgramKind::cldata) return source.offset != last_offset_;
     return motion || (tool_change && moved_);
   }
   // The block of the event, and whether it starts a new one.
@@ -429,7 +443,7 @@ bool PathReader::read(Chunk& chunk, std::size_t samples) {
     }
     if (s.keep_events) chunk.events.emplace_back(std::move(event), block_index);
   }
-  chunk.read_bytes = s.kind == ProgramKind::gcode ? s.last_offset : s.source.consumed();
+  chunk.read_bytes = s.kind != ProgramKind::cldata ? s.last_offset : s.source.consumed();
   chunk.repeat_from = s.source.repeat_from();
   chunk.read_fraction =
       s.text.empty() ? 1.0

@@ -311,6 +311,38 @@ verify::Options cl_output_verify_options(const machines::MachineProfile& profile
   return options;
 }
 
+std::string_view to_string(ProgramKind kind) {
+  switch (kind) {
+    case ProgramKind::cldata:
+      return "cldata";
+    case ProgramKind::heidenhain:
+      return "heidenhain";
+    case ProgramKind::gcode:
+      break;
+  }
+  return "gcode";
+}
+
+namespace {
+
+// `[n] BEGIN PGM <name> MM|INCH`: the first block of every Klartext program.
+bool is_begin_pgm(std::string_view line) {
+  std::size_t i = 0;
+  while (i < line.size() && std::isdigit(static_cast<unsigned char>(line[i]))) ++i;
+  while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+  if (line.substr(i, 10) != "BEGIN PGM ") return false;
+  const std::size_t units = line.find_last_of(' ');
+  const std::string_view last = line.substr(units + 1);
+  return last == "MM" || last == "INCH";
+}
+
+}  // namespace
+
+ProgramKind program_kind(std::string_view text, const gcode::Dialect& dialect) {
+  return dialect.kind == gcode::DialectKind::heidenhain ? ProgramKind::heidenhain
+                                                        : detect_program_kind(text);
+}
+
 ProgramKind detect_program_kind(std::string_view text) {
   // The first statement that is not blank or a comment decides. A line is
   // looked at no further than just past the readers' line limit: a longer
@@ -332,6 +364,7 @@ ProgramKind detect_program_kind(std::string_view text) {
       if (cut) return line.starts_with("$$") ? ProgramKind::cldata : ProgramKind::gcode;
       continue;
     }
+    if (is_begin_pgm(line)) return ProgramKind::heidenhain;
     std::string word;
     for (const char ch : line) {
       if (!std::isalpha(static_cast<unsigned char>(ch)) && ch != '-' && ch != '_') break;
@@ -374,10 +407,11 @@ std::optional<ToolSection> first_postable_section(std::string_view text,
                                                   const std::string& file_name,
                                                   const machines::MachineProfile& profile,
                                                   const PostSettings& settings) {
-  const ProgramKind kind = detect_program_kind(text);
+  const gcode::Dialect dialect = settings.dialect.value_or(dialect_of(profile));
+  const ProgramKind kind = program_kind(text, dialect);
   const tools::ToolChoices choices = tools_of(settings);
-  PathReader reader(text, file_name, kind, settings.dialect.value_or(dialect_of(profile)), profile,
-                    settings.sample_spacing_mm, false, choices, settings.point.ap);
+  PathReader reader(text, file_name, kind, dialect, profile, settings.sample_spacing_mm, false,
+                    choices, settings.point.ap);
   Chunk chunk;
   while (reader.read(chunk, chunk_samples)) {
     for (const ToolSection& section : chunk.sections) {
@@ -486,19 +520,30 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
                          const std::function<void(std::string_view)>& sink,
                          const Progress& progress, const PointSink& points,
                          const std::function<void(std::uint64_t)>& consumed) {
-  const ProgramKind kind = detect_program_kind(text);
   const gcode::Dialect dialect = settings.dialect.value_or(dialect_of(profile));
+  const ProgramKind kind = program_kind(text, dialect);
   PostSummary summary;
   summary.kind = kind;
+  // Klartext is read (dry runs, reports) but not yet written: a program
+  // half right is worse than none.
+  if (kind == ProgramKind::heidenhain && sink) {
+    throw PostError("E3327", file_name +
+                                 ": error[E3327]: posting Klartext (.h) programs is not available "
+                                 "yet; `vcpost report` runs them dry");
+  }
 
   const tools::ToolChoices choices = tools_of(settings);
   PathReader reader(text, file_name, kind, dialect, profile, settings.sample_spacing_mm,
                     kind == ProgramKind::cldata, choices, settings.point.ap);
   // The writer releases G-code text behind it; CL text is done with once read.
   const Finisher* decides = nullptr;  // set below: the writer asks it which sections it keeps
-  ProgramWriter writer(text, kind, profile, settings.adjust_feed, sink,
-                       kind == ProgramKind::gcode ? consumed : std::function<void(std::uint64_t)>{},
-                       [&decides](std::uint32_t section) { return decides->keeps(section); });
+  // Klartext reaches the writer only in dry runs (above): as text it is
+  // written through, as G-code is.
+  const ProgramKind written = kind == ProgramKind::cldata ? kind : ProgramKind::gcode;
+  ProgramWriter writer(
+      text, written, profile, settings.adjust_feed, sink,
+      kind != ProgramKind::cldata ? consumed : std::function<void(std::uint64_t)>{},
+      [&decides](std::uint32_t section) { return decides->keeps(section); });
   Finisher finisher(profile, settings, writer, points, summary);
   decides = &finisher;
   SectionEvaluators evaluators(model, settings.point, static_cast<bool>(points));

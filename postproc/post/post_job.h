@@ -23,7 +23,8 @@
 
 namespace vcpost::post {
 
-enum class ProgramKind { gcode, cldata };
+enum class ProgramKind { gcode, cldata, heidenhain };
+std::string_view to_string(ProgramKind kind);  // "gcode", "cldata", "heidenhain"
 
 // The G-code dialect a machine profile reads.
 gcode::Dialect dialect_of(const machines::MachineProfile& profile);
@@ -38,9 +39,14 @@ gcode::Dialect output_dialect_of(const machines::MachineProfile& profile);
 // tool change form. The tolerance stays the default.
 verify::Options cl_output_verify_options(const machines::MachineProfile& profile);
 
-// G-code or APT CL data, recognised by content: CL records are `WORD/...`
-// statements (GOTO/, FEDRAT/, CUTTER/ ...) or bare PARTNO/FINI lines.
+// G-code, APT CL data or Klartext, recognised by content: CL records are
+// `WORD/...` statements (GOTO/, FEDRAT/, CUTTER/ ...) or bare PARTNO/FINI
+// lines; a Klartext program's first block is `[n] BEGIN PGM <name> MM|INCH`.
 ProgramKind detect_program_kind(std::string_view text);
+// The kind for a dialect the user named: --dialect heidenhain reads
+// Klartext whatever the content shows (its reader says what is wrong);
+// every other dialect leaves the choice to the content.
+ProgramKind program_kind(std::string_view text, const gcode::Dialect& dialect);
 
 struct PostSettings {
   // Every posted section's settings but its tool and vc, which come from

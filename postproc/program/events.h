@@ -45,6 +45,10 @@ struct StraightTraverse {
   Eigen::Vector3d start = Eigen::Vector3d::Zero();
   Eigen::Vector3d end = Eigen::Vector3d::Zero();
   SourceRef source;
+  // A move programmed in machine coordinates whose datum the program does
+  // not give (Klartext M91/M92): `end` stands for a retract to a safe
+  // height, not for where the machine goes (docs/heidenhain.md).
+  bool machine_frame = false;
 };
 
 // Cutting move along a straight line at the current feed.
@@ -157,19 +161,20 @@ struct Message {
   SourceRef source;
 };
 
-// The canned cycle (G73, G81-G89) that makes the hole whose events follow
+// The canned cycle (G73, G81-G89; Klartext CYCL DEF 200-208 by their own
+// number) that makes the hole whose events follow
 // (CL CYCLE/...). The reader still gives every move, dwell and spindle
 // change of the hole after it: a writer for a control with canned cycles
 // writes the cycle instead of them; every other stage skips this event.
 struct CannedCycle {
-  int code = 81;             // 73, 81, 82, 83, 84, 85, 86, 89
+  int code = 81;             // 73, 81, 82, 83, 84, 85, 86, 89; Klartext 200-208
   double x = 0.0, y = 0.0;   // the hole, mm
   double top_z = 0.0;        // where the hole's moves start and end (return level), mm
   double r_z = 0.0;          // R plane: feeding starts here, r_z <= top_z, mm
   double bottom_z = 0.0;     // mm
   double peck = 0.0;         // Q (G73, G83), mm > 0
   double dwell_s = 0.0;      // P (G82, G84, G86, G89), s
-  std::uint32_t events = 0;  // events of the hole that follow: motion, dwell, spindle
+  std::uint32_t events = 0;  // events of the hole that follow: motion, dwell, spindle, feed
   std::uint32_t moves = 0;   // of which motion
   SourceRef source;
 };

@@ -182,6 +182,50 @@ std::optional<CommentTool> carbide(std::string_view text) {
   return out;
 }
 
+// hyperMILL's line before a TOOL CALL: "- [TOOL: ]T<id> | <name> / DM=<d> CR=<r> [TL=<l>]".
+// Its tool list header ("T<id> | ..." without the dash) names no TOOL CALL
+// and is not read: the line before each call is.
+std::optional<CommentTool> hypermill(std::string_view text) {
+  std::string_view t = trim(text);
+  if (t.empty() || t.front() != '-') return std::nullopt;
+  t = trim(t.substr(1));
+  if (t.starts_with("TOOL:")) t = trim(t.substr(5));
+  const std::size_t bar = t.find('|');
+  if (t.size() < 2 || t[0] != 'T' || !std::isdigit(static_cast<unsigned char>(t[1])) ||
+      bar == std::string_view::npos)
+    return std::nullopt;
+  const std::size_t slash = t.rfind(" / ");
+  if (slash == std::string_view::npos || slash < bar)
+    return note(CommentFormat::hypermill, "a hyperMILL tool line without ' / DM='");
+  const std::string name(trim(t.substr(bar + 1, slash - bar - 1)));
+  const std::string_view sizes = t.substr(slash + 3);
+  const auto dm = field(sizes, "DM=");
+  const auto cr = field(sizes, "CR=");
+  const auto diameter = dm ? number(*dm) : std::nullopt;
+  const auto corner = cr ? number(*cr) : std::nullopt;
+  if (!diameter || *diameter <= 0 || !corner || *corner < 0)
+    return note(CommentFormat::hypermill, name + ": DM= and CR= must be sizes");
+  ToolShape shape = ToolShape::bull_nose;
+  const auto named = shape_from_type_name(name);
+  if (named && (*named == ToolShape::drill || *named == ToolShape::other)) {
+    shape = *named;
+  } else if (std::abs(*corner - *diameter / 2) <= 1e-3 * std::max(1.0, *diameter) ||
+             named == ToolShape::ball) {
+    if (std::abs(*corner - *diameter / 2) > 1e-3 * std::max(1.0, *diameter) && *corner > 0)
+      return note(CommentFormat::hypermill, name + ": a ball whose CR is not DM/2");
+    shape = ToolShape::ball;
+  } else if (*corner == 0) {
+    shape = ToolShape::flat;
+  } else if (*corner > *diameter / 2) {
+    return note(CommentFormat::hypermill, name + ": CR above DM/2");
+  }
+  CommentTool out;
+  out.format = CommentFormat::hypermill;
+  out.entry = entry_of(std::nullopt, shape, *diameter,
+                       shape == ToolShape::bull_nose ? corner : std::nullopt, name);
+  return out;
+}
+
 }  // namespace
 
 std::string_view to_string(CommentFormat format) {
@@ -192,6 +236,8 @@ std::string_view to_string(CommentFormat format) {
       return "Mastercam";
     case CommentFormat::carbide:
       return "Carbide Create";
+    case CommentFormat::hypermill:
+      return "hyperMILL";
     case CommentFormat::pycam:
       break;
   }
@@ -223,6 +269,7 @@ std::optional<ToolShape> shape_from_type_name(std::string_view name) {
 std::optional<CommentTool> read_tool_comment(std::string_view text) {
   if (auto found = fusion(text)) return found;
   if (auto found = mastercam(text)) return found;
+  if (auto found = hypermill(text)) return found;
   return carbide(text);
 }
 

@@ -8,6 +8,11 @@
 //   Carbide Create                   (TOOL/MILL,3.17, 0.00, 0.00, 0.00): D, corner
 //                                    radius, length, taper half-angle (no number)
 //   PyCAM                            a block of ';' lines, read by pycam_settings.h
+//   hyperMILL (Heidenhain Klartext)  * - T626960718 | JJ-T4R0.5-N-ES_H6ZM / DM=4.01 CR=0.5 TL=145
+//                                    (the line before each TOOL CALL; also "- TOOL: T...";
+//                                    the T is hyperMILL's tool id, not the TOOL CALL's:
+//                                    no number. CR=0 flat unless the name says ball,
+//                                    CR=DM/2 ball, else bull-nose)
 // A comment that looks like one of these but cannot be read (no diameter,
 // an unknown tool type, a ball whose CR is not D/2) gives a note instead of
 // an entry: the tool stays unknown, it is never guessed into a ball.
@@ -23,7 +28,7 @@
 
 namespace vcpost::tools {
 
-enum class CommentFormat { fusion, mastercam, carbide, pycam };
+enum class CommentFormat { fusion, mastercam, carbide, pycam, hypermill };
 std::string_view to_string(CommentFormat format);
 
 struct CommentTool {

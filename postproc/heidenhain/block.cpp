@@ -1,0 +1,486 @@
+// The block parser: a block's text -> its kind, keyword, words, comments
+// and the statements with a syntax of their own (FN, LBL, CYCL DEF, BEGIN
+// PGM ...). Built on the lexer; evaluates nothing.
+#include "postproc/heidenhain/block.h"
+
+#include <algorithm>
+#include <string>
+
+#include "postproc/heidenhain/lexer.h"
+
+namespace vcpost::heidenhain {
+
+void Block::clear() {
+  number.reset();
+  number_span.reset();
+  skippable = false;
+  kind = BlockKind::empty;
+  keyword_begin = 0;
+  keyword = {};
+  words.clear();
+  comments.clear();
+  program_name = units = tool_name = sub_keyword = {};
+  label.reset();
+  cycle_number.reset();
+  cycle_parameters.clear();
+  fn = FnStatement{};
+  s_span.reset();
+}
+
+const Word* Block::find(Name key) const {
+  for (const Word& w : words) {
+    if (w.key == key) return &w;
+  }
+  return nullptr;
+}
+
+std::pair<std::uint32_t, std::uint32_t> Block::position(std::uint32_t at) const {
+  at = std::min<std::uint32_t>(at, static_cast<std::uint32_t>(text.size()));
+  std::uint32_t line_number = line;
+  std::uint32_t line_start = 0;
+  for (std::uint32_t k = 0; k < at; ++k) {
+    if (text[k] == '\n') {
+      ++line_number;
+      line_start = k + 1;
+    }
+  }
+  return {line_number, at - line_start + 1};
+}
+
+namespace {
+
+using syntax::is_blank;
+using syntax::is_digit;
+using syntax::is_upper;
+
+class BlockParser : public syntax::Lexer {
+ public:
+  explicit BlockParser(Block& b) : Lexer(b), b_(b) {}
+
+  void parse() {
+    skip_line_blanks();
+    if (peek() == '/') {
+      b_.skippable = true;
+      seek(pos() + 1);
+    }
+    if (is_digit(peek())) read_block_number();
+    skip_line_blanks();
+    if (peek() == '/') {  // "5 /L ...": the skip mark after the number
+      b_.skippable = true;
+      seek(pos() + 1);
+      skip_line_blanks();
+    }
+    if (at_end()) return;
+    if (peek() == ';' || peek() == '*') {
+      b_.kind = BlockKind::comment;
+      read_comment();
+      return;
+    }
+    b_.keyword_begin = static_cast<std::uint32_t>(pos());
+    const std::string_view key = read_letters();
+    if (key.empty()) {
+      check_word_byte(pos());
+      fail(Code::unknown_block, pos(), std::string("a block starts with '") + peek() + "'");
+    }
+    keyword(key);
+  }
+
+ private:
+  Block& b_;
+
+  void skip_line_blanks() {
+    while (peek() == ' ' || peek() == '\t') seek(pos() + 1);
+  }
+
+  void read_block_number() {
+    const std::size_t first = pos();
+    double number = 0;
+    while (is_digit(peek())) seek(pos() + 1);
+    const std::size_t last = pos();
+    if (last - first > 9) fail(Code::bad_number, first, "block number too long");
+    for (std::size_t k = first; k < last; ++k) number = number * 10 + (text()[k] - '0');
+    // A number runs into a keyword only where the program has none ("5L"
+    // is no block): digits must be followed by a blank, '/', ';' or the end.
+    if (!at_end() && !is_blank(peek()) && peek() != ';' && peek() != '/') {
+      seek(first);
+      return;
+    }
+    b_.number = static_cast<std::uint32_t>(number);
+    b_.number_span = ByteSpan{b_.offset + first, b_.offset + last};
+  }
+
+  void read_comment() {
+    const std::size_t at = pos();
+    seek(at + 1);
+    b_.comments.push_back({rest_of_line(), static_cast<std::uint32_t>(at + 1)});
+  }
+
+  // The second word of a two-word keyword ("TOOL CALL"): true when it is `want`.
+  bool next_is(std::string_view want) {
+    const std::size_t back = pos();
+    skip_blanks();
+    if (read_letters() == want) return true;
+    seek(back);
+    return false;
+  }
+
+  void set_keyword(BlockKind kind) {
+    b_.kind = kind;
+    b_.keyword = text().substr(b_.keyword_begin, pos() - b_.keyword_begin);
+  }
+
+  void keyword(std::string_view key) {
+    switch (name(key.substr(0, std::min<std::size_t>(key.size(), 8)))) {
+      case name("L"):
+        set_keyword(BlockKind::line);
+        return words();
+      case name("LN"):
+        set_keyword(BlockKind::line_normal);
+        return words();
+      case name("LP"):
+        set_keyword(BlockKind::line_polar);
+        return words();
+      case name("C"):
+        set_keyword(BlockKind::circle);
+        return words();
+      case name("CC"):
+        set_keyword(BlockKind::centre);
+        return words();
+      case name("CR"):
+        set_keyword(BlockKind::circle_radius);
+        return words();
+      case name("CT"):
+        set_keyword(BlockKind::circle_tangent);
+        return words();
+      case name("CP"):
+        set_keyword(BlockKind::circle_polar);
+        return words();
+      case name("RND"):
+        set_keyword(BlockKind::rounding);
+        return words();
+      case name("CHF"): {
+        // CHF <length>: the value stands without a letter.
+        set_keyword(BlockKind::chamfer);
+        skip_blanks();
+        Word w;
+        w.key = name("CHF");
+        w.begin = static_cast<std::uint32_t>(pos());
+        w.has_value = read_value(w.value, w.sign);
+        w.end = static_cast<std::uint32_t>(pos());
+        if (w.has_value) b_.words.push_back(w);
+        return words();
+      }
+      case name("M"):
+        seek(b_.keyword_begin);
+        set_keyword(BlockKind::misc);
+        return words();
+      case name("STOP"):
+        set_keyword(BlockKind::misc);
+        return words();
+      case name("BEGIN"):
+      case name("END"):
+        if (next_is("PGM")) {
+          set_keyword(key == "BEGIN" ? BlockKind::begin_pgm : BlockKind::end_pgm);
+          return program_header();
+        }
+        break;
+      case name("BLK"):
+        if (next_is("FORM")) {
+          set_keyword(BlockKind::blk_form);
+          skip_blanks();
+          double part = 0;
+          if (read_unsigned(part)) {
+            b_.cycle_number = part;
+          } else {
+            b_.sub_keyword = read_letters();  // CYLINDER, ROTATION ...
+          }
+          return words();
+        }
+        break;
+      case name("TOOL"):
+        if (next_is("CALL")) {
+          set_keyword(BlockKind::tool_call);
+          return tool();
+        }
+        if (next_is("DEF")) {
+          set_keyword(BlockKind::tool_def);
+          return tool();
+        }
+        break;
+      case name("FN"):
+        set_keyword(BlockKind::fn);
+        return fn();
+      case name("LBL"):
+        set_keyword(BlockKind::label);
+        skip_blanks();
+        b_.label = label();
+        return words();
+      case name("CALL"):
+        if (next_is("LBL")) {
+          set_keyword(BlockKind::call_label);
+          skip_blanks();
+          b_.label = label();
+          return words();
+        }
+        break;
+      case name("CYCL"):
+        if (next_is("DEF")) {
+          set_keyword(BlockKind::cycle_def);
+          return cycle_def();
+        }
+        if (next_is("CALL")) {
+          set_keyword(BlockKind::cycle_call);
+          if (next_is("POS")) b_.sub_keyword = "POS";
+          return words();
+        }
+        break;
+      case name("PLANE"):
+        set_keyword(BlockKind::plane);
+        skip_blanks();
+        b_.sub_keyword = read_letters();
+        return words();
+      case name("FUNCTION"):
+        set_keyword(BlockKind::function);
+        return rest_as_sub_keyword();
+      default:
+        break;
+    }
+    // Another Klartext statement (APPR, FL, SPL, SEL PGM, CALL PGM, Q
+    // formulas ...) or no Klartext at all: the interpreter says which.
+    set_keyword(BlockKind::other);
+    rest_as_sub_keyword();
+  }
+
+  // The rest of the block up to a comment, trimmed, as sub_keyword.
+  void rest_as_sub_keyword() {
+    skip_blanks();
+    const std::size_t first = pos();
+    while (!at_end() && peek() != ';') seek(pos() + 1);
+    std::size_t last = pos();
+    while (last > first && is_blank(text()[last - 1])) --last;
+    b_.sub_keyword = text().substr(first, last - first);
+    if (peek() == ';') read_comment();
+  }
+
+  void program_header() {
+    skip_blanks();
+    const std::size_t first = pos();
+    while (!at_end() && !is_blank(peek()) && peek() != ';') {
+      check_word_byte(pos());
+      seek(pos() + 1);
+    }
+    b_.program_name = text().substr(first, pos() - first);
+    skip_blanks();
+    b_.units = read_letters();
+    skip_blanks();
+    if (peek() == ';') read_comment();
+  }
+
+  void tool() {
+    skip_blanks();
+    if (peek() == '"') {
+      b_.tool_name = read_quoted();
+    } else if (is_digit(peek()) || peek() == 'Q') {
+      Word w;
+      w.key = name("T");
+      w.begin = static_cast<std::uint32_t>(pos());
+      w.has_value = read_value(w.value, w.sign);
+      w.end = static_cast<std::uint32_t>(pos());
+      b_.words.push_back(w);
+    }
+    words();
+    if (const Word* s = b_.find(name("S")))
+      b_.s_span = ByteSpan{b_.offset + s->begin, b_.offset + s->end};
+  }
+
+  Label label() {
+    Label l;
+    l.begin = static_cast<std::uint32_t>(pos());
+    if (peek() == '"') {
+      l.name = read_quoted();
+      return l;
+    }
+    double number = 0;
+    if (!read_unsigned(number) || number != static_cast<double>(static_cast<long>(number)))
+      fail(Code::bad_number, pos(), "a label is a number or a \"name\"");
+    l.number = static_cast<long>(number);
+    return l;
+  }
+
+  void expect(char c, std::string_view what) {
+    skip_blanks();
+    if (peek() != c) fail(Code::missing_word, pos(), std::string("expected ") + std::string(what));
+    seek(pos() + 1);
+    skip_blanks();
+  }
+
+  std::uint32_t value_into(std::optional<Value>& out, std::string_view what) {
+    skip_blanks();
+    const auto at = static_cast<std::uint32_t>(pos());
+    Value v;
+    char sign = 0;
+    if (!read_value(v, sign))
+      fail(Code::missing_word, pos(),
+           "expected " + std::string(what) + " (a number or Q parameter)");
+    out = v;
+    return at;
+  }
+
+  // FN n: Q.. = a [op b] | FN 9-12: IF a op b GOTO LBL target.
+  void fn() {
+    skip_blanks();
+    double number = 0;
+    if (!read_unsigned(number)) fail(Code::missing_word, pos(), "FN needs its number (FN 0: ...)");
+    FnStatement& f = b_.fn;
+    f.number = static_cast<int>(number);
+    expect(':', "':' after FN " + std::to_string(f.number));
+    if (f.number >= 9 && f.number <= 12) {
+      if (read_letters() != "IF") fail(Code::missing_word, pos(), "expected IF");
+      f.a_begin = value_into(f.a, "the first operand");
+      skip_blanks();
+      read_letters();  // EQU, NE, GT, LT: the FN number says which
+      f.b_begin = value_into(f.b, "the second operand");
+      skip_blanks();
+      if (read_letters() != "GOTO" || !next_is("LBL"))
+        fail(Code::missing_word, pos(), "expected GOTO LBL");
+      skip_blanks();
+      f.jump = label();
+      return words();
+    }
+    if (f.number > 13) return rest_as_sub_keyword();  // FN 14 and on: the interpreter says
+    value_into(f.target, "the Q parameter set");
+    if (!f.target->is_parameter())
+      fail(Code::bad_parameter, pos(), "FN sets a Q parameter (Q, QL or QR)");
+    expect('=', "'='");
+    if (f.number >= 5 && f.number <= 7) read_letters();  // SQRT, SIN, COS
+    f.a_begin = value_into(f.a, "an operand");
+    if (f.number != 0 && (f.number <= 4 || f.number == 8 || f.number == 13)) {
+      skip_blanks();
+      if (read_letters().empty()) {
+        if (peek() != '+' && peek() != '-' && peek() != '*')
+          fail(Code::missing_word, pos(),
+               "expected the operator of FN " + std::to_string(f.number));
+        seek(pos() + 1);
+      }
+      f.b_begin = value_into(f.b, "the second operand");
+    }
+    words();
+  }
+
+  void cycle_def() {
+    skip_blanks();
+    double number = 0;
+    if (!read_unsigned(number)) fail(Code::missing_word, pos(), "CYCL DEF needs its number");
+    // hyperMILL writes "CYCL DEF9 .0": the part after a blank.
+    const std::size_t back = pos();
+    skip_blanks();
+    double part = 0;
+    if (peek() == '.' && read_unsigned(part)) {
+      number += part;
+    } else {
+      seek(back);
+    }
+    b_.cycle_number = number;
+    const int major = static_cast<int>(number);
+    if (major == 7 || major == 19 || major == 8 || major == 10 || major == 11 || major == 26)
+      return words();
+    if (major < 200) return rest_as_sub_keyword();  // 9.x, 32.x: read by the interpreter
+    cycle_parameters();
+  }
+
+  // Q<n>=<value> assignments among the cycle's name words and comments.
+  void cycle_parameters() {
+    for (;;) {
+      skip_blanks();
+      if (at_end()) return;
+      const char c = peek();
+      if (c == ';') {
+        read_comment();
+        continue;
+      }
+      const std::size_t at = pos();
+      if (c == 'Q' && at + 1 < text().size() && is_digit(text()[at + 1])) {
+        seek(at + 1);
+        double number = 0;
+        read_unsigned(number);
+        if (peek() == '=') {
+          seek(pos() + 1);
+          CycleParameter p;
+          p.number = static_cast<int>(number);
+          p.begin = static_cast<std::uint32_t>(at);
+          char sign = 0;
+          if (!read_value(p.value, sign))
+            fail(Code::bad_number, pos(), "Q" + std::to_string(p.number) + "= needs a value");
+          b_.cycle_parameters.push_back(p);
+          continue;
+        }
+      }
+      // A word of the cycle's name ("DRILLING", "HSC-MODE:0"): skipped.
+      while (!at_end() && !is_blank(peek()) && peek() != ';') {
+        check_word_byte(pos());
+        seek(pos() + 1);
+      }
+    }
+  }
+
+  // Words up to the end of the block: <name>[sign][value], comments.
+  void words() {
+    for (;;) {
+      skip_blanks();
+      if (at_end()) return;
+      const char c = peek();
+      if (c == ';') {
+        read_comment();
+        continue;
+      }
+      if (!is_upper(c)) {
+        check_word_byte(pos());
+        fail(Code::unexpected_word, pos(), std::string("unexpected '") + c + "'");
+      }
+      word();
+    }
+  }
+
+  void word() {
+    Word w;
+    w.begin = static_cast<std::uint32_t>(pos());
+    std::string_view letters = read_letters();
+    // FQ1: the feed of Q1 (the name's last Q starts the value).
+    if (letters.size() > 1 && letters.back() == 'Q' && is_digit(peek())) {
+      letters.remove_suffix(1);
+      seek(pos() - 1);
+    }
+    if (letters.size() > 8)
+      fail(Code::unexpected_word, w.begin, "unknown word '" + std::string(letters) + "'");
+    w.key = name(letters);
+    w.has_value = read_value(w.value, w.sign);
+    if (!w.has_value && w.sign == 0 && (w.key == name("F") || w.key == name("MB"))) {
+      // "F MAX" as FMAX; "M140 MB MAX" keeps MB with MAX after it.
+      const std::size_t back = pos();
+      skip_blanks();
+      if (read_letters() == "MAX") {
+        if (w.key == name("F"))
+          w.key = name("FMAX");
+        else
+          w.sign = '*';  // MB MAX
+      } else {
+        seek(back);
+      }
+    }
+    w.end = static_cast<std::uint32_t>(pos());
+    if (!at_end() && !is_blank(peek()) && peek() != ';' && !is_upper(peek())) {
+      check_word_byte(pos());
+      fail(Code::bad_number, pos(), "'" + std::string(letters) + "' followed by '" + peek() + "'");
+    }
+    b_.words.push_back(w);
+  }
+};
+
+}  // namespace
+
+void parse_block(Block& out) {
+  out.clear();
+  BlockParser(out).parse();
+}
+
+}  // namespace vcpost::heidenhain

@@ -1,0 +1,3 @@
+; expect E3309 3:3 Q0 to Q1999
+0 BEGIN PGM T MM
+1 FN 0: Q2000 = +1

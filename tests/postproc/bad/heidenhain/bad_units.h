@@ -1,0 +1,2 @@
+; expect E3306 2:3 MM or INCH
+0 BEGIN PGM T CM

@@ -1,0 +1,8 @@
+; expect E3316 6:12 nested deeper
+0 BEGIN PGM T MM
+1 CALL LBL 1
+2 M30
+3 LBL 1
+4 CALL LBL 1
+5 LBL 0
+6 END PGM T MM

@@ -1,0 +1,4 @@
+; expect W3341 3:3 M25 passed
+0 BEGIN PGM T MM
+1 M25
+2 END PGM T MM

@@ -1,0 +1,3 @@
+; expect W3343 3:1 without END PGM
+0 BEGIN PGM T MM
+1 L X+1 FMAX

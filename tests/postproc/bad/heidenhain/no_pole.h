@@ -1,0 +1,4 @@
+; expect E3312 4:3 CC first
+0 BEGIN PGM T MM
+1 L X+10 Y+0 F100
+2 C X+0 Y+10 DR+

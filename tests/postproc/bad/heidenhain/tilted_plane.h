@@ -1,0 +1,3 @@
+; expect E3320 3:3 tilts the working plane
+0 BEGIN PGM T MM
+1 PLANE SPATIAL SPA90 SPB0 SPC-90 STAY SEQ- TABLE ROT

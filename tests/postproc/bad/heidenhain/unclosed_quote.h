@@ -1,0 +1,3 @@
+; expect E3326 3:13 closing
+0 BEGIN PGM T MM
+1 TOOL CALL "T1 Z S1000

@@ -1,0 +1,3 @@
+; expect E3315 3:12 no LBL 9
+0 BEGIN PGM T MM
+1 CALL LBL 9

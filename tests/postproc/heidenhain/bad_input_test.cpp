@@ -1,0 +1,91 @@
+// Bad input: every file in tests/postproc/bad/heidenhain holds its expected
+// diagnostic in its first line, "; expect <CODE> <line>:<col> <message part>"
+// (a Klartext comment), as the G-code and CL bad files do. Plus inputs too
+// large or random to keep as files: never a crash, always a position.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <regex>
+#include <set>
+
+#include "postproc/heidenhain/interpreter.h"
+
+namespace vcpost::heidenhain {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Runs the program to its end; the first error, or else the last warning.
+std::optional<Diagnostic> run(std::string_view text) {
+  InterpreterLimits limits;
+  limits.max_loop_iterations = 10000;  // the endless loops end fast
+  limits.max_blocks = 1'000'000;
+  Interpreter interpreter(text, limits);
+  std::vector<program::Event> events;
+  try {
+    while (interpreter.next(events)) events.clear();
+  } catch (const KlartextError& e) {
+    return e.diagnostic();
+  }
+  if (interpreter.warnings().empty()) return std::nullopt;
+  return interpreter.warnings().back();
+}
+
+TEST(KlartextBadInput, EveryFileGivesItsExpectedDiagnostic) {
+  const fs::path dir = fs::path(VCPOST_SOURCE_DIR) / "tests/postproc/bad/heidenhain";
+  static const std::regex expect_re(R"(^; expect ([EW]\d{4}) (\d+):(\d+) ([^\n]*))");
+  std::set<std::string> codes;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    SCOPED_TRACE(entry.path().string());
+    std::ifstream in(entry.path(), std::ios::binary);
+    const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    std::smatch expect;
+    ASSERT_TRUE(std::regex_search(text, expect, expect_re)) << "no '; expect ...' line";
+    const auto d = run(text);
+    ASSERT_TRUE(d.has_value()) << "no diagnostic";
+    EXPECT_EQ(code_id(d->code), expect[1].str());
+    EXPECT_EQ(d->line, std::stoul(expect[2].str()));
+    EXPECT_EQ(d->column, std::stoul(expect[3].str()));
+    EXPECT_NE(d->message.find(expect[4].str()), std::string::npos) << d->message;
+    codes.insert(expect[1].str());
+  }
+  // Every reader code but the block-length limit (below) has its file.
+  for (int c = 3302; c <= 3326; ++c) EXPECT_TRUE(codes.count("E" + std::to_string(c))) << c;
+  for (int c = 3340; c <= 3344; ++c) EXPECT_TRUE(codes.count("W" + std::to_string(c))) << c;
+}
+
+TEST(KlartextBadInput, OverlongBlockIsRefused) {
+  std::string text = "BEGIN PGM T MM\nL X+1";
+  text.append(70000, '1');
+  text += " FMAX\nEND PGM T MM\n";
+  const auto d = run(text);
+  ASSERT_TRUE(d.has_value());
+  EXPECT_EQ(d->code, Code::line_too_long);
+  EXPECT_EQ(d->line, 2u);
+}
+
+TEST(KlartextBadInput, RandomBytesNeverCrash) {
+  // Random mixtures of Klartext pieces and arbitrary bytes after a valid
+  // header: each run ends with events, a warning or a positioned error.
+  std::mt19937 rng(4711);
+  const std::vector<std::string> pieces = {
+      "L ", "C ", "CC ", "CR ", "CT ", "LP ", "CP ", "RND ", "CHF ", "X+", "Y-", "Z", "IX",
+      "PA+", "IPA", "PR", "DR+ ", "DR- ", "R", "F", "FMAX ", "FQ", "M", "Q", "FN ", ": ", "=",
+      "LBL ", "CALL LBL ", "REP", "CYCL DEF ", "CYCL CALL", "~\n", "\n", ";", "\"", "1", "2.5",
+      "0", "9", " ", "-", "+", "TOOL CALL ", "S", "PLANE RESET", "\xff", std::string(1, '\0')};
+  for (int round = 0; round < 2000; ++round) {
+    std::string text = "BEGIN PGM T MM\n";
+    const int length = static_cast<int>(rng() % 40);
+    for (int k = 0; k < length; ++k) text += pieces[rng() % pieces.size()];
+    const auto d = run(text);
+    if (d) {
+      EXPECT_GE(d->line, 1u) << text;
+      EXPECT_GE(d->column, 1u) << text;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace vcpost::heidenhain

@@ -35,8 +35,9 @@ std::string gcode_program(int blocks) {
 
 // hyperMILL's form: block numbers, L with all three axes.
 std::string klartext_program(int blocks) {
-  std::string text = "0 BEGIN PGM BENCH MM\n1 TOOL CALL 1 Z S12000\n2 L X+0 Y+0 Z+5 R0 FMAX M3\n"
-                     "3 L Z+0 F1500\n";
+  std::string text =
+      "0 BEGIN PGM BENCH MM\n1 TOOL CALL 1 Z S12000\n2 L X+0 Y+0 Z+5 R0 FMAX M3\n"
+      "3 L Z+0 F1500\n";
   char line[96];
   double x, y, z;
   for (int i = 0; i < blocks; ++i) {

@@ -333,7 +333,7 @@ void Interpreter::execute(std::vector<Event>& events) {
 
 // ---- Values and words
 
-double& Interpreter::parameter(const Value& v, std::uint32_t at) {
+std::size_t Interpreter::parameter_index(const Value& v, std::uint32_t at) const {
   const auto n = static_cast<std::size_t>(v.number);
   std::size_t index = n;
   switch (v.bank) {
@@ -351,12 +351,12 @@ double& Interpreter::parameter(const Value& v, std::uint32_t at) {
     case Value::Bank::literal:
       fail(Code::bad_parameter, at, "a Q parameter is expected here");
   }
-  return q_[index];
+  return index;
 }
 
 double Interpreter::value(const Value& v, std::uint32_t at) const {
   if (!v.is_parameter()) return v.number;
-  const double q = const_cast<Interpreter*>(this)->parameter(v, at);
+  const double q = q_[parameter_index(v, at)];
   return v.negate ? -q : q;
 }
 
@@ -1167,7 +1167,7 @@ void Interpreter::fn(std::vector<Event>& events) {
       break;  // 13: ANG
   }
   if (!(std::abs(result) <= 1e12)) fail(Code::math_domain, at, "FN result out of range");
-  parameter(*f.target, at) = result;
+  q_[parameter_index(*f.target, at)] = result;
 }
 
 Interpreter::Place Interpreter::find_label(const Label& label, std::uint32_t at) {
@@ -1244,6 +1244,7 @@ void Interpreter::label_block() {
     repeat_from_ = std::min(repeat_from_.value_or(block_.offset), block_.offset);
   if (!block_.label || block_.label->number != 0 || frames_.empty()) return;
   Frame& top = frames_.back();
+  if (top.section) return;  // LBL 0 inside a repeated section: not its end
   if (top.remaining > 0) {
     --top.remaining;
     count_jump(block_.keyword_begin);
@@ -1269,7 +1270,7 @@ void Interpreter::call_label() {
     if (w.key != name("REP")) fail(Code::unexpected_word, w.begin, "CALL LBL takes REP only");
   }
   // The end of a repeated section: this very block called it.
-  if (!frames_.empty() && frames_.back().call_offset == block_.offset) {
+  if (!frames_.empty() && frames_.back().section && frames_.back().call_offset == block_.offset) {
     Frame& top = frames_.back();
     if (top.remaining > 0) {
       --top.remaining;
@@ -1287,11 +1288,12 @@ void Interpreter::call_label() {
   if (frames_.size() >= limits_.max_call_depth)
     fail(Code::call_depth, label.begin,
          "calls nested deeper than " + std::to_string(limits_.max_call_depth));
-  // A section before the call has run once already: REP n runs it n more
-  // times; a subprogram after it runs once and then REP n more times.
-  const bool section = p.offset < block_.offset;
-  if (section && repeats == 0) return;
+  // With REP n, a section before the call has run once already and runs n
+  // more times, back to this block each time; any other call is a
+  // subprogram's, run to its LBL 0 (and then REP n more times).
+  const bool section = repeats > 0 && p.offset < block_.offset;
   Frame f;
+  f.section = section;
   f.call_offset = block_.offset;
   f.return_offset = pos_;
   f.return_line = line_ + 1;
@@ -1372,7 +1374,7 @@ void Interpreter::cycle_def(std::vector<Event>& events) {
     return;
   }
   for (const CycleParameter& p : block_.cycle_parameters)
-    parameter(Value{static_cast<double>(p.number), Value::Bank::q, false}, p.begin) =
+    q_[parameter_index(Value{static_cast<double>(p.number), Value::Bank::q, false}, p.begin)] =
         value(p.value, p.begin);
   cycle_ = major;
 }

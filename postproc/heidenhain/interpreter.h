@@ -92,7 +92,8 @@ class Interpreter {
     std::uint32_t return_line = 0;
     std::uint64_t label_offset = 0;
     std::uint32_t label_line = 0;
-    long remaining = 0;  // repeats still to run
+    long remaining = 0;    // repeats still to run
+    bool section = false;  // a section repeat (ends at its CALL), else a subprogram (at LBL 0)
   };
   struct Place {
     std::uint64_t offset = 0;
@@ -117,7 +118,8 @@ class Interpreter {
   program::SourceRef source() const;
 
   double value(const Value& v, std::uint32_t at) const;
-  double& parameter(const Value& v, std::uint32_t at);
+  // Where a Q, QL or QR parameter lives in q_ (fails when out of range).
+  std::size_t parameter_index(const Value& v, std::uint32_t at) const;
   double length(double program_units) const {
     return inches_ ? program_units * 25.4 : program_units;
   }

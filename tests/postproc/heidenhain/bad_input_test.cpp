@@ -71,10 +71,14 @@ TEST(KlartextBadInput, RandomBytesNeverCrash) {
   // header: each run ends with events, a warning or a positioned error.
   std::mt19937 rng(4711);
   const std::vector<std::string> pieces = {
-      "L ", "C ", "CC ", "CR ", "CT ", "LP ", "CP ", "RND ", "CHF ", "X+", "Y-", "Z", "IX",
-      "PA+", "IPA", "PR", "DR+ ", "DR- ", "R", "F", "FMAX ", "FQ", "M", "Q", "FN ", ": ", "=",
-      "LBL ", "CALL LBL ", "REP", "CYCL DEF ", "CYCL CALL", "~\n", "\n", ";", "\"", "1", "2.5",
-      "0", "9", " ", "-", "+", "TOOL CALL ", "S", "PLANE RESET", "\xff", std::string(1, '\0')};
+      "L ",        "C ",         "CC ",   "CR ",         "CT ",       "LP ",
+      "CP ",       "RND ",       "CHF ",  "X+",          "Y-",        "Z",
+      "IX",        "PA+",        "IPA",   "PR",          "DR+ ",      "DR- ",
+      "R",         "F",          "FMAX ", "FQ",          "M",         "Q",
+      "FN ",       ": ",         "=",     "LBL ",        "CALL LBL ", "REP",
+      "CYCL DEF ", "CYCL CALL",  "~\n",   "\n",          ";",         "\"",
+      "1",         "2.5",        "0",     "9",           " ",         "-",
+      "+",         "TOOL CALL ", "S",     "PLANE RESET", "\xff",      std::string(1, '\0')};
   for (int round = 0; round < 2000; ++round) {
     std::string text = "BEGIN PGM T MM\n";
     const int length = static_cast<int>(rng() % 40);

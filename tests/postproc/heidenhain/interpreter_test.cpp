@@ -216,17 +216,17 @@ TEST(KlartextInterpreter, IncrementalDatumShiftMovesTheNextPosition) {
 }
 
 TEST(KlartextInterpreter, PolarLinesAndArcs) {
-  const auto m = motions(run(
-      "BEGIN PGM T MM\n"
-      "CC X+0 Y+0\n"
-      "L X+10 Y+0 Z+0 F100\n"
-      "LP PR+10 PA+90\n"           // (0, 10)
-      "LP IPA+90\n"                // radius kept: (-10, 0)
-      "LP IPR+5\n"                 // angle kept: (-15, 0)
-      "LP PR+10 PA+180\n"          // back to (-10, 0)
-      "CP IPA+180 DR+\n"           // half a turn ccw: (10, 0)
-      "CP IPA+720 IZ-4 DR+\n"      // two turns of a helix: (10, 0, -4)
-      "END PGM T MM\n"));
+  const auto m =
+      motions(run("BEGIN PGM T MM\n"
+                  "CC X+0 Y+0\n"
+                  "L X+10 Y+0 Z+0 F100\n"
+                  "LP PR+10 PA+90\n"       // (0, 10)
+                  "LP IPA+90\n"            // radius kept: (-10, 0)
+                  "LP IPR+5\n"             // angle kept: (-15, 0)
+                  "LP PR+10 PA+180\n"      // back to (-10, 0)
+                  "CP IPA+180 DR+\n"       // half a turn ccw: (10, 0)
+                  "CP IPA+720 IZ-4 DR+\n"  // two turns of a helix: (10, 0, -4)
+                  "END PGM T MM\n"));
   ASSERT_EQ(m.size(), 7u);
   expect_point(end_of(m[1]), 0, 10, 0, 1e-9);
   expect_point(end_of(m[2]), -10, 0, 0, 1e-9);
@@ -244,15 +244,15 @@ TEST(KlartextInterpreter, PolarLinesAndArcs) {
 TEST(KlartextInterpreter, RoundedAndChamferedCorners) {
   // A left turn of 90 degrees at (10, 0): RND R2 cuts 2 tan 45 = 2 mm off
   // each line; the arc from (8, 0) to (10, 2) turns about (8, 2).
-  const auto m = motions(run(
-      "BEGIN PGM T MM\n"
-      "L X+0 Y+0 Z+0 F100\n"
-      "L X+10\n"
-      "RND R2\n"
-      "L Y+10\n"
-      "CHF 3\n"          // a right turn at (10, 10): (10, 7) to (13, 10)
-      "L X+20\n"
-      "END PGM T MM\n"));
+  const auto m =
+      motions(run("BEGIN PGM T MM\n"
+                  "L X+0 Y+0 Z+0 F100\n"
+                  "L X+10\n"
+                  "RND R2\n"
+                  "L Y+10\n"
+                  "CHF 3\n"  // a right turn at (10, 10): (10, 7) to (13, 10)
+                  "L X+20\n"
+                  "END PGM T MM\n"));
   ASSERT_EQ(m.size(), 6u);
   expect_point(end_of(m[1]), 8, 0, 0, 1e-9);
   const auto& round = std::get<program::ArcFeed>(m[2]);
@@ -275,8 +275,11 @@ TEST(KlartextInterpreter, InchProgram) {
   const auto m = motions(events);
   ASSERT_EQ(m.size(), 1u);
   expect_point(end_of(m[0]), 25.4, 50.8, 12.7, 1e-9);
-  for (const Event& e : events)
-    if (const auto* f = std::get_if<program::SetFeedRate>(&e)) EXPECT_NEAR(f->rate, 254.0, 1e-9);
+  for (const Event& e : events) {
+    if (const auto* f = std::get_if<program::SetFeedRate>(&e)) {
+      EXPECT_NEAR(f->rate, 254.0, 1e-9);
+    }
+  }
 }
 
 TEST(KlartextInterpreter, ContinuedDrillingCycle) {
@@ -284,20 +287,20 @@ TEST(KlartextInterpreter, ContinuedDrillingCycle) {
   // plunges of 5, 2nd clearance 20, 0.5 s at the bottom. Worked out:
   // rapid to 2; feed to -5; rapid to 2; rapid to -5 + 2 = -3; feed to -10;
   // dwell; rapid to 2; rapid to 20.
-  const auto events = run(
-      "BEGIN PGM T MM\n"
-      "L X+0 Y+0 Z+50 R0 FMAX\n"
-      "CYCL DEF 200 DRILLING~\n"
-      "    Q200=2 ;SET-UP CLEARANCE~\n"
-      "    Q201=-10 ;DEPTH~\n"
-      "    Q206=150 ;FEED RATE FOR PLNGNG~\n"
-      "    Q202=5 ;PLUNGING DEPTH~\n"
-      "    Q210=0 ;DWELL TIME AT TOP~\n"
-      "    Q203=+0 ;SURFACE COORDINATE~\n"
-      "    Q204=20 ;2ND SET-UP CLEARANCE~\n"
-      "    Q211=0.5 ;DWELL TIME AT BOTTOM\n"
-      "L X+10 Y+10 R0 FMAX M99\n"
-      "END PGM T MM\n");
+  const auto events =
+      run("BEGIN PGM T MM\n"
+          "L X+0 Y+0 Z+50 R0 FMAX\n"
+          "CYCL DEF 200 DRILLING~\n"
+          "    Q200=2 ;SET-UP CLEARANCE~\n"
+          "    Q201=-10 ;DEPTH~\n"
+          "    Q206=150 ;FEED RATE FOR PLNGNG~\n"
+          "    Q202=5 ;PLUNGING DEPTH~\n"
+          "    Q210=0 ;DWELL TIME AT TOP~\n"
+          "    Q203=+0 ;SURFACE COORDINATE~\n"
+          "    Q204=20 ;2ND SET-UP CLEARANCE~\n"
+          "    Q211=0.5 ;DWELL TIME AT BOTTOM\n"
+          "L X+10 Y+10 R0 FMAX M99\n"
+          "END PGM T MM\n");
   std::vector<double> z;
   std::vector<bool> fed;
   const program::CannedCycle* cycle = nullptr;
@@ -324,16 +327,16 @@ TEST(KlartextInterpreter, ContinuedDrillingCycle) {
 TEST(KlartextInterpreter, MachineCoordinateMovesAreRetracts) {
   // M92's machine position is unknown: a retract to the highest of the
   // stock top (0.25) and the heights reached (10), X and Y kept.
-  const auto m = motions(run(
-      "BEGIN PGM T MM\n"
-      "BLK FORM 0.1 Z X-95 Y-258 Z-22.25\n"
-      "BLK FORM 0.2 X95 Y258 Z0.25\n"
-      "L Z+0 R0 FMAX M92\n"          // from 0: up to the stock top
-      "L X+5 Y+5 Z+10 R0 FMAX\n"
-      "L Z-5 F100\n"
-      "L Z+0 R0 FMAX M92\n"          // back to 10
-      "L X+0 Y+0 R0 FMAX M92\n"      // no Z: no move
-      "END PGM T MM\n"));
+  const auto m =
+      motions(run("BEGIN PGM T MM\n"
+                  "BLK FORM 0.1 Z X-95 Y-258 Z-22.25\n"
+                  "BLK FORM 0.2 X95 Y258 Z0.25\n"
+                  "L Z+0 R0 FMAX M92\n"  // from 0: up to the stock top
+                  "L X+5 Y+5 Z+10 R0 FMAX\n"
+                  "L Z-5 F100\n"
+                  "L Z+0 R0 FMAX M92\n"      // back to 10
+                  "L X+0 Y+0 R0 FMAX M92\n"  // no Z: no move
+                  "END PGM T MM\n"));
   ASSERT_EQ(m.size(), 4u);
   expect_point(end_of(m[0]), 0, 0, 0.25);
   EXPECT_TRUE(std::get<program::StraightTraverse>(m[0]).machine_frame);

@@ -165,23 +165,24 @@ TEST(TypeNames, Shapes) {
 // hyperMILL 2025's lines before a TOOL CALL (Heidenhain output, the shared
 // programs W5246NS01007A8.h, A1.h and B13.h): the text after '*'.
 TEST(HypermillComment, BullNoseFlatAndBall) {
-  const ToolEntry bull =
-      read(" - T626960718 | JJ-T4R0.5-N-ES_H63ZM6L120X / DM=4.01 CR=0.5 TL=145",
-           CommentFormat::hypermill);
+  const ToolEntry bull = read(" - T626960718 | JJ-T4R0.5-N-ES_H63ZM6L120X / DM=4.01 CR=0.5 TL=145",
+                              CommentFormat::hypermill);
   EXPECT_FALSE(bull.number.has_value());  // hyperMILL's id, not the TOOL CALL's number
   EXPECT_EQ(bull.shape, ToolShape::bull_nose);
   EXPECT_DOUBLE_EQ(bull.diameter, 4.01);
   EXPECT_DOUBLE_EQ(*bull.corner_radius, 0.5);
   EXPECT_EQ(bull.name, "JJ-T4R0.5-N-ES_H63ZM6L120X");
-  const ToolEntry flat = read(" - TOOL: T61804393 | FRA-P8400-S7.7R0_H63WM8L65X / DM=7.7 CR=0 TL=91",
-                              CommentFormat::hypermill);
+  const ToolEntry flat =
+      read(" - TOOL: T61804393 | FRA-P8400-S7.7R0_H63WM8L65X / DM=7.7 CR=0 TL=91",
+           CommentFormat::hypermill);
   EXPECT_EQ(flat.shape, ToolShape::flat);
   EXPECT_DOUBLE_EQ(*flat.corner_radius, 0);
   const ToolEntry ball = read(" - T7 | BALL-6_H63 / DM=6 CR=3 TL=80", CommentFormat::hypermill);
   EXPECT_EQ(ball.shape, ToolShape::ball);
   EXPECT_DOUBLE_EQ(*ball.corner_radius, 3);
   // The tool list header names no TOOL CALL: not read.
-  EXPECT_FALSE(read_tool_comment(" T626960718 | JJ-T4R0.5-N-ES_H63ZM6L120X / DM=4.01 CR=0.5 TL=145"));
+  EXPECT_FALSE(
+      read_tool_comment(" T626960718 | JJ-T4R0.5-N-ES_H63ZM6L120X / DM=4.01 CR=0.5 TL=145"));
   const auto bad = read_tool_comment(" - T7 | X / DM=6 CR=4 TL=80");
   ASSERT_TRUE(bad);
   EXPECT_FALSE(bad->entry);  // CR above DM/2: a note, never a guess

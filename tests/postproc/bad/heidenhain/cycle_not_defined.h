@@ -1,3 +1,3 @@
-; expect E3324 3:23 without a CYCL DEF
+; expect E3324 3:21 without a CYCL DEF
 0 BEGIN PGM T MM
 1 L X+0 Y+0 R0 FMAX M99

@@ -1,4 +1,4 @@
-; expect E3323 9:23 Q201, the depth
+; expect E3323 8:23 Q201, the depth
 0 BEGIN PGM T MM
 1 L X+0 Y+0 Z+50 R0 FMAX M3
 2 CYCL DEF 200 DRILLING~

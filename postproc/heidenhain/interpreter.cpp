@@ -190,7 +190,7 @@ bool Interpreter::read_block() {
   if (pos_ >= text_.size()) return false;
   const std::uint64_t start = pos_;
   std::uint32_t lines = 0;
-  std::uint64_t end = start;
+  std::uint64_t end = 0;  // set by the first line
   std::string_view eol;
   for (;;) {
     const char* base = text_.data() + pos_;
@@ -950,7 +950,7 @@ void Interpreter::finish_corner(const Eigen::Vector3d& end, std::vector<Event>& 
   auto* feed = std::get_if<program::StraightFeed>(&held.move);
   const Eigen::Vector3d p0 = traverse ? traverse->start : feed->start;
   const Eigen::Vector3d p1 = traverse ? traverse->end : feed->end;
-  const Eigen::Vector3d p2 = end;
+  const Eigen::Vector3d& p2 = end;
   const std::uint32_t at = block_.keyword_begin;
   if (std::abs(p0.z() - p1.z()) > 1e-9 || std::abs(p1.z() - p2.z()) > 1e-9)
     fail(Code::corner_not_between_lines, at,

@@ -28,7 +28,7 @@ class EventSource {
     if (kind == ProgramKind::gcode) {
       gcode_.emplace(text, dialect);
     } else if (kind == ProgramKind::heidenhain) {
-      klartext_.emplace(text);
+      klartext_ = std::make_unique<heidenhain::Interpreter>(text);
     } else {
       stream_.emplace(&buffer_);
       cl_.emplace(*stream_, file_name);
@@ -93,7 +93,7 @@ class EventSource {
   ViewBuffer buffer_;
   std::optional<std::istream> stream_;
   std::optional<gcode::Interpreter> gcode_;
-  std::optional<heidenhain::Interpreter> klartext_;
+  std::unique_ptr<heidenhain::Interpreter> klartext_;  // held apart: State's layout stays tight
   std::optional<cldata::ClReader> cl_;
   std::string file_name_;
   std::size_t cutters_seen_ = 0;

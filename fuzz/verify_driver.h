@@ -37,6 +37,7 @@ inline bool within_budget(std::string_view text, const gcode::Dialect& dialect) 
     }
   } catch (const gcode::GcodeError& e) {
     return e.diagnostic().code != gcode::Code::loop_limit &&
+           e.diagnostic().code != gcode::Code::block_limit &&
            e.diagnostic().code != gcode::Code::cycle_moves &&
            e.diagnostic().code != gcode::Code::call_depth;
   }

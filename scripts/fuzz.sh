@@ -3,8 +3,9 @@
 # and runs each for DURATION seconds (default 60) on the seed corpus that
 # fuzz/collect_corpus.sh gathers from the tests' inputs. Fails on any
 # finding: crash, sanitizer report, undocumented exception, an input slower
-# than 5 s or above 2 GB; the input is left in build/fuzz/findings/<target>/
-# (save it under fuzz/regressions/<target>/ with a regression test).
+# than 5 s, above 2 GB or needing a stack above 1 MB; the input is left in
+# build/fuzz/findings/<target>/ (save it under fuzz/regressions/<target>/
+# with a regression test).
 # Prints the executions per target, and a finding's input in base64 (so a
 # CI log alone reproduces it: base64 -d > crash; build/fuzz/fuzz/T crash).
 # The mutation seed is fixed (FUZZ_SEED, default 1) so a run can be repeated
@@ -26,6 +27,10 @@ build=build/fuzz
 bash fuzz/collect_corpus.sh "$build"
 
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+# A 1 MB stack (the default is 8 MB): an input that recurses deep enough to
+# need more (a value of thousands of nested signs) is a finding, as it would
+# be in a thread with a small stack.
+ulimit -s 1024
 failed=()
 for t in "${targets[@]}"; do
   corpus="$build/corpus/$t"

@@ -263,12 +263,15 @@ std::vector<NamedFile> job_outputs(const PostArguments& args, bool write_program
 }
 
 bool has_warnings(const post::PostSummary& summary) {
-  return summary.gouging > 0 || summary.lifted + summary.missed > 0 || summary.missing_end;
+  return summary.gouging > 0 || summary.lifted + summary.missed > 0 || summary.missing_end ||
+         !summary.unread_after_end.empty();
 }
 
 void print_warnings(const post::PostSummary& summary) {
   if (summary.missing_end)
     log().warn("the program ends without M2, M30 or a closing '%': is the file complete?");
+  // The reader's own diagnostic, with its file position and code.
+  if (!summary.unread_after_end.empty()) std::cerr << summary.unread_after_end << '\n';
   if (summary.gouging > 0) log().warn("{} points gouge the model", summary.gouging);
   if (summary.lifted + summary.missed > 0) {
     log().warn("{} cutting points do not touch the model (their blocks keep the program's S)",

@@ -80,6 +80,17 @@ void BlockParser::read(Block& out) {
   skip_blanks();
   if (at_end()) return;
   if (s_[i_] == '%') {
+    // RS274NGC: '%' stands alone on its line ("% G1 X5" and "% (note)"
+    // are refused by rs274: "Bad character '%' used"). Other controls
+    // write a name after it (Sinumerik %_N_PART_MPF).
+    if (d_.kind == DialectKind::rs274ngc) {
+      ++i_;
+      skip_blanks();
+      if (!at_end())
+        fail(Code::bad_character, i_,
+             "'%' must stand alone on its line (the program's first and last), as rs274 "
+             "requires; text after it would not be read");
+    }
     out.tape_marker = true;
     return;
   }
@@ -109,7 +120,11 @@ Control BlockParser::peek() {
     if (d_.o_word_control) {
       if (!read_o_name(c.name, /*throwing=*/false)) return Control{};
       skip_blanks();
-      c.kind = o_keyword(read_letters());
+      const std::string key = read_letters();
+      c.kind = o_keyword(key);
+      // "O2000" alone: a program number (M98's target), as read_o_word says.
+      if (key.empty() && c.name.find_first_not_of("0123456789") == std::string::npos)
+        c.kind = ControlKind::program_number;
     } else {
       c.name = read_digits_text();
       c.kind = c.name.empty() ? ControlKind::none : ControlKind::program_number;

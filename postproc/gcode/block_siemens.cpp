@@ -33,10 +33,12 @@ bool BlockParser::r_assignment_follows() const {
 void BlockParser::read_r_assignment(Block& out) {
   const std::size_t start = i_;
   ++i_;
-  int number = 0;
-  while (!at_end() && is_digit(s_[i_]) && number < 100000) number = number * 10 + (s_[i_++] - '0');
+  const int number = read_r_number(start);
   skip_blanks();
   ++i_;  // '='
+  // The control assigns in the order written: "R1=5 R2=R1*2" sets R2 to
+  // 10, "R1=7 G0 X=R1" goes to X7 (words read after it see the new value).
+  earlier_ = &out.assignments;
   const Value v = binary(0, start);
   out.assignments.push_back(Assignment{0, "_r" + std::to_string(number), v.number,
                                        static_cast<std::uint32_t>(start + 1)});

@@ -46,6 +46,9 @@ enum class Code : std::uint16_t {
   external_macro = 1306,       // G65 to a macro not in the file: taken as not moving (warning)
   loop_limit = 1307,           // a loop runs more than the iteration limit
   cycle_moves = 1308,          // one canned-cycle block makes more moves than the limit
+  block_limit = 1309,          // the program runs more blocks than the bound
+  sub_definition = 1310,       // an o-sub defined twice, or after a call ran it (rs274 refuses)
+  text_after_end = 1311,       // lines after the closing '%' are not read (warning)
   // 14xx: G/M codes and modal rules
   unknown_g_code = 1401,
   unknown_m_code = 1402,  // error in RS274NGC; warning in Fanuc/Mazak (machine M codes)

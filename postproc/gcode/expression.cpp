@@ -8,6 +8,17 @@
 namespace vcpost::gcode::syntax {
 
 Value ExpressionReader::unary(std::size_t word_start) {
+  struct Level {
+    int& n;
+    explicit Level(int& count) : n(count) { ++n; }
+    ~Level() { --n; }
+    Level(const Level&) = delete;
+    Level& operator=(const Level&) = delete;
+  } level(nesting_);
+  if (nesting_ > kMaxValueNesting)
+    fail(Code::bad_expression, i_,
+         "value nested more than " + std::to_string(kMaxValueNesting) +
+             " deep (signs, '#' and brackets inside each other), the reader's limit");
   skip_blanks();
   if (at_end()) fail(Code::bad_expression, word_start, "value missing at end of line");
   const char c = s_[i_];
@@ -30,12 +41,8 @@ Value ExpressionReader::unary(std::size_t word_start) {
   if (siemens() && c == '(') return paren();
   if (siemens() && upper(c) == 'R' && i_ + 1 < s_.size() && is_digit(s_[i_ + 1])) {
     // R parameter: 0 until set, as on the control.
-    ++i_;
-    int number = 0;
-    while (!at_end() && is_digit(s_[i_]) && number < 100000)
-      number = number * 10 + (s_[i_++] - '0');
-    const Access a = p_->read("_r" + std::to_string(number));
-    return Value{a.ok ? a.value.number : 0.0, false};
+    const std::size_t start = i_++;
+    return Value{r_value(read_r_number(start)), false};
   }
   if (is_alpha(c)) return function();
   fail(Code::bad_expression, i_, std::string("unexpected '") + c + "' where a value is expected");
@@ -206,7 +213,7 @@ Value ExpressionReader::function_unchecked() {
     skip_blanks();
     if (at_end() || s_[i_] != ']') fail(Code::bad_expression, start, "EXISTS not closed");
     ++i_;
-    return Value{p_->read(key).ok ? 1.0 : 0.0, false};
+    return Value{p_->exists(key) ? 1.0 : 0.0, false};
   }
   const bool round_brackets = siemens() && !at_end() && s_[i_] == '(';
   if (at_end() || (s_[i_] != '[' && !round_brackets))
@@ -290,6 +297,31 @@ ExpressionReader::Ref ExpressionReader::parameter_ref() {
   if (std::abs(v - r) > 1e-6 || r < 0 || r > 1e6)
     fail(Code::parameter_out_of_range, hash, "parameter number must be a whole number");
   return Ref{static_cast<int>(r), {}};
+}
+
+int ExpressionReader::read_r_number(std::size_t start) {
+  const std::size_t first = i_;
+  while (!at_end() && is_digit(s_[i_])) ++i_;
+  const std::string_view digits = s_.substr(first, i_ - first);
+  long number = 0;
+  for (const char d : digits) {
+    number = number * 10 + (d - '0');
+    if (number > kMaxRParameter)
+      fail(Code::parameter_out_of_range, start,
+           "R" + std::string(digits) + " is beyond R" + std::to_string(kMaxRParameter) +
+               ", the last R parameter vcpost keeps (a control has R0 to R99 unless its machine "
+               "data gives more)");
+  }
+  return static_cast<int>(number);
+}
+
+double ExpressionReader::r_value(int number) const {
+  const std::string key = "_r" + std::to_string(number);
+  if (earlier_)
+    for (auto a = earlier_->rbegin(); a != earlier_->rend(); ++a)
+      if (a->name == key) return a->value;
+  const Access a = p_->read(key);
+  return a.ok ? a.value.number : 0.0;
 }
 
 Value ExpressionReader::parameter_value() {

@@ -19,6 +19,15 @@
 
 namespace vcpost::gcode::syntax {
 
+// Values read inside each other at most: signs (X---1), parameter signs
+// (##1), brackets and functions each open one. The reader recurses once per
+// level, so a line of 65,536 signs would overflow the stack; real programs
+// nest a few levels.
+inline constexpr int kMaxValueNesting = 100;
+// Sinumerik R parameters vcpost keeps (a control has R0 to R99 by default,
+// more by machine data).
+inline constexpr int kMaxRParameter = 99999;
+
 class ExpressionReader : public Lexer {
  public:
   // `p` may be null when nothing is evaluated (peek_control).
@@ -29,6 +38,10 @@ class ExpressionReader : public Lexer {
   const Dialect& d_;
   const Parameters* p_;   // null when only peeking (nothing is evaluated)
   bool ac_seen_ = false;  // AC(..) read in the current word's expression
+  int nesting_ = 0;       // values being read inside each other (unary())
+  // Sinumerik: the block's R assignments read so far, which the words after
+  // them see (the control assigns in the order written; null elsewhere).
+  const std::vector<Assignment>* earlier_ = nullptr;
 
   bool siemens() const { return d_.kind == DialectKind::sinumerik; }
 
@@ -46,6 +59,8 @@ class ExpressionReader : public Lexer {
     std::string name;
   };
   Ref parameter_ref();
+  // Sinumerik: the number after the 'R' at `start` (R0 to kMaxRParameter).
+  int read_r_number(std::size_t start);
 
   // Values of words and cycle arguments within kMaxWordMagnitude. (The
   // message is worded only on failure: this runs for every word.)
@@ -94,6 +109,7 @@ class ExpressionReader : public Lexer {
   std::string dialect_hint(const std::string& name) const;
   std::string read_name();  // after "#<": the normalised name up to '>'
   Value parameter_value();
+  double r_value(int number) const;
 };
 
 }  // namespace vcpost::gcode::syntax

@@ -10,6 +10,7 @@
 
 #include "postproc/gcode/codes.h"
 #include "postproc/gcode/cycles.h"
+#include "postproc/gcode/lexer.h"
 #include "postproc/program/arc.h"
 
 namespace vcpost::gcode {
@@ -26,9 +27,15 @@ double to_mm(double v, bool inches) { return inches ? v * kInch : v; }
 // A whole number in [0, 1e9]: T, H and arc turns, which become ints (a
 // larger value would not fit, and its conversion would be undefined).
 bool whole_number(double v) { return v >= 0 && v <= 1e9 && v == std::floor(v); }
-// Arc end-radius check, as LinuxCNC: an error only when both the absolute
-// (mm) and the relative difference are exceeded.
-constexpr double kArcAbsoluteTolerance = 0.002;
+// rs274's arc tolerances (interp_internal.hh), inch figures in mm: the
+// radius tolerance (a zero radius, an R too short for the chord) is 0.00005
+// inch in both units; the radius to the end may differ from the radius to
+// the start by the centre-arc tolerance, 2 * 0.01 * sqrt(2) mm (0.0283) in
+// mm programs and 2 * 0.001 * sqrt(2) inch (0.0718 mm) in inch programs,
+// or by up to 100 times that when within 0.1 % of the radius.
+constexpr double kArcRadiusTolerance = 0.00005 * kInch;
+constexpr double kCentreArcToleranceMm = 2 * 0.01 * std::numbers::sqrt2;
+constexpr double kCentreArcToleranceInch = 2 * 0.001 * std::numbers::sqrt2 * kInch;
 constexpr double kArcRelativeTolerance = 0.001;
 
 std::string code_text(char letter, int tenths) {
@@ -133,8 +140,9 @@ bool Interpreter::next(std::vector<Event>& events) {
     line_ = l.number;
     block_.line = l.number;  // for errors thrown while reading
     if (++lines_read_ > limits_.max_blocks)
-      fail(Code::loop_limit, 1,
-           "program runs more than " + std::to_string(limits_.max_blocks) + " blocks, the limit");
+      fail(Code::block_limit, 1,
+           "program runs more than " + std::to_string(limits_.max_blocks) +
+               " blocks (loops and calls counted), the limit");
     read_block(l.text, l.number, l.offset, dialect_, parameters_, block_);
     block_.eol = l.eol;
     if (block_.tape_marker) {
@@ -142,11 +150,20 @@ bool Interpreter::next(std::vector<Event>& events) {
       // of the file is not read, as RS274NGC and Fanuc tape format say).
       if (percent_seen_) {
         ended_ = true;
+        warn_unread_rest();
         return false;
       }
+      // rs274 takes '%' as the opening only on the program's first line.
+      if (content_seen_ && dialect_.kind == DialectKind::rs274ngc)
+        fail(Code::bad_character, 1,
+             "'%' in the middle of a program that did not open with '%': rs274 refuses it "
+             "(\"Bad character '%' used\")");
       percent_seen_ = true;
       return true;
     }
+    if (!block_.words.empty() || block_.control.kind != ControlKind::none ||
+        !block_.assignments.empty())
+      content_seen_ = true;
     if (block_.deleted) return true;
     if (block_.control.kind != ControlKind::none) {
       handle_control();
@@ -159,6 +176,26 @@ bool Interpreter::next(std::vector<Event>& events) {
     ended_ = true;
     throw;
   }
+}
+
+// After the closing '%': lines that hold more than blanks and comments are
+// not read (nor posted): say so, with their number.
+void Interpreter::warn_unread_rest() {
+  std::uint64_t unread = 0;
+  std::uint32_t first = 0;
+  Line l;
+  for (std::uint32_t number = line_ + 1; line_at(pos_, number, l); ++number) {
+    pos_ = l.offset + l.text.size() + l.eol.size();
+    if (syntax::only_comments(l.text) || l.text.find_first_not_of(" \t%") == std::string_view::npos)
+      continue;
+    if (first == 0) first = number;
+    ++unread;
+  }
+  if (unread > 0)
+    warn(Code::text_after_end, 1,
+         std::to_string(unread) + " line" + (unread == 1 ? "" : "s") +
+             " after the closing '%' (from line " + std::to_string(first) +
+             ") are not read, neither checked nor posted: the control stops at the '%'");
 }
 
 void Interpreter::commit_assignments() {
@@ -197,34 +234,94 @@ void Interpreter::skip_to(const std::string& name, std::initializer_list<Control
                               "no matching end for the control word of this line"});
 }
 
-std::pair<std::uint64_t, std::uint32_t> Interpreter::find_sub(const std::string& name, bool fanuc) {
+// The subroutine (o-word sub, or program O<number>) in this file; the first
+// look-up of a name not yet met indexes the whole file.
+Interpreter::Sub* Interpreter::lookup_sub(const std::string& name, bool fanuc) {
   const std::string key = (fanuc ? "O" : "o") + name;
-  if (auto it = subs_.find(key); it != subs_.end()) return it->second;
-  Line l;
-  std::uint64_t offset = 0;
-  std::uint32_t number = 1;
-  while (line_at(offset, number, l)) {
-    const Control c = peek_control(l.text, dialect_);
-    const std::uint64_t after = l.offset + l.text.size() + l.eol.size();
-    if ((fanuc && c.kind == ControlKind::program_number) || (!fanuc && c.kind == ControlKind::sub))
-      subs_.try_emplace((fanuc ? "O" : "o") + c.name, after, number + 1);
-    offset = after;
-    ++number;
+  auto found = subs_.find(key);
+  if (found == subs_.end()) {
+    Line l;
+    std::uint64_t offset = 0;
+    std::uint32_t number = 1;
+    while (line_at(offset, number, l)) {
+      const Control c = peek_control(l.text, dialect_);
+      const std::uint64_t after = l.offset + l.text.size() + l.eol.size();
+      if ((fanuc && c.kind == ControlKind::program_number) ||
+          (!fanuc && c.kind == ControlKind::sub))
+        subs_.try_emplace((fanuc ? "O" : "o") + c.name, Sub{after, number + 1});
+      offset = after;
+      ++number;
+    }
+    found = subs_.find(key);
   }
-  if (auto it = subs_.find(key); it != subs_.end()) return it->second;
-  fail(Code::unknown_subroutine, block_.control.column,
-       (fanuc ? "program O" : "subroutine o<") + name + (fanuc ? "" : ">") +
-           " not found in this file");
+  return found == subs_.end() ? nullptr : &found->second;
+}
+
+Interpreter::Sub& Interpreter::find_sub(const std::string& name, bool fanuc) {
+  Sub* sub = lookup_sub(name, fanuc);
+  if (!sub)
+    fail(Code::unknown_subroutine, block_.control.column,
+         (fanuc ? "program O" : "subroutine o<") + name + (fanuc ? "" : ">") +
+             " not found in this file");
+  if (!fanuc && !sub->met) sub->called_ahead = true;
+  return *sub;
+}
+
+// A definition met in the flow of the program. rs274 refuses a second
+// definition of a name, and one met after a call has run it (the call
+// searched ahead for it): it says "found in illegal location".
+void Interpreter::define_sub(const Control& c) {
+  auto [it, fresh] = subs_.try_emplace("o" + c.name, Sub{pos_, line_ + 1});
+  Sub& sub = it->second;
+  if (!fresh && dialect_.kind == DialectKind::rs274ngc) {
+    if (sub.body_line != line_ + 1)
+      fail(Code::sub_definition, c.column,
+           "subroutine o<" + c.name + "> is defined twice (first at line " +
+               std::to_string(sub.body_line - 1) + "); rs274 refuses the second definition");
+    if (sub.met || sub.called_ahead)
+      fail(Code::sub_definition, c.column,
+           "subroutine o<" + c.name +
+               "> is defined after a call that ran it; rs274 refuses the definition here "
+               "(\"found in illegal location\"): define it before its calls, or after the "
+               "program's end (M2)");
+  }
+  sub.met = true;
+}
+
+// LinuxCNC nests at most 9 calls (INTERP_SUB_ROUTINE_LEVELS, 10 with the
+// main program).
+std::size_t Interpreter::call_depth_limit() const {
+  constexpr std::size_t kRs274Levels = 9;
+  return dialect_.kind == DialectKind::rs274ngc ? std::min(limits_.max_call_depth, kRs274Levels)
+                                                : limits_.max_call_depth;
 }
 
 void Interpreter::call(const std::string& name, const std::vector<double>& arguments, bool fanuc,
-                       long repeat) {
-  if (frames_.size() >= limits_.max_call_depth)
-    fail(Code::call_depth, block_.control.column, "subroutine calls nested too deep");
-  const auto [body, body_line] = find_sub(name, fanuc);
-  frames_.push_back(Frame{pos_, line_ + 1, fanuc, repeat, body, body_line, flow_.size()});
-  if (!fanuc) parameters_.push_frame(arguments);
-  jump(body, body_line);
+                       long repeat, bool own_locals) {
+  if (frames_.size() >= call_depth_limit())
+    fail(Code::call_depth, block_.control.column,
+         "subroutine calls nested more than " + std::to_string(call_depth_limit()) + " deep" +
+             (dialect_.kind == DialectKind::rs274ngc ? " (rs274's limit)" : ""));
+  const Sub& sub = find_sub(name, fanuc);
+  frames_.push_back(Frame{pos_, line_ + 1, fanuc, own_locals, repeat, lines_read_, sub.body_offset,
+                          sub.body_line, flow_.size()});
+  if (own_locals) parameters_.push_frame(arguments);
+  jump(sub.body_offset, sub.body_line);
+}
+
+void Interpreter::count_pass(std::uint64_t pass_start, long left, std::uint32_t column) {
+  if (++loop_iterations_ > limits_.max_loop_iterations)
+    fail(Code::loop_limit, column,
+         "loop or subprogram repeat runs more than " + std::to_string(limits_.max_loop_iterations) +
+             " passes, the iteration limit");
+  const std::uint64_t pass = lines_read_ - pass_start;
+  const auto more = static_cast<std::uint64_t>(std::max(left, 0L));
+  if (pass > 0 && lines_read_ <= limits_.max_blocks &&
+      more > (limits_.max_blocks - lines_read_) / pass)
+    fail(Code::block_limit, column,
+         std::to_string(more) + " more passes of " + std::to_string(pass) +
+             " lines would run the program past " + std::to_string(limits_.max_blocks) +
+             " blocks (loops and calls counted), the limit");
 }
 
 bool Interpreter::return_from_sub() {
@@ -232,11 +329,13 @@ bool Interpreter::return_from_sub() {
   Frame& f = frames_.back();
   if (f.repeat_left > 1) {
     --f.repeat_left;
+    count_pass(f.pass_start, f.repeat_left, block_.control.column);
+    f.pass_start = lines_read_;
     jump(f.body_offset, f.body_line);
     return true;
   }
   flow_.resize(f.flow_depth);
-  if (!f.fanuc) parameters_.pop_frame();
+  if (f.own_locals) parameters_.pop_frame();
   jump(f.return_offset, f.return_line);
   frames_.pop_back();
   return true;
@@ -252,7 +351,7 @@ void Interpreter::handle_control() {
       return;
     case ControlKind::sub:
       // A definition met in the flow of the program is skipped to its end.
-      subs_.try_emplace("o" + c.name, pos_, line_ + 1);
+      define_sub(c);
       skip_to(c.name, {ControlKind::endsub}, false);
       skip_current_line();
       return;
@@ -262,7 +361,7 @@ void Interpreter::handle_control() {
         fail(Code::unmatched_control, c.column, "return from a subroutine that was not called");
       return;
     case ControlKind::call:
-      call(c.name, c.arguments, false, 1);
+      call(c.name, c.arguments, false, 1, true);
       return;
     case ControlKind::if_:
     case ControlKind::elseif:
@@ -351,7 +450,8 @@ void Interpreter::loop(const Control& c) {
     case ControlKind::repeat: {
       const long count = std::lround(c.condition.value_or(0.0));
       if (count >= 1) {
-        flow_.push_back(Flow{ControlKind::repeat, c.name, pos_, line_ + 1, count, true});
+        flow_.push_back(
+            Flow{ControlKind::repeat, c.name, pos_, line_ + 1, count, true, lines_read_});
       } else {
         skip_to(c.name, {ControlKind::endrepeat}, false);
         skip_current_line();
@@ -361,8 +461,7 @@ void Interpreter::loop(const Control& c) {
     case ControlKind::endwhile: {
       if (!flow_top_is(ControlKind::while_))
         fail(Code::unmatched_control, c.column, "endwhile without its while");
-      if (++loop_iterations_ > limits_.max_loop_iterations)
-        fail(Code::loop_limit, c.column, "loop runs more than the iteration limit");
+      count_pass(lines_read_, 0, c.column);
       const Flow f = flow_.back();
       flow_.pop_back();
       jump(f.start_offset, f.start_line);
@@ -371,10 +470,10 @@ void Interpreter::loop(const Control& c) {
     default: {  // endrepeat
       if (!flow_top_is(ControlKind::repeat))
         fail(Code::unmatched_control, c.column, "endrepeat without its repeat");
-      if (++loop_iterations_ > limits_.max_loop_iterations)
-        fail(Code::loop_limit, c.column, "loop runs more than the iteration limit");
       Flow& f = flow_.back();
+      count_pass(f.pass_start, f.remaining - 1, c.column);
       if (--f.remaining > 0) {
+        f.pass_start = lines_read_;
         jump(f.start_offset, f.start_line);
       } else {
         flow_.pop_back();
@@ -598,7 +697,7 @@ void Interpreter::execute(std::vector<Event>& events) {
   if (step.b.message) emit_message(step);
   if (step.g(Group::units)) set_units(step);
   if (step.g(Group::feed_mode)) set_feed_mode(step);
-  if (step.word('F') && !step.siemens_dwell) set_feed(step);
+  if (step.word('F') && !step.siemens_dwell && !step.macro_call) set_feed(step);
   if (step.word('S') && !step.macro_call && !step.siemens_dwell && !step.speed_limit)
     set_spindle_speed(step);
   if (step.word('T') && !step.macro_call) select_tool(step);
@@ -628,6 +727,7 @@ void Interpreter::execute(std::vector<Event>& events) {
       step.b.siemens_cycle.kind != SiemensCycle::Kind::call)
     mcall_ = mcall_next_;
   if (step.m(Group::subprogram)) call_subprogram(step);
+  if (step.macro_call) macro_call(step);
 }
 
 // Indexes the words by letter and modal group: unknown and refused codes,
@@ -637,6 +737,7 @@ void Interpreter::index_words(Step& step) {
   const bool fanuc_like = dialect_.kind != DialectKind::rs274ngc;
   WordIndex& index = step.index;
   int m_words = 0;
+  const Word* axis_word = nullptr;
   for (std::size_t k = 0; k < b.words.size(); ++k) {
     const Word& w = b.words[k];
     // Stored only for a word that gets indexed: below kMaxIndexedPosition.
@@ -694,15 +795,20 @@ void Interpreter::index_words(Step& step) {
       if (index_m_word(step, w, slot_of_w)) continue;
     } else {
       const char l = w.letter;
-      if (l == 'A' || l == 'B' || l == 'C' || l == 'U' || l == 'V' || l == 'W')
-        fail(Code::axis_not_supported, w.column,
-             std::string(1, w.letter) + " axis: vcpost reads 3-axis (X Y Z) programs only");
+      if ((l == 'A' || l == 'B' || l == 'C' || l == 'U' || l == 'V' || l == 'W') && !axis_word)
+        axis_word = &w;
       auto& slot = index.by_letter[static_cast<std::size_t>(w.letter - 'A')];
       if (slot != 0)
         fail(Code::word_repeated, w.column, std::string(1, w.letter) + " word given twice");
       slot = slot_of_w;
     }
   }
+  // A, B, C, U, V, W: rotary or parallel axes, but a G65 macro call's
+  // arguments (#1, #2, #3, #21, #22, #23).
+  const Word* g65 = step.at(index.g[static_cast<std::size_t>(Group::non_modal)]);
+  if (axis_word && !(fanuc_like && g65 && code_of(*g65) == 650))
+    fail(Code::axis_not_supported, axis_word->column,
+         std::string(1, axis_word->letter) + " axis: vcpost reads 3-axis (X Y Z) programs only");
 }
 
 // Indexes one M word; true when it is passed over (a machine's own M code,
@@ -1199,7 +1305,7 @@ void Interpreter::move(Step& step) {
   if (c == 280 || c == 300) {
     reference_return(step);
   } else if (step.macro_call) {
-    macro_call(step);
+    // G65 moves nothing itself: its program runs after the block (macro_call).
   } else if (step.has_axis && s.cycle != 0) {
     canned_cycle(step);
   } else if (step.has_axis ||
@@ -1233,14 +1339,44 @@ void Interpreter::reference_return(Step& step) {
   s.moved = true;
 }
 
-void Interpreter::macro_call(Step& step) {
+// G65 P<program> L<count> <arguments>: a macro call. A program of this file
+// runs with the block's words as its local variables (argument
+// specification I: A #1, B #2, C #3, I #4, J #5, K #6, D #7, E #8, F #9,
+// H #11, M #13, Q #17, R #18, S #19, T #20, U #21, V #22, W #23, X #24,
+// Y #25, Z #26); a program elsewhere (a machine maker's macro) is taken as
+// moving nothing, with a warning.
+void Interpreter::macro_call(const Step& step) {
   const Word* p = step.word('P');
   const Word* g65 = step.nonmodal;
   if (!p) fail(Code::missing_word, g65->column, "G65 needs P (program number)");
-  warn_once('G', 650, Code::external_macro, g65->column,
-            "G65 P" + std::to_string(std::lround(p->value)) +
-                " calls a macro program vcpost does not follow (a machine maker's macro): "
-                "taken as not moving the tool");
+  if (p->value < 0 || p->value > 1e9 || p->value != std::floor(p->value))
+    fail(Code::bad_word_value, p->column, "G65 P must be a program number, a whole number");
+  const Word* l = step.word('L');
+  if (l && (l->value < 0 || l->value > 1e9 || l->value != std::floor(l->value)))
+    fail(Code::bad_word_value, l->column,
+         "G65 L (the number of passes) must be a whole number from 0 to 1e9");
+  const std::string name = std::to_string(static_cast<long>(p->value));
+  if (!lookup_sub(name, true)) {
+    warn_once('G', 650, Code::external_macro, g65->column,
+              "G65 P" + name +
+                  " calls a macro program that is not in this file (a machine maker's macro): "
+                  "taken as not moving the tool");
+    return;
+  }
+  const long count = l ? static_cast<long>(l->value) : 1;
+  if (count == 0) return;
+  block_.control.column = g65->column;
+  call(name, {}, true, count, true);
+  static constexpr std::string_view kLetters = "ABCIJKDEFHMQRSTUVWXYZ";
+  static constexpr int kLocals[] = {1,  2,  3,  4,  5,  6,  7,  8,  9,  11, 13,
+                                    17, 18, 19, 20, 21, 22, 23, 24, 25, 26};
+  static_assert(std::size(kLocals) == kLetters.size());
+  for (const Word& w : step.b.words) {
+    const auto k = kLetters.find(w.letter);
+    if (k == std::string_view::npos || w.letter == 'M') continue;
+    const Access a = parameters_.write(kLocals[k], w.value);
+    if (!a.ok) fail(a.code, w.column, a.message);
+  }
 }
 
 // A canned cycle at the block's position (Fanuc: K or L repeats); R, Z, Q
@@ -1376,9 +1512,18 @@ void Interpreter::motion(Step& step) {
     if (s.motion != Motion::rapid && s.motion != Motion::linear)
       fail(Code::unsupported_code, nonmodal->column, "G53 needs G0 or G1");
     warn_once('G', 530, Code::machine_coordinates, nonmodal->column,
-              "G53 machine coordinates taken as program coordinates (offsets unknown)");
+              "G53 machine coordinates: the offsets the program sets (G10, G92, G52) are taken "
+              "off, the machine's own are unknown and taken as 0 (as rs274 does)");
   }
-  const Eigen::Vector3d end = target_of(step, s.absolute || machine);
+  Eigen::Vector3d end = target_of(step, s.absolute || machine);
+  if (machine) {
+    // The words are machine coordinates: in the program's frame they lie
+    // the active offsets off (rs274 prints them so).
+    const Eigen::Vector3d offset =
+        total_offset(step.origins ? *step.origins : origins_, s.work_system);
+    for (int k = 0; k < 3; ++k)
+      if (step.word(kAxes[k])) end[k] -= offset[k];
+  }
   const auto src = source(step.b, step.motion_column);
   switch (s.motion) {
     case Motion::none:
@@ -1446,7 +1591,7 @@ Eigen::Vector3d Interpreter::centre_from_radius(const Step& step, const Eigen::V
   const double half = chord / 2.0;
   const double abs_r = std::abs(radius);
   if (abs_r < 1e-9) fail(Code::arc_zero_radius, r->column, "arc radius R0");
-  if (abs_r < half - kArcAbsoluteTolerance)
+  if (abs_r < half - kArcRadiusTolerance)
     fail(Code::arc_r_too_small, r->column,
          "R = " + std::to_string(abs_r) + " mm is smaller than half the chord (" +
              std::to_string(half) + " mm)");
@@ -1484,10 +1629,12 @@ Eigen::Vector3d Interpreter::centre_from_offsets(const Step& step,
         (s.arc_absolute || off1->absolute ? 0.0 : centre[ax[1]]) + length(*off1, s.inches);
   const double r0 = std::hypot(a0 - centre[ax[0]], b0 - centre[ax[1]]);
   const double r1 = std::hypot(a1 - centre[ax[0]], b1 - centre[ax[1]]);
-  if (r0 < 1e-9 || r1 < 1e-9)
+  if (r0 < kArcRadiusTolerance || r1 < kArcRadiusTolerance)
     fail(Code::arc_zero_radius, column, "arc with zero radius at start or end");
   const double err = std::abs(r1 - r0);
-  if (err > kArcAbsoluteTolerance && err / r0 > kArcRelativeTolerance)
+  const double tolerance = s.inches ? kCentreArcToleranceInch : kCentreArcToleranceMm;
+  if (err > 100.0 * tolerance ||
+      (err > tolerance && err / std::max(r0, r1) > kArcRelativeTolerance))
     fail(Code::arc_radius_mismatch, column,
          "radius to end " + std::to_string(r1) + " mm differs from radius to start " +
              std::to_string(r0) + " mm");
@@ -1553,16 +1700,24 @@ void Interpreter::call_subprogram(const Step& step) {
   const Word* p = step.word('P');
   if (!p) fail(Code::missing_word, m->column, "M98 needs P (program number)");
   const Word* l = step.word('L');
-  long number = std::lround(p->value);
-  long count = l ? std::lround(l->value) : 1;
+  if (p->value < 0 || p->value > 1e9 || p->value != std::floor(p->value))
+    fail(Code::bad_word_value, p->column, "M98 P must be a program number, a whole number");
+  // L counts the passes, as rs274 and Fanuc do: L0 runs none; a negative or
+  // fractional count is refused (rs274: "Negative l word used").
+  if (l && (l->value < 0 || l->value > 1e9 || l->value != std::floor(l->value)))
+    fail(Code::bad_word_value, l->column,
+         "M98 L (the number of passes) must be a whole number from 0 to 1e9");
+  auto number = static_cast<long>(p->value);
+  long count = l ? static_cast<long>(l->value) : 1;
   if (!l && dialect_.kind == DialectKind::fanuc && number > 9999) {
     count = number / 10000;
     number %= 10000;
   }
+  if (count == 0) return;
   block_.control.column = m->column;
   char name[32];
   std::snprintf(name, sizeof name, "%ld", number);
-  call(name, {}, true, count < 1 ? 1 : count);
+  call(name, {}, true, count, false);
 }
 
 }  // namespace vcpost::gcode

@@ -79,10 +79,13 @@ struct Origins {
 struct InterpreterLimits {
   std::size_t max_call_depth = 64;
   std::uint64_t max_loop_iterations = 10'000'000;
-  // Blocks executed in all (loops and calls included): unbounded for
-  // programs, set by callers that must end in bounded time (the fuzzers:
-  // subroutines calling each other twice double at each level, no loop).
-  std::uint64_t max_blocks = std::numeric_limits<std::uint64_t>::max();
+  // Lines executed in all (loops, calls and skipped lines included): ten
+  // times the longest real programs (tens of millions of blocks), so that a
+  // program that runs for ever ends with an error (40 subroutines each
+  // calling the next twice make 2^39 calls without any loop). A loop or an
+  // M98 L repeat whose first pass shows it would pass the bound is refused
+  // at once. The fuzzers set less.
+  std::uint64_t max_blocks = 100'000'000;
   // Moves one canned-cycle block may make (L repeats times pecks): its
   // moves are held at once, so the bound is the block's memory (about
   // 100 MB). A Fanuc G83 with L320 and Q2, 0.002 mm pecks, makes 3.5 M;
@@ -125,10 +128,21 @@ class Interpreter {
     std::uint64_t return_offset = 0;
     std::uint32_t return_line = 0;
     bool fanuc = false;
-    long repeat_left = 0;  // M98 L count
+    bool own_locals = false;       // o-call and G65: a frame of local parameters
+    long repeat_left = 0;          // M98 L count
+    std::uint64_t pass_start = 0;  // lines_read_ when the current pass began
     std::uint64_t body_offset = 0;
     std::uint32_t body_line = 0;
     std::size_t flow_depth = 0;
+  };
+  // Subroutines by "o<name>" (o-word subs) or "O<number>" (programs for
+  // M98): where the body starts, and for o-word subs whether the flow of
+  // the program has met the definition, or a call has run it before that.
+  struct Sub {
+    std::uint64_t body_offset = 0;
+    std::uint32_t body_line = 0;
+    bool met = false;
+    bool called_ahead = false;
   };
   struct Flow {
     ControlKind kind = ControlKind::none;
@@ -136,7 +150,8 @@ class Interpreter {
     std::uint64_t start_offset = 0;  // the opening line (while) or the first body line (repeat)
     std::uint32_t start_line = 0;
     long remaining = 0;
-    bool taken = false;  // an if branch has run
+    bool taken = false;            // an if branch has run
+    std::uint64_t pass_start = 0;  // lines_read_ when the current pass began
   };
 
   bool line_at(std::uint64_t offset, std::uint32_t number, Line& line) const;
@@ -151,10 +166,19 @@ class Interpreter {
   void loop(const Control& c);
   void skip_to(const std::string& name, std::initializer_list<ControlKind> stops,
                bool fanuc_nesting);
-  std::pair<std::uint64_t, std::uint32_t> find_sub(const std::string& name, bool fanuc);
-  void call(const std::string& name, const std::vector<double>& arguments, bool fanuc, long repeat);
+  Sub* lookup_sub(const std::string& name, bool fanuc);
+  Sub& find_sub(const std::string& name, bool fanuc);
+  void define_sub(const Control& c);
+  std::size_t call_depth_limit() const;
+  void call(const std::string& name, const std::vector<double>& arguments, bool fanuc, long repeat,
+            bool own_locals);
   bool return_from_sub();
+  // One more pass of a loop or an M98 repeat: counted against the iteration
+  // limit, and refused when `left` more passes like the one just run
+  // (from `pass_start`) would pass the block bound.
+  void count_pass(std::uint64_t pass_start, long left, std::uint32_t column);
   void commit_assignments();
+  void warn_unread_rest();
 
   // The block's words, family by family (interpreter.cpp, in the order
   // execute() applies them).
@@ -186,7 +210,7 @@ class Interpreter {
   void set_motion_mode(Step& step);
   void move(Step& step);
   void reference_return(Step& step);
-  void macro_call(Step& step);
+  void macro_call(const Step& step);
   void canned_cycle(Step& step);
   int cycle_repeats(const Step& step) const;
   void place_cycle(const Step& step, CycleCall& call, double r_word, double z_word) const;
@@ -219,13 +243,14 @@ class Interpreter {
   std::vector<Diagnostic> warnings_;
   std::vector<Frame> frames_;
   std::vector<Flow> flow_;
-  std::unordered_map<std::string, std::pair<std::uint64_t, std::uint32_t>> subs_;
+  std::unordered_map<std::string, Sub> subs_;
   std::uint64_t pos_ = 0;
   std::uint32_t line_ = 0;  // number of the line at pos_ minus one
   std::uint64_t lines_read_ = 0;
   std::uint64_t loop_iterations_ = 0;
   std::uint64_t warning_count_ = 0;
   bool percent_seen_ = false;
+  bool content_seen_ = false;  // a line with words or control before this one
   bool ended_ = false;
 };
 

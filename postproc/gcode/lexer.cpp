@@ -120,28 +120,28 @@ using syntax::upper;
 
 std::size_t word_value_end(std::string_view s, std::size_t k) {
   const std::size_t start = k;
-  while (k < s.size() && (s[k] == '-' || s[k] == '+')) {  // unary signs, as unary() reads them
-    ++k;
-    while (k < s.size() && is_blank(s[k])) ++k;
-  }
-  if (k < s.size() && s[k] == '[') {
-    int depth = 0;
-    for (; k < s.size(); ++k) {
-      if (s[k] == '[') ++depth;
-      if (s[k] == ']' && --depth == 0) return k + 1;
+  // A loop, not a recursion: a chain of 65,536 '#' must not exhaust the stack.
+  while (true) {
+    while (k < s.size() && (s[k] == '-' || s[k] == '+')) {  // unary signs, as unary() reads them
+      ++k;
+      while (k < s.size() && is_blank(s[k])) ++k;
     }
-    return s.size();
-  }
-  if (k < s.size() && s[k] == '#') {
+    if (k < s.size() && s[k] == '[') {
+      int depth = 0;
+      for (; k < s.size(); ++k) {
+        if (s[k] == '[') ++depth;
+        if (s[k] == ']' && --depth == 0) return k + 1;
+      }
+      return s.size();
+    }
+    if (k >= s.size() || s[k] != '#') break;
     ++k;
     if (k < s.size() && s[k] == '<') {
       while (k < s.size() && s[k] != '>') ++k;
       return k < s.size() ? k + 1 : k;
     }
-    while (k < s.size() && is_blank(s[k])) ++k;
     // The parameter's number is a value itself (#5, ##1, #[1+2], #++1).
-    const std::size_t end = word_value_end(s, k);
-    return end > k ? end : start;
+    while (k < s.size() && is_blank(s[k])) ++k;
   }
   const std::size_t digits = k;
   while (k < s.size() && (is_digit(s[k]) || s[k] == '.' ||

@@ -1,5 +1,8 @@
 #include "postproc/gcode/parameters.h"
 
+#include <algorithm>
+#include <array>
+
 namespace vcpost::gcode {
 
 namespace {
@@ -10,6 +13,69 @@ constexpr int kNgcLast = 5602;
 constexpr int kNgcMachineFirst = 5000;
 constexpr int kFanucSystemFirst = 1000;
 constexpr int kFanucLast = 999;
+
+// LinuxCNC's predefined named parameters (interp_namedparams.cc), sorted.
+constexpr std::array<std::string_view, 60> kPredefined = {"_a",
+                                                          "_abs_a",
+                                                          "_abs_b",
+                                                          "_abs_c",
+                                                          "_abs_u",
+                                                          "_abs_v",
+                                                          "_abs_w",
+                                                          "_abs_x",
+                                                          "_abs_y",
+                                                          "_abs_z",
+                                                          "_absolute",
+                                                          "_adaptive_feed",
+                                                          "_b",
+                                                          "_c",
+                                                          "_call_level",
+                                                          "_ccomp",
+                                                          "_control_mode",
+                                                          "_coord_system",
+                                                          "_current_pocket",
+                                                          "_current_tool",
+                                                          "_feed",
+                                                          "_feed_hold",
+                                                          "_feed_override",
+                                                          "_flood",
+                                                          "_ijk_absolute_mode",
+                                                          "_imperial",
+                                                          "_incremental",
+                                                          "_inverse_time",
+                                                          "_lathe_diameter_mode",
+                                                          "_lathe_radius_mode",
+                                                          "_line",
+                                                          "_metric",
+                                                          "_mist",
+                                                          "_motion_mode",
+                                                          "_plane",
+                                                          "_remap_level",
+                                                          "_retract_old_z",
+                                                          "_retract_r_plane",
+                                                          "_rpm",
+                                                          "_selected_pocket",
+                                                          "_selected_tool",
+                                                          "_speed_override",
+                                                          "_spindle_css_mode",
+                                                          "_spindle_cw",
+                                                          "_spindle_on",
+                                                          "_spindle_rpm_mode",
+                                                          "_task",
+                                                          "_tool_offset",
+                                                          "_u",
+                                                          "_units_per_minute",
+                                                          "_units_per_rev",
+                                                          "_v",
+                                                          "_value",
+                                                          "_value_returned",
+                                                          "_vmajor",
+                                                          "_vminor",
+                                                          "_w",
+                                                          "_x",
+                                                          "_y",
+                                                          "_z"};
+static_assert(std::is_sorted(kPredefined.begin(), kPredefined.end()));
 
 Access refuse(Code code, std::string message) {
   Access a;
@@ -65,6 +131,12 @@ Access Parameters::read(std::string_view name) const {
                     (key.empty() || key[0] != '_' ? std::string()
                                                   : " (predefined #<_...> parameters are machine "
                                                     "state and are not known to vcpost)"));
+}
+
+bool Parameters::exists(std::string_view name) const {
+  if (read(name).ok) return true;
+  return kind_ == DialectKind::rs274ngc &&
+         std::binary_search(kPredefined.begin(), kPredefined.end(), name);
 }
 
 Access Parameters::write(int number, double value) {

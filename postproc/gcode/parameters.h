@@ -37,6 +37,10 @@ class Parameters {
 
   Access read(int number) const;
   Access read(std::string_view name) const;  // name already normalised (lower case, no blanks)
+  // EXISTS[#<name>]: set by the program, or one of LinuxCNC's predefined
+  // read-only parameters (#<_x>, #<_metric> ...), which exist although
+  // only the running control knows their values.
+  bool exists(std::string_view name) const;
   Access write(int number, double value);
   Access write(std::string_view name, double value);
 

@@ -66,6 +66,14 @@ class EventSource {
   }
   // Bytes of the text read so far (CL; G-code reports its block offsets).
   std::uint64_t consumed() const { return buffer_.consumed(); }
+  // G-code: the reader's warning on lines left unread after the closing '%'
+  // (formatted with the file's position), or "".
+  std::string unread_after_end() const {
+    if (!gcode_) return {};
+    for (const gcode::Diagnostic& d : gcode_->warnings())
+      if (d.code == gcode::Code::text_after_end) return gcode::format(d, file_name_);
+    return {};
+  }
   // G-code: the line of the first construct after which lines may run
   // more than once (a subroutine, a loop, a call, M98, GOTO), once read.
   std::optional<std::uint64_t> repeat_from() const { return repeat_from_; }
@@ -404,6 +412,8 @@ bool PathReader::read(Chunk& chunk, std::size_t samples) {
     if (!more) {
       totals_.missing_end =
           s.kind == ProgramKind::gcode && !s.program_end && !ends_with_percent(s.text);
+      totals_.unread_after_end = s.source.unread_after_end();
+      if (!totals_.unread_after_end.empty()) totals_.missing_end = false;
       break;
     }
     Event& event = s.events[s.next_event];

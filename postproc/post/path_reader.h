@@ -91,6 +91,9 @@ struct ReadTotals {
   std::uint64_t blocks = 0, motion_events = 0;
   double program_time_s = 0, cutting_time_s = 0;
   bool missing_end = false;  // G-code without M2/M30 or closing '%'
+  // G-code: the warning on lines after the closing '%', which are neither
+  // read nor posted ("" when there are none).
+  std::string unread_after_end;
 };
 
 class PathReader {

@@ -510,6 +510,7 @@ void add_totals(PostSummary& summary, const PathReader& reader, const ProgramWri
   summary.tool_notes = reader.tool_notes();
   summary.repeated_lines = writer.repeated_lines();
   summary.missing_end = totals.missing_end;
+  summary.unread_after_end = totals.unread_after_end;
 }
 
 }  // namespace

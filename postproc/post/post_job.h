@@ -95,7 +95,8 @@ struct PostSummary : ContactCounts {
   // Lines that ran more than once (subroutines, loops, M98) with an S or F
   // decided on each run: written once, with the lowest of the values.
   std::uint64_t repeated_lines = 0;
-  bool missing_end = false;  // G-code: no M2/M30 or closing '%' (a truncated file?)
+  bool missing_end = false;      // G-code: no M2/M30 or closing '%' (a truncated file?)
+  std::string unread_after_end;  // G-code: lines after the closing '%' (the warning), or ""
   // Cutting time (s) of the blocks whose planned S each bound decided.
   double time_clamped_max_s = 0, time_clamped_min_s = 0, time_slew_s = 0, time_rate_s = 0;
   // Over the posted sections, each at its own nominal vc; empty when no sample cut.

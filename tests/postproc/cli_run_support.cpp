@@ -13,9 +13,11 @@ std::string slurp(const std::filesystem::path& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-CliOutcome run_vcpost(const std::string& arguments, const std::filesystem::path& folder) {
-  const std::string command = "cd '" + folder.string() + "' && '" + VCPOST_BINARY + "' " +
-                              arguments + " > out.txt 2> err.txt < /dev/null";
+CliOutcome run_vcpost(const std::string& arguments, const std::filesystem::path& folder,
+                      const std::string& shell_prefix) {
+  const std::string command = "cd '" + folder.string() + "' && " + shell_prefix + "'" +
+                              VCPOST_BINARY + "' " + arguments +
+                              " > out.txt 2> err.txt < /dev/null";
   const int status = std::system(command.c_str());
   CliOutcome r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

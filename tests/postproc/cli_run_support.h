@@ -17,6 +17,8 @@ std::string slurp(const std::filesystem::path& path);
 
 // `vcpost ARGUMENTS` (shell words) run in `folder`, with no standard input;
 // its standard output and error are captured in out.txt and err.txt there.
-CliOutcome run_vcpost(const std::string& arguments, const std::filesystem::path& folder);
+// `shell_prefix` runs first in the same shell ("ulimit -s 1024 && ").
+CliOutcome run_vcpost(const std::string& arguments, const std::filesystem::path& folder,
+                      const std::string& shell_prefix = "");
 
 }  // namespace vcpost::testing

@@ -66,9 +66,9 @@ const std::map<std::string, std::string> kGcodeCases = {
     {"sixty_digit_coordinate.ngc", "rs274ngc:E1003 fanuc:E1003 mazak:E1003"},
     // "o200 while [#4 LT 3]" with #4 never set: an endless loop whose body
     // calls a subroutine with an arc; 100,000 iterations took over 5 s.
-    // The fuzz limit of 50,000 blocks ends it: E1307. Fanuc and Mazak stop
+    // The fuzz limit of 50,000 blocks ends it: E1309. Fanuc and Mazak stop
     // at line 2's named parameter: E1206.
-    {"endless_while_calling_arcs.ngc", "rs274ngc:E1307 fanuc:E1206 mazak:E1206"},
+    {"endless_while_calling_arcs.ngc", "rs274ngc:E1309 fanuc:E1206 mazak:E1206"},
 };
 
 // Outcome of the CL reader.

@@ -1,196 +1,26 @@
-// vcpost's interpreted moves against LinuxCNC's interpreter. How rs274 runs
-// standalone here (LinuxCNC 2.9, Debian 12): `rs274 -g FILE < /dev/null`
-// prints the canonical calls on stdout; no ini or tool table is needed
-// (without -t it starts with an empty tool table, which only changes
-// USE_TOOL_LENGTH_OFFSET, not compared). The test skips when rs274 or the
-// shared data are absent.
-//
-// Compared: STRAIGHT_TRAVERSE, STRAIGHT_FEED, ARC_FEED, SET_SPINDLE_SPEED,
-// SET_FEED_RATE, in order, every number within 1e-4 in rs274's printed unit
-// (mm; after G20 rs274 prints inches with 4 decimals, so vcpost's mm are
-// divided by 25.4 there and compared within 1e-4 inch). A straight move
-// that ends where the tool already is (rs274 prints one for a bare "G0" or
-// "G1" block) is no motion and is dropped on both sides.
-//
-// Besides the programs: every real program of ../shared in its dialect
-// (read where rs274 reads it, refused where it refuses it), and a coverage
-// run through LinuxCNC's G and M code list.
+// vcpost's interpreted moves against LinuxCNC's interpreter
+// (rs274_compare_support.h says how and what is compared): the test
+// programs, every real program of ../shared in its dialect (read where
+// rs274 reads it, refused where it refuses it), and a coverage run through
+// LinuxCNC's G and M code list. The tests skip when rs274 or the shared
+// data are absent.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <regex>
 #include <set>
-#include <sstream>
 #include <string>
-#include <vector>
 
-#include "postproc/gcode/interpreter.h"
-#include "postproc/program/transcript.h"
-#include "tests/postproc/rs274_support.h"
+#include "tests/postproc/gcode/rs274_compare_support.h"
 
 namespace vcpost::gcode {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Call {
-  std::string name;
-  std::vector<double> args;
-  bool inches = false;
-};
-
-// Marks straight moves that end exactly where the last move ended (as
-// printed: rs274's bare "G0" blocks, cycle moves to the level the tool is at).
-struct Marked {
-  Call call;
-  bool null = false;
-};
-std::vector<Marked> mark_null_moves(std::vector<Call> calls) {
-  std::vector<Marked> marked;
-  std::vector<double> at = {0.0, 0.0, 0.0};
-  for (auto& c : calls) {
-    bool null = false;
-    if (c.name == "STRAIGHT_TRAVERSE" || c.name == "STRAIGHT_FEED") {
-      null = c.args[0] == at[0] && c.args[1] == at[1] && c.args[2] == at[2];
-      at = {c.args[0], c.args[1], c.args[2]};
-    } else if (c.name == "ARC_FEED") {
-      at = {c.args[0], c.args[1], c.args[5]};  // XY plane ends; others only approximate
-    }
-    marked.push_back(Marked{std::move(c), null});
-  }
-  return marked;
-}
-
-bool compared(const std::string& name) {
-  return name == "STRAIGHT_TRAVERSE" || name == "STRAIGHT_FEED" || name == "ARC_FEED" ||
-         name == "SET_SPINDLE_SPEED" || name == "SET_FEED_RATE";
-}
-
-// Calls of interest from transcript text (rs274's or vcpost's).
-std::vector<Call> parse(const std::string& text) {
-  static const std::regex call(R"(([A-Z_]+)\((.*)\))");
-  std::vector<Call> calls;
-  bool inches = false;
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) {
-    std::smatch m;
-    if (!std::regex_search(line, m, call)) continue;
-    const std::string name = m[1];
-    if (name == "USE_LENGTH_UNITS") inches = m[2].str().find("INCHES") != std::string::npos;
-    if (!compared(name)) continue;
-    Call c{name, {}, inches};
-    std::istringstream args(m[2].str());
-    std::string a;
-    while (std::getline(args, a, ',')) c.args.push_back(std::stod(a));
-    calls.push_back(c);
-  }
-  // rs274 prints F before the G20/G21 of its block: a feed is in the units
-  // of the next motion.
-  for (std::size_t i = 0; i < calls.size(); ++i) {
-    if (calls[i].name != "SET_FEED_RATE") continue;
-    for (std::size_t k = i + 1; k < calls.size(); ++k)
-      if (calls[k].name != "SET_FEED_RATE" && calls[k].name != "SET_SPINDLE_SPEED") {
-        calls[i].inches = calls[k].inches;
-        break;
-      }
-  }
-  return calls;
-}
-
-std::string run_rs274(const fs::path& file) {
-  const std::string command =
-      vcpost::testing::rs274_command("-g '" + file.string() + "'") + " < /dev/null 2>&1";
-  std::string out;
-  if (FILE* pipe = popen(command.c_str(), "r")) {
-    char buffer[65536];
-    std::size_t n;
-    while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) out.append(buffer, n);
-    pclose(pipe);
-  }
-  return out;
-}
-
-// rs274's error message, or "" when it read the program to its end.
-std::string rs274_error(const std::string& transcript) {
-  std::istringstream in(transcript);
-  std::string line;
-  static const std::regex call(R"(^\s*\d+ N)");
-  while (std::getline(in, line)) {
-    if (line.empty() || line == "executing" || std::regex_search(line, call)) continue;
-    // Read to its end, motion complete (rs274 prints the last line after
-    // it): vcpost warns (W1305) there.
-    if (line == "File ended with no percent sign or program end") return "";
-    return line;
-  }
-  return "";
-}
-
-std::string run_vcpost(const fs::path& file, std::string& error,
-                       const Dialect& dialect = rs274ngc_dialect()) {
-  std::ifstream in(file, std::ios::binary);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  Interpreter interpreter(text, dialect);
-  std::vector<program::Event> events;
-  std::string out;
-  try {
-    while (interpreter.next(events)) {
-      for (const auto& e : events) program::append_transcript(out, e);
-      events.clear();
-    }
-  } catch (const GcodeError& e) {
-    error = format(e.diagnostic(), file.string());
-  }
-  return out;
-}
-
-bool rs274_available() { return std::system("command -v rs274 > /dev/null 2>&1") == 0; }
-
-bool same_call(const Call& a, const Call& b) {
-  if (a.name != b.name || a.args.size() != b.args.size()) return false;
-  for (std::size_t k = 0; k < a.args.size(); ++k) {
-    const bool is_length = a.name != "SET_SPINDLE_SPEED" && !(a.name == "ARC_FEED" && k == 4);
-    const double mine = b.inches && is_length ? a.args[k] / 25.4 : a.args[k];
-    if (std::abs(mine - b.args[k]) > 1e-4) return false;
-  }
-  return true;
-}
-
-void compare(const fs::path& file) {
-  SCOPED_TRACE(file.string());
-  std::string error;
-  const auto ours = mark_null_moves(parse(run_vcpost(file, error)));
-  ASSERT_EQ(error, "");
-  const std::string transcript = run_rs274(file);
-  ASSERT_EQ(rs274_error(transcript), "");
-  const auto theirs = mark_null_moves(parse(transcript));
-  ASSERT_GT(theirs.size(), 0u) << "rs274 printed no moves";
-  std::size_t i = 0, j = 0;
-  while (i < ours.size() || j < theirs.size()) {
-    if (i < ours.size() && j < theirs.size() && same_call(ours[i].call, theirs[j].call)) {
-      ++i;
-      ++j;
-    } else if (j < theirs.size() && theirs[j].null) {
-      ++j;
-    } else if (i < ours.size() && ours[i].null) {
-      ++i;
-    } else {
-      auto text = [](const std::vector<Marked>& v, std::size_t n) {
-        if (n >= v.size()) return std::string("(end)");
-        std::string t = v[n].call.name + "(";
-        for (double x : v[n].call.args) t += std::to_string(x) + ",";
-        return t + ")";
-      };
-      FAIL() << "call " << i << " of vcpost " << text(ours, i) << " vs call " << j << " of rs274 "
-             << text(theirs, j);
-    }
-  }
-}
+using namespace rs274cmp;  // NOLINT(google-build-using-namespace): this suite's helpers
 
 TEST(Rs274Compare, OwnTestPrograms) {
   if (!rs274_available()) GTEST_SKIP() << "rs274 (linuxcnc-uspace) not installed";

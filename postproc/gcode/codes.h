@@ -70,8 +70,8 @@ inline constexpr std::array kGCodes{
     CodeEntry{20, Gr::motion, Su::followed},
     CodeEntry{30, Gr::motion, Su::followed},
     CodeEntry{40, Gr::non_modal, Su::followed},
-    CodeEntry{50, Gr::motion, Su::refused, "is a cubic spline move"},
-    CodeEntry{51, Gr::motion, Su::refused, "is a quadratic spline move"},
+    CodeEntry{50, Gr::motion, Su::followed},  // cubic spline (XY plane)
+    CodeEntry{51, Gr::motion, Su::followed},  // quadratic spline (XY plane)
     CodeEntry{52, Gr::motion, Su::refused, "is a NURBS move"},
     CodeEntry{53, Gr::motion, Su::refused, "is a NURBS move"},
     CodeEntry{70, Gr::lathe_mode, Su::refused, "makes X a diameter (lathe mode)"},
@@ -303,7 +303,8 @@ constexpr std::optional<CodeEntry> find_g_code(DialectKind kind, double value) {
 
 static_assert(find_code(kGCodes, 61.1)->group == Group::path_control);
 static_assert(find_g_code(DialectKind::fanuc, 5.1)->support == Support::noted);
-static_assert(find_g_code(DialectKind::rs274ngc, 5.1)->support == Support::refused);
+static_assert(find_g_code(DialectKind::rs274ngc, 5.1)->support == Support::followed);
+static_assert(find_g_code(DialectKind::rs274ngc, 5.2)->support == Support::refused);
 static_assert(!find_g_code(DialectKind::sinumerik, 81).has_value());
 static_assert(!find_code(kGCodes, 1.5).has_value());
 static_assert(!find_code(kGCodes, 1e300).has_value());

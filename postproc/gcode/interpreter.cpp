@@ -11,6 +11,7 @@
 #include "postproc/gcode/codes.h"
 #include "postproc/gcode/cycles.h"
 #include "postproc/gcode/lexer.h"
+#include "postproc/gcode/splines.h"
 #include "postproc/program/arc.h"
 
 namespace vcpost::gcode {
@@ -912,6 +913,9 @@ void Interpreter::check_unused_words(const Step& step) {
   const bool g10 = nonmodal_code == 100;
   const bool g64 = step.g(Group::path_control) && step.g_code(Group::path_control) == 640;
   const bool arc = to_be == 20 || to_be == 30;
+  // rs274 takes I, J (and P, Q for G5) only with a G5 or G5.1 word in the block.
+  const bool spline = step.motion_code == 50 || step.motion_code == 51;
+  const bool cubic = step.motion_code == 50;
   const bool cycle = is_cycle_code(to_be);
   const bool m98 = step.m(Group::subprogram) != nullptr;
   // M codes that take words: M50-M53 and M62-M66 (P), M66-M68 (Q, L, E),
@@ -929,16 +933,17 @@ void Interpreter::check_unused_words(const Step& step) {
   };
   unused('D', comp_on || to_be == 730 || to_be == 830, "G41, G42, G73 or G83");
   unused('H', tlo_code == 430 || tlo_code == 432, "G43 or G43.2");
-  unused('I', arc || to_be == 870 || g10, "G2, G3, G10 or G87");
-  unused('J', arc || to_be == 870 || g10, "G2, G3, G10 or G87");
+  unused('I', arc || spline || to_be == 870 || g10, "G2, G3, G5, G5.1, G10 or G87");
+  unused('J', arc || spline || to_be == 870 || g10, "G2, G3, G5, G5.1, G10 or G87");
   unused('K', arc || to_be == 870, "G2, G3 or G87");
   unused('L', cycle || g10 || comp_on || m98 || moc == 660,
          "G10, cutter compensation, canned cycle or M98");
   unused('P',
-         g10 || nonmodal_code == 40 || g64 || arc || to_be == 740 || to_be == 820 || to_be == 840 ||
-             to_be == 860 || to_be == 880 || to_be == 890 || m98 || m_p || m19,
-         "G2, G3, G4, G10, G64, G74, G82, G84, G86, G88, G89 or M98");
-  unused('Q', to_be == 730 || to_be == 830 || g10 || g64 || m_q || m19, "G10, G64, G73 or G83");
+         g10 || nonmodal_code == 40 || g64 || arc || cubic || to_be == 740 || to_be == 820 ||
+             to_be == 840 || to_be == 860 || to_be == 880 || to_be == 890 || m98 || m_p || m19,
+         "G2, G3, G4, G5, G10, G64, G74, G82, G84, G86, G88, G89 or M98");
+  unused('Q', to_be == 730 || to_be == 830 || cubic || g10 || g64 || m_q || m19,
+         "G5, G10, G64, G73 or G83");
   unused('R', arc || cycle || g10 || g64 || m19, "G2, G3, G10, G64 or canned cycle");
   if (arc && !step.g(Group::plane)) {
     // (With a plane word in the block, that plane decides; checked with the arc.)
@@ -1270,6 +1275,8 @@ void Interpreter::set_motion_mode(Step& step) {
                  : c == 10 ? Motion::linear
                  : c == 20 ? Motion::arc_cw
                  : c == 30 ? Motion::arc_ccw
+                 : c == 50 ? Motion::spline_cubic
+                 : c == 51 ? Motion::spline_quadratic
                            : Motion::none;
     }
   }
@@ -1542,6 +1549,10 @@ void Interpreter::motion(Step& step) {
     case Motion::arc_ccw:
       arc(step, end);
       break;
+    case Motion::spline_cubic:
+    case Motion::spline_quadratic:
+      spline(step, end);
+      break;
   }
   s.position = end;
   s.moved = true;
@@ -1571,6 +1582,64 @@ void Interpreter::arc(Step& step, const Eigen::Vector3d& end) {
       s.position, end, centre, s.plane, cw ? -turns : turns, source(step.b, column)};
   step.emit_inverse_f([&] { return s.feed * program::arc_length(arc); });
   step.emit(arc);
+}
+
+// G5 (cubic) and G5.1 (quadratic) splines, as rs274 reads them: in the XY
+// plane, without Z; the control points are the start, start + (I, J), for
+// G5 end + (P, Q), and the end. A G5 without I and J continues the last
+// one smoothly: (I, J) is minus that one's (P, Q).
+void Interpreter::spline(Step& step, const Eigen::Vector3d& end) {
+  ModalState& s = step.state;
+  const std::uint32_t column = step.motion_column;
+  const bool cubic = s.motion == Motion::spline_cubic;
+  const char* code = cubic ? "G5" : "G5.1";
+  if (s.feed <= 0.0 || (s.feed_mode == program::FeedMode::inverse_time && !step.word('F')))
+    fail(Code::missing_feed, column, std::string(code) + " with no feed rate (F) in effect");
+  if (s.plane != program::Plane::xy)
+    fail(Code::unsupported_code, column,
+         std::string(code) + ": splines are in the XY plane (G17) only, as rs274 reads them");
+  if (const Word* z = step.word('Z'))
+    fail(Code::unsupported_code, z->column,
+         std::string(code) + ": a spline may not move Z (rs274 refuses it too)");
+  const Word* i = step.word('I');
+  const Word* j = step.word('J');
+  if ((i == nullptr) != (j == nullptr) || (!cubic && i == nullptr))
+    fail(Code::missing_word, column,
+         std::string(code) + (cubic ? " needs both I and J, or neither" : " needs both I and J"));
+  const Word* p = step.word('P');
+  const Word* q = step.word('Q');
+  if (cubic && (p == nullptr || q == nullptr))
+    fail(Code::missing_word, column, "G5 needs both P and Q");
+  const Eigen::Vector2d start = s.position.head<2>();
+  const Eigen::Vector2d to = end.head<2>();
+  const Eigen::Vector2d first =
+      start + (i ? Eigen::Vector2d(length(*i, s.inches), length(*j, s.inches))
+                 : Eigen::Vector2d(s.cycle_i, s.cycle_j));
+  std::vector<Eigen::Vector2d> control{start, first};
+  if (cubic) {
+    const Eigen::Vector2d pq(length(*p, s.inches), length(*q, s.inches));
+    control.emplace_back(to + pq);
+    s.cycle_i = -pq.x();
+    s.cycle_j = -pq.y();
+  }
+  control.push_back(to);
+  const std::vector<Eigen::Vector2d> points = spline_polyline(control);
+  step.emit_inverse_f([&] {
+    double path = 0.0;
+    Eigen::Vector2d at = start;
+    for (const auto& point : points) {
+      path += (point - at).norm();
+      at = point;
+    }
+    return s.feed * path;
+  });
+  const auto src = source(step.b, column);
+  Eigen::Vector3d from = s.position;
+  for (const auto& point : points) {
+    const Eigen::Vector3d next(point.x(), point.y(), s.position.z());
+    step.emit(program::StraightFeed{from, next, src});
+    from = next;
+  }
 }
 
 // R arc: the centre on the chord's bisector; R > 0 the short arc (centre

@@ -32,7 +32,7 @@ namespace vcpost::gcode {
 
 struct CycleCall;
 
-enum class Motion { none, rapid, linear, arc_cw, arc_ccw };
+enum class Motion { none, rapid, linear, arc_cw, arc_ccw, spline_cubic, spline_quadratic };
 
 // The modal state between blocks (all lengths mm).
 struct ModalState {
@@ -216,6 +216,7 @@ class Interpreter {
   void place_cycle(const Step& step, CycleCall& call, double r_word, double z_word) const;
   void motion(Step& step);
   void arc(Step& step, const Eigen::Vector3d& end);
+  void spline(Step& step, const Eigen::Vector3d& end);
   Eigen::Vector3d centre_from_radius(const Step& step, const Eigen::Vector3d& end, bool cw) const;
   Eigen::Vector3d centre_from_offsets(const Step& step, const Eigen::Vector3d& end) const;
   void siemens_words(Step& step);

@@ -77,6 +77,12 @@ constexpr HostileCase kCases[] = {
     {"'%' and a move", "G0 X1\n% G1 X5\nG0 X2\nM2\n", "E1001"},
     {"lone '%' in a program not opened with it", "G0 X1\n%\nG0 X2\nM2\n", "E1001"},
     {"closing '%' ends the program", "%\nG0 X1\n%\nG0 X2\nM2\n", nullptr},
+    // Splines as rs274 reads them: XY plane, no Z, their words complete.
+    {"G5 with Z", "F100 G5 I0 J3 P0 Q-3 X1 Y1 Z2\nM2\n", "E1404"},
+    {"G5 in the XZ plane", "G18\nF100 G5 I0 J3 P0 Q-3 X1 Y1\nM2\n", "E1404"},
+    {"G5 without Q", "F100 G5 I1 J1 P1 X3 Y3\nM2\n", "E1514"},
+    {"G5.1 without J", "F100 G5.1 X2 I1\nM2\n", "E1514"},
+    {"G5 P on a block without G5", "F100 G5 I1 J1 P1 Q-1 X4 Y2\nX6 Y0 P1 Q1\nM2\n", "E1009"},
 };
 
 TEST(Rs274Hostile, EachCaseReadAsRs274ReadsIt) {

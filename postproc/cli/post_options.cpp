@@ -574,15 +574,6 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   auto stage = std::chrono::steady_clock::now();
   const machines::MachineProfile profile = load_machine(args.machine);
   log().debug("machine profile {}: loaded in {:.3f} s", profile.name(), seconds_since(stage));
-  // Klartext is read (a dry run) but not yet written.
-  const bool klartext =
-      post::program_kind(text, settings.dialect.value_or(post::dialect_of(profile))) ==
-      post::ProgramKind::heidenhain;
-  if (klartext && write_program) {
-    throw CommandError("E3327", name +
-                                    ": error[E3327]: posting Klartext (.h) programs is not "
-                                    "available yet; `vcpost report` runs them dry");
-  }
   // Without a model, CL data is translated for the profile with its own
   // speeds (every section kept): vcpost as a plain 3-axis post-processor.
   const bool translate_only = args.model.empty();
@@ -625,7 +616,6 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   // A dry run still writes the program, to nowhere, so the report can say
   // how many S and F words the rewrite would change.
   std::function<void(std::string_view)> sink = [](std::string_view) {};
-  if (klartext) sink = {};  // no writer for Klartext yet: nothing to write to nowhere
   if (write_program) {
     sink = [&](std::string_view bytes) {
       if (file) {

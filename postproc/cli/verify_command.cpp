@@ -40,6 +40,12 @@ constexpr const char* kDescription =
     "step of the profile's output decimals, the rounding a correct output has); spindle\n"
     "on/off, tool changes and cutter compensation sides (CUTCOM as G40/G41/G42) in the\n"
     "same order. S and F values are free.\n"
+    "Klartext INPUT (a HEIDENHAIN .h program): each block of OUTPUT is the input's with only\n"
+    "its number, its TOOL CALL's S digits and its plain F digits changed; inserted\n"
+    "`TOOL CALL S` blocks stand right before a block that moves, and every block number is\n"
+    "the input's plus the blocks inserted before it; both programs read into the same\n"
+    "events but speeds and feeds. APT CL INPUT with Klartext OUTPUT: read back by the\n"
+    "Klartext reader and compared with the CL motions as above.\n"
     "\n"
     "Prints \"verified: ...\" and exits 0 when the proof holds. Each difference goes to\n"
     "stderr as file:line:col: error[E71xx]: message (line and column in OUTPUT, the\n"
@@ -84,7 +90,9 @@ nlohmann::json to_json(const verify::Result& r) {
                           {"input_line", v.input_line},
                           {"message", v.message}});
   nlohmann::json out = {{"verified", r.ok()},
-                        {"input_kind", r.kind == verify::InputKind::gcode ? "gcode" : "cldata"},
+                        {"input_kind", r.kind == verify::InputKind::gcode      ? "gcode"
+                                       : r.kind == verify::InputKind::klartext ? "heidenhain"
+                                                                               : "cldata"},
                         {"s_changes", r.s_changes},
                         {"f_changes", r.f_changes},
                         {"motions", r.motions},
@@ -101,7 +109,8 @@ void run(const Arguments& args) {
   const machines::MachineProfile profile = load_machine(args.machine);
   const ProgramText input_text(args.input), output_text(args.output);
   const std::string_view input = input_text.view(), output = output_text.view();
-  const bool cl_input = post::detect_program_kind(input) == post::ProgramKind::cldata;
+  const post::ProgramKind input_kind = post::detect_program_kind(input);
+  const bool cl_input = input_kind == post::ProgramKind::cldata;
   // From CL data vcpost wrote the output in the profile's output format.
   verify::Options options = post::cl_output_verify_options(profile);
   if (!cl_input) options.dialect = post::dialect_of(profile);
@@ -113,8 +122,15 @@ void run(const Arguments& args) {
   options.tolerance_mm = args.tolerance;
   const std::string in_name = args.input == "-" ? "<stdin>" : args.input;
   const std::string out_name = args.output == "-" ? "<stdin>" : args.output;
-  if (post::detect_program_kind(output) == post::ProgramKind::cldata)
-    throw CommandError("verify: " + out_name + " is APT CL data; OUTPUT must be G-code");
+  const post::ProgramKind output_kind = post::detect_program_kind(output);
+  if (output_kind == post::ProgramKind::cldata)
+    throw CommandError("verify: " + out_name +
+                       " is APT CL data; OUTPUT must be G-code or Klartext");
+  const bool klartext_in = input_kind == post::ProgramKind::heidenhain;
+  const bool klartext_out = output_kind == post::ProgramKind::heidenhain;
+  if (!cl_input && klartext_in != klartext_out)
+    throw CommandError("verify: " + in_name + " and " + out_name +
+                       " are not both Klartext: vcpost posts a program in its own language");
 
   // Changes stream out (or are only counted); JSON needs them all.
   if (!args.json) {
@@ -126,8 +142,11 @@ void run(const Arguments& args) {
       options.on_change = [](const verify::Change&) {};
   }
   // An input that does not read leaves as the reader's vcpost::Error.
-  const verify::Result result = cl_input ? verify::verify_cl(input, output, options, in_name)
-                                         : verify::verify_gcode(input, output, options, in_name);
+  const verify::Result result =
+      cl_input      ? (klartext_out ? verify::verify_cl_klartext(input, output, options, in_name)
+                                    : verify::verify_cl(input, output, options, in_name))
+      : klartext_in ? verify::verify_klartext(input, output, options, in_name)
+                    : verify::verify_gcode(input, output, options, in_name);
 
   if (args.json) std::cout << to_json(result).dump(2) << '\n';
   finish_standard_output();
@@ -143,7 +162,12 @@ void run(const Arguments& args) {
   }
   if (!args.json)
     std::cout << "verified: only S and F words differ (" << result.s_changes << " S words, "
-              << result.f_changes << " F words changed)"
+              << result.f_changes << " F words changed"
+              << (result.kind == verify::InputKind::klartext
+                      ? "; " + std::to_string(result.inserted_blocks) +
+                            " TOOL CALL S blocks inserted, the blocks after them renumbered"
+                      : "")
+              << ")"
               << (result.kind == verify::InputKind::cldata
                       ? "; " + std::to_string(result.motions) + " motions match the CL data"
                       : "")

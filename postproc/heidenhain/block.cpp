@@ -4,6 +4,7 @@
 #include "postproc/heidenhain/block.h"
 
 #include <algorithm>
+#include <cstring>
 #include <string>
 
 #include "postproc/heidenhain/lexer.h"
@@ -477,6 +478,41 @@ class BlockParser : public syntax::Lexer {
 };
 
 }  // namespace
+
+std::uint64_t split_block(std::string_view text, std::uint64_t offset, std::uint32_t line,
+                          Block& out) {
+  std::uint64_t pos = offset;
+  std::uint32_t lines = 0;
+  std::uint64_t end = offset;
+  std::string_view eol;
+  for (;;) {
+    const auto* nl =
+        static_cast<const char*>(std::memchr(text.data() + pos, '\n', text.size() - pos));
+    const std::uint64_t line_end = nl ? static_cast<std::uint64_t>(nl - text.data()) : text.size();
+    std::uint64_t text_end = line_end;
+    if (text_end > pos && text[text_end - 1] == '\r') --text_end;
+    ++lines;
+    pos = nl ? line_end + 1 : text.size();
+    end = text_end;
+    eol = text.substr(text_end, pos - text_end);
+    if (end - offset > kMaxBlockLength) {
+      throw KlartextError(
+          Diagnostic{Code::line_too_long, line, 1,
+                     "block longer than " + std::to_string(kMaxBlockLength) + " bytes"});
+    }
+    // A line whose last byte (blanks aside) is '~' goes on in the next one.
+    std::uint64_t last = text_end;
+    while (last > offset && (text[last - 1] == ' ' || text[last - 1] == '\t')) --last;
+    if (last == offset || text[last - 1] != '~' || pos >= text.size()) break;
+  }
+  out.text = text.substr(offset, end - offset);
+  out.eol = eol;
+  out.offset = offset;
+  out.end = end;
+  out.line = line;
+  out.lines = lines;
+  return pos;
+}
 
 void parse_block(Block& out) {
   out.clear();

@@ -155,8 +155,17 @@ struct Block {
 // Code::line_too_long.
 inline constexpr std::size_t kMaxBlockLength = 65536;
 
+// The block of `text` that starts at `offset` (a block start, `line` its
+// 1-based line): sets `out`'s text, eol, offset, end, line and lines (a line,
+// with the lines a trailing '~' continues) and returns the offset of the
+// next block. The reader and the writers of Klartext cut a text into blocks
+// with it. Throws KlartextError (Code::line_too_long) for a block longer
+// than kMaxBlockLength.
+std::uint64_t split_block(std::string_view text, std::uint64_t offset, std::uint32_t line,
+                          Block& out);
+
 // Reads the block `out.text` (set with offset, end, line, lines and eol by
-// the caller) into `out`'s other fields. Throws KlartextError at the line
+// the caller, e.g. split_block) into `out`'s other fields. Throws KlartextError at the line
 // and column of the first problem.
 void parse_block(Block& out);
 

@@ -188,42 +188,9 @@ program::SourceRef Interpreter::source() const {
 
 bool Interpreter::read_block() {
   if (pos_ >= text_.size()) return false;
-  const std::uint64_t start = pos_;
-  std::uint32_t lines = 0;
-  std::uint64_t end = 0;  // set by the first line
-  std::string_view eol;
-  for (;;) {
-    const char* base = text_.data() + pos_;
-    const auto* nl = static_cast<const char*>(std::memchr(base, '\n', text_.size() - pos_));
-    const std::uint64_t line_end =
-        nl ? static_cast<std::uint64_t>(nl - text_.data()) : text_.size();
-    std::uint64_t text_end = line_end;
-    if (text_end > pos_ && text_[text_end - 1] == '\r') --text_end;
-    ++lines;
-    pos_ = nl ? line_end + 1 : text_.size();
-    end = text_end;
-    eol = text_.substr(text_end, pos_ - text_end);
-    // A line whose last byte (blanks aside) is '~' goes on in the next one.
-    std::uint64_t last = text_end;
-    while (last > start && (text_[last - 1] == ' ' || text_[last - 1] == '\t')) --last;
-    if (end - start > kMaxBlockLength) {
-      block_.clear();
-      block_.text = text_.substr(start, std::min<std::uint64_t>(end - start, 64));
-      block_.line = line_ + 1;
-      block_.offset = start;
-      fail(Code::line_too_long, 0,
-           "block longer than " + std::to_string(kMaxBlockLength) + " bytes");
-    }
-    if (last == start || text_[last - 1] != '~' || pos_ >= text_.size()) break;
-  }
-  block_.text = text_.substr(start, end - start);
-  block_.eol = eol;
-  block_.offset = start;
-  block_.end = end;
-  block_.line = line_ + 1;
-  block_.lines = lines;
-  line_ += lines;
-  lines_read_ += lines;
+  pos_ = split_block(text_, pos_, line_ + 1, block_);
+  line_ += block_.lines;
+  lines_read_ += block_.lines;
   parse_block(block_);
   return true;
 }

@@ -281,8 +281,9 @@ gcode::Dialect dialect_of(const machines::MachineProfile& profile) {
       return gcode::mazak_dialect();
     case machines::Dialect::sinumerik:
       return gcode::sinumerik_dialect();
+    case machines::Dialect::heidenhain:  // read by its own reader: the kind names it
+      return gcode::heidenhain_dialect();
     case machines::Dialect::rs274ngc:
-    case machines::Dialect::heidenhain:  // Klartext is read by its own reader
       break;
   }
   return gcode::rs274ngc_dialect();
@@ -294,8 +295,9 @@ gcode::Dialect output_dialect_of(const machines::MachineProfile& profile) {
       return gcode::fanuc_dialect();
     case machines::OutputFormat::mazak:
       return gcode::mazak_dialect();
+    case machines::OutputFormat::heidenhain:
+      return gcode::heidenhain_dialect();
     case machines::OutputFormat::rs274ngc:
-    case machines::OutputFormat::heidenhain:  // Klartext is read by its own reader
       break;
   }
   return gcode::rs274ngc_dialect();
@@ -339,8 +341,10 @@ bool is_begin_pgm(std::string_view line) {
 }  // namespace
 
 ProgramKind program_kind(std::string_view text, const gcode::Dialect& dialect) {
-  return dialect.kind == gcode::DialectKind::heidenhain ? ProgramKind::heidenhain
-                                                        : detect_program_kind(text);
+  const ProgramKind seen = detect_program_kind(text);
+  return dialect.kind == gcode::DialectKind::heidenhain && seen != ProgramKind::cldata
+             ? ProgramKind::heidenhain
+             : seen;
 }
 
 ProgramKind detect_program_kind(std::string_view text) {
@@ -525,24 +529,13 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
   const ProgramKind kind = program_kind(text, dialect);
   PostSummary summary;
   summary.kind = kind;
-  // Klartext is read (dry runs, reports) but not yet written: a program
-  // half right is worse than none.
-  if (kind == ProgramKind::heidenhain && sink) {
-    throw PostError("E3327", file_name +
-                                 ": error[E3327]: posting Klartext (.h) programs is not available "
-                                 "yet; `vcpost report` runs them dry");
-  }
-
   const tools::ToolChoices choices = tools_of(settings);
   PathReader reader(text, file_name, kind, dialect, profile, settings.sample_spacing_mm,
                     kind == ProgramKind::cldata, choices, settings.point.ap);
   // The writer releases G-code text behind it; CL text is done with once read.
   const Finisher* decides = nullptr;  // set below: the writer asks it which sections it keeps
-  // Klartext reaches the writer only in dry runs (above): as text it is
-  // written through, as G-code is.
-  const ProgramKind written = kind == ProgramKind::cldata ? kind : ProgramKind::gcode;
   ProgramWriter writer(
-      text, written, profile, settings.adjust_feed, sink,
+      text, kind, profile, settings.adjust_feed, sink,
       kind != ProgramKind::cldata ? consumed : std::function<void(std::uint64_t)>{},
       [&decides](std::uint32_t section) { return decides->keeps(section); });
   Finisher finisher(profile, settings, writer, points, summary);

@@ -43,9 +43,11 @@ verify::Options cl_output_verify_options(const machines::MachineProfile& profile
 // `WORD/...` statements (GOTO/, FEDRAT/, CUTTER/ ...) or bare PARTNO/FINI
 // lines; a Klartext program's first block is `[n] BEGIN PGM <name> MM|INCH`.
 ProgramKind detect_program_kind(std::string_view text);
-// The kind for a dialect the user named: --dialect heidenhain reads
-// Klartext whatever the content shows (its reader says what is wrong);
-// every other dialect leaves the choice to the content.
+// The kind for a dialect the user named (or the profile's): the heidenhain
+// dialect reads Klartext whatever the content shows (its reader says what
+// is wrong) but APT CL data, which is read as CL (a Heidenhain profile
+// posts CL data to Klartext); every other dialect leaves the choice to the
+// content.
 ProgramKind program_kind(std::string_view text, const gcode::Dialect& dialect);
 
 struct PostSettings {

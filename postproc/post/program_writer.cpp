@@ -9,6 +9,7 @@
 #include <variant>
 
 #include "postproc/output/event_writer.h"
+#include "postproc/post/klartext_patch.h"
 
 namespace vcpost::post {
 namespace {
@@ -50,6 +51,8 @@ ProgramWriter::ProgramWriter(std::string_view text, ProgramKind kind,
       keeps_(std::move(keeps)) {
   if (kind_ == ProgramKind::cldata) {
     cl_writer_ = output::make_event_writer(cl_buffer_, profile);
+  } else if (kind_ == ProgramKind::heidenhain) {
+    klartext_ = std::make_unique<KlartextPatcher>(text_);
   }
 }
 
@@ -89,7 +92,7 @@ void ProgramWriter::on_final(const plan::BlockPlan& plan,
 }
 
 void ProgramWriter::flush() {
-  if (kind_ == ProgramKind::gcode) {
+  if (kind_ != ProgramKind::cldata) {
     if (!pending_.empty()) write_text_until(pending_.front().offset);
   } else {
     flush_cl();
@@ -98,7 +101,7 @@ void ProgramWriter::flush() {
 
 void ProgramWriter::finish() {
   while (!pending_.empty()) resolve_front({}, {});
-  if (kind_ == ProgramKind::gcode) {
+  if (kind_ != ProgramKind::cldata) {
     if (hold_from_ != UINT64_MAX) merge_repeated_patches();
     hold_from_ = UINT64_MAX;
     write_text_until(text_.size());
@@ -145,9 +148,11 @@ void ProgramWriter::resolve_front(Planned own, Planned next) {
       f = next.feed->f_mm_per_min;
     }
   }
+  // A TNC block takes a coupled F only in its own F word with a number.
+  if (f && klartext_ && !klartext_->takes_f(block.offset)) f.reset();
   if (words_by_section_.size() <= block.section) words_by_section_.resize(block.section + 1);
   auto& [section_s, section_f] = words_by_section_[block.section];
-  if (kind_ == ProgramKind::gcode) {
+  if (kind_ != ProgramKind::cldata) {
     if (s) {
       s_in_effect_ = on_grid(*s, s_step_);
     } else if (block.has_s) {
@@ -212,8 +217,12 @@ void ProgramWriter::write_text_until(std::uint64_t offset) {
   std::vector<gcode::WordPatch> now(std::make_move_iterator(patches_.begin()),
                                     std::make_move_iterator(held));
   patches_.erase(patches_.begin(), held);
-  for (auto& patch : now) patch.block_offset -= written_;
-  if (sink_) gcode::write_patched(text_.substr(written_, offset - written_), now, sink_);
+  if (klartext_) {
+    if (sink_) klartext_->write(written_, offset, now, sink_);
+  } else {
+    for (auto& patch : now) patch.block_offset -= written_;
+    if (sink_) gcode::write_patched(text_.substr(written_, offset - written_), now, sink_);
+  }
   written_ = offset;
   if (consumed_) consumed_(written_);
 }

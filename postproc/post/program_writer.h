@@ -1,9 +1,10 @@
 // The last stage of the post job: decides the output program block by
 // block as the planner declares blocks final, and writes it batch by batch.
-// G-code input: the input text with only S/F words changed; CL input: the
-// program in the profile's output format (G-code or Klartext) from the CL
-// events. Internal to the post
-// module.
+// G-code input: the input text with only S/F words changed; Klartext
+// input: the input with TOOL CALL S changed or inserted and the blocks
+// renumbered (klartext_patch.h); CL input: the program in the profile's
+// output format (G-code or Klartext) from the CL events. Internal to the
+// post module.
 #pragma once
 
 #include <cstdint>
@@ -29,6 +30,8 @@ class EventWriter;
 }
 
 namespace vcpost::post {
+
+class KlartextPatcher;
 
 // S or F on the control's grid, rounded down so vc (or the feed per tooth)
 // never exceeds the planned value.
@@ -118,6 +121,7 @@ class ProgramWriter {
   std::unordered_map<std::uint64_t, HeldLine> held_lines_;
   std::ostringstream cl_buffer_;
   std::unique_ptr<output::EventWriter> cl_writer_;
+  std::unique_ptr<KlartextPatcher> klartext_;  // Klartext input: TOOL CALL S, numbering
   std::function<bool(std::uint32_t)> keeps_;
   std::uint64_t s_words_ = 0, f_words_ = 0;
   // The S (on the grid) that blocks without motion set since the last block

@@ -1,5 +1,5 @@
-// CL in, G-code out: the same motions, spindle on/off and tool changes, one
-// to one and in order; S and F values are free (see verify.h).
+// CL in, G-code or Klartext out: the same motions, spindle on/off and tool
+// changes, one to one and in order; S and F values are free (see verify.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -8,11 +8,13 @@
 #include <sstream>
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "postproc/cldata/cl_reader.h"
 #include "postproc/gcode/diagnostics.h"
 #include "postproc/gcode/interpreter.h"
+#include "postproc/heidenhain/interpreter.h"
 #include "postproc/program/transcript.h"
 #include "postproc/verify/verify.h"
 #include "postproc/verify/verify_detail.h"
@@ -254,6 +256,72 @@ class GcodeItems {
   std::optional<SfValue> s_, f_;
 };
 
+// The Klartext output's items, read back by the Klartext reader. Throws
+// heidenhain::KlartextError.
+class KlartextItems {
+ public:
+  explicit KlartextItems(std::string_view text) : interpreter_(text) {}
+
+  std::optional<Item> next() {
+    while (true) {
+      while (at_ < events_.size()) {
+        const Event& e = events_[at_++];
+        const auto src = program::source_of(e);
+        if (const auto* s = std::get_if<program::SetSpindleSpeed>(&e)) {
+          s_ = word(interpreter_.block().s_span, s->rpm, src);
+        } else if (const auto* f = std::get_if<program::SetFeedRate>(&e)) {
+          const heidenhain::Block& block = interpreter_.block();
+          const heidenhain::Word* w = block.find(heidenhain::name("F"));
+          f_ = word(w ? std::optional<heidenhain::ByteSpan>(
+                            {block.offset + w->begin, block.offset + w->end})
+                      : std::nullopt,
+                    f->rate, src);
+        } else if (is_item(e)) {
+          Item item{e, src.line, src.column, std::move(s_), std::move(f_)};
+          s_.reset();
+          f_.reset();
+          return item;
+        }
+      }
+      events_.clear();
+      at_ = 0;
+      if (done_ || !interpreter_.next(events_)) {
+        done_ = true;
+        return std::nullopt;
+      }
+      // M30 stops the spindle itself (the reader says so, as rs274 does);
+      // CL FINI says nothing of it: that implied stop is not compared.
+      const bool ends = std::any_of(events_.begin(), events_.end(), [](const Event& e) {
+        return std::holds_alternative<program::ProgramEnd>(e);
+      });
+      const heidenhain::Block& block = interpreter_.block();
+      const bool m5 = std::any_of(block.words.begin(), block.words.end(), [](const auto& w) {
+        return w.key == heidenhain::name("M") && w.has_value && w.value.number == 5;
+      });
+      if (ends && !m5)
+        std::erase_if(
+            events_, [](const Event& e) { return std::holds_alternative<program::SpindleOff>(e); });
+    }
+  }
+
+ private:
+  // The word as written in the current block (its span in the text).
+  SfValue word(const std::optional<heidenhain::ByteSpan>& span, double value,
+               const program::SourceRef& src) const {
+    const heidenhain::Block& block = interpreter_.block();
+    if (!span) return SfValue{value, "", src.line, 1};
+    return SfValue{
+        value, std::string(block.text.substr(span->begin - block.offset, span->end - span->begin)),
+        src.line, static_cast<std::uint32_t>(span->begin - block.offset + 1)};
+  }
+
+  heidenhain::Interpreter interpreter_;
+  std::vector<Event> events_;
+  std::size_t at_ = 0;
+  bool done_ = false;
+  std::optional<SfValue> s_, f_;
+};
+
 std::string point(const Eigen::Vector3d& p) {
   return "(" + number(p.x()) + ", " + number(p.y()) + ", " + number(p.z()) + ")";
 }
@@ -388,8 +456,21 @@ class Comparer {
 
 }  // namespace
 
-Result verify_cl(std::string_view cl_text, std::string_view output, const Options& options,
-                 const std::string& input_name) {
+namespace {
+
+// Where the output stops reading: the reader's position and message.
+struct Unreadable {
+  std::uint32_t line = 0, column = 0;
+  std::string message;
+};
+
+using OutputRead = std::variant<std::optional<Item>, Unreadable>;
+
+// The CL data's items against the output's, one to one. `next_output`
+// gives the output's next item, or the Unreadable where it stops reading.
+template <class NextOutput>
+Result compare_with_cl(std::string_view cl_text, std::string_view output, const Options& options,
+                       const std::string& input_name, NextOutput next_output) {
   Result result;
   result.kind = InputKind::cldata;
   const double half_step = 0.5 * std::pow(10.0, -std::clamp(options.output_decimals, 0, 9));
@@ -399,19 +480,16 @@ Result verify_cl(std::string_view cl_text, std::string_view output, const Option
   Comparer comparer(result.tolerance_mm, half_step, options.output_feed_decimals, result, changes,
                     sink);
   ClItems cl(cl_text, input_name, options.cutter_compensation, options.manual_tool_change);
-  GcodeItems out(output, options.dialect, options.cutter_compensation, options.manual_tool_change);
   while (true) {
     const std::optional<Item> a = cl.next();
-    std::optional<Item> b;
-    try {
-      b = out.next();
-    } catch (const gcode::GcodeError& e) {
-      const auto& d = e.diagnostic();
-      sink.add(Code::output_unreadable, d.line, d.column, a ? a->line : 0,
-               "the output does not interpret: " + gcode::code_id(d.code, d.severity) + " " +
-                   d.message + " (is --machine the profile the output was posted for?)");
+    OutputRead read = next_output();
+    if (const auto* u = std::get_if<Unreadable>(&read)) {
+      sink.add(Code::output_unreadable, u->line, u->column, a ? a->line : 0,
+               "the output does not interpret: " + u->message +
+                   " (is --machine the profile the output was posted for?)");
       break;
     }
+    const std::optional<Item> b = std::move(std::get<std::optional<Item>>(read));
     if (!a && !b) break;
     if (!a || !b) {
       if (b)
@@ -430,6 +508,34 @@ Result verify_cl(std::string_view cl_text, std::string_view output, const Option
   }
   sink.move_into(result);
   return result;
+}
+
+}  // namespace
+
+Result verify_cl(std::string_view cl_text, std::string_view output, const Options& options,
+                 const std::string& input_name) {
+  GcodeItems out(output, options.dialect, options.cutter_compensation, options.manual_tool_change);
+  return compare_with_cl(cl_text, output, options, input_name, [&out]() -> OutputRead {
+    try {
+      return out.next();
+    } catch (const gcode::GcodeError& e) {
+      const auto& d = e.diagnostic();
+      return Unreadable{d.line, d.column, gcode::code_id(d.code, d.severity) + " " + d.message};
+    }
+  });
+}
+
+Result verify_cl_klartext(std::string_view cl_text, std::string_view output, const Options& options,
+                          const std::string& input_name) {
+  KlartextItems out(output);
+  return compare_with_cl(cl_text, output, options, input_name, [&out]() -> OutputRead {
+    try {
+      return out.next();
+    } catch (const heidenhain::KlartextError& e) {
+      const auto& d = e.diagnostic();
+      return Unreadable{d.line, d.column, std::string(e.code()) + " " + d.message};
+    }
+  });
 }
 
 }  // namespace vcpost::verify

@@ -1,6 +1,7 @@
 // `vcpost verify` as a library call: proves that an output program differs
-// from its input only in S and F words (G-code in, G-code out), or that it
-// moves like the CL data it was written from (CL in, G-code out).
+// from its input only in S and F words (G-code in, G-code out), only in
+// speeds and block numbers (Klartext in, Klartext out), or that it moves
+// like the CL data it was written from (CL in, G-code or Klartext out).
 //
 // G-code in, G-code out: two independent proofs.
 //  1. Lexical: both texts are cut into lines and each line into tokens
@@ -109,6 +110,7 @@ struct Result {
   std::uint64_t violation_count = 0;  // all of them
   std::uint64_t motions = 0;          // motions compared by the semantic proof
   double tolerance_mm = 0;            // CL: the end-point tolerance applied
+  std::uint64_t inserted_blocks = 0;  // Klartext: TOOL CALL S blocks the output adds
   bool ok() const { return violation_count == 0; }
 };
 
@@ -147,6 +149,19 @@ Result verify_gcode(std::string_view input, std::string_view output, const Optio
 // reader's code) when the CL data do not read.
 Result verify_cl(std::string_view cl_text, std::string_view output, const Options& options,
                  const std::string& input_name = "input");
+
+// Klartext input vs the Klartext vcpost posted from it: only block numbers,
+// TOOL CALL S values, inserted `TOOL CALL S` blocks (each right before a
+// block that moves) and plain F digits differ, and both programs read
+// into the same events but speeds and feeds (docs/heidenhain-output.md).
+// Throws vcpost::Error (the reader's code) when the input does not read.
+Result verify_klartext(std::string_view input, std::string_view output, const Options& options,
+                       const std::string& input_name = "input");
+
+// APT CL input vs Klartext output: as verify_cl, the output read back by
+// the Klartext reader.
+Result verify_cl_klartext(std::string_view cl_text, std::string_view output, const Options& options,
+                          const std::string& input_name = "input");
 
 // "<file>:<line>:<col>: error[E7103]: <message> (input line N)".
 std::string format(const Violation& violation, std::string_view output_name);

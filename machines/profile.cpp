@@ -42,7 +42,7 @@ ProfileError::ProfileError(std::string code, std::string file, std::uint32_t lin
 namespace {
 
 // The schema: every table and its keys. Anything else in a file is an error.
-constexpr std::array<std::string_view, 39> kSchemaKeys = {
+constexpr std::array<std::string_view, 40> kSchemaKeys = {
     "machine.name",
     "machine.description",
     "machine.dialect",
@@ -82,6 +82,7 @@ constexpr std::array<std::string_view, 39> kSchemaKeys = {
     "output.coolant_mist",
     "output.coolant_flood",
     "output.coolant_off",
+    "output.speed_word",
 };
 
 // [output] keys only the G-code writer reads (see check_heidenhain).
@@ -547,6 +548,32 @@ OutputSpec read_output(const Reader& r, OutputFormat format) {
   return o;
 }
 
+// LinuxCNC's analog outputs: motion.analog-out-00 .. -63 (num_aio at most 64).
+constexpr int kMaxAnalogOutput = 63;
+
+// [output] speed_word: "S", or "M67 E<n>" on a LinuxCNC control (rs274ngc
+// read and written): the only control with an output synchronized with motion.
+std::optional<int> speed_output(const Reader& r, Dialect dialect, OutputFormat format) {
+  const auto text = r.string("output", "speed_word", false);
+  if (!text || *text == "S") return std::nullopt;
+  int n = -1;
+  const auto* end = text->data() + text->size();
+  const bool m67 = text->size() >= 6 && text->size() <= 7 && text->compare(0, 5, "M67 E") == 0 &&
+                   std::from_chars(text->data() + 5, end, n).ptr == end && n >= 0 &&
+                   n <= kMaxAnalogOutput;
+  r.require(m67, "output", "speed_word",
+            cat({"is \"", *text, "\", not \"S\" or \"M67 E<n>\" with n in 0..",
+                 std::to_string(kMaxAnalogOutput), " (LinuxCNC's motion.analog-out-<n>)"}),
+            codes::bad_speed_word);
+  r.require(dialect == Dialect::rs274ngc && format == OutputFormat::rs274ngc, "output",
+            "speed_word",
+            "is \"" + *text +
+                "\", LinuxCNC's analog output: it needs machine.dialect and "
+                "machine.output_format \"rs274ngc\"",
+            codes::speed_word_control);
+  return n;
+}
+
 // [sources]: where each value comes from, "vendor: ..." or "assumed: ...".
 std::vector<SourceNote> read_sources(const Reader& r) {
   std::vector<SourceNote> notes;
@@ -668,8 +695,21 @@ MachineProfile profile_from_toml(std::string_view text, const std::string& file)
   p.output_ = read_output(r, p.output_format_);
   check_heidenhain(r, p.dialect_, p.output_format_, p.spindle_.change_in_motion);
   if (p.output_format_ == OutputFormat::heidenhain) p.output_.cutter_compensation = false;
+  p.output_.speed_output = speed_output(r, p.dialect_, p.output_format_);
   p.sources_ = read_sources(r);
   return p;
+}
+
+SpindleSpec planned_spindle(const MachineProfile& profile) {
+  SpindleSpec s = profile.spindle();
+  if (!profile.output().speed_output) return s;
+  s.change_in_motion = SChangeInMotion::inline_word;
+  s.change_code.clear();
+  s.stops_path_on_change = false;
+  s.stop_cost_s = 0;
+  s.at_speed_window_percent = 0;
+  s.s_in_feed = SInFeed::never;
+  return s;
 }
 
 MachineProfile profile_from_stream(std::istream& in, const std::string& file) {

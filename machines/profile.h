@@ -118,6 +118,13 @@ struct OutputSpec {
   std::string coolant_mist = "M7";
   std::string coolant_flood = "M8";
   std::string coolant_off = "M9";
+  // The word that carries the spindle speed (output.speed_word): none, the
+  // S word; n, LinuxCNC's analog output n ("M67 E<n>"): a spindle whose
+  // speed command is wired to motion.analog-out-<n> takes each change in
+  // motion as M67 E<n> Q<rpm>, set at the start of the next motion without
+  // a stop of the path (an S word stops it). The spindle's start keeps its
+  // S word, with M68 E<n> Q<rpm> (immediate) beside it. 0..63.
+  std::optional<int> speed_output;
 };
 
 // Provenance of one key ("spindle.n_max_rpm", or a whole table "feed").
@@ -165,6 +172,9 @@ inline constexpr std::string_view unreadable = "E5010";       // file cannot be 
 inline constexpr std::string_view heidenhain_pairing = "E5011";  // dialect vs output_format
 inline constexpr std::string_view heidenhain_s_block = "E5012";  // change_in_motion not own_block
 inline constexpr std::string_view heidenhain_output = "E5013";   // a G-code-only [output] key
+inline constexpr std::string_view bad_speed_word = "E5020";   // output.speed_word not S / M67 E<n>
+inline constexpr std::string_view speed_word_control =
+    "E5021";  // M67 E<n> on a non-LinuxCNC control
 }  // namespace codes
 
 // The validated profile. Immutable: built only by the loaders below.
@@ -208,6 +218,12 @@ class MachineProfile {
 MachineProfile profile_from_toml(std::string_view text, const std::string& file);
 // The same from a stream (read whole).
 MachineProfile profile_from_stream(std::istream& in, const std::string& file);
+
+// The spindle as the planner places its speed changes: as [spindle] says
+// for the S word; with output.speed_word "M67 E<n>" a change rides on the
+// motion without a stop, so it is placed as on a control that takes S in
+// motion (inline, no stop cost, no wait for the spindle, no priced S).
+SpindleSpec planned_spindle(const MachineProfile& profile);
 
 // Every key of the schema, as "table.key" (for `machines show` and tests).
 std::span<const std::string_view> schema_keys();

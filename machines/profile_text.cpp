@@ -177,6 +177,8 @@ std::string profile_to_toml(const MachineProfile& p) {
   w.key("coolant_mist", quote(o.coolant_mist));
   w.key("coolant_flood", quote(o.coolant_flood));
   w.key("coolant_off", quote(o.coolant_off));
+  w.key("speed_word",
+        quote(o.speed_output ? "M67 E" + std::to_string(*o.speed_output) : std::string("S")));
 
   if (!p.sources().empty()) {
     w.raw("\n[sources]\n");

@@ -118,7 +118,11 @@ void run(const Arguments& args) {
     const auto d = gcode::dialect_from_name(args.dialect);
     if (!d) throw CommandError("verify: --dialect: unknown dialect '" + args.dialect + "'");
     options.dialect = *d;
+    // --dialect names the language; the machine's speed output stays its wiring.
+    if (d->kind == gcode::DialectKind::rs274ngc)
+      options.dialect.speed_output = profile.output().speed_output;
   }
+  options.speed_output = options.dialect.speed_output;
   options.tolerance_mm = args.tolerance;
   const std::string in_name = args.input == "-" ? "<stdin>" : args.input;
   const std::string out_name = args.output == "-" ? "<stdin>" : args.output;

@@ -39,9 +39,10 @@ const Word* Block::find(char letter) const {
 namespace syntax {
 namespace {
 
-// Words a line may hold, by letter (E only in Fanuc-like dialects: thread
-// lead, taken and ignored for milling).
-bool is_word_letter(char c, const Dialect& d) {
+// Words a line may hold, by letter (E: the output of LinuxCNC's M66-M68,
+// checked with them; on Fanuc-like controls the thread lead, taken and
+// ignored for milling).
+bool is_word_letter(char c) {
   switch (c) {
     case 'A':
     case 'B':
@@ -66,9 +67,8 @@ bool is_word_letter(char c, const Dialect& d) {
     case 'X':
     case 'Y':
     case 'Z':
-      return true;
     case 'E':
-      return d.kind != DialectKind::rs274ngc;
+      return true;
     default:
       return false;
   }
@@ -265,7 +265,7 @@ void BlockParser::read_sequence_number(Block& out) {
 
 void BlockParser::read_word(Block& out, char letter) {
   const std::size_t start = i_;
-  if (!is_word_letter(letter, d_))
+  if (!is_word_letter(letter))
     fail(Code::unknown_word, start, std::string("unknown word '") + letter + "'");
   ++i_;
   skip_blanks();

@@ -71,6 +71,9 @@ enum class Code : std::uint16_t {
   frame_change = 1512,          // offsets (G92, G52, G10, G55 ...) changed after motion (warning)
   cycle_value = 1513,           // canned cycle without R/Z/Q/P, R below Z, Q <= 0
   missing_word = 1514,          // G4 without its time, M98 without P
+  // 162x: the spindle speed on an analog output (Dialect::speed_output)
+  negative_speed_output = 1620,  // M67/M68 E<speed output> Q<0
+  speed_output_words = 1621,     // M67/M68 without its E or Q word
 };
 
 struct CodeInfo {

@@ -34,6 +34,10 @@ struct Dialect {
   // Lines starting with '/' are skipped (the control's block-delete switch
   // on). rs274's default is off: they run.
   bool block_delete = false;
+  // LinuxCNC's analog output n that carries the spindle speed (a profile's
+  // output.speed_word "M67 E<n>"): M67/M68 E<n> Q<rpm> sets the speed as an
+  // S word does. None: M67/M68 set an output vcpost does not follow.
+  std::optional<int> speed_output;
 };
 
 Dialect rs274ngc_dialect();

@@ -701,6 +701,7 @@ void Interpreter::execute(std::vector<Event>& events) {
   if (step.word('F') && !step.siemens_dwell && !step.macro_call) set_feed(step);
   if (step.word('S') && !step.macro_call && !step.siemens_dwell && !step.speed_limit)
     set_spindle_speed(step);
+  if (dialect_.speed_output && step.m(Group::overrides)) analog_output(step);
   if (step.word('T') && !step.macro_call) select_tool(step);
   if (step.m(Group::tool_change)) change_tool(step);
   if (step.m(Group::spindle)) spindle(step);
@@ -891,9 +892,9 @@ void Interpreter::check_unused_words(const Step& step) {
   auto has_letter = [&](char l) {
     return step.index.by_letter[static_cast<std::size_t>(l - 'A')] != 0;
   };
-  const bool checked_words = has_letter('D') || has_letter('H') || has_letter('I') ||
-                             has_letter('J') || has_letter('K') || has_letter('L') ||
-                             has_letter('P') || has_letter('Q') || has_letter('R');
+  const bool checked_words =
+      has_letter('D') || has_letter('E') || has_letter('H') || has_letter('I') || has_letter('J') ||
+      has_letter('K') || has_letter('L') || has_letter('P') || has_letter('Q') || has_letter('R');
   if (!checked_words) return;
   const int nonmodal_code = step.nonmodal_code;
   int to_be = step.motion_code;
@@ -932,6 +933,7 @@ void Interpreter::check_unused_words(const Step& step) {
            std::string(1, letter) + " word with no " + users + " to use it");
   };
   unused('D', comp_on || to_be == 730 || to_be == 830, "G41, G42, G73 or G83");
+  unused('E', moc >= 660 && moc <= 680, "M66, M67 or M68");
   unused('H', tlo_code == 430 || tlo_code == 432, "G43 or G43.2");
   unused('I', arc || spline || to_be == 870 || g10, "G2, G3, G5, G5.1, G10 or G87");
   unused('J', arc || spline || to_be == 870 || g10, "G2, G3, G5, G5.1, G10 or G87");
@@ -1004,6 +1006,26 @@ void Interpreter::set_spindle_speed(Step& step) {
   if (sw->value < 0) fail(Code::bad_word_value, sw->column, "negative spindle speed");
   step.state.spindle_rpm = sw->value;
   step.emit(program::SetSpindleSpeed{sw->value, source(step.b, sw->column)});
+}
+
+// M67/M68 E<n> Q<value>: on the profile's speed output (the spindle's speed
+// command wired to motion.analog-out-<n>), the spindle speed, as an S word;
+// on another output, nothing vcpost follows. As LinuxCNC, E and Q are due.
+void Interpreter::analog_output(Step& step) {
+  const Word* m = step.m(Group::overrides);
+  const int c = code_of(*m);
+  if (c != 670 && c != 680) return;
+  const Word* e = step.word('E');
+  const Word* q = step.word('Q');
+  if (!e || !q)
+    fail(Code::speed_output_words, m->column,
+         std::string(c == 670 ? "M67" : "M68") + " needs E (the output) and Q (its value)");
+  if (e->value != *dialect_.speed_output) return;
+  if (q->value < 0)
+    fail(Code::negative_speed_output, q->column,
+         "negative spindle speed on the speed output E" + std::to_string(*dialect_.speed_output));
+  step.state.spindle_rpm = q->value;
+  step.emit(program::SetSpindleSpeed{q->value, source(step.b, m->column)});
 }
 
 void Interpreter::select_tool(Step& step) {

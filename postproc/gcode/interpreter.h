@@ -193,6 +193,7 @@ class Interpreter {
   void set_feed_mode(Step& step);
   void set_feed(Step& step);
   void set_spindle_speed(Step& step);
+  void analog_output(Step& step);
   void select_tool(Step& step);
   void change_tool(Step& step);
   void spindle(Step& step);

@@ -60,6 +60,7 @@ Format format_for(const machines::MachineProfile& profile) {
   format.coolant_mist = o.coolant_mist;
   format.coolant_flood = o.coolant_flood;
   format.coolant_off = o.coolant_off;
+  format.speed_output = o.speed_output;
   switch (profile.output_format()) {
     case machines::OutputFormat::rs274ngc:
       // LinuxCNC reads `O1000` as a subroutine keyword and G4 X as no dwell
@@ -263,6 +264,9 @@ void GcodeWriter::write_cycle() {
   };
   std::string words;
   end_compensation();  // rs274 runs no cycle under compensation
+  // A speed output's Q is not the cycle's (its peck): its own block, set
+  // at the start of the cycle's first move.
+  if (format_.speed_output && !pending_.empty()) block(take_pending());
   if (pending_g43_) {
     block("G43 H" + std::to_string(*pending_g43_));
     pending_g43_.reset();
@@ -409,7 +413,14 @@ void GcodeWriter::write(const Event& event) {
               per_rev, word('F', number(e.rate, per_rev ? 4 : format_.feed_decimals, e.source))};
         } else if constexpr (std::is_same_v<T, SetSpindleSpeed>) {
           const long s = std::lround(e.rpm);
-          pending_ += (pending_.empty() ? "S" : " S") + std::to_string(s);
+          if (format_.speed_output && s > 0) {
+            // One speed per block: a later one replaces an unwritten one.
+            const std::string analog =
+                " E" + std::to_string(*format_.speed_output) + " Q" + std::to_string(s);
+            pending_ = spindle_on_ ? "M67" + analog : "S" + std::to_string(s) + " M68" + analog;
+          } else {
+            pending_ += (pending_.empty() ? "S" : " S") + std::to_string(s);
+          }
         } else if constexpr (std::is_same_v<T, SpindleOn>) {
           std::string words = take_pending();
           words += words.empty() ? "" : " ";

@@ -87,6 +87,11 @@ struct Format {
   // G98 G83 comes out to R between pecks (Fanuc, Mazak); rs274 comes out to
   // the G98 level, which no CL peck cycle does: such holes stay moves.
   bool g83_pecks_out_to_r = true;
+  // The spindle speed on LinuxCNC's analog output n (output.speed_word
+  // "M67 E<n>"): a change while the spindle turns as M67 E<n> Q<rpm> with
+  // the next motion (set at its start, without a stop of the path), the
+  // speed before a start as S<rpm> M68 E<n> Q<rpm> (immediate). None: S.
+  std::optional<int> speed_output;
   bool comments = true;  // messages and notes as ( ) comments
   std::string end_of_line = "\n";
 };
@@ -144,7 +149,7 @@ class GcodeWriter : public EventWriter {
     std::string f_word;  // "F150."
   };
   std::optional<PendingFeed> pending_feed_;  // the feed waiting for the next block
-  std::string pending_;                      // S words waiting for the next block
+  std::string pending_;                      // S (speed output) words waiting for the next block
   std::optional<int> pending_g43_;           // tool number whose G43 is due
   bool high_speed_on_ = false;
   bool spindle_on_ = false;  // M3/M4 written since the last M5 or tool change

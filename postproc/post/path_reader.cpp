@@ -431,7 +431,8 @@ bool PathReader::read(Chunk& chunk, std::size_t samples) {
     }
     const auto [block_index, fresh] = s.counter.on(source, motion, change);
     if (fresh) {
-      chunk.blocks.push_back({source.offset, false, false, s.program_s, s.program_f, s.section});
+      chunk.blocks.push_back({source.offset, false, false, s.program_s, s.program_f, s.section,
+                              s.spindle_state() != plan::SpindleState::off});
       ++totals_.blocks;
       s.last_offset = chunk.blocks.back().offset;
     }

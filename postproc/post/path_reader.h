@@ -39,6 +39,9 @@ struct BlockInfo {
   bool has_s = false, has_f = false;
   double program_s = 0, program_f = 0;  // in effect on the block
   std::uint32_t section = 0;            // the tool section it belongs to (ToolSection::index)
+  // The spindle turns before the block (on, with a speed above 0): a speed
+  // word here changes a running spindle; else it is the spindle's start.
+  bool spindle_turns = false;
 };
 
 enum class SlotKind : std::uint8_t {

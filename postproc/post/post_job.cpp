@@ -82,8 +82,8 @@ class Finisher {
  public:
   Finisher(const machines::MachineProfile& profile, const PostSettings& settings,
            ProgramWriter& writer, const PointSink& points, PostSummary& summary)
-      : planner_(profile.spindle()),
-        statistics_(profile.spindle(), summary),
+      : planner_(machines::planned_spindle(profile)),
+        statistics_(machines::planned_spindle(profile), summary),
         sections_(summary, settings.point.contact_tolerance),
         writer_(writer),
         points_(points),
@@ -286,7 +286,9 @@ gcode::Dialect dialect_of(const machines::MachineProfile& profile) {
     case machines::Dialect::rs274ngc:
       break;
   }
-  return gcode::rs274ngc_dialect();
+  gcode::Dialect dialect = gcode::rs274ngc_dialect();
+  dialect.speed_output = profile.output().speed_output;
+  return dialect;
 }
 
 gcode::Dialect output_dialect_of(const machines::MachineProfile& profile) {
@@ -300,12 +302,25 @@ gcode::Dialect output_dialect_of(const machines::MachineProfile& profile) {
     case machines::OutputFormat::rs274ngc:
       break;
   }
-  return gcode::rs274ngc_dialect();
+  gcode::Dialect dialect = gcode::rs274ngc_dialect();
+  dialect.speed_output = profile.output().speed_output;
+  return dialect;
+}
+
+gcode::Dialect reading_dialect(const PostSettings& settings,
+                               const machines::MachineProfile& profile) {
+  if (!settings.dialect) return dialect_of(profile);
+  gcode::Dialect dialect = *settings.dialect;
+  // --dialect names the language; the machine's speed output stays its wiring.
+  if (dialect.kind == gcode::DialectKind::rs274ngc)
+    dialect.speed_output = profile.output().speed_output;
+  return dialect;
 }
 
 verify::Options cl_output_verify_options(const machines::MachineProfile& profile) {
   verify::Options options;
   options.dialect = output_dialect_of(profile);
+  options.speed_output = options.dialect.speed_output;
   options.output_decimals = profile.output().decimals;
   options.output_feed_decimals = profile.output().feed_decimals;
   options.cutter_compensation = profile.output().cutter_compensation;
@@ -411,7 +426,7 @@ std::optional<ToolSection> first_postable_section(std::string_view text,
                                                   const std::string& file_name,
                                                   const machines::MachineProfile& profile,
                                                   const PostSettings& settings) {
-  const gcode::Dialect dialect = settings.dialect.value_or(dialect_of(profile));
+  const gcode::Dialect dialect = reading_dialect(settings, profile);
   const ProgramKind kind = program_kind(text, dialect);
   const tools::ToolChoices choices = tools_of(settings);
   PathReader reader(text, file_name, kind, dialect, profile, settings.sample_spacing_mm, false,
@@ -525,7 +540,7 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
                          const std::function<void(std::string_view)>& sink,
                          const Progress& progress, const PointSink& points,
                          const std::function<void(std::uint64_t)>& consumed) {
-  const gcode::Dialect dialect = settings.dialect.value_or(dialect_of(profile));
+  const gcode::Dialect dialect = reading_dialect(settings, profile);
   const ProgramKind kind = program_kind(text, dialect);
   PostSummary summary;
   summary.kind = kind;

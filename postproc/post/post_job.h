@@ -64,6 +64,12 @@ struct PostSettings {
   int threads = 0;                        // worker threads; 0: one per core
 };
 
+// The dialect the job reads its G-code input in: --dialect
+// (PostSettings::dialect) or the profile's, with the profile's speed output
+// (output.speed_word) for an rs274ngc program.
+gcode::Dialect reading_dialect(const PostSettings& settings,
+                               const machines::MachineProfile& profile);
+
 // How the S words sit on this machine's control, per section of the
 // program (a run of the spindle: from a start, a tool change or a reversal
 // of the spindle to the next), and what they cost in path time.

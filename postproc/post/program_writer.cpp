@@ -46,6 +46,7 @@ ProgramWriter::ProgramWriter(std::string_view text, ProgramKind kind,
       f_step_(std::pow(10.0, -profile.output().feed_decimals)),
       s_decimals_(decimals_of(profile.spindle().s_resolution_rpm)),
       f_decimals_(profile.output().feed_decimals),
+      speed_output_(profile.output().speed_output),
       sink_(std::move(sink)),
       consumed_(std::move(consumed)),
       keeps_(std::move(keeps)) {
@@ -169,8 +170,10 @@ void ProgramWriter::resolve_front(Planned own, Planned next) {
       line.f = std::fmin(line.f, f_in_effect_);
       ++line.runs;
     }
-    if (s) {
-      patches_.push_back({block.offset, 'S', format_word(*s, s_step_, s_decimals_)});
+    // With a speed output every speed of the program goes there, also one
+    // the plan keeps: the S word alone no longer sets the spindle's speed.
+    if (s || (speed_output_ && block.has_s && block.program_s > 0)) {
+      patches_.push_back(speed_patch(block, s ? *s : block.program_s));
       ++s_words_;
       ++section_s;
     }
@@ -205,6 +208,15 @@ void ProgramWriter::resolve_front(Planned own, Planned next) {
     cl_writer_->write(event);
     events_.pop_front();
   }
+}
+
+gcode::WordPatch ProgramWriter::speed_patch(const BlockInfo& block, double rpm) const {
+  gcode::WordPatch patch{block.offset, 'S', format_word(rpm, s_step_, s_decimals_)};
+  // S0 stays the S word: it stops the spindle.
+  if (!speed_output_ || on_grid(rpm, s_step_) <= 0) return patch;
+  patch.form = block.spindle_turns ? gcode::SpeedForm::synced : gcode::SpeedForm::start;
+  patch.output = *speed_output_;
+  return patch;
 }
 
 void ProgramWriter::write_text_until(std::uint64_t offset) {

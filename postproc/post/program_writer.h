@@ -86,12 +86,16 @@ class ProgramWriter {
   void write_text_until(std::uint64_t offset);
   void merge_repeated_patches();
   void flush_cl();
+  // The patch that writes speed `rpm` on `block`: an S word, or with the
+  // profile's speed output the analog word (gcode::SpeedForm).
+  gcode::WordPatch speed_patch(const BlockInfo& block, double rpm) const;
 
   std::string_view text_;
   ProgramKind kind_;
   bool adjust_feed_;
   double s_step_, f_step_;
   int s_decimals_, f_decimals_;
+  std::optional<int> speed_output_;  // output.speed_word "M67 E<n>": n
   std::function<void(std::string_view)> sink_;
   std::function<void(std::uint64_t)> consumed_;
   std::deque<BlockInfo> pending_;

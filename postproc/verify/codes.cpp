@@ -34,7 +34,9 @@ const std::vector<CodeInfo>& code_table() {
                       Code::klartext_block_added,
                       Code::klartext_bad_value,
                       Code::klartext_event_differs,
-                      Code::klartext_output_unreadable}) {
+                      Code::klartext_output_unreadable,
+                      Code::bad_speed_output_value,
+                      Code::speed_output_unexpected}) {
       rows.push_back({code, vcpost::code_info(code_id(code)).summary});
     }
     return rows;

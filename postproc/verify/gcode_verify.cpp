@@ -2,7 +2,10 @@
 // semantic proof (interpreted events), see verify.h.
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
+#include <iterator>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,9 +31,46 @@ std::string eol_name(std::string_view eol) {
 
 int letter_index(char letter) { return letter == 'S' ? 0 : 1; }
 
+// A plain number's value ("67", "0"); none for anything else.
+std::optional<double> number_of(std::string_view text) {
+  double v = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
+  return v;
+}
+
+// An analog-output word M67/M68 E<n> Q<value> in a line's tokens (blanks
+// between its words): the indices of its M and its Q token.
+struct AnalogTokens {
+  std::size_t m = 0, q = 0;
+};
+// The first one of output `output` (any output when none is given).
+std::optional<AnalogTokens> find_analog(const std::vector<Token>& tokens,
+                                        std::optional<int> output) {
+  const auto next_word = [&](std::size_t k) {
+    ++k;
+    while (k < tokens.size() && tokens[k].kind == TokenKind::blank) ++k;
+    return k;
+  };
+  for (std::size_t k = 0; k < tokens.size(); ++k) {
+    if (tokens[k].letter() != 'M') continue;
+    const auto code = number_of(tokens[k].value());
+    if (!code || (*code != 67 && *code != 68)) continue;
+    const std::size_t e = next_word(k);
+    if (e >= tokens.size() || tokens[e].letter() != 'E') continue;
+    const auto n = number_of(tokens[e].value());
+    if (!n || (output && *n != *output)) continue;
+    const std::size_t q = next_word(e);
+    if (q < tokens.size() && tokens[q].letter() == 'Q') return AnalogTokens{k, q};
+  }
+  return std::nullopt;
+}
+
 // Compares one line of the input with the same line of the output.
 class LineComparer {
  public:
+  explicit LineComparer(std::optional<int> speed_output) : speed_output_(speed_output) {}
+
   // Appends the line's changes (by column) and violations to `changes` / `sink`.
   void compare(const Line& in, const Line& out, std::vector<Change>& changes, ViolationSink& sink) {
     const std::size_t first = changes.size();
@@ -44,6 +84,7 @@ class LineComparer {
                       ViolationSink& sink) {
     tokenize(in.text, a_);
     tokenize(out.text, b_);
+    if (!fold_speed_output(in, out, changes, sink)) return;
     if (in.eol != out.eol)
       sink.add(Code::line_ending, out.number, static_cast<std::uint32_t>(out.text.size() + 1),
                in.number,
@@ -102,6 +143,66 @@ class LineComparer {
       ++j;
     }
     if (i < a_.size() || j < kept_.size()) report(in, out, i, j, count_a, count_b, sink);
+  }
+
+  // The output's analog speed word (Options::speed_output) as the writer
+  // puts it: a change of the input's own one (its Q), the input's S word
+  // in another form, or a word added after the block's last one. Folded
+  // back into what the input holds there, so that the comparison that
+  // follows checks every other byte. False: the line is judged already.
+  bool fold_speed_output(const Line& in, const Line& out, std::vector<Change>& changes,
+                         ViolationSink& sink) {
+    if (!speed_output_) {
+      const auto added = find_analog(b_, std::nullopt);
+      if (!added || find_analog(a_, std::nullopt)) return true;
+      sink.add(Code::speed_output_unexpected, out.number, b_[added->m].column, in.number,
+               quoted(b_[added->m].text) +
+                   " sets an analog output the input does not: if it carries the spindle "
+                   "speed, give verify the --machine whose output.speed_word names it");
+      return false;
+    }
+    const auto word = find_analog(b_, speed_output_);
+    if (!word) return true;
+    const Token& m = b_[word->m];
+    Token& q = b_[word->q];
+    const std::size_t begin = m.column - 1;
+    const std::string text(out.text.substr(begin, q.column - 1 + q.text.size() - begin));
+    if (!is_plain_positive(q.value()))
+      sink.add(Code::bad_speed_output_value, out.number, q.column, in.number,
+               quoted(text) + ": the speed is not a plain positive number");
+    if (const auto own = find_analog(a_, speed_output_)) {
+      const Token& q_in = a_[own->q];
+      if (q_in.text != q.text) {
+        const std::size_t at = a_[own->m].column - 1;
+        changes.push_back(Change{
+            out.number, m.column, in.number, 'S',
+            std::string(in.text.substr(at, q_in.column - 1 + q_in.text.size() - at)), text, false});
+        q.text = q_in.text;
+      }
+      return true;
+    }
+    const auto s_word = [](const Token& t) { return t.letter() == 'S'; };
+    const auto s_in = std::find_if(a_.begin(), a_.end(), s_word);
+    const auto m_at = b_.begin() + static_cast<std::ptrdiff_t>(word->m);
+    const auto q_end = b_.begin() + static_cast<std::ptrdiff_t>(word->q) + 1;
+    if (s_in != a_.end() && std::none_of(b_.begin(), b_.end(), s_word)) {
+      // In the S word's place: compared as that S word from here on.
+      changes.push_back(
+          Change{out.number, m.column, in.number, 'S', std::string(s_in->text), text, false});
+      Token s = *s_in;
+      s.column = m.column;
+      b_.erase(m_at + 1, q_end);
+      b_[word->m] = s;
+      return true;
+    }
+    // Added after the block's last word, with the one blank the writer puts in front.
+    changes.push_back(Change{out.number, m.column, in.number, 'S', "", text, true});
+    auto from = m_at;
+    if (from != b_.begin() && std::prev(from)->kind == TokenKind::blank &&
+        std::prev(from)->text == " ")
+      --from;
+    b_.erase(from, q_end);
+    return true;
   }
 
   // The first difference at a_[i] / kept_[j] (either may be past the end).
@@ -199,6 +300,7 @@ class LineComparer {
     return sa_ == sb_;
   }
 
+  std::optional<int> speed_output_;
   std::vector<Token> a_, b_, kept_, ca_, cb_;
   std::string sa_, sb_;
 };
@@ -213,9 +315,9 @@ bool equivalent(LineComparer& comparer, const Line& in, const Line& out) {
 
 // Streams through both texts line by line (nothing is kept but the
 // current pair).
-void compare_lines(std::string_view input, std::string_view output, ChangeSink& changes,
-                   ViolationSink& sink) {
-  LineComparer comparer;
+void compare_lines(std::string_view input, std::string_view output, std::optional<int> speed_output,
+                   ChangeSink& changes, ViolationSink& sink) {
+  LineComparer comparer(speed_output);
   std::vector<Change> buffer;
   auto record = [&](const Line& x, const Line& y) {
     buffer.clear();
@@ -380,7 +482,7 @@ Result verify_gcode(std::string_view input, std::string_view output, const Optio
     return result;
   }
   ChangeSink changes(result, options.on_change);
-  compare_lines(input, output, changes, sink);
+  compare_lines(input, output, options.speed_output, changes, sink);
   // The interpreted events carry their lines; with lines added or removed
   // only the order of events can be compared.
   const bool same_lines = sink.count_of(Code::line_count) == 0;

@@ -26,6 +26,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -69,6 +70,9 @@ enum class Code : std::uint16_t {
   klartext_bad_value = 7140,          // a new S/F that is not a plain positive number
   klartext_event_differs = 7141,      // the programs mean other events (S/F aside)
   klartext_output_unreadable = 7142,  // the output does not read where the input does
+  // 715x: the speed on an analog output (Options::speed_output)
+  bad_speed_output_value = 7150,   // M67/M68 E<n> Q<value> written with a Q not plain positive
+  speed_output_unexpected = 7151,  // an M67/M68 speed word where verify knows no speed output
 };
 
 struct CodeInfo {
@@ -81,7 +85,8 @@ const std::vector<CodeInfo>& code_table();
 const CodeInfo& info(Code code);
 std::string code_id(Code code);  // "E7103"
 
-// One S or F word that the output changed or added.
+// One S or F word that the output changed or added (an analog speed word
+// counts as an S word: letter 'S', its text "M67 E0 Q9870").
 struct Change {
   std::uint32_t line = 0;        // output line, 1-based
   std::uint32_t column = 0;      // output column of the word's letter, 1-based
@@ -133,6 +138,13 @@ struct Options {
   // "manual"): M5 when the spindle turns, then T<n> M0, compared as the
   // CL's tool change (a spindle stop before it when the CL's spindle turns).
   bool manual_tool_change = false;
+  // The spindle speed on LinuxCNC's analog output n (the profile's
+  // output.speed_word "M67 E<n>", also set in `dialect`): G-code in, an
+  // output word M67/M68 E<n> Q<rpm> is a speed word, as the writer puts it
+  // (gcode::SpeedForm): in the place of the input's S word, or added after
+  // the block's last word (beside the S word at the spindle's start); its Q
+  // may change as an S word does.
+  std::optional<int> speed_output;
   std::size_t max_violations = 1000;  // kept in Result::violations (all are counted)
   // When set, each change is handed here, in output order, instead of being
   // kept in Result::changes (memory stays flat on long programs).

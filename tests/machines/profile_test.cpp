@@ -61,7 +61,8 @@ TEST(BuiltinProfiles, AllAreShippedAndLoad) {
     EXPECT_EQ(profile.origin(), p.path);
   }
   EXPECT_EQ(names, (std::vector<std::string>{"fanuc-3axis-sar", "fanuc-3axis", "generic", "grbl",
-                                             "heidenhain-tnc640", "linuxcnc-3axis", "mazak-3axis",
+                                             "heidenhain-tnc640", "linuxcnc-3axis-m67",
+                                             "linuxcnc-3axis", "mazak-3axis",
                                              "sinumerik-840d"}));  // by file name
 }
 
@@ -75,7 +76,8 @@ TEST(BuiltinProfiles, HowEachControlTakesAnSWordInMotion) {
     bool vendor_note;  // the stop behaviour is taken from a document or a measurement
   };
   for (const Expected& e :
-       {Expected{"linuxcnc-3axis", true, 0.021, 0, true}, Expected{"grbl", true, 0.05, 0, true},
+       {Expected{"linuxcnc-3axis", true, 0.021, 0, true},
+        Expected{"linuxcnc-3axis-m67", true, 0.021, 0, true}, Expected{"grbl", true, 0.05, 0, true},
         Expected{"fanuc-3axis", false, 0, 0, false},
         Expected{"fanuc-3axis-sar", true, 0.1, 10, true},
         Expected{"sinumerik-840d", false, 0, 0, true}, Expected{"mazak-3axis", false, 0, 0, false},
@@ -171,6 +173,69 @@ TEST(ProfileLoading, ToolChangeFormAndCoolantCodesAreChoicesChecked) {
       EXPECT_EQ(e.line(), 25u) << e.what();  // the key's line: kMinimal has 23, [output] 24
     }
   }
+}
+
+// Issue 41: the word that carries the speed, S or LinuxCNC's M67 E<n>.
+TEST(ProfileLoading, SpeedWordIsSOrAnAnalogOutputOfLinuxCnc) {
+  const auto plain = profile_from_toml(std::string(kMinimal), "min.toml");
+  EXPECT_FALSE(plain.output().speed_output);
+  auto with = [](const std::string& dialect, const std::string& word) {
+    std::string text = kMinimal;
+    for (const char* key : {"dialect = \"rs274ngc\"", "output_format = \"rs274ngc\""}) {
+      const auto at = text.find(key);
+      text.replace(text.find('"', at), 10, "\"" + dialect + "\"");
+    }
+    return text + "[output]\nspeed_word = \"" + word + "\"\n";
+  };
+  EXPECT_FALSE(profile_from_toml(with("rs274ngc", "S"), "s.toml").output().speed_output);
+  EXPECT_EQ(profile_from_toml(with("rs274ngc", "M67 E0"), "a.toml").output().speed_output, 0);
+  EXPECT_EQ(profile_from_toml(with("rs274ngc", "M67 E63"), "a.toml").output().speed_output, 63);
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"rs274ngc", "M67 E64"}, {"rs274ngc", "M67"},   {"rs274ngc", "M68 E0"},
+      {"rs274ngc", "M67 E-1"}, {"rs274ngc", "M67E0"}, {"rs274ngc", "s"},
+      {"rs274ngc", "M67 E0 "}, {"fanuc", "M67 E0"}};
+  for (const auto& [dialect, word] : bad) {
+    SCOPED_TRACE(word + " " + dialect);
+    try {
+      profile_from_toml(with(dialect, word), "a.toml");
+      ADD_FAILURE() << "accepted";
+    } catch (const ProfileError& e) {
+      EXPECT_EQ(e.code(), dialect == "fanuc" ? "E5021" : "E5020") << e.what();
+      EXPECT_EQ(e.line(), 25u) << e.what();  // the key's line: kMinimal has 23, [output] 24
+    }
+  }
+  // The profile written out loads again with its speed word.
+  const auto m67 = builtin_profile("linuxcnc-3axis-m67");
+  EXPECT_EQ(profile_from_toml(profile_to_toml(m67), "again.toml").output().speed_output, 0);
+}
+
+// linuxcnc-3axis-m67: linuxcnc-3axis's machine with its speed on analog
+// output 0, whose changes the planner places as inline S words (no stop,
+// nothing to price); its S word still stops the path (the spindle's start).
+TEST(BuiltinProfiles, LinuxCncM67PlansItsSpeedChangesInMotion) {
+  const auto s = builtin_profile("linuxcnc-3axis");
+  const auto m67 = builtin_profile("linuxcnc-3axis-m67");
+  EXPECT_EQ(m67.output().speed_output, 0);
+  EXPECT_TRUE(m67.spindle().stops_path_on_change);
+  const SpindleSpec planned = planned_spindle(m67);
+  EXPECT_FALSE(planned.stops_path_on_change);
+  EXPECT_EQ(planned.change_in_motion, SChangeInMotion::inline_word);
+  EXPECT_DOUBLE_EQ(planned.stop_cost_s, 0);
+  EXPECT_DOUBLE_EQ(planned.at_speed_window_percent, 0);
+  // The spindle's own limits are linuxcnc-3axis's, and planned as they are.
+  for (const SpindleSpec& spec : {m67.spindle(), planned}) {
+    EXPECT_DOUBLE_EQ(spec.n_max_rpm, s.spindle().n_max_rpm);
+    EXPECT_DOUBLE_EQ(spec.acceleration_rpm_per_s, s.spindle().acceleration_rpm_per_s);
+    EXPECT_DOUBLE_EQ(spec.s_resolution_rpm, s.spindle().s_resolution_rpm);
+    EXPECT_DOUBLE_EQ(spec.max_changes_per_s, s.spindle().max_changes_per_s);
+  }
+  // Without a speed output the planned spindle is the profile's.
+  EXPECT_TRUE(planned_spindle(s).stops_path_on_change);
+  const auto* note = m67.source_of("output.speed_word");
+  ASSERT_NE(note, nullptr);
+  EXPECT_TRUE(note->vendor);
+  EXPECT_NE(note->text.find("m-code.html#mcode:m67"), std::string::npos);
+  EXPECT_NE(note->text.find("analog-out"), std::string::npos);
 }
 
 TEST(BuiltinProfiles, EmbeddedBytesEqualTheFiles) {

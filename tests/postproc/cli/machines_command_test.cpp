@@ -74,6 +74,7 @@ void expect_same(const MachineProfile& a, const MachineProfile& b) {
   EXPECT_EQ(o.coolant_mist, q.coolant_mist);
   EXPECT_EQ(o.coolant_flood, q.coolant_flood);
   EXPECT_EQ(o.coolant_off, q.coolant_off);
+  EXPECT_EQ(o.speed_output, q.speed_output);
   ASSERT_EQ(a.sources().size(), b.sources().size());
   for (std::size_t i = 0; i < a.sources().size(); ++i) {
     EXPECT_EQ(a.sources()[i].key, b.sources()[i].key);
@@ -138,8 +139,8 @@ TEST(MachinesCommand, ShowPrintsALoadableProfileWithItsSources) {
   const auto r = run("machines show mazak-3axis");
   EXPECT_EQ(r.exit_code, 0) << r.out;
   expect_same(builtin_profile("mazak-3axis"), profile_from_toml(r.out, "shown.toml"));
-  // 39 keys, all with an "assumed" note in the shipped file.
-  EXPECT_NE(r.out.find("39 keys: 39 assumed"), std::string::npos) << r.out;
+  // 40 keys, all with an "assumed" note in the shipped file.
+  EXPECT_NE(r.out.find("40 keys: 40 assumed"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("n_max_rpm = 12000"), std::string::npos);
   EXPECT_NE(r.out.find("change_code = \"G117\""), std::string::npos);
 }

@@ -46,6 +46,9 @@ TEST_F(MovesCli, EveryBadFileGivesItsPositionedDiagnostic) {
     const std::string text = slurp(entry.path());
     std::smatch expect, dialect;
     ASSERT_TRUE(std::regex_search(text, expect, expect_re));
+    // A speed output comes with a machine profile (`post`, `report`), which
+    // `moves` does not read.
+    if (text.find("(speed output E") != std::string::npos) continue;
     std::string arguments = "'" + entry.path().string() + "'";
     if (std::regex_search(text, dialect, dialect_re)) arguments += " --dialect " + dialect[1].str();
     const Outcome r = run(arguments);

@@ -1,6 +1,7 @@
 // Bad input: every file in tests/postproc/bad/gcode holds its expected
 // diagnostic in a comment "(expect <CODE> <line>:<col> <message part>)",
-// optionally "(dialect <name>)", as LinuxCNC's tests/interp/bad do. Plus
+// optionally "(dialect <name>)" and "(speed output E<n>)" (Dialect::
+// speed_output), as LinuxCNC's tests/interp/bad do. Plus
 // inputs too large or random to keep as files: never a crash, always a
 // diagnostic with a position.
 #include <gtest/gtest.h>
@@ -36,6 +37,7 @@ TEST(BadInput, EveryFileGivesItsExpectedDiagnostic) {
   const fs::path dir = fs::path(VCPOST_SOURCE_DIR) / "tests/postproc/bad/gcode";
   static const std::regex expect_re(R"(\(expect ([EW]\d{4}) (\d+):(\d+) ([^)]*)\))");
   static const std::regex dialect_re(R"(\(dialect (\w+)\))");
+  static const std::regex speed_output_re(R"(\(speed output E(\d+)\))");
   int count = 0;
   for (const auto& entry : fs::directory_iterator(dir)) {
     SCOPED_TRACE(entry.path().string());
@@ -46,6 +48,8 @@ TEST(BadInput, EveryFileGivesItsExpectedDiagnostic) {
     Dialect dialect = rs274ngc_dialect();
     if (std::regex_search(text, dialect_name, dialect_re))
       dialect = dialect_from_name(dialect_name[1].str()).value();
+    if (std::smatch output; std::regex_search(text, output, speed_output_re))
+      dialect.speed_output = std::stoi(output[1].str());
     const auto d = run(text, dialect);
     ASSERT_TRUE(d.has_value()) << "no diagnostic";
     EXPECT_EQ(code_id(d->code, d->severity), expect[1].str());

@@ -47,6 +47,32 @@ Diagnostic error_of(std::string_view text, const Dialect& dialect) {
 
 // ---- Fanuc/ISO numbers without a decimal point ----------------------------
 
+// Issue 41: with a speed output (a profile's output.speed_word "M67 E0"),
+// M67/M68 E0 Q is the spindle speed, as an S word; other outputs, and every
+// output without it, set nothing vcpost follows. E is a word of LinuxCNC's.
+TEST(SpeedOutput, M67AndM68OnTheSpeedOutputSetTheSpindleSpeed) {
+  const std::string text =
+      "S4000 M3 M68 E0 Q4000\nG1 X1 F100 M67 E0 Q5000\nM67 E1 Q7\nG1 X2 M67 E0 Q0\nM2\n";
+  const auto speeds = [&](const Dialect& dialect) {
+    std::vector<std::pair<double, std::uint32_t>> out;  // rpm, line
+    for (const auto& e : all_events(text, dialect))
+      if (const auto* s = std::get_if<program::SetSpindleSpeed>(&e))
+        out.emplace_back(s->rpm, s->source.line);
+    return out;
+  };
+  Dialect dialect = rs274ngc_dialect();
+  using Speeds = std::vector<std::pair<double, std::uint32_t>>;
+  EXPECT_EQ(speeds(dialect), (Speeds{{4000, 1}}));  // S only
+  dialect.speed_output = 0;
+  EXPECT_EQ(speeds(dialect), (Speeds{{4000, 1}, {4000, 1}, {5000, 2}, {0, 4}}));
+  dialect.speed_output = 1;
+  EXPECT_EQ(speeds(dialect), (Speeds{{4000, 1}, {7, 3}}));
+  // The moves are the same whichever output carries the speed.
+  EXPECT_EQ(moves(text, rs274ngc_dialect()), moves(text, dialect));
+  // An E word no M66-M68 uses is refused, as rs274 does.
+  EXPECT_EQ(error_of("G1 X1 E5 F100\nM2\n", rs274ngc_dialect()).code, Code::word_without_use);
+}
+
 TEST(FanucNumbers, IntegersAreLeastIncrementsByDefault) {
   // Increment 0.001 mm: X1000 = 1 mm, Y-2500 = -2.5 mm; Z1. has a point: 1 mm.
   EXPECT_EQ(moves("G21 G90\nG0 X1000 Y-2500 Z1.\nM30\n", fanuc_dialect()),

@@ -82,6 +82,51 @@ TEST(Writer, RewrittenSpeedReadsBackToTheSameMoves) {
   EXPECT_EQ(speeds, 1);
 }
 
+// Issue 41: a speed on LinuxCNC's analog output 0 (gcode::SpeedForm), each
+// form on the line shapes it meets; expected texts written by hand.
+TEST(Writer, SpeedOnAnAnalogOutputTakesTheSWordsPlaceOrGoesAfterTheLastWord) {
+  const auto speed = [](std::uint64_t offset, std::string value, SpeedForm form, int output = 0) {
+    WordPatch patch{offset, 'S', std::move(value)};
+    patch.form = form;
+    patch.output = output;
+    return patch;
+  };
+  const std::string text =
+      "S4000 M3 (start)\n"    // 0: the spindle's start
+      "G1 X1 Y2 F100\n"       // 17: a change on a move
+      "G1 X2 S5000 Y3 ; s\n"  // 31: the input's S word, mid-line
+      "S5100\n"               // 50: alone
+      "g1x3s5200\n"           // 56: no blanks
+      "G1 X4 M67 E0 Q6000\n"  // 66: posted before
+      "G83 X5 Z-1 R1 Q0.5\n"  // 85: a peck's Q: no room
+      "G1 X6 M64 P1\n"        // 104: another HAL output code: no room
+      "G1 X7 M67 E1 Q3\n"     // 117: output 1 is not the speed's
+      "G1 X8 S7000\n";        // 133: output 2 named
+  const std::vector<WordPatch> patches{
+      speed(0, "6400", SpeedForm::start),      speed(17, "6500", SpeedForm::synced),
+      speed(31, "6600", SpeedForm::synced),    {31, 'F', "120"},
+      speed(50, "6700", SpeedForm::synced),    speed(56, "6800", SpeedForm::synced),
+      speed(66, "6900", SpeedForm::synced),    speed(85, "7000", SpeedForm::synced),
+      speed(104, "7100", SpeedForm::synced),   speed(117, "7200", SpeedForm::synced),
+      speed(133, "7300", SpeedForm::synced, 2)};
+  EXPECT_EQ(patched(text, patches),
+            "S6400 M3 M68 E0 Q6400 (start)\n"
+            "G1 X1 Y2 F100 M67 E0 Q6500\n"
+            "G1 X2 M67 E0 Q6600 Y3 F120 ; s\n"
+            "M67 E0 Q6700\n"
+            "g1x3M67E0Q6800\n"
+            "G1 X4 M67 E0 Q6900\n"
+            "G83 X5 Z-1 R1 Q0.5 S7000\n"
+            "G1 X6 M64 P1 S7100\n"
+            "G1 X7 M67 E1 Q3 S7200\n"
+            "G1 X8 M67 E2 Q7300\n");
+  // A start on a line posted before keeps its M68 and S word, both set.
+  EXPECT_EQ(patched("S1 M3 M68 E0 Q1\n", std::vector{speed(0, "900", SpeedForm::start)}),
+            "S900 M3 M68 E0 Q900\n");
+  // S0 and plain S patches are untouched by the forms.
+  EXPECT_EQ(patched("G1 X1 S100\n", std::vector<WordPatch>{{0, 'S', "0"}}), "G1 X1 S0\n");
+}
+
 TEST(Writer, RejectsPatchesThatAreNotLineStarts) {
   const std::string text = "G1 X1\nG1 X2\n";
   const std::vector<WordPatch> bad{{3, 'S', "1"}};

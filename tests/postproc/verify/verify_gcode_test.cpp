@@ -202,6 +202,85 @@ TEST(VerifyGcode, SecondSWordInABlock) {
   expect_one(replace(posted(kInput), "S9870 M3", "S9870 S9000 M3"), Code::sf_repeated, 5, 7);
 }
 
+// Issue 41: the input posted for a speed on analog output 0 (as
+// linuxcnc-3axis-m67 writes it): the start keeps its S word with M68 beside
+// it, the S word of line 8 becomes M67, lines 7 and 9 get one added.
+std::string posted_m67(const std::string& input) {
+  const auto speed = [&](int line, std::string value, gcode::SpeedForm form) {
+    gcode::WordPatch patch{line_offset(input, line), 'S', std::move(value)};
+    patch.form = form;
+    return patch;
+  };
+  const std::vector<gcode::WordPatch> patches = {
+      speed(5, "9870", gcode::SpeedForm::start),  {line_offset(input, 7), 'F', "750"},
+      speed(7, "9500", gcode::SpeedForm::synced), speed(8, "11000", gcode::SpeedForm::synced),
+      speed(9, "9000", gcode::SpeedForm::synced),
+  };
+  return gcode::patched(input, patches);
+}
+
+Options m67_options() {
+  Options options;
+  options.speed_output = 0;
+  options.dialect.speed_output = 0;
+  return options;
+}
+
+TEST(VerifyGcode, SpeedsOnTheAnalogOutputAreSpeedWords) {
+  const std::string out = posted_m67(kInput);
+  ASSERT_EQ(out.substr(line_offset(out, 5)),
+            "S9870 M3 M68 E0 Q9870\nG0 X0 Y0 Z5\nG1 Z-1 F750 M67 E0 Q9500\n"
+            "G1 X10.5 Y2 M67 E0 Q11000\nX20 Y4 M67 E0 Q9000 (edge)\nG0 Z5\nM5\nM30\n%\n");
+  const Result r = verify_gcode(kInput, out, m67_options());
+  EXPECT_TRUE(r.ok()) << (r.violations.empty() ? "" : format(r.violations[0], "out"));
+  ASSERT_EQ(r.changes.size(), 6u);
+  EXPECT_EQ(r.s_changes, 5u);
+  const std::vector<std::string> described = {
+      "S12000 -> S9870", "+ M68 E0 Q9870",          "F800 -> F750",
+      "+ M67 E0 Q9500",  "S11000 -> M67 E0 Q11000", "+ M67 E0 Q9000"};
+  const std::vector<std::uint32_t> lines = {5, 5, 7, 7, 8, 8 + 1};
+  const std::vector<std::uint32_t> columns = {1, 10, 8, 13, 13, 8};
+  for (std::size_t k = 0; k < described.size(); ++k) {
+    EXPECT_EQ(describe(r.changes[k]), described[k]);
+    EXPECT_EQ(r.changes[k].line, lines[k]) << described[k];
+    EXPECT_EQ(r.changes[k].column, columns[k]) << described[k];
+  }
+  EXPECT_EQ(r.motions, 5u);
+  // Posted again: the M67 words of the input are its speed words, their Q may change.
+  const std::string again = replace(out, "Q11000", "Q10500");
+  const Result r2 = verify_gcode(out, again, m67_options());
+  EXPECT_TRUE(r2.ok());
+  ASSERT_EQ(r2.changes.size(), 1u);
+  EXPECT_EQ(describe(r2.changes[0]), "M67 E0 Q11000 -> M67 E0 Q10500");
+}
+
+TEST(VerifyGcode, SpeedOutputMutationsAreCaught) {
+  const std::string out = posted_m67(kInput);
+  const auto one = [&](const std::string& output, Code code, std::uint32_t line,
+                       std::uint32_t column, const Options& options = m67_options()) {
+    const Result r = verify_gcode(kInput, output, options);
+    ASSERT_EQ(r.violation_count, 1u)
+        << output << (r.violations.empty() ? "" : format(r.violations[0], "out"));
+    EXPECT_EQ(r.violations[0].code, code) << format(r.violations[0], "out");
+    EXPECT_EQ(r.violations[0].line, line) << format(r.violations[0], "out");
+    EXPECT_EQ(r.violations[0].column, column) << format(r.violations[0], "out");
+  };
+  one(replace(out, "Q9500", "Q-9500"), Code::bad_speed_output_value, 7, 20);
+  one(replace(out, "Q9500", "Q#1"), Code::bad_speed_output_value, 7, 20);
+  // The motion changed along with the speed word.
+  one(replace(out, "G1 X10.5 Y2 M67", "G1 X10.6 Y2 M67"), Code::word_changed, 8, 4);
+  // Another output is no speed word: an added M67 E1 is text the input lacks
+  // (found at its blank).
+  one(replace(out, "Z-1 F750 M67 E0 Q9500", "Z-1 F750 M67 E1 Q9500"), Code::whitespace_changed, 7,
+      12);
+  // Verified without the profile's speed output: the M67/M68 words are named.
+  Options plain;
+  const Result r = verify_gcode(kInput, out, plain);
+  EXPECT_EQ(r.violations.at(0).code, Code::speed_output_unexpected);
+  EXPECT_EQ(r.violations.at(0).line, 5u);
+  EXPECT_EQ(r.violations.at(0).column, 10u);
+}
+
 TEST(VerifyGcode, CrlfInsteadOfLf) {
   const std::string out = posted(kInput);
   std::string crlf;
@@ -238,7 +317,7 @@ TEST(VerifyGcode, EveryCodeIsInTheTable) {
     EXPECT_EQ(code_id(entry.code).size(), 5u);
     EXPECT_EQ(code_id(entry.code)[0], 'E');
   }
-  EXPECT_EQ(code_table().size(), 26u);
+  EXPECT_EQ(code_table().size(), 28u);
   EXPECT_EQ(code_id(Code::sf_removed), "E7109");
 }
 

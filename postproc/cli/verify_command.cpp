@@ -117,10 +117,7 @@ void run(const Arguments& args) {
   if (!args.dialect.empty()) {
     const auto d = gcode::dialect_from_name(args.dialect);
     if (!d) throw CommandError("verify: --dialect: unknown dialect '" + args.dialect + "'");
-    options.dialect = *d;
-    // --dialect names the language; the machine's speed output stays its wiring.
-    if (d->kind == gcode::DialectKind::rs274ngc)
-      options.dialect.speed_output = profile.output().speed_output;
+    options.dialect = post::with_speed_output(*d, profile);
   }
   options.speed_output = options.dialect.speed_output;
   options.tolerance_mm = args.tolerance;

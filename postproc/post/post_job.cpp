@@ -307,14 +307,15 @@ gcode::Dialect output_dialect_of(const machines::MachineProfile& profile) {
   return dialect;
 }
 
-gcode::Dialect reading_dialect(const PostSettings& settings,
-                               const machines::MachineProfile& profile) {
-  if (!settings.dialect) return dialect_of(profile);
-  gcode::Dialect dialect = *settings.dialect;
-  // --dialect names the language; the machine's speed output stays its wiring.
+gcode::Dialect with_speed_output(gcode::Dialect dialect, const machines::MachineProfile& profile) {
   if (dialect.kind == gcode::DialectKind::rs274ngc)
     dialect.speed_output = profile.output().speed_output;
   return dialect;
+}
+
+gcode::Dialect reading_dialect(const PostSettings& settings,
+                               const machines::MachineProfile& profile) {
+  return settings.dialect ? with_speed_output(*settings.dialect, profile) : dialect_of(profile);
 }
 
 verify::Options cl_output_verify_options(const machines::MachineProfile& profile) {

@@ -64,6 +64,10 @@ struct PostSettings {
   int threads = 0;                        // worker threads; 0: one per core
 };
 
+// A dialect named apart from the profile (--dialect names the language)
+// with the profile's speed output (output.speed_word, the machine's
+// wiring) where it is rs274ngc.
+gcode::Dialect with_speed_output(gcode::Dialect dialect, const machines::MachineProfile& profile);
 // The dialect the job reads its G-code input in: --dialect
 // (PostSettings::dialect) or the profile's, with the profile's speed output
 // (output.speed_word) for an rs274ngc program.

@@ -172,7 +172,7 @@ inline constexpr std::string_view unreadable = "E5010";       // file cannot be 
 inline constexpr std::string_view heidenhain_pairing = "E5011";  // dialect vs output_format
 inline constexpr std::string_view heidenhain_s_block = "E5012";  // change_in_motion not own_block
 inline constexpr std::string_view heidenhain_output = "E5013";   // a G-code-only [output] key
-inline constexpr std::string_view bad_speed_word = "E5020";   // output.speed_word not S / M67 E<n>
+inline constexpr std::string_view bad_speed_word = "E5020";  // output.speed_word not S / M67 E<n>
 inline constexpr std::string_view speed_word_control =
     "E5021";  // M67 E<n> on a non-LinuxCNC control
 }  // namespace codes

@@ -6,11 +6,10 @@
 // whole run (less the first spindle run-up, longer to a higher first S)
 // must last within 2 % of the input's, and the share of cutting time within
 // +-10 % of vc must still rise. And the linuxcnc-3axis-m67 profile (issue
-// 41) on the controller whose spindle speed is analog output 0. Skips where the simulator cannot run (it needs
-// root, linuxcnc-uspace and ../shared, or VCPOST_LINUXCNC_SIM naming
-// run_program.sh). About 45 s: two runs of a 14 s
-// program plus LinuxCNC's start and stop. VCPOST_KEEP_SIM=1 keeps the
-// programs and the simulator's samples in /tmp/vcpost-lcnc-PID.
+// 41) on the controller whose spindle speed is analog output 0. Skips where the simulator cannot
+// run (it needs root, linuxcnc-uspace and ../shared, or VCPOST_LINUXCNC_SIM naming run_program.sh).
+// About 45 s: two runs of a 14 s program plus LinuxCNC's start and stop. VCPOST_KEEP_SIM=1 keeps
+// the programs and the simulator's samples in /tmp/vcpost-lcnc-PID.
 #include <gtest/gtest.h>
 #include <unistd.h>
 

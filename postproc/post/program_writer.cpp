@@ -112,6 +112,21 @@ void ProgramWriter::finish() {
   }
 }
 
+std::optional<double> ProgramWriter::coupled_feed(const BlockInfo& block, const Planned& own,
+                                                  const Planned& next) {
+  if (!adjust_feed_ || (own.plan && own.plan->bound == plan::Bound::rapid)) return std::nullopt;
+  std::optional<double> f;
+  if (own.feed && own.feed->f_word) {
+    f = own.feed->f_mm_per_min;
+  } else if (block.has_f && next.feed && next.plan->bound != plan::Bound::off &&
+             next.plan->bound != plan::Bound::rapid) {
+    f = next.feed->f_mm_per_min;
+  }
+  // A TNC block takes a coupled F only in its own F word with a number.
+  if (f && klartext_ && !klartext_->takes_f(block.offset)) return std::nullopt;
+  return f;
+}
+
 void ProgramWriter::resolve_front(Planned own, Planned next) {
   const BlockInfo block = pending_.front();
   const std::size_t index = first_pending_;
@@ -128,7 +143,7 @@ void ProgramWriter::resolve_front(Planned own, Planned next) {
   // block's own S word if planned (and not just set to that value before
   // the move), else the next planned block's S for a block that already
   // carries an S word of the program.
-  std::optional<double> s, f;
+  std::optional<double> s;
   if (own.plan && own.plan->s_word) {
     if (block.has_s || on_grid(own.plan->planned_rpm, s_step_) != s_before_motion_)
       s = own.plan->planned_rpm;
@@ -141,16 +156,7 @@ void ProgramWriter::resolve_front(Planned own, Planned next) {
   } else if (moves) {
     s_before_motion_ = kNoS;
   }
-  if (adjust_feed_ && !(own.plan && own.plan->bound == plan::Bound::rapid)) {  // rapids use no F
-    if (own.feed && own.feed->f_word) {
-      f = own.feed->f_mm_per_min;
-    } else if (block.has_f && next.feed && next.plan->bound != plan::Bound::off &&
-               next.plan->bound != plan::Bound::rapid) {
-      f = next.feed->f_mm_per_min;
-    }
-  }
-  // A TNC block takes a coupled F only in its own F word with a number.
-  if (f && klartext_ && !klartext_->takes_f(block.offset)) f.reset();
+  const std::optional<double> f = coupled_feed(block, own, next);
   if (words_by_section_.size() <= block.section) words_by_section_.resize(block.section + 1);
   auto& [section_s, section_f] = words_by_section_[block.section];
   if (kind_ != ProgramKind::cldata) {

@@ -83,6 +83,9 @@ class ProgramWriter {
   // Decides and writes the front block, whose own plan is `own` (or none)
   // and whose next planned block is `next` (or none).
   void resolve_front(Planned own, Planned next);
+  // The F the plan couples to this block's S, if any (rapids take none).
+  std::optional<double> coupled_feed(const BlockInfo& block, const Planned& own,
+                                     const Planned& next);
   void write_text_until(std::uint64_t offset);
   void merge_repeated_patches();
   void flush_cl();

@@ -56,19 +56,26 @@ double OffsetHistogram::value_of(std::size_t bin) const {
   return static_cast<double>(bin) * kBin - kRange;
 }
 
+bool OffsetHistogram::beyond_tolerance(std::size_t bin, bool gouge) const {
+  return gouge ? value_of(bin) + kBin / 2 < -tolerance_ : value_of(bin) - kBin / 2 > tolerance_;
+}
+
 void OffsetHistogram::add(double e) {
   if (!std::isfinite(e)) return;
-  ++bins_[bin_of(e)];
+  const std::size_t bin = bin_of(e);
+  ++bins_[bin];
   ++points_;
   if (e < -tolerance_) {
     const double depth = -e;
     gouge_min_ = gouges_ == 0 ? depth : std::min(gouge_min_, depth);
     gouge_max_ = std::max(gouge_max_, depth);
     ++gouges_;
+    if (!beyond_tolerance(bin, true)) ++gouges_in_tolerance_bin_;
   } else if (e > tolerance_) {
     lift_min_ = lifts_ == 0 ? e : std::min(lift_min_, e);
     lift_max_ = std::max(lift_max_, e);
     ++lifts_;
+    if (!beyond_tolerance(bin, false)) ++lifts_in_tolerance_bin_;
   }
 }
 
@@ -78,15 +85,23 @@ DepthStatistics OffsetHistogram::depths(bool gouge) const {
   if (d.points == 0) return d;
   d.min = gouge ? gouge_min_ : lift_min_;
   d.max = gouge ? gouge_max_ : lift_max_;
-  // The median from the bins beyond the tolerance, walked from the surface out.
+  // The median from the bins wholly beyond the tolerance, walked from the
+  // surface out, after the depths in the bin the tolerance falls in: the
+  // least ones, counted apart because that bin also holds points within the
+  // tolerance. A path on an offset surface just beyond the tolerance piles
+  // them up there; skipped, they pushed the median far out.
   const std::uint64_t half = (d.points + 1) / 2;
-  std::uint64_t seen = 0;
+  std::uint64_t seen = gouge ? gouges_in_tolerance_bin_ : lifts_in_tolerance_bin_;
+  if (seen >= half) {
+    d.median = d.min;
+    return d;
+  }
   const std::size_t zero = bin_of(0.0);
   for (std::size_t k = 0; k < bins_.size(); ++k) {
     const std::size_t bin = gouge ? zero - std::min(k, zero) : zero + k;
     if (bin >= bins_.size()) break;
     const double value = value_of(bin);
-    if (gouge ? value >= -tolerance_ : value <= tolerance_) continue;
+    if (!beyond_tolerance(bin, gouge)) continue;
     seen += bins_[bin];
     if (seen >= half) {
       d.median = std::clamp(std::abs(value), d.min, d.max);

@@ -36,6 +36,8 @@ class OffsetHistogram {
   static constexpr double kRange = 50.0;  // mm either side; beyond, the end bins
   std::size_t bin_of(double value) const;
   double value_of(std::size_t bin) const;
+  // Whether every value `bin` holds is a gouge (a lift) beyond the tolerance.
+  bool beyond_tolerance(std::size_t bin, bool gouge) const;
   DepthStatistics depths(bool gouge) const;
 
   double tolerance_, radius_;
@@ -45,6 +47,9 @@ class OffsetHistogram {
   std::uint64_t points_ = 0;
   double gouge_min_ = 0, gouge_max_ = 0, lift_min_ = 0, lift_max_ = 0;  // |depth|, mm
   std::uint64_t gouges_ = 0, lifts_ = 0;
+  // Of those, the ones in a bin not wholly beyond the tolerance (depths just
+  // beyond it): the median's walk starts past them.
+  std::uint64_t gouges_in_tolerance_bin_ = 0, lifts_in_tolerance_bin_ = 0;
 };
 
 }  // namespace vcpost::post

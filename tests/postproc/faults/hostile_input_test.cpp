@@ -512,7 +512,7 @@ TEST(HostileInput, MismatchesThatTouchALittleAreErrors) {
   EXPECT_EQ(ball30.shell_status(), 2) << ball30.err;
   EXPECT_EQ(ball30.err.rfind("vcpost: error: the toolpath gouges the model at 8596 of 8704 points "
                              "and touches it at only 108: the program does not match the model; "
-                             "gouge depth min 0.010, median 0.281, max 0.819 mm (8596 points)",
+                             "gouge depth min 0.010, median 0.280, max 0.819 mm (8596 points)",
                              0),
             0u)
       << ball30.err;

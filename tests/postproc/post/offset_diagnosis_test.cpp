@@ -23,6 +23,35 @@ TEST(OffsetHistogram, DepthsOfGougesAndLifts) {
   EXPECT_FALSE(h.diagnosis());           // no offset holds half the points
 }
 
+TEST(OffsetHistogram, DepthsJustBeyondTheToleranceCountInTheMedian) {
+  // Tolerance 0.01 mm: 0.0102 rounds to the 0.010 bin, which also holds
+  // points within the tolerance. Lifts sorted: 600 at 0.0102, 400 at 0.05,
+  // 600 at 0.2; the 800th of 1600 is 0.05 (the walk that skipped the 0.010
+  // bin said 0.2). Gouges the same way round; 0.0098 is within the tolerance.
+  OffsetHistogram h(0.01, 5);
+  for (const double e : {0.0102, -0.0102}) {
+    for (int i = 0; i < 600; ++i) h.add(e);
+  }
+  for (const double e : {0.05, -0.05}) {
+    for (int i = 0; i < 400; ++i) h.add(e);
+  }
+  for (const double e : {0.2, -0.2}) {
+    for (int i = 0; i < 600; ++i) h.add(e);
+  }
+  for (int i = 0; i < 5000; ++i) h.add(i % 2 ? 0.0098 : -0.0098);
+  for (const DepthStatistics& d : {h.lift(), h.gouge()}) {
+    EXPECT_EQ(d.points, 1600u);
+    EXPECT_DOUBLE_EQ(d.min, 0.0102);
+    EXPECT_NEAR(d.median, 0.05, 1e-9);
+    EXPECT_DOUBLE_EQ(d.max, 0.2);
+  }
+  // More than half of them in the tolerance's bin: the median is there.
+  OffsetHistogram most(0.01, 5);
+  for (int i = 0; i < 3; ++i) most.add(0.0102 + 0.0001 * i);
+  most.add(0.3);
+  EXPECT_NEAR(most.lift().median, 0.0103, 0.0005);  // the 2nd of 4, within the bin
+}
+
 TEST(OffsetHistogram, StockLeftIsNamed) {
   OffsetHistogram h(0.01, 5);
   for (int i = 0; i < 900; ++i) h.add(0.3 + 0.01 * ((i % 5) - 2) / 2);  // 0.29 .. 0.31

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
+#include <optional>
 #include <utility>
 
 #include "geometry/small_angle.h"
@@ -189,6 +191,36 @@ BallContact tool_contact(const SurfaceModel& model, const Tool& tool, const Eige
       if (other.contact.contact && other.contact.distance_error < found.contact.distance_error)
         found = other;
       if (found.contact.distance_error <= lifted) break;
+    }
+  }
+  // Still lifted: the least distance may be against a face beyond the rim
+  // that none of those starts leads to (a pocket's wall beside the tool,
+  // seen from the centre and the opposite rim point only as the floor below,
+  // whose distance has no gradient across the disc). The rim is sampled
+  // every 22.5 degrees and searched again from its lowest sample: a plane
+  // the rim comes nearer to than the answer by more than R0 (1 - cos 11.25
+  // deg) is nearer than the answer at the sample facing it.
+  if (found.contact.contact && found.contact.distance_error > lifted) {
+    constexpr int kRimSamples = 16;
+    // Only surface nearer than the answer matters: the samples search no
+    // farther (most of a lifted path's samples then find nothing, fast).
+    const double nearer = found.contact.distance_error + rc;
+    std::optional<Found> lowest;
+    for (int k = 0; k < kRimSamples; ++k) {
+      const double angle = 2 * std::numbers::pi * k / kRimSamples;
+      const Eigen::Vector2d q(disc * std::cos(angle), disc * std::sin(angle));
+      const Eigen::Vector3d centre = origin + Eigen::Vector3d(q.x(), q.y(), 0);
+      BallContact sample =
+          classify_ball_contact(centre, rc, tolerance, model.closest_point(centre, nearer, hint));
+      if (sample.contact && (!lowest || sample.distance_error < lowest->contact.distance_error)) {
+        lowest = Found{std::move(sample), q};
+      }
+    }
+    if (lowest) {
+      Found other = descend(lowest->where, 0);
+      if (!other.contact.contact || lowest->contact.distance_error < other.contact.distance_error)
+        other = std::move(*lowest);
+      if (other.contact.distance_error < found.contact.distance_error) found = std::move(other);
     }
   }
   if (hint) {

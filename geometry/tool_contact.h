@@ -36,11 +36,12 @@ Eigen::Vector3d tool_origin(const Eigen::Vector3d& cl_point, const Tool& tool, C
 // converge superlinearly); the answer is the best disc point met (on
 // convergence the last, unless one met is lower by more than round-off). A
 // lifted answer (a valley's other flank may be the one touched) is searched
-// again from the opposite rim point and from the centre: at most 48
-// queries. Lifted means by more than tolerance / 10 on a smooth surface, by
-// the tolerance on a mesh (SurfaceModel::faceted). The surface is searched
-// up to 2 R0 + rc + search_margin from each disc point.
-// REQUIRES: tool valid, tolerance >= 0, search_margin >= 0.
+// again from the opposite rim point and from the centre, and one still
+// lifted from the lowest of 16 rim points 22.5 degrees apart (a wall beyond
+// the rim over a floor): at most 80 queries. Lifted means by more than tolerance / 10 on a smooth
+// surface, by the tolerance on a mesh (SurfaceModel::faceted). The surface is searched up to 2 R0 +
+// rc + search_margin from each disc point. REQUIRES: tool valid, tolerance >= 0, search_margin >=
+// 0.
 BallContact tool_contact(const SurfaceModel& model, const Tool& tool, const Eigen::Vector3d& origin,
                          double tolerance, double search_margin, ContactHint* hint);
 

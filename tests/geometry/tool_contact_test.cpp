@@ -197,6 +197,33 @@ TEST(ToolContact, ValleyFindsTheFlankItRestsOnWhenTheOtherIsWithinTolerance) {
   expect_valley_contact_on_the_shallow_flank(5e-3);
 }
 
+// A bull-nose D12 R0.5 (R0 5.5) over a pocket's floor, 1.5 mm above it,
+// beside its wall at x = -6.5: the rim point (-5.5, 0) is 1 mm from the
+// wall, the tool 0.5 mm from it (its contact); every disc point is 2 mm
+// above the floor. From the centre and the opposite rim point (+5.5, 0)
+// the floor is nearest and its distance has no gradient across the disc:
+// those searches stopped at 1.5 mm (a real roughing program on its design
+// STL: 743 of 5,871 points lifted by up to 0.9 mm too much).
+TEST(ToolContact, WallBeyondTheRimOverAFloorIsTheContact) {
+  PlanePatch floor, wall;
+  floor.u_min = -6.5;
+  floor.u_max = 50;
+  floor.v_min = -50;
+  floor.v_max = 50;
+  wall.origin = {-6.5, 0, 0};
+  wall.u_axis = {0, 1, 0};
+  wall.v_axis = {0, 0, 1};  // normal u x v = +x, out of the material at x < -6.5
+  wall.u_min = -50;
+  wall.u_max = 50;
+  wall.v_min = 0;
+  wall.v_max = 20;
+  const AnalyticModel model({floor, wall});
+  const Tool tool = Tool::bull_nose(12, 0.5);
+  for (const Vector3d& origin : {Vector3d(0, 0, 2), Vector3d(0, 3, 2)}) {
+    check(model, tool, origin, {{-6.5, origin.y(), 2}, {1, 0, 0}, 0.5});
+  }
+}
+
 // The ball goes through ball_contact unchanged; tool_origin puts the tip rc
 // below the origin.
 TEST(ToolContact, BallIsBallContactAndOriginsFromTheTip) {

@@ -263,7 +263,9 @@ std::vector<NamedFile> job_outputs(const PostArguments& args, bool write_program
 }
 
 bool has_warnings(const post::PostSummary& summary) {
-  return summary.gouging > 0 || summary.lifted + summary.missed > 0 || summary.missing_end ||
+  // Without a model the points kept (no normal) are counted in their own line.
+  const bool off_model = !summary.path_normals && summary.lifted + summary.missed > 0;
+  return summary.gouging > 0 || off_model || summary.missing_end ||
          !summary.unread_after_end.empty();
 }
 
@@ -273,7 +275,7 @@ void print_warnings(const post::PostSummary& summary) {
   // The reader's own diagnostic, with its file position and code.
   if (!summary.unread_after_end.empty()) std::cerr << summary.unread_after_end << '\n';
   if (summary.gouging > 0) log().warn("{} points gouge the model", summary.gouging);
-  if (summary.lifted + summary.missed > 0) {
+  if (!summary.path_normals && summary.lifted + summary.missed > 0) {
     log().warn("{} cutting points do not touch the model (their blocks keep the program's S)",
                summary.lifted + summary.missed);
   }
@@ -560,7 +562,7 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   const std::string_view text = program.view();
   const std::string name = args.program == "-" ? "<stdin>" : args.program;
   log().debug("program {}: {} bytes, read in {:.3f} s", name, text.size(), seconds_since(started));
-  const post::PostSettings settings = settings_from(args);
+  post::PostSettings settings = settings_from(args);
   std::vector<ReportFile> reports = open_reports(args);
   if (!args.summary_json.empty() && args.summary_json != "-") {
     AtomicFile probe(args.summary_json);  // its folder fails now, not after the program is written
@@ -576,23 +578,30 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   log().debug("machine profile {}: loaded in {:.3f} s", profile.name(), seconds_since(stage));
   // Without a model, CL data is translated for the profile with its own
   // speeds (every section kept): vcpost as a plain 3-axis post-processor.
-  const bool translate_only = args.model.empty();
-  if (translate_only) {
+  // Without a model G-code (and Klartext) is posted with each point's
+  // normal found from the toolpath itself (pipeline/path_normals.h).
+  const bool without_model = args.model.empty();
+  const bool translate_only =
+      without_model && post::program_kind(text, post::reading_dialect(settings, profile)) ==
+                           post::ProgramKind::cldata;
+  if (without_model) {
     if (!write_program || !reports.empty())
-      throw CommandError("--model: required (the report evaluates the toolpath on the model)");
-    if (post::detect_program_kind(text) != post::ProgramKind::cldata)
       throw CommandError(
-          "--model: required for G-code input (S is rewritten from the toolpath's contact with "
-          "the model; without one the program would come out unchanged)");
+          "--model: required (the report evaluates the toolpath on the model; without one "
+          "there is no gouge check and no cusp map)");
+    if (!args.model_transform.empty())
+      throw CommandError("--model-transform: places a --model; none is given");
   }
-  if (translate_only && !args.model_transform.empty())
-    throw CommandError("--model-transform: places a --model; none is given");
+  if (without_model && !translate_only) {
+    if (!(args.ap > 0)) throw CommandError("--ap: required");
+    settings.normals_from_path = true;
+  }
   std::optional<ModelPlacement> placement;
   if (!args.model_transform.empty()) placement = parse_model_placement(args.model_transform);
   stage = std::chrono::steady_clock::now();
-  LoadedModel model = translate_only ? no_model() : load_model(args.model);
+  LoadedModel model = without_model ? no_model() : load_model(args.model);
   if (placement) place_model(model, *placement);
-  if (!translate_only)
+  if (!without_model)
     log().debug("model {}: {}, loaded in {:.3f} s", args.model, model.description,
                 seconds_since(stage));
 
@@ -808,7 +817,14 @@ void finish_job(const PostArguments& args, const JobRun& run) {
   }
   print_depths(summary);
   for (const std::string& note : summary.tool_notes) log().info("note: {}", note);
-  if (args.model.empty()) {
+  if (summary.path_normals) {
+    const pipeline::PathNormalCounts& n = *summary.path_normals;
+    log().info(
+        "no --model: each point's normal from the toolpath: {} two-sided, {} one-sided, {} "
+        "without one (no pass near enough: no S of their own, a pass with none keeps the "
+        "program's); no gouge check, no cusp map",
+        n.two_sided, n.one_sided, n.kept);
+  } else if (args.model.empty()) {
     log().info("no --model: the CL data is translated for {} with its own speeds",
                run.profile.name());
   } else if (!summary.sections.empty() &&

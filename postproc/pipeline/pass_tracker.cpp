@@ -557,13 +557,13 @@ std::optional<NeighbourPass> PassTracker::nearest(const Entry& current,
 
 // Returns whether the candidate was compared with the best (it lies
 // within the search radius and is not CC itself).
-bool PassTracker::consider(Search& s, const Eigen::Vector3d& p) const {
+bool PassTracker::consider(Search& s, const Eigen::Vector3d& p, double fraction) const {
   const Eigen::Vector3d d = p - s.cc;
   const double across = std::sqrt(std::pow(s.left.dot(d), 2) + std::pow(s.normal.dot(d), 2));
   if (across > radius_ || across <= 1e-9) return false;
   if (s.best && across >= s.best->ae) return true;
-  s.best =
-      NeighbourPass{across, s.left.dot(d) >= 0 ? geometry::Side::left : geometry::Side::right, p};
+  s.best = NeighbourPass{across, s.left.dot(d) >= 0 ? geometry::Side::left : geometry::Side::right,
+                         p, s.evaluating_entry, fraction};
   s.best_run = s.evaluating;
   s.best_entry = s.evaluating_entry;
   s.limit2 = across * across * (1 + 1e-15);
@@ -597,7 +597,7 @@ bool PassTracker::evaluate_range(Search& s, std::uint64_t id, bool flat, std::ui
         const Eigen::Vector3d& before = ring_[(i - 1) & mask_].point;
         // h0 == h1 == 0: the segment lies in the plane
         const double t = h_before == h1 ? 1.0 : h_before / (h_before - h1);
-        if (consider(s, before + t * (e.point - before)) && flat) return true;
+        if (consider(s, before + t * (e.point - before), t) && flat) return true;
         continue;
       }
     }
@@ -608,7 +608,7 @@ bool PassTracker::evaluate_range(Search& s, std::uint64_t id, bool flat, std::ui
       const double x = s.left.dot(d), y = s.normal.dot(d);
       if (x * x + y * y > s.limit2) continue;
     }
-    if (consider(s, e.point) && flat) return true;
+    if (consider(s, e.point, 1.0) && flat) return true;
   }
   return false;
 }

@@ -22,6 +22,11 @@ struct NeighbourPass {
   double ae = 0;                                    // across the feed, mm
   geometry::Side side = geometry::Side::left;       // where it lies, looking along F with N up
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  // the point of that pass abeam of CC
+  // Where that point lies on the recorded path: on the segment from the
+  // point recorded before `entry` to it, at `fraction` of the way (1: the
+  // recorded point itself). entry counts the steps of the tracker from 0.
+  std::uint64_t entry = 0;
+  double fraction = 1;
 };
 
 // Remembers the contact points of the recent path in a spatial hash.
@@ -177,7 +182,7 @@ class PassTracker {
   void evaluate(Search& s, std::uint64_t id, bool flat, std::uint64_t start = 0);
   bool evaluate_range(Search& s, std::uint64_t id, bool flat, std::uint64_t from,
                       std::uint64_t end) const;
-  bool consider(Search& s, const Eigen::Vector3d& p) const;
+  bool consider(Search& s, const Eigen::Vector3d& p, double fraction) const;
   std::optional<std::pair<double, bool>> measure(const Search& s, const Run& r, double worst) const;
   double worst(const Search& s) const;
 

@@ -48,6 +48,33 @@ geometry::BallContact PointEvaluator::contact(const PathSample& sample,
                                 &hint);
 }
 
+geometry::BallContact PointEvaluator::contact(const PathSample& sample,
+                                              const PathNormal& normal) const {
+  geometry::BallContact out;
+  // No normal (a pass end, a link, a lone pass): like a point lifted off
+  // the surface, no target here; a section with none keeps its S.
+  if (normal.source == NormalSource::kept) {
+    out.status = geometry::BallStatus::lifted;
+    out.center = geometry::tool_origin(sample.point, settings_.tool, settings_.cl_point);
+    return out;
+  }
+  const geometry::Tool& tool = settings_.tool;
+  const Eigen::Vector3d& n = normal.normal;
+  Eigen::Vector3d center = geometry::tool_origin(sample.point, tool, settings_.cl_point);
+  const Eigen::Vector3d level(n.x(), n.y(), 0);
+  if (tool.flat_radius() > 0 && level.norm() > 1e-9)
+    center -= tool.flat_radius() / level.norm() * level;
+  out.status = geometry::BallStatus::touching;
+  out.center = center;
+  out.normal = n;
+  geometry::ModelContact contact;
+  contact.point = center - tool.corner_radius * n;
+  contact.normal = n;
+  contact.distance = tool.corner_radius;
+  out.contact = contact;
+  return out;
+}
+
 namespace {
 // A level move (Z constant) along a level line of the surface (Z-level
 // passes) keeps the tool's end face parallel to the feed, so its feed on

@@ -10,6 +10,7 @@
 #include "geometry/engagement.h"
 #include "geometry/model.h"
 #include "postproc/pipeline/pass_tracker.h"
+#include "postproc/pipeline/path_normals.h"
 #include "postproc/pipeline/path_sampler.h"
 
 namespace vcpost::pipeline {
@@ -67,6 +68,12 @@ class PointEvaluator {
   // caller with its own hint); place() must see the samples in path order.
   // The hint only makes queries warm (answers agree within 1e-9 mm).
   geometry::BallContact contact(const PathSample& sample, geometry::ContactHint& hint) const;
+  // Without a model: the contact the normal found from the toolpath gives
+  // (path_normals.h), touching exactly: the tool's point facing the
+  // surface along -n (a ball's centre - R n; a bull-nose's core circle
+  // point towards -n, then rc along -n). Lifted (no target, like a link in
+  // the air) where the normal was kept.
+  geometry::BallContact contact(const PathSample& sample, const PathNormal& normal) const;
   // Feed on the tangent plane, the neighbouring pass, ae and side; leaves
   // the engagement empty (and the tool not cutting stays so).
   void place(const PathSample& sample, PointResult& result);

@@ -72,6 +72,9 @@ struct Chunk {
   std::vector<BlockInfo> blocks;  // the blocks that start in this chunk
   std::vector<std::pair<program::Event, std::size_t>> events;  // CL input: events, block
   std::size_t samples = 0;                                     // slots of kind sample or kept
+  // The program's count of sample slots before this chunk's first (set by
+  // the job: the index of its normals from the toolpath).
+  std::uint64_t first_sample = 0;
   // Sections whose first motion is in this chunk, decided by the reader.
   std::vector<ToolSection> sections;
   // The evaluator of each section its slots name, from first_section on

@@ -12,6 +12,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <span>
 #include <thread>
 #include <variant>
 #include <vector>
@@ -518,6 +519,66 @@ class ChunkPool {
   std::mutex mutex_;
 };
 
+// Without a model: the normal at every sample of the posted sections, in
+// path order, from the toolpath itself (path_normals.h). The program is
+// read once before the job for it: a sample's normal needs the pass after
+// it too. Section by section (each tool's path lies on its own offset
+// surface), neighbours within the section tool's diameter.
+std::vector<pipeline::PathNormal> normals_from_path(std::string_view text,
+                                                    const std::string& file_name, ProgramKind kind,
+                                                    const gcode::Dialect& dialect,
+                                                    const machines::MachineProfile& profile,
+                                                    const PostSettings& settings,
+                                                    const tools::ToolChoices& choices) {
+  PathReader reader(text, file_name, kind, dialect, profile, settings.sample_spacing_mm, false,
+                    choices, settings.point.ap);
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::uint8_t> starts;
+  struct Run {
+    std::size_t begin = 0;
+    double diameter = 0;
+  };
+  std::vector<Run> runs;
+  std::vector<double> diameters;  // by section index
+  std::optional<std::uint32_t> section;
+  bool after_rapid = false;
+  Chunk chunk;
+  while (reader.read(chunk, chunk_samples)) {
+    for (const ToolSection& s : chunk.sections) {
+      if (diameters.size() <= s.index) diameters.resize(s.index + 1, 0.0);
+      if (s.postable) diameters[s.index] = s.entry->geometry()->diameter;
+    }
+    for (const Slot& slot : chunk.slots) {
+      if (slot.kind != SlotKind::sample) {
+        after_rapid = after_rapid || slot.kind == SlotKind::rapid;
+        continue;
+      }
+      const bool new_section = slot.section != section;
+      if (new_section) {
+        runs.push_back({points.size(), diameters.at(slot.section)});
+        section = slot.section;
+      }
+      starts.push_back(new_section || slot.break_pass || after_rapid ? 1 : 0);
+      after_rapid = false;
+      points.push_back(slot.sample.point);
+    }
+  }
+  std::vector<pipeline::PathNormal> normals;
+  normals.reserve(points.size());
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    const std::size_t begin = runs[r].begin;
+    const std::size_t end = r + 1 < runs.size() ? runs[r + 1].begin : points.size();
+    pipeline::PathNormalSettings path_settings;
+    path_settings.search_radius = runs[r].diameter;
+    path_settings.min_path_gap = 4 * runs[r].diameter;  // as the post's own pass tracker
+    const auto found = pipeline::estimate_path_normals(
+        std::span(points).subspan(begin, end - begin),
+        std::span(starts).subspan(begin, end - begin), path_settings);
+    normals.insert(normals.end(), found.begin(), found.end());
+  }
+  return normals;
+}
+
 // The totals only the reader and the writer know.
 void add_totals(PostSummary& summary, const PathReader& reader, const ProgramWriter& writer) {
   const ReadTotals& totals = reader.totals();
@@ -568,6 +629,16 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
   const std::size_t tokens = 2 * static_cast<std::size_t>(threads) + 2;
   ChunkPool pool(tokens);
   double next_report = 0.01;
+  tbb::task_arena arena(threads);
+
+  std::vector<pipeline::PathNormal> path_normals;
+  if (settings.normals_from_path) {
+    arena.execute([&] {
+      path_normals = normals_from_path(text, file_name, kind, dialect, profile, settings, choices);
+    });
+    summary.path_normals = pipeline::count_sources(path_normals);
+  }
+  std::uint64_t samples_read = 0;
 
   auto read = [&](tbb::flow_control& control) -> Chunk* {
     Chunk* chunk = pool.take();
@@ -576,6 +647,8 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
       return nullptr;
     }
     evaluators.attach(*chunk);
+    chunk->first_sample = samples_read;
+    for (const Slot& slot : chunk->slots) samples_read += slot.kind == SlotKind::sample ? 1 : 0;
     if (kind == ProgramKind::cldata && consumed) consumed(chunk->read_bytes);
     return chunk;
   };
@@ -583,11 +656,13 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
     geometry::ContactHint hint;                  // cold at the chunk's start
     hint.curvature = static_cast<bool>(points);  // only the report's points read curvatures
     chunk->results.clear();                      // keeps its capacity
+    std::uint64_t sample = chunk->first_sample;
     for (const Slot& slot : chunk->slots) {
-      if (slot.kind == SlotKind::sample) {
-        chunk->results.emplace_back().contact =
-            chunk->evaluator(slot.section)->contact(slot.sample, hint);
-      }
+      if (slot.kind != SlotKind::sample) continue;
+      const pipeline::PointEvaluator& evaluator = *chunk->evaluator(slot.section);
+      chunk->results.emplace_back().contact =
+          settings.normals_from_path ? evaluator.contact(slot.sample, path_normals.at(sample++))
+                                     : evaluator.contact(slot.sample, hint);
     }
     return chunk;
   };
@@ -619,7 +694,6 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
     pool.give(chunk);
   };
 
-  tbb::task_arena arena(threads);
   arena.execute([&] {
     tbb::parallel_pipeline(
         tokens, tbb::make_filter<void, Chunk*>(tbb::filter_mode::serial_in_order, read) &

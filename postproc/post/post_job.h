@@ -62,6 +62,10 @@ struct PostSettings {
   std::optional<double> fz_mm;            // feed per tooth; default: the program's F at its S
   std::optional<int> teeth;               // tools without their own; default: the profile's
   int threads = 0;                        // worker threads; 0: one per core
+  // No model: each sample's normal from the toolpath itself
+  // (pipeline/path_normals.h); the model passed is not read. No gouge
+  // check (every normal found touches), no cusp map.
+  bool normals_from_path = false;
 };
 
 // A dialect named apart from the profile (--dialect names the language)
@@ -116,6 +120,9 @@ struct PostSummary : ContactCounts {
   std::vector<ToolSection> sections;    // every section with a motion, in program order
   std::vector<std::string> tool_notes;  // tool comments that could not be read
   SPlacement s_placement;               // how the S words sit on the control and what they cost
+  // Without a model (PostSettings::normals_from_path): how the normal of
+  // each sample of the posted sections was found.
+  std::optional<pipeline::PathNormalCounts> path_normals;
 };
 
 // One evaluated point of the path with the spindle speed before (the

@@ -235,6 +235,13 @@ json post_summary_json(const ReportInputs& inputs, bool tool_posted,
                      {"slew", summary.time_slew_s},
                      {"rate", summary.time_rate_s}};
   out["after"] = std::move(after);
+  // Posted without a model: how each point's normal was found (path_normals.h).
+  if (const auto& n = summary.path_normals) {
+    out["normals"] = {{"source", "toolpath"},
+                      {"two_sided", n->two_sided},
+                      {"one_sided", n->one_sided},
+                      {"kept", n->kept}};
+  }
   return out;
 }
 

@@ -34,13 +34,26 @@ TEST(TranslateCl, WithoutAModelTheClIsTranslatedWithItsOwnSpeeds) {
   EXPECT_NE(verified.out.find("(0 S words, 0 F words changed)"), std::string::npos) << verified.out;
 }
 
-TEST(TranslateCl, GcodeReportsAndSpeedsStillNeedTheModel) {
+// G-code without a model is posted with the normals from its toolpath
+// (path_normals.h; PostWithoutModel compares it with the post with the
+// model); reports still need the model, and so does CL data's S.
+TEST(TranslateCl, GcodeWithoutModelPostsFromTheToolpathReportsAndClSpeedsNeedTheModel) {
   testing::Folder folder;
   const std::string nc = "'" + kSamples + "/dome_raster_a0_ae3.nc'";
   const std::string cl = "'" + kSamples + "/dome_raster_a0_ae3.cls'";
-  auto r = run_vcpost("post " + nc + " --vc 120 --ap 0.3 -o out.nc", folder.path());
+  auto r = run_vcpost("post " + nc + " --vc 120 --ap 0.3 -o posted.nc", folder.path());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("no --model: each point's normal from the toolpath: "), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("no gouge check, no cusp map"), std::string::npos) << r.err;
+  r = run_vcpost("verify " + nc + " posted.nc", folder.path());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  r = run_vcpost("post " + nc + " --vc 120 -o out.nc", folder.path());
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("--model: required for G-code input"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--ap: required"), std::string::npos) << r.err;
+  r = run_vcpost("post " + nc + " --vc 120 --ap 0.3 -o out.nc --report r.json", folder.path());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--model: required (the report"), std::string::npos) << r.err;
   r = run_vcpost("post " + cl + " -o out.nc --report r.json", folder.path());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--model: required (the report"), std::string::npos) << r.err;

@@ -1,0 +1,416 @@
+#include "postproc/pipeline/path_normals.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+
+#include <cmath>
+#include <optional>
+
+#include "postproc/pipeline/pass_tracker.h"
+
+namespace vcpost::pipeline {
+
+std::string_view to_string(NormalSource source) {
+  switch (source) {
+    case NormalSource::two_sided:
+      return "two_sided";
+    case NormalSource::one_sided:
+      return "one_sided";
+    case NormalSource::kept:
+      return "kept";
+  }
+  return "?";
+}
+
+PathNormalCounts& PathNormalCounts::operator+=(const PathNormalCounts& other) {
+  two_sided += other.two_sided;
+  one_sided += other.one_sided;
+  kept += other.kept;
+  return *this;
+}
+
+PathNormalCounts count_sources(std::span<const PathNormal> normals) {
+  PathNormalCounts counts;
+  for (const PathNormal& n : normals) {
+    switch (n.source) {
+      case NormalSource::two_sided:
+        ++counts.two_sided;
+        break;
+      case NormalSource::one_sided:
+        ++counts.one_sided;
+        break;
+      case NormalSource::kept:
+        ++counts.kept;
+        break;
+    }
+  }
+  return counts;
+}
+
+namespace {
+
+using Eigen::Vector3d;
+
+// The path runs on smoothly through a point when its segments turn by less
+// than this (30 deg); a sharper turn is a corner (a zig-zag's turn onto a
+// link), where each side has its own tangent.
+constexpr double smooth_cos = 0.866;
+// Points closer than this are one point, mm.
+constexpr double same_point = 1e-9;
+// Points each tracker keeps: as the post's own (a few passes of a large program).
+constexpr std::size_t tracker_memory = 1 << 20;
+// A one-sided normal needs the chord to the neighbour nearly across the
+// surface (|c.n| is half the turn between the passes) and the normals of
+// the two passes within 30 deg of each other: beyond, the passes are too
+// far apart for the surface between them to be one smooth piece.
+constexpr double one_sided_max_turn_cos = 0.866;
+
+bool smooth(const Vector3d& in, const Vector3d& out) {
+  const double a = in.norm(), b = out.norm();
+  return a > same_point && b > same_point && in.dot(out) >= smooth_cos * a * b;
+}
+
+// The previous point of the pass distinct from point i (none at the pass start).
+std::optional<std::size_t> before(std::span<const Vector3d> p, std::span<const std::uint8_t> starts,
+                                  std::size_t i) {
+  for (std::size_t j = i; j > 0 && starts[j] == 0;) {
+    --j;
+    if ((p[j] - p[i]).norm() > same_point) return j;
+  }
+  return std::nullopt;
+}
+std::optional<std::size_t> after(std::span<const Vector3d> p, std::span<const std::uint8_t> starts,
+                                 std::size_t i) {
+  for (std::size_t j = i + 1; j < p.size() && starts[j] == 0; ++j) {
+    if ((p[j] - p[i]).norm() > same_point) return j;
+  }
+  return std::nullopt;
+}
+
+// The unit tangent at point i along its pass, to second order: the
+// derivative at i of the parabola through i and its two neighbours (d+ at
+// arc a ahead, d- at b behind: d = s T + s^2 K / 2 + O(s^3) gives
+// b^2 d+ - a^2 d- = ab (a + b) T), or of the one through i and the next two
+// on one side (at a corner or a pass end: the side with the longer
+// segment). Zero where the pass has no other point.
+struct Tangent {
+  Vector3d along = Vector3d::Zero();
+  bool smooth = false;  // from both sides: the pass runs on smoothly through the point
+};
+
+Tangent tangent_at(std::span<const Vector3d> p, std::span<const std::uint8_t> starts,
+                   std::size_t i) {
+  const auto prev = before(p, starts, i);
+  const auto next = after(p, starts, i);
+  if (prev && next) {
+    const Vector3d dm = p[*prev] - p[i], dp = p[*next] - p[i];
+    if (smooth(-dm, dp)) {
+      const double a = dp.norm(), b = dm.norm();
+      return {(b * b * dp - a * a * dm).normalized(), true};
+    }
+  }
+  // One side: d1 at s1, d2 at s2 (same sign, |s2| > |s1|): s2^2 d1 - s1^2 d2
+  // = s1 s2 (s2 - s1) T.
+  auto one_side = [&](std::size_t j, bool ahead) -> Vector3d {
+    const Vector3d d1 = p[j] - p[i];
+    const double s1 = ahead ? d1.norm() : -d1.norm();
+    const Vector3d along1 = ahead ? d1 : Vector3d(-d1);
+    const auto k = ahead ? after(p, starts, j) : before(p, starts, j);
+    if (k) {
+      const Vector3d d2 = p[*k] - p[i];
+      const Vector3d along2 = ahead ? Vector3d(p[*k] - p[j]) : Vector3d(p[j] - p[*k]);
+      const double s2 = ahead ? d2.norm() : -d2.norm();
+      if (smooth(along1, along2) && std::abs(s2) > std::abs(s1) * (1 + 1e-6)) {
+        const Vector3d t = s2 * s2 * d1 - s1 * s1 * d2;
+        const double sign = s1 * s2 * (s2 - s1) > 0 ? 1 : -1;
+        return (sign * t).normalized();
+      }
+    }
+    return along1.normalized();
+  };
+  if (prev && next) {
+    return {(p[*prev] - p[i]).norm() >= (p[*next] - p[i]).norm() ? one_side(*prev, false)
+                                                                 : one_side(*next, true),
+            false};
+  }
+  if (prev) return {one_side(*prev, false), false};
+  if (next) return {one_side(*next, true), false};
+  return {};
+}
+
+// A direction across the feed for the tracker's frame (its side and
+// distances only): the vertical, or x on a steep feed, made perpendicular.
+Vector3d across_feed(const Vector3d& feed) {
+  Vector3d up = Vector3d::UnitZ() - feed.z() * feed;
+  if (up.norm() < 0.1) up = Vector3d::UnitX() - feed.x() * feed;
+  return up.normalized();
+}
+
+// The point of the nearest other pass abeam of a point: on the segment from
+// point `from` to point `to` of the path, at `fraction` of the way.
+struct Neighbour {
+  Vector3d point = Vector3d::Zero();
+  std::size_t from = 0, to = 0;
+  double fraction = 1;
+  bool found = false;
+};
+
+// The nearest earlier pass at every point (or, backward, the nearest later one).
+std::vector<Neighbour> nearest_passes(std::span<const Vector3d> p,
+                                      std::span<const std::uint8_t> starts,
+                                      std::span<const Tangent> tangents, bool backward,
+                                      const PathNormalSettings& settings) {
+  const std::size_t n = p.size();
+  std::vector<Neighbour> out(n);
+  PassTracker tracker(settings.search_radius, settings.min_path_gap, tracker_memory);
+  std::vector<std::size_t> index_of;  // the point of each tracker step
+  index_of.reserve(n);
+  bool open = false;
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = backward ? n - 1 - k : k;
+    const bool starts_pass = backward ? (i + 1 == n || starts[i + 1] != 0) : starts[i] != 0;
+    if (starts_pass && open) tracker.break_pass();
+    const Vector3d& t = tangents[i].along;
+    if (t.isZero()) {  // a lone point: no feed to look across
+      if (open) tracker.break_pass();
+      open = false;
+      continue;
+    }
+    open = true;
+    const Vector3d feed = backward ? Vector3d(-t) : t;
+    const auto found = tracker.step(p[i], across_feed(feed), feed);
+    index_of.push_back(i);
+    if (!found) continue;
+    Neighbour& nb = out[i];
+    nb.found = true;
+    nb.point = found->point;
+    nb.to = index_of[found->entry];
+    nb.from = found->fraction < 1 && found->entry > 0 ? index_of[found->entry - 1] : nb.to;
+    nb.fraction = found->fraction;
+  }
+  return out;
+}
+
+// The neighbour's point on the path surface: its pass's points lie on it,
+// the straight segment between two of them only within its sagitta (the
+// CAM's chord tolerance, as much as the spacing of the passes' heights
+// differ by on a 0.1 mm stepover). So the segment is followed as the cubic
+// through its ends with their tangents (Hermite), where both ends run on
+// smoothly; else as the straight segment.
+Vector3d on_surface(const Neighbour& nb, std::span<const Vector3d> p,
+                    std::span<const Tangent> tangents) {
+  if (!nb.found) return nb.point;
+  if (nb.from == nb.to || nb.fraction >= 1 || nb.fraction <= 0) return nb.point;
+  const Tangent& ta = tangents[nb.from];
+  const Tangent& tb = tangents[nb.to];
+  if (!ta.smooth || !tb.smooth) return nb.point;
+  const Vector3d& a = p[nb.from];
+  const Vector3d& b = p[nb.to];
+  const double length = (b - a).norm();
+  const double sign = nb.to > nb.from ? length : -length;  // the tangents run forward
+  const double f = nb.fraction, f2 = f * f, f3 = f2 * f;
+  return (2 * f3 - 3 * f2 + 1) * a + (f3 - 2 * f2 + f) * sign * ta.along + (-2 * f3 + 3 * f2) * b +
+         (f3 - f2) * sign * tb.along;
+}
+
+// The neighbour's pass where it crosses the plane across the feed t
+// through P: the tracker names a point of that pass nearest across, which
+// may lie up to a tenth of its search radius along the feed (its ties are
+// within 0.001 mm across, what ae needs), and there the surface has left
+// the plane by half the feed's curvature times that offset squared (1 mm
+// along on an R100 cylinder at 45 deg: 0.003 mm, 1 deg on a 0.1 mm
+// stepover). So the pass is followed from there, segment by segment while
+// it runs along the feed, to the segment that crosses the plane. None when
+// it ends first (its end is abeam, not a crossing).
+std::optional<Neighbour> crossing(const Neighbour& nb, const Vector3d& P, const Vector3d& t,
+                                  std::span<const Vector3d> p,
+                                  std::span<const std::uint8_t> starts) {
+  constexpr int max_steps = 256;
+  auto h = [&](std::size_t k) { return (p[k] - P).dot(t); };
+  auto joined = [&](std::size_t a) {  // the segment a -> a + 1 belongs to the pass and runs along t
+    if (a + 1 >= p.size() || starts[a + 1] != 0) return false;
+    const Vector3d d = p[a + 1] - p[a];
+    return std::abs(d.dot(t)) >= 0.5 * d.norm() && d.norm() > same_point;
+  };
+  std::size_t a = std::min(nb.from, nb.to);
+  if (nb.from == nb.to) {
+    if (a + 1 < p.size() && joined(a) && (h(a) <= 0) != (h(a + 1) <= 0)) {
+    } else if (a > 0 && joined(a - 1)) {
+      a -= 1;
+    } else if (!joined(a)) {
+      return std::nullopt;
+    }
+  }
+  for (int step = 0; step < max_steps; ++step) {
+    if (!joined(a)) return std::nullopt;
+    const double ha = h(a), hb = h(a + 1);
+    if ((ha <= 0) != (hb <= 0) || hb == 0) {
+      Neighbour out;
+      out.from = a;
+      out.to = a + 1;
+      out.fraction = ha == hb ? 1.0 : ha / (ha - hb);
+      out.point = p[a] + out.fraction * (p[a + 1] - p[a]);
+      out.found = true;
+      return out;
+    }
+    // Towards the plane: the end of the segment nearer to it along the feed.
+    const bool forward = std::abs(hb) < std::abs(ha);
+    if (forward) {
+      a += 1;
+    } else {
+      if (a == 0) return std::nullopt;
+      a -= 1;
+    }
+  }
+  return std::nullopt;
+}
+
+// The unit vector of v across the feed t (its part perpendicular to t).
+Vector3d across(const Vector3d& v, const Vector3d& t) { return v - v.dot(t) * t; }
+
+// Oriented out of the material: towards the tool, which is above (n_z >= 0).
+Vector3d oriented(const Vector3d& n, const Vector3d& t) {
+  const double up = n.dot(across_feed(t));
+  return up < 0 ? Vector3d(-n) : n;
+}
+
+// Second order from the passes on both sides: the parabola across the
+// passes through the point and its neighbours d1 (at s1 > 0) and d2 (at
+// s2 < 0) has the tangent s2^2 d1 - s1^2 d2 (see tangent_at).
+std::optional<Vector3d> two_sided(const Vector3d& t, const Vector3d& d1, const Vector3d& d2) {
+  const Vector3d a1 = across(d1, t), a2 = across(d2, t);
+  if (a1.dot(a2) >= 0) return std::nullopt;  // both on one side
+  const double h1 = a1.norm(), h2 = a2.norm();
+  if (h1 < same_point || h2 < same_point) return std::nullopt;
+  const Vector3d w = h2 * h2 * a1 - h1 * h1 * a2;
+  const Vector3d n = t.cross(w);
+  if (n.norm() < same_point) return std::nullopt;
+  return oriented(n.normalized(), t);
+}
+
+}  // namespace
+
+std::vector<PathNormal> estimate_path_normals(std::span<const Vector3d> points,
+                                              std::span<const std::uint8_t> starts,
+                                              const PathNormalSettings& settings) {
+  const std::size_t n = points.size();
+  std::vector<Tangent> tangents(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& range) {
+    for (std::size_t i = range.begin(); i != range.end(); ++i)
+      tangents[i] = tangent_at(points, starts, i);
+  });
+  std::vector<Neighbour> earlier, later;
+  tbb::parallel_invoke([&] { earlier = nearest_passes(points, starts, tangents, false, settings); },
+                       [&] { later = nearest_passes(points, starts, tangents, true, settings); });
+
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& range) {
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      for (std::vector<Neighbour>* side : {&earlier, &later}) {
+        Neighbour& nb = (*side)[i];
+        if (!nb.found) continue;
+        const auto abeam = crossing(nb, points[i], tangents[i].along, points, starts);
+        if (abeam) {
+          nb = *abeam;
+        } else if (std::abs((nb.point - points[i]).dot(tangents[i].along)) >
+                   across(nb.point - points[i], tangents[i].along).norm()) {
+          nb.found = false;  // a pass end farther along the feed than across
+        }
+      }
+    }
+  });
+
+  std::vector<PathNormal> out(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& range) {
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      if (!earlier[i].found || !later[i].found) continue;
+      const auto normal =
+          two_sided(tangents[i].along, on_surface(earlier[i], points, tangents) - points[i],
+                    on_surface(later[i], points, tangents) - points[i]);
+      if (normal) out[i] = {*normal, NormalSource::two_sided};
+    }
+  });
+
+  // One side: the chord c to the neighbour Q across the feed is
+  // perpendicular to n_P + n_Q to second order (exactly on a circle), with
+  // n_Q interpolated between the normals of its segment's ends, both found
+  // two-sided: n_P = -(c.n_Q) c + sqrt(1 - (c.n_Q)^2) (t x c), turned to n_Q.
+  auto normal_at = [&](const Neighbour& nb) -> std::optional<Vector3d> {
+    const PathNormal& to = out[nb.to];
+    const PathNormal& from = out[nb.from];
+    if (to.source != NormalSource::two_sided || from.source != NormalSource::two_sided)
+      return std::nullopt;
+    const Vector3d m = nb.fraction * to.normal + (1 - nb.fraction) * from.normal;
+    if (m.norm() < 0.5) return std::nullopt;
+    return m.normalized();
+  };
+  std::vector<PathNormal> one_side(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& range) {
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      if (out[i].source == NormalSource::two_sided) continue;
+      const Vector3d& t = tangents[i].along;
+      std::optional<Vector3d> best;
+      double best_h = 0;
+      for (const Neighbour* nb : {&earlier[i], &later[i]}) {
+        if (!nb->found) continue;
+        const Vector3d a = across(on_surface(*nb, points, tangents) - points[i], t);
+        const double h = a.norm();
+        if (h < same_point || (best && h >= best_h)) continue;
+        const auto nq = normal_at(*nb);
+        if (!nq) continue;
+        const Vector3d c = a / h;
+        const double cn = -c.dot(*nq);
+        const Vector3d e2 = t.cross(c);
+        const double side = e2.dot(*nq) >= 0 ? 1 : -1;
+        const Vector3d np = cn * c + side * std::sqrt(std::max(0.0, 1 - cn * cn)) * e2;
+        if (np.dot(*nq) < one_sided_max_turn_cos) continue;
+        best = np.normalized();
+        best_h = h;
+      }
+      if (best) one_side[i] = {*best, NormalSource::one_sided};
+    }
+  });
+  for (std::size_t i = 0; i < n; ++i) {
+    if (one_side[i].source == NormalSource::one_sided) out[i] = one_side[i];
+  }
+  // A point no pass lies abeam of (a pass end, a zig-zag's turn onto its
+  // link at the edge of the window): the normals of the two points before
+  // it on its path (or after it), found from their neighbours, carried on
+  // to it along the path as the line through them (second order where the
+  // points are a sample step apart, as the normal turns smoothly).
+  auto extrapolated = [&](std::size_t i, bool ahead) -> std::optional<Vector3d> {
+    std::size_t j1 = i, j2 = i;
+    if (ahead) {
+      if (i + 2 >= n || starts[i + 1] != 0 || starts[i + 2] != 0) return std::nullopt;
+      j1 = i + 1;
+      j2 = i + 2;
+    } else {
+      if (i < 2 || starts[i] != 0 || starts[i - 1] != 0) return std::nullopt;
+      j1 = i - 1;
+      j2 = i - 2;
+    }
+    if (out[j1].source != NormalSource::two_sided || out[j2].source != NormalSource::two_sided)
+      return std::nullopt;
+    const double s1 = (points[j1] - points[i]).norm();
+    const double s12 = (points[j2] - points[j1]).norm();
+    if (s12 < same_point || s1 > 2 * s12 || out[j1].normal.dot(out[j2].normal) < smooth_cos)
+      return std::nullopt;
+    const Vector3d m = out[j1].normal + (s1 / s12) * (out[j1].normal - out[j2].normal);
+    return m.normalized();
+  };
+  std::vector<PathNormal> carried(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& range) {
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      if (out[i].source != NormalSource::kept) continue;
+      auto m = extrapolated(i, false);
+      if (!m) m = extrapolated(i, true);
+      if (m) carried[i] = {*m, NormalSource::one_sided};
+    }
+  });
+  for (std::size_t i = 0; i < n; ++i) {
+    if (carried[i].source == NormalSource::one_sided) out[i] = carried[i];
+  }
+  return out;
+}
+
+}  // namespace vcpost::pipeline

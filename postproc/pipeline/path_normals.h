@@ -1,0 +1,67 @@
+// Surface normals from the toolpath alone, for posting without a model
+// (docs/models.md §5, "Normals without a model"): the path of any fixed
+// point of the tool (a ball's centre, its tip, a bull-nose's core disc
+// centre) lies on the finished surface offset by the tool, whose normal at
+// a point is the model's normal at the contact. The passes sample that path
+// surface; the normal is found from the feed tangent and the neighbouring
+// passes.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <vector>
+
+namespace vcpost::pipeline {
+
+// How the normal at a point was found.
+enum class NormalSource : std::uint8_t {
+  // The passes on both sides and the pass's own curvature: a parabola
+  // across the passes and one along the pass through the point (second
+  // order, whatever the spacings on either side).
+  two_sided,
+  // A pass on one side only (a first or last pass) whose own normal was
+  // found two-sided: the chord to it is perpendicular to the mean of both
+  // normals (second order). Or a point with no pass abeam (a pass end):
+  // the normals of the two points beside it on its path carried on to it.
+  one_sided,
+  // No pass near enough, or none found two-sided (isolated moves, a lone
+  // pass): no normal; the program's S stays.
+  kept,
+};
+std::string_view to_string(NormalSource source);
+
+struct PathNormal {
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // unit, n_z >= 0; meaningless when kept
+  NormalSource source = NormalSource::kept;
+};
+
+struct PathNormalCounts {
+  std::uint64_t two_sided = 0, one_sided = 0, kept = 0;
+  PathNormalCounts& operator+=(const PathNormalCounts& other);
+};
+
+struct PathNormalSettings {
+  // Farthest neighbouring pass, mm (the tool's diameter: a pass farther
+  // away removed nothing this one cuts).
+  double search_radius = 10;
+  // A stretch of the same pass at least this far back along the path
+  // counts as another pass (a spiral's previous turn), mm.
+  double min_path_gap = 40;
+};
+
+// Normals at `points`, one path in path order (a tool's fixed point at
+// every sample; one tool: one offset surface). starts[i] != 0: a new pass
+// starts at point i (a rapid or lost contact came before). The three
+// steps (tangents along the passes, the nearest pass before and after each
+// point by two pass trackers, the normals) run on the calling thread's
+// task arena in parallel. REQUIRES: starts.size() == points.size(),
+// search_radius > 0.
+std::vector<PathNormal> estimate_path_normals(std::span<const Eigen::Vector3d> points,
+                                              std::span<const std::uint8_t> starts,
+                                              const PathNormalSettings& settings);
+
+PathNormalCounts count_sources(std::span<const PathNormal> normals);
+
+}  // namespace vcpost::pipeline

@@ -523,7 +523,10 @@ class ChunkPool {
 // path order, from the toolpath itself (path_normals.h). The program is
 // read once before the job for it: a sample's normal needs the pass after
 // it too. Section by section (each tool's path lies on its own offset
-// surface), neighbours within the section tool's diameter.
+// surface), neighbours within the section tool's diameter. Found at the
+// moves' ends, the points the CAM system put on the surface; a sample
+// inside a move (a long one, split at the spacing) takes the normal
+// between those of its move's ends, as far along as it lies.
 std::vector<pipeline::PathNormal> normals_from_path(std::string_view text,
                                                     const std::string& file_name, ProgramKind kind,
                                                     const gcode::Dialect& dialect,
@@ -532,8 +535,15 @@ std::vector<pipeline::PathNormal> normals_from_path(std::string_view text,
                                                     const tools::ToolChoices& choices) {
   PathReader reader(text, file_name, kind, dialect, profile, settings.sample_spacing_mm, false,
                     choices, settings.point.ap);
-  std::vector<Eigen::Vector3d> points;
+  std::vector<Eigen::Vector3d> points;  // the moves' ends
   std::vector<std::uint8_t> starts;
+  // Each sample: the move end it is (fraction 1), or the one before it and
+  // how far along the move to the next it lies.
+  struct Place {
+    std::size_t end = 0;
+    double fraction = 1;
+  };
+  std::vector<Place> places;
   struct Run {
     std::size_t begin = 0;
     double diameter = 0;
@@ -554,17 +564,23 @@ std::vector<pipeline::PathNormal> normals_from_path(std::string_view text,
         continue;
       }
       const bool new_section = slot.section != section;
+      const bool inside = slot.sample.fraction > 0 && slot.sample.fraction < 1;
+      if (inside && !new_section && !slot.break_pass && !after_rapid && !points.empty()) {
+        places.push_back({points.size() - 1, slot.sample.fraction});
+        continue;
+      }
       if (new_section) {
         runs.push_back({points.size(), diameters.at(slot.section)});
         section = slot.section;
       }
       starts.push_back(new_section || slot.break_pass || after_rapid ? 1 : 0);
       after_rapid = false;
+      places.push_back({points.size(), 1});
       points.push_back(slot.sample.point);
     }
   }
-  std::vector<pipeline::PathNormal> normals;
-  normals.reserve(points.size());
+  std::vector<pipeline::PathNormal> at_ends;
+  at_ends.reserve(points.size());
   for (std::size_t r = 0; r < runs.size(); ++r) {
     const std::size_t begin = runs[r].begin;
     const std::size_t end = r + 1 < runs.size() ? runs[r + 1].begin : points.size();
@@ -574,7 +590,27 @@ std::vector<pipeline::PathNormal> normals_from_path(std::string_view text,
     const auto found = pipeline::estimate_path_normals(
         std::span(points).subspan(begin, end - begin),
         std::span(starts).subspan(begin, end - begin), path_settings);
-    normals.insert(normals.end(), found.begin(), found.end());
+    at_ends.insert(at_ends.end(), found.begin(), found.end());
+  }
+  std::vector<pipeline::PathNormal> normals(places.size());
+  for (std::size_t i = 0; i < places.size(); ++i) {
+    const Place& p = places[i];
+    if (p.fraction >= 1 || p.end + 1 >= at_ends.size()) {
+      normals[i] = at_ends[p.end];
+      continue;
+    }
+    const pipeline::PathNormal& a = at_ends[p.end];
+    const pipeline::PathNormal& b = at_ends[p.end + 1];
+    // One end without a normal (a pass's last move): the other end's.
+    if (a.source == pipeline::NormalSource::kept || b.source == pipeline::NormalSource::kept) {
+      const pipeline::PathNormal& found = a.source == pipeline::NormalSource::kept ? b : a;
+      if (found.source != pipeline::NormalSource::kept)
+        normals[i] = {found.normal, pipeline::NormalSource::one_sided};
+      continue;
+    }
+    const Eigen::Vector3d m = (1 - p.fraction) * a.normal + p.fraction * b.normal;
+    if (m.norm() < 0.5) continue;
+    normals[i] = {m.normalized(), std::max(a.source, b.source)};  // the weaker of the two
   }
   return normals;
 }

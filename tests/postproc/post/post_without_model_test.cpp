@@ -2,9 +2,10 @@
 // models, whose contact the engine finds on the exact surface: an
 // independent computation of every normal) on generated ball-end programs:
 // rasters over the B-spline mould and the cylinder, Z-level rings on the
-// dome, stepovers 0.25 and 0.5 mm. The normals found from the toolpath are
-// within 0.25 deg of the model's at the 99th percentile, and the S in
-// effect on 95 % of the lines within 2 % of the post with the model.
+// dome, stepovers 0.25 and 0.5 mm; and a D10 rc2 bull-nose raster on the
+// mould (its tip path is the surface offset by the tool: the same normals). The normals found from
+// the toolpath are within 0.25 deg of the model's at the 99th percentile, and the S in effect on 95
+// % of the lines within 2 % of the post with the model.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -32,6 +33,7 @@ struct Case {
   const char* part;
   samplegen::Pattern pattern;
   double angle, ae;
+  double corner = 0;  // a bull-nose's corner radius; 0: a ball
 };
 
 void PrintTo(const Case& c, std::ostream* out) {
@@ -43,6 +45,7 @@ std::string program_of(const Case& c) {
   samplegen::PathSpec path;
   path.pattern = c.pattern;
   path.tool_radius = part->tool_diameter / 2;
+  if (c.corner > 0) path.corner_radius = c.corner;
   path.angle_deg = c.angle;
   path.chord_tolerance = samplegen::kSampleChordTolerance;
   if (c.pattern == samplegen::Pattern::raster) {
@@ -57,6 +60,7 @@ std::string program_of(const Case& c) {
   }
   samplegen::ProgramSpec spec;
   spec.tool_diameter = part->tool_diameter;
+  if (c.corner > 0) spec.corner_radius = c.corner;
   spec.safe_z = part->safe_z;
   spec.title = "without a model";
   std::ostringstream gcode;
@@ -88,9 +92,9 @@ struct Posted {
 };
 
 Posted post(const std::string& program, const geometry::SurfaceModel& model, bool from_path,
-            double diameter) {
+            const geometry::Tool& tool) {
   PostSettings settings;
-  settings.point.tool = geometry::Tool::ball(diameter);
+  settings.point.tool = tool;
   settings.point.vc = 120;
   settings.point.ap = 0.2;
   settings.normals_from_path = from_path;
@@ -115,8 +119,10 @@ TEST_P(PostWithoutModel, NormalsAndSpeedsAsWithTheModel) {
   const geometry::AnalyticModel none(std::vector<geometry::AnalyticSurface>{});
   const std::string program = program_of(c);
   const double diameter = samplegen::make_part(c.part)->tool_diameter;
-  const Posted with = post(program, model, false, diameter);
-  const Posted without = post(program, none, true, diameter);
+  const geometry::Tool tool =
+      c.corner > 0 ? geometry::Tool::bull_nose(diameter, c.corner) : geometry::Tool::ball(diameter);
+  const Posted with = post(program, model, false, tool);
+  const Posted without = post(program, none, true, tool);
 
   ASSERT_TRUE(without.summary.path_normals);
   ASSERT_EQ(with.normals.size(), without.normals.size());
@@ -149,7 +155,8 @@ INSTANTIATE_TEST_SUITE_P(Generated, PostWithoutModel,
                          ::testing::Values(Case{"wavy", samplegen::Pattern::raster, 30, 0.25},
                                            Case{"wavy", samplegen::Pattern::raster, 0, 0.5},
                                            Case{"cylinder", samplegen::Pattern::raster, 45, 0.2},
-                                           Case{"dome", samplegen::Pattern::iso_u, 0, 0.5}));
+                                           Case{"dome", samplegen::Pattern::iso_u, 0, 0.5},
+                                           Case{"wavy", samplegen::Pattern::raster, 0, 0.25, 2}));
 
 }  // namespace
 }  // namespace vcpost::post

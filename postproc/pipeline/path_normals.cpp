@@ -88,6 +88,29 @@ std::optional<std::size_t> after(std::span<const Vector3d> p, std::span<const st
   return std::nullopt;
 }
 
+// The unit tangent at point i, forward, to second order from i and the
+// next two points on one side (j next to it, ahead or behind): with d1 at
+// s1 and d2 at s2 (same sign, |s2| > |s1|), s2^2 d1 - s1^2 d2 = s1 s2 (s2 -
+// s1) T. The chord to j where the path turns at j.
+Vector3d one_sided(std::span<const Vector3d> p, std::span<const std::uint8_t> starts, std::size_t i,
+                   std::size_t j, bool ahead) {
+  const Vector3d d1 = p[j] - p[i];
+  const double s1 = ahead ? d1.norm() : -d1.norm();
+  const Vector3d along1 = ahead ? d1 : Vector3d(-d1);
+  const auto k = ahead ? after(p, starts, j) : before(p, starts, j);
+  if (k) {
+    const Vector3d d2 = p[*k] - p[i];
+    const Vector3d along2 = ahead ? Vector3d(p[*k] - p[j]) : Vector3d(p[j] - p[*k]);
+    const double s2 = ahead ? d2.norm() : -d2.norm();
+    if (smooth(along1, along2) && std::abs(s2) > std::abs(s1) * (1 + 1e-6)) {
+      const Vector3d t = s2 * s2 * d1 - s1 * s1 * d2;
+      const double sign = s1 * s2 * (s2 - s1) > 0 ? 1 : -1;
+      return (sign * t).normalized();
+    }
+  }
+  return along1.normalized();
+}
+
 // The unit tangent at point i along its pass, to second order: the
 // derivative at i of the parabola through i and its two neighbours (d+ at
 // arc a ahead, d- at b behind: d = s T + s^2 K / 2 + O(s^3) gives
@@ -112,30 +135,14 @@ Tangent tangent_at(std::span<const Vector3d> p, std::span<const std::uint8_t> st
   }
   // One side: d1 at s1, d2 at s2 (same sign, |s2| > |s1|): s2^2 d1 - s1^2 d2
   // = s1 s2 (s2 - s1) T.
-  auto one_side = [&](std::size_t j, bool ahead) -> Vector3d {
-    const Vector3d d1 = p[j] - p[i];
-    const double s1 = ahead ? d1.norm() : -d1.norm();
-    const Vector3d along1 = ahead ? d1 : Vector3d(-d1);
-    const auto k = ahead ? after(p, starts, j) : before(p, starts, j);
-    if (k) {
-      const Vector3d d2 = p[*k] - p[i];
-      const Vector3d along2 = ahead ? Vector3d(p[*k] - p[j]) : Vector3d(p[j] - p[*k]);
-      const double s2 = ahead ? d2.norm() : -d2.norm();
-      if (smooth(along1, along2) && std::abs(s2) > std::abs(s1) * (1 + 1e-6)) {
-        const Vector3d t = s2 * s2 * d1 - s1 * s1 * d2;
-        const double sign = s1 * s2 * (s2 - s1) > 0 ? 1 : -1;
-        return (sign * t).normalized();
-      }
-    }
-    return along1.normalized();
-  };
   if (prev && next) {
-    return {(p[*prev] - p[i]).norm() >= (p[*next] - p[i]).norm() ? one_side(*prev, false)
-                                                                 : one_side(*next, true),
+    return {(p[*prev] - p[i]).norm() >= (p[*next] - p[i]).norm()
+                ? one_sided(p, starts, i, *prev, false)
+                : one_sided(p, starts, i, *next, true),
             false};
   }
-  if (prev) return {one_side(*prev, false), false};
-  if (next) return {one_side(*next, true), false};
+  if (prev) return {one_sided(p, starts, i, *prev, false), false};
+  if (next) return {one_sided(p, starts, i, *next, true), false};
   return {};
 }
 
@@ -196,22 +203,24 @@ std::vector<Neighbour> nearest_passes(std::span<const Vector3d> p,
 // the straight segment between two of them only within its sagitta (the
 // CAM's chord tolerance, as much as the spacing of the passes' heights
 // differ by on a 0.1 mm stepover). So the segment is followed as the cubic
-// through its ends with their tangents (Hermite), where both ends run on
-// smoothly; else as the straight segment.
+// through its ends with their tangents (Hermite).
 Vector3d on_surface(const Neighbour& nb, std::span<const Vector3d> p,
-                    std::span<const Tangent> tangents) {
+                    std::span<const std::uint8_t> starts, std::span<const Tangent> tangents) {
   if (!nb.found) return nb.point;
   if (nb.from == nb.to || nb.fraction >= 1 || nb.fraction <= 0) return nb.point;
-  const Tangent& ta = tangents[nb.from];
-  const Tangent& tb = tangents[nb.to];
-  if (!ta.smooth || !tb.smooth) return nb.point;
-  const Vector3d& a = p[nb.from];
-  const Vector3d& b = p[nb.to];
+  // The segment forward, lo -> hi, and its ends' tangents along it: at a
+  // pass end or a corner the one-sided tangent of this segment's side.
+  const std::size_t lo = std::min(nb.from, nb.to), hi = std::max(nb.from, nb.to);
+  const double f = nb.from < nb.to ? nb.fraction : 1 - nb.fraction;
+  const Vector3d ta = tangents[lo].smooth ? tangents[lo].along : one_sided(p, starts, lo, hi, true);
+  const Vector3d tb =
+      tangents[hi].smooth ? tangents[hi].along : one_sided(p, starts, hi, lo, false);
+  const Vector3d& a = p[lo];
+  const Vector3d& b = p[hi];
   const double length = (b - a).norm();
-  const double sign = nb.to > nb.from ? length : -length;  // the tangents run forward
-  const double f = nb.fraction, f2 = f * f, f3 = f2 * f;
-  return (2 * f3 - 3 * f2 + 1) * a + (f3 - 2 * f2 + f) * sign * ta.along + (-2 * f3 + 3 * f2) * b +
-         (f3 - f2) * sign * tb.along;
+  const double f2 = f * f, f3 = f2 * f;
+  return (2 * f3 - 3 * f2 + 1) * a + (f3 - 2 * f2 + f) * length * ta + (-2 * f3 + 3 * f2) * b +
+         (f3 - f2) * length * tb;
 }
 
 // The neighbour's pass where it crosses the plane across the feed t
@@ -325,8 +334,8 @@ std::vector<PathNormal> estimate_path_normals(std::span<const Vector3d> points,
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
       if (!earlier[i].found || !later[i].found) continue;
       const auto normal =
-          two_sided(tangents[i].along, on_surface(earlier[i], points, tangents) - points[i],
-                    on_surface(later[i], points, tangents) - points[i]);
+          two_sided(tangents[i].along, on_surface(earlier[i], points, starts, tangents) - points[i],
+                    on_surface(later[i], points, starts, tangents) - points[i]);
       if (normal) out[i] = {*normal, NormalSource::two_sided};
     }
   });
@@ -353,7 +362,7 @@ std::vector<PathNormal> estimate_path_normals(std::span<const Vector3d> points,
       double best_h = 0;
       for (const Neighbour* nb : {&earlier[i], &later[i]}) {
         if (!nb->found) continue;
-        const Vector3d a = across(on_surface(*nb, points, tangents) - points[i], t);
+        const Vector3d a = across(on_surface(*nb, points, starts, tangents) - points[i], t);
         const double h = a.norm();
         if (h < same_point || (best && h >= best_h)) continue;
         const auto nq = normal_at(*nb);

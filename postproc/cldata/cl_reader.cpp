@@ -104,11 +104,17 @@ void ClReader::require_numbers(const ClRecord& r) const {
 
 void ClReader::check_axis(const Vec& axis, std::uint32_t line, std::uint32_t column) {
   const double n = axis.norm();
-  if (!(n > 0) || (axis / n - Vec::UnitZ()).norm() > options_.axis_tolerance) {
+  if (!(n > 0) || (axis / n - frame_axis_).norm() > options_.axis_tolerance) {
+    if (frame_.is_identity()) {
+      fail(ClCode::tool_axis_not_z, line, column,
+           "tool axis " + xyz(axis) +
+               " is not +Z: a tilted tool (3+2) needs the CSYS of its frame first, and a tool "
+               "axis that changes along the path (5-axis simultaneous) is not evaluated yet");
+    }
     fail(ClCode::tool_axis_not_z, line, column,
-         "tool axis " + xyz(axis) +
-             " is not +Z: multi-axis (or tilted 3+2) paths cannot be converted to 3-axis "
-             "motion");
+         "tool axis " + xyz(axis) + " is not the CSYS frame's z axis " + xyz(frame_axis_) +
+             ": a tool axis that changes along the path (5-axis simultaneous) is not evaluated "
+             "yet; a fixed tilt (3+2) is, with the CSYS of its frame");
   }
 }
 
@@ -477,9 +483,16 @@ void ClReader::nurbs_data(const ClRecord& r) {
 void ClReader::msys(const ClRecord& r) { require_numbers(r); }
 
 // SolidWorks CAM: CSYS/r11,r12,r13,tx,r21,...,tz; CATIA/APT: the 12 values
-// of a 3x4 matrix. The points that follow are in the frame it defines:
-// placed at R p + t (a 3-axis machine makes a translation and a turn
-// about its Z axis; a tilted set-up is another machine's job).
+// of a 3x4 matrix, a frame at R p + t. A rotation about Z (with any
+// translation): the points that follow are in that frame, placed at R p + t
+// (a 3-axis machine makes a translation and a turn about its Z axis). A
+// tilted frame (R z not +Z, 3+2): the points and tool axes that follow
+// stay in the base frame, as SolidWorks CAM writes them (boss.apt: after
+// CSYS/0,0,1,0,1,0,0,0,0,1,0,0 every GOTO carries the axis 1,0,0 = R z, and
+// the clearance X 120, retract X 97.5 stand 25 and 2.5 mm off the stock's
+// X 95 face as Z 25 and 2.5 do above its top in the untilted operations);
+// the events are in the frame's coordinates, R^T (p - t), after a
+// WorkingFrame event that says where it lies (docs/cldata.md).
 void ClReader::csys(const ClRecord& r) {
   require_numbers(r);
   if (r.params.size() != 12) {
@@ -493,19 +506,40 @@ void ClReader::csys(const ClRecord& r) {
     offset[row] = unit_ * number(r, static_cast<std::size_t>(4 * row + 3));
   }
   constexpr double tolerance = 1e-6;
-  const double c = rotation(0, 0), s = rotation(1, 0);
-  const bool about_z =
-      std::abs(rotation(0, 2)) <= tolerance && std::abs(rotation(1, 2)) <= tolerance &&
-      std::abs(rotation(2, 0)) <= tolerance && std::abs(rotation(2, 1)) <= tolerance &&
-      std::abs(rotation(2, 2) - 1) <= tolerance && std::abs(c * c + s * s - 1) <= tolerance &&
-      std::abs(rotation(1, 1) - c) <= tolerance && std::abs(rotation(0, 1) + s) <= tolerance;
-  if (!about_z) {
+  const bool rigid =
+      ((rotation.transpose() * rotation - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() <=
+       tolerance) &&
+      rotation.determinant() > 0;
+  if (!rigid) {
     fail(ClCode::frame_not_identity, r,
-         "CSYS rotates about another axis than Z (or scales): only a translation and a rotation "
-         "about Z are applied; post each set-up from its own CL file");
+         "CSYS mirrors or scales (its 3x3 part is not a rotation within 1e-6): the points it "
+         "places are not a rigid set-up's");
   }
-  rotation_ = rotation;
-  offset_ = offset;
+  const bool about_z = std::abs(rotation(2, 2) - 1) <= tolerance;
+  program::WorkingFrame frame;
+  if (about_z) {
+    rotation_ = rotation;
+    offset_ = offset;
+    frame_axis_ = Vec::UnitZ();
+  } else {
+    // Exactly orthonormal (a turn by multiples of 90 degrees stays exact),
+    // so that turning in and out leaves the points where they are.
+    Eigen::Matrix3d exact;
+    exact.col(0) = rotation.col(0).normalized();
+    exact.col(2) =
+        (rotation.col(2) - rotation.col(2).dot(exact.col(0)) * exact.col(0)).normalized();
+    exact.col(1) = exact.col(2).cross(exact.col(0));
+    frame.rotation = exact;
+    frame.origin = offset;
+    rotation_ = exact.transpose();
+    offset_ = -(exact.transpose() * offset);
+    frame_axis_ = exact.col(2);
+  }
+  frame.source = r.source;
+  if (frame.rotation != frame_.rotation || frame.origin != frame_.origin) {
+    frame_ = frame;
+    queue_.push_back(frame);
+  }
 }
 
 void ClReader::trntyp(const ClRecord& r) {

@@ -49,11 +49,15 @@
 //   UNITS|UNIT, TLAXIS, MULTAX           state; any axis other than +Z is
 //                                        refused (E3108): events are 3-axis
 //   CSYS/r11,r12,r13,tx,r21,r22,r23,ty,r31,r32,r33,tz (the 3x4 matrix row
-//       by row): the frame the following points are given in; each point p
-//       becomes R p + t (directions R d: GODLTA, circle axes), until the
-//       next CSYS. Only a translation and a rotation about Z (R's third row
-//       and column 0,0,1, a proper rotation within 1e-6) are applied; any
-//       other rotation, a mirror or a scaling is refused (E3119).
+//       by row), until the next CSYS. A translation and a rotation about Z
+//       (R's third row and column 0,0,1 within 1e-6): the frame the
+//       following points are given in; each point p becomes R p + t
+//       (directions R d: GODLTA, circle axes). Any other rotation: a tilted
+//       working plane (3+2), WorkingFrame{R, t}; the points and axes that
+//       follow are in the base frame (SolidWorks CAM, docs/cldata.md), the
+//       events in the frame's coordinates R^T (p - t), and every tool axis
+//       must be R's z (E3108 otherwise). A mirror or a scaling is refused
+//       (E3119).
 //   MSYS (NX: the output frame, the GOTOs are in it), TRNTYP/WORLD,
 //   ORIGIN that leave the points where they are (identity), ROTABL by 0
 //                                        accepted; another TRNTYP or ORIGIN
@@ -206,9 +210,12 @@ class ClReader {
   std::uint64_t records_ = 0;
 
   double unit_ = 1.0;  // mm per file length unit
-  // The last CSYS: points p are placed at rotation_ p + offset_ (mm).
+  // The last CSYS: points p are placed at rotation_ p + offset_ (mm), in
+  // the coordinates of frame_ (a tilted CSYS's; identity otherwise).
   Eigen::Matrix3d rotation_ = Eigen::Matrix3d::Identity();
   Eigen::Vector3d offset_ = Eigen::Vector3d::Zero();
+  program::WorkingFrame frame_;
+  Eigen::Vector3d frame_axis_ = Eigen::Vector3d::UnitZ();  // the tool axis as the file gives it
   Eigen::Vector3d place(const Eigen::Vector3d& p) const { return rotation_ * p + offset_; }
   std::optional<Eigen::Vector3d> position_;
   bool multax_ = false;

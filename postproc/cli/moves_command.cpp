@@ -40,13 +40,14 @@ void print_cl_moves(std::string_view text, const std::string& name,
   cldata::ClReader reader(in, name);
   program::PathClock clock(program::TimingSettings{options.rapid_rate, 0.0});
   std::string out;
+  program::Transcriber transcriber(print);
   std::uint64_t events = 0;
   try {
     while (auto event = reader.next()) {
       if (std::holds_alternative<program::CannedCycle>(*event)) continue;  // its moves follow
       ++events;
       if (options.time) clock.advance(*event);
-      if (!options.count) program::append_transcript(out, *event, print);
+      if (!options.count) transcriber.append(out, *event);
     }
   } catch (const cldata::ClError& e) {
     write_partial_transcript(out);
@@ -85,13 +86,14 @@ void print_klartext_moves(const ProgramText& text, const std::string& name,
                 << " more warnings not shown\n";
   };
   program::PathClock clock(program::TimingSettings{options.rapid_rate, 0.0});
+  program::Transcriber transcriber(print);
   try {
     while (interpreter.next(events)) {
       for (const auto& e : events) {
         if (std::holds_alternative<program::CannedCycle>(e)) continue;  // its moves follow
         ++event_count;
         if (options.time) clock.advance(e);
-        if (!options.count) program::append_transcript(out, e, print);
+        if (!options.count) transcriber.append(out, e);
       }
       if (out.size() > (1u << 16)) {
         write_standard_output(out);
@@ -178,6 +180,7 @@ void add_moves_command(CLI::App& app) {
                   << " more warnings not shown\n";
     };
     program::PathClock clock(program::TimingSettings{options->rapid_rate, 0.0});
+    program::Transcriber transcriber(print);
     try {
       while (interpreter.next(events)) {
         event_count += events.size();
@@ -185,7 +188,7 @@ void add_moves_command(CLI::App& app) {
           for (const auto& e : events) clock.advance(e);
         text.release_before(interpreter.block().offset);
         if (!options->count) {
-          for (const auto& e : events) program::append_transcript(out, e, print);
+          for (const auto& e : events) transcriber.append(out, e);
           if (out.size() > (1u << 16)) {
             write_standard_output(out);
             out.clear();

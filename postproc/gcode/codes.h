@@ -189,8 +189,10 @@ inline constexpr std::array kFanucGCodes{
     CodeEntry{660, Gr::macro_modal, Su::refused,
               "calls a macro after every move (modal macro call)"},
     CodeEntry{670, Gr::macro_modal, Su::ignored},
+    CodeEntry{531, Gr::non_modal, Su::followed},  // G53.1: the tool to the tilted frame's z
     CodeEntry{680, Gr::rotation, Su::refused, "rotates the coordinate system"},
-    CodeEntry{690, Gr::rotation, Su::noted},  // G69 rotation off
+    CodeEntry{682, Gr::rotation, Su::followed},  // G68.2: tilted working plane (Euler angles)
+    CodeEntry{690, Gr::rotation, Su::followed},  // G69: rotation and tilt off
     CodeEntry{700, Gr::units, Su::refused, "is inch input on old controls; use G20"},
     CodeEntry{760, Gr::motion, Su::followed},     // fine boring
     CodeEntry{1030, Gr::non_modal, Su::noted},    // Haas G103 look-ahead limit

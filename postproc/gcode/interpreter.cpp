@@ -13,6 +13,7 @@
 #include "postproc/gcode/lexer.h"
 #include "postproc/gcode/splines.h"
 #include "postproc/program/arc.h"
+#include "postproc/program/working_frame.h"
 
 namespace vcpost::gcode {
 
@@ -652,8 +653,9 @@ struct Interpreter::Step {
   std::optional<Origins> origins;  // the offsets when the block changes one
   Eigen::Vector3d offset_before = Eigen::Vector3d::Zero();
   Eigen::Vector3d offset_after = Eigen::Vector3d::Zero();
-  bool axes_taken = false;  // the axis words are not a move (G10, G92, ...)
-  bool has_axis = false;    // the block moves to its axis words
+  bool axes_taken = false;   // the axis words are not a move (G10, G92, ...)
+  bool frame_words = false;  // X Y Z I J K are G68.2's origin and angles
+  bool has_axis = false;     // the block moves to its axis words
   std::uint32_t motion_column = 1;
 
   const Word* at(std::uint8_t slot) const __attribute__((always_inline)) {
@@ -712,6 +714,7 @@ void Interpreter::execute(std::vector<Event>& events) {
   if (step.g(Group::tool_length)) tool_length(step);
   if (changes_origins(step)) set_origins(step);
   set_distance_modes(step);
+  if (step.g(Group::rotation)) tilt_working_plane(step);
   take_axis_words(step);
   set_motion_mode(step);
   move(step);
@@ -1258,6 +1261,46 @@ void Interpreter::set_distance_modes(Step& step) {
   if (step.g(Group::return_mode)) step.state.retract_to_r = step.g_code(Group::return_mode) == 990;
 }
 
+// Fanuc G68.2 X Y Z I J K: the working plane tilted by the Euler angles
+// I (about Z), J (about the turned X), K (about the twice-turned Z), its
+// origin at X Y Z of the current frame (the work system's; absolute). G69
+// ends it. The coordinates that follow are the tilted frame's, the tool's
+// tip staying where it is on the part; G53.1 turns the tool to the frame's
+// z and moves nothing there (docs/tilted-frames.md).
+void Interpreter::tilt_working_plane(Step& step) {
+  const Word* g = step.g(Group::rotation);
+  const int c = code_of(*g);
+  program::WorkingFrame frame;
+  frame.source = source(step.b, g->column);
+  if (c == 682) {
+    if (const Word* p = step.word('P'); p && p->value != 0)
+      fail(Code::unsupported_code, p->column,
+           "G68.2 with P (three points, two vectors or projection angles) is not read: write the "
+           "tilt "
+           "as G68.2 X Y Z I J K (Euler angles)");
+    if (!tilt_.is_identity())
+      fail(Code::unsupported_code, g->column,
+           "G68.2 while a tilted plane is active (a multiple tilt) is not read: G69 first");
+    Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k)
+      if (const Word* w = step.word(kAxes[k])) origin[k] = length(*w, step.state.inches);
+    auto angle = [&](char letter) {
+      const Word* w = step.word(letter);
+      return w ? w->value : 0.0;
+    };
+    frame.rotation = program::euler_zxz(angle('I'), angle('J'), angle('K'));
+    frame.origin = origin;
+    step.frame_words = true;
+  } else if (c != 690) {
+    return;
+  }
+  if (frame.rotation == tilt_.rotation && frame.origin == tilt_.origin) return;
+  ModalState& s = step.state;
+  s.position = frame.rotation.transpose() * (tilt_.to_program(s.position) - frame.origin);
+  tilt_ = frame;
+  step.emit(frame);
+}
+
 // Which codes take the axis words for themselves, so that they are no move.
 void Interpreter::take_axis_words(Step& step) {
   const int nonmodal_code = step.nonmodal_code;
@@ -1275,8 +1318,8 @@ void Interpreter::take_axis_words(Step& step) {
   }
   // G43.1: the axis words are the tool length offset.
   const bool dynamic_offset = step.g(Group::tool_length) && step.g_code(Group::tool_length) == 431;
-  step.axes_taken =
-      g117 || step.macro_call || dynamic_offset || axis_words_are_values(nonmodal_code);
+  step.axes_taken = g117 || step.macro_call || dynamic_offset || step.frame_words ||
+                    axis_words_are_values(nonmodal_code);
   step.has_axis = !step.axes_taken && step.has_xyz;
 }
 

@@ -207,6 +207,7 @@ class Interpreter {
   void set_origin_g10(Step& step);
   void set_origin_g92_g52(Step& step);
   void set_distance_modes(Step& step);
+  void tilt_working_plane(Step& step);
   void take_axis_words(Step& step);
   void set_motion_mode(Step& step);
   void move(Step& step);
@@ -238,8 +239,9 @@ class Interpreter {
   Parameters parameters_;
   ModalState state_;
   Origins origins_;
-  SiemensCycle mcall_;       // the Sinumerik MCALL cycle in effect
-  SiemensCycle mcall_next_;  // set by the block in execution
+  program::WorkingFrame tilt_;  // G68.2 (3+2); identity when none
+  SiemensCycle mcall_;          // the Sinumerik MCALL cycle in effect
+  SiemensCycle mcall_next_;     // set by the block in execution
   std::vector<std::pair<char, int>> warned_once_;
   Block block_;
   std::vector<Diagnostic> warnings_;

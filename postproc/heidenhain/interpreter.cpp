@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "postproc/heidenhain/cycles.h"
+#include "postproc/program/working_frame.h"
 
 namespace vcpost::heidenhain {
 
@@ -274,7 +275,7 @@ void Interpreter::execute(std::vector<Event>& events) {
     case BlockKind::cycle_call:
       return cycle_call(events);
     case BlockKind::plane:
-      return plane_block();
+      return plane_block(events);
     case BlockKind::function:
       return function_block();
     case BlockKind::other:
@@ -1315,9 +1316,12 @@ void Interpreter::cycle_def(std::vector<Event>& events) {
         if (std::abs(std::remainder(*w.rot[a], 360.0)) > 1e-9) p.identity = false;
       }
       plane_ = p;
-      if (!p.identity)
-        fail(Code::tilted_plane, w.first_word,
-             "CYCL DEF 19 tilts the working plane (3+2): tilted frames are not read yet");
+      // Taken as spatial angles (the TNC's default for cycle 19; a machine
+      // set up for axis angles reads them as its rotary axes' positions).
+      tilt(p.identity ? Eigen::Matrix3d::Identity()
+                      : program::spatial_angles(w.rot[0].value_or(0), w.rot[1].value_or(0),
+                                                w.rot[2].value_or(0)),
+           events);
       q_[120] = q_[121] = q_[122] = 0;
       return;
     }
@@ -1421,7 +1425,7 @@ void Interpreter::run_cycle(std::uint32_t at, std::vector<Event>& events) {
 
 // ---- Working plane and functions
 
-void Interpreter::plane_block() {
+void Interpreter::plane_block(std::vector<program::Event>& events) {
   WorkingPlane p;
   p.kind = std::string(block_.sub_keyword);
   p.source = source();
@@ -1432,31 +1436,65 @@ void Interpreter::plane_block() {
     while (letters < key.size() && key[letters] >= 'A' && key[letters] <= 'Z') ++letters;
     p.values.emplace_back(key.substr(0, letters), value(w.value, w.begin));
   }
+  auto get = [&](std::string_view k, double fallback) {
+    for (const auto& [n, v] : p.values)
+      if (n == k) return v;
+    return fallback;
+  };
+  // STAY, MOVE and TURN say how the rotary axes get there; the frame is the
+  // same (MOVE and TURN: the tool's tip is taken to stay where it is on the
+  // part, which MOVE keeps and TURN's first positioning block sets anyway).
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   if (p.kind == "RESET") {
     p.identity = true;
+  } else if (p.kind == "SPATIAL") {
+    rotation = program::spatial_angles(get("SPA", 0), get("SPB", 0), get("SPC", 0));
+  } else if (p.kind == "EULER") {
+    rotation = program::euler_zxz(get("EULPR", 0), get("EULNU", 0), get("EULROT", 0));
   } else if (p.kind == "VECTOR") {
-    // Identity when the base vector is +X and the normal +Z.
-    auto get = [&](std::string_view k, double fallback) {
-      for (const auto& [n, v] : p.values)
-        if (n == k) return v;
-      return fallback;
-    };
-    p.identity = std::abs(get("BX", 1) - 1) < 1e-9 && std::abs(get("BY", 0)) < 1e-9 &&
-                 std::abs(get("BZ", 0)) < 1e-9 && std::abs(get("NX", 0)) < 1e-9 &&
-                 std::abs(get("NY", 0)) < 1e-9 && std::abs(get("NZ", 1) - 1) < 1e-9;
-  } else if (p.kind == "SPATIAL" || p.kind == "PROJECTED" || p.kind == "EULER" ||
-             p.kind == "AXIAL" || p.kind == "RELATIV") {
-    p.identity = std::all_of(p.values.begin(), p.values.end(), [](const auto& v) {
-      return std::abs(std::remainder(v.second, 360.0)) < 1e-9;
-    });
+    const auto r =
+        program::frame_from_vectors(Eigen::Vector3d(get("BX", 1), get("BY", 0), get("BZ", 0)),
+                                    Eigen::Vector3d(get("NX", 0), get("NY", 0), get("NZ", 1)));
+    if (!r)
+      fail(Code::bad_number, block_.keyword_begin,
+           "PLANE VECTOR needs a normal vector and a base vector not parallel to it");
+    rotation = *r;
+  } else if (p.kind == "RELATIV") {
+    // One incremental spatial angle about the tilted frame's own axis.
+    rotation =
+        tilt_.rotation * program::spatial_angles(get("SPA", 0), get("SPB", 0), get("SPC", 0));
+  } else if (p.kind == "AXIAL" && std::all_of(p.values.begin(), p.values.end(), [](const auto& v) {
+               return std::abs(std::remainder(v.second, 360.0)) < 1e-9;
+             })) {
+    p.identity = true;
   } else {
-    p.identity = false;
-  }
-  plane_ = p;
-  if (!p.identity)
     fail(Code::tilted_plane, block_.keyword_begin,
-         "PLANE " + p.kind + " tilts the working plane (3+2): tilted frames are not read yet");
+         "PLANE " + p.kind +
+             " is not read (it needs the machine's kinematics or projection angles): write the "
+             "tilt as PLANE SPATIAL, EULER or VECTOR");
+  }
+  if (p.kind != "RESET" && p.kind != "AXIAL")
+    p.identity = rotation.isApprox(Eigen::Matrix3d::Identity(), 1e-12);
+  plane_ = p;
+  tilt(p.identity ? Eigen::Matrix3d::Identity() : rotation, events);
   q_[120] = q_[121] = q_[122] = 0;  // the rotary positions the plane asks for
+}
+
+// The working plane turned to `rotation` about the active datum (CYCL DEF
+// 7): a point programmed at p in it is at rotation p + shift in the
+// untilted frame. The events keep the datum shift added (e = p + shift),
+// so the frame's origin is shift - rotation shift.
+void Interpreter::tilt(const Eigen::Matrix3d& rotation, std::vector<program::Event>& events) {
+  program::WorkingFrame frame;
+  frame.rotation = rotation;
+  frame.origin = shift_ - rotation * shift_;
+  frame.source = source();
+  if (frame.rotation == tilt_.rotation && frame.origin == tilt_.origin) return;
+  const Eigen::Vector3d tip = tilt_.to_program(position_);
+  position_ = rotation.transpose() * (tip - frame.origin);
+  tilt_ = frame;
+  tangent_.reset();
+  events.emplace_back(frame);
 }
 
 void Interpreter::function_block() {

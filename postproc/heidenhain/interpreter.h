@@ -159,7 +159,8 @@ class Interpreter {
   void cycle_def(std::vector<program::Event>& events);
   void cycle_call(std::vector<program::Event>& events);
   void run_cycle(std::uint32_t at, std::vector<program::Event>& events);
-  void plane_block();
+  void plane_block(std::vector<program::Event>& events);
+  void tilt(const Eigen::Matrix3d& rotation, std::vector<program::Event>& events);
   void function_block();
   void count_jump(std::uint32_t at);
 
@@ -179,6 +180,7 @@ class Interpreter {
   Eigen::Vector3d position_ = Eigen::Vector3d::Zero();
   double highest_z_ = 0.0;
   Eigen::Vector3d shift_ = Eigen::Vector3d::Zero();  // CYCL DEF 7, mm
+  program::WorkingFrame tilt_;                       // PLANE, CYCL DEF 19 (3+2)
   std::optional<Eigen::Vector2d> pole_;              // CC, mm (shift applied)
   std::optional<Eigen::Vector2d> tangent_;           // of the last contour element's end, XY
   double feed_ = 0.0;                                // modal F, mm/min (0: none yet)

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "geometry/rigid_transform.h"
 #include "postproc/program/events.h"
 
 namespace vcpost::pipeline {
@@ -17,6 +18,11 @@ struct PathSample {
   std::uint64_t move = 0;        // index of the motion event it lies on
   double fraction = 1;           // position along that move, (0, 1]; 0 = its start
   program::SourceRef source;     // the block (record) of that move
+  // A tilted working frame's (3+2): point and direction are in its
+  // coordinates, and this places the program frame's model in them (the
+  // inverse of program::WorkingFrame); null in the untilted program. Owned
+  // by the reader, which keeps every frame it met.
+  const geometry::RigidTransform* frame = nullptr;
 };
 
 // Splits cutting moves (straight and arc feeds) into samples no further

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "geometry/rigid_transform.h"
 #include "geometry/tool_contact.h"
 
 namespace vcpost::pipeline {
@@ -44,7 +45,15 @@ geometry::BallContact PointEvaluator::contact(const PathSample& sample,
                                               geometry::ContactHint& hint) const {
   const geometry::Tool& tool = settings_.tool;
   const Eigen::Vector3d origin = geometry::tool_origin(sample.point, tool, settings_.cl_point);
-  return geometry::tool_contact(model_, tool, origin, settings_.contact_tolerance, tool.diameter,
+  if (sample.frame == nullptr)
+    return geometry::tool_contact(model_, tool, origin, settings_.contact_tolerance, tool.diameter,
+                                  &hint);
+  // A tilted frame: the tool axis is its +z, so the model is turned into
+  // it and everything after contact is measured there (MODELS.md 5). The
+  // view is a thin decorator, cheaper to make here than to look up.
+  const std::shared_ptr<const geometry::SurfaceModel> base(std::shared_ptr<void>(), &model_);
+  const geometry::TransformedModel turned(base, *sample.frame);
+  return geometry::tool_contact(turned, tool, origin, settings_.contact_tolerance, tool.diameter,
                                 &hint);
 }
 
@@ -105,6 +114,12 @@ bool cuts(const geometry::BallContact& contact) {
 }  // namespace
 
 void PointEvaluator::place(const PathSample& sample, PointResult& out) {
+  if (sample.frame != frame_) {
+    // Another working frame: the passes cut so far lie in other coordinates.
+    frame_ = sample.frame;
+    tracker_ = PassTracker(settings_.tool.diameter, 4 * settings_.tool.diameter, tracker_memory);
+    had_contact_ = false;
+  }
   if (!cuts(out.contact)) {
     if (had_contact_) tracker_.break_pass();
     had_contact_ = false;

@@ -93,6 +93,7 @@ class PointEvaluator {
   geometry::ContactHint hint_;
   PassTracker tracker_;
   bool had_contact_ = false;
+  const geometry::RigidTransform* frame_ = nullptr;  // of the last placed sample
 };
 
 }  // namespace vcpost::pipeline

@@ -1,6 +1,7 @@
 #include "postproc/post/path_reader.h"
 
 #include <algorithm>
+#include <deque>
 #include <istream>
 #include <optional>
 #include <sstream>
@@ -253,6 +254,7 @@ struct PathReader::State {
                  std::size_t block_index, ReadTotals& totals);
   Slot& next_slot(Chunk& chunk);
   void take_stop(Slot& slot);
+  void enter_frame(const program::WorkingFrame& frame);
 
   const tools::ToolChoices& tools;
   double ap_mm;
@@ -279,6 +281,10 @@ struct PathReader::State {
   std::size_t next_event = 0;                     // of `events`, not yet taken
   std::uint64_t last_offset = 0;
   bool program_end = false;  // M2/M30 (a ProgramEnd event) read
+  // Every tilted frame met (a deque: the samples point into it) and the
+  // one in effect (null: untilted).
+  std::deque<geometry::RigidTransform> frames;
+  const geometry::RigidTransform* placement = nullptr;
 };
 
 PathReader::PathReader(std::string_view text, const std::string& file_name, ProgramKind kind,
@@ -327,7 +333,30 @@ void PathReader::State::note_program_state(const Event& event, BlockInfo& block)
   } else if (std::holds_alternative<program::ChangeTool>(event)) {
     tool_change = true;
     break_pass = true;
+  } else if (const auto* frame = std::get_if<program::WorkingFrame>(&event)) {
+    enter_frame(*frame);
   }
+}
+
+// A tilted working plane: the samples that follow are in its coordinates
+// and carry the placement of the model in them (one kept per distinct frame).
+void PathReader::State::enter_frame(const program::WorkingFrame& frame) {
+  break_pass = true;
+  path_stops = true;  // the machine turns its rotary axes between the two
+  last_direction.reset();
+  if (frame.is_identity()) {
+    placement = nullptr;
+    return;
+  }
+  const geometry::RigidTransform turned =
+      geometry::RigidTransform{frame.rotation, frame.origin}.inverse();
+  for (const geometry::RigidTransform& known : frames) {
+    if (known.rotation == turned.rotation && known.shift == turned.shift) {
+      placement = &known;
+      return;
+    }
+  }
+  placement = &frames.emplace_back(turned);
 }
 
 // At a section's first motion: which tool cuts it and whether it is posted.
@@ -347,6 +376,8 @@ void PathReader::State::add_slots(Chunk& chunk, const Event& event, const progra
                                   std::size_t block_index, ReadTotals& totals) {
   path.clear();
   sampler.add(event, totals.motion_events - 1, path);
+  if (placement != nullptr)
+    for (pipeline::PathSample& sample : path) sample.frame = placement;
   if (std::holds_alternative<program::StraightTraverse>(event)) {
     Slot& slot = next_slot(chunk);
     slot.kind = SlotKind::rapid;

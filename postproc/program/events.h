@@ -179,10 +179,23 @@ struct CannedCycle {
   SourceRef source;
 };
 
-using Event =
-    std::variant<StraightTraverse, StraightFeed, ArcFeed, SetFeedRate, SetSpindleSpeed, SpindleOn,
-                 SpindleOff, SelectTool, ChangeTool, ToolLengthOffset, CutterCompensation,
-                 SelectPlane, Coolant, Dwell, ProgramStop, ProgramEnd, Message, CannedCycle>;
+// A tilted working plane (3+2: CL CSYS, Klartext PLANE, Fanuc G68.2,
+// Sinumerik CYCLE800): the events that follow are in its own frame, whose
+// +z is the tool axis, until the next WorkingFrame. A point p of them is at
+// rotation * p + origin in the program frame (the part's, where the model
+// is). The identity (the default) is the untilted program.
+struct WorkingFrame {
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // columns: the frame's x, y, z
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();        // mm
+  SourceRef source;
+  bool is_identity() const { return rotation == Eigen::Matrix3d::Identity() && origin.isZero(0); }
+  Eigen::Vector3d to_program(const Eigen::Vector3d& p) const { return rotation * p + origin; }
+};
+
+using Event = std::variant<StraightTraverse, StraightFeed, ArcFeed, SetFeedRate, SetSpindleSpeed,
+                           SpindleOn, SpindleOff, SelectTool, ChangeTool, ToolLengthOffset,
+                           CutterCompensation, SelectPlane, Coolant, Dwell, ProgramStop, ProgramEnd,
+                           Message, CannedCycle, WorkingFrame>;
 
 // The source of any event.
 SourceRef source_of(const Event& event);

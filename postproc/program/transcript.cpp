@@ -1,6 +1,7 @@
 #include "postproc/program/transcript.h"
 
 #include <charconv>
+#include <cmath>
 #include <system_error>
 
 #include "postproc/program/arc.h"
@@ -143,6 +144,19 @@ void append_call(std::string& out, const Event& event) {
           out += "PROGRAM_END()";
         } else if constexpr (std::is_same_v<T, Message>) {
           append_quoted(out, "MESSAGE", e.text);
+        } else if constexpr (std::is_same_v<T, WorkingFrame>) {
+          // Not a call of rs274's (it has no tilted plane): the frame's
+          // origin, then its x and z axes (z: the tool axis) in the program
+          // frame.
+          out += "SET_WORKING_FRAME(";
+          append_number(out, e.origin.x());
+          for (const double v :
+               {e.origin.y(), e.origin.z(), e.rotation(0, 0), e.rotation(1, 0), e.rotation(2, 0),
+                e.rotation(0, 2), e.rotation(1, 2), e.rotation(2, 2)}) {
+            out += ", ";
+            append_number(out, v);
+          }
+          out += ')';
         }
       },
       event);
@@ -177,6 +191,76 @@ void append_transcript(std::string& out, const Event& event, const TranscriptOpt
     append_source(out, source, options);
   }
   out += '\n';
+}
+
+namespace {
+
+// A motion of a tilted frame turned into the program frame. An arc whose
+// axis is a principal axis there stays an ARC_FEED in that plane; any
+// other prints as ARC_FEED_3D (end, centre, axis, turns), which rs274 has
+// not.
+Event to_program_frame(const Event& event, const WorkingFrame& frame) {
+  Event out = event;
+  if (auto* t = std::get_if<StraightTraverse>(&out)) {
+    t->start = frame.to_program(t->start);
+    t->end = frame.to_program(t->end);
+  } else if (auto* f = std::get_if<StraightFeed>(&out)) {
+    f->start = frame.to_program(f->start);
+    f->end = frame.to_program(f->end);
+  }
+  return out;
+}
+
+void append_tilted_arc(std::string& out, const ArcFeed& arc, const WorkingFrame& frame) {
+  const auto ax = plane_axes(arc.plane);
+  Eigen::Vector3d centre = arc.centre;
+  centre[ax[2]] = arc.start[ax[2]];
+  Eigen::Vector3d axis = Eigen::Vector3d::Zero();
+  axis[ax[2]] = arc.rotation > 0 ? 1.0 : -1.0;
+  const Eigen::Vector3d end = frame.to_program(arc.end);
+  const Eigen::Vector3d c = frame.to_program(centre);
+  axis = frame.rotation * axis;
+  for (int k = 0; k < 3; ++k) {
+    if (std::abs(std::abs(axis[k]) - 1.0) > 1e-12) continue;
+    ArcFeed turned = arc;
+    turned.plane = k == 2 ? Plane::xy : k == 1 ? Plane::xz : Plane::yz;
+    turned.rotation = axis[k] > 0 ? std::abs(arc.rotation) : -std::abs(arc.rotation);
+    turned.start = frame.to_program(arc.start);
+    turned.end = end;
+    turned.centre = c;
+    append_call(out, turned);
+    return;
+  }
+  out += "ARC_FEED_3D(";
+  append_number(out, end.x());
+  for (const double v : {end.y(), end.z(), c.x(), c.y(), c.z(), axis.x(), axis.y(), axis.z()}) {
+    out += ", ";
+    append_number(out, v);
+  }
+  out += ", ";
+  append_int(out, std::abs(arc.rotation));
+  out += ')';
+}
+
+}  // namespace
+
+void Transcriber::append(std::string& out, const Event& event) {
+  if (const auto* frame = std::get_if<WorkingFrame>(&event)) {
+    frame_ = *frame;
+    append_transcript(out, event, options_);
+    return;
+  }
+  if (frame_.is_identity() || !is_motion(event)) {
+    append_transcript(out, event, options_);
+    return;
+  }
+  if (const auto* arc = std::get_if<ArcFeed>(&event)) {
+    append_tilted_arc(out, *arc, frame_);
+    if (options_.with_source) append_source(out, arc->source, options_);
+    out += '\n';
+    return;
+  }
+  append_transcript(out, to_program_frame(event, frame_), options_);
 }
 
 std::string transcript(const Event& event, const TranscriptOptions& options) {

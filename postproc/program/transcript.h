@@ -30,6 +30,19 @@ struct TranscriptOptions {
 // give one line; Coolant off gives two (MIST_OFF, FLOOD_OFF) as rs274 does.
 void append_transcript(std::string& out, const Event& event, const TranscriptOptions& options = {});
 
+// The transcript of a program's events in order: as append_transcript,
+// with the motion of a tilted working frame (WorkingFrame) printed where it
+// is in the program frame (the machine's positions for the part).
+class Transcriber {
+ public:
+  explicit Transcriber(TranscriptOptions options = {}) : options_(options) {}
+  void append(std::string& out, const Event& event);
+
+ private:
+  TranscriptOptions options_;
+  WorkingFrame frame_;
+};
+
 // Convenience: the transcript of one event.
 std::string transcript(const Event& event, const TranscriptOptions& options = {});
 

@@ -62,6 +62,9 @@ bool same_fields(const Dwell& a, const Dwell& b) { return a.seconds == b.seconds
 bool same_fields(const ProgramStop& a, const ProgramStop& b) { return a.optional == b.optional; }
 bool same_fields(const ProgramEnd& /*a*/, const ProgramEnd& /*b*/) { return true; }
 bool same_fields(const Message& a, const Message& b) { return a.text == b.text; }
+bool same_fields(const WorkingFrame& a, const WorkingFrame& b) {
+  return a.rotation == b.rotation && a.origin == b.origin;
+}
 bool same_fields(const CannedCycle& a, const CannedCycle& b) {
   return a.code == b.code && a.x == b.x && a.y == b.y && a.top_z == b.top_z && a.r_z == b.r_z &&
          a.bottom_z == b.bottom_z && a.peck == b.peck && a.dwell_s == b.dwell_s;

@@ -497,7 +497,7 @@ TEST(ClReader, UnknownRecordsAndFramesThatMoveThePointsAreRefused) {
   }
   EXPECT_EQ(code_of("TRNTYP/WORLD,0,0,5\nFINI\n"), ClCode::frame_not_identity);
   EXPECT_EQ(code_of("TRNTYP/LOCAL\nFINI\n"), ClCode::frame_not_identity);
-  EXPECT_EQ(code_of("CSYS/1,0,0,10,0,0,-1,0,0,1,0,0\nFINI\n"), ClCode::frame_not_identity);
+  EXPECT_EQ(code_of("CSYS/1,0,0,10,0,1,0,0,0,0,3,0\nFINI\n"), ClCode::frame_not_identity);
   EXPECT_EQ(code_of("ORIGIN/0,0,-5\nFINI\n"), ClCode::frame_not_identity);
   EXPECT_EQ(code_of("ROTABL/ 1.570796,AAXIS,TABLE,CCLW\nFINI\n"), ClCode::tool_axis_not_z);
   EXPECT_EQ(code_of("GOHOME\nFINI\n"), ClCode::unsupported_record);
@@ -564,16 +564,86 @@ TEST(ClReader, CsysTranslationAndRotationAboutZAreApplied) {
   EXPECT_TRUE(arcs[0].start.isApprox(Eigen::Vector3d(95, 60, -5))) << arcs[0].start.transpose();
   EXPECT_TRUE(arcs[0].end.isApprox(Eigen::Vector3d(90, 65, -5))) << arcs[0].end.transpose();
   try {
-    read_events("GOTO/0,0,0\nCSYS/1,0,0,0,0,0,-1,0,0,1,0,0\nFINI\n");
+    read_events("GOTO/0,0,0\nCSYS/-1,0,0,0,0,1,0,0,0,0,1,0\nFINI\n");  // a mirror
     FAIL() << "no error";
   } catch (const ClError& e) {
     EXPECT_EQ(std::string(e.what()),
-              "test.cl:2:1: error[E3119]: CSYS rotates about another axis than Z (or scales): "
-              "only a translation and a rotation about Z are applied; post each set-up from its "
-              "own CL file");
+              "test.cl:2:1: error[E3119]: CSYS mirrors or scales (its 3x3 part is not a rotation "
+              "within 1e-6): the points it places are not a rigid set-up's");
   }
   EXPECT_EQ(code_of("CSYS/2,0,0,0,0,2,0,0,0,0,1,0\nFINI\n"), ClCode::frame_not_identity);
   EXPECT_EQ(code_of("CSYS/0,1,0,0,1,0,0,0,0,0,1,0\nFINI\n"), ClCode::frame_not_identity);  // mirror
+  // A turn about Z after another leaves no WorkingFrame: the events stay untilted.
+  EXPECT_TRUE(only<WorkingFrame>(events).empty());
+}
+
+// A tilted CSYS (3+2) as SolidWorks CAM writes it (boss.apt's fourth
+// operation): the GOTOs and their tool axis stay in the base frame, the
+// events are in the frame's coordinates after a WorkingFrame. R's columns
+// are the frame's axes: x = (0,1,0), y = (0,0,1), z = (1,0,0), so a base
+// point (x, y, z) is (y, z, x) in the frame; the circle's axis -X is the
+// frame's -z (clockwise in its XY plane).
+TEST(ClReader, TiltedCsysIsAWorkingFrameWithThePointsInItsCoordinates) {
+  const auto events = read_events(
+      "GOTO/10,20,30\n"
+      "CSYS/0,0,1.,0,1.,0,0,0,0,1.,0,0\nRAPID/\nGOTO/120.,24.9625,-30.35,1.,0,0\n"
+      "GOTO/92.,0,-56.75,1.,0,0\n"
+      "CIRCLE/92.,0,-60.,-1.,0,0\nGOTO/92.,3.25,-60.,1.,0,0\n"
+      "CSYS/1.,0,0,0,0,1.,0,0,0,0,1.,0\nGOTO/1,2,3\nFINI\n");
+  const auto frames = only<WorkingFrame>(events);
+  ASSERT_EQ(frames.size(), 2u);
+  Eigen::Matrix3d r;
+  r << 0, 0, 1, 1, 0, 0, 0, 1, 0;
+  EXPECT_EQ(frames[0].rotation, r);
+  EXPECT_EQ(frames[0].origin, Eigen::Vector3d::Zero());
+  EXPECT_EQ(frames[0].source.line, 2u);
+  EXPECT_TRUE(frames[1].is_identity());
+  const auto rapids = only<StraightTraverse>(events);
+  ASSERT_EQ(rapids.size(), 1u);
+  EXPECT_EQ(rapids[0].end, Eigen::Vector3d(24.9625, -30.35, 120));
+  const auto lines = only<StraightFeed>(events);
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(lines[0].end, Eigen::Vector3d(10, 20, 30));
+  EXPECT_EQ(lines[1].end, Eigen::Vector3d(0, -56.75, 92));
+  EXPECT_EQ(lines[2].end, Eigen::Vector3d(1, 2, 3));
+  const auto arcs = only<ArcFeed>(events);
+  ASSERT_EQ(arcs.size(), 1u);
+  EXPECT_EQ(arcs[0].plane, Plane::xy);
+  EXPECT_EQ(arcs[0].rotation, -1);
+  EXPECT_NEAR(arcs[0].centre.x(), 0, 1e-12);
+  EXPECT_NEAR(arcs[0].centre.y(), -60, 1e-12);
+  EXPECT_EQ(arcs[0].end, Eigen::Vector3d(3.25, -60, 92));
+  // Each event is where the file puts it once turned back: R e + t.
+  EXPECT_EQ(frames[0].to_program(rapids[0].end), Eigen::Vector3d(120, 24.9625, -30.35));
+  EXPECT_EQ(frames[0].to_program(arcs[0].end), Eigen::Vector3d(92, 3.25, -60));
+}
+
+// In a tilted frame the tool axis must stay its z: one that changes along
+// the path is 5-axis simultaneous, refused with the frame's axis named.
+TEST(ClReader, ToolAxisOtherThanTheFramesIsRefused) {
+  try {
+    read_events("CSYS/0,0,1.,0,1.,0,0,0,0,1.,0,0\nGOTO/120,0,0,1,0,0\nGOTO/120,0,0,0.8,0,0.6\n");
+    FAIL() << "no error";
+  } catch (const ClError& e) {
+    EXPECT_EQ(e.code(), ClCode::tool_axis_not_z);
+    EXPECT_EQ(e.diagnostic().line, 3u);
+    EXPECT_NE(std::string(e.what()).find("(1.0000, 0.0000, 0.0000)"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("5-axis simultaneous"), std::string::npos) << e.what();
+  }
+  // Untilted: the axis must be +Z, and the message says how a tilt is given.
+  EXPECT_EQ(code_of("GOTO/0,0,0,1,0,0\nFINI\n"), ClCode::tool_axis_not_z);
+  // 45 degrees about Y, moved to (5, 6, 7): the axis i,j,k given is R z.
+  const double c = std::sqrt(0.5);
+  const std::string csys = "CSYS/" + std::to_string(c) + ",0," + std::to_string(c) + ",5,0,1,0,6," +
+                           std::to_string(-c) + ",0," + std::to_string(c) + ",7\n";
+  const auto events = read_events(csys + "GOTO/5,6,7," + std::to_string(c) + ",0," +
+                                  std::to_string(c) + "\nGOTO/15,6,7\nFINI\n");
+  const auto lines = only<StraightFeed>(events);
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_NEAR((lines[0].end - Eigen::Vector3d::Zero()).norm(), 0, 1e-9);
+  // (10, 0, 0) in the base: along the frame's x (c, 0, -c) and z (c, 0, c).
+  EXPECT_NEAR((lines[1].end - Eigen::Vector3d(10 * c, 0, 10 * c)).norm(), 0, 1e-5);
 }
 
 // Tool changes without LOAD/TOOL: TOOLNO/n before the next motion is the

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -65,12 +66,11 @@ std::vector<T> only(const std::vector<Event>& events) {
 
 TEST(ClRealFiles, EveryFileIsReadOrRefusedWithItsDocumentedCode) {
   SKIP_WITHOUT_DATA();
-  // Documented refusals: multi-axis tool axes (E3108), a set-up frame that
-  // would move the points (E3119), at the first record that needs them.
+  // Documented refusals: multi-axis tool axes (E3108), at the first record
+  // that needs them.
   const std::map<std::string, std::tuple<ClCode, unsigned, unsigned>> refused = {
       {"ust_a.cls", {ClCode::tool_axis_not_z, 11, 32}},
       {"ust_a2.cls", {ClCode::tool_axis_not_z, 11, 32}},
-      {"boss.apt", {ClCode::frame_not_identity, 5551, 1}},  // a second set-up along +X
   };
   int files = 0;
   for (const auto& entry : fs::directory_iterator(data_dir)) {
@@ -96,6 +96,48 @@ TEST(ClRealFiles, EveryFileIsReadOrRefusedWithItsDocumentedCode) {
     }
   }
   EXPECT_GE(files, 10);
+}
+
+// boss.apt's last four operations (from line 5551) cut the stock's +X face
+// after CSYS/0,0,1.,0,1.,0,0,0,0,1.,0,0, each GOTO with the axis 1.,0,0:
+// one WorkingFrame (the four CSYS are the same), and every GOTO of them,
+// turned back out of the frame, is where the file writes it (a scan of the
+// text, independent of the reader), with the frame's z along the tool.
+TEST(ClRealFiles, BossTiltedSetUpIsOneFrameWithTheFilesPoints) {
+  SKIP_WITHOUT_DATA();
+  const Outcome o = read_file(data_dir / "boss.apt");
+  ASSERT_FALSE(o.error) << o.error_text;
+  std::vector<WorkingFrame> frames;
+  for (const auto& e : o.events)
+    if (const auto* f = std::get_if<WorkingFrame>(&e)) frames.push_back(*f);
+  ASSERT_EQ(frames.size(), 1u);
+  EXPECT_EQ(frames[0].source.line, 5551u);
+  EXPECT_EQ(frames[0].rotation.col(2), Eigen::Vector3d(1, 0, 0));
+  std::map<std::uint32_t, Eigen::Vector3d> written;  // line -> the GOTO's x, y, z
+  std::ifstream in(data_dir / "boss.apt", std::ios::binary);
+  std::string line;
+  for (std::uint32_t n = 1; std::getline(in, line); ++n) {
+    if (n < 5551 || line.rfind("GOTO/", 0) != 0) continue;
+    Eigen::Vector3d p;
+    ASSERT_EQ(std::sscanf(line.c_str(), "GOTO/%lf,%lf,%lf", &p.x(), &p.y(), &p.z()), 3) << line;
+    written[n] = p;
+  }
+  std::size_t compared = 0;
+  for (const auto& e : o.events) {
+    if (!is_motion(e)) continue;
+    const auto at = written.find(source_of(e).line);
+    if (at == written.end()) continue;
+    Eigen::Vector3d end;
+    if (const auto* t = std::get_if<StraightTraverse>(&e))
+      end = t->end;
+    else if (const auto* f = std::get_if<StraightFeed>(&e))
+      end = f->end;
+    else
+      end = std::get<ArcFeed>(e).end;
+    EXPECT_LT((frames[0].to_program(end) - at->second).norm(), 1e-12) << "line " << at->first;
+    ++compared;
+  }
+  EXPECT_GT(compared, 3000u);
 }
 
 TEST(ClRealFiles, NxClsfBallFinishingWithNurbs) {

@@ -390,21 +390,137 @@ TEST(KlartextInterpreter, BlockInformationForWriters) {
   EXPECT_FALSE(interpreter.next(events));
 }
 
-TEST(KlartextInterpreter, TiltsAndRotaryAxesAreRefusedIdentityPlanesRead) {
+TEST(KlartextInterpreter, IdentityPlanesAndTheirRotaryPositionsAreRead) {
   Interpreter interpreter(
       "BEGIN PGM T MM\n"
       "PLANE SPATIAL SPA+0 SPB+0 SPC+0 STAY SEQ+ TABLE ROT\n"
       "L A+Q120 C+Q122 R0 FMAX M126\n"
       "PLANE RESET STAY\n"
       "END PGM T MM\n");
-  run("", &interpreter);
+  std::vector<Event> events;
+  while (interpreter.next(events)) {
+  }
   ASSERT_TRUE(interpreter.plane());
   EXPECT_EQ(interpreter.plane()->kind, "RESET");
-  EXPECT_EQ(error_of("BEGIN PGM T MM\nPLANE SPATIAL SPA90 SPB0 SPC-90 STAY SEQ- TABLE ROT\n"),
+  // No tilt: no WorkingFrame, the events are as before.
+  for (const Event& e : events) EXPECT_FALSE(std::holds_alternative<program::WorkingFrame>(e));
+  EXPECT_EQ(error_of("BEGIN PGM T MM\nPLANE PROJECTED PROPR+20 PROMIN+0 ROT+0 STAY\n"),
             Code::tilted_plane);
-  EXPECT_EQ(error_of("BEGIN PGM T MM\nCYCL DEF 19.0 WORKING PLANE\nCYCL DEF 19.1 A+30\n"),
-            Code::tilted_plane);
+  EXPECT_EQ(error_of("BEGIN PGM T MM\nPLANE AXIAL B+30 STAY\n"), Code::tilted_plane);
   EXPECT_EQ(error_of("BEGIN PGM T MM\nM128\nL A+10 FMAX\n"), Code::tool_axis_change);
+  EXPECT_EQ(error_of("BEGIN PGM T MM\nPLANE VECTOR BX1 BY0 BZ0 NX1 NY0 NZ0 STAY\n"),
+            Code::bad_number);  // base vector along the normal
+}
+
+// Each motion's end where it is in the program (untilted) frame: the
+// WorkingFrame in effect turns the event's point out (events.h).
+std::vector<Eigen::Vector3d> program_ends(const std::vector<Event>& events) {
+  std::vector<Eigen::Vector3d> out;
+  program::WorkingFrame frame;
+  for (const Event& e : events) {
+    if (const auto* f = std::get_if<program::WorkingFrame>(&e)) frame = *f;
+    if (program::is_motion(e)) out.push_back(frame.to_program(end_of(e)));
+  }
+  return out;
+}
+
+const double c45 = std::sqrt(0.5);
+
+// PLANE SPATIAL turns about the machine's fixed X by SPA, then Y by SPB,
+// then Z by SPC: R = Rz(SPC) Ry(SPB) Rx(SPA), about the datum of CYCL DEF 7.
+// W5246NS01007B10.h, lines 51-59 (its comment: "A-90 C90", an AC table):
+// SPA90 SPC-90 make the frame's x = (0,-1,0), y = (0,0,1), z = (-1,0,0):
+// the tool comes at the part's -X face. X51.5 Y0 Z50 there is
+// 51.5 x + 50 z + datum (-258, 1.5, -11) = (-308, -50, -11).
+TEST(KlartextInterpreter, PlaneSpatialAboutTheDatum) {
+  const auto events =
+      run("BEGIN PGM T MM\n"
+          "CYCL DEF 7.0 DATUM SHIFT\nCYCL DEF 7.1 X-258\nCYCL DEF 7.2 Y1.5\nCYCL DEF 7.3 Z-11\n"
+          "PLANE SPATIAL SPA90 SPB0 SPC-90 STAY SEQ- TABLE ROT\n"
+          "L A+Q120 C+Q122 R0 FMAX M126\n"
+          "L X51.5 Y0 Z50 R0 FMAX M3\n"
+          "L Z-3 F500\n"
+          "CYCL DEF 7.0 DATUM SHIFT\nCYCL DEF 7.1 X0\nCYCL DEF 7.2 Y0\nCYCL DEF 7.3 Z0\n"
+          "PLANE RESET STAY\n"
+          "L X1 Y2 Z3 FMAX\n"
+          "END PGM T MM\n");
+  std::vector<program::WorkingFrame> frames;
+  for (const Event& e : events)
+    if (const auto* f = std::get_if<program::WorkingFrame>(&e)) frames.push_back(*f);
+  ASSERT_EQ(frames.size(), 2u);  // the tilt, the reset
+  Eigen::Matrix3d r;
+  r << 0, 0, -1, -1, 0, 0, 0, 1, 0;  // columns x, y, z
+  EXPECT_EQ(frames[0].rotation, r);
+  EXPECT_EQ(frames[0].source.line, 6u);
+  EXPECT_TRUE(frames[1].is_identity());
+  const auto ends = program_ends(events);
+  ASSERT_EQ(ends.size(), 3u);
+  expect_point(ends[0], -308, -50, -11);
+  expect_point(ends[1], -255, -50, -11);  // 3 mm into the -X face (X -258)
+  expect_point(ends[2], 1, 2, 3);
+}
+
+// SPB+45: x = (c,0,-c), z = (c,0,c) (a head B+45 leans the tool towards
+// +X). RELATIV SPA+90 then turns about the tilted x: z' = Ry(45) Rx(90) z =
+// Ry(45) (0,-1,0) = (0,-1,0).
+TEST(KlartextInterpreter, PlaneSpatialAndRelativ) {
+  const auto events =
+      run("BEGIN PGM T MM\n"
+          "PLANE SPATIAL SPA+0 SPB+45 SPC+0 MOVE DIST50 F1000\n"
+          "L X10 Y0 Z0 FMAX\nL X0 Y0 Z10 F1000\n"
+          "PLANE RELATIV SPA+90 STAY\n"
+          "L X0 Y0 Z10 FMAX\nL X10 Y0 Z0\n"
+          "END PGM T MM\n");
+  const auto ends = program_ends(events);
+  ASSERT_EQ(ends.size(), 4u);
+  expect_point(ends[0], 10 * c45, 0, -10 * c45, 1e-12);
+  expect_point(ends[1], 10 * c45, 0, 10 * c45, 1e-12);
+  expect_point(ends[2], 0, -10, 0, 1e-12);
+  expect_point(ends[3], 10 * c45, 0, -10 * c45, 1e-12);  // x' = Ry(45) Rx(90) x = (c,0,-c)
+}
+
+// EULER: Rz(EULPR) Rx(EULNU) Rz(EULROT). PR90 NU45: x = (0,1,0),
+// y = (-c,0,c), z = (c,0,c). VECTOR: z the normal, x the base vector made
+// perpendicular to it. CYCL DEF 19 B+90 as SPATIAL SPB+90: x = (0,0,-1),
+// z = (1,0,0).
+TEST(KlartextInterpreter, PlaneEulerVectorAndCycle19) {
+  const auto events =
+      run("BEGIN PGM T MM\n"
+          "PLANE EULER EULPR+90 EULNU45 EULROT0 TURN\n"
+          "L X0 Y10 Z0 FMAX\nL X0 Y0 Z10 F1000\n"
+          "PLANE VECTOR BX0.3 BY1 BZ0 NX1 NY0 NZ0 STAY\n"
+          "L X1 Y2 Z3 FMAX\n"
+          "CYCL DEF 19.0 WORKING PLANE\nCYCL DEF 19.1 B+90\n"
+          "L X10 Y0 Z5 FMAX\n"
+          "CYCL DEF 19.0 WORKING PLANE\nCYCL DEF 19.1 B+0\n"
+          "L X1 Y2 Z3 FMAX\n"
+          "END PGM T MM\n");
+  const auto ends = program_ends(events);
+  ASSERT_EQ(ends.size(), 5u);
+  expect_point(ends[0], -10 * c45, 0, 10 * c45, 1e-12);
+  expect_point(ends[1], 10 * c45, 0, 10 * c45, 1e-12);
+  expect_point(ends[2], 3, 1, 2, 1e-12);  // z = (1,0,0), x = (0,1,0), y = (0,0,1)
+  expect_point(ends[3], 5, 0, -10, 1e-12);
+  expect_point(ends[4], 1, 2, 3, 1e-12);
+}
+
+// MOVE, TURN or STAY, the tool's tip is taken to stay where it is on the
+// part: the first move after the tilt starts there, in the frame's
+// coordinates. At (0,0,100) before SPB+90 (z = (1,0,0), x = (0,0,-1)) it
+// is at x = -100, z = 0 in the frame.
+TEST(KlartextInterpreter, TheToolStaysOnThePartThroughATilt) {
+  const auto events =
+      run("BEGIN PGM T MM\n"
+          "L X0 Y0 Z100 FMAX\n"
+          "PLANE SPATIAL SPA0 SPB+90 SPC0 TURN\n"
+          "L Z50 FMAX\n"
+          "END PGM T MM\n");
+  const auto all = motions(events);
+  ASSERT_EQ(all.size(), 2u);
+  const auto& second = std::get<program::StraightTraverse>(all[1]);
+  expect_point(second.start, -100, 0, 0, 1e-12);
+  expect_point(second.end, -100, 0, 50, 1e-12);
+  expect_point(program_ends(events)[1], 50, 0, 100, 1e-12);
 }
 
 }  // namespace

@@ -1,0 +1,117 @@
+// Turning the model and the program together changes no S (MODELS.md 5,
+// issue 40): a ball and a bull-nose raster over the analytic dome, posted
+// untilted, and the same raster written in a tilted working plane (Fanuc
+// G68.2 with the frame's origin and Euler angles) against the dome placed
+// by that frame (p = R p_model + origin), post to the same S in every
+// block within the profile's S resolution (1 rpm; the points differ only
+// by the round-off of turning in and out, about 1e-13 mm). Tilts: 30 deg
+// about X, 30 deg about Y, and a compound one (I20 J35 K-50, origin moved).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "../dome_program_support.h"
+#include "geometry/analytic_surfaces.h"
+#include "geometry/rigid_transform.h"
+#include "machines/builtin.h"
+#include "postproc/post/post_job.h"
+#include "postproc/program/working_frame.h"
+
+namespace vcpost::post {
+namespace {
+
+struct Tilt {
+  const char* name;
+  double i, j, k;          // G68.2's Euler angles, degrees
+  Eigen::Vector3d origin;  // mm
+};
+
+// The S word of every line (0 where the line has none), the lines the
+// tilted program adds (its move to the frame's origin, G68.2, G53.1, G69)
+// left out.
+std::vector<long> s_by_line(const std::string& program) {
+  static const std::regex s_word(R"(\bS([0-9]+))");
+  std::vector<long> out;
+  std::istringstream in(program);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("G68.2", 0) == 0 || line == "G53.1" || line == "G69" ||
+        line.find("(TO THE ORIGIN)") != std::string::npos)
+      continue;
+    std::smatch m;
+    out.push_back(std::regex_search(line, m, s_word) ? std::stol(m[1].str()) : 0);
+  }
+  return out;
+}
+
+std::string tilted(const std::string& raster, const Tilt& t) {
+  std::ostringstream g;
+  g.setf(std::ios::fixed);
+  g.precision(6);
+  // The tool goes to the frame's origin first, so that it starts the
+  // raster from the same point of the part as the untilted program (the
+  // plan's first speed depends on the time the first rapid leaves).
+  g << "G0 X" << t.origin.x() << " Y" << t.origin.y() << " Z" << t.origin.z()
+    << " (TO THE ORIGIN)\n";
+  g << "G68.2 X" << t.origin.x() << " Y" << t.origin.y() << " Z" << t.origin.z() << " I" << t.i
+    << " J" << t.j << " K" << t.k << "\nG53.1\n";
+  std::string out = raster;
+  const std::string header = "G21 G90 G17 G94\n";
+  out.insert(out.find(header) + header.size(), g.str());
+  out.insert(out.find("M5\nM30"), "G69\n");
+  return out;
+}
+
+std::string post(const std::string& program, const geometry::SurfaceModel& model,
+                 const PostSettings& settings, PostSummary& summary) {
+  std::string out;
+  summary = post_program(program, "dome.nc", model, machines::builtin_profile("fanuc-3axis"),
+                         settings, [&](std::string_view bytes) { out.append(bytes); });
+  return out;
+}
+
+void expect_same_s(const std::string& raster, const geometry::Tool& tool) {
+  PostSettings settings;
+  settings.point.tool = tool;
+  settings.point.ap = 0.3;
+  settings.point.vc = 120;
+  settings.sample_spacing_mm = 2;
+  const auto dome = std::make_shared<geometry::AnalyticModel>(testing::dome());
+  PostSummary flat;
+  const std::vector<long> expected = s_by_line(post(raster, *dome, settings, flat));
+  long changed = 0;
+  for (const long s : expected) changed += s > 0 ? 1 : 0;
+  ASSERT_GT(changed, 5) << "the untilted post must change S along the raster";
+  const Tilt tilts[] = {{"about X", 0, 30, 0, {0, 0, 0}},
+                        {"about Y", 90, 30, -90, {0, 0, 0}},
+                        {"compound", 20, 35, -50, {120, -40, 75}}};
+  for (const Tilt& t : tilts) {
+    SCOPED_TRACE(t.name);
+    const geometry::RigidTransform placement{program::euler_zxz(t.i, t.j, t.k), t.origin};
+    const geometry::TransformedModel turned(dome, placement);
+    PostSummary summary;
+    const std::vector<long> got = s_by_line(post(tilted(raster, t), turned, settings, summary));
+    ASSERT_EQ(got.size(), expected.size());
+    for (std::size_t line = 0; line < got.size(); ++line)
+      EXPECT_LE(std::abs(got[line] - expected[line]), 1) << "line " << line + 1;
+    EXPECT_EQ(summary.touching, flat.touching);
+    EXPECT_EQ(summary.gouging, flat.gouging);
+  }
+}
+
+TEST(TiltedInvariance, BallRasterPostsTheSameSInEveryTilt) {
+  expect_same_s(testing::dome_raster(1.0, 1.0, 8000), geometry::Tool::ball(10));
+}
+
+TEST(TiltedInvariance, BullNoseRasterPostsTheSameSInEveryTilt) {
+  expect_same_s(testing::bull_nose_dome_raster(1.25, 1.0, 8000, 10, 2),
+                geometry::Tool::bull_nose(10, 2));
+}
+
+}  // namespace
+}  // namespace vcpost::post

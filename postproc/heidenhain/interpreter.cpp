@@ -1445,7 +1445,11 @@ void Interpreter::plane_block(std::vector<program::Event>& events) {
   // same (MOVE and TURN: the tool's tip is taken to stay where it is on the
   // part, which MOVE keeps and TURN's first positioning block sets anyway).
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
-  if (p.kind == "RESET") {
+  const bool axial_zero =
+      p.kind == "AXIAL" && std::all_of(p.values.begin(), p.values.end(), [](const auto& v) {
+        return std::abs(std::remainder(v.second, 360.0)) < 1e-9;
+      });
+  if (p.kind == "RESET" || axial_zero) {
     p.identity = true;
   } else if (p.kind == "SPATIAL") {
     rotation = program::spatial_angles(get("SPA", 0), get("SPB", 0), get("SPC", 0));
@@ -1463,10 +1467,6 @@ void Interpreter::plane_block(std::vector<program::Event>& events) {
     // One incremental spatial angle about the tilted frame's own axis.
     rotation =
         tilt_.rotation * program::spatial_angles(get("SPA", 0), get("SPB", 0), get("SPC", 0));
-  } else if (p.kind == "AXIAL" && std::all_of(p.values.begin(), p.values.end(), [](const auto& v) {
-               return std::abs(std::remainder(v.second, 360.0)) < 1e-9;
-             })) {
-    p.identity = true;
   } else {
     fail(Code::tilted_plane, block_.keyword_begin,
          "PLANE " + p.kind +

@@ -4,7 +4,7 @@
 // G68.2 with the frame's origin and Euler angles) against the dome placed
 // by that frame (p = R p_model + origin), post to the same S in every
 // block within the profile's S resolution (1 rpm; the points differ only
-// by the round-off of turning in and out, about 1e-13 mm). Tilts: 30 deg
+// by the round-off of turning in and out). Tilts: 30 deg
 // about X, 30 deg about Y, and a compound one (I20 J35 K-50, origin moved).
 #include <gtest/gtest.h>
 
@@ -111,6 +111,91 @@ TEST(TiltedInvariance, BallRasterPostsTheSameSInEveryTilt) {
 TEST(TiltedInvariance, BullNoseRasterPostsTheSameSInEveryTilt) {
   expect_same_s(testing::bull_nose_dome_raster(1.25, 1.0, 8000, 10, 2),
                 geometry::Tool::bull_nose(10, 2));
+}
+
+// The same rasters in Klartext, untilted and in a PLANE SPATIAL about a
+// datum shifted by CYCL DEF 7 (the frame R = Rz(SPC) Ry(SPB) Rx(SPA) about
+// that datum: the dome placed at R p + shift), posted for the TNC 640:
+// the same TOOL CALL S words, and every sample's cutting speed the same
+// (the vc statistics before and after within 1e-9 relative).
+std::string klartext(const std::string& raster, const std::string& tilt) {
+  static const std::regex word(R"(([XYZ])(-?[0-9.]+))");
+  std::ostringstream out;
+  int n = 0;
+  auto block = [&](const std::string& text) { out << n++ << " " << text << "\n"; };
+  block("BEGIN PGM DOME MM");
+  std::string line;
+  std::istringstream tilt_lines(tilt);
+  while (std::getline(tilt_lines, line)) block(line);
+  block("TOOL CALL 1 Z S8000");
+  block("M3");
+  std::istringstream in(raster);
+  bool fed = false;  // F2000 written
+  while (std::getline(in, line)) {
+    if (line.rfind("G0 ", 0) != 0 && line.rfind("G1 ", 0) != 0) continue;
+    if (line == "G0 Z60") break;
+    std::string l = "L";
+    for (std::sregex_iterator w(line.begin(), line.end(), word), e; w != e; ++w)
+      l += " " + (*w)[1].str() + (*w)[2].str();
+    if (line[1] == '0') {
+      l += " FMAX";
+    } else if (!fed) {
+      l += " F2000";
+      fed = true;
+    }
+    block(l);
+  }
+  block("L Z60 FMAX");
+  block("M30");
+  block("END PGM DOME MM");
+  return out.str();
+}
+
+std::vector<long> tool_call_s(const std::string& program) {
+  static const std::regex s_word(R"(TOOL CALL.* S([0-9]+))");
+  std::vector<long> out;
+  for (std::sregex_iterator m(program.begin(), program.end(), s_word), e; m != e; ++m)
+    out.push_back(std::stol((*m)[1].str()));
+  return out;
+}
+
+TEST(TiltedInvariance, PlaneSpatialPostsTheSameAsTheUntiltedKlartext) {
+  const std::string raster = testing::dome_raster(1.0, 1.0, 8000);
+  PostSettings settings;
+  settings.point.tool = geometry::Tool::ball(10);
+  settings.point.ap = 0.3;
+  settings.point.vc = 120;
+  settings.sample_spacing_mm = 2;
+  const auto profile = machines::builtin_profile("heidenhain-tnc640");
+  const auto dome = std::make_shared<geometry::AnalyticModel>(testing::dome());
+  auto run = [&](const std::string& program, const geometry::SurfaceModel& model,
+                 PostSummary& summary) {
+    std::string out;
+    summary = post_program(program, "dome.h", model, profile, settings,
+                           [&](std::string_view bytes) { out.append(bytes); });
+    return out;
+  };
+  PostSummary flat;
+  const std::string untilted = run(klartext(raster, ""), *dome, flat);
+  const auto expected = tool_call_s(untilted);
+  ASSERT_FALSE(expected.empty());
+  ASSERT_TRUE(flat.after && flat.before);
+  ASSERT_GT(flat.touching, 300u);  // the raster is evaluated, not kept
+  const Eigen::Vector3d shift(30, -20, 10);
+  const std::string tilt =
+      "L X30 Y-20 Z10 FMAX\nCYCL DEF 7.0 DATUM SHIFT\nCYCL DEF 7.1 X30\n"
+      "CYCL DEF 7.2 Y-20\nCYCL DEF 7.3 Z10\nPLANE SPATIAL SPA20 SPB35 SPC-50 TURN\n";
+  const geometry::RigidTransform placement{program::spatial_angles(20, 35, -50), shift};
+  const geometry::TransformedModel turned(dome, placement);
+  PostSummary summary;
+  const std::string posted = run(klartext(raster, tilt), turned, summary);
+  EXPECT_EQ(tool_call_s(posted), expected);
+  ASSERT_TRUE(summary.after && summary.before);
+  EXPECT_EQ(summary.touching, flat.touching);
+  EXPECT_NEAR(summary.after->mean, flat.after->mean, 1e-9 * flat.after->mean);
+  EXPECT_NEAR(summary.after->max, flat.after->max, 1e-9 * flat.after->max);
+  EXPECT_NEAR(summary.before->min, flat.before->min, 1e-9 * flat.before->min);
+  EXPECT_NEAR(summary.before->mean, flat.before->mean, 1e-9 * flat.before->mean);
 }
 
 }  // namespace

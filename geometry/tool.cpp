@@ -48,8 +48,9 @@ Tool parse_tool(std::string_view spec) {
                                 (kind == "bull" ? "bull:D:rc" : std::string(kind) + ":D"));
   }
   const double diameter = parse_size(parts[1], "diameter", spec);
-  if (diameter <= 0) {
-    throw std::invalid_argument("tool '" + std::string(spec) + "': diameter must be > 0");
+  if (!(diameter > 0 && diameter <= 5000)) {  // none larger: a sign or unit slip (1e300)
+    throw std::invalid_argument("tool '" + std::string(spec) +
+                                "': diameter must be > 0 and at most 5000 mm");
   }
   if (kind == "ball") return Tool::ball(diameter);
   if (kind == "flat") return Tool::flat(diameter);

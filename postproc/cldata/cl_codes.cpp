@@ -8,7 +8,7 @@ namespace {
 
 // The reader's codes in enumerator order; severity and summary come from
 // the one code table.
-constexpr std::array<std::string_view, 25> kIds{
+constexpr auto kIds = std::to_array<std::string_view>({
     "E3101",  // line_too_long
     "E3102",  // invalid_byte
     "E3103",  // bad_number
@@ -34,10 +34,11 @@ constexpr std::array<std::string_view, 25> kIds{
     "E3118",  // unknown_word
     "E3119",  // frame_not_identity
     "E3120",  // tool_change_without_number
-};
+    "E3122",  // bad_cutter_size
+});
 
-std::array<ClCodeInfo, 25> make_table() {
-  std::array<ClCodeInfo, 25> out{};
+std::array<ClCodeInfo, kIds.size()> make_table() {
+  std::array<ClCodeInfo, kIds.size()> out{};
   for (std::size_t i = 0; i < kIds.size(); ++i) {
     const vcpost::CodeInfo& row = vcpost::code_info(kIds[i]);
     out[i] = ClCodeInfo{static_cast<ClCode>(i), row.id, row.severity, row.summary};
@@ -45,8 +46,8 @@ std::array<ClCodeInfo, 25> make_table() {
   return out;
 }
 
-const std::array<ClCodeInfo, 25>& table() {
-  static const std::array<ClCodeInfo, 25> rows = make_table();
+const std::array<ClCodeInfo, kIds.size()>& table() {
+  static const std::array<ClCodeInfo, kIds.size()> rows = make_table();
   return rows;
 }
 

@@ -43,6 +43,7 @@ enum class ClCode {
   unknown_word,                // E3118
   frame_not_identity,          // E3119
   tool_change_without_number,  // E3120
+  bad_cutter_size,             // E3122
 };
 
 struct ClCodeInfo {

@@ -28,6 +28,13 @@ std::string fixed(double v) {
   return buffer;
 }
 
+// Six significant digits: a value of any size in one short word (1e+300).
+std::string general(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", v);
+  return buffer;
+}
+
 std::string xyz(const Vec& v) {
   char buffer[128];
   std::snprintf(buffer, sizeof buffer, "(%.4f, %.4f, %.4f)", v.x(), v.y(), v.z());
@@ -939,6 +946,11 @@ std::vector<double> ClReader::cutter_values(const ClRecord& r, std::size_t first
 // engine cannot model it (`what` names the record), and a tool change
 // when it is another cutter (note_cutter).
 void ClReader::add_cutter(ClCutter c, const ClRecord& r, std::string_view what) {
+  if (!c.params.empty() && !(c.diameter() > 0 && c.diameter() <= kLargestCutterDiameterMm)) {
+    fail(ClCode::bad_cutter_size, r,
+         std::string(what) + "diameter " + general(c.diameter()) +
+             " mm is no milling tool's size (give a diameter above 0 and up to 5000 mm)");
+  }
   c.source = r.source;
   if (!c.tool) warn(ClCode::tool_not_modelled, r.source, std::string(what) + c.why_not);
   cutters_.push_back(std::move(c));

@@ -14,6 +14,10 @@
 
 namespace vcpost::cldata {
 
+// No milling cutter is larger (as geometry::parse_tool says): a sign or
+// unit slip otherwise.
+inline constexpr double kLargestCutterDiameterMm = 5000;
+
 struct ClCutter {
   std::string source_word;             // "CUTTER", "TLDATA/MILL", "$$-> CUTTER"
   std::vector<double> params;          // as written, lengths converted to mm, angles in degrees

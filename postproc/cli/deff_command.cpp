@@ -338,7 +338,7 @@ void add_deff_command(CLI::App& app) {
       ->type_name("SPEC");
   command
       ->add_option("--ap", args->ap,
-                   "depth of cut along the surface normal, mm, in (0, D] (required unless "
+                   "depth of cut along the surface normal, mm, in (0, D) (required unless "
                    "--batch)")
       ->type_name("MM");
   command

@@ -28,6 +28,19 @@ bool named_step(const std::filesystem::path& path) {
   return ext == ".step" || ext == ".stp" || ext == ".p21";
 }
 
+// A model whose faces all lie within a micrometre of one point: a length
+// unit of 0 (LENGTH_MEASURE(0.)) or only degenerate faces (a sphere of
+// radius 0). Nothing could touch it: said here rather than as a path that
+// never touches the model.
+void refuse_degenerate(const geometry::SurfaceModel& model, const std::filesystem::path& path) {
+  const Eigen::AlignedBox3d box = model.bounds();
+  if (box.isEmpty() || !(box.diagonal().norm() < 1e-3)) return;
+  throw CommandError("E4120", "--model: '" + path.string() +
+                                  "': the model has no extent (its faces lie within 0.001 mm of "
+                                  "one point): a length unit of 0 or degenerate faces? Export the "
+                                  "model again");
+}
+
 }  // namespace
 
 LoadedModel load_model(const std::filesystem::path& path) {
@@ -48,6 +61,7 @@ LoadedModel load_model(const std::filesystem::path& path) {
   // An occt::ModelError or mesh::StlError leaves with its own code.
   if (step || looks_like_step(path)) {
     auto model = std::make_unique<occt::BrepModel>(occt::BrepModel::load_step(path));
+    refuse_degenerate(*model, path);
     const auto& info = model->info();
     std::string description = std::to_string(info.faces) + " faces";
     if (!info.length_unit.empty()) description += ", unit " + info.length_unit;
@@ -63,7 +77,9 @@ LoadedModel load_model(const std::filesystem::path& path) {
     }
   }
   const std::string description = std::to_string(mesh.triangles.size()) + " triangles";
-  return {std::make_unique<mesh::MeshModel>(std::move(mesh)), "STL", description};
+  auto model = std::make_unique<mesh::MeshModel>(std::move(mesh));
+  refuse_degenerate(*model, path);
+  return {std::move(model), "STL", description};
 }
 
 LoadedModel no_model() {

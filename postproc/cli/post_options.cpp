@@ -262,14 +262,70 @@ std::vector<NamedFile> job_outputs(const PostArguments& args, bool write_program
   return outputs;
 }
 
+// The program's name in messages.
+std::string program_name(const PostArguments& args) {
+  return args.program == "-" ? "<stdin>" : args.program;
+}
+
+// The nominal vc of the posted sections: one number, or their range.
+std::string vc_words(const post::PostSummary& summary) {
+  double low = HUGE_VAL, high = -HUGE_VAL;
+  for (const post::ToolSection& s : summary.sections) {
+    if (!s.posted) continue;
+    low = std::min(low, s.vc_nominal);
+    high = std::max(high, s.vc_nominal);
+  }
+  std::ostringstream out;
+  out << low;
+  if (high > low) out << "-" << high;
+  return out.str();
+}
+
+// The share of the posted cutting time whose S a spindle limit decided,
+// and of the coupled blocks whose F a feed limit decided: all but nothing
+// left to the model means --vc or --fz is beyond the machine (W2031, W2032).
+constexpr double kAllClamped = 0.99;
+
+double clamped_speed_share(const post::PostSummary& summary) {
+  double cutting = 0;
+  for (const auto& s : summary.s_placement.sections) cutting += s.cutting_time_s;
+  return cutting > 0 ? (summary.time_clamped_max_s + summary.time_clamped_min_s) / cutting : 0;
+}
+
+double clamped_feed_share(const post::PostSummary& summary) {
+  return summary.coupled_feed_blocks > 0 ? static_cast<double>(summary.clamped_feed_blocks) /
+                                               static_cast<double>(summary.coupled_feed_blocks)
+                                         : 0;
+}
+
 bool has_warnings(const post::PostSummary& summary) {
   // Without a model the points kept (no normal) are counted in their own line.
   const bool off_model = !summary.path_normals && summary.lifted + summary.missed > 0;
   return summary.gouging > 0 || off_model || summary.missing_end ||
-         !summary.unread_after_end.empty();
+         !summary.unread_after_end.empty() || summary.stopped_spindle_cuts > 0 ||
+         clamped_speed_share(summary) >= kAllClamped || clamped_feed_share(summary) >= kAllClamped;
 }
 
-void print_warnings(const post::PostSummary& summary) {
+void print_warnings(const post::PostSummary& summary, const std::string& name) {
+  if (summary.stopped_spindle_cuts > 0) {
+    log().warn(
+        "{}:{}: W2030: {} points cut the model with the spindle stopped (S0, M5 or SPINDL/OFF "
+        "before them): the control would cut with a standing tool; vcpost keeps their S",
+        name, summary.first_stopped_spindle_line, summary.stopped_spindle_cuts);
+  }
+  if (clamped_speed_share(summary) >= kAllClamped) {
+    log().warn(
+        "W2031: the spindle's {} speed decides S on {:.0f} % of the cutting time: vc {} m/min is "
+        "beyond this machine with this tool (check --vc, the tool and --machine)",
+        summary.time_clamped_max_s >= summary.time_clamped_min_s ? "highest" : "lowest",
+        100 * clamped_speed_share(summary), vc_words(summary));
+  }
+  if (clamped_feed_share(summary) >= kAllClamped) {
+    log().warn(
+        "W2032: the machine's feed limit (f_min or f_max) decides F on {:.0f} % of the coupled "
+        "blocks: --fz is beyond this machine (check --fz, the teeth and --machine)",
+        100 * clamped_feed_share(summary));
+  }
   if (summary.missing_end)
     log().warn("the program ends without M2, M30 or a closing '%': is the file complete?");
   // The reader's own diagnostic, with its file position and code.
@@ -464,6 +520,12 @@ namespace {
 
 // The first section the job will post (read ahead), which the report is
 // drawn for; its errors are the job's, worded as the job words them.
+// "file:line:col: error[E6101]: ..." as the readers word their errors.
+std::string timing_message(const program::TimingError& e, const std::string& name) {
+  return name + ":" + std::to_string(e.source().line) + ":" + std::to_string(e.source().column) +
+         ": error[" + std::string(e.code()) + "]: " + e.what();
+}
+
 std::optional<post::ToolSection> first_section(std::string_view text, const std::string& name,
                                                const machines::MachineProfile& profile,
                                                const post::PostSettings& settings) {
@@ -476,7 +538,7 @@ std::optional<post::ToolSection> first_section(std::string_view text, const std:
   } catch (const cldata::ClError& e) {
     throw CommandError(e.what());
   } catch (const program::TimingError& e) {
-    throw CommandError(name + ":" + std::to_string(e.source().line) + ": " + e.what());
+    throw CommandError(e.code(), timing_message(e, name));
   }
 }
 
@@ -510,7 +572,7 @@ post::PostSummary post_translating_errors(ProgramText& program, const std::strin
   } catch (const gcode::GcodeError& e) {
     throw CommandError(e.code(), gcode::format(e.diagnostic(), name));
   } catch (const program::TimingError& e) {
-    throw CommandError(e.code(), name + ":" + std::to_string(e.source().line) + ": " + e.what());
+    throw CommandError(e.code(), timing_message(e, name));
   } catch (const output::OutputError& e) {
     throw CommandError(e.code(), name + ":" + std::to_string(e.source().line) + ": " + e.what());
   } catch (const plan::PlanError& e) {
@@ -560,7 +622,7 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   require_distinct_files(job_inputs(args), job_outputs(args, write_program));
   ProgramText program(args.program);
   const std::string_view text = program.view();
-  const std::string name = args.program == "-" ? "<stdin>" : args.program;
+  const std::string name = program_name(args);
   log().debug("program {}: {} bytes, read in {:.3f} s", name, text.size(), seconds_since(started));
   post::PostSettings settings = settings_from(args);
   std::vector<ReportFile> reports = open_reports(args);
@@ -666,7 +728,7 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   }
   if (args.strict && has_warnings(summary)) {
     // Refused before anything is committed: --strict leaves no file it refused.
-    print_warnings(summary);
+    print_warnings(summary, name);
     throw CommandError("E2010", "warnings with --strict; nothing written");
   }
   std::string to_stdout;  // written after every file is complete
@@ -704,20 +766,6 @@ JobRun run_job(const PostArguments& args, bool write_program) {
 }
 
 namespace {
-
-// The nominal vc of the posted sections: one number, or their range.
-std::string vc_words(const post::PostSummary& summary) {
-  double low = HUGE_VAL, high = -HUGE_VAL;
-  for (const post::ToolSection& s : summary.sections) {
-    if (!s.posted) continue;
-    low = std::min(low, s.vc_nominal);
-    high = std::max(high, s.vc_nominal);
-  }
-  std::ostringstream out;
-  out << low;
-  if (high > low) out << "-" << high;
-  return out.str();
-}
 
 // One line per section, when there is more than one or one is kept.
 void print_sections(const post::PostSummary& summary) {
@@ -834,7 +882,7 @@ void finish_job(const PostArguments& args, const JobRun& run) {
         "no section is posted (each section's reason is above): the program keeps its own "
         "speeds");
   }
-  print_warnings(summary);
+  print_warnings(summary, program_name(args));
 }
 
 }  // namespace vcpost::cli

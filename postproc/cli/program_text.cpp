@@ -63,6 +63,7 @@ ProgramText::ProgramText(const std::string& path) {
     if (size > 0) map(fd, size, name);
     ::close(fd);
     if (map_) refuse_binary(name);
+    refuse_cr_only(name);
     return;
   }
   // A pipe, a terminal, a device: copied as it comes into an unlinked file.
@@ -126,6 +127,20 @@ ProgramText::ProgramText(const std::string& path) {
   if (fd != STDIN_FILENO) ::close(fd);
   if (total > 0) map(copy, static_cast<std::size_t>(total), name);
   ::close(copy);
+  refuse_cr_only(name);
+}
+
+void ProgramText::refuse_cr_only(const std::string& name) const {
+  // A first line that ends in a lone CR, with no LF within a line's length:
+  // the old Mac line end, which every reader would take as one long line.
+  const std::string_view head = view_.substr(0, gcode::kMaxLineLength + 2);
+  const std::size_t cr = head.find('\r');
+  if (cr == std::string_view::npos || head.find('\n') != std::string_view::npos ||
+      cr + 1 >= view_.size())
+    return;
+  throw CommandError(name + ":1:" + std::to_string(cr + 1) +
+                     ": error[E2033]: the lines end with a lone CR (old Mac text), which no "
+                     "reader takes as a line end: convert them to LF (tr '\\r' '\\n')");
 }
 
 void ProgramText::map(int fd, std::size_t size, const std::string& name) {

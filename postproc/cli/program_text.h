@@ -33,6 +33,7 @@ class ProgramText {
  private:
   void map(int fd, std::size_t size, const std::string& name);
   void refuse_binary(const std::string& name) const;
+  void refuse_cr_only(const std::string& name) const;
 
   void* map_ = nullptr;
   std::size_t map_size_ = 0;

@@ -73,10 +73,13 @@ geometry::CutSetup checked_setup(const geometry::Tool& tool, geometry::CutSetup 
   if (!(setup.ap > 0)) {
     throw SetupError(SetupField::ap, "depth of cut must be > 0 mm, got " + format_number(setup.ap));
   }
-  if (setup.ap > tool.diameter) {
+  if (setup.ap >= tool.diameter) {
+    // The engine then flags ap_exceeds_d and gives no diameters: the whole
+    // end of the tool is in the stock and the shank cuts too.
     throw SetupError(SetupField::ap, "depth of cut " + format_number(setup.ap) +
-                                         " mm exceeds the tool diameter " +
-                                         format_number(tool.diameter) + " mm");
+                                         " mm reaches the tool diameter " +
+                                         format_number(tool.diameter) +
+                                         " mm: the shank would cut too; give ap below D");
   }
   if (!(setup.ae >= 0)) {
     throw SetupError(SetupField::ae,

@@ -52,7 +52,7 @@ geometry::Side parse_side(std::string_view text);
 std::string_view to_string(geometry::Side side);
 
 // Checks a set-up and returns it with the normal rescaled to unit length.
-// Refuses (SetupError naming the field): ap not in (0, D]; ae < 0; any
+// Refuses (SetupError naming the field): ap not in (0, D); ae < 0; any
 // non-finite number; a zero normal or |n| off 1 by more than
 // kNormalLengthTolerance; n_z <= 0 (undercut: a 3-axis tool cannot reach
 // the surface with its end); a zero feed or one parallel to the normal.

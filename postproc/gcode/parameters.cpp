@@ -171,6 +171,10 @@ Access Parameters::write(int number, double value) {
 }
 
 Access Parameters::write(std::string_view name, double value) {
+  if (kind_ == DialectKind::rs274ngc &&
+      std::binary_search(kPredefined.begin(), kPredefined.end(), name))
+    return refuse(Code::machine_state, "predefined parameter #<" + std::string(name) +
+                                           "> is read-only: it reports the control's state");
   const std::string key(name);
   if (!key.empty() && key[0] == '_')
     global_named_[key] = value;

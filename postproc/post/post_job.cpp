@@ -161,6 +161,12 @@ class Finisher {
   void sample(Slot& slot, pipeline::PointResult& r) {
     ++summary_.samples;
     sections_.count_sample(slot.section, r.contact.status, r.contact.distance_error);
+    if (slot.plan.spindle == plan::SpindleState::off &&
+        (r.contact.status == geometry::BallStatus::touching ||
+         r.contact.status == geometry::BallStatus::gouging) &&
+        summary_.stopped_spindle_cuts++ == 0) {
+      summary_.first_stopped_spindle_line = slot.sample.source.line;
+    }
     if (r.engagement) {
       switch (r.ae_source) {
         case pipeline::AeSource::measured:
@@ -234,6 +240,10 @@ class Finisher {
     }
     const double program_s = info.program_s;
     const bool posted = sections_.state(info.section) == SectionState::posted;
+    if (feed && posted && block.target_rpm) {
+      ++summary_.coupled_feed_blocks;
+      if (feed->bound != plan::FeedBound::none) ++summary_.clamped_feed_blocks;
+    }
     const double nominal = sections_.nominal_vc(info.section);
     while (!held_.empty() && held_.front().block <= block.block) {
       HeldSample& h = held_.front();

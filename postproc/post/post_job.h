@@ -111,6 +111,13 @@ struct PostSummary : ContactCounts {
   // Lines that ran more than once (subroutines, loops, M98) with an S or F
   // decided on each run: written once, with the lowest of the values.
   std::uint64_t repeated_lines = 0;
+  // Evaluated points that touch or gouge the model with the spindle stopped
+  // (S0, M5, CL SPINDL/0 or OFF), and the line of the first (W2030).
+  std::uint64_t stopped_spindle_cuts = 0;
+  // --adjust-feed: cutting blocks of posted sections with a coupled F, and
+  // of them those whose F the profile's f_min or f_max decided (W2032).
+  std::uint64_t coupled_feed_blocks = 0, clamped_feed_blocks = 0;
+  std::uint32_t first_stopped_spindle_line = 0;
   bool missing_end = false;      // G-code: no M2/M30 or closing '%' (a truncated file?)
   std::string unread_after_end;  // G-code: lines after the closing '%' (the warning), or ""
   // Cutting time (s) of the blocks whose planned S each bound decided.

@@ -66,6 +66,23 @@ std::optional<AnalogTokens> find_analog(const std::vector<Token>& tokens,
   return std::nullopt;
 }
 
+// S and F words that set no speed or feed on the control, so that a
+// change of theirs is a change of the program: G65's macro arguments
+// (S and F), Sinumerik's G25/G26 spindle limits (S). Decided by the
+// input's line and applied to both.
+void mark_arguments(const std::vector<Token>& decide, std::vector<Token>& tokens) {
+  bool macro = false, limit = false;
+  for (const Token& t : decide) {
+    if (t.letter() != 'G') continue;
+    const auto code = number_of(t.value());
+    macro = macro || code == 65.0;
+    limit = limit || code == 25.0 || code == 26.0;
+  }
+  if (!macro && !limit) return;
+  for (Token& t : tokens)
+    if (t.letter() == 'S' || (macro && t.letter() == 'F')) t.kind = TokenKind::argument;
+}
+
 // Compares one line of the input with the same line of the output.
 class LineComparer {
  public:
@@ -84,6 +101,8 @@ class LineComparer {
                       ViolationSink& sink) {
     tokenize(in.text, a_);
     tokenize(out.text, b_);
+    mark_arguments(a_, b_);
+    mark_arguments(a_, a_);
     if (!fold_speed_output(in, out, changes, sink)) return;
     if (in.eol != out.eol)
       sink.add(Code::line_ending, out.number, static_cast<std::uint32_t>(out.text.size() + 1),

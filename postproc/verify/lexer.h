@@ -36,11 +36,12 @@ std::size_t line_at(std::string_view text, std::size_t offset, std::uint32_t num
 std::size_t line_before(std::string_view text, std::size_t end, std::uint32_t number, Line& line);
 
 enum class TokenKind {
-  blank,    // a run of spaces and tabs
-  comment,  // "(...)" (to the end of the line when unclosed) or ";..." to the end
-  word,     // a letter and its value at bracket depth 0, S #<rpm>, F[#1*2]
-  name,     // a run of letters, or a letter without a value (GOTO, EQ, THEN)
-  other,    // any other byte: % / # = [ ] digits outside words ...
+  blank,     // a run of spaces and tabs
+  comment,   // "(...)" (to the end of the line when unclosed) or ";..." to the end
+  word,      // a letter and its value at bracket depth 0, S #<rpm>, F[#1*2]
+  name,      // a run of letters, or a letter without a value (GOTO, EQ, THEN)
+  other,     // any other byte: % / # = [ ] digits outside words ...
+  argument,  // an S or F word that sets no speed or feed (a G65 macro's argument, G25/G26 S)
 };
 
 struct Token {

@@ -713,7 +713,8 @@ TEST(ClReader, EveryCodeReachesTheTableRowOfItsName) {
       {ClCode::ignored_option, "ignored_option"},
       {ClCode::unknown_word, "unknown_word"},
       {ClCode::frame_not_identity, "frame_not_identity"},
-      {ClCode::tool_change_without_number, "tool_change_without_number"}};
+      {ClCode::tool_change_without_number, "tool_change_without_number"},
+      {ClCode::bad_cutter_size, "bad_cutter_size"}};
   EXPECT_EQ(std::size(codes), cl_code_table().size());
   for (const auto& [code, name] : codes) {
     const vcpost::CodeInfo* row = vcpost::find_code(info(code).id);

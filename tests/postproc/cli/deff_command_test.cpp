@@ -540,8 +540,12 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         BadInput{{"--tool", "ball:-10", "--ap", "0.3", "--ae", "0.5"}, "--tool:", "> 0"},
         BadInput{{"--tool", "ball:0", "--ap", "0.3", "--ae", "0.5"}, "--tool:", "> 0"},
+        BadInput{
+            {"--tool", "ball:1e300", "--ap", "0.3", "--ae", "0.5"}, "--tool:", "at most 5000 mm"},
         BadInput{{"--tool", "drill:10", "--ap", "0.3", "--ae", "0.5"}, "--tool:", "unknown"},
-        BadInput{{"--tool", "ball:10", "--ap", "10.5", "--ae", "0.5"}, "--ap:", "exceeds"},
+        BadInput{{"--tool", "ball:10", "--ap", "10.5", "--ae", "0.5"}, "--ap:", "reaches the tool"},
+        // ap = D, which the help once allowed, gave no diameters (issue 42).
+        BadInput{{"--tool", "ball:10", "--ap", "10", "--ae", "0.5"}, "--ap:", "give ap below D"},
         BadInput{{"--tool", "ball:10", "--ap", "-0.3", "--ae", "0.5"}, "--ap:", "> 0"},
         BadInput{{"--tool", "ball:10", "--ap", "x", "--ae", "0.5"}, "--ap:", "not a number"},
         BadInput{{"--tool", "ball:10", "--ap", "0.3", "--ae", "-1"}, "--ae:", ">= 0"},
@@ -617,7 +621,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadFile{kHeader + kGoodRow + "-10,0.3,0.5,0,0,1,1,0,0,left\n",
                 "bad.csv:3: column 'd':", "> 0"},
         BadFile{kHeader + kGoodRow + "10,11,0.5,0,0,1,1,0,0,left\n",
-                "bad.csv:3: column 'ap':", "exceeds"},
+                "bad.csv:3: column 'ap':", "reaches the tool"},
         BadFile{kHeader + kGoodRow + "10,0.3,0.5,0,0,0.5,1,0,0,left\n",
                 "bad.csv:3: columns 'nx,ny,nz':", "unit vector"},
         BadFile{kHeader + kGoodRow + "10,0.3,0.5,0,0,0,1,0,0,left\n",

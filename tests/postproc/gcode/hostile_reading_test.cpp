@@ -300,5 +300,103 @@ TEST_F(HostileCli, LinesAfterTheClosingPercentAreNamedAndFailStrict) {
   EXPECT_FALSE(fs::exists(dir_ / "out.nc"));
 }
 
+// A cut with the spindle stopped (M5 or S0 before it) is named with the
+// line of its first point and fails --strict; the same program with the
+// spindle turning has no such warning.
+TEST_F(HostileCli, CutsWithTheSpindleStoppedAreNamedAndFailStrict) {
+  const std::string samples = std::string(VCPOST_SOURCE_DIR) + "/samples";
+  const std::string post =
+      "--model '" + samples + "/wavy.step' --tool ball:10 --vc 120 --ap 0.3 --ae 2 -o out.nc";
+  for (const std::string stop : {"M5", "S0"}) {
+    std::istringstream raster(testing::slurp(samples + "/wavy_raster_a0_ae2.nc"));
+    std::string program, line;
+    // Line 101 stops the spindle; line 102 is the next cutting move.
+    for (int n = 1; std::getline(raster, line); ++n)
+      program += line + "\n" + (n == 100 ? stop + "\n" : "");
+    std::ofstream(dir_ / "in.nc", std::ios::binary) << program;
+    const auto posted = testing::run_vcpost("post in.nc " + post, dir_);
+    EXPECT_EQ(posted.exit_code, 0) << posted.err;
+    EXPECT_NE(posted.err.find("in.nc:102: W2030: "), std::string::npos) << stop << posted.err;
+    fs::remove(dir_ / "out.nc");
+    const auto strict = testing::run_vcpost("post in.nc --strict " + post, dir_);
+    EXPECT_EQ(strict.exit_code, 1) << strict.err;
+    EXPECT_FALSE(fs::exists(dir_ / "out.nc"));
+  }
+  std::ofstream(dir_ / "in.nc", std::ios::binary)
+      << testing::slurp(samples + "/wavy_raster_a0_ae2.nc");
+  const auto turning = testing::run_vcpost("post in.nc --strict " + post, dir_);
+  EXPECT_EQ(turning.exit_code, 0) << turning.err;
+  EXPECT_EQ(turning.err.find("W2030"), std::string::npos) << turning.err;
+}
+
+// A --vc or --fz beyond the machine clamps every point: said (W2031 with
+// the spindle's highest or lowest speed, W2032 for F), and --strict fails;
+// the nominal vc clamps a part of the time only and says nothing.
+TEST_F(HostileCli, AProgramClampedWholeByTheMachineIsNamed) {
+  const std::string samples = std::string(VCPOST_SOURCE_DIR) + "/samples";
+  const std::string post = "post '" + samples + "/wavy_raster_a0_ae2.nc' --model '" + samples +
+                           "/wavy.step' --tool ball:10 --ap 0.3 --ae 2 -o out.nc ";
+  const auto fast = testing::run_vcpost(post + "--vc 1e9", dir_);
+  EXPECT_EQ(fast.exit_code, 0) << fast.err;
+  EXPECT_NE(fast.err.find("W2031: the spindle's highest speed decides S on 100 % of the cutting "
+                          "time: vc 1e+09 m/min"),
+            std::string::npos)
+      << fast.err;
+  const auto slow = testing::run_vcpost(post + "--vc 1e-3 --strict", dir_);
+  EXPECT_EQ(slow.exit_code, 1) << slow.err;
+  EXPECT_NE(slow.err.find("W2031: the spindle's lowest speed"), std::string::npos) << slow.err;
+  const auto feed = testing::run_vcpost(post + "--vc 120 --adjust-feed --fz 1e-9", dir_);
+  EXPECT_EQ(feed.exit_code, 0) << feed.err;
+  EXPECT_NE(feed.err.find("W2032: the machine's feed limit (f_min or f_max) decides F on 100 %"),
+            std::string::npos)
+      << feed.err;
+  const auto nominal = testing::run_vcpost(post + "--vc 120 --adjust-feed", dir_);
+  EXPECT_EQ(nominal.exit_code, 0) << nominal.err;
+  EXPECT_EQ(nominal.err.find("W203"), std::string::npos) << nominal.err;
+}
+
+// Old Mac line ends (CR alone) are named at the first one, in every
+// command that reads a program; CRLF reads as before.
+TEST_F(HostileCli, LoneCarriageReturnLineEndsAreRefused) {
+  std::ofstream(dir_ / "cr.nc", std::ios::binary) << "G21 G90\rG0 X1\rG1 X2 F100\rM2\r";
+  for (const std::string command : {"moves cr.nc", "verify cr.nc cr.nc"}) {
+    const auto run = testing::run_vcpost(command, dir_);
+    EXPECT_EQ(run.exit_code, 2) << command << run.err;
+    EXPECT_NE(run.err.find("cr.nc:1:8: error[E2033]: the lines end with a lone CR"),
+              std::string::npos)
+        << run.err;
+  }
+  std::ofstream(dir_ / "crlf.nc", std::ios::binary) << "G21 G90\r\nG0 X1\r\nM2\r\n";
+  const auto crlf = testing::run_vcpost("moves crlf.nc", dir_);
+  EXPECT_EQ(crlf.exit_code, 0) << crlf.err;
+}
+
+// A model with no extent (a STEP whose length unit is LENGTH_MEASURE(0.),
+// a mesh of one triangle shrunk to a point) is named as such, not as a
+// path that never touches it.
+TEST_F(HostileCli, AModelWithoutExtentIsRefused) {
+  const std::string samples = std::string(VCPOST_SOURCE_DIR) + "/samples";
+  std::string step = testing::slurp(samples + "/dome.step");
+  const std::string unit = "#68 = ( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.) );";
+  ASSERT_NE(step.find(unit), std::string::npos);
+  step.replace(step.find(unit), unit.size(),
+               "#68 = ( CONVERSION_BASED_UNIT('ZERO',#300) LENGTH_UNIT() NAMED_UNIT(#302) );\n"
+               "#300 = LENGTH_MEASURE_WITH_UNIT(LENGTH_MEASURE(0.),#301);\n"
+               "#301 = ( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.) );\n"
+               "#302 = DIMENSIONAL_EXPONENTS(1.,0.,0.,0.,0.,0.,0.);");
+  std::ofstream(dir_ / "zero.step", std::ios::binary) << step;
+  std::ofstream(dir_ / "point.stl", std::ios::binary)
+      << "solid p\nfacet normal 0 0 1\nouter loop\nvertex 1 1 1\nvertex 1.0001 1 1\n"
+         "vertex 1 1.0001 1\nendloop\nendfacet\nendsolid p\n";
+  for (const std::string model : {"zero.step", "point.stl"}) {
+    const auto run = testing::run_vcpost("post '" + samples + "/dome_raster_a0_ae3.nc' --model " +
+                                             model + " --tool ball:10 --vc 120 --ap 0.3 -o out.nc",
+                                         dir_);
+    EXPECT_EQ(run.exit_code, 2) << run.err;
+    EXPECT_NE(run.err.find("'" + model + "': the model has no extent"), std::string::npos)
+        << run.err;
+  }
+}
+
 }  // namespace
 }  // namespace vcpost::gcode

@@ -33,18 +33,44 @@ struct Marked {
   Call call;
   bool null = false;
 };
+// rs274 prints positions in the program's frame: a change of the G92 or
+// G5x offset (SET_G92_OFFSET, SET_G5X_OFFSET, dropped here) moves where the
+// tool stands in it, so that G28's move to the intermediate point where
+// the tool already is stays a null move after a G92.
 std::vector<Marked> mark_null_moves(std::vector<Call> calls) {
   std::vector<Marked> marked;
   std::vector<double> at = {0.0, 0.0, 0.0};
+  std::vector<double> g92 = {0.0, 0.0, 0.0}, g5x = {0.0, 0.0, 0.0};
+  int plane = 17;
   for (auto& c : calls) {
+    if (c.name == "SELECT_PLANE") {
+      plane = static_cast<int>(c.args[0]);
+      continue;
+    }
+    if (c.name == "SET_G92_OFFSET" || c.name == "SET_G5X_OFFSET") {
+      auto& offset = c.name == "SET_G92_OFFSET" ? g92 : g5x;
+      const std::size_t first = c.name == "SET_G92_OFFSET" ? 0 : 1;  // G5X: the system's index
+      for (std::size_t k = 0; k < 3 && first + k < c.args.size(); ++k) {
+        at[k] -= c.args[first + k] - offset[k];
+        offset[k] = c.args[first + k];
+      }
+      continue;
+    }
     bool null = false;
     if (c.name == "STRAIGHT_TRAVERSE" || c.name == "STRAIGHT_FEED") {
-      null = c.args[0] == at[0] && c.args[1] == at[1] && c.args[2] == at[2];
+      // Within the rounding of the printed numbers (4 decimals) an offset
+      // change adds to them.
+      null = std::abs(c.args[0] - at[0]) < 2e-4 && std::abs(c.args[1] - at[1]) < 2e-4 &&
+             std::abs(c.args[2] - at[2]) < 2e-4;
       at = {c.args[0], c.args[1], c.args[2]};
     } else if (c.name == "NURBS_FEED") {
       at = {std::nan(""), 0.0, 0.0};  // rs274 prints no end point
     } else if (c.name == "ARC_FEED") {
-      at = {c.args[0], c.args[1], c.args[5]};  // XY plane ends; others only approximate
+      // ARC_FEED(first end, second end, ..., axis end): XY, ZX or YZ.
+      const double first = c.args[0], second = c.args[1], axis = c.args[5];
+      at = plane == 18 ? std::vector<double>{second, axis, first}
+           : plane == 19 ? std::vector<double>{axis, first, second}
+                         : std::vector<double>{first, second, axis};
     }
     marked.push_back(Marked{std::move(c), null});
   }
@@ -53,12 +79,13 @@ std::vector<Marked> mark_null_moves(std::vector<Call> calls) {
 
 bool compared(const std::string& name) {
   return name == "STRAIGHT_TRAVERSE" || name == "STRAIGHT_FEED" || name == "ARC_FEED" ||
-         name == "NURBS_FEED" || name == "SET_SPINDLE_SPEED" || name == "SET_FEED_RATE";
+         name == "NURBS_FEED" || name == "SET_SPINDLE_SPEED" || name == "SET_FEED_RATE" ||
+         name == "SET_G92_OFFSET" || name == "SET_G5X_OFFSET" || name == "SELECT_PLANE";
 }
 
 // Calls of interest from transcript text (rs274's or vcpost's).
 std::vector<Call> parse(const std::string& text) {
-  static const std::regex call(R"(([A-Z_]+)\((.*)\))");
+  static const std::regex call(R"(([A-Z_][A-Z0-9_]*)\((.*)\))");
   std::vector<Call> calls;
   bool inches = false;
   std::istringstream in(text);
@@ -72,8 +99,11 @@ std::vector<Call> parse(const std::string& text) {
     Call c{name, {}, inches};
     std::istringstream args(m[2].str());
     std::string a;
-    // NURBS_FEED(4, ...): rs274 prints the control points' count only.
-    if (name != "NURBS_FEED")
+    // SELECT_PLANE(CANON_PLANE_XZ): its G code (17, 18, 19) as the one number.
+    if (name == "SELECT_PLANE") {
+      const std::string plane = m[2].str();
+      c.args.push_back(plane.ends_with("XZ") ? 18 : plane.ends_with("YZ") ? 19 : 17);
+    } else if (name != "NURBS_FEED")  // NURBS_FEED(4, ...): the control points' count only
       while (std::getline(args, a, ',')) c.args.push_back(std::stod(a));
     calls.push_back(c);
   }

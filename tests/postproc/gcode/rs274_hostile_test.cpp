@@ -27,6 +27,8 @@ struct HostileCase {
 constexpr HostileCase kCases[] = {
     // Predefined parameters exist (their values are the control's).
     {"EXISTS of a predefined parameter", "o1 if [EXISTS[#<_x>]]\nG0 X1\no1 endif\nM2\n", nullptr},
+    // Predefined parameters are read-only (found by the random comparison).
+    {"assignment to a predefined parameter", "#<_v> = 1\nG0 X1\nM2\n", "E1204"},
     {"EXISTS of an unset parameter", "o1 if [EXISTS[#<_nothing>]]\nG0 X1\no1 endif\nG0 Y1\nM2\n",
      nullptr},
     // G53 positions are machine coordinates: rs274 prints them in the

@@ -202,6 +202,38 @@ TEST(VerifyGcode, SecondSWordInABlock) {
   expect_one(replace(posted(kInput), "S9870 M3", "S9870 S9000 M3"), Code::sf_repeated, 5, 7);
 }
 
+// Issue 42: an S or F that sets no speed or feed is no speed word: a
+// changed G65 macro argument or Sinumerik spindle limit is a changed word
+// of the program, found at its column.
+TEST(VerifyGcode, MacroArgumentsAndSpindleLimitsAreNoSpeedWords) {
+  Options fanuc;
+  fanuc.dialect = gcode::fanuc_dialect();
+  const std::string macro = "O1000\nG65 P2000 S5000 F300\nG0 X0 Y0 S6000\nM30\nO2000\nM99\n";
+  Result r = verify_gcode(macro, replace(macro, "S5000", "S9999"), fanuc);
+  ASSERT_EQ(r.violation_count, 1u);
+  EXPECT_EQ(r.violations[0].code, Code::word_changed) << format(r.violations[0], "out");
+  EXPECT_EQ(r.violations[0].line, 2u);
+  EXPECT_EQ(r.violations[0].column, 11u);
+  r = verify_gcode(macro, replace(macro, "F300", "F250"), fanuc);
+  ASSERT_EQ(r.violation_count, 1u);
+  EXPECT_EQ(r.violations[0].code, Code::word_changed);
+  EXPECT_EQ(r.violations[0].column, 17u);
+  // The S of an ordinary block of the same program stays a speed word.
+  r = verify_gcode(macro, replace(macro, "S6000", "S5900"), fanuc);
+  EXPECT_TRUE(r.ok()) << (r.violations.empty() ? "" : format(r.violations[0], "out"));
+
+  Options siemens;
+  siemens.dialect = gcode::sinumerik_dialect();
+  const std::string limit = "G26 S8000\nS6000 M3\nG1 X10 F500\nM30\n";
+  r = verify_gcode(limit, replace(limit, "S8000", "S20000"), siemens);
+  ASSERT_EQ(r.violation_count, 1u);
+  EXPECT_EQ(r.violations[0].code, Code::word_changed);
+  EXPECT_EQ(r.violations[0].line, 1u);
+  EXPECT_EQ(r.violations[0].column, 5u);
+  r = verify_gcode(limit, replace(limit, "S6000", "S5500"), siemens);
+  EXPECT_TRUE(r.ok()) << (r.violations.empty() ? "" : format(r.violations[0], "out"));
+}
+
 // Issue 41: the input posted for a speed on analog output 0 (as
 // linuxcnc-3axis-m67 writes it): the start keeps its S word with M68 beside
 // it, the S word of line 8 becomes M67, lines 7 and 9 get one added.

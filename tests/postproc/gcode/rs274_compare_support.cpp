@@ -68,7 +68,7 @@ std::vector<Marked> mark_null_moves(std::vector<Call> calls) {
     } else if (c.name == "ARC_FEED") {
       // ARC_FEED(first end, second end, ..., axis end): XY, ZX or YZ.
       const double first = c.args[0], second = c.args[1], axis = c.args[5];
-      at = plane == 18 ? std::vector<double>{second, axis, first}
+      at = plane == 18   ? std::vector<double>{second, axis, first}
            : plane == 19 ? std::vector<double>{axis, first, second}
                          : std::vector<double>{first, second, axis};
     }

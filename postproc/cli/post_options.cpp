@@ -574,7 +574,7 @@ post::PostSummary post_translating_errors(ProgramText& program, const std::strin
   } catch (const program::TimingError& e) {
     throw CommandError(e.code(), timing_message(e, name));
   } catch (const output::OutputError& e) {
-    throw CommandError(e.code(), name + ":" + std::to_string(e.source().line) + ": " + e.what());
+    throw CommandError(e.code(), name + ":" + e.what());  // what(): "line:col: error[E....]: ..."
   } catch (const plan::PlanError& e) {
     throw CommandError(e.code(), std::string("planning: ") + e.what());
   }

@@ -37,4 +37,12 @@ std::unique_ptr<EventWriter> make_event_writer(std::ostream& out,
   return std::make_unique<GcodeWriter>(out, format_for(profile));
 }
 
+void refuse_tilted_frame(const program::WorkingFrame& frame) {
+  if (frame.is_identity()) return;
+  throw OutputError("E3204",
+                    "a tilted working plane (3+2) is not written in the output yet: post the "
+                    "tilted set-up's operations from a CL file of their own",
+                    frame.source);
+}
+
 }  // namespace vcpost::output

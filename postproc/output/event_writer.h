@@ -32,6 +32,10 @@ class OutputError : public vcpost::Error {
 // E3203 for a value that is not finite or 1e9 or more in size.
 std::string fixed_number(double value, int decimals, const program::SourceRef& source);
 
+// Throws OutputError E3204 for a tilted frame (3+2): no writer writes one
+// yet; the identity (PLANE RESET, G69) passes.
+void refuse_tilted_frame(const program::WorkingFrame& frame);
+
 class EventWriter {
  public:
   virtual ~EventWriter() = default;

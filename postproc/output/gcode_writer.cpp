@@ -492,11 +492,7 @@ void GcodeWriter::write(const Event& event) {
         } else if constexpr (std::is_same_v<T, Message>) {
           comment(e.text);
         } else if constexpr (std::is_same_v<T, WorkingFrame>) {
-          if (!e.is_identity())
-            throw OutputError("E3204",
-                              "a tilted working plane (3+2) is not written in the output yet: "
-                              "post the tilted set-up's operations from a CL file of their own",
-                              e.source);
+          refuse_tilted_frame(e);
         }
       },
       event);

@@ -282,11 +282,7 @@ void KlartextWriter::write(const Event& event) {
           if (!started_ && !stock_) stock_ = stock_size(e.text);
           comment(e.text);
         } else if constexpr (std::is_same_v<T, WorkingFrame>) {
-          if (!e.is_identity())
-            throw OutputError("E3204",
-                              "a tilted working plane (3+2) is not written in the output yet: "
-                              "post the tilted set-up's operations from a CL file of their own",
-                              e.source);
+          refuse_tilted_frame(e);
         }
         // ToolLengthOffset (TOOL CALL applies the length), SelectPlane
         // (arcs carry their plane) and CannedCycle (the hole's moves

@@ -61,6 +61,11 @@ struct Slot {
   pipeline::PathSample sample;
 };
 
+// Path samples per chunk: the unit of work of the post's threads. Contact
+// queries start cold at every chunk (so results do not depend on the
+// number of threads), which costs little at this size.
+inline constexpr std::size_t chunk_samples = 2048;
+
 // A piece of the program, read in one go.
 struct Chunk {
   std::vector<Slot> slots;

@@ -10,6 +10,8 @@
 #include <sstream>
 #include <vector>
 
+#include "core/text.h"
+
 namespace vcpost::geometry {
 namespace {
 
@@ -21,17 +23,11 @@ std::string_view code_text(TransformErrorCode code) {
   throw TransformError(TransformErrorCode::syntax, "--model-transform: " + message);
 }
 
-std::string_view trim(std::string_view text) {
-  while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
-  while (!text.empty() && (text.back() == ' ' || text.back() == '\t')) text.remove_suffix(1);
-  return text;
-}
-
 std::vector<std::string_view> split(std::string_view text) {
   std::vector<std::string_view> items;
   for (;;) {
     const std::size_t comma = text.find(',');
-    items.push_back(trim(text.substr(0, comma)));
+    items.push_back(trim(text.substr(0, comma), kBlanks));
     if (comma == std::string_view::npos) return items;
     text.remove_prefix(comma + 1);
   }
@@ -46,12 +42,6 @@ double number(std::string_view text, std::string_view step) {
     fail_syntax("'" + std::string(step) + "': '" + std::string(text) + "' is not a number");
   }
   return value;
-}
-
-std::string lower(std::string_view text) {
-  std::string out(text);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
 }
 
 // cos and sin of a turn, exact at multiples of 90 degrees (so that a model
@@ -122,8 +112,8 @@ RigidTransform parse_rigid_transform(std::string_view text) {
       fail_syntax("'" + std::string(step) +
                   "': expected rx=DEG, ry=DEG, rz=DEG, x=MM, y=MM, z=MM or matrix=16 numbers");
     }
-    const std::string key = lower(trim(step.substr(0, equals)));
-    const std::string_view value = trim(step.substr(equals + 1));
+    const std::string key = to_lower(trim(step.substr(0, equals), kBlanks));
+    const std::string_view value = trim(step.substr(equals + 1), kBlanks);
     RigidTransform next;
     if (key == "matrix") {
       if (items.size() - i < 16) {

@@ -54,8 +54,7 @@ void print_cl_moves(std::string_view text, const std::string& name,
     throw CommandError(e.vcpost::Error::code(), e.what());
   } catch (const program::TimingError& e) {
     write_partial_transcript(out);
-    throw CommandError(e.code(),
-                       name + ":" + std::to_string(e.source().line) + ": error: " + e.what());
+    throw CommandError(e.code(), e.located(name));
   }
   write_standard_output(out);
   if (options.count) {
@@ -104,8 +103,7 @@ void print_klartext_moves(const ProgramText& text, const std::string& name,
   } catch (const program::TimingError& e) {
     write_partial_transcript(out);
     show_warnings();
-    throw CommandError(e.code(), name + ":" + std::to_string(e.source().line) + ":" +
-                                     std::to_string(e.source().column) + ": error: " + e.what());
+    throw CommandError(e.code(), e.located(name));
   } catch (const heidenhain::KlartextError& e) {
     write_partial_transcript(out);
     show_warnings();
@@ -199,8 +197,7 @@ void add_moves_command(CLI::App& app) {
     } catch (const program::TimingError& e) {
       write_partial_transcript(out);
       flush_warnings();
-      throw CommandError(e.code(), name + ":" + std::to_string(e.source().line) + ":" +
-                                       std::to_string(e.source().column) + ": error: " + e.what());
+      throw CommandError(e.code(), e.located(name));
     } catch (const gcode::GcodeError& e) {
       write_partial_transcript(out);
       flush_warnings();

@@ -520,12 +520,6 @@ namespace {
 
 // The first section the job will post (read ahead), which the report is
 // drawn for; its errors are the job's, worded as the job words them.
-// "file:line:col: error[E6101]: ..." as the readers word their errors.
-std::string timing_message(const program::TimingError& e, const std::string& name) {
-  return name + ":" + std::to_string(e.source().line) + ":" + std::to_string(e.source().column) +
-         ": error[" + std::string(e.code()) + "]: " + e.what();
-}
-
 std::optional<post::ToolSection> first_section(std::string_view text, const std::string& name,
                                                const machines::MachineProfile& profile,
                                                const post::PostSettings& settings) {
@@ -538,7 +532,7 @@ std::optional<post::ToolSection> first_section(std::string_view text, const std:
   } catch (const cldata::ClError& e) {
     throw CommandError(e.what());
   } catch (const program::TimingError& e) {
-    throw CommandError(e.code(), timing_message(e, name));
+    throw CommandError(e.code(), e.located(name));
   }
 }
 
@@ -572,7 +566,7 @@ post::PostSummary post_translating_errors(ProgramText& program, const std::strin
   } catch (const gcode::GcodeError& e) {
     throw CommandError(e.code(), gcode::format(e.diagnostic(), name));
   } catch (const program::TimingError& e) {
-    throw CommandError(e.code(), timing_message(e, name));
+    throw CommandError(e.code(), e.located(name));
   } catch (const output::OutputError& e) {
     throw CommandError(e.code(), name + ":" + e.what());  // what(): "line:col: error[E....]: ..."
   } catch (const plan::PlanError& e) {

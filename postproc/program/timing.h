@@ -48,6 +48,11 @@ class TimingError : public vcpost::Error {
   TimingError(std::string_view code, const std::string& message, SourceRef source)
       : vcpost::Error(code, message, {"", source.line, source.column}), source_(source) {}
   SourceRef source() const { return source_; }
+  // "file:line:col: error[E6101]: message", as the readers word their errors.
+  std::string located(const std::string& file) const {
+    return file + ":" + std::to_string(source_.line) + ":" + std::to_string(source_.column) +
+           ": error[" + std::string(code()) + "]: " + what();
+  }
 
  private:
   SourceRef source_;

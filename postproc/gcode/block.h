@@ -74,10 +74,11 @@ struct Control {
 
 // A Sinumerik drilling cycle statement: CYCLE81(...) runs once where the
 // tool is; MCALL CYCLE81(...) runs it after every later positioning until a
-// bare MCALL. Empty arguments (",,") are nullopt.
+// bare MCALL. Empty arguments (",,") are nullopt. CYCLE800(...) (swivel)
+// tilts the working plane; its quoted swivel data set name is nullopt.
 struct SiemensCycle {
-  enum class Kind { none, call, modal_call, modal_off } kind = Kind::none;
-  int number = 0;  // 81 .. 89
+  enum class Kind { none, call, modal_call, modal_off, swivel } kind = Kind::none;
+  int number = 0;  // 81 .. 89, 800
   std::vector<std::optional<double>> args;
   std::uint32_t column = 0;
 };

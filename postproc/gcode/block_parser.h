@@ -49,7 +49,9 @@ class BlockParser : public ExpressionReader {
   void read_siemens_keyword(Block& out);
   Word read_keyword_word(char letter, std::size_t start, const char* no_equals);  // CR=, TURN=
   std::string read_quoted_call(std::size_t start, const std::string& key);
-  std::vector<std::optional<double>> read_call_arguments(std::size_t start, const std::string& key);
+  // `strings`: a quoted argument is taken as empty (CYCLE800's "TC1").
+  std::vector<std::optional<double>> read_call_arguments(std::size_t start, const std::string& key,
+                                                         bool strings = false);
   void skip_parenthesised();
   bool read_cycle(const std::string& name, std::size_t start, SiemensCycle& cycle);
 };

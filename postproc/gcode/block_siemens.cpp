@@ -1,7 +1,7 @@
 // The Sinumerik 840D statements of the block parser (block_parser.h):
 // MSG("..."), CR= and TURN=, R parameter assignments, CYCLE81-CYCLE89 and
-// MCALL, the modes passed through, and the frames and program flow vcpost
-// refuses.
+// MCALL, CYCLE800 (the swivel of the working plane), the modes passed through, and the frames and
+// program flow vcpost refuses.
 #include <string_view>
 
 #include "postproc/gcode/block_parser.h"
@@ -65,7 +65,8 @@ std::string BlockParser::read_quoted_call(std::size_t start, const std::string& 
 
 // Arguments "(a, , c)" of a cycle call; empty ones are nullopt.
 std::vector<std::optional<double>> BlockParser::read_call_arguments(std::size_t start,
-                                                                    const std::string& key) {
+                                                                    const std::string& key,
+                                                                    bool strings) {
   std::vector<std::optional<double>> args;
   skip_blanks();
   if (at_end() || s_[i_] != '(')
@@ -84,7 +85,16 @@ std::vector<std::optional<double>> BlockParser::read_call_arguments(std::size_t 
       ++i_;
       continue;
     }
-    args.emplace_back(bounded(binary(0, start).number, start, key + " argument"));
+    if (strings && s_[i_] == '"') {
+      // A name (CYCLE800's swivel data set "TC1"): not a number vcpost uses.
+      ++i_;
+      while (!at_end() && s_[i_] != '"') ++i_;
+      if (at_end()) fail(Code::bad_expression, start, "string not closed with '\"'");
+      ++i_;
+      args.emplace_back();
+    } else {
+      args.emplace_back(bounded(binary(0, start).number, start, key + " argument"));
+    }
     skip_blanks();
     if (!at_end() && s_[i_] == ',') {
       ++i_;
@@ -184,6 +194,13 @@ void BlockParser::read_siemens_keyword(Block& out) {
     cycle.kind = SiemensCycle::Kind::call;
     return;
   }
+  if (key == "CYCLE800") {
+    cycle.kind = SiemensCycle::Kind::swivel;
+    cycle.number = 800;
+    cycle.column = static_cast<std::uint32_t>(start + 1);
+    cycle.args = read_call_arguments(start, key, true);
+    return;
+  }
   // Modes that leave the path as written: passed through, named once.
   static constexpr std::string_view kNoted[] = {
       "SOFT",     "BRISK",     "FFWON",  "FFWOF",   "CFC",     "CFTCP",   "CFIN",    "COMPON",
@@ -200,9 +217,9 @@ void BlockParser::read_siemens_keyword(Block& out) {
       return;
     }
   }
-  static constexpr std::string_view kFrames[] = {"TRANS",    "ATRANS", "ROT",    "AROT",
-                                                 "SCALE",    "ASCALE", "MIRROR", "AMIRROR",
-                                                 "CYCLE800", "TRAORI", "ROTS",   "AROTS"};
+  static constexpr std::string_view kFrames[] = {"TRANS",  "ATRANS", "ROT",    "AROT",
+                                                 "SCALE",  "ASCALE", "MIRROR", "AMIRROR",
+                                                 "TRAORI", "ROTS",   "AROTS"};
   for (const auto frame : kFrames)
     if (key == frame)
       fail(Code::unsupported_code, start,

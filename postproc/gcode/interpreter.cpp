@@ -1294,11 +1294,68 @@ void Interpreter::tilt_working_plane(Step& step) {
   } else if (c != 690) {
     return;
   }
+  set_tilt(step, frame);
+}
+
+// The tilt in effect from this block on; the tool's tip stays where it is
+// on the part (its position given in the new frame).
+void Interpreter::set_tilt(Step& step, const program::WorkingFrame& frame) {
   if (frame.rotation == tilt_.rotation && frame.origin == tilt_.origin) return;
   ModalState& s = step.state;
   s.position = frame.rotation.transpose() * (tilt_.to_program(s.position) - frame.origin);
   tilt_ = frame;
   step.emit(frame);
+}
+
+// Sinumerik CYCLE800(_FR, _TC, _ST, _MODE, _X0, _Y0, _Z0, _A, _B, _C, _X1,
+// _Y1, _Z1, _DIR, ...): the swivel of the working plane, axis by axis
+// (_MODE bits 7-6 = 00; bits 1-0, 3-2, 5-4 name the axes of the first,
+// second and third turn, 1 X, 2 Y, 3 Z: 57 is X Y Z, 27 Z Y X), each turn
+// about the axis the turns before have left (_A, _B, _C in that order);
+// about the reference point X0 Y0 Z0, the new zero X1 Y1 Z1 in the turned
+// frame. _ST units 0 a new plane, 1 added to the one in effect. The
+// retraction (_FR) and the direction of the rotary axes (_DIR) say how the
+// machine gets there: the tool's tip is taken to stay where it is on the
+// part, as after G68.2 (docs/tilted-frames.md). CYCLE800() ends the tilt.
+void Interpreter::swivel_working_plane(Step& step, const SiemensCycle& sc) {
+  auto arg = [&](std::size_t k) { return k < sc.args.size() && sc.args[k] ? *sc.args[k] : 0.0; };
+  program::WorkingFrame frame;
+  frame.source = program::SourceRef{block_.line, sc.column, block_.offset};
+  if (!sc.args.empty()) {
+    const double st = arg(2), mode = arg(3);
+    const int units = static_cast<int>(std::fmod(std::abs(st), 10.0));
+    if (st != std::floor(st) || units > 1)
+      fail(Code::cycle_value, sc.column,
+           "CYCLE800 _ST units digit " + std::to_string(units) +
+               ": vcpost reads 0 (a new plane) and 1 (added to the plane in effect)");
+    if (mode != std::floor(mode) || mode < 0 || mode > 255)
+      fail(Code::cycle_value, sc.column, "CYCLE800 _MODE must be a whole number 0..255");
+    const int bits = static_cast<int>(mode);
+    if ((bits >> 6) != 0)
+      fail(Code::unsupported_code, sc.column,
+           "CYCLE800 by projection angles, solid angle or rotary axes direct (_MODE " +
+               std::to_string(bits) +
+               ") is not read: write the swivel axis by axis (_MODE 57: X Y Z)");
+    Eigen::Matrix3d r = Eigen::Matrix3d::Identity();
+    for (int k = 0; k < 3; ++k) {
+      const int axis = (bits >> (2 * k)) & 3;
+      if (axis == 0)
+        fail(Code::cycle_value, sc.column,
+             "CYCLE800 _MODE " + std::to_string(bits) + " names no axis for turn " +
+                 std::to_string(k + 1) + " (bits 1 X, 2 Y, 3 Z)");
+      r = r * program::turn_about(axis - 1, arg(7 + static_cast<std::size_t>(k)));
+    }
+    const bool inches = step.state.inches;
+    const Eigen::Vector3d reference(to_mm(arg(4), inches), to_mm(arg(5), inches),
+                                    to_mm(arg(6), inches));
+    const Eigen::Vector3d zero(to_mm(arg(10), inches), to_mm(arg(11), inches),
+                               to_mm(arg(12), inches));
+    // In the frame in effect (additive) or the work system's (new).
+    const program::WorkingFrame base = units == 1 ? tilt_ : program::WorkingFrame{};
+    frame.rotation = base.rotation * r;
+    frame.origin = base.to_program(reference + r * zero);
+  }
+  set_tilt(step, frame);
 }
 
 // Which codes take the axis words for themselves, so that they are no move.
@@ -1788,7 +1845,9 @@ void Interpreter::siemens_words(Step& step) {
                   "passed through unchanged");
   }
   const SiemensCycle& sc = b.siemens_cycle;
-  if (sc.kind == SiemensCycle::Kind::call) {
+  if (sc.kind == SiemensCycle::Kind::swivel) {
+    swivel_working_plane(step, sc);
+  } else if (sc.kind == SiemensCycle::Kind::call) {
     run_siemens_cycle(step.state, sc, step.events);
   } else if (sc.kind == SiemensCycle::Kind::modal_call) {
     mcall_next_ = sc;

@@ -208,6 +208,8 @@ class Interpreter {
   void set_origin_g92_g52(Step& step);
   void set_distance_modes(Step& step);
   void tilt_working_plane(Step& step);
+  void set_tilt(Step& step, const program::WorkingFrame& frame);
+  void swivel_working_plane(Step& step, const SiemensCycle& sc);
   void take_axis_words(Step& step);
   void set_motion_mode(Step& step);
   void move(Step& step);

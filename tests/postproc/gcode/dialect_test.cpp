@@ -453,7 +453,7 @@ TEST(Sinumerik, ModalDrillingCycleRunsAtEveryPositionUntilMcall) {
 
 TEST(Sinumerik, FramesAndFlowAreRefusedAndOtherDialectsNameIt) {
   for (const char* line :
-       {"ROT Z30", "TRANS X10", "MIRROR X0", "GOTOF LABEL1", "CYCLE800(1,\"TC\")"}) {
+       {"ROT Z30", "TRANS X10", "MIRROR X0", "GOTOF LABEL1", "CYCLE800(1,\"TC\",0,192)"}) {
     SCOPED_TRACE(line);
     const Diagnostic d = error_of(std::string("G0 X0\n") + line + "\nM30\n", sinumerik_dialect());
     EXPECT_EQ(d.line, 2u);

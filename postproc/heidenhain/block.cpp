@@ -7,6 +7,7 @@
 #include <cstring>
 #include <string>
 
+#include "postproc/heidenhain/formula.h"
 #include "postproc/heidenhain/lexer.h"
 
 namespace vcpost::heidenhain {
@@ -25,6 +26,7 @@ void Block::clear() {
   cycle_number.reset();
   cycle_parameters.clear();
   fn = FnStatement{};
+  formula.clear();
   s_span.reset();
 }
 
@@ -130,126 +132,181 @@ class BlockParser : public syntax::Lexer {
     b_.keyword = text().substr(b_.keyword_begin, pos() - b_.keyword_begin);
   }
 
+  // A keyword's parser: reads what follows it and returns true, or false
+  // (the cursor where it was) when the words after it make no block of its
+  // own ("CALL" without LBL): the block is then BlockKind::other.
+  using KeywordParser = bool (*)(BlockParser& parser, std::string_view key, BlockKind kind);
+  struct KeywordRule {
+    std::string_view word;
+    BlockKind kind;
+    KeywordParser parse;
+  };
+
+  template <bool (BlockParser::*parse)(std::string_view, BlockKind)>
+  static bool thunk(BlockParser& parser, std::string_view key, BlockKind kind) {
+    return (parser.*parse)(key, kind);
+  }
+
+  // The first word of every block vcpost reads, sorted (checked at compile
+  // time) for a binary search.
+  static const KeywordRule* find_keyword(std::string_view key) {
+    static constexpr KeywordRule rules[] = {
+        {"BEGIN", BlockKind::begin_pgm, &thunk<&BlockParser::program_block>},
+        {"BLK", BlockKind::blk_form, &thunk<&BlockParser::blk_form>},
+        {"C", BlockKind::circle, &thunk<&BlockParser::motion_words>},
+        {"CALL", BlockKind::call_label, &thunk<&BlockParser::call>},
+        {"CC", BlockKind::centre, &thunk<&BlockParser::motion_words>},
+        {"CHF", BlockKind::chamfer, &thunk<&BlockParser::chamfer>},
+        {"CP", BlockKind::circle_polar, &thunk<&BlockParser::motion_words>},
+        {"CR", BlockKind::circle_radius, &thunk<&BlockParser::motion_words>},
+        {"CT", BlockKind::circle_tangent, &thunk<&BlockParser::motion_words>},
+        {"CYCL", BlockKind::cycle_def, &thunk<&BlockParser::cycle>},
+        {"END", BlockKind::end_pgm, &thunk<&BlockParser::program_block>},
+        {"FN", BlockKind::fn, &thunk<&BlockParser::fn>},
+        {"FUNCTION", BlockKind::function, &thunk<&BlockParser::function>},
+        {"L", BlockKind::line, &thunk<&BlockParser::motion_words>},
+        {"LBL", BlockKind::label, &thunk<&BlockParser::label_block>},
+        {"LN", BlockKind::line_normal, &thunk<&BlockParser::motion_words>},
+        {"LP", BlockKind::line_polar, &thunk<&BlockParser::motion_words>},
+        {"M", BlockKind::misc, &thunk<&BlockParser::m_block>},
+        {"PLANE", BlockKind::plane, &thunk<&BlockParser::plane>},
+        {"Q", BlockKind::formula, &thunk<&BlockParser::formula>},
+        {"QL", BlockKind::formula, &thunk<&BlockParser::formula>},
+        {"QR", BlockKind::formula, &thunk<&BlockParser::formula>},
+        {"RND", BlockKind::rounding, &thunk<&BlockParser::motion_words>},
+        {"STOP", BlockKind::misc, &thunk<&BlockParser::motion_words>},
+        {"TOOL", BlockKind::tool_call, &thunk<&BlockParser::tool_block>},
+    };
+    static_assert(std::ranges::is_sorted(rules, {}, &KeywordRule::word));
+    const auto* it = std::ranges::lower_bound(rules, key, {}, &KeywordRule::word);
+    return it != std::end(rules) && it->word == key ? it : nullptr;
+  }
+
   void keyword(std::string_view key) {
-    switch (name(key.substr(0, std::min<std::size_t>(key.size(), 8)))) {
-      case name("L"):
-        set_keyword(BlockKind::line);
-        return words();
-      case name("LN"):
-        set_keyword(BlockKind::line_normal);
-        return words();
-      case name("LP"):
-        set_keyword(BlockKind::line_polar);
-        return words();
-      case name("C"):
-        set_keyword(BlockKind::circle);
-        return words();
-      case name("CC"):
-        set_keyword(BlockKind::centre);
-        return words();
-      case name("CR"):
-        set_keyword(BlockKind::circle_radius);
-        return words();
-      case name("CT"):
-        set_keyword(BlockKind::circle_tangent);
-        return words();
-      case name("CP"):
-        set_keyword(BlockKind::circle_polar);
-        return words();
-      case name("RND"):
-        set_keyword(BlockKind::rounding);
-        return words();
-      case name("CHF"): {
-        // CHF <length>: the value stands without a letter.
-        set_keyword(BlockKind::chamfer);
-        skip_blanks();
-        Word w;
-        w.key = name("CHF");
-        w.begin = static_cast<std::uint32_t>(pos());
-        w.has_value = read_value(w.value, w.sign);
-        w.end = static_cast<std::uint32_t>(pos());
-        if (w.has_value) b_.words.push_back(w);
-        return words();
-      }
-      case name("M"):
-        seek(b_.keyword_begin);
-        set_keyword(BlockKind::misc);
-        return words();
-      case name("STOP"):
-        set_keyword(BlockKind::misc);
-        return words();
-      case name("BEGIN"):
-      case name("END"):
-        if (next_is("PGM")) {
-          set_keyword(key == "BEGIN" ? BlockKind::begin_pgm : BlockKind::end_pgm);
-          return program_header();
-        }
-        break;
-      case name("BLK"):
-        if (next_is("FORM")) {
-          set_keyword(BlockKind::blk_form);
-          skip_blanks();
-          double part = 0;
-          if (read_unsigned(part)) {
-            b_.cycle_number = part;
-          } else {
-            b_.sub_keyword = read_letters();  // CYLINDER, ROTATION ...
-          }
-          return words();
-        }
-        break;
-      case name("TOOL"):
-        if (next_is("CALL")) {
-          set_keyword(BlockKind::tool_call);
-          return tool();
-        }
-        if (next_is("DEF")) {
-          set_keyword(BlockKind::tool_def);
-          return tool();
-        }
-        break;
-      case name("FN"):
-        set_keyword(BlockKind::fn);
-        return fn();
-      case name("LBL"):
-        set_keyword(BlockKind::label);
-        skip_blanks();
-        b_.label = label();
-        return words();
-      case name("CALL"):
-        if (next_is("LBL")) {
-          set_keyword(BlockKind::call_label);
-          skip_blanks();
-          b_.label = label();
-          return words();
-        }
-        break;
-      case name("CYCL"):
-        if (next_is("DEF")) {
-          set_keyword(BlockKind::cycle_def);
-          return cycle_def();
-        }
-        if (next_is("CALL")) {
-          set_keyword(BlockKind::cycle_call);
-          if (next_is("POS")) b_.sub_keyword = "POS";
-          return words();
-        }
-        break;
-      case name("PLANE"):
-        set_keyword(BlockKind::plane);
-        skip_blanks();
-        b_.sub_keyword = read_letters();
-        return words();
-      case name("FUNCTION"):
-        set_keyword(BlockKind::function);
-        return rest_as_sub_keyword();
-      default:
-        break;
+    if (const KeywordRule* rule = find_keyword(key)) {
+      if (rule->parse(*this, key, rule->kind)) return;
     }
-    // Another Klartext statement (APPR, FL, SPL, SEL PGM, CALL PGM, Q
-    // formulas ...) or no Klartext at all: the interpreter says which.
+    // Another Klartext statement (APPR, FL, SPL, SEL PGM, CALL PGM ...) or
+    // no Klartext at all: the interpreter says which.
     set_keyword(BlockKind::other);
     rest_as_sub_keyword();
+  }
+
+  bool motion_words(std::string_view /*key*/, BlockKind kind) {
+    set_keyword(kind);
+    words();
+    return true;
+  }
+
+  // CHF <length>: the value stands without a letter.
+  bool chamfer(std::string_view key, BlockKind kind) {
+    set_keyword(kind);
+    skip_blanks();
+    Word w;
+    w.key = name(key);
+    w.begin = static_cast<std::uint32_t>(pos());
+    w.has_value = read_value(w.value, w.sign);
+    w.end = static_cast<std::uint32_t>(pos());
+    if (w.has_value) b_.words.push_back(w);
+    words();
+    return true;
+  }
+
+  // A block of M words only: the M is the first word.
+  bool m_block(std::string_view /*key*/, BlockKind kind) {
+    seek(b_.keyword_begin);
+    set_keyword(kind);
+    words();
+    return true;
+  }
+
+  bool program_block(std::string_view key, BlockKind kind) {
+    if (!next_is("PGM")) return false;
+    set_keyword(key == "BEGIN" ? BlockKind::begin_pgm : kind);
+    program_header();
+    return true;
+  }
+
+  bool blk_form(std::string_view /*key*/, BlockKind kind) {
+    if (!next_is("FORM")) return false;
+    set_keyword(kind);
+    skip_blanks();
+    double part = 0;
+    if (read_unsigned(part)) {
+      b_.cycle_number = part;
+    } else {
+      b_.sub_keyword = read_letters();  // CYLINDER, ROTATION ...
+    }
+    words();
+    return true;
+  }
+
+  bool tool_block(std::string_view /*key*/, BlockKind kind) {
+    if (next_is("CALL")) {
+      set_keyword(kind);
+    } else if (next_is("DEF")) {
+      set_keyword(BlockKind::tool_def);
+    } else {
+      return false;
+    }
+    tool();
+    return true;
+  }
+
+  bool label_block(std::string_view /*key*/, BlockKind kind) {
+    set_keyword(kind);
+    skip_blanks();
+    b_.label = label();
+    words();
+    return true;
+  }
+
+  bool call(std::string_view key, BlockKind kind) {
+    return next_is("LBL") && label_block(key, kind);
+  }
+
+  bool cycle(std::string_view /*key*/, BlockKind kind) {
+    if (next_is("DEF")) {
+      set_keyword(kind);
+      cycle_def();
+      return true;
+    }
+    if (!next_is("CALL")) return false;
+    set_keyword(BlockKind::cycle_call);
+    if (next_is("POS")) b_.sub_keyword = "POS";
+    words();
+    return true;
+  }
+
+  bool plane(std::string_view /*key*/, BlockKind kind) {
+    set_keyword(kind);
+    skip_blanks();
+    b_.sub_keyword = read_letters();
+    words();
+    return true;
+  }
+
+  bool function(std::string_view /*key*/, BlockKind kind) {
+    set_keyword(kind);
+    rest_as_sub_keyword();
+    return true;
+  }
+
+  // Q1 = <formula>: the target, then the formula in postfix order.
+  bool formula(std::string_view /*key*/, BlockKind kind) {
+    set_keyword(kind);
+    seek(b_.keyword_begin);
+    value_into(b_.fn.target, "the Q parameter set");
+    expect('=', "'=' after the Q parameter");
+    syntax::parse_formula(*this, b_.formula);
+    if (peek() == ';') read_comment();
+    return true;
+  }
+
+  bool fn(std::string_view /*key*/, BlockKind kind) {
+    set_keyword(kind);
+    fn_statement();
+    return true;
   }
 
   // The rest of the block up to a comment, trimmed, as sub_keyword.
@@ -328,7 +385,7 @@ class BlockParser : public syntax::Lexer {
   }
 
   // FN n: Q.. = a [op b] | FN 9-12: IF a op b GOTO LBL target.
-  void fn() {
+  void fn_statement() {
     skip_blanks();
     double number = 0;
     if (!read_unsigned(number)) fail(Code::missing_word, pos(), "FN needs its number (FN 0: ...)");
@@ -446,10 +503,15 @@ class BlockParser : public syntax::Lexer {
     Word w;
     w.begin = static_cast<std::uint32_t>(pos());
     std::string_view letters = read_letters();
-    // FQ1: the feed of Q1 (the name's last Q starts the value).
-    if (letters.size() > 1 && letters.back() == 'Q' && is_digit(peek())) {
-      letters.remove_suffix(1);
-      seek(pos() - 1);
+    // FQ1, FQL2, FQR3: the feed of a parameter (its Q starts the value).
+    if (is_digit(peek())) {
+      const std::size_t bank = letters.ends_with("QL") || letters.ends_with("QR") ? 2
+                               : letters.ends_with('Q')                           ? 1
+                                                                                  : 0;
+      if (bank != 0 && letters.size() > bank) {
+        letters.remove_suffix(bank);
+        seek(pos() - bank);
+      }
     }
     if (letters.size() > 8)
       fail(Code::unexpected_word, w.begin, "unknown word '" + std::string(letters) + "'");

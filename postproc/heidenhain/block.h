@@ -43,6 +43,7 @@ enum class BlockKind : std::uint8_t {
   rounding,        // RND
   chamfer,         // CHF
   fn,              // FN n: ... (Q parameter arithmetic and jumps)
+  formula,         // Q1 = Q2 * 3 + SIN Q4 (the FORMULA key's assignment)
   label,           // LBL n | LBL "name"
   call_label,      // CALL LBL n [REP m]
   cycle_def,       // CYCL DEF n[.m]
@@ -114,6 +115,41 @@ struct FnStatement {
   std::optional<Label> jump;  // FN 9-12: GOTO LBL
 };
 
+// One step of a Q parameter formula in postfix order: a value pushed, or an
+// operator or function applied to the values on top of the stack.
+struct FormulaStep {
+  enum class Op : std::uint8_t {
+    value,  // push `value`
+    // unary, on the top value
+    negate,
+    sq,
+    sqrt,
+    sin,
+    cos,
+    tan,
+    asin,
+    acos,
+    atan,
+    abs,
+    int_part,
+    frac,
+    sgn,
+    ln,
+    log,
+    exp,
+    // binary, on the two top values (left below right)
+    add,
+    subtract,
+    multiply,
+    divide,
+    modulo,
+    power,
+  };
+  Op op = Op::value;
+  Value value;           // Op::value: a literal, Q, QL or QR (PI is a literal)
+  std::uint32_t at = 0;  // its byte in the block, for errors
+};
+
 struct ByteSpan {
   std::uint64_t begin = 0;
   std::uint64_t end = 0;
@@ -141,8 +177,9 @@ struct Block {
   std::optional<Label> label;          // LBL, CALL LBL
   std::optional<double> cycle_number;  // CYCL DEF: 7.1, 200, 32.0 ...
   std::vector<CycleParameter> cycle_parameters;
-  FnStatement fn;
-  std::optional<ByteSpan> s_span;  // TOOL CALL's S word
+  FnStatement fn;                    // FN n; a formula's target in fn.target
+  std::vector<FormulaStep> formula;  // Q.. = <formula>
+  std::optional<ByteSpan> s_span;    // TOOL CALL's S word
 
   void clear();
   // The first word named `key`, or null.

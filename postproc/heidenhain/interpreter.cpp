@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "postproc/heidenhain/cycles.h"
+#include "postproc/heidenhain/formula.h"
 #include "postproc/program/working_frame.h"
 
 namespace vcpost::heidenhain {
@@ -266,6 +267,8 @@ void Interpreter::execute(std::vector<Event>& events) {
       return motion(events);
     case BlockKind::fn:
       return fn(events);
+    case BlockKind::formula:
+      return formula();
     case BlockKind::label:
       return label_block();
     case BlockKind::call_label:
@@ -284,9 +287,8 @@ void Interpreter::execute(std::vector<Event>& events) {
       break;
   }
   static constexpr std::string_view refused[] = {
-      "APPR", "DEP",    "FL",   "FLT",      "FC",      "FCT",     "FPOL",   "FSELECT",
-      "SPL",  "SEL",    "CALL", "DECLARE",  "Q",       "QL",      "QR",     "QS",
-      "SQL",  "STRING", "TCH",  "POLARKIN", "SYSREAD", "PATTERN", "CONTOUR"};
+      "APPR", "DEP",     "FL", "FLT", "FC",     "FCT", "FPOL",     "FSELECT", "SPL",     "SEL",
+      "CALL", "DECLARE", "QS", "SQL", "STRING", "TCH", "POLARKIN", "SYSREAD", "PATTERN", "CONTOUR"};
   const std::string_view key = block_.keyword;
   if (std::find(std::begin(refused), std::end(refused), key) != std::end(refused)) {
     fail(Code::unsupported_function, block_.keyword_begin,
@@ -1136,6 +1138,12 @@ void Interpreter::fn(std::vector<Event>& events) {
   }
   if (!(std::abs(result) <= 1e12)) fail(Code::math_domain, at, "FN result out of range");
   q_[parameter_index(*f.target, at)] = result;
+}
+
+void Interpreter::formula() {
+  const double result = evaluate_formula(
+      block_, block_.formula, [this](const Value& v, std::uint32_t at) { return value(v, at); });
+  q_[parameter_index(*block_.fn.target, block_.keyword_begin)] = result;
 }
 
 Interpreter::Place Interpreter::find_label(const Label& label, std::uint32_t at) {

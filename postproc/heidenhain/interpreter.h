@@ -152,6 +152,7 @@ class Interpreter {
   bool corner_follows() const;
   void machine_retract(const Words& w, std::vector<program::Event>& events);
   void fn(std::vector<program::Event>& events);
+  void formula();
   void label_block();
   void call_label();
   void jump_to(const Label& label, std::uint32_t at);

@@ -11,51 +11,19 @@
 #include <string>
 #include <vector>
 
+#include "tests/postproc/heidenhain/klartext_support.h"
+
 namespace vcpost::heidenhain {
 namespace {
 
 using program::Event;
 
-std::vector<Event> run(std::string_view text, Interpreter* keep = nullptr) {
-  Interpreter own(text);
-  Interpreter& interpreter = keep ? *keep : own;
-  std::vector<Event> events;
-  while (interpreter.next(events)) {
-  }
-  return events;
-}
-
-// The motions only, in order.
-std::vector<Event> motions(const std::vector<Event>& events) {
-  std::vector<Event> out;
-  for (const Event& e : events)
-    if (program::is_motion(e)) out.push_back(e);
-  return out;
-}
-
-Eigen::Vector3d end_of(const Event& e) {
-  if (const auto* t = std::get_if<program::StraightTraverse>(&e)) return t->end;
-  if (const auto* f = std::get_if<program::StraightFeed>(&e)) return f->end;
-  return std::get<program::ArcFeed>(e).end;
-}
-
-void expect_point(const Eigen::Vector3d& p, double x, double y, double z, double tol = 1e-9) {
-  EXPECT_NEAR(p.x(), x, tol);
-  EXPECT_NEAR(p.y(), y, tol);
-  EXPECT_NEAR(p.z(), z, tol);
-}
-
-Code error_of(std::string_view text) {
-  InterpreterLimits limits;
-  limits.max_loop_iterations = 1000;  // the endless loop below ends fast
-  Interpreter interpreter(text, limits);
-  try {
-    run("", &interpreter);
-  } catch (const KlartextError& e) {
-    return e.diagnostic().code;
-  }
-  return Code::missing_end;  // no error
-}
+using testing::end_of;
+using testing::error_of;
+using testing::expect_point;
+using testing::motions;
+using testing::program_ends;
+using testing::run;
 
 TEST(KlartextInterpreter, LinesFeedsAndRapids) {
   const auto events =
@@ -410,18 +378,6 @@ TEST(KlartextInterpreter, IdentityPlanesAndTheirRotaryPositionsAreRead) {
   EXPECT_EQ(error_of("BEGIN PGM T MM\nM128\nL A+10 FMAX\n"), Code::tool_axis_change);
   EXPECT_EQ(error_of("BEGIN PGM T MM\nPLANE VECTOR BX1 BY0 BZ0 NX1 NY0 NZ0 STAY\n"),
             Code::bad_number);  // base vector along the normal
-}
-
-// Each motion's end where it is in the program (untilted) frame: the
-// WorkingFrame in effect turns the event's point out (events.h).
-std::vector<Eigen::Vector3d> program_ends(const std::vector<Event>& events) {
-  std::vector<Eigen::Vector3d> out;
-  program::WorkingFrame frame;
-  for (const Event& e : events) {
-    if (const auto* f = std::get_if<program::WorkingFrame>(&e)) frame = *f;
-    if (program::is_motion(e)) out.push_back(frame.to_program(end_of(e)));
-  }
-  return out;
 }
 
 const double c45 = std::sqrt(0.5);

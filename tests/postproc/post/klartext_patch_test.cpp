@@ -10,28 +10,13 @@
 #include <string>
 #include <vector>
 
+#include "tests/postproc/klartext_fixture.h"
+
 namespace vcpost::post {
 namespace {
 
-const std::string kProgram =
-    "1 BEGIN PGM T MM\r\n"
-    "2 ; K\xf6rivek\r\n"
-    "3 FN 0: Q1=500\r\n"
-    "4 TOOL CALL 5 Z S2500 DL+0\r\n"
-    "5 L X+0 Y+0 Z+5 R0 FMAX M3\r\n"
-    "6 L Z-1 F200\r\n"
-    "7 L X+10 FQ1\r\n"
-    "8 CYCL DEF 200 DRILLING ~\r\n"
-    "    Q200=2 ;SET-UP CLEARANCE ~\r\n"
-    "    Q201=-5 ;DEPTH ~\r\n"
-    "    Q206=150 ;FEED RATE FOR PLUNGING ~\r\n"
-    "    Q202=5 ;PLUNGING DEPTH ~\r\n"
-    "    Q210=0 ;DWELL TIME AT TOP ~\r\n"
-    "    Q203=0 ;SURFACE COORDINATE ~\r\n"
-    "    Q204=50 ;2ND SET-UP CLEARANCE ~\r\n"
-    "    Q211=0 ;DWELL TIME AT BOTTOM\r\n"
-    "9 L X+20 F300\r\n"
-    "10 END PGM T MM\r\n";
+using testing::kKlartextInput;
+using testing::kKlartextPosted;
 
 std::uint64_t offset_of(const std::string& text, const std::string& block_start) {
   return text.find(block_start);
@@ -61,42 +46,22 @@ std::vector<gcode::WordPatch> patches_of(const std::string& text) {
           {offset_of(text, "9 L"), 'S', "3200"}};
 }
 
-const std::string kExpected =
-    "1 BEGIN PGM T MM\r\n"
-    "2 ; K\xf6rivek\r\n"
-    "3 FN 0: Q1=500\r\n"
-    "4 TOOL CALL 5 Z S3000 DL+0\r\n"
-    "5 L X+0 Y+0 Z+5 R0 FMAX M3\r\n"
-    "6 TOOL CALL S3100\r\n"
-    "7 L Z-1 F250\r\n"
-    "8 L X+10 FQ1\r\n"
-    "9 CYCL DEF 200 DRILLING ~\r\n"
-    "    Q200=2 ;SET-UP CLEARANCE ~\r\n"
-    "    Q201=-5 ;DEPTH ~\r\n"
-    "    Q206=150 ;FEED RATE FOR PLUNGING ~\r\n"
-    "    Q202=5 ;PLUNGING DEPTH ~\r\n"
-    "    Q210=0 ;DWELL TIME AT TOP ~\r\n"
-    "    Q203=0 ;SURFACE COORDINATE ~\r\n"
-    "    Q204=50 ;2ND SET-UP CLEARANCE ~\r\n"
-    "    Q211=0 ;DWELL TIME AT BOTTOM\r\n"
-    "10 TOOL CALL S3200\r\n"
-    "11 L X+20 F300\r\n"
-    "12 END PGM T MM\r\n";
-
 TEST(KlartextPatch, InsertsToolCallSAndRenumbersKeepingEveryOtherByte) {
-  EXPECT_EQ(patched(kProgram, patches_of(kProgram)), kExpected);
+  EXPECT_EQ(patched(kKlartextInput, patches_of(kKlartextInput)), kKlartextPosted);
   // Written in two pieces, the numbering carries on.
-  EXPECT_EQ(patched(kProgram, patches_of(kProgram), offset_of(kProgram, "8 CYCL")), kExpected);
+  EXPECT_EQ(
+      patched(kKlartextInput, patches_of(kKlartextInput), offset_of(kKlartextInput, "8 CYCL")),
+      kKlartextPosted);
   // No patch: the program as it was, byte for byte.
-  EXPECT_EQ(patched(kProgram, {}), kProgram);
+  EXPECT_EQ(patched(kKlartextInput, {}), kKlartextInput);
 }
 
 TEST(KlartextPatch, TakesFOnlyInAPlainFWord) {
-  KlartextPatcher patcher(kProgram);
-  EXPECT_TRUE(patcher.takes_f(offset_of(kProgram, "6 L")));     // F200
-  EXPECT_FALSE(patcher.takes_f(offset_of(kProgram, "7 L")));    // FQ1
-  EXPECT_FALSE(patcher.takes_f(offset_of(kProgram, "5 L")));    // FMAX
-  EXPECT_FALSE(patcher.takes_f(offset_of(kProgram, "4 TOO")));  // no F
+  KlartextPatcher patcher(kKlartextInput);
+  EXPECT_TRUE(patcher.takes_f(offset_of(kKlartextInput, "6 L")));     // F200
+  EXPECT_FALSE(patcher.takes_f(offset_of(kKlartextInput, "7 L")));    // FQ1
+  EXPECT_FALSE(patcher.takes_f(offset_of(kKlartextInput, "5 L")));    // FMAX
+  EXPECT_FALSE(patcher.takes_f(offset_of(kKlartextInput, "4 TOO")));  // no F
 }
 
 TEST(KlartextPatch, NumbersGrowADigitAndUnnumberedProgramsStayUnnumbered) {

@@ -8,52 +8,13 @@
 #include <string>
 
 #include "postproc/verify/verify.h"
+#include "tests/postproc/klartext_fixture.h"
 
 namespace vcpost::verify {
 namespace {
 
-const std::string kInput =
-    "1 BEGIN PGM T MM\r\n"
-    "2 ; K\xf6rivek\r\n"
-    "3 FN 0: Q1=500\r\n"
-    "4 TOOL CALL 5 Z S2500 DL+0\r\n"
-    "5 L X+0 Y+0 Z+5 R0 FMAX M3\r\n"
-    "6 L Z-1 F200\r\n"
-    "7 L X+10 FQ1\r\n"
-    "8 CYCL DEF 200 DRILLING ~\r\n"
-    "    Q200=2 ;SET-UP CLEARANCE ~\r\n"
-    "    Q201=-5 ;DEPTH ~\r\n"
-    "    Q206=150 ;FEED RATE FOR PLUNGING ~\r\n"
-    "    Q202=5 ;PLUNGING DEPTH ~\r\n"
-    "    Q210=0 ;DWELL TIME AT TOP ~\r\n"
-    "    Q203=0 ;SURFACE COORDINATE ~\r\n"
-    "    Q204=50 ;2ND SET-UP CLEARANCE ~\r\n"
-    "    Q211=0 ;DWELL TIME AT BOTTOM\r\n"
-    "9 L X+20 F300\r\n"
-    "10 END PGM T MM\r\n";
-
-// As the writer posts it (tests/postproc/post/klartext_patch_test.cpp).
-const std::string kPosted =
-    "1 BEGIN PGM T MM\r\n"
-    "2 ; K\xf6rivek\r\n"
-    "3 FN 0: Q1=500\r\n"
-    "4 TOOL CALL 5 Z S3000 DL+0\r\n"
-    "5 L X+0 Y+0 Z+5 R0 FMAX M3\r\n"
-    "6 TOOL CALL S3100\r\n"
-    "7 L Z-1 F250\r\n"
-    "8 L X+10 FQ1\r\n"
-    "9 CYCL DEF 200 DRILLING ~\r\n"
-    "    Q200=2 ;SET-UP CLEARANCE ~\r\n"
-    "    Q201=-5 ;DEPTH ~\r\n"
-    "    Q206=150 ;FEED RATE FOR PLUNGING ~\r\n"
-    "    Q202=5 ;PLUNGING DEPTH ~\r\n"
-    "    Q210=0 ;DWELL TIME AT TOP ~\r\n"
-    "    Q203=0 ;SURFACE COORDINATE ~\r\n"
-    "    Q204=50 ;2ND SET-UP CLEARANCE ~\r\n"
-    "    Q211=0 ;DWELL TIME AT BOTTOM\r\n"
-    "10 TOOL CALL S3200\r\n"
-    "11 L X+20 F300\r\n"
-    "12 END PGM T MM\r\n";
+using testing::kKlartextInput;
+using testing::kKlartextPosted;
 
 std::string replaced(std::string text, const std::string& from, const std::string& to) {
   const auto at = text.find(from);
@@ -68,7 +29,7 @@ bool has(const Result& r, Code code) {
 }
 
 TEST(VerifyKlartext, APostedProgramHolds) {
-  const Result r = verify_klartext(kInput, kPosted, Options{});
+  const Result r = verify_klartext(kKlartextInput, kKlartextPosted, Options{});
   ASSERT_TRUE(r.ok()) << format(r.violations.front(), "posted.h");
   EXPECT_EQ(r.s_changes, 3u);  // one TOOL CALL's S, two inserted
   EXPECT_EQ(r.f_changes, 1u);  // F200 -> F250
@@ -80,11 +41,12 @@ TEST(VerifyKlartext, APostedProgramHolds) {
   EXPECT_EQ(r.changes[1].line, 6u);
   EXPECT_EQ(describe(r.changes[2]), "F200 -> F250");
   EXPECT_EQ(r.motions, 4u);  // the L blocks (the cycle is defined, never called)
-  EXPECT_TRUE(verify_klartext(kInput, kInput, Options{}).ok());
+  EXPECT_TRUE(verify_klartext(kKlartextInput, kKlartextInput, Options{}).ok());
 }
 
 TEST(VerifyKlartext, ACoordinateChangedIsRefused) {
-  const Result r = verify_klartext(kInput, replaced(kPosted, "8 L X+10", "8 L X+11"), Options{});
+  const Result r =
+      verify_klartext(kKlartextInput, replaced(kKlartextPosted, "8 L X+10", "8 L X+11"), Options{});
   EXPECT_FALSE(r.ok());
   EXPECT_TRUE(has(r, Code::klartext_block_changed));
   EXPECT_TRUE(has(r, Code::klartext_event_differs));
@@ -93,29 +55,34 @@ TEST(VerifyKlartext, ACoordinateChangedIsRefused) {
 
 TEST(VerifyKlartext, AToolCallSBeforeABlockThatDoesNotMoveIsRefused) {
   // Before the cycle's definition instead of before the move after it.
-  std::string forged = replaced(kPosted, "10 TOOL CALL S3200\r\n", "");
+  std::string forged = replaced(kKlartextPosted, "10 TOOL CALL S3200\r\n", "");
   forged = replaced(forged, "9 CYCL DEF 200", "9 TOOL CALL S3200\r\n10 CYCL DEF 200");
-  const Result r = verify_klartext(kInput, forged, Options{});
+  const Result r = verify_klartext(kKlartextInput, forged, Options{});
   EXPECT_TRUE(has(r, Code::klartext_misplaced_speed));
   EXPECT_EQ(r.violations.front().line, 9u);
 }
 
 TEST(VerifyKlartext, ASkippedNumberIsRefused) {
-  const Result r = verify_klartext(kInput, replaced(kPosted, "11 L X+20", "12 L X+20"), Options{});
+  const Result r = verify_klartext(kKlartextInput,
+                                   replaced(kKlartextPosted, "11 L X+20", "12 L X+20"), Options{});
   EXPECT_TRUE(has(r, Code::klartext_numbering));
   EXPECT_EQ(r.violations.front().line, 19u);
   // Not renumbered after an insert: the move keeps the number of the new block.
-  const Result same = verify_klartext(kInput, replaced(kPosted, "7 L Z-1", "6 L Z-1"), Options{});
+  const Result same =
+      verify_klartext(kKlartextInput, replaced(kKlartextPosted, "7 L Z-1", "6 L Z-1"), Options{});
   EXPECT_TRUE(has(same, Code::klartext_numbering));
 }
 
 TEST(VerifyKlartext, ARemovedBlockAndABadSpeedAreRefused) {
-  EXPECT_TRUE(has(verify_klartext(kInput, replaced(kPosted, "3 FN 0: Q1=500\r\n", ""), Options{}),
+  EXPECT_TRUE(has(verify_klartext(kKlartextInput,
+                                  replaced(kKlartextPosted, "3 FN 0: Q1=500\r\n", ""), Options{}),
                   Code::klartext_block_changed));
-  EXPECT_TRUE(has(verify_klartext(kInput, replaced(kPosted, "12 END PGM T MM\r\n", ""), Options{}),
+  EXPECT_TRUE(has(verify_klartext(kKlartextInput,
+                                  replaced(kKlartextPosted, "12 END PGM T MM\r\n", ""), Options{}),
                   Code::klartext_block_added));
-  EXPECT_TRUE(has(verify_klartext(kInput, replaced(kPosted, "S3000", "S0"), Options{}),
-                  Code::klartext_bad_value));
+  EXPECT_TRUE(
+      has(verify_klartext(kKlartextInput, replaced(kKlartextPosted, "S3000", "S0"), Options{}),
+          Code::klartext_bad_value));
 }
 
 }  // namespace

@@ -115,7 +115,7 @@ class MeshModel final : public geometry::SurfaceModel {
     std::vector<Eigen::Vector3d> double_;
   };
 
-  // Builds the normals and the hierarchy (mesh_model.cpp).
+  // Builds the pseudo-normals and the hierarchy (mesh_builder.h).
   struct Builder;
   void test_slot(std::uint32_t slot, const Eigen::Vector3d& p, Hit& best) const;
   geometry::ModelContact make_contact(const Eigen::Vector3d& p, const Hit& hit) const;

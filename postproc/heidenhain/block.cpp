@@ -151,6 +151,7 @@ class BlockParser : public syntax::Lexer {
   // time) for a binary search.
   static const KeywordRule* find_keyword(std::string_view key) {
     static constexpr KeywordRule rules[] = {
+        {"APPR", BlockKind::approach, &thunk<&BlockParser::contour_link>},
         {"BEGIN", BlockKind::begin_pgm, &thunk<&BlockParser::program_block>},
         {"BLK", BlockKind::blk_form, &thunk<&BlockParser::blk_form>},
         {"C", BlockKind::circle, &thunk<&BlockParser::motion_words>},
@@ -161,6 +162,7 @@ class BlockParser : public syntax::Lexer {
         {"CR", BlockKind::circle_radius, &thunk<&BlockParser::motion_words>},
         {"CT", BlockKind::circle_tangent, &thunk<&BlockParser::motion_words>},
         {"CYCL", BlockKind::cycle_def, &thunk<&BlockParser::cycle>},
+        {"DEP", BlockKind::departure, &thunk<&BlockParser::contour_link>},
         {"END", BlockKind::end_pgm, &thunk<&BlockParser::program_block>},
         {"FN", BlockKind::fn, &thunk<&BlockParser::fn>},
         {"FUNCTION", BlockKind::function, &thunk<&BlockParser::function>},
@@ -274,6 +276,15 @@ class BlockParser : public syntax::Lexer {
     if (!next_is("CALL")) return false;
     set_keyword(BlockKind::cycle_call);
     if (next_is("POS")) b_.sub_keyword = "POS";
+    words();
+    return true;
+  }
+
+  // APPR LT, DEP LCT ...: the path's form as sub_keyword, then words.
+  bool contour_link(std::string_view /*key*/, BlockKind kind) {
+    set_keyword(kind);
+    skip_blanks();
+    b_.sub_keyword = read_letters();
     words();
     return true;
   }

@@ -40,6 +40,8 @@ enum class BlockKind : std::uint8_t {
   circle_radius,   // CR
   circle_tangent,  // CT
   circle_polar,    // CP
+  approach,        // APPR LT|LN|CT|LCT (PLT ... polar): the contour approach
+  departure,       // DEP LT|LN|CT|LCT: the contour departure
   rounding,        // RND
   chamfer,         // CHF
   fn,              // FN n: ... (Q parameter arithmetic and jumps)

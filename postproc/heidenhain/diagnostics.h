@@ -44,7 +44,8 @@ enum class Code : std::uint16_t {
   missing_feed = 3325,       // a feed move before any F
   unclosed_quote = 3326,     // a "name" without its closing quote
   // 3327: posting Klartext (the post job's, not the reader's)
-  bad_formula = 3328,  // a Q parameter formula that does not parse
+  bad_formula = 3328,         // a Q parameter formula that does not parse
+  approach_undefined = 3329,  // APPR/DEP whose path cannot be built as the TNC builds it
   // Warnings
   machine_cycle = 3340,        // a machine or probing cycle passed: assumed to move nothing
   m_code_passed = 3341,        // an M code that does not move the tool, passed

@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "postproc/gcode/interpreter.h"
+#include "postproc/heidenhain/approach.h"
 #include "postproc/heidenhain/block.h"
 #include "postproc/heidenhain/diagnostics.h"
 #include "postproc/program/events.h"
@@ -109,6 +110,19 @@ class Interpreter {
     bool corner_read = false;
   };
   struct Words;
+  // An APPR read, its path waiting for the contour element after it.
+  struct PendingApproach {
+    LinkInput in;
+    Eigen::Vector3d start = Eigen::Vector3d::Zero();  // PS
+    Eigen::Vector3d first = Eigen::Vector3d::Zero();  // PA
+    bool rapid_to_auxiliary = false;  // LT LN CT after an FMAX block: PS -> PH at rapid
+    bool rapid = false;               // APPR ... FMAX
+    double feed_before = 0;           // mm/min
+    double feed = 0;                  // the APPR's, mm/min
+    program::SourceRef source;
+    std::uint32_t line = 0, column = 0;
+  };
+  struct LinkWords;
 
   bool read_block();
   void execute(std::vector<program::Event>& events);
@@ -151,6 +165,11 @@ class Interpreter {
   void finish_corner(const Eigen::Vector3d& end, std::vector<program::Event>& events);
   bool corner_follows() const;
   void machine_retract(const Words& w, std::vector<program::Event>& events);
+  LinkWords link_words(bool departure) const;
+  void approach(std::vector<program::Event>& events);
+  void link_approach(std::vector<program::Event>& events, std::size_t before);
+  [[noreturn]] void fail_approach(const std::string& why) const;
+  void departure(std::vector<program::Event>& events);
   void fn(std::vector<program::Event>& events);
   void formula();
   void label_block();
@@ -197,6 +216,8 @@ class Interpreter {
   std::optional<StockBox> stock_;
   std::optional<WorkingPlane> plane_;
   std::optional<Held> held_;
+  std::optional<PendingApproach> approach_;
+  bool last_rapid_ = false;  // the last move was FMAX (APPR goes on at rapid)
   std::optional<std::uint64_t> repeat_from_;
   std::vector<std::pair<std::string, int>> tool_names_;
   std::vector<Frame> frames_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace vcpost::heidenhain {
 
@@ -32,6 +33,19 @@ class HoleWriter {
     at_ = end;
     ++moves_;
   }
+  // An arc in the plane about `centre` to `end` (a full turn when `end` is
+  // where the tool is in the plane).
+  void arc(const Eigen::Vector2d& centre, const Eigen::Vector3d& end, int rotation, double rate) {
+    if (rate != rate_) {
+      events_.emplace_back(program::SetFeedRate{rate, program::FeedMode::per_minute, h_.source});
+      rate_ = rate;
+    }
+    events_.emplace_back(program::ArcFeed{at_, end,
+                                          Eigen::Vector3d(centre.x(), centre.y(), at_.z()),
+                                          program::Plane::xy, rotation, h_.source});
+    at_ = end;
+    ++moves_;
+  }
   void dwell(double seconds) {
     if (seconds > 0) events_.emplace_back(program::Dwell{seconds, h_.source});
   }
@@ -44,6 +58,18 @@ class HoleWriter {
     if (h_.restore_feed > 0 && rate_ != 0 && rate_ != h_.restore_feed)
       events_.emplace_back(
           program::SetFeedRate{h_.restore_feed, program::FeedMode::per_minute, h_.source});
+  }
+  // Back to the hole's axis at the feed, at the same height.
+  void centre(double rate) {
+    const Eigen::Vector3d end(h_.start.x(), h_.start.y(), at_.z());
+    if ((end - at_).norm() < 1e-12) return;
+    if (rate != rate_) {
+      events_.emplace_back(program::SetFeedRate{rate, program::FeedMode::per_minute, h_.source});
+      rate_ = rate;
+    }
+    events_.emplace_back(program::StraightFeed{at_, end, h_.source});
+    at_ = end;
+    ++moves_;
   }
   double z() const { return at_.z(); }
   const Eigen::Vector3d& at() const { return at_; }
@@ -84,6 +110,30 @@ void pecks(const DrillHole& h, HoleWriter& w, double clear, double bottom) {
   }
 }
 
+// Cycle 208 as the TNC user's manual describes it: from the hole's centre a
+// semicircle onto the helix (assumed to go down half a pitch, as the helix
+// does over half a turn), the helix at Q334 per turn down to the depth, a
+// full circle there for what the plunge left, back to the centre.
+void bore_helix(const DrillHole& h, HoleWriter& w, double bottom) {
+  const Eigen::Vector2d c = w.at().head<2>();
+  const double r = h.helix_radius;
+  const int dir = h.helix_rotation;
+  double z = std::max(w.z() - h.pitch / 2, bottom);
+  w.arc(c + Eigen::Vector2d(r / 2, 0), Eigen::Vector3d(c.x() + r, c.y(), z), dir, h.feed);
+  while (z > bottom + 1e-9) {
+    if (z - h.pitch >= bottom - 1e-9) {
+      z -= h.pitch;
+      w.arc(c, Eigen::Vector3d(c.x() + r, c.y(), std::max(z, bottom)), dir, h.feed);
+      continue;
+    }
+    const double angle = dir * 2 * std::numbers::pi * (z - bottom) / h.pitch;
+    w.arc(c, Eigen::Vector3d(c.x() + r * std::cos(angle), c.y() + r * std::sin(angle), bottom), dir,
+          h.feed);
+    z = bottom;
+  }
+  w.arc(c, w.at(), dir, h.feed);
+}
+
 }  // namespace
 
 Eigen::Vector3d expand_hole(const DrillHole& h, std::vector<program::Event>& events) {
@@ -117,8 +167,13 @@ Eigen::Vector3d expand_hole(const DrillHole& h, std::vector<program::Event>& eve
       w.feed(clear, h.feed);
       w.spindle(h.spindle_ccw);
       break;
-    default:  // 208: along the hole's axis (see the header)
-      w.feed(bottom, h.feed);
+    default:  // 208
+      if (h.helix_radius > 0 && h.pitch > 0) {
+        bore_helix(h, w, bottom);
+        w.centre(h.feed);
+      } else {
+        w.feed(bottom, h.feed);  // along the hole's axis (see the header)
+      }
       w.traverse(clear);
       break;
   }

@@ -3,9 +3,10 @@
 // the straight moves, dwells and spindle changes they stand for, at one hole.
 // The sequences follow the TNC user's manual's descriptions of each cycle;
 // what the program cannot say is assumed and documented (docs/heidenhain.md):
-// the control's advanced stop distance (0.2 mm) and, for 208, the helix
-// (its radius needs the tool's, which is in the control's tool table): the
-// hole is taken along its axis at the plunging feed.
+// the control's advanced stop distance (0.2 mm). Cycle 208 mills a helix of
+// radius (Q335 - tool diameter) / 2 when the tool's radius is known (the
+// control's tool table: the caller gives it), else it goes along the
+// hole's axis.
 #pragma once
 
 #include <Eigen/Core>
@@ -33,6 +34,9 @@ struct DrillHole {
   double min_plunge = 0;                            // Q205 (203 205)
   double chip_retract = 0.2;                        // Q256 (203)
   bool spindle_ccw = false;                         // 207: the direction before the hole
+  double helix_radius = 0;                          // 208: (Q335 - D) / 2; 0: along the axis
+  double pitch = 0;                                 // 208: Q334, depth per turn
+  int helix_rotation = 1;                           // 208: +1 counterclockwise
   double restore_feed = 0;                          // the program's feed after the hole (0: none)
   program::SourceRef source;
 };

@@ -46,12 +46,14 @@ enum class Code : std::uint16_t {
   // 3327: posting Klartext (the post job's, not the reader's)
   bad_formula = 3328,         // a Q parameter formula that does not parse
   approach_undefined = 3329,  // APPR/DEP whose path cannot be built as the TNC builds it
+  fk_contour = 3330,          // FK free contour programming (FPOL, FL, FC ...)
   // Warnings
   machine_cycle = 3340,        // a machine or probing cycle passed: assumed to move nothing
   m_code_passed = 3341,        // an M code that does not move the tool, passed
   machine_coordinates = 3342,  // M91/M92/M140 taken as a retract to a safe height
   missing_end = 3343,          // the text ends without END PGM, M2 or M30
   function_passed = 3344,      // FUNCTION ..., FN 15/16 print and the like, passed
+  helix_unknown = 3345,        // cycle 208 without the tool's radius: along the axis
 };
 
 // "E3310" / "W3342" (the severity the table gives the code).

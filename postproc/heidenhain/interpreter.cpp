@@ -301,10 +301,18 @@ void Interpreter::execute(std::vector<Event>& events) {
     case BlockKind::comment:
       break;
   }
-  static constexpr std::string_view refused[] = {
-      "FL",      "FLT", "FC",  "FCT",    "FPOL", "FSELECT",  "SPL",     "SEL",     "CALL",
-      "DECLARE", "QS",  "SQL", "STRING", "TCH",  "POLARKIN", "SYSREAD", "PATTERN", "CONTOUR"};
+  static constexpr std::string_view refused[] = {"SPL",      "SEL",     "CALL",    "DECLARE",
+                                                 "QS",       "SQL",     "STRING",  "TCH",
+                                                 "POLARKIN", "SYSREAD", "PATTERN", "CONTOUR"};
   const std::string_view key = block_.keyword;
+  static constexpr std::string_view free_contour[] = {"FC",   "FCT",     "FL",  "FLT",
+                                                      "FPOL", "FSELECT", "FCP", "FLP"};
+  if (std::find(std::begin(free_contour), std::end(free_contour), key) != std::end(free_contour))
+    fail(Code::fk_contour, block_.keyword_begin,
+         std::string(key) +
+             ": FK free contour programming is not read (the control solves the contour from "
+             "its elements' relations); convert it to Klartext on the TNC (FK to Klartext "
+             "conversion) or have the CAM system write L, C, CR and CT");
   if (std::find(std::begin(refused), std::end(refused), key) != std::end(refused)) {
     fail(Code::unsupported_function, block_.keyword_begin,
          std::string(key) + " blocks are not read (" +
@@ -586,8 +594,12 @@ void Interpreter::tool_call(std::vector<Event>& events) {
       case name("DR2"):
       case name("DL2"):
         break;
-      case name("L"):
       case name("R"):
+        if (call) fail(Code::unexpected_word, w.begin, "TOOL CALL takes DL and DR, not L and R");
+        if (number && w.has_value)
+          defined_radii_.emplace_back(*number, length(value(w.value, w.begin)));
+        break;
+      case name("L"):
       case name("R2"):
         if (call) fail(Code::unexpected_word, w.begin, "TOOL CALL takes DL and DR, not L and R");
         break;  // TOOL DEF's length and radius  // oversizes: the path is the programmed one (see
@@ -599,6 +611,11 @@ void Interpreter::tool_call(std::vector<Event>& events) {
     }
   }
   const program::SourceRef src = source();
+  if (number && call) {
+    tool_radius_.reset();
+    for (const auto& [tool, radius] : defined_radii_)
+      if (tool == *number) tool_radius_ = radius;
+  }
   if (number) {
     events.emplace_back(program::SelectTool{*number, src});
     if (call) events.emplace_back(program::ChangeTool{*number, src});
@@ -1661,9 +1678,35 @@ void Interpreter::run_cycle(std::uint32_t at, std::vector<Event>& events) {
     if (pecks * 3 > static_cast<double>(limits_.max_cycle_moves))
       fail(Code::cycle_value, at, "the hole's pecks (Q201 / Q202) make more moves than the limit");
   }
+  if (cycle_ == 208) bore_milling(h, at);
   position_ = expand_hole(h, events);
   highest_z_ = std::max(highest_z_, position_.z());
   tangent_.reset();
+}
+
+// Cycle 208's helix: its radius from Q335 and the tool's radius (the
+// control's tool table; the caller gives it), its direction from Q351
+// (+1 climb, -1 up-cut) and the spindle's (climb inside a hole with M3 runs
+// counterclockwise).
+void Interpreter::bore_milling(DrillHole& h, std::uint32_t at) {
+  const double nominal = length(q_[335]);
+  const double pitch = length(q_[334]);
+  if (pitch <= 0) fail(Code::cycle_value, at, "Q334, the depth per helix turn, must be positive");
+  if (!tool_radius_) {
+    warn_once(Code::helix_unknown, 208, at,
+              "cycle 208 taken along the hole's axis: its helix needs the tool's radius, which is "
+              "in the control's tool table (give the tool with --tool or a CAM comment)");
+    return;
+  }
+  const double radius = nominal / 2 - *tool_radius_;
+  if (radius < -1e-9)
+    fail(Code::cycle_value, at, "cycle 208: the tool is wider than the nominal diameter Q335");
+  if (radius <= 1e-9) return;  // as wide as the hole: straight down, as the control bores it
+  if (std::abs(h.depth) / pitch + 4 > static_cast<double>(limits_.max_cycle_moves))
+    fail(Code::cycle_value, at, "the helix's turns (Q201 / Q334) make more moves than the limit");
+  h.helix_radius = radius;
+  h.pitch = pitch;
+  h.helix_rotation = (q_[351] < 0 ? -1 : 1) * (spindle_ccw_ ? -1 : 1);
 }
 
 // ---- Working plane and functions

@@ -34,6 +34,7 @@
 #include "postproc/gcode/interpreter.h"
 #include "postproc/heidenhain/approach.h"
 #include "postproc/heidenhain/block.h"
+#include "postproc/heidenhain/cycles.h"
 #include "postproc/heidenhain/diagnostics.h"
 #include "postproc/program/events.h"
 
@@ -85,6 +86,11 @@ class Interpreter {
   // The tool number a TOOL CALL "name" stands for in the events (names are
   // numbered 1, 2, ... in the order they are first called).
   std::optional<int> tool_number(std::string_view tool_name) const;
+  // The radius (mm) of the tool in the spindle, from the control's tool
+  // table, which the program does not hold: a caller that knows the tool
+  // (CAM comments, --tool) gives it; cycle 208's helix needs it. A TOOL
+  // CALL takes it back to what TOOL DEF gave that tool (R), or none.
+  void set_tool_radius(std::optional<double> radius) { tool_radius_ = radius; }
 
  private:
   struct Frame {
@@ -179,6 +185,7 @@ class Interpreter {
   void cycle_def(std::vector<program::Event>& events);
   void cycle_call(std::vector<program::Event>& events);
   void run_cycle(std::uint32_t at, std::vector<program::Event>& events);
+  void bore_milling(DrillHole& hole, std::uint32_t at);
   void plane_block(std::vector<program::Event>& events);
   void tilt(const Eigen::Matrix3d& rotation, std::vector<program::Event>& events);
   void function_block();
@@ -217,7 +224,10 @@ class Interpreter {
   std::optional<WorkingPlane> plane_;
   std::optional<Held> held_;
   std::optional<PendingApproach> approach_;
-  bool last_rapid_ = false;  // the last move was FMAX (APPR goes on at rapid)
+  bool last_rapid_ = false;
+  std::optional<double> tool_radius_;  // set_tool_radius, TOOL DEF R
+  std::vector<std::pair<int, double>>
+      defined_radii_;  // TOOL DEF n R  // the last move was FMAX (APPR goes on at rapid)
   std::optional<std::uint64_t> repeat_from_;
   std::vector<std::pair<std::string, int>> tool_names_;
   std::vector<Frame> frames_;

@@ -49,6 +49,9 @@ class EventSource {
       return true;
     }
     if (klartext_) {
+      // The tool's radius from its comments or --tool: cycle 208's helix needs it.
+      if (const tools::ToolEntry* tool = tools.current(); tool && tool->diameter > 0)
+        klartext_->set_tool_radius(tool->diameter / 2);
       if (!klartext_->next(out)) return false;
       const heidenhain::Block& block = klartext_->block();
       repeat_from_ = klartext_->repeat_from();

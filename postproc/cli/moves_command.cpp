@@ -10,6 +10,7 @@
 #include "postproc/cldata/cl_reader.h"
 #include "postproc/cli/commands.h"
 #include "postproc/cli/interrupt.h"
+#include "postproc/cli/klartext_programs.h"
 #include "postproc/cli/number_options.h"
 #include "postproc/cli/program_text.h"
 #include "postproc/gcode/interpreter.h"
@@ -74,6 +75,7 @@ template <class Options>
 void print_klartext_moves(const ProgramText& text, const std::string& name,
                           const program::TranscriptOptions& print, const Options& options) {
   heidenhain::Interpreter interpreter(text.view());
+  interpreter.set_program_loader(klartext_program_files(options.program));
   std::vector<program::Event> events;
   std::string out;
   std::uint64_t event_count = 0;

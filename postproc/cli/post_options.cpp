@@ -25,6 +25,7 @@
 #include "postproc/cli/distinct_files.h"
 #include "postproc/cli/held_output.h"
 #include "postproc/cli/interrupt.h"
+#include "postproc/cli/klartext_programs.h"
 #include "postproc/cli/log.h"
 #include "postproc/cli/model_placement.h"
 #include "postproc/cli/number_options.h"
@@ -94,6 +95,7 @@ tools::ToolChoices tool_choices(const PostArguments& args) {
 
 post::PostSettings settings_from(const PostArguments& args) {
   post::PostSettings settings;
+  settings.program_loader = klartext_program_files(args.program);
   settings.tools = tool_choices(args);
   if (!args.model.empty() && !(args.ap > 0)) throw CommandError("--ap: required");
   settings.point.ap = args.ap;

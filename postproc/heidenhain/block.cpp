@@ -176,6 +176,7 @@ class BlockParser : public syntax::Lexer {
         {"QL", BlockKind::formula, &thunk<&BlockParser::formula>},
         {"QR", BlockKind::formula, &thunk<&BlockParser::formula>},
         {"RND", BlockKind::rounding, &thunk<&BlockParser::motion_words>},
+        {"SEL", BlockKind::select_program, &thunk<&BlockParser::select>},
         {"STOP", BlockKind::misc, &thunk<&BlockParser::motion_words>},
         {"TOOL", BlockKind::tool_call, &thunk<&BlockParser::tool_block>},
     };
@@ -264,7 +265,28 @@ class BlockParser : public syntax::Lexer {
   }
 
   bool call(std::string_view key, BlockKind kind) {
+    if (next_is("PGM")) return program_path(BlockKind::call_program);
+    if (next_is("SELECTED")) {
+      set_keyword(BlockKind::call_selected);
+      words();
+      return true;
+    }
     return next_is("LBL") && label_block(key, kind);
+  }
+
+  bool select(std::string_view /*key*/, BlockKind kind) {
+    return next_is("PGM") && program_path(kind);
+  }
+
+  // CALL PGM / SEL PGM: the path up to a comment, without its quotes.
+  bool program_path(BlockKind kind) {
+    set_keyword(kind);
+    rest_as_sub_keyword();
+    std::string_view path = b_.sub_keyword;
+    if (path.size() >= 2 && path.front() == '"' && path.back() == '"')
+      path = path.substr(1, path.size() - 2);
+    b_.sub_keyword = path;
+    return true;
   }
 
   bool cycle(std::string_view /*key*/, BlockKind kind) {
@@ -570,8 +592,11 @@ std::uint64_t split_block(std::string_view text, std::uint64_t offset, std::uint
     eol = text.substr(text_end, pos - text_end);
     if (end - offset > kMaxBlockLength) {
       throw KlartextError(
-          Diagnostic{Code::line_too_long, line, 1,
-                     "block longer than " + std::to_string(kMaxBlockLength) + " bytes"});
+          Diagnostic{Code::line_too_long,
+                     line,
+                     1,
+                     "block longer than " + std::to_string(kMaxBlockLength) + " bytes",
+                     {}});
     }
     // A line whose last byte (blanks aside) is '~' goes on in the next one.
     std::uint64_t last = text_end;

@@ -48,6 +48,9 @@ enum class BlockKind : std::uint8_t {
   formula,         // Q1 = Q2 * 3 + SIN Q4 (the FORMULA key's assignment)
   label,           // LBL n | LBL "name"
   call_label,      // CALL LBL n [REP m]
+  call_program,    // CALL PGM path (sub_keyword: the path)
+  select_program,  // SEL PGM path
+  call_selected,   // CALL SELECTED
   cycle_def,       // CYCL DEF n[.m]
   cycle_call,      // CYCL CALL [POS ...]
   plane,           // PLANE ...

@@ -23,8 +23,9 @@ std::string code_id(Code code) {
 }
 
 std::string format(const Diagnostic& d, std::string_view file_name) {
-  return vcpost::format_diagnostic(code_id(d.code), {std::string(file_name), d.line, d.column},
-                                   d.message);
+  return vcpost::format_diagnostic(
+      code_id(d.code), {d.file.empty() ? std::string(file_name) : d.file, d.line, d.column},
+      d.message);
 }
 
 KlartextError::KlartextError(Diagnostic diagnostic)

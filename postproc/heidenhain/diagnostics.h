@@ -47,6 +47,8 @@ enum class Code : std::uint16_t {
   bad_formula = 3328,         // a Q parameter formula that does not parse
   approach_undefined = 3329,  // APPR/DEP whose path cannot be built as the TNC builds it
   fk_contour = 3330,          // FK free contour programming (FPOL, FL, FC ...)
+  program_not_found = 3331,   // CALL PGM / SEL PGM of a program that cannot be read
+  called_tool_call = 3332,    // a TOOL CALL in a called program, when posting the main one
   // Warnings
   machine_cycle = 3340,        // a machine or probing cycle passed: assumed to move nothing
   m_code_passed = 3341,        // an M code that does not move the tool, passed
@@ -65,10 +67,12 @@ struct Diagnostic {
   std::uint32_t line = 0;    // 1-based
   std::uint32_t column = 0;  // 1-based, bytes
   std::string message;
+  std::string file;  // a called program's name; "" for the program being posted
   Severity severity() const { return severity_of(code); }
 };
 
-// "<file>:<line>:<col>: error[E3310]: <message>"
+// "<file>:<line>:<col>: error[E3310]: <message>" (the diagnostic's own file,
+// a called program, when it has one)
 std::string format(const Diagnostic& diagnostic, std::string_view file_name);
 
 // Thrown for input the reader cannot follow soundly: the block is not

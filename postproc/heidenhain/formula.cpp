@@ -156,7 +156,7 @@ class FormulaParser {
 
 [[noreturn]] void fail_at(const Block& block, std::uint32_t at, std::string message) {
   const auto [line, column] = block.position(at);
-  throw KlartextError(Diagnostic{Code::math_domain, line, column, std::move(message)});
+  throw KlartextError(Diagnostic{Code::math_domain, line, column, std::move(message), {}});
 }
 
 }  // namespace

@@ -174,14 +174,14 @@ std::optional<int> Interpreter::tool_number(std::string_view tool_name) const {
 
 void Interpreter::fail(Code code, std::uint32_t at, std::string message) const {
   const auto [line, column] = block_.position(at);
-  throw KlartextError(Diagnostic{code, line, column, std::move(message)});
+  throw KlartextError(Diagnostic{code, line, column, std::move(message), program_name_});
 }
 
 void Interpreter::warn(Code code, std::uint32_t at, std::string message) {
   ++warning_count_;
   if (warnings_.size() >= limits_.max_warnings) return;
   const auto [line, column] = block_.position(at);
-  warnings_.push_back(Diagnostic{code, line, column, std::move(message)});
+  warnings_.push_back(Diagnostic{code, line, column, std::move(message), program_name_});
 }
 
 void Interpreter::warn_once(Code code, long key, std::uint32_t at, std::string message) {
@@ -192,13 +192,19 @@ void Interpreter::warn_once(Code code, long key, std::uint32_t at, std::string m
 }
 
 program::SourceRef Interpreter::source() const {
+  // A called program's events are its CALL PGM block's in the main program:
+  // a writer of the main program places and patches only its own blocks.
+  if (!programs_.empty()) return programs_.front().call_source;
   return program::SourceRef{block_.line, 1, block_.offset};
 }
 
 // ---- Reading blocks
 
 bool Interpreter::read_block() {
-  if (pos_ >= text_.size()) return false;
+  while (pos_ >= text_.size()) {
+    if (programs_.empty()) return false;
+    return_from_program();  // a called program without END PGM ends with its text
+  }
   pos_ = split_block(text_, pos_, line_ + 1, block_);
   line_ += block_.lines;
   lines_read_ += block_.lines;
@@ -231,6 +237,12 @@ bool Interpreter::next(std::vector<Event>& events) {
       if (ended_) return events.size() > before;
       return true;
     }
+  } catch (const KlartextError& e) {
+    ended_ = true;
+    if (program_name_.empty() || !e.diagnostic().file.empty()) throw;
+    Diagnostic d = e.diagnostic();  // a called program's: its name goes with it
+    d.file = program_name_;
+    throw KlartextError(std::move(d));
   } catch (...) {
     ended_ = true;
     throw;
@@ -255,6 +267,7 @@ void Interpreter::execute(std::vector<Event>& events) {
     case BlockKind::begin_pgm:
       fail(Code::unknown_block, block_.keyword_begin, "a second BEGIN PGM");
     case BlockKind::end_pgm:
+      if (!programs_.empty()) return return_from_program();
       ended_ = true;
       if (!end_event_) events.emplace_back(program::ProgramEnd{source()});
       end_event_ = true;
@@ -288,6 +301,16 @@ void Interpreter::execute(std::vector<Event>& events) {
       return label_block();
     case BlockKind::call_label:
       return call_label();
+    case BlockKind::call_program:
+      return call_program(block_.sub_keyword);
+    case BlockKind::select_program:
+      selected_ = std::string(block_.sub_keyword);
+      return;
+    case BlockKind::call_selected:
+      if (!selected_)
+        fail(Code::program_not_found, block_.keyword_begin,
+             "CALL SELECTED without a SEL PGM before it");
+      return call_program(*selected_);
     case BlockKind::cycle_def:
       return cycle_def(events);
     case BlockKind::cycle_call:
@@ -550,6 +573,11 @@ void Interpreter::blk_form() {
 
 void Interpreter::tool_call(std::vector<Event>& events) {
   const bool call = block_.kind == BlockKind::tool_call;
+  if (call && called_tool_calls_refused_ && !programs_.empty())
+    fail(Code::called_tool_call, block_.keyword_begin,
+         "TOOL CALL in the called program " + program_name_ +
+             ": vcpost post writes the calling program's blocks only and cannot change a speed "
+             "in another file; post the called program on its own");
   std::optional<int> number;
   if (const Word* t = block_.find(name("T"))) {
     const double n = value(t->value, t->begin);
@@ -783,6 +811,11 @@ void Interpreter::end_functions(const Words& w, std::vector<Event>& events) {
   }
   for (const Words::M& m : w.m) {
     if (m.action == MAction::end) {
+      if (!programs_.empty())
+        fail(Code::unsupported_function, m.at,
+             "M" + std::to_string(m.number) +
+                 " in a called program (the TNC manual: a called program must not contain M2 or "
+                 "M30; end it with END PGM)");
       events.emplace_back(program::SpindleOff{src});
       events.emplace_back(program::ProgramEnd{src});
       end_event_ = true;
@@ -1200,7 +1233,7 @@ void Interpreter::approach(std::vector<Event>& events) {
 
 void Interpreter::fail_approach(const std::string& why) const {
   const PendingApproach& a = *approach_;
-  throw KlartextError(Diagnostic{Code::approach_undefined, a.line, a.column, "APPR " + why});
+  throw KlartextError(Diagnostic{Code::approach_undefined, a.line, a.column, "APPR " + why, {}});
 }
 
 // The approach, once the contour element after it is known (its direction
@@ -1246,8 +1279,11 @@ void Interpreter::link_approach(std::vector<Event>& events, std::size_t before) 
     } else {
       if (a.feed_before <= 0 && !lct)
         throw KlartextError(
-            Diagnostic{Code::missing_feed, a.line, a.column,
-                       "APPR moves to its auxiliary point at the feed before it: none was given"});
+            Diagnostic{Code::missing_feed,
+                       a.line,
+                       a.column,
+                       "APPR moves to its auxiliary point at the feed before it: none was given",
+                       {}});
       link.emplace_back(program::StraightFeed{a.start, auxiliary, a.source});
     }
     if (!lct && a.feed != a.feed_before) set_feed(a.feed);
@@ -1439,7 +1475,7 @@ Interpreter::Place Interpreter::find_label(const Label& label, std::uint32_t at)
   const std::string key =
       label.number >= 0 ? std::to_string(label.number) : "\"" + std::string(label.name);
   const auto it = labels_->find(key);
-  if (it != labels_->end())
+  if (it != labels_->end() && programs_.empty())
     repeat_from_ = std::min(repeat_from_.value_or(it->second.offset), it->second.offset);
   if (it == labels_->end()) {
     fail(Code::unknown_label, at,
@@ -1468,7 +1504,7 @@ void Interpreter::jump_to(const Label& label, std::uint32_t at) {
 }
 
 void Interpreter::label_block() {
-  if (block_.label && block_.label->number != 0)
+  if (block_.label && block_.label->number != 0 && programs_.empty())
     repeat_from_ = std::min(repeat_from_.value_or(block_.offset), block_.offset);
   if (!block_.label || block_.label->number != 0 || frames_.empty()) return;
   Frame& top = frames_.back();
@@ -1532,6 +1568,64 @@ void Interpreter::call_label() {
   count_jump(label.begin);
   pos_ = p.offset;
   line_ = p.line - 1;
+}
+
+// ---- Called programs (CALL PGM, SEL PGM / CALL SELECTED)
+
+void Interpreter::call_program(std::string_view path) {
+  const std::uint32_t at = block_.keyword_begin;
+  if (path.empty()) fail(Code::missing_word, at, "CALL PGM needs the program's name or path");
+  if (!loader_)
+    fail(Code::program_not_found, at,
+         "CALL PGM " + std::string(path) +
+             ": the called program is read only where its folder is known (vcpost moves, "
+             "report and post read it beside the calling program)");
+  if (programs_.size() + frames_.size() >= limits_.max_call_depth)
+    fail(Code::call_depth, at,
+         "calls nested deeper than " + std::to_string(limits_.max_call_depth) +
+             " (a program that calls itself?)");
+  const std::optional<CalledProgram> called = loader_(path, program_name_);
+  if (!called)
+    fail(Code::program_not_found, at,
+         "CALL PGM " + std::string(path) +
+             ": no such program beside the calling one (a path relative to it, or TNC:\\ "
+             "taken from the main program's folder)");
+  Caller c;
+  c.text = text_;
+  c.pos = pos_;
+  c.line = line_;
+  c.name = program_name_;
+  c.labels = std::move(labels_);
+  c.frames = std::move(frames_);
+  c.inches = inches_;
+  c.local.assign(q_.begin() + kQ, q_.begin() + kQ + kQL);
+  c.call_source = programs_.empty() ? source() : programs_.front().call_source;
+  programs_.push_back(std::move(c));
+  count_jump(at);
+  // QL parameters are the program's own; Q and QR and the control's state
+  // (datum, tilt, tool, feed) go on.
+  std::fill(q_.begin() + kQ, q_.begin() + kQ + kQL, 0.0);
+  text_ = called->text;
+  program_name_ = called->name;
+  pos_ = 0;
+  line_ = 0;
+  labels_.reset();
+  frames_.clear();
+  begun_ = false;
+}
+
+void Interpreter::return_from_program() {
+  Caller c = std::move(programs_.back());
+  programs_.pop_back();
+  text_ = c.text;
+  pos_ = c.pos;
+  line_ = c.line;
+  program_name_ = std::move(c.name);
+  labels_ = std::move(c.labels);
+  frames_ = std::move(c.frames);
+  inches_ = c.inches;
+  std::copy(c.local.begin(), c.local.end(), q_.begin() + kQ);
+  begun_ = true;
 }
 
 // ---- Cycles

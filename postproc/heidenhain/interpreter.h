@@ -25,6 +25,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -36,6 +37,7 @@
 #include "postproc/heidenhain/block.h"
 #include "postproc/heidenhain/cycles.h"
 #include "postproc/heidenhain/diagnostics.h"
+#include "postproc/heidenhain/program_loader.h"
 #include "postproc/program/events.h"
 
 namespace vcpost::heidenhain {
@@ -91,6 +93,14 @@ class Interpreter {
   // (CAM comments, --tool) gives it; cycle 208's helix needs it. A TOOL
   // CALL takes it back to what TOOL DEF gave that tool (R), or none.
   void set_tool_radius(std::optional<double> radius) { tool_radius_ = radius; }
+  // CALL PGM reads the called program inline (its events as the CALL PGM
+  // block's); without a loader it is refused (E3331).
+  void set_program_loader(ProgramLoader loader) { loader_ = std::move(loader); }
+  // A writer of the main program only (vcpost post) cannot change a speed
+  // inside a called program: a TOOL CALL there is then refused (E3332).
+  void refuse_tool_calls_in_called_programs() { called_tool_calls_refused_ = true; }
+  // The program being read: "" for the main one, else a called one's name.
+  const std::string& program_name() const { return program_name_; }
 
  private:
   struct Frame {
@@ -129,6 +139,18 @@ class Interpreter {
     std::uint32_t line = 0, column = 0;
   };
   struct LinkWords;
+  // The calling program's place while a called one runs.
+  struct Caller {
+    std::string_view text;
+    std::uint64_t pos = 0;
+    std::uint32_t line = 0;
+    std::string name;
+    std::optional<std::unordered_map<std::string, Place>> labels;
+    std::vector<Frame> frames;
+    bool inches = false;
+    std::vector<double> local;  // its QL parameters
+    program::SourceRef call_source;
+  };
 
   bool read_block();
   void execute(std::vector<program::Event>& events);
@@ -180,6 +202,8 @@ class Interpreter {
   void formula();
   void label_block();
   void call_label();
+  void call_program(std::string_view path);
+  void return_from_program();
   void jump_to(const Label& label, std::uint32_t at);
   Place find_label(const Label& label, std::uint32_t at);
   void cycle_def(std::vector<program::Event>& events);
@@ -225,7 +249,12 @@ class Interpreter {
   std::optional<Held> held_;
   std::optional<PendingApproach> approach_;
   bool last_rapid_ = false;
-  std::optional<double> tool_radius_;  // set_tool_radius, TOOL DEF R
+  ProgramLoader loader_;
+  bool called_tool_calls_refused_ = false;
+  std::vector<Caller> programs_;         // the callers of the program being read
+  std::string program_name_;             // "" while the main program is read
+  std::optional<std::string> selected_;  // SEL PGM
+  std::optional<double> tool_radius_;    // set_tool_radius, TOOL DEF R
   std::vector<std::pair<int, double>>
       defined_radii_;  // TOOL DEF n R  // the last move was FMAX (APPR goes on at rapid)
   std::optional<std::uint64_t> repeat_from_;

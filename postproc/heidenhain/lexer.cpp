@@ -8,7 +8,7 @@ namespace vcpost::heidenhain::syntax {
 
 void Lexer::fail(Code code, std::size_t at, std::string message) const {
   const auto [line, column] = block_.position(static_cast<std::uint32_t>(at));
-  throw KlartextError(Diagnostic{code, line, column, std::move(message)});
+  throw KlartextError(Diagnostic{code, line, column, std::move(message), {}});
 }
 
 bool Lexer::read_long_number(std::size_t end, double& out) {

@@ -15,6 +15,7 @@ std::vector<pipeline::PathNormal> normals_from_path(std::string_view text,
                                                     const tools::ToolChoices& choices) {
   PathReader reader(text, file_name, kind, dialect, profile, settings.sample_spacing_mm, false,
                     choices, settings.point.ap);
+  reader.set_program_loader(settings.program_loader);
   std::vector<Eigen::Vector3d> points;  // the moves' ends
   std::vector<std::uint8_t> starts;
   // Each sample: the move end it is (fraction 1), or the one before it and

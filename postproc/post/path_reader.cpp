@@ -68,6 +68,11 @@ class EventSource {
     out.push_back(std::move(*event));
     return true;
   }
+  void set_program_loader(heidenhain::ProgramLoader loader) {
+    if (!klartext_) return;
+    klartext_->set_program_loader(std::move(loader));
+    klartext_->refuse_tool_calls_in_called_programs();
+  }
   // Bytes of the text read so far (CL; G-code reports its block offsets).
   std::uint64_t consumed() const { return buffer_.consumed(); }
   // G-code: the reader's warning on lines left unread after the closing '%'
@@ -298,6 +303,10 @@ PathReader::PathReader(std::string_view text, const std::string& file_name, Prog
                                      keep_events, tools, ap_mm)) {}
 
 PathReader::~PathReader() = default;
+
+void PathReader::set_program_loader(heidenhain::ProgramLoader loader) {
+  state_->source.set_program_loader(std::move(loader));
+}
 
 const std::vector<std::string>& PathReader::tool_notes() const {
   return state_->program_tools.notes();

@@ -14,6 +14,7 @@
 
 #include "machines/profile.h"
 #include "postproc/gcode/dialect.h"
+#include "postproc/heidenhain/program_loader.h"
 #include "postproc/pipeline/point_evaluator.h"
 #include "postproc/plan/spindle_plan.h"
 #include "postproc/post/post_job.h"
@@ -118,6 +119,9 @@ class PathReader {
              double sample_spacing_mm, bool keep_events, const tools::ToolChoices& tools,
              double ap_mm);
   ~PathReader();
+  // Klartext: how CALL PGM finds the called program; a TOOL CALL in one is
+  // refused (the writer changes the main program's blocks only).
+  void set_program_loader(heidenhain::ProgramLoader loader);
 
   // Fills `chunk` (cleared first) up to about `samples` path samples, whole
   // blocks only. False when the program has ended and nothing was read.

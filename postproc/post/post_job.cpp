@@ -439,6 +439,7 @@ std::optional<ToolSection> first_postable_section(std::string_view text,
   const tools::ToolChoices choices = tools_of(settings);
   PathReader reader(text, file_name, kind, dialect, profile, settings.sample_spacing_mm, false,
                     choices, settings.point.ap);
+  reader.set_program_loader(settings.program_loader);
   Chunk chunk;
   while (reader.read(chunk, chunk_samples)) {
     for (const ToolSection& section : chunk.sections) {
@@ -555,6 +556,7 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
   const tools::ToolChoices choices = tools_of(settings);
   PathReader reader(text, file_name, kind, dialect, profile, settings.sample_spacing_mm,
                     kind == ProgramKind::cldata, choices, settings.point.ap);
+  reader.set_program_loader(settings.program_loader);
   // The writer releases G-code text behind it; CL text is done with once read.
   const Finisher* decides = nullptr;  // set below: the writer asks it which sections it keeps
   ProgramWriter writer(

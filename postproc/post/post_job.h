@@ -15,6 +15,7 @@
 #include "geometry/model.h"
 #include "machines/profile.h"
 #include "postproc/gcode/dialect.h"
+#include "postproc/heidenhain/program_loader.h"
 #include "postproc/pipeline/point_evaluator.h"
 #include "postproc/plan/spindle_plan.h"
 #include "postproc/post/tool_sections.h"
@@ -62,6 +63,8 @@ struct PostSettings {
   std::optional<double> fz_mm;            // feed per tooth; default: the program's F at its S
   std::optional<int> teeth;               // tools without their own; default: the profile's
   int threads = 0;                        // worker threads; 0: one per core
+  // Klartext: how CALL PGM finds the called program (none: refused, E3331).
+  heidenhain::ProgramLoader program_loader;
   // No model: each sample's normal from the toolpath itself
   // (pipeline/path_normals.h); the model passed is not read. No gouge
   // check (every normal found touches), no cusp map.

@@ -8,6 +8,7 @@
 #include "postproc/heidenhain/approach.h"
 #include "postproc/heidenhain/cycles.h"
 #include "postproc/heidenhain/formula.h"
+#include "postproc/heidenhain/plane_forms.h"
 #include "postproc/program/working_frame.h"
 
 namespace vcpost::heidenhain {
@@ -1847,17 +1848,58 @@ void Interpreter::plane_block(std::vector<program::Event>& events) {
     // One incremental spatial angle about the tilted frame's own axis.
     rotation =
         tilt_.rotation * program::spatial_angles(get("SPA", 0), get("SPB", 0), get("SPC", 0));
+  } else if (p.kind == "PROJECTED") {
+    const auto r = projected_angles(get("PROPR", 0), get("PROMIN", 0), get("ROT", 0));
+    if (!r)
+      fail(Code::tilted_plane, block_.keyword_begin,
+           "PLANE PROJECTED: PROPR and PROMIN of +-90 both give no plane");
+    rotation = *r;
+  } else if (p.kind == "POINTS") {
+    rotation = points_plane(p);
+  } else if (p.kind == "AXIAL") {
+    // One rotary axis turned: the tool leans relative to the part as
+    // SPATIAL's angle about that axis (ISO 841 signs table axes so that
+    // head and table agree); two or more need the machine's kinematics.
+    int turned = 0;
+    for (const auto& [letter, angle] : p.values) {
+      if (std::abs(std::remainder(angle, 360.0)) < 1e-9) continue;
+      if (letter != "A" && letter != "B" && letter != "C") continue;
+      if (++turned > 1)
+        fail(Code::tilted_plane, block_.keyword_begin,
+             "PLANE AXIAL with more than one rotary axis turned: the plane depends on the "
+             "machine's kinematics (the order of its axes); write the tilt as PLANE SPATIAL");
+      rotation = program::turn_about(letter[0] - 'A', angle);
+    }
   } else {
     fail(Code::tilted_plane, block_.keyword_begin,
          "PLANE " + p.kind +
-             " is not read (it needs the machine's kinematics or projection angles): write the "
-             "tilt as PLANE SPATIAL, EULER or VECTOR");
+             " is not read: write the tilt as PLANE SPATIAL, PROJECTED, EULER, VECTOR, POINTS "
+             "or AXIAL");
   }
-  if (p.kind != "RESET" && p.kind != "AXIAL")
-    p.identity = rotation.isApprox(Eigen::Matrix3d::Identity(), 1e-12);
+  if (p.kind != "RESET") p.identity = rotation.isApprox(Eigen::Matrix3d::Identity(), 1e-12);
   plane_ = p;
   tilt(p.identity ? Eigen::Matrix3d::Identity() : rotation, events);
   q_[120] = q_[121] = q_[122] = 0;  // the rotary positions the plane asks for
+}
+
+// PLANE POINTS P1X P1Y P1Z P2X ... P3Z: the words P1, X+.. in turn.
+Eigen::Matrix3d Interpreter::points_plane(const WorkingPlane& p) const {
+  std::array<Eigen::Vector3d, 3> points{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+                                        Eigen::Vector3d::Zero()};
+  int point = -1;
+  for (const auto& [letter, v] : p.values) {
+    if (letter == "P" && v >= 1 && v <= 3 && v == std::floor(v)) {
+      point = static_cast<int>(v) - 1;
+    } else if (point >= 0 && letter.size() == 1 && letter[0] >= 'X' && letter[0] <= 'Z') {
+      points[static_cast<std::size_t>(point)][letter[0] - 'X'] = length(v);
+      point = -1;
+    }
+  }
+  const auto r = plane_through(points[0], points[1], points[2]);
+  if (!r)
+    fail(Code::tilted_plane, block_.keyword_begin,
+         "PLANE POINTS: the three points lie on one line (or P1 to P3 are missing)");
+  return *r;
 }
 
 // The working plane turned to `rotation` about the active datum (CYCL DEF

@@ -212,6 +212,7 @@ class Interpreter {
   void bore_milling(DrillHole& hole, std::uint32_t at);
   void plane_block(std::vector<program::Event>& events);
   void tilt(const Eigen::Matrix3d& rotation, std::vector<program::Event>& events);
+  Eigen::Matrix3d points_plane(const WorkingPlane& p) const;
   void function_block();
   void count_jump(std::uint32_t at);
 

@@ -372,9 +372,7 @@ TEST(KlartextInterpreter, IdentityPlanesAndTheirRotaryPositionsAreRead) {
   EXPECT_EQ(interpreter.plane()->kind, "RESET");
   // No tilt: no WorkingFrame, the events are as before.
   for (const Event& e : events) EXPECT_FALSE(std::holds_alternative<program::WorkingFrame>(e));
-  EXPECT_EQ(error_of("BEGIN PGM T MM\nPLANE PROJECTED PROPR+20 PROMIN+0 ROT+0 STAY\n"),
-            Code::tilted_plane);
-  EXPECT_EQ(error_of("BEGIN PGM T MM\nPLANE AXIAL B+30 STAY\n"), Code::tilted_plane);
+  EXPECT_EQ(error_of("BEGIN PGM T MM\nPLANE AXIAL A+30 C+45 STAY\n"), Code::tilted_plane);
   EXPECT_EQ(error_of("BEGIN PGM T MM\nM128\nL A+10 FMAX\n"), Code::tool_axis_change);
   EXPECT_EQ(error_of("BEGIN PGM T MM\nPLANE VECTOR BX1 BY0 BZ0 NX1 NY0 NZ0 STAY\n"),
             Code::bad_number);  // base vector along the normal

@@ -42,7 +42,7 @@ ProfileError::ProfileError(std::string code, std::string file, std::uint32_t lin
 namespace {
 
 // The schema: every table and its keys. Anything else in a file is an error.
-constexpr std::array<std::string_view, 40> kSchemaKeys = {
+constexpr std::array<std::string_view, 41> kSchemaKeys = {
     "machine.name",
     "machine.description",
     "machine.dialect",
@@ -83,6 +83,7 @@ constexpr std::array<std::string_view, 40> kSchemaKeys = {
     "output.coolant_flood",
     "output.coolant_off",
     "output.speed_word",
+    "output.tilted_plane",
 };
 
 // [output] keys only the G-code writer reads (see check_heidenhain).
@@ -336,6 +337,11 @@ constexpr std::array<std::pair<std::string_view, SInFeed>, 2> kSInFeed = {
 constexpr std::array<std::pair<std::string_view, ToolChange>, 2> kToolChanges = {
     {{"m6", ToolChange::m6}, {"manual", ToolChange::manual}}};
 
+constexpr std::array<std::pair<std::string_view, TiltedPlane>, 3> kTiltedPlanes = {
+    {{"setup", TiltedPlane::setup},
+     {"g68.2", TiltedPlane::g68_2},
+     {"plane-spatial", TiltedPlane::plane_spatial}}};
+
 constexpr std::array<std::pair<std::string_view, ToolChangeHome>, 3> kToolChangeHomes = {
     {{"none", ToolChangeHome::none}, {"g28", ToolChangeHome::g28}, {"g53", ToolChangeHome::g53}}};
 
@@ -366,6 +372,7 @@ std::string_view to_string(SChangeInMotion m) { return name_in(kInMotion, m); }
 std::string_view to_string(SInFeed f) { return name_in(kSInFeed, f); }
 std::string_view to_string(ToolChange t) { return name_in(kToolChanges, t); }
 std::string_view to_string(ToolChangeHome h) { return name_in(kToolChangeHomes, h); }
+std::string_view to_string(TiltedPlane t) { return name_in(kTiltedPlanes, t); }
 
 const SourceNote* MachineProfile::source_of(std::string_view key) const {
   const SourceNote* table_note = nullptr;
@@ -545,6 +552,20 @@ OutputSpec read_output(const Reader& r, OutputFormat format) {
   o.coolant_mist = coolant_code(r, "coolant_mist", o.coolant_mist, format);
   o.coolant_flood = coolant_code(r, "coolant_flood", o.coolant_flood, format);
   o.coolant_off = coolant_code(r, "coolant_off", o.coolant_off, format);
+  if (r.node("output", "tilted_plane", false)) {
+    o.tilted_plane = r.choice("output", "tilted_plane", kTiltedPlanes);
+    // Each language has its own way: PLANE in Klartext, G68.2 in G-code.
+    const bool klartext = format == OutputFormat::heidenhain;
+    if (o.tilted_plane == TiltedPlane::plane_spatial)
+      r.require(klartext, "output", "tilted_plane",
+                "\"plane-spatial\" is Klartext's; G-code output takes \"g68.2\" or \"setup\"",
+                codes::bad_choice);
+    if (o.tilted_plane == TiltedPlane::g68_2)
+      r.require(!klartext && format != OutputFormat::rs274ngc, "output", "tilted_plane",
+                "\"g68.2\" is Fanuc's (output_format \"fanuc\" or \"mazak\"); LinuxCNC has no "
+                "tilted plane (\"setup\"), Klartext takes \"plane-spatial\"",
+                codes::bad_choice);
+  }
   return o;
 }
 

@@ -98,6 +98,13 @@ enum class ToolChange { m6, manual };
 // g53 (G53 G0 Z0: Z to machine zero in one absolute block).
 enum class ToolChangeHome { none, g28, g53 };
 
+// How the written program tilts the working plane (3+2) of a tilted CL
+// frame (output.tilted_plane): setup, each frame a set-up of its own (a
+// plain 3-axis machine: its own work offset, a program stop and a comment
+// that says how to clamp the part); g68_2, Fanuc's G68.2 / G53.1 / G69;
+// plane_spatial, Klartext PLANE SPATIAL ... STAY / PLANE RESET STAY.
+enum class TiltedPlane { setup, g68_2, plane_spatial };
+
 // Options of the G-code written from CL data (see postproc/output/).
 struct OutputSpec {
   int program_number = 1000;           // O word, 1..9999
@@ -125,6 +132,7 @@ struct OutputSpec {
   // a stop of the path (an S word stops it). The spindle's start keeps its
   // S word, with M68 E<n> Q<rpm> (immediate) beside it. 0..63.
   std::optional<int> speed_output;
+  TiltedPlane tilted_plane = TiltedPlane::setup;
 };
 
 // Provenance of one key ("spindle.n_max_rpm", or a whole table "feed").
@@ -239,5 +247,6 @@ std::string_view to_string(SChangeInMotion m);
 std::string_view to_string(SInFeed f);
 std::string_view to_string(ToolChange t);
 std::string_view to_string(ToolChangeHome h);
+std::string_view to_string(TiltedPlane t);
 
 }  // namespace vcpost::machines

@@ -179,6 +179,7 @@ std::string profile_to_toml(const MachineProfile& p) {
   w.key("coolant_off", quote(o.coolant_off));
   w.key("speed_word",
         quote(o.speed_output ? "M67 E" + std::to_string(*o.speed_output) : std::string("S")));
+  w.key("tilted_plane", quote(to_string(o.tilted_plane)));
 
   if (!p.sources().empty()) {
     w.raw("\n[sources]\n");

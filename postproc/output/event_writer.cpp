@@ -37,12 +37,34 @@ std::unique_ptr<EventWriter> make_event_writer(std::ostream& out,
   return std::make_unique<GcodeWriter>(out, format_for(profile));
 }
 
-void refuse_tilted_frame(const program::WorkingFrame& frame) {
-  if (frame.is_identity()) return;
-  throw OutputError("E3204",
-                    "a tilted working plane (3+2) is not written in the output yet: post the "
-                    "tilted set-up's operations from a CL file of their own",
-                    frame.source);
+namespace {
+
+// A direction or point in the part's frame, "(1, 0, -0.7071)".
+std::string triple(const Eigen::Vector3d& v, int decimals) {
+  std::string text = "(";
+  for (int k = 0; k < 3; ++k) {
+    std::string n = fixed_number(v[k], decimals, {});
+    if (n.back() == '.') n.pop_back();
+    text += (k ? ", " : "") + n;
+  }
+  return text + ")";
+}
+
+}  // namespace
+
+std::string setup_instruction(int number, const program::WorkingFrame& frame,
+                              std::string_view offset) {
+  std::string text = "SET-UP " + std::to_string(number) + ": ";
+  if (frame.is_identity()) {
+    text += "CLAMP THE PART AS AT THE START (ITS +Z UP, ITS +X ALONG +X)";
+  } else {
+    text += "CLAMP THE PART WITH ITS DIRECTION " + triple(frame.rotation.col(2), 4) +
+            " UP THE SPINDLE (+Z) AND ITS " + triple(frame.rotation.col(0), 4) + " ALONG +X";
+  }
+  text += ", SET ";
+  text += offset;
+  text += " ON ITS POINT " + triple(frame.origin, 4) + ", THEN CYCLE START";
+  return text;
 }
 
 }  // namespace vcpost::output

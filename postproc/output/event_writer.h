@@ -32,9 +32,12 @@ class OutputError : public vcpost::Error {
 // E3203 for a value that is not finite or 1e9 or more in size.
 std::string fixed_number(double value, int decimals, const program::SourceRef& source);
 
-// Throws OutputError E3204 for a tilted frame (3+2): no writer writes one
-// yet; the identity (PLANE RESET, G69) passes.
-void refuse_tilted_frame(const program::WorkingFrame& frame);
+// The comment of a set-up (profile output.tilted_plane "setup"): how the
+// operator clamps the part so that the frame's z points up the spindle and
+// its x along the machine's +X, and which point of the part the work offset
+// `offset` ("G55", or a Klartext preset) is set on. `number` counts from 1.
+std::string setup_instruction(int number, const program::WorkingFrame& frame,
+                              std::string_view offset);
 
 class EventWriter {
  public:

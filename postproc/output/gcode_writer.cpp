@@ -1,11 +1,13 @@
 #include "postproc/output/gcode_writer.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <type_traits>
 
 #include "machines/profile.h"
+#include "postproc/program/working_frame.h"
 
 namespace vcpost::output {
 
@@ -61,6 +63,7 @@ Format format_for(const machines::MachineProfile& profile) {
   format.coolant_flood = o.coolant_flood;
   format.coolant_off = o.coolant_off;
   format.speed_output = o.speed_output;
+  format.tilted_plane = o.tilted_plane;
   switch (profile.output_format()) {
     case machines::OutputFormat::rs274ngc:
       // LinuxCNC reads `O1000` as a subroutine keyword and G4 X as no dwell
@@ -182,6 +185,7 @@ void GcodeWriter::end_program() {
     high_speed_on_ = false;
   }
   if (format_.geometry_compensation) block("G64");
+  if (format_.tilted_plane == machines::TiltedPlane::g68_2 && !frame_.is_identity()) block("G69");
   if (!words.empty()) block(words);
   block("M30");
   if (format_.percent_lines) out_ << '%' << format_.end_of_line;
@@ -424,7 +428,8 @@ void GcodeWriter::write(const Event& event) {
         } else if constexpr (std::is_same_v<T, SpindleOn>) {
           std::string words = take_pending();
           words += words.empty() ? "" : " ";
-          words += e.direction == SpindleDirection::clockwise ? "M3" : "M4";
+          spindle_ccw_ = e.direction != SpindleDirection::clockwise;
+          words += spindle_ccw_ ? "M4" : "M3";
           block(words);
           spindle_on_ = true;
         } else if constexpr (std::is_same_v<T, SpindleOff>) {
@@ -492,7 +497,7 @@ void GcodeWriter::write(const Event& event) {
         } else if constexpr (std::is_same_v<T, Message>) {
           comment(e.text);
         } else if constexpr (std::is_same_v<T, WorkingFrame>) {
-          refuse_tilted_frame(e);
+          working_frame(e);
         }
       },
       event);
@@ -503,6 +508,9 @@ void GcodeWriter::change_tool(const program::ChangeTool& change) {
   end_compensation();
   comp_wanted_ = CompensationSide::off;  // a tool change ends it
   tool_ = change.number;
+  // The tool changes untilted (the change position is the machine's).
+  const bool retilt = format_.tilted_plane == machines::TiltedPlane::g68_2 && !frame_.is_identity();
+  if (retilt) block("G69");
   if (high_speed_on_) {
     block("G05 P0");
     high_speed_on_ = false;
@@ -534,12 +542,84 @@ void GcodeWriter::change_tool(const program::ChangeTool& change) {
     block(words + t + " M6");
   }
   spindle_on_ = false;  // M6 stops the spindle too (LinuxCNC, Fanuc machine macros)
+  if (retilt) tilt(frame_);
   if (format_.tool_length_offset) pending_g43_ = change.number;
   if (format_.high_speed_mode) {
     block("G05 P2");
     high_speed_on_ = true;
   }
   motion_mode_ = -1;
+}
+
+void GcodeWriter::working_frame(const WorkingFrame& frame) {
+  if (frame.rotation == frame_.rotation && frame.origin == frame_.origin) return;
+  end_cycle();
+  end_compensation();
+  if (format_.tilted_plane == machines::TiltedPlane::setup) {
+    new_setup(frame);
+  } else {
+    if (!frame_.is_identity()) block("G69");
+    if (!frame.is_identity()) tilt(frame);
+  }
+  frame_ = frame;
+  // Every axis on the next move: the positions are in another frame.
+  last_x_.clear();
+  last_y_.clear();
+  last_z_.clear();
+  motion_mode_ = -1;
+  at_known_ = false;
+}
+
+// G68.2 X Y Z I J K, G53.1: the frame in effect from here.
+void GcodeWriter::tilt(const WorkingFrame& frame) {
+  const SourceRef& src = frame.source;
+  const Eigen::Vector3d angles = program::euler_zxz_of(frame.rotation);
+  std::string words = "G68.2";
+  std::string ignored;
+  append_axis(words, 'X', frame.origin.x(), ignored, true, src);
+  append_axis(words, 'Y', frame.origin.y(), ignored, true, src);
+  append_axis(words, 'Z', frame.origin.z(), ignored, true, src);
+  // Angles to 0.0001 deg (a Fanuc 30i's IS-C increment): 1 um at 570 mm.
+  for (int k = 0; k < 3; ++k) {
+    words += ' ';
+    words += static_cast<char>('I' + k);
+    words += fixed_number(angles[k], 4, src);
+  }
+  block(words);
+  block("G53.1");
+}
+
+void GcodeWriter::new_setup(const WorkingFrame& frame) {
+  const auto same = [&](const WorkingFrame& f) {
+    return f.rotation == frame.rotation && f.origin == frame.origin;
+  };
+  if (setups_.empty()) setups_.emplace_back();  // the untilted set-up, the first
+  auto at = std::find_if(setups_.begin(), setups_.end(), same);
+  const auto number = static_cast<int>(at - setups_.begin()) + 1;
+  const int offset = format_.work_offset + number - 1;
+  if (offset > 59) {
+    throw OutputError("E3205",
+                      "set-up " + std::to_string(number) + " needs work offset G" +
+                          std::to_string(offset) +
+                          ", beyond G59 (output.tilted_plane \"setup\", "
+                          "output.work_offset G" +
+                          std::to_string(format_.work_offset) + ")",
+                      frame.source);
+  }
+  if (at == setups_.end()) setups_.push_back(frame);
+  const bool turning = spindle_on_;
+  if (turning) {
+    block("M5");
+    spindle_on_ = false;
+  }
+  const std::string g = word('G', std::to_string(offset));
+  comment(setup_instruction(number, frame, g));
+  block("M0");
+  block(g);
+  if (turning) {
+    block(spindle_ccw_ ? "M4" : "M3");
+    spindle_on_ = true;
+  }
 }
 
 void GcodeWriter::finish() {

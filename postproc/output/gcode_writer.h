@@ -36,6 +36,19 @@
 // G83 where it pecks out to R), else G99 and a G0 up after the hole. A hole the cycle cannot make
 // exactly (tool above the return level, a plane other than G17) keeps its moves. G80 ends the cycle
 // before the next other move, tool change or M30.
+//
+// Tilted working planes (3+2: a WorkingFrame event, the motion after it in
+// the frame's coordinates), as Format::tilted_plane says: g68_2, G69 (a
+// tilt in effect ends first) and `G68.2 X Y Z I J K` (the frame's origin,
+// its Euler angles Z-X'-Z'') then G53.1 (the tool along the frame's z);
+// G69 back to the untilted frame. setup: each frame a set-up of its own,
+// numbered in the order met (the untilted frame the first): the spindle
+// stopped (M5) where it turns, a comment that says how to clamp the part
+// and on which point to set the set-up's work offset, M0, the offset
+// (work_offset + its number - 1, at most G59: E3205), the spindle started
+// again; the positions that follow are the frame's. Either way cutter
+// compensation and a canned cycle end before, and every axis is written
+// on the next move.
 #pragma once
 
 #include <Eigen/Core>
@@ -45,6 +58,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "machines/profile.h"
 #include "postproc/output/event_writer.h"
@@ -93,6 +107,7 @@ struct Format {
   // speed before a start as S<rpm> M68 E<n> Q<rpm> (immediate). None: S.
   std::optional<int> speed_output;
   bool comments = true;  // messages and notes as ( ) comments
+  machines::TiltedPlane tilted_plane = machines::TiltedPlane::setup;  // see the header
   std::string end_of_line = "\n";
 };
 
@@ -131,6 +146,9 @@ class GcodeWriter : public EventWriter {
   void end_compensation();
   void end_program();
   void change_tool(const program::ChangeTool& change);
+  void working_frame(const program::WorkingFrame& frame);
+  void new_setup(const program::WorkingFrame& frame);
+  void tilt(const program::WorkingFrame& frame);
 
   std::ostream& out_;
   Format format_;
@@ -152,7 +170,10 @@ class GcodeWriter : public EventWriter {
   std::string pending_;                      // S (speed output) words waiting for the next block
   std::optional<int> pending_g43_;           // tool number whose G43 is due
   bool high_speed_on_ = false;
-  bool spindle_on_ = false;  // M3/M4 written since the last M5 or tool change
+  bool spindle_on_ = false;                    // M3/M4 written since the last M5 or tool change
+  bool spindle_ccw_ = false;                   // the last M4 (else M3)
+  program::WorkingFrame frame_;                // the frame in effect (identity: untilted)
+  std::vector<program::WorkingFrame> setups_;  // setup: the frames met, the untilted first
   program::CompensationSide comp_wanted_ = program::CompensationSide::off;   // as CUTCOM says
   program::CompensationSide comp_written_ = program::CompensationSide::off;  // G40/G41/G42
   std::optional<int> comp_register_;              // CUTCOM's register, for D

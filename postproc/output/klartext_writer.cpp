@@ -1,5 +1,6 @@
 #include "postproc/output/klartext_writer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <numbers>
@@ -7,6 +8,7 @@
 #include <variant>
 
 #include "core/text.h"
+#include "postproc/program/working_frame.h"
 
 namespace vcpost::output {
 
@@ -46,6 +48,7 @@ KlartextFormat klartext_format_for(const machines::MachineProfile& profile) {
   format.coolant_mist = o.coolant_mist;
   format.coolant_flood = o.coolant_flood;
   format.coolant_off = o.coolant_off;
+  format.tilted_plane = o.tilted_plane;
   return format;
 }
 
@@ -143,7 +146,7 @@ void KlartextWriter::motion(const Event& event) {
   }
   const bool rapid = std::holds_alternative<StraightTraverse>(event);
   const Eigen::Vector3d end =
-      rapid ? std::get<StraightTraverse>(event).end : std::get<StraightFeed>(event).end;
+      written(rapid ? std::get<StraightTraverse>(event).end : std::get<StraightFeed>(event).end);
   std::string words = "L";
   axis(words, 'X', end.x(), last_x_, false, source);
   axis(words, 'Y', end.y(), last_y_, false, source);
@@ -159,7 +162,11 @@ void KlartextWriter::motion(const Event& event) {
   block(std::move(words));
 }
 
-void KlartextWriter::arc(const ArcFeed& a) {
+void KlartextWriter::arc(const ArcFeed& given) {
+  ArcFeed a = given;
+  a.start = written(a.start);
+  a.end = written(a.end);
+  a.centre = written(a.centre);
   const SourceRef& source = a.source;
   if (a.plane != Plane::xy) {
     throw OutputError("E3250",
@@ -217,6 +224,8 @@ void KlartextWriter::arc(const ArcFeed& a) {
 void KlartextWriter::end_program() {
   if (!started_) start();
   flush_tool_call();
+  if (format_.tilted_plane == machines::TiltedPlane::plane_spatial && !frame_.is_identity())
+    block("PLANE RESET STAY");
   block("M30");
   block("END PGM " + format_.program_name + " MM");
   ended_ = true;
@@ -246,9 +255,12 @@ void KlartextWriter::write(const Event& event) {
           }
         } else if constexpr (std::is_same_v<T, SpindleOn>) {
           flush_tool_call();
-          block(e.direction == SpindleDirection::clockwise ? "M3" : "M4");
+          spindle_on_ = true;
+          spindle_ccw_ = e.direction != SpindleDirection::clockwise;
+          block(spindle_ccw_ ? "M4" : "M3");
         } else if constexpr (std::is_same_v<T, SpindleOff>) {
           flush_tool_call();
+          spindle_on_ = false;
           block("M5");
         } else if constexpr (std::is_same_v<T, SelectTool>) {
           block("TOOL DEF " + std::to_string(e.number));
@@ -256,6 +268,7 @@ void KlartextWriter::write(const Event& event) {
           flush_tool_call();
           tool_call_ = ToolCall{e.number, std::nullopt};
           after_tool_call_ = true;
+          spindle_on_ = false;
         } else if constexpr (std::is_same_v<T, CutterCompensation>) {
           if (e.side != compensation_) {
             comment(e.side == CompensationSide::off ? "CUTCOM OFF"
@@ -282,13 +295,48 @@ void KlartextWriter::write(const Event& event) {
           if (!started_ && !stock_) stock_ = stock_size(e.text);
           comment(e.text);
         } else if constexpr (std::is_same_v<T, WorkingFrame>) {
-          refuse_tilted_frame(e);
+          working_frame(e);
         }
         // ToolLengthOffset (TOOL CALL applies the length), SelectPlane
         // (arcs carry their plane) and CannedCycle (the hole's moves
         // follow) write nothing.
       },
       event);
+}
+
+void KlartextWriter::working_frame(const WorkingFrame& frame) {
+  if (frame.rotation == frame_.rotation && frame.origin == frame_.origin) return;
+  flush_tool_call();
+  const SourceRef& src = frame.source;
+  if (format_.tilted_plane == machines::TiltedPlane::setup) {
+    if (setups_.empty()) setups_.emplace_back();  // the untilted set-up, the first
+    const auto at = std::find_if(setups_.begin(), setups_.end(), [&](const WorkingFrame& f) {
+      return f.rotation == frame.rotation && f.origin == frame.origin;
+    });
+    const auto number = static_cast<int>(at - setups_.begin()) + 1;
+    if (at == setups_.end()) setups_.push_back(frame);
+    const bool turning = spindle_on_;
+    if (turning) block("M5");
+    comment(setup_instruction(number, frame, "THE PRESET"));
+    block("M0");
+    if (turning) block(spindle_ccw_ ? "M4" : "M3");
+  } else if (frame.is_identity()) {
+    block("PLANE RESET STAY");
+    shift_.setZero();
+  } else {
+    const Eigen::Vector3d angles = program::spatial_angles_of(frame.rotation);
+    std::string words = "PLANE SPATIAL";
+    const char* names[] = {" SPA", " SPB", " SPC"};
+    for (int k = 0; k < 3; ++k) words += names[k] + signed_text(fixed_number(angles[k], 4, src));
+    block(words + " STAY");
+    block("L A+Q120 C+Q122 R0 FMAX");
+    shift_ = frame.rotation.transpose() * frame.origin;
+  }
+  frame_ = frame;
+  // Every axis on the next move: the positions are in another frame.
+  last_x_.clear();
+  last_y_.clear();
+  last_z_.clear();
 }
 
 void KlartextWriter::finish() {

@@ -21,6 +21,15 @@
 //       DR+/- (polar, incremental: how a TNC takes a helix)
 //   M3/M4/M5, the profile's coolant codes, M0/M1, CYCL DEF 9.0/9.1 for a
 //       dwell, `;` comments, M30 and END PGM <name> MM at the end.
+// Tilted working planes (3+2), as KlartextFormat::tilted_plane says:
+// plane_spatial, `PLANE SPATIAL SPA SPB SPC STAY` (the frame's spatial
+// angles) and `L A+Q120 C+Q122 R0 FMAX` (the rotary axes to the angles the
+// TNC has computed into Q120-Q122, as the shop's hyperMILL programs for the
+// DMU write it), `PLANE RESET STAY` back; the TNC turns about the datum,
+// so a point c of the frame is written at c + R^T t (t the frame's
+// origin). setup: each frame a set-up of its own as in the G-code writer
+// (M5, a comment naming the part's direction up and the preset's point, M0,
+// M3/M4 again), the points in the frame's coordinates.
 // Holes are written as their L moves (the CL reader expands each cycle into
 // them); CannedCycle events are skipped.
 //
@@ -51,6 +60,7 @@ struct KlartextFormat {
   std::string coolant_mist = "M7", coolant_flood = "M8", coolant_off = "M9";
   bool comments = true;  // messages and notes as `;` comments
   std::string end_of_line = "\n";
+  machines::TiltedPlane tilted_plane = machines::TiltedPlane::plane_spatial;
 };
 
 // The format a profile asks for ([output]: program_number names the program).
@@ -84,6 +94,9 @@ class KlartextWriter : public EventWriter {
   void axis(std::string& words, char letter, double value, std::string& last, bool force,
             const program::SourceRef& source) const;
   void end_program();
+  void working_frame(const program::WorkingFrame& frame);
+  // A point of the frame in effect as written (see the header).
+  Eigen::Vector3d written(const Eigen::Vector3d& p) const { return p + shift_; }
 
   std::ostream& out_;
   KlartextFormat format_;
@@ -107,6 +120,10 @@ class KlartextWriter : public EventWriter {
   std::string last_feed_;  // "F500" as last written on a feed block
   std::string last_x_, last_y_, last_z_;
   program::CompensationSide compensation_ = program::CompensationSide::off;
+  bool spindle_on_ = false, spindle_ccw_ = false;
+  program::WorkingFrame frame_;
+  Eigen::Vector3d shift_ = Eigen::Vector3d::Zero();  // R^T t under PLANE SPATIAL
+  std::vector<program::WorkingFrame> setups_;        // setup: the frames met
 };
 
 }  // namespace vcpost::output

@@ -333,6 +333,7 @@ verify::Options cl_output_verify_options(const machines::MachineProfile& profile
   options.output_feed_decimals = profile.output().feed_decimals;
   options.cutter_compensation = profile.output().cutter_compensation;
   options.manual_tool_change = profile.output().tool_change == machines::ToolChange::manual;
+  options.setups = profile.output().tilted_plane == machines::TiltedPlane::setup;
   return options;
 }
 

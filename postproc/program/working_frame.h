@@ -22,6 +22,13 @@ Eigen::Matrix3d spatial_angles(double a, double b, double c);
 // Heidenhain PLANE EULER EULPR EULNU EULROT; Fanuc G68.2 I J K.
 Eigen::Matrix3d euler_zxz(double first, double second, double third);
 
+// The angles that give `r` (a rotation), in degrees, in (-180, 180]:
+// euler_zxz's (first, second, third), the second in [0, 180], and
+// spatial_angles' (a, b, c), b in [-90, 90]. Where the first and third turn
+// share an axis (second 0 or 180; b +-90) the third (a) is 0.
+Eigen::Vector3d euler_zxz_of(const Eigen::Matrix3d& r);
+Eigen::Vector3d spatial_angles_of(const Eigen::Matrix3d& r);
+
 // The frame whose z is `normal` and whose x is `base` made perpendicular to
 // it (Heidenhain PLANE VECTOR BX BY BZ NX NY NZ: the control corrects the
 // base vector the same way). Empty when either is zero or they are parallel.

@@ -38,6 +38,7 @@ struct Item {
   Event event;
   std::uint32_t line = 0, column = 0;
   std::optional<SfValue> s, f;
+  program::WorkingFrame frame;  // in effect at the item (motions are in its coordinates)
 };
 
 std::string number(double v) {
@@ -66,21 +67,37 @@ std::optional<Item> side_change(const program::CutterCompensation& c, const prog
                                 program::CompensationSide& current) {
   if (c.side == current) return std::nullopt;
   current = c.side;
-  return Item{c, src.line, src.column, std::nullopt, std::nullopt};
+  return Item{c, src.line, src.column, std::nullopt, std::nullopt, {}};
 }
 
 class ClItems {
  public:
-  ClItems(std::string_view text, const std::string& name, bool compensation, bool manual_change)
+  ClItems(std::string_view text, const std::string& name, bool compensation, bool manual_change,
+          bool setups)
       : in_(std::string(text)),
         reader_(in_, name),
         compensation_(compensation),
-        manual_change_(manual_change) {}
+        manual_change_(manual_change),
+        setups_(setups) {}
 
   std::optional<Item> next() {
+    std::optional<Item> item = next_item();
+    if (item) item->frame = frame_;
+    return item;
+  }
+
+ private:
+  std::optional<Item> next_item() {
     if (spindle_stop_) {
       spindle_stop_ = false;
-      return Item{program::SpindleOff{last_}, last_.line, last_.column, std::nullopt, std::nullopt};
+      return Item{
+          program::SpindleOff{last_}, last_.line, last_.column, std::nullopt, std::nullopt, {}};
+    }
+    if (restart_) {
+      // A set-up's M0 between M5 and M3/M4: the spindle turns again.
+      const program::SpindleOn on{*restart_, last_};
+      restart_.reset();
+      return Item{on, last_.line, last_.column, std::nullopt, std::nullopt, {}};
     }
     if (queued_) return std::exchange(queued_, std::nullopt);
     using program::CompensationSide;
@@ -95,13 +112,33 @@ class ClItems {
         } else if (const auto* c = std::get_if<program::CutterCompensation>(&*event)) {
           if (!compensation_) continue;
           if (auto item = side_change(*c, src, side_)) return item;
+        } else if (const auto* w = std::get_if<program::WorkingFrame>(&*event)) {
+          if (w->rotation == frame_.rotation && w->origin == frame_.origin) continue;
+          frame_ = *w;
+          // The output ends the compensation before a new frame (G40) ...
+          if (side_ != CompensationSide::off) {
+            if (setups_ && spindle_on_) {
+              spindle_stop_ = true;
+              restart_ = direction_;
+            }
+            return side_change({CompensationSide::off, src}, src, side_);
+          }
+          // ... and a set-up stops the spindle for the operator (M5, M0, M3).
+          if (setups_ && spindle_on_) {
+            restart_ = direction_;
+            return Item{
+                program::SpindleOff{src}, src.line, src.column, std::nullopt, std::nullopt, {}};
+          }
         } else if (is_item(*event)) {
-          Item item{*event, src.line, src.column, std::move(s_), std::move(f_)};
+          Item item{*event, src.line, src.column, std::move(s_), std::move(f_), {}};
           s_.reset();
           f_.reset();
           const bool change = std::holds_alternative<program::ChangeTool>(*event);
           const bool spindle_was_on = spindle_on_;
-          if (std::holds_alternative<program::SpindleOn>(*event)) spindle_on_ = true;
+          if (const auto* on = std::get_if<program::SpindleOn>(&*event)) {
+            spindle_on_ = true;
+            direction_ = on->direction;
+          }
           if (change || std::holds_alternative<program::SpindleOff>(*event)) spindle_on_ = false;
           // The output ends the compensation before a tool change (G40)...
           if (change && side_ != CompensationSide::off) {
@@ -112,7 +149,8 @@ class ClItems {
           // ... and stops the spindle before a change by hand (M5 before M0).
           if (change && manual_change_ && spindle_was_on) {
             queued_ = std::move(item);
-            return Item{program::SpindleOff{src}, src.line, src.column, std::nullopt, std::nullopt};
+            return Item{
+                program::SpindleOff{src}, src.line, src.column, std::nullopt, std::nullopt, {}};
           }
           return item;
         }
@@ -129,6 +167,10 @@ class ClItems {
   cldata::ClReader reader_;
   bool compensation_;
   bool manual_change_;
+  bool setups_;
+  program::WorkingFrame frame_;
+  program::SpindleDirection direction_ = program::SpindleDirection::clockwise;
+  std::optional<program::SpindleDirection> restart_;  // due after a set-up's spindle stop
   bool spindle_on_ = false;
   bool spindle_stop_ = false;  // a spindle stop is due between the G40 and the change
   std::optional<SfValue> s_, f_;
@@ -157,15 +199,19 @@ class GcodeItems {
         // The move up to the tool change position (G28 / G53 Z only) is
         // the output's own: not compared when a tool change follows it.
         if (home_block_ && program::is_motion(e)) {
-          held_.push_back(Item{e, src.line, src.column, std::nullopt, std::nullopt});
+          held_.push_back(Item{e, src.line, src.column, std::nullopt, std::nullopt, frame_});
           holding_ = true;
           continue;
         }
         if (manual_change_ && tool_word_ && std::holds_alternative<program::ProgramStop>(e)) {
           held_.clear();
           holding_ = false;
-          return Item{program::ChangeTool{*tool_word_, src}, src.line, src.column, std::move(s_),
-                      std::nullopt};
+          return Item{program::ChangeTool{*tool_word_, src},
+                      src.line,
+                      src.column,
+                      std::move(s_),
+                      std::nullopt,
+                      frame_};
         }
         // Only S/F words: a modal change (G94 after G95) also sets a feed.
         if (std::holds_alternative<program::SetSpindleSpeed>(e)) {
@@ -175,6 +221,8 @@ class GcodeItems {
         } else if (const auto* c = std::get_if<program::CutterCompensation>(&e)) {
           if (!compensation_) continue;
           if (auto item = side_change(*c, src, side_)) return item;
+        } else if (const auto* w = std::get_if<program::WorkingFrame>(&e)) {
+          frame_ = *w;
         } else if (is_item(e)) {
           // A canned cycle's F belongs to its first feed move, where the CL
           // reader sets the cycle's feed, not to the rapids before it.
@@ -183,7 +231,7 @@ class GcodeItems {
                                            events_.end(), is_feed);
           std::optional<SfValue> f;
           if (!f_later) f = std::move(f_);
-          Item item{e, src.line, src.column, std::move(s_), std::move(f)};
+          Item item{e, src.line, src.column, std::move(s_), std::move(f), frame_};
           s_.reset();
           if (!f_later) f_.reset();
           if (std::holds_alternative<program::ChangeTool>(e)) held_.clear();
@@ -249,6 +297,7 @@ class GcodeItems {
   std::deque<Item> held_;         // home moves, until the next item shows a tool change
   bool holding_ = false;          // held_ may still be dropped
   program::CompensationSide side_ = program::CompensationSide::off;
+  program::WorkingFrame frame_;  // G68.2 in effect
   std::vector<Event> events_;
   std::size_t at_ = 0;
   bool done_ = false;
@@ -276,8 +325,10 @@ class KlartextItems {
                             {block.offset + w->begin, block.offset + w->end})
                       : std::nullopt,
                     f->rate, src);
+        } else if (const auto* w = std::get_if<program::WorkingFrame>(&e)) {
+          frame_ = *w;
         } else if (is_item(e)) {
-          Item item{e, src.line, src.column, std::move(s_), std::move(f_)};
+          Item item{e, src.line, src.column, std::move(s_), std::move(f_), frame_};
           s_.reset();
           f_.reset();
           return item;
@@ -316,6 +367,7 @@ class KlartextItems {
   }
 
   heidenhain::Interpreter interpreter_;
+  program::WorkingFrame frame_;  // PLANE in effect
   std::vector<Event> events_;
   std::size_t at_ = 0;
   bool done_ = false;
@@ -353,9 +405,10 @@ class Comparer {
   // The output writes an arc centre as its start plus I/J/K, each rounded
   // to the grid: the centre may be off by the end-point tolerance and half
   // a step more.
-  Comparer(double tolerance, double half_step, int feed_decimals, Result& result,
+  Comparer(double tolerance, double half_step, int feed_decimals, bool setups, Result& result,
            ChangeSink& changes, ViolationSink& sink)
-      : tolerance_(tolerance),
+      : setups_(setups),
+        tolerance_(tolerance),
         centre_tolerance_(tolerance + half_step),
         feed_step_(std::pow(10.0, -std::clamp(feed_decimals, 0, 9))),
         result_(result),
@@ -379,7 +432,12 @@ class Comparer {
           std::string("the output has a ") + kind_name(out.event) + " where the CL data have a " +
               kind_name(cl.event));
     }
-    const Eigen::Vector3d a = end_of(cl.event), b = end_of(out.event);
+    Eigen::Vector3d a = end_of(cl.event), b = end_of(out.event);
+    if (!setups_) {
+      compare_frames(cl, out);
+      a = cl.frame.to_program(a);
+      b = out.frame.to_program(b);
+    }
     const double off = (b - a).cwiseAbs().maxCoeff();
     if (!(off <= tolerance_ + 1e-9)) {
       add(Code::end_point, cl, out,
@@ -424,13 +482,38 @@ class Comparer {
               shown(cl.event));
       return;
     }
-    // The centre's axis component is not meaningful (events.h).
+    // The centre's axis component is not meaningful (events.h). Where the
+    // frames are compared, the centres on the part, along the CL frame's axes.
     Eigen::Vector3d d = (b.centre - a.centre).cwiseAbs();
+    if (!setups_)
+      d = (cl.frame.rotation.transpose() *
+           (out.frame.to_program(b.centre) - cl.frame.to_program(a.centre)))
+              .cwiseAbs();
     d[a.plane == program::Plane::xy ? 2 : a.plane == program::Plane::xz ? 1 : 0] = 0;
     if (!(d.maxCoeff() <= centre_tolerance_ + 1e-9))
       add(Code::arc_differs, cl, out,
           "arc centre " + point(b.centre) + " is " + number_um(d.maxCoeff()) + " from the CL's " +
               point(a.centre) + " (tolerance " + number_um(centre_tolerance_) + " per axis)");
+  }
+
+  // The output's frame turns the tool as the CL's does (the origins are
+  // checked through the points): named once per CL frame.
+  void compare_frames(const Item& cl, const Item& out) {
+    const bool same_cl_frame =
+        cl.frame.rotation == checked_.rotation && cl.frame.origin == checked_.origin;
+    if (same_cl_frame && reported_) return;
+    if (!same_cl_frame) reported_ = false;
+    checked_ = cl.frame;
+    // Angles written to 0.0001 deg turn an axis by up to 2e-6 rad.
+    constexpr double kTurnTolerance = 5e-6;
+    const double off = (out.frame.rotation - cl.frame.rotation).cwiseAbs().maxCoeff();
+    if (off <= kTurnTolerance) return;
+    reported_ = true;
+    const Eigen::Vector3d za = cl.frame.rotation.col(2), zb = out.frame.rotation.col(2);
+    const Eigen::Vector3d xa = cl.frame.rotation.col(0), xb = out.frame.rotation.col(0);
+    add(Code::frame_differs, cl, out,
+        "the output's working plane has the tool axis " + point(zb) + " and x " + point(xb) +
+            " where the CL's has " + point(za) + " and " + point(xa));
   }
 
   void changes(const Item& cl, const Item& out) {
@@ -446,6 +529,9 @@ class Comparer {
     }
   }
 
+  bool setups_;
+  program::WorkingFrame checked_;  // the CL frame last compared
+  bool reported_ = false;          // its difference named
   double tolerance_;
   double centre_tolerance_;
   double feed_step_;  // mm/min
@@ -477,9 +563,10 @@ Result compare_with_cl(std::string_view cl_text, std::string_view output, const 
   result.tolerance_mm = std::max(options.tolerance_mm, half_step);
   ViolationSink sink(options.max_violations);
   ChangeSink changes(result, options.on_change);
-  Comparer comparer(result.tolerance_mm, half_step, options.output_feed_decimals, result, changes,
-                    sink);
-  ClItems cl(cl_text, input_name, options.cutter_compensation, options.manual_tool_change);
+  Comparer comparer(result.tolerance_mm, half_step, options.output_feed_decimals, options.setups,
+                    result, changes, sink);
+  ClItems cl(cl_text, input_name, options.cutter_compensation, options.manual_tool_change,
+             options.setups);
   while (true) {
     const std::optional<Item> a = cl.next();
     OutputRead read = next_output();

@@ -35,6 +35,7 @@ const std::vector<CodeInfo>& code_table() {
                       Code::klartext_bad_value,
                       Code::klartext_event_differs,
                       Code::klartext_output_unreadable,
+                      Code::frame_differs,
                       Code::bad_speed_output_value,
                       Code::speed_output_unexpected}) {
       rows.push_back({code, vcpost::code_info(code_id(code)).summary});

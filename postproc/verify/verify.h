@@ -70,6 +70,7 @@ enum class Code : std::uint16_t {
   klartext_bad_value = 7140,          // a new S/F that is not a plain positive number
   klartext_event_differs = 7141,      // the programs mean other events (S/F aside)
   klartext_output_unreadable = 7142,  // the output does not read where the input does
+  frame_differs = 7143,               // CL: the output's tilted working plane is not the CL's
   // 715x: the speed on an analog output (Options::speed_output)
   bad_speed_output_value = 7150,   // M67/M68 E<n> Q<value> written with a Q not plain positive
   speed_output_unexpected = 7151,  // an M67/M68 speed word where verify knows no speed output
@@ -138,6 +139,13 @@ struct Options {
   // "manual"): M5 when the spindle turns, then T<n> M0, compared as the
   // CL's tool change (a spindle stop before it when the CL's spindle turns).
   bool manual_tool_change = false;
+  // CL only: the output writes each tilted frame as a set-up of its own
+  // (output.tilted_plane = "setup"): no frame of its own, the points in the
+  // frame's coordinates, the spindle stopped (M5) and started again around
+  // the set-up's M0. Else the output's frame at each motion must be the
+  // CL's (the same tool axis and turn) and the points are compared where
+  // they lie on the part.
+  bool setups = false;
   // The spindle speed on LinuxCNC's analog output n (the profile's
   // output.speed_word "M67 E<n>", also set in `dialect`): G-code in, an
   // output word M67/M68 E<n> Q<rpm> is a speed word, as the writer puts it

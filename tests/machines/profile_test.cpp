@@ -60,10 +60,10 @@ TEST(BuiltinProfiles, AllAreShippedAndLoad) {
     EXPECT_EQ(profile.name(), p.name);  // the file's name is the profile's
     EXPECT_EQ(profile.origin(), p.path);
   }
-  EXPECT_EQ(names,
-            (std::vector<std::string>{"fanuc-3axis-sar", "fanuc-3axis", "generic", "grbl",
-                                      "heidenhain-tnc640", "linuxcnc-3axis-m67", "linuxcnc-3axis",
-                                      "mazak-3axis", "sinumerik-840d"}));  // by file name
+  EXPECT_EQ(names, (std::vector<std::string>{
+                       "fanuc-3axis-sar", "fanuc-3axis", "fanuc-3plus2", "generic", "grbl",
+                       "heidenhain-tnc640-dmu", "heidenhain-tnc640", "linuxcnc-3axis-m67",
+                       "linuxcnc-3axis", "mazak-3axis", "sinumerik-840d"}));  // by file name
 }
 
 // Issue 17: how each control takes an S word in motion, and what a stop costs.

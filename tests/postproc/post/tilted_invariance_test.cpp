@@ -6,10 +6,14 @@
 // block within the profile's S resolution (1 rpm; the points differ only
 // by the round-off of turning in and out). Tilts: 30 deg
 // about X, 30 deg about Y, and a compound one (I20 J35 K-50, origin moved).
+// The same tilts written as Sinumerik CYCLE800 (axis by axis X Y Z, the
+// angles of the same rotation, about the same origin) post to the same S
+// too, read as Sinumerik on the same machine.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <memory>
+#include <numbers>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -19,6 +23,7 @@
 #include "geometry/analytic_surfaces.h"
 #include "geometry/rigid_transform.h"
 #include "machines/builtin.h"
+#include "postproc/gcode/dialect.h"
 #include "postproc/post/post_job.h"
 #include "postproc/program/working_frame.h"
 
@@ -41,7 +46,7 @@ std::vector<long> s_by_line(const std::string& program) {
   std::string line;
   while (std::getline(in, line)) {
     if (line.rfind("G68.2", 0) == 0 || line == "G53.1" || line == "G69" ||
-        line.find("(TO THE ORIGIN)") != std::string::npos)
+        line.rfind("CYCLE800(", 0) == 0 || line.find("TO THE ORIGIN") != std::string::npos)
       continue;
     std::smatch m;
     out.push_back(std::regex_search(line, m, s_word) ? std::stol(m[1].str()) : 0);
@@ -64,6 +69,32 @@ std::string tilted(const std::string& raster, const Tilt& t) {
   const std::string header = "G21 G90 G17 G94\n";
   out.insert(out.find(header) + header.size(), g.str());
   out.insert(out.find("M5\nM30"), "G69\n");
+  return out;
+}
+
+// The raster in the Sinumerik language (G71 for mm, `;` comments) tilted
+// by CYCLE800 with _MODE 57 (X, then the turned Y, then the twice-turned
+// Z): R = Rx(a) Ry(b) Rz(c), so b = asin R(0,2), a = atan2(-R(1,2),
+// R(2,2)), c = atan2(-R(0,1), R(0,0)); the reference point X0 Y0 Z0 is the
+// frame's origin.
+std::string sinumerik_tilted(const std::string& raster, const Tilt& t) {
+  const Eigen::Matrix3d r = program::euler_zxz(t.i, t.j, t.k);
+  const double deg = 180.0 / std::numbers::pi;
+  const double b = std::asin(r(0, 2)) * deg, a = std::atan2(-r(1, 2), r(2, 2)) * deg,
+               c = std::atan2(-r(0, 1), r(0, 0)) * deg;
+  std::ostringstream g;
+  g.setf(std::ios::fixed);
+  g.precision(9);
+  g << "G0 X" << t.origin.x() << " Y" << t.origin.y() << " Z" << t.origin.z()
+    << " ; TO THE ORIGIN\n";
+  g << "CYCLE800(0,\"TC1\",0,57," << t.origin.x() << "," << t.origin.y() << "," << t.origin.z()
+    << "," << a << "," << b << "," << c << ",0,0,0,1)\n";
+  std::string out = raster;
+  out.replace(out.find("(dome raster)"), 13, "; dome raster");
+  out.replace(out.find("G21 "), 4, "G71 ");
+  const std::string header = "G71 G90 G17 G94\n";
+  out.insert(out.find(header) + header.size(), g.str());
+  out.insert(out.find("M5\nM30"), "CYCLE800()\n");
   return out;
 }
 
@@ -101,6 +132,16 @@ void expect_same_s(const std::string& raster, const geometry::Tool& tool) {
       EXPECT_LE(std::abs(got[line] - expected[line]), 1) << "line " << line + 1;
     EXPECT_EQ(summary.touching, flat.touching);
     EXPECT_EQ(summary.gouging, flat.gouging);
+    // CYCLE800 on the same machine (its program read as Sinumerik).
+    PostSettings sinumerik = settings;
+    sinumerik.dialect = gcode::sinumerik_dialect();
+    PostSummary swivelled;
+    const std::vector<long> by_cycle =
+        s_by_line(post(sinumerik_tilted(raster, t), turned, sinumerik, swivelled));
+    ASSERT_EQ(by_cycle.size(), expected.size());
+    for (std::size_t line = 0; line < by_cycle.size(); ++line)
+      EXPECT_LE(std::abs(by_cycle[line] - expected[line]), 1) << "CYCLE800, line " << line + 1;
+    EXPECT_EQ(swivelled.touching, flat.touching);
   }
 }
 
@@ -159,10 +200,9 @@ std::vector<long> tool_call_s(const std::string& program) {
   return out;
 }
 
-TEST(TiltedInvariance, PlaneSpatialPostsTheSameAsTheUntiltedKlartext) {
-  const std::string raster = testing::dome_raster(1.0, 1.0, 8000);
+void expect_plane_spatial_same(const std::string& raster, const geometry::Tool& tool) {
   PostSettings settings;
-  settings.point.tool = geometry::Tool::ball(10);
+  settings.point.tool = tool;
   settings.point.ap = 0.3;
   settings.point.vc = 120;
   settings.sample_spacing_mm = 2;
@@ -196,6 +236,15 @@ TEST(TiltedInvariance, PlaneSpatialPostsTheSameAsTheUntiltedKlartext) {
   EXPECT_NEAR(summary.after->max, flat.after->max, 1e-9 * flat.after->max);
   EXPECT_NEAR(summary.before->min, flat.before->min, 1e-9 * flat.before->min);
   EXPECT_NEAR(summary.before->mean, flat.before->mean, 1e-9 * flat.before->mean);
+}
+
+TEST(TiltedInvariance, PlaneSpatialPostsTheSameAsTheUntiltedKlartext) {
+  expect_plane_spatial_same(testing::dome_raster(1.0, 1.0, 8000), geometry::Tool::ball(10));
+}
+
+TEST(TiltedInvariance, PlaneSpatialBullNosePostsTheSameAsTheUntiltedKlartext) {
+  expect_plane_spatial_same(testing::bull_nose_dome_raster(1.25, 1.0, 8000, 10, 2),
+                            geometry::Tool::bull_nose(10, 2));
 }
 
 }  // namespace

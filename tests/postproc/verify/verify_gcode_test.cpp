@@ -349,7 +349,7 @@ TEST(VerifyGcode, EveryCodeIsInTheTable) {
     EXPECT_EQ(code_id(entry.code).size(), 5u);
     EXPECT_EQ(code_id(entry.code)[0], 'E');
   }
-  EXPECT_EQ(code_table().size(), 28u);
+  EXPECT_EQ(code_table().size(), 29u);
   EXPECT_EQ(code_id(Code::sf_removed), "E7109");
 }
 

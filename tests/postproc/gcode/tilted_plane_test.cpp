@@ -15,7 +15,7 @@ namespace vcpost::gcode {
 namespace {
 
 std::vector<program::Event> all_events(std::string_view text, Dialect dialect = fanuc_dialect()) {
-  Interpreter interpreter(text, std::move(dialect));
+  Interpreter interpreter(text, dialect);
   std::vector<program::Event> events;
   while (interpreter.next(events)) {
   }
@@ -31,7 +31,7 @@ struct Reading {
 Reading read(std::string_view text, Dialect dialect = fanuc_dialect()) {
   Reading r;
   program::WorkingFrame frame;
-  for (const auto& e : all_events(text, std::move(dialect))) {
+  for (const auto& e : all_events(text, dialect)) {
     if (const auto* f = std::get_if<program::WorkingFrame>(&e)) {
       frame = *f;
       r.frames.push_back(*f);

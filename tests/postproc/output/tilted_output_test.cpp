@@ -84,7 +84,7 @@ Ends cl_ends(const std::string& cl) {
 }
 
 Ends gcode_ends(const std::string& text, gcode::Dialect dialect) {
-  gcode::Interpreter interpreter(text, std::move(dialect));
+  gcode::Interpreter interpreter(text, dialect);
   Ends ends;
   WorkingFrame frame;
   std::vector<Event> events;

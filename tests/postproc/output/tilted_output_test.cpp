@@ -7,6 +7,7 @@
 // rounding to 0.0001 deg (1.7e-4 mm at 100 mm).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -311,3 +312,46 @@ TEST(TiltedOutput, AnglesOfARotation) {
 
 }  // namespace
 }  // namespace vcpost::output
+
+namespace vcpost::verify {
+namespace {
+
+// G-code in, G-code out: the tilt blocks are the input's (a post changes
+// only S and F); an output whose G68.2 or CYCLE800 turns by one degree more
+// is named: a changed word (E7103) or event (E7121); verify's lexer takes
+// a Sinumerik call's ( ) as a comment, so CYCLE800's changed argument is
+// named as a changed comment (E7107).
+TEST(TiltedVerify, AnotherTiltInTheOutputIsNamed) {
+  const std::string fanuc =
+      "G21 G90 G17\nS5000 M3\nG0 X0 Y0 Z100.\nG68.2 X10. Y0 Z0 I0 J30. K0\nG53.1\n"
+      "G0 X5. Y5. Z20.\nG1 Z0 F500\nG69\nM30\n";
+  const std::string sinumerik =
+      "G71 G90 G17\nS5000 M3\nG0 X0 Y0 Z100\nCYCLE800(1,\"TC1\",0,57,10,0,0,30,0,0,0,0,0,1)\n"
+      "G0 X5 Y5 Z20\nG1 Z0 F500\nCYCLE800()\nM30\n";
+  struct Case {
+    std::string text, from, to;
+    gcode::Dialect dialect;
+  };
+  for (const Case& c :
+       {Case{fanuc, "J30.", "J31.", gcode::fanuc_dialect()},
+        Case{sinumerik, "57,10,0,0,30", "57,10,0,0,31", gcode::sinumerik_dialect()}}) {
+    SCOPED_TRACE(c.text);
+    Options options;
+    options.dialect = c.dialect;
+    std::string faster = c.text;
+    faster.replace(faster.find("S5000"), 5, "S5200");
+    EXPECT_TRUE(verify_gcode(c.text, faster, options).ok());
+    std::string turned = c.text;
+    turned.replace(turned.find(c.from), c.from.size(), c.to);
+    const Result r = verify_gcode(c.text, turned, options);
+    ASSERT_FALSE(r.ok());
+    const bool named = std::any_of(r.violations.begin(), r.violations.end(), [](const auto& v) {
+      return v.code == Code::event_differs || v.code == Code::word_changed ||
+             v.code == Code::comment_changed;
+    });
+    EXPECT_TRUE(named) << format(r.violations.front(), "out");
+  }
+}
+
+}  // namespace
+}  // namespace vcpost::verify

@@ -137,7 +137,7 @@ class BlockParser : public syntax::Lexer {
   // own ("CALL" without LBL): the block is then BlockKind::other.
   using KeywordParser = bool (*)(BlockParser& parser, std::string_view key, BlockKind kind);
   struct KeywordRule {
-    std::string_view word;
+    Name word;  // name(): the letters packed, compared as one number
     BlockKind kind;
     KeywordParser parse;
   };
@@ -147,38 +147,41 @@ class BlockParser : public syntax::Lexer {
     return (parser.*parse)(key, kind);
   }
 
-  // The first word of every block vcpost reads, sorted (checked at compile
-  // time) for a binary search.
-  static const KeywordRule* find_keyword(std::string_view key) {
+  // The first word of every block vcpost reads, sorted by its packed name
+  // (checked at compile time) for a binary search on numbers: this runs
+  // for every block.
+  static const KeywordRule* find_keyword(std::string_view letters) {
+    if (letters.size() > 8) return nullptr;
+    const Name key = name(letters);
     static constexpr KeywordRule rules[] = {
-        {"APPR", BlockKind::approach, &thunk<&BlockParser::contour_link>},
-        {"BEGIN", BlockKind::begin_pgm, &thunk<&BlockParser::program_block>},
-        {"BLK", BlockKind::blk_form, &thunk<&BlockParser::blk_form>},
-        {"C", BlockKind::circle, &thunk<&BlockParser::motion_words>},
-        {"CALL", BlockKind::call_label, &thunk<&BlockParser::call>},
-        {"CC", BlockKind::centre, &thunk<&BlockParser::motion_words>},
-        {"CHF", BlockKind::chamfer, &thunk<&BlockParser::chamfer>},
-        {"CP", BlockKind::circle_polar, &thunk<&BlockParser::motion_words>},
-        {"CR", BlockKind::circle_radius, &thunk<&BlockParser::motion_words>},
-        {"CT", BlockKind::circle_tangent, &thunk<&BlockParser::motion_words>},
-        {"CYCL", BlockKind::cycle_def, &thunk<&BlockParser::cycle>},
-        {"DEP", BlockKind::departure, &thunk<&BlockParser::contour_link>},
-        {"END", BlockKind::end_pgm, &thunk<&BlockParser::program_block>},
-        {"FN", BlockKind::fn, &thunk<&BlockParser::fn>},
-        {"FUNCTION", BlockKind::function, &thunk<&BlockParser::function>},
-        {"L", BlockKind::line, &thunk<&BlockParser::motion_words>},
-        {"LBL", BlockKind::label, &thunk<&BlockParser::label_block>},
-        {"LN", BlockKind::line_normal, &thunk<&BlockParser::motion_words>},
-        {"LP", BlockKind::line_polar, &thunk<&BlockParser::motion_words>},
-        {"M", BlockKind::misc, &thunk<&BlockParser::m_block>},
-        {"PLANE", BlockKind::plane, &thunk<&BlockParser::plane>},
-        {"Q", BlockKind::formula, &thunk<&BlockParser::formula>},
-        {"QL", BlockKind::formula, &thunk<&BlockParser::formula>},
-        {"QR", BlockKind::formula, &thunk<&BlockParser::formula>},
-        {"RND", BlockKind::rounding, &thunk<&BlockParser::motion_words>},
-        {"SEL", BlockKind::select_program, &thunk<&BlockParser::select>},
-        {"STOP", BlockKind::misc, &thunk<&BlockParser::motion_words>},
-        {"TOOL", BlockKind::tool_call, &thunk<&BlockParser::tool_block>},
+        {name("C"), BlockKind::circle, &thunk<&BlockParser::motion_words>},
+        {name("L"), BlockKind::line, &thunk<&BlockParser::motion_words>},
+        {name("M"), BlockKind::misc, &thunk<&BlockParser::m_block>},
+        {name("Q"), BlockKind::formula, &thunk<&BlockParser::formula>},
+        {name("CC"), BlockKind::centre, &thunk<&BlockParser::motion_words>},
+        {name("CP"), BlockKind::circle_polar, &thunk<&BlockParser::motion_words>},
+        {name("CR"), BlockKind::circle_radius, &thunk<&BlockParser::motion_words>},
+        {name("CT"), BlockKind::circle_tangent, &thunk<&BlockParser::motion_words>},
+        {name("FN"), BlockKind::fn, &thunk<&BlockParser::fn>},
+        {name("LN"), BlockKind::line_normal, &thunk<&BlockParser::motion_words>},
+        {name("LP"), BlockKind::line_polar, &thunk<&BlockParser::motion_words>},
+        {name("QL"), BlockKind::formula, &thunk<&BlockParser::formula>},
+        {name("QR"), BlockKind::formula, &thunk<&BlockParser::formula>},
+        {name("BLK"), BlockKind::blk_form, &thunk<&BlockParser::blk_form>},
+        {name("CHF"), BlockKind::chamfer, &thunk<&BlockParser::chamfer>},
+        {name("DEP"), BlockKind::departure, &thunk<&BlockParser::contour_link>},
+        {name("END"), BlockKind::end_pgm, &thunk<&BlockParser::program_block>},
+        {name("LBL"), BlockKind::label, &thunk<&BlockParser::label_block>},
+        {name("RND"), BlockKind::rounding, &thunk<&BlockParser::motion_words>},
+        {name("SEL"), BlockKind::select_program, &thunk<&BlockParser::select>},
+        {name("APPR"), BlockKind::approach, &thunk<&BlockParser::contour_link>},
+        {name("CALL"), BlockKind::call_label, &thunk<&BlockParser::call>},
+        {name("CYCL"), BlockKind::cycle_def, &thunk<&BlockParser::cycle>},
+        {name("STOP"), BlockKind::misc, &thunk<&BlockParser::motion_words>},
+        {name("TOOL"), BlockKind::tool_call, &thunk<&BlockParser::tool_block>},
+        {name("BEGIN"), BlockKind::begin_pgm, &thunk<&BlockParser::program_block>},
+        {name("PLANE"), BlockKind::plane, &thunk<&BlockParser::plane>},
+        {name("FUNCTION"), BlockKind::function, &thunk<&BlockParser::function>},
     };
     static_assert(std::ranges::is_sorted(rules, {}, &KeywordRule::word));
     const auto* it = std::ranges::lower_bound(rules, key, {}, &KeywordRule::word);

@@ -189,6 +189,11 @@ class BlockParser : public syntax::Lexer {
   }
 
   void keyword(std::string_view key) {
+    // L, nearly every block of a CAM program, without the search.
+    if (key == "L") {
+      motion_words(key, BlockKind::line);
+      return;
+    }
     if (const KeywordRule* rule = find_keyword(key)) {
       if (rule->parse(*this, key, rule->kind)) return;
     }

@@ -70,10 +70,10 @@ inline constexpr std::array kGCodes{
     CodeEntry{20, Gr::motion, Su::followed},
     CodeEntry{30, Gr::motion, Su::followed},
     CodeEntry{40, Gr::non_modal, Su::followed},
-    CodeEntry{50, Gr::motion, Su::followed},  // cubic spline (XY plane)
-    CodeEntry{51, Gr::motion, Su::followed},  // quadratic spline (XY plane)
-    CodeEntry{52, Gr::motion, Su::refused, "is a NURBS move"},
-    CodeEntry{53, Gr::motion, Su::refused, "is a NURBS move"},
+    CodeEntry{50, Gr::motion, Su::followed},     // cubic spline (XY plane)
+    CodeEntry{51, Gr::motion, Su::followed},     // quadratic spline (XY plane)
+    CodeEntry{52, Gr::motion, Su::followed},     // NURBS control points (nurbs.h)
+    CodeEntry{53, Gr::non_modal, Su::followed},  // NURBS end: the tool follows the curve
     CodeEntry{70, Gr::lathe_mode, Su::refused, "makes X a diameter (lathe mode)"},
     CodeEntry{80, Gr::lathe_mode, Su::ignored},
     CodeEntry{100, Gr::non_modal, Su::followed},
@@ -161,6 +161,8 @@ inline constexpr std::array kGCodes{
 inline constexpr std::array kFanucGCodes{
     CodeEntry{50, Gr::high_speed, Su::noted},  // G05 P10000 / P2: high-speed machining mode
     CodeEntry{51, Gr::high_speed, Su::noted},  // G05.1 Q1: AI contour control
+    CodeEntry{52, Gr::motion, Su::refused, "is a NURBS move"},  // LinuxCNC's, not Fanuc's
+    CodeEntry{53, Gr::motion, Su::refused, "is a NURBS move"},
     CodeEntry{70, Gr::non_modal, Su::refused, "is a hypothetical-axis (cylindrical) interpolation"},
     CodeEntry{71, Gr::non_modal, Su::refused, "is cylindrical interpolation"},
     CodeEntry{80, Gr::high_speed, Su::noted},    // G08 P1: look-ahead control
@@ -306,7 +308,8 @@ constexpr std::optional<CodeEntry> find_g_code(DialectKind kind, double value) {
 static_assert(find_code(kGCodes, 61.1)->group == Group::path_control);
 static_assert(find_g_code(DialectKind::fanuc, 5.1)->support == Support::noted);
 static_assert(find_g_code(DialectKind::rs274ngc, 5.1)->support == Support::followed);
-static_assert(find_g_code(DialectKind::rs274ngc, 5.2)->support == Support::refused);
+static_assert(find_g_code(DialectKind::rs274ngc, 5.2)->support == Support::followed);
+static_assert(find_g_code(DialectKind::fanuc, 5.2)->support == Support::refused);
 static_assert(!find_g_code(DialectKind::sinumerik, 81).has_value());
 static_assert(!find_code(kGCodes, 1.5).has_value());
 static_assert(!find_code(kGCodes, 1e300).has_value());

@@ -71,6 +71,8 @@ enum class Code : std::uint16_t {
   frame_change = 1512,          // offsets (G92, G52, G10, G55 ...) changed after motion (warning)
   cycle_value = 1513,           // canned cycle without R/Z/Q/P, R below Z, Q <= 0
   missing_word = 1514,          // G4 without its time, M98 without P
+  nurbs_curve = 1515,           // G5.3 without G5.2, too few points, frame change inside
+  nurbs_axis_ignored = 1516,    // the third axis word of a G5.2 block (warning)
   // 162x: the spindle speed on an analog output (Dialect::speed_output)
   negative_speed_output = 1620,  // M67/M68 E<speed output> Q<0
   speed_output_words = 1621,     // M67/M68 without its E or Q word

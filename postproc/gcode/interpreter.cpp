@@ -78,7 +78,11 @@ program::SourceRef source(const Block& b, std::uint32_t column) {
 }  // namespace
 
 Interpreter::Interpreter(std::string_view text, Dialect dialect, InterpreterLimits limits)
-    : text_(text), dialect_(dialect), limits_(limits), parameters_(dialect_) {
+    : text_(text),
+      dialect_(dialect),
+      limits_(limits),
+      parameters_(dialect_),
+      nurbs_(limits.max_cycle_moves) {
   // Canned cycles retract to the R plane (G99) in rs274 at start, to the
   // initial level (G98) on Fanuc-like controls.
   state_.retract_to_r = dialect_.kind == DialectKind::rs274ngc;
@@ -717,6 +721,7 @@ void Interpreter::execute(std::vector<Event>& events) {
   if (step.g(Group::rotation)) tilt_working_plane(step);
   take_axis_words(step);
   set_motion_mode(step);
+  if (step.nonmodal_code == 53) end_nurbs(step);
   move(step);
   step.emit_inverse_f([] { return std::optional<double>(); });
   if (dialect_.kind == DialectKind::sinumerik) siemens_words(step);
@@ -907,6 +912,7 @@ void Interpreter::check_unused_words(const Step& step) {
             : s.motion == Motion::linear  ? 10
             : s.motion == Motion::arc_cw  ? 20
             : s.motion == Motion::arc_ccw ? 30
+            : s.motion == Motion::nurbs   ? 52
                                           : -1;
   }
   const Word* comp = step.g(Group::cutter_comp);
@@ -941,12 +947,13 @@ void Interpreter::check_unused_words(const Step& step) {
   unused('I', arc || spline || to_be == 870 || g10, "G2, G3, G5, G5.1, G10 or G87");
   unused('J', arc || spline || to_be == 870 || g10, "G2, G3, G5, G5.1, G10 or G87");
   unused('K', arc || to_be == 870, "G2, G3 or G87");
-  unused('L', cycle || g10 || comp_on || m98 || moc == 660,
-         "G10, cutter compensation, canned cycle or M98");
+  unused('L', cycle || g10 || comp_on || m98 || moc == 660 || to_be == 52,
+         "G10, cutter compensation, canned cycle, M98 or G5.2 (NURBS)");
   unused('P',
-         g10 || nonmodal_code == 40 || g64 || arc || cubic || to_be == 740 || to_be == 820 ||
-             to_be == 840 || to_be == 860 || to_be == 880 || to_be == 890 || m98 || m_p || m19,
-         "G2, G3, G4, G5, G10, G64, G74, G82, G84, G86, G88, G89 or M98");
+         g10 || nonmodal_code == 40 || g64 || arc || cubic || to_be == 52 || to_be == 740 ||
+             to_be == 820 || to_be == 840 || to_be == 860 || to_be == 880 || to_be == 890 || m98 ||
+             m_p || m19,
+         "G2, G3, G4, G5, G5.2, G10, G64, G74, G82, G84, G86, G88, G89 or M98");
   unused('Q', to_be == 730 || to_be == 830 || cubic || g10 || g64 || m_q || m19,
          "G5, G10, G64, G73 or G83");
   unused('R', arc || cycle || g10 || g64 || m19, "G2, G3, G10, G64 or canned cycle");
@@ -1399,6 +1406,7 @@ void Interpreter::set_motion_mode(Step& step) {
                  : c == 30 ? Motion::arc_ccw
                  : c == 50 ? Motion::spline_cubic
                  : c == 51 ? Motion::spline_quadratic
+                 : c == 52 ? Motion::nurbs
                            : Motion::none;
     }
   }
@@ -1439,7 +1447,9 @@ void Interpreter::move(Step& step) {
     canned_cycle(step);
   } else if (step.has_axis ||
              (!step.axes_taken && (s.motion == Motion::arc_cw || s.motion == Motion::arc_ccw) &&
-              (step.word('I') || step.word('J') || step.word('K') || step.word('R')))) {
+              (step.word('I') || step.word('J') || step.word('K') || step.word('R'))) ||
+             (s.motion == Motion::nurbs && step.motion_code == 52)) {
+    // (G5.2 without axis words: the curve opens, or a weight for its start.)
     motion(step);
   }
 }
@@ -1675,6 +1685,9 @@ void Interpreter::motion(Step& step) {
     case Motion::spline_quadratic:
       spline(step, end);
       break;
+    case Motion::nurbs:
+      nurbs_point(step, end);
+      return;  // the tool stays until G5.3
   }
   s.position = end;
   s.moved = true;
@@ -1762,6 +1775,80 @@ void Interpreter::spline(Step& step, const Eigen::Vector3d& end) {
     step.emit(program::StraightFeed{from, next, src});
     from = next;
   }
+}
+
+// The frame a NURBS curve's control points are in (nurbs.h).
+NurbsFrame Interpreter::nurbs_frame(const Step& step) const {
+  const ModalState& s = step.state;
+  return NurbsFrame{s.plane, s.inches,
+                    total_offset(step.origins ? *step.origins : origins_, s.work_system)};
+}
+
+// G5.2 (or axis words under its mode): a control point of the curve, at
+// the block's end point in the plane; the tool stays where it is, so that
+// G91 points are measured from the curve's start, as in rs274.
+void Interpreter::nurbs_point(Step& step, const Eigen::Vector3d& end) {
+  const ModalState& s = step.state;
+  const auto ax = program::plane_axes(s.plane);
+  const NurbsWords words{step.word(kAxes[ax[0]]), step.word(kAxes[ax[1]]), step.word('P'),
+                         step.word('L'), step.motion_column};
+  const bool continues = state_.motion == Motion::nurbs && step.nonmodal_code != 53;
+  const bool zero_feed = s.feed_mode == program::FeedMode::per_minute && s.feed <= 0.0;
+  nurbs_.add(words, continues, zero_feed, Eigen::Vector2d(s.position[ax[0]], s.position[ax[1]]),
+             Eigen::Vector2d(end[ax[0]], end[ax[1]]), nurbs_frame(step), step.b.line);
+  if (const Word* other = step.word(kAxes[ax[2]]))
+    warn_once('G', 52, Code::nurbs_axis_ignored, other->column,
+              std::string(1, kAxes[ax[2]]) +
+                  " in a G5.2 block: the curve lies in the working plane, LinuxCNC (and vcpost) "
+                  "leave " +
+                  std::string(1, kAxes[ax[2]]) + " where it is");
+}
+
+// G5.3: the tool follows the curve, as straight feeds within
+// kSplineTolerance, to its last control point. Axis words in the block (or
+// a G5.2 word) open the next curve there, as in rs274.
+void Interpreter::end_nurbs(Step& step) {
+  ModalState& s = step.state;
+  const std::uint32_t column = step.nonmodal->column;
+  if (step.motion_word && step.motion_code != 52)
+    fail(Code::modal_group_conflict, step.motion_word->column,
+         "G5.3 with " + code_text('G', step.motion_code) +
+             ": only G5.2 may share a block with G5.3 (rs274: \"Between G5.2 and G5.3 codes, "
+             "only additional G5.2 codes are allowed.\")");
+  std::vector<Eigen::Vector2d> points;
+  const Eigen::Vector2d last =
+      nurbs_.end(state_.motion == Motion::nurbs, nurbs_frame(step), column, step.b.line, points);
+  if (s.feed_mode == program::FeedMode::inverse_time && !step.word('F'))
+    fail(Code::missing_feed, column,
+         "G5.3 in inverse time (G93) needs its F word: the curve takes 1/F minutes");
+  if (s.feed <= 0.0) fail(Code::missing_feed, column, "G5.3 with no feed rate (F) in effect");
+  const auto ax = program::plane_axes(s.plane);
+  auto in_space = [&](const Eigen::Vector2d& p) {
+    Eigen::Vector3d q = s.position;
+    q[ax[0]] = p.x();
+    q[ax[1]] = p.y();
+    return q;
+  };
+  step.emit_inverse_f([&] {
+    double path = 0.0;
+    Eigen::Vector3d at = s.position;
+    for (const auto& p : points) {
+      path += (in_space(p) - at).norm();
+      at = in_space(p);
+    }
+    return s.feed * path;
+  });
+  const auto src = source(step.b, column);
+  Eigen::Vector3d from = s.position;
+  for (const auto& p : points) {
+    const Eigen::Vector3d next = in_space(p);
+    step.emit(program::StraightFeed{from, next, src});
+    from = next;
+  }
+  s.position = in_space(last);
+  s.moved = true;
+  const bool next_curve = step.motion_code == 52 || (!step.motion_word && step.has_axis);
+  if (!next_curve) s.motion = Motion::none;
 }
 
 // R arc: the centre on the chord's bisector; R > 0 the short arc (centre

@@ -25,6 +25,7 @@
 #include "postproc/gcode/block.h"
 #include "postproc/gcode/diagnostics.h"
 #include "postproc/gcode/dialect.h"
+#include "postproc/gcode/nurbs.h"
 #include "postproc/gcode/parameters.h"
 #include "postproc/program/events.h"
 
@@ -32,7 +33,8 @@ namespace vcpost::gcode {
 
 struct CycleCall;
 
-enum class Motion { none, rapid, linear, arc_cw, arc_ccw, spline_cubic, spline_quadratic };
+// nurbs: G5.2, control points are read (nurbs.h); the tool moves at G5.3.
+enum class Motion { none, rapid, linear, arc_cw, arc_ccw, spline_cubic, spline_quadratic, nurbs };
 
 // The modal state between blocks (all lengths mm).
 struct ModalState {
@@ -89,7 +91,8 @@ struct InterpreterLimits {
   // Moves one canned-cycle block may make (L repeats times pecks): its
   // moves are held at once, so the bound is the block's memory (about
   // 100 MB). A Fanuc G83 with L320 and Q2, 0.002 mm pecks, makes 3.5 M;
-  // real peck drilling makes thousands. The fuzzers set less.
+  // real peck drilling makes thousands. The fuzzers set less. Also the
+  // control points and the moves of one G5.2/G5.3 curve.
   std::uint64_t max_cycle_moves = 1'000'000;
   // Warnings kept (later ones are counted only): memory stays flat even
   // when every block of a long program warns.
@@ -221,6 +224,9 @@ class Interpreter {
   void motion(Step& step);
   void arc(Step& step, const Eigen::Vector3d& end);
   void spline(Step& step, const Eigen::Vector3d& end);
+  void nurbs_point(Step& step, const Eigen::Vector3d& end);
+  void end_nurbs(Step& step);
+  NurbsFrame nurbs_frame(const Step& step) const;
   Eigen::Vector3d centre_from_radius(const Step& step, const Eigen::Vector3d& end, bool cw) const;
   Eigen::Vector3d centre_from_offsets(const Step& step, const Eigen::Vector3d& end) const;
   void siemens_words(Step& step);
@@ -244,6 +250,7 @@ class Interpreter {
   program::WorkingFrame tilt_;  // G68.2 (3+2); identity when none
   SiemensCycle mcall_;          // the Sinumerik MCALL cycle in effect
   SiemensCycle mcall_next_;     // set by the block in execution
+  NurbsCurve nurbs_;            // G5.2's control points
   std::vector<std::pair<char, int>> warned_once_;
   Block block_;
   std::vector<Diagnostic> warnings_;

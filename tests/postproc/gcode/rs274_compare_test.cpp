@@ -198,12 +198,12 @@ constexpr CoverageCase kCoverageCases[] = {
 };
 
 // Codes vcpost refuses by design where rs274 reads them: they move the
-// tool in ways the post does not follow (NURBS, lathe diameter mode,
+// tool in ways the post does not follow (lathe diameter mode,
 // spindle-synchronised and probing moves, constant surface speed,
 // the UV planes, restored modal state).
 bool refused_by_design(const std::string& code) {
-  static const std::set<std::string> by_design = {"G5.2",  "G7",  "G17.1", "G33", "G33.1",
-                                                  "G38.2", "G76", "G96",   "M72"};
+  static const std::set<std::string> by_design = {"G7",    "G17.1", "G33", "G33.1",
+                                                  "G38.2", "G76",   "G96", "M72"};
   return by_design.contains(code);
 }
 

@@ -6,12 +6,14 @@
 // the three planes (centre and radius forms, helical, absolute and
 // incremental centres), o-word subs with arguments, loops and conditions,
 // work offsets (G10 L2, G54-G59, G92), G28/G30 and G53, inch and mm,
-// absolute and incremental distances. The generator is seeded: a failure
-// names the program's seed, and the same seed writes the same program.
+// absolute and incremental distances, G5.2/G5.3 NURBS curves. The generator
+// is seeded: a failure names the program's seed, and the same seed writes
+// the same program.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -28,7 +30,10 @@ using namespace rs274cmp;  // NOLINT(google-build-using-namespace): this suite's
 
 class ProgramGenerator {
  public:
-  explicit ProgramGenerator(unsigned seed) : random_(seed) {}
+  // The NURBS curves draw from a stream of their own, so that the programs
+  // read before G5.2 was followed stay as they were, curves added between
+  // their statements.
+  explicit ProgramGenerator(unsigned seed) : random_(seed), nurbs_random_(seed + 7919u) {}
 
   std::string program() {
     out_.str("");
@@ -37,7 +42,11 @@ class ProgramGenerator {
     out_ << "F" << (inches_ ? 20 : 500) << "\n#1 = 0\n#<_gv> = 1\n";
     if (chance(0.5)) write_sub();
     const int statements = integer(8, 30);
-    for (int k = 0; k < statements; ++k) statement();
+    for (int k = 0; k < statements; ++k) {
+      statement();
+      // rs274 2.9 reads G5.2 in the XY plane only.
+      if (plane_ == 17 && nurbs_real(0, 1) < 0.15) nurbs();
+    }
     straight();
     out_ << "M2\n";
     return out_.str();
@@ -197,6 +206,51 @@ class ProgramGenerator {
     out_ << (incremental_ ? "\n" : "\nG90\n");
   }
 
+  double nurbs_real(double low, double high) {
+    return std::uniform_real_distribution<double>(low, high)(nurbs_random_);
+  }
+  std::string nurbs_number(double value, int decimals) {
+    std::ostringstream s;
+    s.setf(std::ios::fixed);
+    s.precision(decimals);
+    s << value;
+    return s.str();
+  }
+  std::string nurbs_length(double low, double high) {
+    return nurbs_number(nurbs_real(low, high) * (inches_ ? 1 / 25.4 : 1.0), inches_ ? 5 : 4);
+  }
+
+  // A G5.2 curve of 2 to 6 points after the tool's position, weights 0.2 to
+  // 5, order 3 or an L up to the points' count; sometimes the start's
+  // weight from a P alone, a Z word (which rs274 ignores), G5.3 with the
+  // next curve's first point. In G91 every point counts from the curve's
+  // start.
+  void nurbs() {
+    const int points = 2 + static_cast<int>(nurbs_real(0, 5));
+    const double span = incremental_ ? 10 : 50;
+    out_ << "G5.2";
+    bool first_line_open = true;  // the G5.2 word's line takes the first point
+    if (nurbs_real(0, 1) < 0.3) {
+      out_ << " P" << nurbs_number(nurbs_real(0.2, 5), 3) << "\n";
+      first_line_open = false;
+    }
+    const int order = nurbs_real(0, 1) < 0.5 ? 3 : 3 + static_cast<int>(nurbs_real(0, points - 1));
+    for (int k = 0; k < points; ++k) {
+      out_ << (k == 0 && first_line_open ? " " : "") << "X" << nurbs_length(-span, span) << " Y"
+           << nurbs_length(-span, span);
+      if (nurbs_real(0, 1) < 0.05) out_ << " Z" << nurbs_length(-span, span);
+      out_ << " P" << nurbs_number(nurbs_real(0.2, 5), 3);
+      if (k == 0 && order > 3) out_ << " L" << order;
+      out_ << "\n";
+    }
+    if (nurbs_real(0, 1) < 0.1) {
+      // G5.3 with axis words: this curve ends, the next opens at its end.
+      out_ << "G5.3 X" << nurbs_length(-span, span) << " Y" << nurbs_length(-span, span) << " P1\n";
+      out_ << "X" << nurbs_length(-span, span) << " Y" << nurbs_length(-span, span) << " P2\n";
+    }
+    out_ << "G5.3\n";
+  }
+
   void parameters() {
     switch (integer(0, 3)) {
       case 0:
@@ -278,6 +332,7 @@ class ProgramGenerator {
   }
 
   std::mt19937 random_;
+  std::mt19937 nurbs_random_;
   std::ostringstream out_;
   bool inches_ = false;
   bool incremental_ = false;
@@ -293,6 +348,7 @@ TEST(Rs274Random, SeededProgramsReadAsRs274ReadsThem) {
   fs::create_directories(dir);
   constexpr unsigned kPrograms = 300;
   int compared = 0;
+  int curves = 0;
   for (unsigned seed = 1; seed <= kPrograms; ++seed) {
     ProgramGenerator generator(seed);
     const std::string text = generator.program();
@@ -302,8 +358,13 @@ TEST(Rs274Random, SeededProgramsReadAsRs274ReadsThem) {
     compare(file);
     if (::testing::Test::HasFatalFailure()) break;
     ++compared;
+    for (std::size_t at = text.find("G5.3"); at != std::string::npos;
+         at = text.find("G5.3", at + 1))
+      ++curves;
   }
   EXPECT_EQ(compared, static_cast<int>(kPrograms));
+  std::printf("%d programs, %d G5.2 curves read alike\n", compared, curves);
+  EXPECT_GE(curves, 200);
   fs::remove_all(dir);
 }
 

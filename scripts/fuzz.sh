@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (the "fuzz" preset: clang-14, ASan + UBSan)
-# and runs each for DURATION seconds (default 60) on the seed corpus that
-# fuzz/collect_corpus.sh gathers from the tests' inputs. Fails on any
-# finding: crash, sanitizer report, undocumented exception, an input slower
-# than 5 s, above 2 GB or needing a stack above 1 MB; the input is left in
-# build/fuzz/findings/<target>/ (save it under fuzz/regressions/<target>/
-# with a regression test).
+# and runs each for DURATION seconds (default 60), one per core at a time,
+# on the seed corpus that fuzz/collect_corpus.sh gathers from the tests'
+# inputs. Fails on any finding: crash, sanitizer report, undocumented
+# exception, an input slower than 5 s, above 2 GB or needing a stack above
+# 1 MB; the input is left in build/fuzz/findings/<target>/ (save it under
+# fuzz/regressions/<target>/ with a regression test).
 # Prints the executions per target, and a finding's input in base64 (so a
 # CI log alone reproduces it: base64 -d > crash; build/fuzz/fuzz/T crash).
 # The mutation seed is fixed (FUZZ_SEED, default 1) so a run can be repeated
@@ -31,16 +31,27 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 # need more (a value of thousands of nested signs) is a finding, as it would
 # be in a thread with a small stack.
 ulimit -s 1024
+# One target per core at a time (each libFuzzer process runs on one).
+run_target() {
+  local t=$1 corpus="$build/corpus/$1" findings="$build/findings/$1" log="$build/logs/$1.log"
+  mkdir -p "$corpus" "$findings" "$(dirname "$log")"
+  local status=0
+  "$build/fuzz/$t" "$corpus" "$build/seeds/$t" -dict="fuzz/${t%_fuzz}.dict" \
+    -max_total_time="$duration" -seed="$seed" -timeout=5 -rss_limit_mb=2048 -print_final_stats=1 \
+    -artifact_prefix="$findings/" >"$log" 2>&1 || status=$?
+  echo "$status" >"$log.status"
+}
+for t in "${targets[@]}"; do
+  while [ "$(jobs -rp | wc -l)" -ge "$(nproc)" ]; do wait -n || true; done
+  run_target "$t" &
+done
+wait
 failed=()
 for t in "${targets[@]}"; do
   corpus="$build/corpus/$t"
   findings="$build/findings/$t"
   log="$build/logs/$t.log"
-  mkdir -p "$corpus" "$findings" "$(dirname "$log")"
-  status=0
-  "$build/fuzz/$t" "$corpus" "$build/seeds/$t" -dict="fuzz/${t%_fuzz}.dict" \
-    -max_total_time="$duration" -seed="$seed" -timeout=5 -rss_limit_mb=2048 -print_final_stats=1 \
-    -artifact_prefix="$findings/" >"$log" 2>&1 || status=$?
+  status=$(cat "$log.status")
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   units=$(ls "$corpus" | wc -l)
   if [ "$status" -eq 0 ]; then

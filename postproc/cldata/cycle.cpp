@@ -7,12 +7,13 @@
 #include <string>
 #include <vector>
 
+#include "core/units.h"
+
 namespace vcpost::cldata {
 
 namespace {
 
 using Vec = Eigen::Vector3d;
-constexpr double mm_per_inch = 25.4;
 
 // One item of the record: a parameter, or a piece of one when a CAM system
 // left the commas out ("25.000000 25.000000 DWELL" in CAMWorks).
@@ -132,7 +133,7 @@ class CycleParser {
     if (is_word(i, "MMPM") || is_word(i, "MMPR")) {
       factor = 1.0;
     } else if (is_word(i, "IPM") || is_word(i, "IPR")) {
-      factor = mm_per_inch;
+      factor = kMmPerInch;
     } else {
       return false;
     }

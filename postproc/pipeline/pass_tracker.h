@@ -55,6 +55,10 @@ struct NeighbourPass {
 // Memory: O(`memory`, the points kept), about 100-250 bytes a point.
 class PassTracker {
  public:
+  // The points a tracker of the post keeps: a few passes of a large
+  // program, its memory bounded whatever the program's length.
+  static constexpr std::size_t kPostMemory = std::size_t{1} << 20;
+
   // search_radius: farthest neighbour considered, mm (a pass farther than
   // the tool diameter removed nothing this pass would cut).
   // memory: how many recent points are kept (older ones are forgotten),

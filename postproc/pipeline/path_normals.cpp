@@ -58,8 +58,6 @@ using Eigen::Vector3d;
 constexpr double smooth_cos = 0.866;
 // Points closer than this are one point, mm.
 constexpr double same_point = 1e-9;
-// Points each tracker keeps: as the post's own (a few passes of a large program).
-constexpr std::size_t tracker_memory = 1 << 20;
 // A one-sided normal needs the chord to the neighbour nearly across the
 // surface (|c.n| is half the turn between the passes) and the normals of
 // the two passes within 30 deg of each other: beyond, the passes are too
@@ -170,7 +168,7 @@ std::vector<Neighbour> nearest_passes(std::span<const Vector3d> p,
                                       const PathNormalSettings& settings) {
   const std::size_t n = p.size();
   std::vector<Neighbour> out(n);
-  PassTracker tracker(settings.search_radius, settings.min_path_gap, tracker_memory);
+  PassTracker tracker(settings.search_radius, settings.min_path_gap, PassTracker::kPostMemory);
   std::vector<std::size_t> index_of;  // the point of each tracker step
   index_of.reserve(n);
   bool open = false;

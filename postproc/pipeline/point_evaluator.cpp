@@ -19,19 +19,13 @@ std::string_view to_string(AeSource source) {
   return "?";
 }
 
-namespace {
-// Points kept by the pass tracker: a few passes of a large program; memory
-// stays bounded (about 100 bytes a point) whatever the program's length.
-constexpr std::size_t tracker_memory = 1 << 20;
-}  // namespace
-
 PointEvaluator::PointEvaluator(const geometry::SurfaceModel& model, PointSettings settings)
     : model_(model),
       settings_(settings),
       cutting_points_(settings.cutting_points || settings.policy == DiameterPolicy::tangent
                           ? geometry::CuttingPointsWanted::yes
                           : geometry::CuttingPointsWanted::no),
-      tracker_(settings.tool.diameter, 4 * settings.tool.diameter, tracker_memory) {}
+      tracker_(settings.tool.diameter, 4 * settings.tool.diameter, PassTracker::kPostMemory) {}
 
 PointResult PointEvaluator::evaluate(const PathSample& sample) {
   PointResult out;
@@ -117,7 +111,8 @@ void PointEvaluator::place(const PathSample& sample, PointResult& out) {
   if (sample.frame != frame_) {
     // Another working frame: the passes cut so far lie in other coordinates.
     frame_ = sample.frame;
-    tracker_ = PassTracker(settings_.tool.diameter, 4 * settings_.tool.diameter, tracker_memory);
+    tracker_ =
+        PassTracker(settings_.tool.diameter, 4 * settings_.tool.diameter, PassTracker::kPostMemory);
     had_contact_ = false;
   }
   if (!cuts(out.contact)) {

@@ -1,9 +1,10 @@
 #include "postproc/tools/program_tools.h"
 
+#include "core/units.h"
+
 namespace vcpost::tools {
 namespace {
 
-constexpr double kMmPerInch = 25.4;
 constexpr std::size_t kMaxNotes = 100;  // a program of unreadable lines still keeps memory flat
 
 }  // namespace

@@ -47,7 +47,7 @@ void print_cl_moves(std::string_view text, const std::string& name,
     while (auto event = reader.next()) {
       if (std::holds_alternative<program::CannedCycle>(*event)) continue;  // its moves follow
       ++events;
-      if (options.time) clock.advance(*event);
+      clock.advance(*event);  // a feed move whose time is undefined fails, as in post
       if (!options.count) transcriber.append(out, *event);
     }
   } catch (const cldata::ClError& e) {
@@ -93,7 +93,7 @@ void print_klartext_moves(const ProgramText& text, const std::string& name,
       for (const auto& e : events) {
         if (std::holds_alternative<program::CannedCycle>(e)) continue;  // its moves follow
         ++event_count;
-        if (options.time) clock.advance(e);
+        clock.advance(e);  // a feed move whose time is undefined fails, as in post
         if (!options.count) transcriber.append(out, e);
       }
       if (out.size() > (1u << 16)) {
@@ -184,8 +184,9 @@ void add_moves_command(CLI::App& app) {
     try {
       while (interpreter.next(events)) {
         event_count += events.size();
-        if (options->time)
-          for (const auto& e : events) clock.advance(e);
+        // A feed move whose time is undefined (no feed, G95 with the spindle
+        // stopped) fails here as it does in post (E6101-E6103).
+        for (const auto& e : events) clock.advance(e);
         text.release_before(interpreter.block().offset);
         if (!options->count) {
           for (const auto& e : events) transcriber.append(out, e);

@@ -5,10 +5,12 @@
 #include <string>
 
 #include "api/translate.h"
+#include "postproc/cli/job_runner.h"
 #include "postproc/cli/model_loader.h"
 #include "postproc/cli/post_options.h"
 #include "postproc/gcode/diagnostics.h"
 #include "postproc/output/gcode_writer.h"
+#include "postproc/post/acceptance.h"
 #include "postproc/post/post_job.h"
 #include "postproc/program/timing.h"
 
@@ -136,7 +138,7 @@ PostResult post(std::string_view program, const std::string& program_name, const
       throw std::runtime_error(program_name + ":" + std::to_string(e.source().line) + ": " +
                                e.what());
     }
-    cli::require_posted(summary, program_name);
+    cli::require_accepted(post::judge_posted(summary, program_name));
     result.summary = summary_from(summary);
     return result;
   });

@@ -2,6 +2,8 @@
 // writes the program atomically (and, with --report, the report beside it);
 // all the work is in postproc/post/ and postproc/report/.
 #include "postproc/cli/commands.h"
+#include "postproc/cli/end_of_run.h"
+#include "postproc/cli/job_runner.h"
 #include "postproc/cli/post_options.h"
 
 namespace vcpost::cli {

@@ -2,6 +2,8 @@
 // how far vc deviates from nominal with the program's own S, what the
 // rewrite would achieve on this machine, and where its limits bind.
 #include "postproc/cli/commands.h"
+#include "postproc/cli/end_of_run.h"
+#include "postproc/cli/job_runner.h"
 #include "postproc/cli/post_options.h"
 
 namespace vcpost::cli {

@@ -1,9 +1,9 @@
-#include "postproc/cli/section_words.h"
+#include "postproc/post/section_words.h"
 
 #include <cmath>
 #include <sstream>
 
-namespace vcpost::cli {
+namespace vcpost::post {
 
 std::string mm3(double value) {
   std::ostringstream out;
@@ -13,7 +13,7 @@ std::string mm3(double value) {
   return out.str();
 }
 
-std::string section_name(const post::ToolSection& s) {
+std::string section_name(const ToolSection& s) {
   std::string name = s.tool ? "T" + std::to_string(*s.tool) : std::string("(no tool change)");
   if (s.entry) {
     name += " " + std::string(tools::to_string(s.entry->shape));
@@ -26,18 +26,18 @@ std::string section_name(const post::ToolSection& s) {
   return name;
 }
 
-std::string depth_words(const post::DepthStatistics& depth, std::string_view what) {
+std::string depth_words(const DepthStatistics& depth, std::string_view what) {
   return std::string(what) + " min " + mm3(depth.min) + ", median " + mm3(depth.median) + ", max " +
          mm3(depth.max) + " mm (" + std::to_string(depth.points) + " points)";
 }
 
-std::string offset_words(const post::OffsetDiagnosis& offset) {
+std::string offset_words(const OffsetDiagnosis& offset) {
   return std::to_string(static_cast<int>(std::round(offset.share * 100))) +
          " % of the points near the model sit " + mm3(std::abs(offset.offset_mm)) + " mm " +
          (offset.offset_mm > 0 ? "above" : "into") + " it: likely " + offset.causes;
 }
 
-std::string lift_words(const post::OffsetDiagnosis& offset, double radius_mm) {
+std::string lift_words(const OffsetDiagnosis& offset, double radius_mm) {
   const std::string share = std::to_string(static_cast<int>(std::round(offset.share * 100))) +
                             " % of the points near the model sit " + mm3(offset.offset_mm) +
                             " mm above it: likely ";
@@ -52,4 +52,4 @@ std::string lift_words(const post::OffsetDiagnosis& offset, double radius_mm) {
          mm3(offset.offset_mm) + " mm posts it as it is)";
 }
 
-}  // namespace vcpost::cli
+}  // namespace vcpost::post

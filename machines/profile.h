@@ -22,12 +22,10 @@
 #include <vector>
 
 #include "core/error.h"
+#include "machines/dialect.h"
 
 namespace vcpost::machines {
 
-// The language the control reads (same names as `--dialect`): a G-code
-// dialect, or Heidenhain's Klartext.
-enum class Dialect { rs274ngc, fanuc, mazak, sinumerik, heidenhain };
 // The format of the program written from CL data for this machine: G-code
 // of a dialect, or Klartext (heidenhain, postproc/output/klartext_writer.h).
 enum class OutputFormat { rs274ngc, fanuc, mazak, heidenhain };

@@ -83,7 +83,7 @@ void BlockParser::read(Block& out) {
     // RS274NGC: '%' stands alone on its line ("% G1 X5" and "% (note)"
     // are refused by rs274: "Bad character '%' used"). Other controls
     // write a name after it (Sinumerik %_N_PART_MPF).
-    if (d_.kind == DialectKind::rs274ngc) {
+    if (d_.kind == machines::Dialect::rs274ngc) {
       ++i_;
       skip_blanks();
       if (!at_end())

@@ -290,8 +290,8 @@ constexpr std::optional<CodeEntry> find_code(const std::array<CodeEntry, N>& tab
 
 // The G code of a dialect: its own table first, then RS274NGC's (for
 // Sinumerik only the codes both mean the same).
-constexpr std::optional<CodeEntry> find_g_code(DialectKind kind, double value) {
-  if (kind == DialectKind::sinumerik) {
+constexpr std::optional<CodeEntry> find_g_code(machines::Dialect kind, double value) {
+  if (kind == machines::Dialect::sinumerik) {
     if (const auto entry = find_code(kSinumerikGCodes, value)) return entry;
     const auto base = find_code(kGCodes, value);
     if (!base) return base;
@@ -300,17 +300,17 @@ constexpr std::optional<CodeEntry> find_g_code(DialectKind kind, double value) {
       if (base->code == shared) return base;
     return std::nullopt;
   }
-  if (kind != DialectKind::rs274ngc)
+  if (kind != machines::Dialect::rs274ngc)
     if (const auto entry = find_code(kFanucGCodes, value)) return entry;
   return find_code(kGCodes, value);
 }
 
 static_assert(find_code(kGCodes, 61.1)->group == Group::path_control);
-static_assert(find_g_code(DialectKind::fanuc, 5.1)->support == Support::noted);
-static_assert(find_g_code(DialectKind::rs274ngc, 5.1)->support == Support::followed);
-static_assert(find_g_code(DialectKind::rs274ngc, 5.2)->support == Support::followed);
-static_assert(find_g_code(DialectKind::fanuc, 5.2)->support == Support::refused);
-static_assert(!find_g_code(DialectKind::sinumerik, 81).has_value());
+static_assert(find_g_code(machines::Dialect::fanuc, 5.1)->support == Support::noted);
+static_assert(find_g_code(machines::Dialect::rs274ngc, 5.1)->support == Support::followed);
+static_assert(find_g_code(machines::Dialect::rs274ngc, 5.2)->support == Support::followed);
+static_assert(find_g_code(machines::Dialect::fanuc, 5.2)->support == Support::refused);
+static_assert(!find_g_code(machines::Dialect::sinumerik, 81).has_value());
 static_assert(!find_code(kGCodes, 1.5).has_value());
 static_assert(!find_code(kGCodes, 1e300).has_value());
 

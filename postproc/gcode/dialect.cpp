@@ -11,7 +11,7 @@ Dialect rs274ngc_dialect() { return Dialect{}; }
 
 Dialect fanuc_dialect() {
   Dialect d;
-  d.kind = DialectKind::fanuc;
+  d.kind = machines::Dialect::fanuc;
   d.integer_lengths = IntegerLengths::increments;
   d.named_parameters = false;
   d.o_word_control = false;
@@ -22,13 +22,13 @@ Dialect fanuc_dialect() {
 
 Dialect mazak_dialect() {
   Dialect d = fanuc_dialect();
-  d.kind = DialectKind::mazak;
+  d.kind = machines::Dialect::mazak;
   return d;
 }
 
 Dialect sinumerik_dialect() {
   Dialect d;
-  d.kind = DialectKind::sinumerik;
+  d.kind = machines::Dialect::sinumerik;
   d.numbered_parameters = false;  // R parameters instead of #n
   d.named_parameters = false;
   d.o_word_control = false;
@@ -38,7 +38,7 @@ Dialect sinumerik_dialect() {
 
 Dialect heidenhain_dialect() {
   Dialect d;
-  d.kind = DialectKind::heidenhain;
+  d.kind = machines::Dialect::heidenhain;
   d.numbered_parameters = false;
   d.named_parameters = false;
   d.o_word_control = false;

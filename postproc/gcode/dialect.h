@@ -5,11 +5,9 @@
 #include <optional>
 #include <string_view>
 
-namespace vcpost::gcode {
+#include "machines/dialect.h"
 
-// heidenhain: Klartext, read by its own reader (postproc/heidenhain), not
-// by the G-code interpreter; the kind names it where dialects are chosen.
-enum class DialectKind { rs274ngc, fanuc, mazak, sinumerik, heidenhain };
+namespace vcpost::gcode {
 
 // What a number without a decimal point means on a length word
 // (X Y Z I J K R): "X1000" = 1000 mm, or 1000 least increments (1.000 mm
@@ -18,7 +16,7 @@ enum class DialectKind { rs274ngc, fanuc, mazak, sinumerik, heidenhain };
 enum class IntegerLengths { units, increments };
 
 struct Dialect {
-  DialectKind kind = DialectKind::rs274ngc;
+  machines::Dialect kind = machines::Dialect::rs274ngc;
   IntegerLengths integer_lengths = IntegerLengths::units;
   double increment_mm = 0.001;     // least input increment, metric
   double increment_inch = 0.0001;  // least input increment, inch
@@ -47,7 +45,7 @@ Dialect mazak_dialect();  // Mazak EIA: Fanuc-like, macros, G05 P2, G61.1
 // ';' comments, MSG("..."), CR= arcs, R parameters and X=<expression>,
 // G64/G641/G642, T/D, MCALL CYCLE81-CYCLE89 drilling cycles, M30.
 Dialect sinumerik_dialect();
-// Heidenhain TNC conversational (Klartext): the kind only (see DialectKind).
+// Heidenhain TNC conversational (Klartext): the kind only (machines::Dialect::heidenhain).
 Dialect heidenhain_dialect();
 
 // "rs274ngc" (also "linuxcnc", "ngc"), "fanuc" (also "iso"), "mazak"

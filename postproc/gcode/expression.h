@@ -43,7 +43,7 @@ class ExpressionReader : public Lexer {
   // them see (the control assigns in the order written; null elsewhere).
   const std::vector<Assignment>* earlier_ = nullptr;
 
-  bool siemens() const { return d_.kind == DialectKind::sinumerik; }
+  bool siemens() const { return d_.kind == machines::Dialect::sinumerik; }
 
   // A value at the cursor: signs, then [expr], #parameter, a literal, a
   // function, (expr) and R<n> in Sinumerik. `word_start` places errors.

@@ -85,7 +85,7 @@ Interpreter::Interpreter(std::string_view text, Dialect dialect, InterpreterLimi
       nurbs_(limits.max_cycle_moves) {
   // Canned cycles retract to the R plane (G99) in rs274 at start, to the
   // initial level (G98) on Fanuc-like controls.
-  state_.retract_to_r = dialect_.kind == DialectKind::rs274ngc;
+  state_.retract_to_r = dialect_.kind == machines::Dialect::rs274ngc;
 }
 
 bool Interpreter::line_at(std::uint64_t offset, std::uint32_t number, Line& line) const {
@@ -160,7 +160,7 @@ bool Interpreter::next(std::vector<Event>& events) {
         return false;
       }
       // rs274 takes '%' as the opening only on the program's first line.
-      if (content_seen_ && dialect_.kind == DialectKind::rs274ngc)
+      if (content_seen_ && dialect_.kind == machines::Dialect::rs274ngc)
         fail(Code::bad_character, 1,
              "'%' in the middle of a program that did not open with '%': rs274 refuses it "
              "(\"Bad character '%' used\")");
@@ -279,7 +279,7 @@ Interpreter::Sub& Interpreter::find_sub(const std::string& name, bool fanuc) {
 void Interpreter::define_sub(const Control& c) {
   auto [it, fresh] = subs_.try_emplace("o" + c.name, Sub{pos_, line_ + 1});
   Sub& sub = it->second;
-  if (!fresh && dialect_.kind == DialectKind::rs274ngc) {
+  if (!fresh && dialect_.kind == machines::Dialect::rs274ngc) {
     if (sub.body_line != line_ + 1)
       fail(Code::sub_definition, c.column,
            "subroutine o<" + c.name + "> is defined twice (first at line " +
@@ -298,8 +298,9 @@ void Interpreter::define_sub(const Control& c) {
 // main program).
 std::size_t Interpreter::call_depth_limit() const {
   constexpr std::size_t kRs274Levels = 9;
-  return dialect_.kind == DialectKind::rs274ngc ? std::min(limits_.max_call_depth, kRs274Levels)
-                                                : limits_.max_call_depth;
+  return dialect_.kind == machines::Dialect::rs274ngc
+             ? std::min(limits_.max_call_depth, kRs274Levels)
+             : limits_.max_call_depth;
 }
 
 void Interpreter::call(const std::string& name, const std::vector<double>& arguments, bool fanuc,
@@ -307,7 +308,7 @@ void Interpreter::call(const std::string& name, const std::vector<double>& argum
   if (frames_.size() >= call_depth_limit())
     fail(Code::call_depth, block_.control.column,
          "subroutine calls nested more than " + std::to_string(call_depth_limit()) + " deep" +
-             (dialect_.kind == DialectKind::rs274ngc ? " (rs274's limit)" : ""));
+             (dialect_.kind == machines::Dialect::rs274ngc ? " (rs274's limit)" : ""));
   const Sub& sub = find_sub(name, fanuc);
   frames_.push_back(Frame{pos_, line_ + 1, fanuc, own_locals, repeat, lines_read_, sub.body_offset,
                           sub.body_line, flow_.size()});
@@ -700,7 +701,7 @@ void Interpreter::execute(std::vector<Event>& events) {
   Step step(block_, events, state_);
   index_words(step);
   classify_words(step);
-  if (dialect_.kind == DialectKind::rs274ngc) check_unused_words(step);
+  if (dialect_.kind == machines::Dialect::rs274ngc) check_unused_words(step);
   if (step.b.message) emit_message(step);
   if (step.g(Group::units)) set_units(step);
   if (step.g(Group::feed_mode)) set_feed_mode(step);
@@ -724,7 +725,7 @@ void Interpreter::execute(std::vector<Event>& events) {
   if (step.nonmodal_code == 53) end_nurbs(step);
   move(step);
   step.emit_inverse_f([] { return std::optional<double>(); });
-  if (dialect_.kind == DialectKind::sinumerik) siemens_words(step);
+  if (dialect_.kind == machines::Dialect::sinumerik) siemens_words(step);
   const bool returns = stop(step);
   state_ = step.state;
   if (step.origins) origins_ = *step.origins;
@@ -732,7 +733,7 @@ void Interpreter::execute(std::vector<Event>& events) {
     return_from_sub();  // M99 in a subprogram
     return;
   }
-  if (dialect_.kind == DialectKind::sinumerik &&
+  if (dialect_.kind == machines::Dialect::sinumerik &&
       step.b.siemens_cycle.kind != SiemensCycle::Kind::none &&
       step.b.siemens_cycle.kind != SiemensCycle::Kind::call)
     mcall_ = mcall_next_;
@@ -744,7 +745,7 @@ void Interpreter::execute(std::vector<Event>& events) {
 // two codes of one group and a letter given twice are errors here.
 void Interpreter::index_words(Step& step) {
   const Block& b = step.b;
-  const bool fanuc_like = dialect_.kind != DialectKind::rs274ngc;
+  const bool fanuc_like = dialect_.kind != machines::Dialect::rs274ngc;
   WordIndex& index = step.index;
   int m_words = 0;
   const Word* axis_word = nullptr;
@@ -757,8 +758,8 @@ void Interpreter::index_words(Step& step) {
       if (!entry) {
         char text[32];
         std::snprintf(text, sizeof text, "G%g", w.value);
-        const bool fanuc_code = dialect_.kind == DialectKind::rs274ngc &&
-                                find_g_code(DialectKind::fanuc, w.value).has_value();
+        const bool fanuc_code = dialect_.kind == machines::Dialect::rs274ngc &&
+                                find_g_code(machines::Dialect::fanuc, w.value).has_value();
         fail(Code::unknown_g_code, w.column,
              std::string("unknown G code ") + text +
                  (fanuc_code ? "; it is a Fanuc-like control's code: read a Fanuc, Haas or Makino "
@@ -824,7 +825,7 @@ void Interpreter::index_words(Step& step) {
 // Indexes one M word; true when it is passed over (a machine's own M code,
 // or the second of Fanuc's M7 M8).
 bool Interpreter::index_m_word(Step& step, const Word& w, std::uint8_t slot) {
-  const bool fanuc_like = dialect_.kind != DialectKind::rs274ngc;
+  const bool fanuc_like = dialect_.kind != machines::Dialect::rs274ngc;
   auto entry = find_code(kMCodes, w.value);
   // Fanuc-like controls: beyond the standard M codes, every M is the
   // machine's own (M50 is no feed override there).
@@ -867,7 +868,7 @@ bool Interpreter::index_m_word(Step& step, const Word& w, std::uint8_t slot) {
 
 // The non-modal and motion codes, and the checks of axis words they share.
 void Interpreter::classify_words(Step& step) {
-  const bool fanuc_like = dialect_.kind != DialectKind::rs274ngc;
+  const bool fanuc_like = dialect_.kind != machines::Dialect::rs274ngc;
   step.nonmodal = step.g(Group::non_modal);
   step.nonmodal_code = step.nonmodal ? code_of(*step.nonmodal) : 0;
   const int nonmodal_code = step.nonmodal_code;
@@ -889,7 +890,7 @@ void Interpreter::classify_words(Step& step) {
          code_text('G', nonmodal_code) + " and " + code_text('G', motion_code) +
              " both use the axis words");
   step.macro_call = nonmodal_code == 650;
-  const bool siemens = dialect_.kind == DialectKind::sinumerik;
+  const bool siemens = dialect_.kind == machines::Dialect::sinumerik;
   step.siemens_dwell = siemens && nonmodal_code == 40;
   step.speed_limit = siemens && (nonmodal_code == 250 || nonmodal_code == 260);
 }
@@ -1084,7 +1085,7 @@ void Interpreter::coolant(Step& step) {
 void Interpreter::dwell(Step& step) {
   const Word* g4 = step.nonmodal;
   double seconds = 0.0;
-  if (dialect_.kind == DialectKind::rs274ngc) {
+  if (dialect_.kind == machines::Dialect::rs274ngc) {
     const Word* p = step.word('P');
     if (!p) fail(Code::missing_word, g4->column, "G4 needs P (seconds)");
     seconds = p->value;
@@ -1199,7 +1200,7 @@ void Interpreter::set_origins(Step& step) {
 // G10 L2 (offsets given) and L20 (the position given) of a work system;
 // L1, L10, L11, L12, L13 set tool data, whose lengths are not applied.
 void Interpreter::set_origin_g10(Step& step) {
-  const bool fanuc_like = dialect_.kind != DialectKind::rs274ngc;
+  const bool fanuc_like = dialect_.kind != machines::Dialect::rs274ngc;
   const ModalState& s = step.state;
   const Word* l = step.word('L');
   const Word* p = step.word('P');
@@ -1240,7 +1241,7 @@ void Interpreter::set_origin_g10(Step& step) {
 // G92: the current position becomes the given one; G52: a local origin
 // (LinuxCNC keeps it in the G92 register, Fanuc has a local system).
 void Interpreter::set_origin_g92_g52(Step& step) {
-  const bool fanuc_like = dialect_.kind != DialectKind::rs274ngc;
+  const bool fanuc_like = dialect_.kind != machines::Dialect::rs274ngc;
   const ModalState& s = step.state;
   const bool g92 = step.nonmodal_code == 920;
   step.origins = origins_;
@@ -1521,7 +1522,7 @@ void Interpreter::macro_call(const Step& step) {
 // A canned cycle at the block's position (Fanuc: K or L repeats); R, Z, Q
 // and P not given are those of the cycle's earlier blocks.
 void Interpreter::canned_cycle(Step& step) {
-  const bool fanuc_like = dialect_.kind != DialectKind::rs274ngc;
+  const bool fanuc_like = dialect_.kind != machines::Dialect::rs274ngc;
   ModalState& s = step.state;
   const int c = s.cycle;
   const std::uint32_t column = step.motion_column;
@@ -1605,7 +1606,7 @@ void Interpreter::canned_cycle(Step& step) {
 
 // L (Fanuc: K) repeats of a canned cycle; 1 without.
 int Interpreter::cycle_repeats(const Step& step) const {
-  const bool fanuc_like = dialect_.kind != DialectKind::rs274ngc;
+  const bool fanuc_like = dialect_.kind != machines::Dialect::rs274ngc;
   const Word* l = step.word('L');
   const Word* kw = fanuc_like ? step.word('K') : nullptr;
   const Word* rep = kw ? kw : l;
@@ -1703,11 +1704,11 @@ void Interpreter::arc(Step& step, const Eigen::Vector3d& end) {
   const Eigen::Vector3d centre =
       step.word('R') ? centre_from_radius(step, end, cw) : centre_from_offsets(step, end);
   int turns = 1;
-  if (const Word* p = step.word('P');
-      p && (dialect_.kind == DialectKind::rs274ngc || dialect_.kind == DialectKind::sinumerik)) {
+  if (const Word* p = step.word('P'); p && (dialect_.kind == machines::Dialect::rs274ngc ||
+                                            dialect_.kind == machines::Dialect::sinumerik)) {
     if (p->value < 1 || !whole_number(p->value))
       fail(Code::bad_word_value, p->column,
-           dialect_.kind == DialectKind::sinumerik
+           dialect_.kind == machines::Dialect::sinumerik
                ? "TURN= (full turns beyond the end point) must be a whole number from 0 to "
                  "999999999"
                : "P (turns) of an arc must be a whole number from 1 to 1e9");
@@ -1989,7 +1990,7 @@ void Interpreter::call_subprogram(const Step& step) {
          "M98 L (the number of passes) must be a whole number from 0 to 1e9");
   auto number = static_cast<long>(p->value);
   long count = l ? static_cast<long>(l->value) : 1;
-  if (!l && dialect_.kind == DialectKind::fanuc && number > 9999) {
+  if (!l && dialect_.kind == machines::Dialect::fanuc && number > 9999) {
     count = number / 10000;
     number %= 10000;
   }

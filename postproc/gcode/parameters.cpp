@@ -88,16 +88,16 @@ Access refuse(Code code, std::string message) {
 }  // namespace
 
 Parameters::Parameters(const Dialect& dialect) : kind_(dialect.kind), frames_(1) {
-  const int size = kind_ == DialectKind::rs274ngc ? kNgcLast + 1 : kFanucLast + 1;
-  globals_.assign(static_cast<std::size_t>(size), Value{0.0, kind_ != DialectKind::rs274ngc});
+  const int size = kind_ == machines::Dialect::rs274ngc ? kNgcLast + 1 : kFanucLast + 1;
+  globals_.assign(static_cast<std::size_t>(size), Value{0.0, kind_ != machines::Dialect::rs274ngc});
   set_.assign(static_cast<std::size_t>(size), false);
-  for (auto& v : frames_.back().locals) v.vacant = kind_ != DialectKind::rs274ngc;
+  for (auto& v : frames_.back().locals) v.vacant = kind_ != machines::Dialect::rs274ngc;
 }
 
 Access Parameters::read(int number) const {
   std::string name = "#";
   name += std::to_string(number);
-  if (kind_ == DialectKind::rs274ngc) {
+  if (kind_ == machines::Dialect::rs274ngc) {
     if (number < 1 || number > kNgcLast)
       return refuse(Code::parameter_out_of_range, "parameter " + name + " does not exist");
     if (number <= local_count()) return {true, {}, {}, frames_.back().locals[number]};
@@ -135,14 +135,14 @@ Access Parameters::read(std::string_view name) const {
 
 bool Parameters::exists(std::string_view name) const {
   if (read(name).ok) return true;
-  return kind_ == DialectKind::rs274ngc &&
+  return kind_ == machines::Dialect::rs274ngc &&
          std::binary_search(kPredefined.begin(), kPredefined.end(), name);
 }
 
 Access Parameters::write(int number, double value) {
   std::string name = "#";
   name += std::to_string(number);
-  if (kind_ == DialectKind::rs274ngc) {
+  if (kind_ == machines::Dialect::rs274ngc) {
     if (number < 1 || number > kNgcLast)
       return refuse(Code::parameter_out_of_range, "parameter " + name + " does not exist");
     if (number <= local_count()) {
@@ -171,7 +171,7 @@ Access Parameters::write(int number, double value) {
 }
 
 Access Parameters::write(std::string_view name, double value) {
-  if (kind_ == DialectKind::rs274ngc &&
+  if (kind_ == machines::Dialect::rs274ngc &&
       std::binary_search(kPredefined.begin(), kPredefined.end(), name))
     return refuse(Code::machine_state, "predefined parameter #<" + std::string(name) +
                                            "> is read-only: it reports the control's state");
@@ -186,7 +186,7 @@ Access Parameters::write(std::string_view name, double value) {
 void Parameters::push_frame(const std::vector<double>& arguments) {
   frames_.emplace_back();
   auto& locals = frames_.back().locals;
-  for (auto& v : locals) v = Value{0.0, kind_ != DialectKind::rs274ngc};
+  for (auto& v : locals) v = Value{0.0, kind_ != machines::Dialect::rs274ngc};
   for (std::size_t i = 0; i < arguments.size() && i + 1 < locals.size(); ++i)
     locals[i + 1] = Value{arguments[i], false};
 }

@@ -55,12 +55,12 @@ class Parameters {
     std::array<Value, 34> locals{};
     std::unordered_map<std::string, double> named;
   };
-  DialectKind kind_;
+  machines::Dialect kind_;
   std::vector<Value> globals_;  // index = parameter number
   std::vector<bool> set_;
   std::vector<Frame> frames_;
   std::unordered_map<std::string, double> global_named_;
-  int local_count() const { return kind_ == DialectKind::rs274ngc ? 30 : 33; }
+  int local_count() const { return kind_ == machines::Dialect::rs274ngc ? 30 : 33; }
 };
 
 }  // namespace vcpost::gcode

@@ -315,7 +315,7 @@ gcode::Dialect output_dialect_of(const machines::MachineProfile& profile) {
 }
 
 gcode::Dialect with_speed_output(gcode::Dialect dialect, const machines::MachineProfile& profile) {
-  if (dialect.kind == gcode::DialectKind::rs274ngc)
+  if (dialect.kind == machines::Dialect::rs274ngc)
     dialect.speed_output = profile.output().speed_output;
   return dialect;
 }
@@ -366,7 +366,7 @@ bool is_begin_pgm(std::string_view line) {
 
 ProgramKind program_kind(std::string_view text, const gcode::Dialect& dialect) {
   const ProgramKind seen = detect_program_kind(text);
-  return dialect.kind == gcode::DialectKind::heidenhain && seen != ProgramKind::cldata
+  return dialect.kind == machines::Dialect::heidenhain && seen != ProgramKind::cldata
              ? ProgramKind::heidenhain
              : seen;
 }

@@ -109,9 +109,9 @@ class HostileCli : public ::testing::Test {
 
 const char* dialect_name(const Dialect& d) {
   switch (d.kind) {
-    case DialectKind::fanuc:
+    case machines::Dialect::fanuc:
       return "fanuc";
-    case DialectKind::sinumerik:
+    case machines::Dialect::sinumerik:
       return "sinumerik";
     default:
       return "rs274ngc";

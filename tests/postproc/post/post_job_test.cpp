@@ -408,8 +408,8 @@ TEST(PostJob, SinumerikProfileReadsTheSiemensLanguage) {
   program = "; dome raster\nMSG(\"FINISH D10\")\nG17 G71 G90 G94 G642\nT1 D1\nM6\n" +
             program.substr(header.size(), program.size() - header.size() - 2);  // no "%\n"
   const auto profile = machines::builtin_profile("sinumerik-840d");
-  EXPECT_EQ(post::dialect_of(profile).kind, gcode::DialectKind::sinumerik);
-  EXPECT_EQ(post::output_dialect_of(profile).kind, gcode::DialectKind::fanuc);
+  EXPECT_EQ(post::dialect_of(profile).kind, machines::Dialect::sinumerik);
+  EXPECT_EQ(post::output_dialect_of(profile).kind, machines::Dialect::fanuc);
   PostSummary summary;
   const std::string out = run_post(program, profile, settings_for(120), &summary);
   EXPECT_GT(summary.s_words, 1u);

@@ -26,7 +26,7 @@ namespace {
 using namespace vcpost::deff;
 using namespace deff_printing;
 
-constexpr const char* kDescription =
+constexpr const char* kDeffDescription =
     "Working diameter of the tool at one point, over a sweep of an angle, or for every row of a\n"
     "CSV file (Mgherony-Miko model, MODELS.md section 2). Reports D_max, D_min, D_mean and the\n"
     "cutting points 1, 2, 1', 1'', 2', 2'' as 2r (r = distance from the tool axis), in mm.\n"
@@ -329,7 +329,7 @@ void run(const CLI::App& command, const Arguments& args) {
 }  // namespace
 
 void add_deff_command(CLI::App& app) {
-  auto* command = app.add_subcommand("deff", kDescription);
+  auto* command = app.add_subcommand("deff", kDeffDescription);
   auto args = std::make_shared<Arguments>();
   command
       ->add_option("--tool", args->tool,

@@ -9,7 +9,7 @@
 namespace vcpost::cli {
 namespace {
 
-constexpr const char* kDescription =
+constexpr const char* kPostDescription =
     "Rewrites the spindle speed S (and with --adjust-feed the feed F) of a ball-end finishing\n"
     "program so that the real cutting speed at the tool's working diameter stays at --vc, within\n"
     "what the machine profile allows. G-code input keeps every byte but the S/F words; APT CL\n"
@@ -27,7 +27,7 @@ constexpr const char* kDescription =
 void add_post_command(CLI::App& app) {
   auto args = std::make_shared<PostArguments>();
   auto* post = app.add_subcommand("post", "Rewrite S (and F) so the cutting speed stays nominal");
-  post->description(kDescription);
+  post->description(kPostDescription);
   add_job_options(*post, *args);
   post->add_option("-o,--output", args->output,
                    "output program ('-': standard output); written whole or not at all")

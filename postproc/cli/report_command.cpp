@@ -9,7 +9,7 @@
 namespace vcpost::cli {
 namespace {
 
-constexpr const char* kDescription =
+constexpr const char* kReportDescription =
     "Runs the post job dry (same options as `vcpost post`) and writes its report: the format\n"
     "follows the file name: .json (summary with stable keys), .csv (one row per evaluated point),\n"
     ".html (one self-contained page with plots, opens offline); '-' prints the JSON summary.\n"
@@ -24,7 +24,7 @@ void add_report_command(CLI::App& app) {
   auto args = std::make_shared<PostArguments>();
   auto* report = app.add_subcommand(
       "report", "Dry run: report how vc deviates, before and after (JSON, CSV, HTML)");
-  report->description(kDescription);
+  report->description(kReportDescription);
   add_job_options(*report, *args);
   report
       ->add_option("-o,--output", args->reports,

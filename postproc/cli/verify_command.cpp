@@ -25,7 +25,7 @@ namespace {
 // Violations printed on stderr before "... and K more".
 constexpr std::size_t kShown = 20;
 
-constexpr const char* kDescription =
+constexpr const char* kVerifyDescription =
     "Proves that OUTPUT is INPUT with only S and F words changed, as `vcpost post` writes it.\n"
     "\n"
     "G-code INPUT: every byte outside S/F words must be equal (lines, line endings, words,\n"
@@ -181,7 +181,7 @@ void add_verify_command(CLI::App& app) {
   auto args = std::make_shared<Arguments>();
   auto* cmd = app.add_subcommand(
       "verify", "Prove that a posted program differs from its input only in S and F words");
-  cmd->description(kDescription);
+  cmd->description(kVerifyDescription);
   cmd->add_option("INPUT", args->input, "the program given to `vcpost post` (G-code or APT CL)")
       ->required();
   cmd->add_option("OUTPUT", args->output, "the program `vcpost post` wrote (G-code)")->required();

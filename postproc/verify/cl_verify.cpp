@@ -15,7 +15,6 @@
 #include "postproc/gcode/diagnostics.h"
 #include "postproc/gcode/interpreter.h"
 #include "postproc/heidenhain/interpreter.h"
-#include "postproc/program/transcript.h"
 #include "postproc/verify/verify.h"
 #include "postproc/verify/verify_detail.h"
 
@@ -378,12 +377,6 @@ std::string point(const Eigen::Vector3d& p) {
   return "(" + number(p.x()) + ", " + number(p.y()) + ", " + number(p.z()) + ")";
 }
 
-std::string shown(const Event& e) {
-  std::string text = program::transcript(e);
-  while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
-  return text;
-}
-
 const char* kind_name(const Event& e) {
   if (std::holds_alternative<program::StraightTraverse>(e)) return "rapid";
   if (std::holds_alternative<program::StraightFeed>(e)) return "feed move";
@@ -422,7 +415,7 @@ class Comparer {
     if (cl_motion != out_motion) {
       add(cl_motion ? Code::motion_count : Code::spindle_or_tool, cl, out,
           std::string("the output has a ") + kind_name(out.event) + " where the CL data have a " +
-              kind_name(cl.event) + ": " + shown(out.event) + " vs " + shown(cl.event));
+              kind_name(cl.event) + ": " + event_text(out.event) + " vs " + event_text(cl.event));
       return false;
     }
     if (!cl_motion) return compare_control(cl, out);
@@ -470,7 +463,8 @@ class Comparer {
     }
     if (!same_event(cl.event, out.event, false))
       add(Code::spindle_or_tool, cl, out,
-          "the output means " + shown(out.event) + " where the CL data mean " + shown(cl.event));
+          "the output means " + event_text(out.event) + " where the CL data mean " +
+              event_text(cl.event));
     return true;
   }
 
@@ -478,8 +472,8 @@ class Comparer {
                    const Item& out) {
     if (a.plane != b.plane || a.rotation != b.rotation) {
       add(Code::arc_differs, cl, out,
-          "arc " + shown(out.event) + " differs in plane or direction from the CL's " +
-              shown(cl.event));
+          "arc " + event_text(out.event) + " differs in plane or direction from the CL's " +
+              event_text(cl.event));
       return;
     }
     // The centre's axis component is not meaningful (events.h). Where the
@@ -582,13 +576,13 @@ Result compare_with_cl(std::string_view cl_text, std::string_view output, const 
       if (b)
         sink.add(Code::motion_count, b->line, b->column, 0,
                  std::string("the output has a ") + kind_name(b->event) +
-                     " after the CL data's last (" + shown(b->event) + ")");
+                     " after the CL data's last (" + event_text(b->event) + ")");
       else
         sink.add(Code::motion_count,
                  static_cast<std::uint32_t>(std::count(output.begin(), output.end(), '\n') + 1), 1,
                  a->line,
                  std::string("the output ends before the CL data's ") + kind_name(a->event) + " (" +
-                     shown(a->event) + ")");
+                     event_text(a->event) + ")");
       break;
     }
     if (!comparer.compare(*a, *b)) break;

@@ -12,7 +12,6 @@
 #include "postproc/gcode/block.h"
 #include "postproc/gcode/diagnostics.h"
 #include "postproc/gcode/interpreter.h"
-#include "postproc/program/transcript.h"
 #include "postproc/verify/lexer.h"
 #include "postproc/verify/verify.h"
 #include "postproc/verify/verify_detail.h"
@@ -429,12 +428,6 @@ class EventStream {
   bool done_ = false;
 };
 
-std::string shown(const program::Event& e) {
-  std::string text = program::transcript(e);
-  while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
-  return text;
-}
-
 // The semantic proof: identical events but S/F, in the same order. Stops
 // at the first difference (what follows no longer lines up).
 void compare_events(std::string_view input, std::string_view output, const Options& options,
@@ -463,15 +456,15 @@ void compare_events(std::string_view input, std::string_view output, const Optio
       const auto line = y ? program::source_of(*y).line : 0;
       sink.add(Code::event_count, line, y ? program::source_of(*y).column : 0,
                x ? program::source_of(*x).line : 0,
-               y ? "the output has more events than the input, from " + shown(*y)
-                 : "the output ends before the input's " + shown(*x));
+               y ? "the output has more events than the input, from " + event_text(*y)
+                 : "the output ends before the input's " + event_text(*x));
       return;
     }
     if (program::is_motion(*x)) ++result.motions;
     if (!same_event(*x, *y, same_lines)) {
       const auto sy = program::source_of(*y);
       sink.add(Code::event_differs, sy.line, sy.column, program::source_of(*x).line,
-               "the output means " + shown(*y) + " where the input means " + shown(*x));
+               "the output means " + event_text(*y) + " where the input means " + event_text(*x));
       return;
     }
   }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <type_traits>
 
+#include "postproc/program/transcript.h"
+
 namespace vcpost::verify {
 
 void ViolationSink::add(Code code, std::uint32_t line, std::uint32_t column,
@@ -81,6 +83,12 @@ bool same_event(const Event& a, const Event& b, bool compare_lines) {
         return same_fields(x, std::get<T>(b));
       },
       a);
+}
+
+std::string event_text(const Event& e) {
+  std::string text = program::transcript(e);
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+  return text;
 }
 
 }  // namespace vcpost::verify

@@ -58,4 +58,7 @@ class ChangeSink {
 // (and its line unless `compare_lines`). Positions are compared exactly.
 bool same_event(const program::Event& a, const program::Event& b, bool compare_lines);
 
+// The event as `vcpost moves` prints it, on one line (for messages).
+std::string event_text(const program::Event& e);
+
 }  // namespace vcpost::verify

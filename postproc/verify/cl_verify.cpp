@@ -161,7 +161,6 @@ class ClItems {
     return side_change({CompensationSide::off, last_}, last_, side_);
   }
 
- private:
   std::istringstream in_;
   cldata::ClReader reader_;
   bool compensation_;

@@ -35,7 +35,8 @@ fi
 batch=${TIDY_BATCH:-8}
 
 # Inside the tree, so that .clang-tidy applies to the units.
-work=$(mktemp -d "$PWD/$build/tidy.XXXXXX")
+[[ "$build" == /* ]] || build=$PWD/$build
+work=$(mktemp -d "$build/tidy.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 start=$SECONDS
 

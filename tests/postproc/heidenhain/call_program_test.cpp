@@ -94,7 +94,8 @@ TEST(KlartextCallProgram, RefusedWithTheCalledFileNamed) {
   EXPECT_EQ(format(*bad, "main.h").rfind("BAD:3:1: error[E3312]", 0), 0u);
   EXPECT_FALSE(error_with_calls(head + "CALL PGM TOOL\n"));  // reading: a TOOL CALL is fine
   EXPECT_EQ(error_with_calls(head + "CALL PGM TOOL\n", true)->code, Code::called_tool_call);
-  Interpreter alone(head + "CALL PGM SUB1\n");  // no loader: refused, not skipped
+  const std::string text = head + "CALL PGM SUB1\n";  // the interpreter reads it in place
+  Interpreter alone(text);                            // no loader: refused, not skipped
   EXPECT_THROW(testing::run("", &alone), KlartextError);
 }
 

@@ -4,11 +4,11 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/units.h"
+
 namespace vcpost::heidenhain {
 
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 Eigen::Vector2d left_normal(const Eigen::Vector2d& d) { return {-d.y(), d.x()}; }
 

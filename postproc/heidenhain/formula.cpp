@@ -5,13 +5,14 @@
 #include <numbers>
 #include <string>
 
+#include "core/units.h"
+
 namespace vcpost::heidenhain {
 
 namespace {
 
 using Op = FormulaStep::Op;
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 // The largest value a step may give: as FN's results (far past any machine).
 constexpr double kLimit = 1e12;
 // Parentheses nested deeper than this are no program's (and would run the

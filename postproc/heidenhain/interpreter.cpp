@@ -5,6 +5,7 @@
 #include <cstring>
 #include <numbers>
 
+#include "core/units.h"
 #include "postproc/heidenhain/approach.h"
 #include "postproc/heidenhain/cycles.h"
 #include "postproc/heidenhain/formula.h"
@@ -17,7 +18,6 @@ namespace {
 
 using program::Event;
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 // An arc's end may miss its circle by this much (mm) plus a relative part:
 // CAM systems round coordinates to 3 or 4 decimals.
 constexpr double kArcTolerance = 0.005;

@@ -38,24 +38,24 @@ class CycleWriter {
 void hole(const CycleCall& c, CycleWriter& w, double x, double y, double clear) {
   const double r = c.r, bottom = c.bottom;
   switch (c.code) {
-    case 810:
+    case G_81_drill:
       w.feed(x, y, bottom);
       w.traverse(x, y, clear);
       break;
-    case 820:
+    case G_82_drill_dwell:
       w.feed(x, y, bottom);
       w.dwell(c.dwell);
       w.traverse(x, y, clear);
       break;
-    case 730:
-    case 830: {
+    case G_73_chip_break_drill:
+    case G_83_peck_drill: {
       // Depth stepped down by Q as rs274 steps it (repeated subtraction, so
       // the pecks land where LinuxCNC puts them); the count was bounded by
       // the cycle-move limit before the block ran.
       double depth = r - c.q;
       while (depth > bottom) {
         w.feed(x, y, depth);
-        if (c.code == 830) w.traverse(x, y, r);
+        if (c.code == G_83_peck_drill) w.traverse(x, y, r);
         w.traverse(x, y, depth + c.peck_clearance);
         depth -= c.q;
       }
@@ -63,30 +63,30 @@ void hole(const CycleCall& c, CycleWriter& w, double x, double y, double clear) 
       w.traverse(x, y, clear);
       break;
     }
-    case 740:
-    case 840:
+    case G_74_left_hand_tap:
+    case G_84_right_hand_tap:
       w.feed(x, y, bottom);
       w.spindle_off();
-      w.spindle_on(c.code == 740);
+      w.spindle_on(c.code == G_74_left_hand_tap);
       w.dwell(c.dwell);
       w.feed(x, y, clear);
       w.spindle_off();
-      w.spindle_on(c.code == 840);
+      w.spindle_on(c.code == G_84_right_hand_tap);
       break;
-    case 850:
+    case G_85_bore_feed_out:
       w.feed(x, y, bottom);
       w.feed(x, y, r);
       w.traverse(x, y, clear);
       break;
-    case 860:
-    case 760:  // Fanuc fine boring: oriented stop at the bottom, rapid out, as G86
+    case G_86_bore_spindle_stop:
+    case G_76_fine_bore:  // Fanuc fine boring: oriented stop at the bottom, rapid out, as G86
       w.feed(x, y, bottom);
       w.dwell(c.dwell);
       w.spindle_off();
       w.traverse(x, y, clear);
       w.spindle_on(c.spindle_cw);
       break;
-    case 870:
+    case G_87_back_bore:
       if (c.fanuc) {
         // Back boring: R is the hole's far side; rapid through with the
         // spindle oriented, bore back up to Z, rapid out to the initial level.
@@ -112,14 +112,14 @@ void hole(const CycleCall& c, CycleWriter& w, double x, double y, double clear) 
         w.spindle_on(c.spindle_cw);
       }
       break;
-    case 880:
+    case G_88_bore_manual_out:
       w.feed(x, y, bottom);
       w.dwell(c.dwell);
       w.spindle_off();
       w.stop();
       w.spindle_on(c.spindle_cw);
       break;
-    case 890:
+    case G_89_bore_dwell_feed_out:
       w.feed(x, y, bottom);
       w.dwell(c.dwell);
       w.feed(x, y, clear);
@@ -157,7 +157,7 @@ Eigen::Vector3d expand_cycle(const CycleCall& c, std::vector<program::Event>& ev
   }
   // As rs274: the tool is taken to be at the clearance level over the last
   // hole (G88's operator retract included).
-  return Eigen::Vector3d(x, y, c.code == 870 && c.fanuc ? c.initial : clear);
+  return Eigen::Vector3d(x, y, c.code == G_87_back_bore && c.fanuc ? c.initial : clear);
 }
 
 }  // namespace vcpost::gcode

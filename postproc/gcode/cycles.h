@@ -9,12 +9,13 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "postproc/gcode/code_names.h"
 #include "postproc/program/events.h"
 
 namespace vcpost::gcode {
 
 struct CycleCall {
-  int code = 810;                                   // x10: 730 740 760 810 .. 890
+  int code = G_81_drill;                            // code_names.h: G73 G74 G76 G81 .. G89
   bool fanuc = false;                               // Fanuc forms of G76 and G87 (else RS274NGC's)
   Eigen::Vector3d start = Eigen::Vector3d::Zero();  // tool position before the block, mm
   double x = 0.0, y = 0.0;                          // first hole (absolute), mm

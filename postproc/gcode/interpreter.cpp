@@ -8,6 +8,7 @@
 #include <limits>
 #include <numbers>
 
+#include "postproc/gcode/code_names.h"
 #include "postproc/gcode/codes.h"
 #include "postproc/gcode/cycles.h"
 #include "postproc/gcode/lexer.h"
@@ -507,40 +508,44 @@ void Interpreter::warn_once(char letter, int key, Code code, std::uint32_t colum
 
 namespace {
 
-bool is_cycle_code(int c) { return c == 730 || c == 740 || c == 760 || (c >= 810 && c <= 890); }
+bool is_cycle_code(int c) {
+  return c == G_73_chip_break_drill || c == G_74_left_hand_tap || c == G_76_fine_bore ||
+         (c >= G_81_drill && c <= G_89_bore_dwell_feed_out);
+}
 
 // Codes whose axis words are values, not a point to move to: G10, G52, G92.
 bool axis_words_are_values(int nonmodal) {
-  return nonmodal == 100 || nonmodal == 520 || nonmodal == 920;
+  return nonmodal == G_10_set_offsets || nonmodal == G_52_local_origin ||
+         nonmodal == G_92_set_position;
 }
 
 // Codes that take the block's axis words for themselves (no move of their own
 // kind from them): those above, and G28, G30 (the point passed on the way home).
 bool uses_axis_words(int nonmodal) {
-  return axis_words_are_values(nonmodal) || nonmodal == 280 || nonmodal == 300;
+  return axis_words_are_values(nonmodal) || nonmodal == G_28_home || nonmodal == G_30_home_2;
 }
 
 constexpr char kAxes[] = "XYZ";
 
 std::size_t work_index(int code) {
   switch (code) {
-    case 540:
+    case G_54_work_1:
       return 0;
-    case 550:
+    case G_55_work_2:
       return 1;
-    case 560:
+    case G_56_work_3:
       return 2;
-    case 570:
+    case G_57_work_4:
       return 3;
-    case 580:
+    case G_58_work_5:
       return 4;
-    case 590:
+    case G_59_work_6:
       return 5;
-    case 591:
+    case G_59_1_work_7:
       return 6;
-    case 592:
+    case G_59_2_work_8:
       return 7;
-    case 593:
+    case G_59_3_work_9:
       return 8;
     default:
       return 9;  // G54.1
@@ -581,10 +586,10 @@ void Interpreter::run_siemens_cycle(ModalState& s, const SiemensCycle& sc,
   call.source = program::SourceRef{block_.line, sc.column, block_.offset};
   switch (sc.number) {
     case 81:
-      call.code = 810;
+      call.code = G_81_drill;
       break;
     case 82:
-      call.code = 820;
+      call.code = G_82_drill_dwell;
       call.dwell = arg(5);
       break;
     case 83: {
@@ -594,25 +599,25 @@ void Interpreter::run_siemens_cycle(ModalState& s, const SiemensCycle& sc,
       const double first = given(5) ? rfp - mm(arg(5)) : mm(std::abs(arg(6)));
       if (first <= 0.0)
         fail(Code::cycle_value, sc.column, "CYCLE83 needs a first drilling depth (FDEP or FDPR)");
-      call.code = arg(11) != 0.0 ? 830 : 730;
+      call.code = arg(11) != 0.0 ? G_83_peck_drill : G_73_chip_break_drill;
       call.q = first;
       call.peck_clearance = 1.0;
       call.dwell = arg(8);
       break;
     }
     case 84:
-      call.code = 840;
+      call.code = G_84_right_hand_tap;
       call.dwell = arg(5);
       break;
     case 85:
-      call.code = 850;
+      call.code = G_85_bore_feed_out;
       break;
     case 86:
-      call.code = 760;
+      call.code = G_76_fine_bore;
       call.dwell = arg(5);
       break;
     case 89:
-      call.code = 890;
+      call.code = G_89_bore_dwell_feed_out;
       call.dwell = arg(5);
       break;
     default:
@@ -713,7 +718,7 @@ void Interpreter::execute(std::vector<Event>& events) {
   if (step.m(Group::tool_change)) change_tool(step);
   if (step.m(Group::spindle)) spindle(step);
   if (step.m(Group::coolant)) coolant(step);
-  if (step.nonmodal_code == 40) dwell(step);
+  if (step.nonmodal_code == G_4_dwell) dwell(step);
   if (step.g(Group::plane)) set_plane(step);
   if (step.g(Group::cutter_comp)) cutter_compensation(step);
   if (step.g(Group::tool_length)) tool_length(step);
@@ -722,7 +727,7 @@ void Interpreter::execute(std::vector<Event>& events) {
   if (step.g(Group::rotation)) tilt_working_plane(step);
   take_axis_words(step);
   set_motion_mode(step);
-  if (step.nonmodal_code == 53) end_nurbs(step);
+  if (step.nonmodal_code == G_5_3_nurbs_end) end_nurbs(step);
   move(step);
   step.emit_inverse_f([] { return std::optional<double>(); });
   if (dialect_.kind == machines::Dialect::sinumerik) siemens_words(step);
@@ -780,14 +785,15 @@ void Interpreter::index_words(Step& step) {
       Group grp = entry->group;
       // Fanuc: the canned cycles and G80 are a group of their own (09), so
       // "G00 G80" and "G81 ... " beside a G01 mode are no conflict.
-      if (fanuc_like && grp == Group::motion && (entry->code == 800 || is_cycle_code(entry->code)))
+      if (fanuc_like && grp == Group::motion &&
+          (entry->code == G_80_cycle_off || is_cycle_code(entry->code)))
         grp = Group::canned_cycle;
       const auto group = static_cast<std::size_t>(grp);
       if (const Word* before = step.at(index.g[group])) {
         // RS274NGC: G80 beside another motion code gives way to it (rs274
         // reads "G0 G80" so).
-        if (grp == Group::motion && entry->code == 800) continue;
-        if (grp == Group::motion && code_of(*before) == 800) {
+        if (grp == Group::motion && entry->code == G_80_cycle_off) continue;
+        if (grp == Group::motion && code_of(*before) == G_80_cycle_off) {
           index.g[group] = slot_of_w;
           continue;
         }
@@ -817,7 +823,7 @@ void Interpreter::index_words(Step& step) {
   // A, B, C, U, V, W: rotary or parallel axes, but a G65 macro call's
   // arguments (#1, #2, #3, #21, #22, #23).
   const Word* g65 = step.at(index.g[static_cast<std::size_t>(Group::non_modal)]);
-  if (axis_word && !(fanuc_like && g65 && code_of(*g65) == 650))
+  if (axis_word && !(fanuc_like && g65 && code_of(*g65) == G_65_macro_call))
     fail(Code::axis_not_supported, axis_word->column,
          std::string(1, axis_word->letter) + " axis: vcpost reads 3-axis (X Y Z) programs only");
 }
@@ -830,7 +836,8 @@ bool Interpreter::index_m_word(Step& step, const Word& w, std::uint8_t slot) {
   // Fanuc-like controls: beyond the standard M codes, every M is the
   // machine's own (M50 is no feed override there).
   if (entry && fanuc_like && entry->group == Group::overrides) entry.reset();
-  if (entry && fanuc_like && (entry->code == 600 || entry->code == 610)) entry.reset();
+  if (entry && fanuc_like && (entry->code == M_60_pallet_change || entry->code == M_61_set_tool))
+    entry.reset();
   if (!entry) {
     char text[32];
     std::snprintf(text, sizeof text, "M%g", w.value);
@@ -853,7 +860,7 @@ bool Interpreter::index_m_word(Step& step, const Word& w, std::uint8_t slot) {
   if (const Word* before = step.at(step.index.m[group])) {
     // Fanuc-like controls take mist and flood together (M7 M8).
     const int pair = code_of(*before) + entry->code;
-    if (fanuc_like && entry->group == Group::coolant && pair == 150 &&
+    if (fanuc_like && entry->group == Group::coolant && pair == M_7_mist + M_8_flood &&
         entry->code != code_of(*before)) {
       step.mist_and_flood = true;
       return true;
@@ -872,7 +879,7 @@ void Interpreter::classify_words(Step& step) {
   step.nonmodal = step.g(Group::non_modal);
   step.nonmodal_code = step.nonmodal ? code_of(*step.nonmodal) : 0;
   const int nonmodal_code = step.nonmodal_code;
-  if (fanuc_like && nonmodal_code == 40 && step.word('X')) {
+  if (fanuc_like && nonmodal_code == G_4_dwell && step.word('X')) {
     step.dwell_x = step.word('X');
     step.index.by_letter['X' - 'A'] = 0;
   }
@@ -881,18 +888,20 @@ void Interpreter::classify_words(Step& step) {
   step.cycle_word = step.g(Group::canned_cycle);
   step.motion_code = step.motion_word ? code_of(*step.motion_word) : -1;
   const int motion_code = step.motion_code;
-  if (step.motion_word && motion_code == 800 && step.has_xyz && !uses_axis_words(nonmodal_code))
+  if (step.motion_word && motion_code == G_80_cycle_off && step.has_xyz &&
+      !uses_axis_words(nonmodal_code))
     fail(Code::words_without_motion, step.first_axis_column(0),
          "axis words with G80: without a motion mode (G0/G1/G2/G3)");
-  if (step.nonmodal && uses_axis_words(nonmodal_code) && step.motion_word && motion_code != 800 &&
-      step.has_xyz)
+  if (step.nonmodal && uses_axis_words(nonmodal_code) && step.motion_word &&
+      motion_code != G_80_cycle_off && step.has_xyz)
     fail(Code::modal_group_conflict, step.nonmodal->column,
          code_text('G', nonmodal_code) + " and " + code_text('G', motion_code) +
              " both use the axis words");
-  step.macro_call = nonmodal_code == 650;
+  step.macro_call = nonmodal_code == G_65_macro_call;
   const bool siemens = dialect_.kind == machines::Dialect::sinumerik;
-  step.siemens_dwell = siemens && nonmodal_code == 40;
-  step.speed_limit = siemens && (nonmodal_code == 250 || nonmodal_code == 260);
+  step.siemens_dwell = siemens && nonmodal_code == G_4_dwell;
+  step.speed_limit =
+      siemens && (nonmodal_code == G_25_spindle_min || nonmodal_code == G_26_spindle_max);
 }
 
 // rs274's check of words that no code of the block uses (D H I J K L P Q R).
@@ -909,53 +918,63 @@ void Interpreter::check_unused_words(const Step& step) {
   int to_be = step.motion_code;
   if (to_be < 0 && step.has_xyz && !uses_axis_words(nonmodal_code)) {
     to_be = s.cycle != 0                  ? s.cycle
-            : s.motion == Motion::rapid   ? 0
-            : s.motion == Motion::linear  ? 10
-            : s.motion == Motion::arc_cw  ? 20
-            : s.motion == Motion::arc_ccw ? 30
-            : s.motion == Motion::nurbs   ? 52
+            : s.motion == Motion::rapid   ? G_0_rapid
+            : s.motion == Motion::linear  ? G_1_linear
+            : s.motion == Motion::arc_cw  ? G_2_arc_cw
+            : s.motion == Motion::arc_ccw ? G_3_arc_ccw
+            : s.motion == Motion::nurbs   ? G_5_2_nurbs
                                           : -1;
   }
   const Word* comp = step.g(Group::cutter_comp);
   const int comp_code = comp ? code_of(*comp) : 0;
-  const bool comp_on = comp_code == 410 || comp_code == 411 || comp_code == 420 || comp_code == 421;
+  const bool comp_on =
+      comp_code == G_41_compensation_left || comp_code == G_41_1_compensation_left_dynamic ||
+      comp_code == G_42_compensation_right || comp_code == G_42_1_compensation_right_dynamic;
   const Word* tlo = step.g(Group::tool_length);
   const int tlo_code = tlo ? code_of(*tlo) : 0;
-  const bool g10 = nonmodal_code == 100;
-  const bool g64 = step.g(Group::path_control) && step.g_code(Group::path_control) == 640;
-  const bool arc = to_be == 20 || to_be == 30;
+  const bool g10 = nonmodal_code == G_10_set_offsets;
+  const bool g64 =
+      step.g(Group::path_control) && step.g_code(Group::path_control) == G_64_path_blending;
+  const bool arc = to_be == G_2_arc_cw || to_be == G_3_arc_ccw;
   // rs274 takes I, J (and P, Q for G5) only with a G5 or G5.1 word in the block.
-  const bool spline = step.motion_code == 50 || step.motion_code == 51;
-  const bool cubic = step.motion_code == 50;
+  const bool spline =
+      step.motion_code == G_5_cubic_spline || step.motion_code == G_5_1_quadratic_spline;
+  const bool cubic = step.motion_code == G_5_cubic_spline;
   const bool cycle = is_cycle_code(to_be);
   const bool m98 = step.m(Group::subprogram) != nullptr;
   // M codes that take words: M50-M53 and M62-M66 (P), M66-M68 (Q, L, E),
   // M61 (Q), M19 (R, Q, P).
   const Word* mo = step.m(Group::overrides);
   const int moc = mo ? code_of(*mo) : 0;
-  const bool m_p = (moc >= 500 && moc <= 530) || (moc >= 620 && moc <= 660);
-  const bool m_q = (moc >= 660 && moc <= 680) ||
-                   (step.m(Group::tool_change) && step.m_code(Group::tool_change) == 610);
-  const bool m19 = step.m(Group::spindle) && step.m_code(Group::spindle) == 190;
+  const bool m_p = (moc >= M_50_feed_override && moc <= M_53_feed_stop) ||
+                   (moc >= M_62_digital_output_sync && moc <= M_66_wait_input);
+  const bool m_q = (moc >= M_66_wait_input && moc <= M_68_analog_output) ||
+                   (step.m(Group::tool_change) && step.m_code(Group::tool_change) == M_61_set_tool);
+  const bool m19 = step.m(Group::spindle) && step.m_code(Group::spindle) == M_19_spindle_orient;
   auto unused = [&](char letter, bool used, const char* users) {
     if (const Word* w = step.word(letter); w && !used)
       fail(Code::word_without_use, w->column,
            std::string(1, letter) + " word with no " + users + " to use it");
   };
-  unused('D', comp_on || to_be == 730 || to_be == 830, "G41, G42, G73 or G83");
-  unused('E', moc >= 660 && moc <= 680, "M66, M67 or M68");
-  unused('H', tlo_code == 430 || tlo_code == 432, "G43 or G43.2");
-  unused('I', arc || spline || to_be == 870 || g10, "G2, G3, G5, G5.1, G10 or G87");
-  unused('J', arc || spline || to_be == 870 || g10, "G2, G3, G5, G5.1, G10 or G87");
-  unused('K', arc || to_be == 870, "G2, G3 or G87");
-  unused('L', cycle || g10 || comp_on || m98 || moc == 660 || to_be == 52,
+  unused('D', comp_on || to_be == G_73_chip_break_drill || to_be == G_83_peck_drill,
+         "G41, G42, G73 or G83");
+  unused('E', moc >= M_66_wait_input && moc <= M_68_analog_output, "M66, M67 or M68");
+  unused('H', tlo_code == G_43_tool_length || tlo_code == G_43_2_tool_length_added, "G43 or G43.2");
+  unused('I', arc || spline || to_be == G_87_back_bore || g10, "G2, G3, G5, G5.1, G10 or G87");
+  unused('J', arc || spline || to_be == G_87_back_bore || g10, "G2, G3, G5, G5.1, G10 or G87");
+  unused('K', arc || to_be == G_87_back_bore, "G2, G3 or G87");
+  unused('L', cycle || g10 || comp_on || m98 || moc == M_66_wait_input || to_be == G_5_2_nurbs,
          "G10, cutter compensation, canned cycle, M98 or G5.2 (NURBS)");
   unused('P',
-         g10 || nonmodal_code == 40 || g64 || arc || cubic || to_be == 52 || to_be == 740 ||
-             to_be == 820 || to_be == 840 || to_be == 860 || to_be == 880 || to_be == 890 || m98 ||
-             m_p || m19,
+         g10 || nonmodal_code == G_4_dwell || g64 || arc || cubic || to_be == G_5_2_nurbs ||
+             to_be == G_74_left_hand_tap || to_be == G_82_drill_dwell ||
+             to_be == G_84_right_hand_tap || to_be == G_86_bore_spindle_stop ||
+             to_be == G_88_bore_manual_out || to_be == G_89_bore_dwell_feed_out || m98 || m_p ||
+             m19,
          "G2, G3, G4, G5, G5.2, G10, G64, G74, G82, G84, G86, G88, G89 or M98");
-  unused('Q', to_be == 730 || to_be == 830 || cubic || g10 || g64 || m_q || m19,
+  unused('Q',
+         to_be == G_73_chip_break_drill || to_be == G_83_peck_drill || cubic || g10 || g64 || m_q ||
+             m19,
          "G5, G10, G64, G73 or G83");
   unused('R', arc || cycle || g10 || g64 || m19, "G2, G3, G10, G64 or canned cycle");
   if (arc && !step.g(Group::plane)) {
@@ -982,15 +1001,15 @@ void Interpreter::emit_message(Step& step) {
 // Units first: every length of this block is read in the new units.
 void Interpreter::set_units(Step& step) {
   const int c = step.g_code(Group::units);
-  step.state.inches = c == 200 || c == 700 || c == 7000;
+  step.state.inches = c == G_20_inch || c == G_70_inch || c == G_700_inch;
 }
 
 void Interpreter::set_feed_mode(Step& step) {
   const Word* g = step.g(Group::feed_mode);
   const int c = code_of(*g);
-  const auto mode = c == 930   ? program::FeedMode::inverse_time
-                    : c == 950 ? program::FeedMode::per_revolution
-                               : program::FeedMode::per_minute;
+  const auto mode = c == G_93_inverse_time     ? program::FeedMode::inverse_time
+                    : c == G_95_per_revolution ? program::FeedMode::per_revolution
+                                               : program::FeedMode::per_minute;
   // As LinuxCNC: a G93/G94/G95 word resets the feed to 0 (it must be
   // given again); G94 and G95 say so with a zero feed rate.
   step.state.feed_mode = mode;
@@ -1025,12 +1044,13 @@ void Interpreter::set_spindle_speed(Step& step) {
 void Interpreter::analog_output(Step& step) {
   const Word* m = step.m(Group::overrides);
   const int c = code_of(*m);
-  if (c != 670 && c != 680) return;
+  if (c != M_67_analog_output_sync && c != M_68_analog_output) return;
   const Word* e = step.word('E');
   const Word* q = step.word('Q');
   if (!e || !q)
     fail(Code::speed_output_words, m->column,
-         std::string(c == 670 ? "M67" : "M68") + " needs E (the output) and Q (its value)");
+         std::string(c == M_67_analog_output_sync ? "M67" : "M68") +
+             " needs E (the output) and Q (its value)");
   if (e->value != *dialect_.speed_output) return;
   if (q->value < 0)
     fail(Code::negative_speed_output, q->column,
@@ -1048,7 +1068,7 @@ void Interpreter::select_tool(Step& step) {
 }
 
 void Interpreter::change_tool(Step& step) {
-  if (step.m_code(Group::tool_change) != 60) return;  // only M6 changes the tool
+  if (step.m_code(Group::tool_change) != M_6_tool_change) return;  // only M6 changes the tool
   step.state.tool_in_spindle = step.state.selected_tool;
   step.emit(program::ChangeTool{step.state.tool_in_spindle,
                                 source(step.b, step.m(Group::tool_change)->column)});
@@ -1057,12 +1077,12 @@ void Interpreter::change_tool(Step& step) {
 void Interpreter::spindle(Step& step) {
   const Word* m = step.m(Group::spindle);
   const int c = code_of(*m);
-  if (c == 50 || c == 190) {
+  if (c == M_5_spindle_stop || c == M_19_spindle_orient) {
     step.emit(program::SpindleOff{source(step.b, m->column)});
   } else {
-    step.state.spindle_ccw = c == 40;
-    step.emit(program::SpindleOn{c == 30 ? program::SpindleDirection::clockwise
-                                         : program::SpindleDirection::counterclockwise,
+    step.state.spindle_ccw = c == M_4_spindle_ccw;
+    step.emit(program::SpindleOn{c == M_3_spindle_cw ? program::SpindleDirection::clockwise
+                                                     : program::SpindleDirection::counterclockwise,
                                  source(step.b, m->column)});
   }
 }
@@ -1070,13 +1090,13 @@ void Interpreter::spindle(Step& step) {
 void Interpreter::coolant(Step& step) {
   const Word* m = step.m(Group::coolant);
   const int c = code_of(*m);
-  step.emit(program::Coolant{c == 70   ? program::CoolantChange::mist_on
-                             : c == 80 ? program::CoolantChange::flood_on
-                                       : program::CoolantChange::off,
+  step.emit(program::Coolant{c == M_7_mist    ? program::CoolantChange::mist_on
+                             : c == M_8_flood ? program::CoolantChange::flood_on
+                                              : program::CoolantChange::off,
                              source(step.b, m->column)});
   if (step.mist_and_flood)
     step.emit(program::Coolant{
-        c == 70 ? program::CoolantChange::flood_on : program::CoolantChange::mist_on,
+        c == M_7_mist ? program::CoolantChange::flood_on : program::CoolantChange::mist_on,
         source(step.b, m->column)});
 }
 
@@ -1111,28 +1131,31 @@ void Interpreter::dwell(Step& step) {
 void Interpreter::set_plane(Step& step) {
   const Word* g = step.g(Group::plane);
   const int c = code_of(*g);
-  step.state.plane = c == 170   ? program::Plane::xy
-                     : c == 180 ? program::Plane::xz
-                                : program::Plane::yz;
+  step.state.plane = c == G_17_plane_xy   ? program::Plane::xy
+                     : c == G_18_plane_xz ? program::Plane::xz
+                                          : program::Plane::yz;
   step.emit(program::SelectPlane{step.state.plane, source(step.b, g->column)});
 }
 
 void Interpreter::cutter_compensation(Step& step) {
   const Word* g = step.g(Group::cutter_comp);
   const int c = code_of(*g);
-  program::CutterCompensation comp{c == 400                 ? program::CompensationSide::off
-                                   : (c == 410 || c == 411) ? program::CompensationSide::left
-                                                            : program::CompensationSide::right,
-                                   source(step.b, g->column)};
+  program::CutterCompensation comp{
+      c == G_40_compensation_off ? program::CompensationSide::off
+      : (c == G_41_compensation_left || c == G_41_1_compensation_left_dynamic)
+          ? program::CompensationSide::left
+          : program::CompensationSide::right,
+      source(step.b, g->column)};
   const Word* d = step.word('D');
-  if (d != nullptr && c != 400 && whole_number(d->value))
+  if (d != nullptr && c != G_40_compensation_off && whole_number(d->value))
     comp.register_number = static_cast<int>(d->value);
   step.emit(comp);
 }
 
 void Interpreter::tool_length(Step& step) {
   const Word* g = step.g(Group::tool_length);
-  program::ToolLengthOffset t{code_of(*g) != 490, std::nullopt, source(step.b, g->column)};
+  program::ToolLengthOffset t{code_of(*g) != G_49_tool_length_off, std::nullopt,
+                              source(step.b, g->column)};
   if (const Word* h = step.word('H')) {
     if (!whole_number(h->value))
       fail(Code::bad_word_value, h->column,
@@ -1147,8 +1170,9 @@ void Interpreter::tool_length(Step& step) {
 // Most blocks touch no offset: the sums are made only where one may change.
 bool Interpreter::changes_origins(const Step& step) {
   const int c = step.nonmodal_code;
-  return step.g(Group::coordinate) || c == 100 || c == 280 || c == 281 || c == 300 || c == 301 ||
-         c == 520 || (c >= 920 && c <= 923);
+  return step.g(Group::coordinate) || c == G_10_set_offsets || c == G_28_home ||
+         c == G_28_1_set_home || c == G_30_home_2 || c == G_30_1_set_home_2 ||
+         c == G_52_local_origin || (c >= G_92_set_position && c <= G_92_3_restore_position);
 }
 
 // Origins: what the block does to the origin offsets, applied to a copy.
@@ -1160,26 +1184,26 @@ void Interpreter::set_origins(Step& step) {
   step.offset_before = total_offset(origins_, s.work_system);
   if (const Word* g = step.g(Group::coordinate)) {
     const int c = code_of(*g);
-    if (c == 541) {
+    if (c == G_54_1_work_extended) {
       // G54.1 P1..: extended offsets, never set by the program: as G54.1 P1.
       step.index.by_letter['P' - 'A'] = 0;
     }
     s.work_system = c;
   }
-  if (nonmodal_code == 100) {
+  if (nonmodal_code == G_10_set_offsets) {
     set_origin_g10(step);
-  } else if (nonmodal_code == 920 || nonmodal_code == 520) {
+  } else if (nonmodal_code == G_92_set_position || nonmodal_code == G_52_local_origin) {
     set_origin_g92_g52(step);
-  } else if (nonmodal_code == 921 || nonmodal_code == 922) {
+  } else if (nonmodal_code == G_92_1_clear_position || nonmodal_code == G_92_2_suspend_position) {
     step.origins = origins_;
     step.origins->g92.setZero();
-    if (nonmodal_code == 921) step.origins->g92_saved.setZero();
-  } else if (nonmodal_code == 923) {
+    if (nonmodal_code == G_92_1_clear_position) step.origins->g92_saved.setZero();
+  } else if (nonmodal_code == G_92_3_restore_position) {
     step.origins = origins_;
     step.origins->g92 = step.origins->g92_saved;
-  } else if (nonmodal_code == 281 || nonmodal_code == 301) {
+  } else if (nonmodal_code == G_28_1_set_home || nonmodal_code == G_30_1_set_home_2) {
     step.origins = origins_;
-    (nonmodal_code == 281 ? step.origins->home28 : step.origins->home30) =
+    (nonmodal_code == G_28_1_set_home ? step.origins->home28 : step.origins->home30) =
         s.position + step.offset_before;
   }
   step.offset_after = total_offset(step.origins ? *step.origins : origins_, s.work_system);
@@ -1216,7 +1240,9 @@ void Interpreter::set_origin_g10(Step& step) {
     if (const Word* r = step.word('R'))
       fail(Code::unsupported_code, r->column,
            "G10 R rotates the coordinate system; vcpost does not follow rotation");
-    static constexpr int kSystems[] = {540, 550, 560, 570, 580, 590, 591, 592, 593};
+    static constexpr int kSystems[] = {G_54_work_1,   G_55_work_2,   G_56_work_3,
+                                       G_57_work_4,   G_58_work_5,   G_59_work_6,
+                                       G_59_1_work_7, G_59_2_work_8, G_59_3_work_9};
     const int system = pv == 0 ? s.work_system : kSystems[pv - 1];
     step.origins = origins_;
     Origins& origins = *step.origins;
@@ -1243,7 +1269,7 @@ void Interpreter::set_origin_g10(Step& step) {
 void Interpreter::set_origin_g92_g52(Step& step) {
   const bool fanuc_like = dialect_.kind != machines::Dialect::rs274ngc;
   const ModalState& s = step.state;
-  const bool g92 = step.nonmodal_code == 920;
+  const bool g92 = step.nonmodal_code == G_92_set_position;
   step.origins = origins_;
   Origins& origins = *step.origins;
   if (g92 && !step.has_xyz)
@@ -1263,10 +1289,11 @@ void Interpreter::set_origin_g92_g52(Step& step) {
 }
 
 void Interpreter::set_distance_modes(Step& step) {
-  if (step.g(Group::distance)) step.state.absolute = step.g_code(Group::distance) == 900;
+  if (step.g(Group::distance)) step.state.absolute = step.g_code(Group::distance) == G_90_absolute;
   if (step.g(Group::arc_distance))
-    step.state.arc_absolute = step.g_code(Group::arc_distance) == 901;
-  if (step.g(Group::return_mode)) step.state.retract_to_r = step.g_code(Group::return_mode) == 990;
+    step.state.arc_absolute = step.g_code(Group::arc_distance) == G_90_1_arc_absolute;
+  if (step.g(Group::return_mode))
+    step.state.retract_to_r = step.g_code(Group::return_mode) == G_99_retract_to_r;
 }
 
 // Fanuc G68.2 X Y Z I J K: the working plane tilted by the Euler angles
@@ -1280,7 +1307,7 @@ void Interpreter::tilt_working_plane(Step& step) {
   const int c = code_of(*g);
   program::WorkingFrame frame;
   frame.source = source(step.b, g->column);
-  if (c == 682) {
+  if (c == G_68_2_tilted_plane) {
     if (const Word* p = step.word('P'); p && p->value != 0)
       fail(Code::unsupported_code, p->column,
            "G68.2 with P (three points, two vectors or projection angles) is not read: write the "
@@ -1299,7 +1326,7 @@ void Interpreter::tilt_working_plane(Step& step) {
     frame.rotation = program::euler_zxz(angle('I'), angle('J'), angle('K'));
     frame.origin = origin;
     step.frame_words = true;
-  } else if (c != 690) {
+  } else if (c != G_69_rotation_off) {
     return;
   }
   set_tilt(step, frame);
@@ -1372,7 +1399,7 @@ void Interpreter::take_axis_words(Step& step) {
   // Mazak G117: M/S/T words output when the axes reach the given position
   // during the next move; its axis words are that position, not a move.
   // M and S output somewhere inside a move cannot be placed soundly.
-  const bool g117 = nonmodal_code == 1170;
+  const bool g117 = nonmodal_code == G_117_position_output;
   if (g117) {
     if (const Word* sw = step.word('S'))
       fail(Code::unsupported_code, sw->column,
@@ -1382,7 +1409,8 @@ void Interpreter::take_axis_words(Step& step) {
            "spindle M code in a G117 block acts inside the next move; vcpost cannot place it");
   }
   // G43.1: the axis words are the tool length offset.
-  const bool dynamic_offset = step.g(Group::tool_length) && step.g_code(Group::tool_length) == 431;
+  const bool dynamic_offset =
+      step.g(Group::tool_length) && step.g_code(Group::tool_length) == G_43_1_tool_length_dynamic;
   step.axes_taken = g117 || step.macro_call || dynamic_offset || step.frame_words ||
                     axis_words_are_values(nonmodal_code);
   step.has_axis = !step.axes_taken && step.has_xyz;
@@ -1399,21 +1427,21 @@ void Interpreter::set_motion_mode(Step& step) {
       s.cycle = c;
       s.motion = Motion::none;
     } else {
-      if (c == 800 || s.cycle != 0) s.cycle_initial_set = false;
+      if (c == G_80_cycle_off || s.cycle != 0) s.cycle_initial_set = false;
       s.cycle = 0;
-      s.motion = c == 0    ? Motion::rapid
-                 : c == 10 ? Motion::linear
-                 : c == 20 ? Motion::arc_cw
-                 : c == 30 ? Motion::arc_ccw
-                 : c == 50 ? Motion::spline_cubic
-                 : c == 51 ? Motion::spline_quadratic
-                 : c == 52 ? Motion::nurbs
-                           : Motion::none;
+      s.motion = c == G_0_rapid                ? Motion::rapid
+                 : c == G_1_linear             ? Motion::linear
+                 : c == G_2_arc_cw             ? Motion::arc_cw
+                 : c == G_3_arc_ccw            ? Motion::arc_ccw
+                 : c == G_5_cubic_spline       ? Motion::spline_cubic
+                 : c == G_5_1_quadratic_spline ? Motion::spline_quadratic
+                 : c == G_5_2_nurbs            ? Motion::nurbs
+                                               : Motion::none;
     }
   }
   if (step.cycle_word) {
     const int c = code_of(*step.cycle_word);
-    if (c == 800) {
+    if (c == G_80_cycle_off) {
       s.cycle = 0;
       s.cycle_initial_set = false;
     } else {
@@ -1440,7 +1468,7 @@ Eigen::Vector3d Interpreter::target_of(const Step& step, bool absolute) const {
 void Interpreter::move(Step& step) {
   const int c = step.nonmodal_code;
   const ModalState& s = step.state;
-  if (c == 280 || c == 300) {
+  if (c == G_28_home || c == G_30_home_2) {
     reference_return(step);
   } else if (step.macro_call) {
     // G65 moves nothing itself: its program runs after the block (macro_call).
@@ -1449,7 +1477,7 @@ void Interpreter::move(Step& step) {
   } else if (step.has_axis ||
              (!step.axes_taken && (s.motion == Motion::arc_cw || s.motion == Motion::arc_ccw) &&
               (step.word('I') || step.word('J') || step.word('K') || step.word('R'))) ||
-             (s.motion == Motion::nurbs && step.motion_code == 52)) {
+             (s.motion == Motion::nurbs && step.motion_code == G_5_2_nurbs)) {
     // (G5.2 without axis words: the curve opens, or a weight for its start.)
     motion(step);
   }
@@ -1464,7 +1492,7 @@ void Interpreter::reference_return(Step& step) {
   const Word* g = step.nonmodal;
   const Eigen::Vector3d via = target_of(step, s.absolute);
   const Eigen::Vector3d reference =
-      (code == 280 ? origins_.home28 : origins_.home30) - step.offset_after;
+      (code == G_28_home ? origins_.home28 : origins_.home30) - step.offset_after;
   Eigen::Vector3d home = via;
   for (int k = 0; k < 3; ++k)
     if (!step.has_axis || step.word(kAxes[k])) home[k] = reference[k];
@@ -1497,7 +1525,7 @@ void Interpreter::macro_call(const Step& step) {
          "G65 L (the number of passes) must be a whole number from 0 to 1e9");
   const std::string name = std::to_string(static_cast<long>(p->value));
   if (!lookup_sub(name, true)) {
-    warn_once('G', 650, Code::external_macro, g65->column,
+    warn_once('G', G_65_macro_call, Code::external_macro, g65->column,
               "G65 P" + name +
                   " calls a macro program that is not in this file (a machine maker's macro): "
                   "taken as not moving the tool");
@@ -1554,7 +1582,7 @@ void Interpreter::canned_cycle(Step& step) {
   s.cycle_r = r_word;
   s.cycle_z = z_word;
   const Word* q = step.word('Q');
-  if (c == 730 || c == 830) {
+  if (c == G_73_chip_break_drill || c == G_83_peck_drill) {
     if (!q && !same)
       fail(Code::cycle_value, column, code_text('G', c) + " needs Q (the peck depth)");
     const double qv = q ? length(*q, s.inches) : s.cycle_q;
@@ -1565,12 +1593,16 @@ void Interpreter::canned_cycle(Step& step) {
     call.q = qv;
   }
   const Word* p = step.word('P');
-  const bool dwell_needed = c == 820 || c == 860 || c == 880 || c == 890;
+  const bool dwell_needed = c == G_82_drill_dwell || c == G_86_bore_spindle_stop ||
+                            c == G_88_bore_manual_out || c == G_89_bore_dwell_feed_out;
   if (dwell_needed && !p && !same && !fanuc_like)
     fail(Code::cycle_value, column, code_text('G', c) + " needs P (the dwell)");
   if (p) s.cycle_p = fanuc_like && !p->decimal_point ? p->value / 1000.0 : p->value;
-  call.dwell = (dwell_needed || c == 740 || c == 840 || c == 760) ? s.cycle_p : 0.0;
-  if (c == 870 && !fanuc_like) {
+  call.dwell =
+      (dwell_needed || c == G_74_left_hand_tap || c == G_84_right_hand_tap || c == G_76_fine_bore)
+          ? s.cycle_p
+          : 0.0;
+  if (c == G_87_back_bore && !fanuc_like) {
     if (!same && (!step.word('I') || !step.word('J') || !step.word('K')))
       fail(Code::cycle_value, column, "G87 needs I, J and K");
     if (const Word* w = step.word('I')) s.cycle_i = length(*w, s.inches);
@@ -1579,20 +1611,20 @@ void Interpreter::canned_cycle(Step& step) {
     call.i = s.cycle_i;
     call.j = s.cycle_j;
   }
-  if ((c == 760 || c == 870) && fanuc_like)
+  if ((c == G_76_fine_bore || c == G_87_back_bore) && fanuc_like)
     warn_once('G', c, Code::mode_code_passed, column,
               code_text('G', c) +
                   ": the tool's shift at the hole bottom (Q, direction a machine "
                   "parameter) is not followed; the path is read without it");
   call.repeats = cycle_repeats(step);
   place_cycle(step, call, r_word, z_word);
-  if (call.r < call.bottom && !(c == 870 && fanuc_like))
+  if (call.r < call.bottom && !(c == G_87_back_bore && fanuc_like))
     fail(Code::cycle_value, r ? r->column : column,
          "R plane below the hole bottom Z in a canned cycle");
-  call.retract_to_r = s.retract_to_r && !(c == 870 && fanuc_like);
+  call.retract_to_r = s.retract_to_r && !(c == G_87_back_bore && fanuc_like);
   if (call.repeats > 0) {
     // Each hole: its pecks (three moves each at most) and three more.
-    const bool pecks = (c == 730 || c == 830) && call.q > 0;
+    const bool pecks = (c == G_73_chip_break_drill || c == G_83_peck_drill) && call.q > 0;
     const double per_hole = 3.0 * ((pecks ? (call.r - call.bottom) / call.q : 0.0) + 1.0) + 3.0;
     if (per_hole * call.repeats > static_cast<double>(limits_.max_cycle_moves))
       fail(Code::cycle_moves, column,
@@ -1639,7 +1671,8 @@ void Interpreter::place_cycle(const Step& step, CycleCall& call, double r_word,
     call.dx = x ? length(*x, s.inches) : 0.0;
     call.dy = y ? length(*y, s.inches) : 0.0;
   }
-  if (call.code == 870 && !call.fanuc) call.k = s.absolute ? s.cycle_k : call.bottom + s.cycle_k;
+  if (call.code == G_87_back_bore && !call.fanuc)
+    call.k = s.absolute ? s.cycle_k : call.bottom + s.cycle_k;
   call.initial = old_z;
 }
 
@@ -1647,11 +1680,11 @@ void Interpreter::place_cycle(const Step& step, CycleCall& call, double r_word,
 void Interpreter::motion(Step& step) {
   ModalState& s = step.state;
   const Word* nonmodal = step.nonmodal;
-  const bool machine = step.nonmodal_code == 530;
+  const bool machine = step.nonmodal_code == G_53_machine_coordinates;
   if (machine) {
     if (s.motion != Motion::rapid && s.motion != Motion::linear)
       fail(Code::unsupported_code, nonmodal->column, "G53 needs G0 or G1");
-    warn_once('G', 530, Code::machine_coordinates, nonmodal->column,
+    warn_once('G', G_53_machine_coordinates, Code::machine_coordinates, nonmodal->column,
               "G53 machine coordinates: the offsets the program sets (G10, G92, G52) are taken "
               "off, the machine's own are unknown and taken as 0 (as rs274 does)");
   }
@@ -1793,7 +1826,7 @@ void Interpreter::nurbs_point(Step& step, const Eigen::Vector3d& end) {
   const auto ax = program::plane_axes(s.plane);
   const NurbsWords words{step.word(kAxes[ax[0]]), step.word(kAxes[ax[1]]), step.word('P'),
                          step.word('L'), step.motion_column};
-  const bool continues = state_.motion == Motion::nurbs && step.nonmodal_code != 53;
+  const bool continues = state_.motion == Motion::nurbs && step.nonmodal_code != G_5_3_nurbs_end;
   const bool zero_feed = s.feed_mode == program::FeedMode::per_minute && s.feed <= 0.0;
   nurbs_.add(words, continues, zero_feed, Eigen::Vector2d(s.position[ax[0]], s.position[ax[1]]),
              Eigen::Vector2d(end[ax[0]], end[ax[1]]), nurbs_frame(step), step.b.line);
@@ -1811,7 +1844,7 @@ void Interpreter::nurbs_point(Step& step, const Eigen::Vector3d& end) {
 void Interpreter::end_nurbs(Step& step) {
   ModalState& s = step.state;
   const std::uint32_t column = step.nonmodal->column;
-  if (step.motion_word && step.motion_code != 52)
+  if (step.motion_word && step.motion_code != G_5_2_nurbs)
     fail(Code::modal_group_conflict, step.motion_word->column,
          "G5.3 with " + code_text('G', step.motion_code) +
              ": only G5.2 may share a block with G5.3 (rs274: \"Between G5.2 and G5.3 codes, "
@@ -1848,7 +1881,7 @@ void Interpreter::end_nurbs(Step& step) {
   }
   s.position = in_space(last);
   s.moved = true;
-  const bool next_curve = step.motion_code == 52 || (!step.motion_word && step.has_axis);
+  const bool next_curve = step.motion_code == G_5_2_nurbs || (!step.motion_word && step.has_axis);
   if (!next_curve) s.motion = Motion::none;
 }
 
@@ -1954,11 +1987,11 @@ bool Interpreter::stop(Step& step) {
   const int c = code_of(*m);
   const auto src = source(step.b, m->column);
   bool end_program = false;
-  if (c == 0 || c == 10) {
-    step.emit(program::ProgramStop{c == 10, src});
-  } else if (c == 20 || c == 300) {
+  if (c == M_0_stop || c == M_1_optional_stop) {
+    step.emit(program::ProgramStop{c == M_1_optional_stop, src});
+  } else if (c == M_2_end || c == M_30_end_rewind) {
     end_program = true;
-  } else if (c == 990) {
+  } else if (c == M_99_return) {
     if (const Word* p = step.word('P'))
       fail(Code::unsupported_flow, p->column,
            "M99 P (return to a sequence number) is a jump vcpost does not follow");

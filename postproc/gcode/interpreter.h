@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "postproc/gcode/block.h"
+#include "postproc/gcode/code_names.h"
 #include "postproc/gcode/diagnostics.h"
 #include "postproc/gcode/dialect.h"
 #include "postproc/gcode/nurbs.h"
@@ -49,8 +50,8 @@ struct ModalState {
   double spindle_rpm = 0.0;
   int selected_tool = 0;
   int tool_in_spindle = 0;
-  int work_system = 540;  // G54 x10
-  bool moved = false;     // any motion yet (frame changes warned after)
+  int work_system = G_54_work_1;  // code_names.h
+  bool moved = false;             // any motion yet (frame changes warned after)
   // Canned cycles: the active one (x10, 0 none; RS274NGC keeps it in the
   // motion group, Fanuc in a group of its own beside G0/G1) and what its
   // blocks leave for the next (R, Z, Q, P, the initial level).

@@ -1,0 +1,122 @@
+// One straight tip move seen from the cells it passes over, and the exact
+// lowest point of the cutter swept along it over a cell centre.
+//
+// In the move's frame a cell centre is at s along the move's horizontal
+// direction u (from the start) and e across it. The tool at travel sigma
+// in [0, L] has its tip at z0 + slope * sigma and reaches the centre at the
+// along-offset w = s - sigma, so the swept cutter's lowest point there is
+//   z0 + slope * s + min g(w),  g(w) = -slope * w + h(sqrt(w^2 + e^2)),
+// over w in [max(s - L, -W), min(s, W)], W = sqrt(R^2 - e^2). h is convex
+// and non-decreasing and sqrt(w^2 + e^2) is convex, so g is convex: its
+// minimum over the interval is its free minimiser w* clamped to the
+// interval. w* is closed form for the ball (slope * W / sqrt(1 + slope^2)),
+// the flat end (the interval's uphill end) and the cone (e * slope /
+// sqrt(k^2 - slope^2), or the uphill end when the move is steeper than the
+// cone); for the torus it is the root of a quartic, found by bisection on
+// a bracket where its sign changes once (torus_minimiser).
+#pragma once
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <type_traits>
+
+#include "geometry/stock/cutter_profile.h"
+
+namespace vcpost::geometry::stock {
+
+struct MoveFrame {
+  Eigen::Vector2d start = Eigen::Vector2d::Zero();  // the tip's xy at s = 0
+  Eigen::Vector2d u = Eigen::Vector2d::UnitX();     // unit; +x for a vertical move
+  double length = 0;                                // L, horizontal; 0 for a vertical move
+  double z0 = 0;     // the tip's z at s = 0 (vertical: the lower end)
+  double slope = 0;  // dz/ds (0 for a vertical move)
+  // How far beyond its start (s < 0) and its end (s > L) the move's
+  // interior still gives the lowest point over a cell: there the caps of
+  // its ends do not stand for it.
+  double reach_before = 0, reach_after = 0;
+  double lowest_tip = 0;  // the lowest tip z along the move
+  // The minimisers' factors: w* = ball_factor * W (ball), cone_factor * |e|
+  // (cone, unless steep: then the uphill end).
+  double ball_factor = 0, cone_factor = 0;
+  bool steeper_than_cone = false;
+};
+
+// The move from tip a to tip b. Below a horizontal length of 1e-9 mm the
+// move is vertical: the cutter at its lower end. A slope whose height
+// change over the cutter's radius is below 1e-7 mm counts as level for the
+// reaches (the caps stand in for the interior there within that).
+MoveFrame frame_of(const CutterProfile& profile, const Eigen::Vector3d& a,
+                   const Eigen::Vector3d& b);
+
+// The torus' free minimiser w* for a sloped move (see above), |e| <= R.
+double torus_minimiser(const CutterProfile& profile, double slope, double e_abs);
+
+inline constexpr double kNoCut = std::numeric_limits<double>::infinity();
+
+// The lowest point of the swept cutter over the cell centre at (s, e) in
+// the move's frame; kNoCut where the cutter does not pass over it.
+template <ProfileKind Kind>
+inline double lowest_over(const CutterProfile& profile, const MoveFrame& move, double s, double e) {
+  const double r = profile.radius;
+  const double w_sq_max = r * r - e * e;
+  if (w_sq_max < 0) return kNoCut;
+  const double w_max = std::sqrt(w_sq_max);
+  const double lo = std::max(s - move.length, -w_max);
+  const double hi = std::min(s, w_max);
+  if (lo > hi) return kNoCut;
+  double w = 0;
+  if constexpr (Kind == ProfileKind::ball) {
+    w = move.ball_factor * w_max;
+  } else if constexpr (Kind == ProfileKind::flat) {
+    w = move.slope > 0 ? hi : lo;
+  } else if constexpr (Kind == ProfileKind::cone) {
+    w = move.steeper_than_cone ? (move.slope > 0 ? hi : lo) : move.cone_factor * std::abs(e);
+  } else {
+    w = move.slope == 0 ? 0.0 : torus_minimiser(profile, move.slope, std::abs(e));
+  }
+  w = std::clamp(w, lo, hi);
+  double h = 0;
+  if constexpr (Kind == ProfileKind::ball) {
+    h = r - std::sqrt(std::max(0.0, w_sq_max - w * w));
+  } else if constexpr (Kind == ProfileKind::torus) {
+    h = profile.height(std::sqrt(w * w + e * e));
+  } else if constexpr (Kind == ProfileKind::cone) {
+    h = profile.cone_slope * std::sqrt(w * w + e * e);
+  }
+  return move.z0 + move.slope * (s - w) + h;
+}
+
+// Lowers the cells [i0, i1] of one row to the swept cutter; the cell i0's
+// centre is at (s0, e0) in the move's frame, each next one (ds, de) on.
+template <ProfileKind Kind>
+void cut_cells(const CutterProfile& profile, const MoveFrame& move, float* row, int i0, int i1,
+               double s0, double e0, double ds, double de) {
+  for (int i = i0; i <= i1; ++i) {
+    const double step = i - i0;
+    const double z = lowest_over<Kind>(profile, move, s0 + step * ds, e0 + step * de);
+    row[i] = std::min(row[i], static_cast<float>(z));
+  }
+}
+
+// Calls f with the profile's kind as a compile-time constant.
+template <class F>
+void with_kind(ProfileKind kind, F&& f) {
+  switch (kind) {
+    case ProfileKind::ball:
+      f(std::integral_constant<ProfileKind, ProfileKind::ball>{});
+      return;
+    case ProfileKind::torus:
+      f(std::integral_constant<ProfileKind, ProfileKind::torus>{});
+      return;
+    case ProfileKind::flat:
+      f(std::integral_constant<ProfileKind, ProfileKind::flat>{});
+      return;
+    case ProfileKind::cone:
+      f(std::integral_constant<ProfileKind, ProfileKind::cone>{});
+      return;
+  }
+}
+
+}  // namespace vcpost::geometry::stock

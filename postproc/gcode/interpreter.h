@@ -163,6 +163,11 @@ class Interpreter {
   [[noreturn]] void fail(Code code, std::uint32_t column, std::string message) const;
   void warn(Code code, std::uint32_t column, std::string message);
 
+  // One block in execution (interpreter_step.h).
+  struct Step;
+
+  // Flow control (interpreter_flow.cpp): o-words, Fanuc's IF/WHILE/GOTO
+  // and program numbers, M98/M99 and G65.
   void handle_control();
   bool flow_top_is(ControlKind kind) const;
   void skip_current_line();
@@ -181,12 +186,21 @@ class Interpreter {
   // limit, and refused when `left` more passes like the one just run
   // (from `pass_start`) would pass the block bound.
   void count_pass(std::uint64_t pass_start, long left, std::uint32_t column);
+  void macro_call(const Step& step);
+  void call_subprogram(const Step& step);
+
+  // Sinumerik (interpreter_sinumerik.cpp): its drilling cycles, CYCLE800
+  // and the keywords passed through.
+  void siemens_words(Step& step);
+  void swivel_working_plane(Step& step, const SiemensCycle& sc);
+  void run_siemens_cycle(ModalState& s, const SiemensCycle& cycle,
+                         std::vector<program::Event>& events);
+
   void commit_assignments();
   void warn_unread_rest();
 
   // The block's words, family by family (interpreter.cpp, in the order
   // execute() applies them).
-  struct Step;
   void execute(std::vector<program::Event>& events);
   void index_words(Step& step);
   bool index_m_word(Step& step, const Word& w, std::uint8_t slot);
@@ -213,12 +227,10 @@ class Interpreter {
   void set_distance_modes(Step& step);
   void tilt_working_plane(Step& step);
   void set_tilt(Step& step, const program::WorkingFrame& frame);
-  void swivel_working_plane(Step& step, const SiemensCycle& sc);
   void take_axis_words(Step& step);
   void set_motion_mode(Step& step);
   void move(Step& step);
   void reference_return(Step& step);
-  void macro_call(const Step& step);
   void canned_cycle(Step& step);
   int cycle_repeats(const Step& step) const;
   void place_cycle(const Step& step, CycleCall& call, double r_word, double z_word) const;
@@ -230,15 +242,11 @@ class Interpreter {
   NurbsFrame nurbs_frame(const Step& step) const;
   Eigen::Vector3d centre_from_radius(const Step& step, const Eigen::Vector3d& end, bool cw) const;
   Eigen::Vector3d centre_from_offsets(const Step& step, const Eigen::Vector3d& end) const;
-  void siemens_words(Step& step);
   bool stop(Step& step);
-  void call_subprogram(const Step& step);
   Eigen::Vector3d target_of(const Step& step, bool absolute) const;
   // A length word in mm: `inches` are the block's units (G20/G21 of the
   // block itself included).
   double length(const Word& w, bool inches) const;
-  void run_siemens_cycle(ModalState& s, const SiemensCycle& cycle,
-                         std::vector<program::Event>& events);
   // A warning given once per program for `key` (a code, x10, with its letter).
   void warn_once(char letter, int key, Code code, std::uint32_t column, std::string message);
 

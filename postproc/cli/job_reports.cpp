@@ -109,7 +109,8 @@ std::string write_reports(const report::ReportData& data, std::vector<ReportFile
 report::ReportInputs report_inputs(const PostArguments& args, const post::PostSettings& settings,
                                    const LoadedModel& model,
                                    const machines::MachineProfile& profile, post::ProgramKind kind,
-                                   const std::optional<post::ToolSection>& first) {
+                                   const std::optional<post::ToolSection>& first,
+                                   const Eigen::AlignedBox3d& plan) {
   geometry::Tool tool = geometry::Tool::ball(10);
   const tools::ToolChoices& choices = *settings.tools;
   double vc = choices.vc.value_or(0);
@@ -140,13 +141,12 @@ report::ReportInputs report_inputs(const PostArguments& args, const post::PostSe
   in.spacing_mm = args.spacing;
   in.n_min_rpm = profile.spindle().n_min_rpm;
   in.n_max_rpm = profile.spindle().n_max_rpm;
-  // Top views over the model's plan grown by the tool radius (programmed
-  // points of a touching ball lie within it).
-  const Eigen::AlignedBox3d box = model.model->bounds();
+  // Top views over the plan grown by the tool radius (programmed points of
+  // a ball touching the model lie within it).
   const double margin = tool.radius() + 1;
-  if (!box.isEmpty()) {
-    in.plan_min = box.min().head<2>() - Eigen::Vector2d::Constant(margin);
-    in.plan_max = box.max().head<2>() + Eigen::Vector2d::Constant(margin);
+  if (!plan.isEmpty()) {
+    in.plan_min = plan.min().head<2>() - Eigen::Vector2d::Constant(margin);
+    in.plan_max = plan.max().head<2>() + Eigen::Vector2d::Constant(margin);
   } else {
     in.plan_min = Eigen::Vector2d::Constant(-margin);
     in.plan_max = Eigen::Vector2d::Constant(margin);

@@ -42,11 +42,14 @@ std::string write_reports(const report::ReportData& data, std::vector<ReportFile
                           const std::string& chart_library);
 
 // The report is drawn for one tool and vc: the first section the job
-// evaluates (read ahead), or else the plain --tool and --vc.
+// evaluates (read ahead), or else the plain --tool and --vc. Its top views
+// span `plan` (the model's bounds, or without a model the path's) grown by
+// the tool's radius.
 report::ReportInputs report_inputs(const PostArguments& args, const post::PostSettings& settings,
                                    const LoadedModel& model,
                                    const machines::MachineProfile& profile, post::ProgramKind kind,
-                                   const std::optional<post::ToolSection>& first);
+                                   const std::optional<post::ToolSection>& first,
+                                   const Eigen::AlignedBox3d& plan);
 
 // The inputs `post --summary-json` names, as the report names them.
 report::ReportInputs summary_inputs(const PostArguments& args, const JobRun& run);

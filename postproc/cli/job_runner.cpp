@@ -88,10 +88,10 @@ bool without_model_use(const PostArguments& args, std::string_view text,
   if (!args.model.empty()) return false;
   const bool translate_only = post::program_kind(text, post::reading_dialect(settings, profile)) ==
                               post::ProgramKind::cldata;
-  if (!write_program || has_reports)
+  if (translate_only && (!write_program || has_reports))
     throw CommandError(
-        "--model: required (the report evaluates the toolpath on the model; without one "
-        "there is no gouge check and no cusp map)");
+        "--model: required (the report of CL data evaluates its toolpath on the model; "
+        "G-code and Klartext are reported without one, with the normals from the toolpath)");
   if (!args.model_transform.empty())
     throw CommandError("--model-transform: places a --model; none is given");
   if (!translate_only) {
@@ -242,6 +242,19 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   const bool translate_only =
       without_model_use(args, text, profile, write_program, !reports.empty(), settings);
   LoadedModel model = placed_model(args);
+  // Without a model: the normals, read ahead of the job, and the extent of
+  // the path they lie on (the report's top views).
+  Eigen::AlignedBox3d plan = model.model->bounds();
+  if (settings.normals_from_path) {
+    stage = std::chrono::steady_clock::now();
+    post::PathNormalsAhead ahead = located_errors(
+        name, [&] { return post::read_path_normals(text, name, profile, settings); });
+    settings.path_normals =
+        std::make_shared<const std::vector<pipeline::PathNormal>>(std::move(ahead.normals));
+    plan = ahead.bounds;
+    log().debug("normals from the toolpath: {} points, found in {:.3f} s",
+                settings.path_normals->size(), seconds_since(stage));
+  }
 
   // On a terminal at the info level, one line rewritten in place.
   const bool show_progress = log().level() == spdlog::level::info && ::isatty(STDERR_FILENO);
@@ -256,9 +269,10 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   std::vector<report::CsvWriter*> csv_writers;
   if (!reports.empty()) {
     collector.emplace(report_inputs(
-        args, settings, model, profile, post::detect_program_kind(text), located_errors(name, [&] {
-          return post::first_postable_section(text, name, profile, settings);
-        })));
+        args, settings, model, profile, post::detect_program_kind(text),
+        located_errors(name,
+                       [&] { return post::first_postable_section(text, name, profile, settings); }),
+        plan));
     csv_writers = start_csv_reports(reports);
   }
   post::PointSink points;

@@ -53,6 +53,9 @@ struct PointResult {
   // 1000 vc / (pi d_ref), rpm; +infinity where d_ref is 0 (the machine caps
   // it); empty where the tool does not cut (no contact, nothing engaged).
   std::optional<double> target_rpm;
+  // Without a model: how the normal of the contact was found from the
+  // toolpath (path_normals.h); empty where the contact is with the model.
+  std::optional<NormalSource> normal_source;
 };
 
 // Evaluates the samples of one path in order (the pass tracker needs path

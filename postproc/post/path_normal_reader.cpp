@@ -7,12 +7,11 @@
 
 namespace vcpost::post {
 
-std::vector<pipeline::PathNormal> normals_from_path(std::string_view text,
-                                                    const std::string& file_name, ProgramKind kind,
-                                                    const gcode::Dialect& dialect,
-                                                    const machines::MachineProfile& profile,
-                                                    const PostSettings& settings,
-                                                    const tools::ToolChoices& choices) {
+PathNormalsAhead normals_from_path(std::string_view text, const std::string& file_name,
+                                   ProgramKind kind, const gcode::Dialect& dialect,
+                                   const machines::MachineProfile& profile,
+                                   const PostSettings& settings,
+                                   const tools::ToolChoices& choices) {
   PathReader reader(text, file_name, kind, dialect, profile, settings.sample_spacing_mm, false,
                     choices, settings.point.ap);
   reader.set_program_loader(settings.program_loader);
@@ -33,6 +32,7 @@ std::vector<pipeline::PathNormal> normals_from_path(std::string_view text,
   std::vector<double> diameters;  // by section index
   std::optional<std::uint32_t> section;
   bool after_rapid = false;
+  Eigen::AlignedBox3d bounds;
   Chunk chunk;
   while (reader.read(chunk, chunk_samples)) {
     for (const ToolSection& s : chunk.sections) {
@@ -44,6 +44,7 @@ std::vector<pipeline::PathNormal> normals_from_path(std::string_view text,
         after_rapid = after_rapid || slot.kind == SlotKind::rapid;
         continue;
       }
+      bounds.extend(slot.sample.point);
       const bool new_section = slot.section != section;
       const bool inside = slot.sample.fraction > 0 && slot.sample.fraction < 1;
       if (inside && !new_section && !slot.break_pass && !after_rapid && !points.empty()) {
@@ -73,7 +74,8 @@ std::vector<pipeline::PathNormal> normals_from_path(std::string_view text,
         std::span(starts).subspan(begin, end - begin), path_settings);
     at_ends.insert(at_ends.end(), found.begin(), found.end());
   }
-  std::vector<pipeline::PathNormal> normals(places.size());
+  PathNormalsAhead ahead{std::vector<pipeline::PathNormal>(places.size()), bounds};
+  std::vector<pipeline::PathNormal>& normals = ahead.normals;
   for (std::size_t i = 0; i < places.size(); ++i) {
     const Place& p = places[i];
     if (p.fraction >= 1 || p.end + 1 >= at_ends.size()) {
@@ -93,7 +95,7 @@ std::vector<pipeline::PathNormal> normals_from_path(std::string_view text,
     if (m.norm() < 0.5) continue;
     normals[i] = {m.normalized(), std::max(a.source, b.source)};  // the weaker of the two
   }
-  return normals;
+  return ahead;
 }
 
 }  // namespace vcpost::post

@@ -23,12 +23,11 @@ namespace vcpost::post {
 // surface), neighbours within the section tool's diameter. Found at the
 // moves' ends, the points the CAM system put on the surface; a sample
 // inside a move (a long one, split at the spacing) takes the normal
-// between those of its move's ends, as far along as it lies.
-std::vector<pipeline::PathNormal> normals_from_path(std::string_view text,
-                                                    const std::string& file_name, ProgramKind kind,
-                                                    const gcode::Dialect& dialect,
-                                                    const machines::MachineProfile& profile,
-                                                    const PostSettings& settings,
-                                                    const tools::ToolChoices& choices);
+// between those of its move's ends, as far along as it lies. With the
+// bounds of the samples' programmed points.
+PathNormalsAhead normals_from_path(std::string_view text, const std::string& file_name,
+                                   ProgramKind kind, const gcode::Dialect& dialect,
+                                   const machines::MachineProfile& profile,
+                                   const PostSettings& settings, const tools::ToolChoices& choices);
 
 }  // namespace vcpost::post

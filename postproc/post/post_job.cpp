@@ -450,6 +450,25 @@ std::optional<ToolSection> first_postable_section(std::string_view text,
   return std::nullopt;
 }
 
+PathNormalsAhead read_path_normals(std::string_view text, const std::string& file_name,
+                                   const machines::MachineProfile& profile,
+                                   const PostSettings& settings) {
+  const gcode::Dialect dialect = reading_dialect(settings, profile);
+  const ProgramKind kind = program_kind(text, dialect);
+  // As post_program runs it: settings.threads threads, the cores' cap lifted.
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int threads = settings.threads > 0 ? settings.threads : cores;
+  std::optional<tbb::global_control> parallelism;
+  if (threads > cores) parallelism.emplace(tbb::global_control::max_allowed_parallelism, threads);
+  tbb::task_arena arena(threads);
+  PathNormalsAhead ahead;
+  arena.execute([&] {
+    ahead =
+        normals_from_path(text, file_name, kind, dialect, profile, settings, tools_of(settings));
+  });
+  return ahead;
+}
+
 namespace {
 
 // One evaluator per posted section (its own tool, vc and passes), made by
@@ -580,12 +599,16 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
   double next_report = 0.01;
   tbb::task_arena arena(threads);
 
-  std::vector<pipeline::PathNormal> path_normals;
+  // Read ahead by the caller (read_path_normals), or here.
+  std::shared_ptr<const std::vector<pipeline::PathNormal>> path_normals = settings.path_normals;
   if (settings.normals_from_path) {
-    arena.execute([&] {
-      path_normals = normals_from_path(text, file_name, kind, dialect, profile, settings, choices);
-    });
-    summary.path_normals = pipeline::count_sources(path_normals);
+    if (!path_normals) {
+      arena.execute([&] {
+        path_normals = std::make_shared<const std::vector<pipeline::PathNormal>>(
+            normals_from_path(text, file_name, kind, dialect, profile, settings, choices).normals);
+      });
+    }
+    summary.path_normals = pipeline::count_sources(*path_normals);
   }
   std::uint64_t samples_read = 0;
 
@@ -609,9 +632,14 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
     for (const Slot& slot : chunk->slots) {
       if (slot.kind != SlotKind::sample) continue;
       const pipeline::PointEvaluator& evaluator = *chunk->evaluator(slot.section);
-      chunk->results.emplace_back().contact =
-          settings.normals_from_path ? evaluator.contact(slot.sample, path_normals.at(sample++))
-                                     : evaluator.contact(slot.sample, hint);
+      pipeline::PointResult& result = chunk->results.emplace_back();
+      if (settings.normals_from_path) {
+        const pipeline::PathNormal& normal = path_normals->at(sample++);
+        result.contact = evaluator.contact(slot.sample, normal);
+        result.normal_source = normal.source;
+      } else {
+        result.contact = evaluator.contact(slot.sample, hint);
+      }
     }
     return chunk;
   };

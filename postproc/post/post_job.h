@@ -4,8 +4,10 @@
 // machine profile allows. No I/O: text in, text out through a sink.
 #pragma once
 
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -69,6 +71,10 @@ struct PostSettings {
   // (pipeline/path_normals.h); the model passed is not read. No gouge
   // check (every normal found touches), no cusp map.
   bool normals_from_path = false;
+  // With normals_from_path: the normals read ahead by the caller
+  // (read_path_normals) for the same text and settings; empty: the job
+  // reads them itself.
+  std::shared_ptr<const std::vector<pipeline::PathNormal>> path_normals;
 };
 
 // A dialect named apart from the profile (--dialect names the language)
@@ -160,6 +166,19 @@ std::optional<ToolSection> first_postable_section(std::string_view text,
                                                   const std::string& file_name,
                                                   const machines::MachineProfile& profile,
                                                   const PostSettings& settings);
+
+// Without a model (PostSettings::normals_from_path): the normal at every
+// sample of the posted sections, in path order (path_normal_reader.h), and
+// the bounds of those samples' programmed points (empty: none), read ahead
+// of the job: for a report, whose top views span the path, and for
+// PostSettings::path_normals. Throws as post_program's reading does.
+struct PathNormalsAhead {
+  std::vector<pipeline::PathNormal> normals;
+  Eigen::AlignedBox3d bounds;
+};
+PathNormalsAhead read_path_normals(std::string_view text, const std::string& file_name,
+                                   const machines::MachineProfile& profile,
+                                   const PostSettings& settings);
 
 // Thrown for input the job cannot post soundly (the message says where and
 // why); readers' own errors (GcodeError, ClError, TimingError, OutputError)

@@ -73,6 +73,8 @@ void append_row(std::string& out, const PointRow& r) {
   field(out, r.cusp_um, 3);
   field(out, r.ra_um, 3);
   field(out, r.rz_um, 3);
+  out += ',';
+  out += r.normal_source ? pipeline::to_string(*r.normal_source) : "model";
 }
 
 }  // namespace

@@ -183,6 +183,16 @@ json marks_json(const ReportData& data) {
   return out;
 }
 
+// Posted without a model: how each point's normal was found (path_normals.h).
+void add_normals(json& out, const post::PostSummary& job) {
+  if (const auto& n = job.path_normals) {
+    out["normals"] = {{"source", "toolpath"},
+                      {"two_sided", n->two_sided},
+                      {"one_sided", n->one_sided},
+                      {"kept", n->kept}};
+  }
+}
+
 // The keys both documents carry.
 json common_json(const char* schema, const ReportInputs& in, bool tool_known, json vc_nominal,
                  const post::PostSummary& job, double run_time_s) {
@@ -218,6 +228,7 @@ json report_json(const ReportData& data) {
                     {"ra_um", distribution_json(st.ra_um)},
                     {"rz_um", distribution_json(st.rz_um)}};
   out["section_marks"] = marks_json(data);
+  add_normals(out, job);
   return out;
 }
 
@@ -235,13 +246,7 @@ json post_summary_json(const ReportInputs& inputs, bool tool_posted,
                      {"slew", summary.time_slew_s},
                      {"rate", summary.time_rate_s}};
   out["after"] = std::move(after);
-  // Posted without a model: how each point's normal was found (path_normals.h).
-  if (const auto& n = summary.path_normals) {
-    out["normals"] = {{"source", "toolpath"},
-                      {"two_sided", n->two_sided},
-                      {"one_sided", n->one_sided},
-                      {"kept", n->kept}};
-  }
+  add_normals(out, summary);
   return out;
 }
 

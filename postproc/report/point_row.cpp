@@ -84,6 +84,7 @@ PointRow make_row(const pipeline::PathSample& sample, const pipeline::PointResul
   row.time_s = record.time_s;
   row.weight_s = record.weight_s;
   row.bound = record.bound;
+  row.normal_source = result.normal_source;
 
   auto set = [&](PointFlag f) { row.flags |= static_cast<std::uint32_t>(f); };
   switch (result.contact.status) {
@@ -149,9 +150,10 @@ PointRow make_row(const pipeline::PathSample& sample, const pipeline::PointResul
   // other tools' by revolved_cusp); the cusp with the surface's curvature
   // across the feed where the model knows it (exact faces), flat otherwise
   // (meshes). No cusp where no earlier pass lies beside this one (first
-  // pass: a full groove) or where the tool is not on the surface.
-  if (result.engagement && result.contact.contact && result.feed.squaredNorm() > 0 &&
-      result.contact.status == geometry::BallStatus::touching &&
+  // pass: a full groove) or where the tool is not on the surface. None
+  // without a model: the surface is only known where the path lies.
+  if (!result.normal_source && result.engagement && result.contact.contact &&
+      result.feed.squaredNorm() > 0 && result.contact.status == geometry::BallStatus::touching &&
       result.ae_source != pipeline::AeSource::first_pass) {
     double k_across = 0;
     if (const auto& curvature = result.contact.contact->curvature) {

@@ -79,6 +79,9 @@ struct PointRow {
   plan::Bound bound = plan::Bound::none;
   std::uint32_t flags = 0;
   std::optional<double> cusp_um, ra_um, rz_um;  // predicted, where the ball cuts
+  // Without a model: how the normal was found from the toolpath
+  // (path_normals.h); then no cusp, Ra or Rz. Empty: the model's normal.
+  std::optional<pipeline::NormalSource> normal_source;
 
   bool has(PointFlag f) const { return (flags & static_cast<std::uint32_t>(f)) != 0; }
 };

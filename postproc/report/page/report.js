@@ -2,6 +2,9 @@
 'use strict';
 var D = JSON.parse(document.getElementById('data').textContent);
 var S = D.summary, VC = S.vc_nominal;
+// Without a model (S.normals): the normals from the toolpath; no gouge
+// check and no cusp map, so their parts are left out of the page.
+var N = S.normals || null;
 function fmt(v, d) { return (v === null || v === undefined || !isFinite(v)) ? '\u2013' : Number(v).toFixed(d); }
 function pct(v) { return fmt(100 * v, 1) + ' %'; }
 function el(tag, cls, text) { var e = document.createElement(tag); if (cls) e.className = cls; if (text !== undefined) e.textContent = text; return e; }
@@ -9,7 +12,7 @@ function pairs(flat) { var out = new Array(flat.length / 2); for (var i = 0; i <
 
 document.getElementById('title').textContent = 'vcpost report: ' + S.inputs.program;
 document.getElementById('subtitle').textContent =
-  'model ' + S.inputs.model.file + ' (' + S.inputs.model.kind + ', ' + S.inputs.model.description + ')  \u00b7  tool ' +
+  (N ? 'no model: normals from the toolpath' : 'model ' + S.inputs.model.file + ' (' + S.inputs.model.kind + ', ' + S.inputs.model.description + ')') + '  \u00b7  tool ' +
   S.inputs.tool + '  \u00b7  vc ' + VC + ' m/min  \u00b7  ap ' + S.inputs.ap + ' mm  \u00b7  ae ' +
   (S.inputs.ae === null ? 'measured' : S.inputs.ae + ' mm') + '  \u00b7  policy ' + S.inputs.policy +
   '  \u00b7  machine ' + S.profile.name + ' (' + S.profile.n_min_rpm + '\u2013' + S.profile.n_max_rpm + ' rpm)';
@@ -31,7 +34,13 @@ card('Mean vc', fmt(A.vc && A.vc.mean, 1), 'm/min after (' + fmt(B.vc && B.vc.me
 card('vc p5 \u2013 p95 after', fmt(A.vc && A.vc.p5, 1) + '\u2013' + fmt(A.vc && A.vc.p95, 1), 'm/min (before ' + fmt(B.vc && B.vc.p5, 0) + '\u2013' + fmt(B.vc && B.vc.p95, 0) + ')');
 card('Clamped at n_max', fmt(A.time_s.clamped_n_max, 1) + ' s', 'after; ' + pct(A.time_s.clamped_n_max / Math.max(S.time_s.cutting, 1e-12)) + ' of cutting', A.time_s.clamped_n_max > 0 ? 'warn' : 'good');
 card('Slew limit binds', fmt(A.time_s.slew, 1) + ' s', 'spindle acceleration', A.time_s.slew > 0.05 * S.time_s.cutting ? 'warn' : '');
-card('No contact / gouge', S.points.no_contact + ' / ' + S.points.gouging, 'of ' + S.points.total + ' points', S.points.gouging > 0 ? 'bad' : (S.points.no_contact > 0 ? 'warn' : 'good'));
+if (N) {
+  card('No model', 'no gouge check, no cusp map', 'the surface is known only where the path lies', 'warn');
+  card('Normals from the toolpath', N.two_sided + ' / ' + N.one_sided + ' / ' + N.kept,
+       'two-sided / one-sided / none (the program\u2019s S) of ' + S.points.total + ' points', N.kept > 0 ? 'warn' : 'good');
+} else {
+  card('No contact / gouge', S.points.no_contact + ' / ' + S.points.gouging, 'of ' + S.points.total + ' points', S.points.gouging > 0 ? 'bad' : (S.points.no_contact > 0 ? 'warn' : 'good'));
+}
 card('S words written', String(S.words_written.s), S.inputs.adjust_feed ? (S.words_written.f + ' F words') : 'F unchanged');
 S.sections.forEach(function (q) {
   var a = q.stock_mm;
@@ -48,8 +57,10 @@ P.sections.slice(0, 8).forEach(function (q, i) {
        q.in_feed + ' in feed, ' + fmt(q.time_cost_s, 2) + ' s; within \u00b110 % of vc ' + pct(q.within_10_percent_before) +
        ' \u2192 ' + pct(q.within_10_percent_after));
 });
-card('Cusp height', fmt(S.surface.cusp_um && S.surface.cusp_um.mean, 2), 'um mean, max ' + fmt(S.surface.cusp_um && S.surface.cusp_um.max, 2));
-card('Ra / Rz (across the feed)', fmt(S.surface.ra_um && S.surface.ra_um.mean, 2) + ' / ' + fmt(S.surface.rz_um && S.surface.rz_um.mean, 2), 'um, means');
+if (!N) {
+  card('Cusp height', fmt(S.surface.cusp_um && S.surface.cusp_um.mean, 2), 'um mean, max ' + fmt(S.surface.cusp_um && S.surface.cusp_um.max, 2));
+  card('Ra / Rz (across the feed)', fmt(S.surface.ra_um && S.surface.ra_um.mean, 2) + ' / ' + fmt(S.surface.rz_um && S.surface.rz_um.mean, 2), 'um, means');
+}
 card('Cutting time', fmt(S.time_s.cutting, 1) + ' s', 'program ' + fmt(S.time_s.program, 1) + ' s');
 card('Points evaluated', String(S.points.total), S.points.cutting + ' cutting, run ' + fmt(S.run_time_s, 2) + ' s');
 
@@ -216,11 +227,15 @@ showDev('after');
 legend('devlegend', function (t) { return devColor(40 * t - 20); });
 // The cusp scale tops out a little above the 95th percentile, so a few
 // first-contact outliers do not wash the map out.
-var cuspTop = S.surface.cusp_um ? Math.min(S.surface.cusp_um.max, 1.25 * S.surface.cusp_um.p95) : 1;
-cuspTop = cuspTop > 0 ? cuspTop : 1;
-drawMap('cuspmap', gridCusp, function (v) { return seqColor(v / cuspTop); }, 'cusptip', 'um');
-legend('cusplegend', seqColor);
-document.getElementById('cuspmax').textContent = (S.surface.cusp_um && cuspTop < S.surface.cusp_um.max ? '\u2265 ' : '') + cuspTop.toFixed(1) + ' um';
+if (N) {
+  document.getElementById('cuspsection').remove();
+} else {
+  var cuspTop = S.surface.cusp_um ? Math.min(S.surface.cusp_um.max, 1.25 * S.surface.cusp_um.p95) : 1;
+  cuspTop = cuspTop > 0 ? cuspTop : 1;
+  drawMap('cuspmap', gridCusp, function (v) { return seqColor(v / cuspTop); }, 'cusptip', 'um');
+  legend('cusplegend', seqColor);
+  document.getElementById('cuspmax').textContent = (S.surface.cusp_um && cuspTop < S.surface.cusp_um.max ? '\u2265 ' : '') + cuspTop.toFixed(1) + ' um';
+}
 
 // Worst regions.
 function regionTable(id, rows, side) {
@@ -251,7 +266,9 @@ regionTable('regionsafter', D.regions.after, 'after');
 regionTable('regionsbefore', D.regions.before, 'before');
 
 document.getElementById('footer').textContent = 'vcpost report \u00b7 ' + S.points.total + ' points; plots show the minimum and maximum of every ' +
-  D.bucket_points + ' consecutive point(s); the per-point CSV (vcpost report -o FILE.csv) has every point. Cusp and Ra/Rz: MODELS.md section 3 (transverse profile, passes ae apart).';
+  D.bucket_points + ' consecutive point(s); the per-point CSV (vcpost report -o FILE.csv) has every point. ' +
+  (N ? 'No model: each point\u2019s normal from the toolpath (its CSV column normal says how), no gouge check, no cusp map.'
+     : 'Cusp and Ra/Rz: MODELS.md section 3 (transverse profile, passes ae apart).');
 
 // Self-check for tests: which canvases carry ink, and any script errors.
 function inked(canvas) {
@@ -261,7 +278,7 @@ function inked(canvas) {
   for (var k = 3; k < d.length; k += 4) if (d[k] !== 0) { if (++n > 50) return true; }
   return false;
 }
-var ids = ['vcplot', 'histplot', 'splot', 'devmap', 'cuspmap'], drawn = ids.filter(function (id) { return inked(document.getElementById(id)); });
+var ids = ['vcplot', 'histplot', 'splot', 'devmap'].concat(N ? [] : ['cuspmap']), drawn = ids.filter(function (id) { return inked(document.getElementById(id)); });
 // The section marks the vc plot draws: label and time.
 var drawnMarks = vcChart.data.datasets.filter(function (ds) { return marks.some(function (m) { return m.label === ds.label; }); })
   .map(function (ds) { return {label: ds.label, x: ds.data[0].x}; });

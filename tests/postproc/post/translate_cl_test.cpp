@@ -36,8 +36,9 @@ TEST(TranslateCl, WithoutAModelTheClIsTranslatedWithItsOwnSpeeds) {
 
 // G-code without a model is posted with the normals from its toolpath
 // (path_normals.h; PostWithoutModel compares it with the post with the
-// model); reports still need the model, and so does CL data's S.
-TEST(TranslateCl, GcodeWithoutModelPostsFromTheToolpathReportsAndClSpeedsNeedTheModel) {
+// model), with a report or without (the same program); CL data's S and
+// its report need the model.
+TEST(TranslateCl, GcodeWithoutModelPostsFromTheToolpathClSpeedsAndReportsNeedTheModel) {
   testing::Folder folder;
   const std::string nc = "'" + kSamples + "/dome_raster_a0_ae3.nc'";
   const std::string cl = "'" + kSamples + "/dome_raster_a0_ae3.cls'";
@@ -51,12 +52,13 @@ TEST(TranslateCl, GcodeWithoutModelPostsFromTheToolpathReportsAndClSpeedsNeedThe
   r = run_vcpost("post " + nc + " --vc 120 -o out.nc", folder.path());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--ap: required"), std::string::npos) << r.err;
-  r = run_vcpost("post " + nc + " --vc 120 --ap 0.3 -o out.nc --report r.json", folder.path());
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("--model: required (the report"), std::string::npos) << r.err;
+  r = run_vcpost("post " + nc + " --vc 120 --ap 0.3 -o reported.nc --report r.json", folder.path());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(testing::slurp(folder.path() / "reported.nc"),
+            testing::slurp(folder.path() / "posted.nc"));
   r = run_vcpost("post " + cl + " -o out.nc --report r.json", folder.path());
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("--model: required (the report"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--model: required (the report of CL data"), std::string::npos) << r.err;
   r = run_vcpost("post " + cl + " --model '" + kSamples + "/dome.step' --ap 0.3 -o out.nc",
                  folder.path());
   EXPECT_EQ(r.exit_code, 2);

@@ -5,8 +5,8 @@
 // check must find ink on all five plots and Chart.js loaded from the
 // inlined copy, and a screenshot is saved as a test artefact under the
 // build folder (test-artefacts/report/report.png). A two-tool program's
-// page draws a mark per tool section on its time axis. Skips without
-// chromium.
+// page draws a mark per tool section on its time axis. Without a model
+// the page says so and leaves out the cusp map. Skips without chromium.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -49,7 +49,7 @@ struct Drawn {
   nlohmann::json check;
   std::string dom;
 };
-Drawn open_page(const fs::path& page, const fs::path& profile) {
+Drawn open_page(const fs::path& page, const fs::path& profile, std::size_t plots = 5) {
   const fs::path dir = page.parent_path();
   const fs::path dom = dir / (page.stem().string() + ".dom.html");
   const fs::path log = dir / (page.stem().string() + ".chromium.log");
@@ -74,7 +74,7 @@ Drawn open_page(const fs::path& page, const fs::path& profile) {
   EXPECT_EQ(out.check["chart"], "3.9.1") << out.check.dump();
   EXPECT_TRUE(out.check["errors"].empty()) << out.check.dump();
   EXPECT_EQ(out.check["drawn"], out.check["canvases"]) << out.check.dump();
-  EXPECT_EQ(out.check["drawn"].size(), 5u) << out.check.dump();
+  EXPECT_EQ(out.check["drawn"].size(), plots) << out.check.dump();
   return out;
 }
 
@@ -155,6 +155,42 @@ TEST(ReportBrowser, PageMarksTheToolSectionsOnItsTimeAxis) {
   EXPECT_EQ(marks[1]["label"], "T2 ball (posted)");
   EXPECT_DOUBLE_EQ(marks[0]["x"].get<double>(), 0.0);
   EXPECT_NEAR(marks[1]["x"].get<double>(), cutting / 2, 1e-9 * cutting);
+}
+
+// Without a model (issue 39): the four plots that need no model drawn,
+// the cusp map and its cards left out (not drawn empty), and the summary
+// saying plainly that there is no gouge check and no cusp map, and how
+// the normals were found.
+TEST(ReportBrowser, PageWithoutAModelSaysSoAndLeavesOutTheCuspMap) {
+  if (shell("command -v chromium >/dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "chromium is not installed (scripts/setup.sh installs it)";
+  }
+  const fs::path dir = artefact_dir();
+  fs::create_directories(dir);
+  const fs::path page = dir / "no_model.html";
+  const std::string samples = std::string(VCPOST_SOURCE_DIR) + "/samples/";
+  ASSERT_EQ(shell(std::string(VCPOST_BINARY) + " report " + samples +
+                  "wavy_raster_a0_ae2.nc --tool ball:10 --vc 120 --ap 0.3 --machine mazak-3axis "
+                  "-q -o " +
+                  page.string()),
+            0);
+  const fs::path profile =
+      fs::temp_directory_path() / ("vcpost_chromium_no_model_" + std::to_string(::getpid()));
+  fs::remove_all(profile);
+  const Drawn drawn = open_page(page, profile, 4);
+  fs::remove_all(profile);
+  EXPECT_EQ(drawn.check["canvases"],
+            nlohmann::json::array({"vcplot", "histplot", "splot", "devmap"}));
+  const std::string& dom = drawn.dom;
+  EXPECT_EQ(dom.find("id=\"cuspmap\""), std::string::npos);
+  // The cards as drawn (the page's script names them too).
+  EXPECT_EQ(dom.find("\"k\">Cusp height<"), std::string::npos);
+  EXPECT_EQ(dom.find("\"k\">Ra / Rz"), std::string::npos);
+  EXPECT_EQ(dom.find("\"k\">No contact / gouge<"), std::string::npos);
+  EXPECT_NE(dom.find("\"v\">no gouge check, no cusp map"), std::string::npos);
+  EXPECT_NE(dom.find("\"k\">Normals from the toolpath<"), std::string::npos);
+  EXPECT_NE(dom.find(">no model: normals from the toolpath"), std::string::npos);
+  EXPECT_NE(dom.find("id=\"devmap\""), std::string::npos);
 }
 
 }  // namespace

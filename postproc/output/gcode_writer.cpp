@@ -7,6 +7,7 @@
 #include <type_traits>
 
 #include "machines/profile.h"
+#include "postproc/output/comment_text.h"
 #include "postproc/program/working_frame.h"
 
 namespace vcpost::output {
@@ -14,23 +15,6 @@ namespace vcpost::output {
 namespace {
 
 using namespace vcpost::program;
-
-// Comments may not nest or hold control bytes; Mazak EIA takes printable
-// ASCII in ( ).
-std::string clean_comment(std::string_view text) {
-  std::string s;
-  s.reserve(text.size());
-  for (const char c : text) {
-    if (c == '(') {
-      s += '[';
-    } else if (c == ')') {
-      s += ']';
-    } else if (static_cast<unsigned char>(c) >= 0x20 && static_cast<unsigned char>(c) < 0x7F) {
-      s += c;
-    }
-  }
-  return s;
-}
 
 // letter + value, built by appending (GCC 12 warns falsely on "X" + string&&).
 std::string word(char letter, std::string_view value) {
@@ -105,7 +89,7 @@ void GcodeWriter::comment(std::string_view text) {
   std::string words = take_pending();
   if (!words.empty()) words += ' ';
   words += '(';
-  words += clean_comment(text);
+  words += clean_comment(text, CommentEnd::parenthesis);
   words += ')';
   block(words);
 }
@@ -137,7 +121,7 @@ void GcodeWriter::header() {
   if (format_.program_number) o = word('O', std::to_string(*format_.program_number));
   if (!format_.title.empty() && format_.comments) {
     o += '(';
-    o += clean_comment(format_.title);
+    o += clean_comment(format_.title, CommentEnd::parenthesis);
     o += ')';
   }
   if (!o.empty()) out_ << o << format_.end_of_line;

@@ -8,6 +8,7 @@
 #include <variant>
 
 #include "core/text.h"
+#include "postproc/output/comment_text.h"
 #include "postproc/program/working_frame.h"
 
 namespace vcpost::output {
@@ -15,15 +16,6 @@ namespace vcpost::output {
 namespace {
 
 using namespace vcpost::program;
-
-// A TNC's `;` comment runs to the end of the line: printable ASCII only.
-std::string clean_comment(std::string_view text) {
-  std::string s;
-  s.reserve(text.size());
-  for (const char c : text)
-    if (static_cast<unsigned char>(c) >= 0x20 && static_cast<unsigned char>(c) < 0x7F) s += c;
-  return s;
-}
 
 // A fixed number as Klartext writes it: no trailing point ("10", "-0.5").
 std::string plain(std::string text) {
@@ -103,7 +95,7 @@ void KlartextWriter::start() {
 }
 
 void KlartextWriter::comment(std::string_view text) {
-  if (format_.comments) block("; " + clean_comment(text));
+  if (format_.comments) block("; " + clean_comment(text, CommentEnd::line_end));
 }
 
 void KlartextWriter::flush_tool_call() {

@@ -67,4 +67,25 @@ Error error_from_message(const std::string& what) {
   return Error(what, {}, what);
 }
 
+Error error_from(const vcpost::Error& error, const std::string& program_file) {
+  const std::string what = error.what();
+  const std::string code(error.code());
+  const Severity severity =
+      error.severity() == vcpost::Severity::error ? Severity::error : Severity::warning;
+  SourceLocation where = error.where();
+  if (where.file.empty() && where.line == 0) {  // the place only in the text, if anywhere
+    const Error read = error_from_message(what);
+    return Error(what, code, read.message(), read.file(), read.line(), read.column(),
+                 std::string(error.hint()), severity);
+  }
+  // The message: what() after its "error[E....]: ", or all of it (a
+  // message worded without the prefix).
+  const std::string marker = "[" + code + "]: ";
+  const std::size_t at = what.find(marker);
+  const std::string message = at == std::string::npos ? what : what.substr(at + marker.size());
+  if (where.file.empty()) where.file = program_file;
+  return Error(format_diagnostic(code, where, message), code, message, where.file, where.line,
+               where.column, std::string(error.hint()), severity);
+}
+
 }  // namespace vcpost::api

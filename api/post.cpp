@@ -8,11 +8,9 @@
 #include "postproc/cli/job_runner.h"
 #include "postproc/cli/model_loader.h"
 #include "postproc/cli/post_options.h"
-#include "postproc/gcode/diagnostics.h"
 #include "postproc/output/gcode_writer.h"
 #include "postproc/post/acceptance.h"
 #include "postproc/post/post_job.h"
-#include "postproc/program/timing.h"
 
 namespace vcpost::api {
 
@@ -101,47 +99,36 @@ PostSummary summary_from(const post::PostSummary& s) {
 
 PostResult post(std::string_view program, const std::string& program_name, const Model& model,
                 const MachineProfile& profile, const PostOptions& options) {
-  return guarded([&] {
-    const cli::PostArguments args = arguments_from(options);
-    const post::PostSettings settings = cli::settings_from(args);
-    PostResult result;
-    const auto sink = [&](std::string_view bytes) { result.program.append(bytes); };
-    post::PointSink points;
-    if (options.keep_points) {
-      points = [&](const pipeline::PathSample& sample, const pipeline::PointResult& point,
-                   const post::PointRecord& record) {
-        PostPoint p;
-        p.line = record.line;
-        p.time_s = record.time_s;
-        p.point = vec(sample.point);
-        p.touching = point.contact.status == geometry::BallStatus::touching;
-        if (point.contact.contact) p.contact = vec(point.contact.contact->point);
-        p.normal = vec(point.contact.normal);
-        p.d_ref = point.d_ref;
-        p.s_before = record.s_before;
-        p.s_after = record.s_after;
-        result.points.push_back(p);
-      };
-    }
-    post::PostSummary summary;
-    try {
-      summary = post::post_program(program, program_name, internal(model), internal(profile),
-                                   settings, sink, {}, points);
-    } catch (const gcode::GcodeError& e) {  // its what() names no file
-      // The message in the command line's format; guarded() (api/translate.h)
-      // reads code and position back into vcpost::api::Error.
-      throw std::runtime_error(gcode::format(e.diagnostic(), program_name));
-    } catch (const program::TimingError& e) {  // as `vcpost post` reports them
-      throw std::runtime_error(program_name + ":" + std::to_string(e.source().line) + ": " +
-                               e.what());
-    } catch (const output::OutputError& e) {
-      throw std::runtime_error(program_name + ":" + std::to_string(e.source().line) + ": " +
-                               e.what());
-    }
-    cli::require_accepted(post::judge_posted(summary, program_name));
-    result.summary = summary_from(summary);
-    return result;
-  });
+  return guarded(
+      [&] {
+        const cli::PostArguments args = arguments_from(options);
+        const post::PostSettings settings = cli::settings_from(args);
+        PostResult result;
+        const auto sink = [&](std::string_view bytes) { result.program.append(bytes); };
+        post::PointSink points;
+        if (options.keep_points) {
+          points = [&](const pipeline::PathSample& sample, const pipeline::PointResult& point,
+                       const post::PointRecord& record) {
+            PostPoint p;
+            p.line = record.line;
+            p.time_s = record.time_s;
+            p.point = vec(sample.point);
+            p.touching = point.contact.status == geometry::BallStatus::touching;
+            if (point.contact.contact) p.contact = vec(point.contact.contact->point);
+            p.normal = vec(point.contact.normal);
+            p.d_ref = point.d_ref;
+            p.s_before = record.s_before;
+            p.s_after = record.s_after;
+            result.points.push_back(p);
+          };
+        }
+        const post::PostSummary summary = post::post_program(
+            program, program_name, internal(model), internal(profile), settings, sink, {}, points);
+        cli::require_accepted(post::judge_posted(summary, program_name));
+        result.summary = summary_from(summary);
+        return result;
+      },
+      program_name);
 }
 
 }  // namespace vcpost::api

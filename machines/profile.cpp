@@ -13,27 +13,10 @@
 
 namespace vcpost::machines {
 
-namespace {
-std::string format(const std::string& code, const std::string& file, std::uint32_t line,
-                   std::uint32_t column, const std::string& message) {
-  std::string out = file;
-  if (line > 0) {
-    out += ':';
-    out += std::to_string(line);
-    out += ':';
-    out += std::to_string(column);
-  }
-  out += ": error[";
-  out += code;
-  out += "]: ";
-  out += message;
-  return out;
-}
-}  // namespace
-
 ProfileError::ProfileError(std::string code, std::string file, std::uint32_t line,
                            std::uint32_t column, const std::string& message)
-    : vcpost::Error(code, format(code, file, line, column, message), {file, line, column}),
+    : vcpost::Error(code, format_diagnostic(code, {file, line, column}, message),
+                    {file, line, column}),
       code_(std::move(code)),
       file_(std::move(file)),
       line_(line),

@@ -17,16 +17,6 @@
 namespace vcpost::mesh {
 namespace {
 
-std::string at_offset(const std::string& file, std::uint64_t offset, StlCode code) {
-  return file + ": offset " + std::to_string(offset) + ": error[" + code_id(code) + "]: ";
-}
-
-std::string at_line(const std::string& file, std::uint32_t line, std::uint32_t column,
-                    StlCode code) {
-  return file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": error[" +
-         code_id(code) + "]: ";
-}
-
 // Welds exactly equal corners (== on the coordinates: -0 and +0 weld);
 // drops degenerate triangles. Vertices are numbered in the order they first
 // appear. The index is an open-addressing table of vertex numbers probed
@@ -163,9 +153,8 @@ void weld_binary(std::string_view bytes, const std::string& file, double unit, s
         if (!std::isfinite(f)) {
           const std::uint64_t off = 84 + 50 * t + 12 + 12 * static_cast<std::uint64_t>(c) +
                                     4 * static_cast<std::uint64_t>(k);
-          throw StlError(StlCode::bad_number,
-                         at_offset(file, off, StlCode::bad_number) + "triangle " +
-                             std::to_string(t + 1) + " vertex " + std::to_string(c + 1) +
+          throw StlError(StlCode::bad_number, file, off,
+                         "triangle " + std::to_string(t + 1) + " vertex " + std::to_string(c + 1) +
                              " has a non-finite coordinate (" + std::to_string(f) + ")");
         }
         p[c][k] = static_cast<double>(f) * unit;
@@ -179,10 +168,9 @@ StlMesh parse_binary(std::string_view bytes, const std::string& file, double uni
   StlMesh mesh;
   mesh.format = StlFormat::binary;
   if (bytes.size() < 84) {
-    throw StlError(StlCode::truncated, at_offset(file, bytes.size(), StlCode::truncated) +
-                                           "binary STL shorter than its 84-byte header (" +
-                                           std::to_string(bytes.size()) +
-                                           " bytes), and not ASCII STL either");
+    throw StlError(StlCode::truncated, file, bytes.size(),
+                   "binary STL shorter than its 84-byte header (" + std::to_string(bytes.size()) +
+                       " bytes), and not ASCII STL either");
   }
   std::string header(bytes.substr(0, 80));
   header = header.substr(0, header.find('\0'));
@@ -193,21 +181,19 @@ StlMesh parse_binary(std::string_view bytes, const std::string& file, double uni
   const std::uint64_t need = 84 + 50 * count;
   if (bytes.size() < need) {
     const std::uint64_t complete = (bytes.size() - 84) / 50;
-    throw StlError(StlCode::truncated, at_offset(file, 84 + 50 * complete, StlCode::truncated) +
-                                           "binary STL truncated: header announces " +
-                                           std::to_string(count) + " triangles (" +
-                                           std::to_string(need) + " bytes) but the file has " +
-                                           std::to_string(bytes.size()) + " bytes (" +
-                                           std::to_string(complete) + " complete triangles)");
+    throw StlError(StlCode::truncated, file, 84 + 50 * complete,
+                   "binary STL truncated: header announces " + std::to_string(count) +
+                       " triangles (" + std::to_string(need) + " bytes) but the file has " +
+                       std::to_string(bytes.size()) + " bytes (" + std::to_string(complete) +
+                       " complete triangles)");
   }
   mesh.trailing_bytes = bytes.size() - need;
   if (mesh.trailing_bytes >= 50) {
     // More whole triangles than the count says: reading up to the count
     // would silently drop part of the model.
-    throw StlError(StlCode::count_mismatch,
-                   at_offset(file, need, StlCode::count_mismatch) + "binary STL header announces " +
-                       std::to_string(count) + " triangles but the file holds " +
-                       std::to_string((bytes.size() - 84) / 50) +
+    throw StlError(StlCode::count_mismatch, file, need,
+                   "binary STL header announces " + std::to_string(count) +
+                       " triangles but the file holds " + std::to_string((bytes.size() - 84) / 50) +
                        " whole triangle records; the count is wrong (a damaged or concatenated "
                        "file): export the model again");
   }
@@ -266,11 +252,10 @@ StlMesh parse_binary(std::string_view bytes, const std::string& file, double uni
     mesh.degenerate_dropped += second.degenerate_dropped;
   }
   if (mesh.triangles.empty()) {
-    throw StlError(StlCode::no_triangles,
-                   at_offset(file, 80, StlCode::no_triangles) +
-                       (count == 0 ? std::string("binary STL with zero triangles")
-                                   : "binary STL whose " + std::to_string(count) +
-                                         " triangles are all degenerate"));
+    throw StlError(StlCode::no_triangles, file, 80,
+                   (count == 0 ? std::string("binary STL with zero triangles")
+                               : "binary STL whose " + std::to_string(count) +
+                                     " triangles are all degenerate"));
   }
   return mesh;
 }
@@ -350,9 +335,9 @@ StlMesh parse_ascii(std::string_view bytes, const std::string& file, double unit
     const Words::Word w = words.next();
     if (!iequals(w.text, keyword)) {
       const StlCode code = w.text.empty() ? StlCode::truncated : StlCode::syntax;
-      throw StlError(code, at_line(file, w.line, w.column, code) + "expected '" +
-                               std::string(keyword) + "' " + std::string(context) + ", found " +
-                               word_text(w));
+      throw StlError(code, {file, w.line, w.column},
+                     "expected '" + std::string(keyword) + "' " + std::string(context) +
+                         ", found " + word_text(w));
     }
   };
   auto number = [&](bool must_be_finite, std::string_view what) {
@@ -363,14 +348,12 @@ StlMesh parse_ascii(std::string_view bytes, const std::string& file, double unit
     if (!w.text.empty() && *b == '+') ++b;  // from_chars refuses a leading '+'
     const auto [ptr, ec] = std::from_chars(b, e, v);
     if (w.text.empty()) {
-      throw StlError(StlCode::truncated, at_line(file, w.line, w.column, StlCode::truncated) +
-                                             "file ends inside a facet (expected " +
-                                             std::string(what) + ")");
+      throw StlError(StlCode::truncated, {file, w.line, w.column},
+                     "file ends inside a facet (expected " + std::string(what) + ")");
     }
     if (ec != std::errc() || ptr != e || (must_be_finite && !std::isfinite(v))) {
-      throw StlError(StlCode::bad_number, at_line(file, w.line, w.column, StlCode::bad_number) +
-                                              std::string(what) + " is not a finite number: '" +
-                                              std::string(w.text) + "'");
+      throw StlError(StlCode::bad_number, {file, w.line, w.column},
+                     std::string(what) + " is not a finite number: '" + std::string(w.text) + "'");
     }
     return v;
   };
@@ -380,12 +363,11 @@ StlMesh parse_ascii(std::string_view bytes, const std::string& file, double unit
     Words::Word w = words.next();
     if (w.text.empty()) {
       if (any_solid) break;
-      throw StlError(StlCode::empty, at_line(file, w.line, w.column, StlCode::empty) +
-                                         "STL file holds only white space");
+      throw StlError(StlCode::empty, {file, w.line, w.column}, "STL file holds only white space");
     }
     if (!iequals(w.text, "solid")) {
-      throw StlError(StlCode::syntax, at_line(file, w.line, w.column, StlCode::syntax) +
-                                          "expected 'solid', found " + word_text(w));
+      throw StlError(StlCode::syntax, {file, w.line, w.column},
+                     "expected 'solid', found " + word_text(w));
     }
     any_solid = true;
     const std::string name = words.rest_of_line();
@@ -398,8 +380,8 @@ StlMesh parse_ascii(std::string_view bytes, const std::string& file, double unit
       }
       if (!iequals(w.text, "facet")) {
         const StlCode code = w.text.empty() ? StlCode::truncated : StlCode::syntax;
-        throw StlError(code, at_line(file, w.line, w.column, code) +
-                                 "expected 'facet' or 'endsolid', found " + word_text(w));
+        throw StlError(code, {file, w.line, w.column},
+                       "expected 'facet' or 'endsolid', found " + word_text(w));
       }
       expect("normal", "after 'facet'");
       // Exporters write nan normals for slivers; the normal is recomputed anyway.
@@ -418,11 +400,10 @@ StlMesh parse_ascii(std::string_view bytes, const std::string& file, double unit
     }
   }
   if (mesh.triangles.empty()) {
-    throw StlError(StlCode::no_triangles,
-                   at_line(file, 1, 1, StlCode::no_triangles) +
-                       (facets == 0 ? std::string("ASCII STL with no facet")
-                                    : "ASCII STL whose " + std::to_string(facets) +
-                                          " facets are all degenerate"));
+    throw StlError(
+        StlCode::no_triangles, {file, 1, 1},
+        (facets == 0 ? std::string("ASCII STL with no facet")
+                     : "ASCII STL whose " + std::to_string(facets) + " facets are all degenerate"));
   }
   return mesh;
 }
@@ -450,20 +431,18 @@ std::string code_id(StlCode code) {
 
 StlMesh parse_stl(std::string_view bytes, const std::string& file_name, const StlOptions& options) {
   if (!(options.unit_mm > 0.0) || !std::isfinite(options.unit_mm)) {
-    throw StlError(StlCode::bad_unit, file_name + ": error[" + code_id(StlCode::bad_unit) +
-                                          "]: model unit must be a positive length in mm, got " +
-                                          std::to_string(options.unit_mm));
+    throw StlError(
+        StlCode::bad_unit, {file_name},
+        "model unit must be a positive length in mm, got " + std::to_string(options.unit_mm));
   }
   if (bytes.empty()) {
-    throw StlError(StlCode::empty,
-                   at_offset(file_name, 0, StlCode::empty) + "STL file is empty (0 bytes)");
+    throw StlError(StlCode::empty, file_name, 0, "STL file is empty (0 bytes)");
   }
   const bool blank = std::all_of(bytes.begin(), bytes.end(), [](char c) {
     return std::isspace(static_cast<unsigned char>(c));
   });
   if (blank) {
-    throw StlError(StlCode::empty,
-                   at_offset(file_name, 0, StlCode::empty) + "STL file holds only white space");
+    throw StlError(StlCode::empty, file_name, 0, "STL file holds only white space");
   }
   // Binary when the size matches the count exactly: the only reliable sign.
   if (bytes.size() >= 84) {
@@ -482,9 +461,9 @@ StlMesh parse_stl(std::string_view bytes, const std::string& file_name, const St
     return u < 0x09 || (u > 0x0D && u < 0x20) || u == 0x7F;
   });
   if (text) {
-    throw StlError(StlCode::syntax, at_line(file_name, 1, 1, StlCode::syntax) +
-                                        "text file that is not ASCII STL (it does not start "
-                                        "with 'solid') nor binary STL");
+    throw StlError(StlCode::syntax, {file_name, 1, 1},
+                   "text file that is not ASCII STL (it does not start "
+                   "with 'solid') nor binary STL");
   }
   return parse_binary(bytes, file_name, options.unit_mm);
 }
@@ -493,12 +472,10 @@ StlMesh read_stl_file(const std::filesystem::path& path, const StlOptions& optio
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
   if (!std::filesystem::exists(status)) {
-    throw StlError(StlCode::missing, path.string() + ": error[" + code_id(StlCode::missing) +
-                                         "]: STL file not found");
+    throw StlError(StlCode::missing, {path.string()}, "STL file not found");
   }
   if (std::filesystem::is_directory(status)) {
-    throw StlError(StlCode::unreadable, path.string() + ": error[" + code_id(StlCode::unreadable) +
-                                            "]: is a directory, not an STL file");
+    throw StlError(StlCode::unreadable, {path.string()}, "is a directory, not an STL file");
   }
   // The file is mapped, not copied: a 500 MB mesh would otherwise be read
   // through a growing buffer (twice its size at the peak) before parsing.
@@ -506,8 +483,7 @@ StlMesh read_stl_file(const std::filesystem::path& path, const StlOptions& optio
   struct stat info {};
   if (fd < 0 || ::fstat(fd, &info) != 0) {
     if (fd >= 0) ::close(fd);
-    throw StlError(StlCode::unreadable, path.string() + ": error[" + code_id(StlCode::unreadable) +
-                                            "]: cannot read the file (permissions?)");
+    throw StlError(StlCode::unreadable, {path.string()}, "cannot read the file (permissions?)");
   }
   const auto size = static_cast<std::size_t>(info.st_size);
   if (!S_ISREG(info.st_mode) || size == 0) {
@@ -519,17 +495,14 @@ StlMesh read_stl_file(const std::filesystem::path& path, const StlOptions& optio
       bytes.append(chunk, static_cast<std::size_t>(got));
     ::close(fd);
     if (got < 0) {
-      throw StlError(StlCode::unreadable, path.string() + ": error[" +
-                                              code_id(StlCode::unreadable) +
-                                              "]: cannot read the file (permissions?)");
+      throw StlError(StlCode::unreadable, {path.string()}, "cannot read the file (permissions?)");
     }
     return parse_stl(bytes, path.string(), options);
   }
   void* const map = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
   ::close(fd);  // the mapping keeps the file
   if (map == MAP_FAILED) {
-    throw StlError(StlCode::unreadable, path.string() + ": error[" + code_id(StlCode::unreadable) +
-                                            "]: cannot read the file (permissions?)");
+    throw StlError(StlCode::unreadable, {path.string()}, "cannot read the file (permissions?)");
   }
   ::madvise(map, size, MADV_SEQUENTIAL);
   struct Unmap {

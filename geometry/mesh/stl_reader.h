@@ -42,10 +42,19 @@ enum class StlCode : std::uint16_t {
 // "E4604"
 std::string code_id(StlCode code);
 
+// Placed at a line and column (ASCII STL), at a byte offset (binary STL:
+// "file: offset N: error[...]"), or at the file alone.
 class StlError : public vcpost::Error {
  public:
-  StlError(StlCode code, const std::string& message)
-      : vcpost::Error(code_id(code), message), code_(code) {}
+  StlError(StlCode code, const SourceLocation& where, const std::string& message)
+      : vcpost::Error(code_id(code), format_diagnostic(code_id(code), where, message), where),
+        code_(code) {}
+  StlError(StlCode code, const std::string& file, std::uint64_t offset, const std::string& message)
+      : vcpost::Error(code_id(code),
+                      format_diagnostic(code_id(code),
+                                        {file + ": offset " + std::to_string(offset)}, message),
+                      {file}),
+        code_(code) {}
   StlCode code() const { return code_; }
 
  private:

@@ -12,8 +12,7 @@ std::string_view code_of(ModelErrorCode code) {
 }
 
 ModelError::ModelError(ModelErrorCode code, const std::string& path, const std::string& message)
-    : vcpost::Error(code_of(code), path + ": error[" + std::string(code_of(code)) + "]: " + message,
-                    {path, 0, 0}),
+    : vcpost::Error(code_of(code), format_diagnostic(code_of(code), {path}, message), {path}),
       code_(code) {}
 
 BrepModel::BrepModel(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}

@@ -58,20 +58,9 @@ std::span<const ClCodeInfo> cl_code_table() { return table(); }
 const ClCodeInfo& info(ClCode code) { return table()[static_cast<std::size_t>(code)]; }
 
 std::string format(const ClDiagnostic& diagnostic, std::string_view file_name) {
-  const ClCodeInfo& i = info(diagnostic.code);
-  std::string out;
-  if (!file_name.empty()) {
-    out += file_name;
-    out += ':';
-  }
-  out += std::to_string(diagnostic.line);
-  out += ':';
-  out += std::to_string(diagnostic.column);
-  out += i.severity == Severity::error ? ": error[" : ": warning[";
-  out += i.id;
-  out += "]: ";
-  out += diagnostic.message;
-  return out;
+  return format_diagnostic(info(diagnostic.code).id,
+                           {std::string(file_name), diagnostic.line, diagnostic.column},
+                           diagnostic.message);
 }
 
 }  // namespace vcpost::cldata

@@ -27,6 +27,9 @@ class CommandError : public vcpost::Error {
  public:
   explicit CommandError(const std::string& message) : vcpost::Error("E2001", message) {}
   CommandError(std::string_view code, const std::string& message) : vcpost::Error(code, message) {}
+  // "file:line:col: error[code]: message".
+  CommandError(std::string_view code, const SourceLocation& where, const std::string& message)
+      : vcpost::Error(code, format_diagnostic(code, where, message), where) {}
 };
 
 // The exit status of an exception that escapes a command: the code table's

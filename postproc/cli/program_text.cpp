@@ -33,9 +33,9 @@ std::string temporary_folder() {
   const std::size_t last_nl = before_nul.rfind('\n');
   const std::size_t column =
       before_nul.size() - (last_nl == std::string_view::npos ? 0 : last_nl + 1) + 1;
-  throw CommandError(
-      name + ":" + std::to_string(line) + ":" + std::to_string(column) +
-      ": error[E1002]: NUL byte: this is no text program (binary data?); nothing read past it");
+  throw CommandError("E1002",
+                     {name, static_cast<std::uint32_t>(line), static_cast<std::uint32_t>(column)},
+                     "NUL byte: this is no text program (binary data?); nothing read past it");
 }
 
 }  // namespace
@@ -100,9 +100,9 @@ ProgramText::ProgramText(const std::string& path) {
           newlines + static_cast<std::uint64_t>(std::count(before.begin(), before.end(), '\n'));
       const std::size_t last_nl = before.rfind('\n');
       const std::size_t col = last_nl == std::string_view::npos ? column + nul : nul - last_nl;
-      throw CommandError(name + ":" + std::to_string(lines + 1) + ":" + std::to_string(col) +
-                         ": error[E1002]: NUL byte: this is no text program (binary data?); "
-                         "nothing read past it");
+      throw CommandError(
+          "E1002", {name, static_cast<std::uint32_t>(lines + 1), static_cast<std::uint32_t>(col)},
+          "NUL byte: this is no text program (binary data?); nothing read past it");
     }
     newlines += static_cast<std::uint64_t>(std::count(piece.begin(), piece.end(), '\n'));
     const std::size_t last_nl = piece.rfind('\n');
@@ -138,9 +138,9 @@ void ProgramText::refuse_cr_only(const std::string& name) const {
   if (cr == std::string_view::npos || head.find('\n') != std::string_view::npos ||
       cr + 1 >= view_.size())
     return;
-  throw CommandError(name + ":1:" + std::to_string(cr + 1) +
-                     ": error[E2033]: the lines end with a lone CR (old Mac text), which no "
-                     "reader takes as a line end: convert them to LF (tr '\\r' '\\n')");
+  throw CommandError("E2033", {name, 1, static_cast<std::uint32_t>(cr + 1)},
+                     "the lines end with a lone CR (old Mac text), which no reader takes as a "
+                     "line end: convert them to LF (tr '\\r' '\\n')");
 }
 
 void ProgramText::map(int fd, std::size_t size, const std::string& name) {

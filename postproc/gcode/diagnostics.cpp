@@ -26,12 +26,8 @@ std::string code_id(Code code, Severity severity) {
 }
 
 std::string format(const Diagnostic& d, std::string_view file_name) {
-  std::string out(file_name);
-  out += ':' + std::to_string(d.line) + ':' + std::to_string(d.column) + ": ";
-  out += to_string(d.severity);
-  out += '[' + code_id(d.code, d.severity) + "]: ";
-  out += d.message;
-  return out;
+  return vcpost::format_diagnostic(code_id(d.code, d.severity),
+                                   {std::string(file_name), d.line, d.column}, d.message);
 }
 
 GcodeError::GcodeError(Diagnostic diagnostic)

@@ -30,7 +30,7 @@ std::string format(const Diagnostic& d, std::string_view file_name) {
 
 KlartextError::KlartextError(Diagnostic diagnostic)
     : vcpost::Error(code_id(diagnostic.code), format(diagnostic, ""),
-                    {"", diagnostic.line, diagnostic.column}),
+                    {diagnostic.file, diagnostic.line, diagnostic.column}),
       diagnostic_(std::move(diagnostic)) {}
 
 }  // namespace vcpost::heidenhain

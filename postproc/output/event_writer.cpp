@@ -10,9 +10,7 @@ namespace vcpost::output {
 
 OutputError::OutputError(std::string_view code, const std::string& message,
                          program::SourceRef source)
-    : vcpost::Error(code,
-                    std::to_string(source.line) + ":" + std::to_string(source.column) + ": error[" +
-                        std::string(code) + "]: " + message,
+    : vcpost::Error(code, format_diagnostic(code, {"", source.line, source.column}, message),
                     {"", source.line, source.column}),
       source_(source) {}
 

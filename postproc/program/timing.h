@@ -50,8 +50,7 @@ class TimingError : public vcpost::Error {
   SourceRef source() const { return source_; }
   // "file:line:col: error[E6101]: message", as the readers word their errors.
   std::string located(const std::string& file) const {
-    return file + ":" + std::to_string(source_.line) + ":" + std::to_string(source_.column) +
-           ": error[" + std::string(code()) + "]: " + what();
+    return format_diagnostic(code(), {file, source_.line, source_.column}, what());
   }
 
  private:

@@ -19,6 +19,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "core/error.h"
@@ -61,8 +62,8 @@ struct ToolEntry {
 // file:line:col and carries a stable code (E16xx, see tools/README.md).
 class ToolTableError : public vcpost::Error {
  public:
-  ToolTableError(std::string_view code, const std::string& message)
-      : vcpost::Error(code, message) {}
+  ToolTableError(std::string_view code, const std::string& message, SourceLocation where = {})
+      : vcpost::Error(code, message, std::move(where)) {}
 };
 
 // The user's tools (command line and tools file); the program's own come in

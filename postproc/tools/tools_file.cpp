@@ -19,9 +19,8 @@ class FileReader {
 
   [[noreturn]] void fail(std::string_view code, const toml::source_region& where,
                          const std::string& message) const {
-    throw ToolTableError(std::string(code), file_ + ":" + std::to_string(where.begin.line) + ":" +
-                                                std::to_string(where.begin.column) + ": error[" +
-                                                std::string(code) + "]: " + message);
+    const SourceLocation at{file_, where.begin.line, where.begin.column};
+    throw ToolTableError(code, format_diagnostic(code, at, message), at);
   }
 
   ToolEntry entry(const toml::table& tool, const toml::source_region& where) const {

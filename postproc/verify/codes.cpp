@@ -55,9 +55,8 @@ const CodeInfo& info(Code code) {
 std::string code_id(Code code) { return "E" + std::to_string(static_cast<unsigned>(code)); }
 
 std::string format(const Violation& v, std::string_view output_name) {
-  std::string out(output_name);
-  out += ':' + std::to_string(v.line) + ':' + std::to_string(v.column) + ": error[" +
-         code_id(v.code) + "]: " + v.message;
+  std::string out =
+      format_diagnostic(code_id(v.code), {std::string(output_name), v.line, v.column}, v.message);
   if (v.input_line > 0) out += " (input line " + std::to_string(v.input_line) + ")";
   return out;
 }

@@ -153,6 +153,30 @@ TEST(Library, AProgramWithAnErrorNamesItsLineAndCode) {
   }
 }
 
+// A refusal found while timing the path (feed per revolution with the
+// spindle stopped) reaches the API as the command line words it: the code,
+// the place in the program, the message alone, and the table's hint.
+TEST(Library, ATimingRefusalCarriesCodePlaceMessageAndHint) {
+  api::PostOptions options;
+  options.tool = "ball:10";
+  options.vc = 120;
+  options.ap = 0.3;
+  try {
+    api::post("G21 G95 F0.1\nG1 X10\nM2\n", "g95.ngc",
+              api::Model::load((samples() / "wavy.step").string()),
+              api::MachineProfile::load("generic"), options);
+    FAIL() << "a feed per revolution with the spindle stopped posted";
+  } catch (const api::Error& e) {
+    EXPECT_EQ(e.code(), "E6103");
+    EXPECT_EQ(e.file(), "g95.ngc");
+    EXPECT_EQ(e.line(), 2u);
+    EXPECT_EQ(e.column(), 1u);
+    EXPECT_EQ(std::string(e.what()), "g95.ngc:2:1: error[E6103]: " + e.message());
+    EXPECT_EQ(e.message().find("error["), std::string::npos) << e.message();
+    EXPECT_FALSE(e.hint().empty());
+  }
+}
+
 TEST(Library, OneVersionForTheLibraryAndTheCommand) {
   EXPECT_STREQ(api::version(), VCPOST_VERSION);
   const std::string line = api::version_line();

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "geometry/stock/cell_region.h"
 #include "geometry/stock/height_field.h"
 #include "geometry/stock/swept_move.h"
 
@@ -30,94 +31,40 @@ namespace {
 // Cells whose centres lie within this of a band's or a cap's edge are cut
 // by it too (mm): a cell the band needs is never lost to rounding.
 constexpr double kEdgePad = 1e-7;
+// A joint's wedge overlaps the bands beside it by this (mm).
+constexpr double kJointOverlap = 1e-6;
+// Cells are cut in chunks of up to kChunk along a row, each left out when
+// the move cannot lower it.
+constexpr std::int64_t kChunk = 32;
 // Tiles of kTile x kTile cells are cut in parallel, each by its own thread.
-constexpr std::int64_t kTile = 128;
+constexpr std::int64_t kTile = 256;
 
 struct CellBox {
   std::int64_t x0, x1, y0, y1;  // inclusive
 };
 
-// Inclusive cell indices (empty when lo > hi), unclipped.
-struct CellRun {
-  std::int64_t lo, hi;
-};
-
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// The cells whose centres lie in [x0, x1], as indices of a grid axis
-// starting at origin (kept within a few cells of [0, n) so that infinite
-// ends stay representable).
-CellRun cells_between(double x0, double x1, double origin, double cell, std::int64_t n) {
-  const double limit = static_cast<double>(n) + 2;
-  const double lo = std::clamp(std::ceil((x0 - origin) / cell - 0.5), -2.0, limit);
-  const double hi = std::clamp(std::floor((x1 - origin) / cell - 0.5), -2.0, limit);
-  if (!(lo <= hi)) return {1, 0};
-  return {static_cast<std::int64_t>(lo), static_cast<std::int64_t>(hi)};
+// The highest of [first, last): four running maxima, so that the compare
+// latencies overlap.
+float highest_of(const float* first, const float* last) {
+  std::array<float, 4> high{kNoMaterial, kNoMaterial, kNoMaterial, kNoMaterial};
+  for (; last - first >= 4; first += 4) {
+    for (int k = 0; k < 4; ++k) high[k] = std::max(high[k], first[k]);
+  }
+  for (; first != last; ++first) high[0] = std::max(high[0], *first);
+  return std::max(std::max(high[0], high[1]), std::max(high[2], high[3]));
 }
-
-// {x : lo <= alpha x + beta <= hi}, as [first, second] (empty when first > second).
-std::pair<double, double> solve_between(double alpha, double beta, double lo, double hi) {
-  if (std::abs(alpha) < 1e-12) {
-    return beta >= lo && beta <= hi ? std::pair{-kInf, kInf} : std::pair{kInf, -kInf};
-  }
-  double a = (lo - beta) / alpha, b = (hi - beta) / alpha;
-  if (a > b) std::swap(a, b);
-  return {a, b};
-}
-
-// A move's band: the cells at s in [s_lo, s_hi] and |e| <= R of its frame.
-struct Band {
-  const MoveFrame* move;
-  double s_lo, s_hi, e_max;
-
-  // The rows (y indices) the band's rectangle touches.
-  CellRun rows(const Grid& g) const {
-    const Eigen::Vector2d n(-move->u.y(), move->u.x());
-    double y_lo = kInf, y_hi = -kInf;
-    for (const double s : {s_lo - kEdgePad, s_hi + kEdgePad}) {
-      for (const double e : {-e_max - kEdgePad, e_max + kEdgePad}) {
-        const double y = move->start.y() + s * move->u.y() + e * n.y();
-        y_lo = std::min(y_lo, y);
-        y_hi = std::max(y_hi, y);
-      }
-    }
-    return cells_between(y_lo, y_hi, g.min.y(), g.cell_mm, g.ny);
-  }
-
-  // The cells of the row at y inside the band.
-  CellRun row(const Grid& g, double y) const {
-    const double ux = move->u.x(), uy = move->u.y();
-    const double ax = move->start.x(), dy = y - move->start.y();
-    const auto [s0, s1] = solve_between(ux, uy * dy - ux * ax, s_lo - kEdgePad, s_hi + kEdgePad);
-    const auto [e0, e1] =
-        solve_between(-uy, ux * dy + uy * ax, -e_max - kEdgePad, e_max + kEdgePad);
-    return cells_between(std::max(s0, e0), std::min(s1, e1), g.min.x(), g.cell_mm, g.nx);
-  }
-};
-
-// The disc of the cutter at a tip (a cap).
-struct Disc {
-  Eigen::Vector2d centre;
-  double radius;
-
-  CellRun rows(const Grid& g) const {
-    const double r = radius + kEdgePad;
-    return cells_between(centre.y() - r, centre.y() + r, g.min.y(), g.cell_mm, g.ny);
-  }
-  CellRun row(const Grid& g, double y) const {
-    const double r = radius + kEdgePad, dy = y - centre.y();
-    if (std::abs(dy) > r) return {1, 0};
-    const double half = std::sqrt(std::max(0.0, r * r - dy * dy));
-    return cells_between(centre.x() - half, centre.x() + half, g.min.x(), g.cell_mm, g.nx);
-  }
-};
 
 class Cutting {
  public:
   Cutting(const Grid& grid, std::vector<float>& tops, const CutterProfile& profile)
-      : grid_(grid), tops_(tops), profile_(profile) {}
+      : grid_(grid), inverse_cell_(1 / grid.cell_mm), tops_(tops), profile_(profile) {}
 
-  // The move's cutter over the cells [lo, hi] of row iy (clipped to box).
+  // The move's cutter over the cells [lo, hi] of row iy (clipped to box),
+  // chunk by chunk, leaving out chunks it cannot lower: those whose
+  // highest top is not above the move's lowest tip plus the cutter's
+  // underside at the chunk's least distance from the move.
   void cut_run(const MoveFrame& move, std::int64_t iy, CellRun run, const CellBox& box) const {
     const std::int64_t lo = std::max(run.lo, box.x0), hi = std::min(run.hi, box.x1);
     if (lo > hi) return;
@@ -125,64 +72,134 @@ class Cutting {
     const double x = grid_.min.x() + (static_cast<double>(lo) + 0.5) * cell - move.start.x();
     const double y = grid_.min.y() + (static_cast<double>(iy) + 0.5) * cell - move.start.y();
     const double ux = move.u.x(), uy = move.u.y();
+    const double s0 = x * ux + y * uy, e0 = -x * uy + y * ux, ds = cell * ux, de = -cell * uy;
     float* row = tops_.data() + static_cast<std::size_t>(iy) * grid_.nx;
+    const double r = profile_.radius;
     with_kind(profile_.kind, [&](auto kind) {
-      cut_cells<decltype(kind)::value>(profile_, move, row, static_cast<int>(lo),
-                                       static_cast<int>(hi), x * ux + y * uy, -x * uy + y * ux,
-                                       cell * ux, -cell * uy);
+      constexpr ProfileKind Kind = decltype(kind)::value;
+      for (std::int64_t c0 = lo; c0 <= hi; c0 += kChunk) {
+        const std::int64_t c1 = std::min(hi, c0 + kChunk - 1);
+        const float highest = highest_of(row + c0, row + c1 + 1);
+        if (move.lowest_tip >= highest) continue;
+        const double mid = 0.5 * static_cast<double>(c0 + c1 - 2 * lo);
+        const double s = s0 + mid * ds, e = e0 + mid * de;
+        const double beyond = std::min(s, 0.0) + std::max(s - move.length, 0.0);
+        const double nearest =
+            std::sqrt(e * e + beyond * beyond) - 0.5 * static_cast<double>(c1 - c0) * cell;
+        if (nearest > r) continue;
+        const double clear = std::max(nearest, 0.0);
+        if (move.lowest_tip + underside<Kind>(profile_, clear * clear) >= highest) continue;
+        const auto skip = static_cast<double>(c0 - lo);
+        cut_cells<Kind>(profile_, move, row, static_cast<int>(c0), static_cast<int>(c1),
+                        s0 + skip * ds, e0 + skip * de, ds, de);
+      }
     });
   }
 
-  void cut_band(const Band& band, const CellBox& box) const {
-    const CellRun rows = band.rows(grid_);
-    for (std::int64_t iy = std::max(rows.lo, box.y0); iy <= std::min(rows.hi, box.y1); ++iy) {
-      cut_run(*band.move, iy, band.row(grid_, row_y(iy)), box);
+  // The move's band: the cells at s in [s_lo, s_hi] and |e| <= R of its frame.
+  void cut_band(const MoveFrame& move, double s_lo, double s_hi, const CellBox& box) const {
+    const double r = profile_.radius;
+    const Eigen::Vector2d& u = move.u;
+    const Eigen::Vector2d n(-u.y(), u.x());
+    CellRegion region(move.start);
+    region.keep_side(u, s_lo, kEdgePad);
+    region.keep_side(-u, -s_hi, kEdgePad);
+    region.keep_side(n, -r, kEdgePad);
+    region.keep_side(-n, -r, kEdgePad);
+    double y_lo = kInf, y_hi = -kInf;
+    for (const double s : {s_lo, s_hi}) {
+      for (const double e : {-r, r}) {
+        const double y = move.start.y() + s * u.y() + e * n.y();
+        y_lo = std::min(y_lo, y);
+        y_hi = std::max(y_hi, y);
+      }
     }
+    cut_region(move, region, y_lo - kEdgePad, y_hi + kEdgePad, box);
   }
 
   // The cutter standing at tip p over its whole disc.
   void cut_cap(const Eigen::Vector3d& p, const CellBox& box) const {
-    const MoveFrame cap = frame_of(profile_, p, p);
-    const Disc disc{p.head<2>(), profile_.radius};
-    const CellRun rows = disc.rows(grid_);
-    for (std::int64_t iy = std::max(rows.lo, box.y0); iy <= std::min(rows.hi, box.y1); ++iy) {
-      cut_run(cap, iy, disc.row(grid_, row_y(iy)), box);
-    }
+    CellRegion region(p.head<2>());
+    region.keep_disc(profile_.radius + kEdgePad);
+    const double reach = profile_.radius + kEdgePad;
+    cut_region(frame_of(profile_, p, p), region, p.y() - reach, p.y() + reach, box);
   }
 
-  // The cutter at the joint p over the cells of its disc that neither
-  // band covers (their edge cells cut twice, so rounding loses none).
-  void cut_joint(const Eigen::Vector3d& p, const Band& in, const Band& out,
+  // The cutter at the joint p over the cells of its disc beyond both
+  // bands: past the incoming band's end and before the outgoing band's
+  // start (a cell before the incoming band's start has the cutter at the
+  // joint before, lower there than this one, and so on along the path; one
+  // after the outgoing band's end the one at the joint after). The two
+  // half-planes overlap the bands by kJointOverlap, so rounding loses no
+  // cell between them.
+  void cut_joint(const Eigen::Vector3d& p, const MoveFrame& in, const MoveFrame& out,
                  const CellBox& box) const {
-    const MoveFrame cap = frame_of(profile_, p, p);
-    const Disc disc{p.head<2>(), profile_.radius};
-    const CellRun rows = disc.rows(grid_);
-    for (std::int64_t iy = std::max(rows.lo, box.y0); iy <= std::min(rows.hi, box.y1); ++iy) {
-      const double y = row_y(iy);
-      const CellRun whole = disc.row(grid_, y);
-      if (whole.lo > whole.hi) continue;
-      std::array<CellRun, 2> covered{in.row(grid_, y), out.row(grid_, y)};
-      for (CellRun& c : covered) {
-        ++c.lo;
-        --c.hi;
-      }
-      if (covered[1].lo < covered[0].lo) std::swap(covered[0], covered[1]);
-      std::int64_t next = whole.lo;
-      for (const CellRun& c : covered) {
-        if (c.lo > c.hi) continue;
-        cut_run(cap, iy, {next, std::min(whole.hi, c.lo - 1)}, box);
-        next = std::max(next, c.hi + 1);
-      }
-      cut_run(cap, iy, {next, whole.hi}, box);
-    }
+    const Eigen::Vector2d v = p.head<2>();
+    // The wedge: |d| <= R, normal[k].d >= offset[k], d = q - v.
+    const std::array<Eigen::Vector2d, 2> normal{in.u, -out.u};
+    const std::array<double, 2> offset{in.reach_after - kJointOverlap,
+                                       out.reach_before - kJointOverlap};
+    const auto [y_lo, y_hi] = wedge_rows(normal, offset);
+    if (y_lo > y_hi) return;
+    CellRegion region(v);
+    region.keep_disc(profile_.radius + kEdgePad);
+    for (int k = 0; k < 2; ++k) region.keep_side(normal[k], offset[k], kEdgePad);
+    cut_region(frame_of(profile_, p, p), region, v.y() + y_lo - kEdgePad, v.y() + y_hi + kEdgePad,
+               box);
   }
 
  private:
+  // The region's cells in the rows from y_lo to y_hi (within box).
+  void cut_region(const MoveFrame& move, const CellRegion& region, double y_lo, double y_hi,
+                  const CellBox& box) const {
+    const CellRun rows = cells_between(y_lo, y_hi, grid_.min.y(), inverse_cell_, grid_.ny);
+    for (std::int64_t iy = std::max(rows.lo, box.y0); iy <= std::min(rows.hi, box.y1); ++iy) {
+      cut_run(move, iy, region.row(grid_, inverse_cell_, row_y(iy)), box);
+    }
+  }
+
+  // The lowest and highest d.y of the convex region |d| <= R,
+  // normal[k].d >= offset[k] (lowest > highest when it is empty): they lie
+  // among the corners of its edges and the circle's own lowest and highest
+  // points.
+  std::pair<double, double> wedge_rows(const std::array<Eigen::Vector2d, 2>& normal,
+                                       const std::array<double, 2>& offset) const {
+    const double r = profile_.radius;
+    const auto inside = [&](const Eigen::Vector2d& d) {
+      for (int k = 0; k < 2; ++k) {
+        if (normal[k].dot(d) < offset[k] - 1e-9) return false;
+      }
+      return d.norm() <= r + 1e-9;
+    };
+    double y_lo = kInf, y_hi = -kInf;
+    const auto take = [&](const Eigen::Vector2d& d) {
+      if (!inside(d)) return;
+      y_lo = std::min(y_lo, d.y());
+      y_hi = std::max(y_hi, d.y());
+    };
+    take({0, r});
+    take({0, -r});
+    for (int k = 0; k < 2; ++k) {
+      if (std::abs(offset[k]) > r) continue;
+      const Eigen::Vector2d along(-normal[k].y(), normal[k].x());
+      const double half = std::sqrt(r * r - offset[k] * offset[k]);
+      take(offset[k] * normal[k] + half * along);
+      take(offset[k] * normal[k] - half * along);
+    }
+    const double det = normal[0].x() * normal[1].y() - normal[0].y() * normal[1].x();
+    if (std::abs(det) > 1e-12) {
+      take({(offset[0] * normal[1].y() - offset[1] * normal[0].y()) / det,
+            (normal[0].x() * offset[1] - normal[1].x() * offset[0]) / det});
+    }
+    return {y_lo, y_hi};
+  }
+
   double row_y(std::int64_t iy) const {
     return grid_.min.y() + (static_cast<double>(iy) + 0.5) * grid_.cell_mm;
   }
 
   const Grid& grid_;
+  double inverse_cell_;
   std::vector<float>& tops_;
   const CutterProfile& profile_;
 };
@@ -206,7 +223,7 @@ void HeightField::cut(const Cutter& cutter, const Eigen::Vector3d& a, const Eige
   check_tips(ends);
   const MoveFrame move = frame_of(profile, a, b);
   const double r = profile.radius;
-  Cutting(grid_, top_, profile).cut_band({&move, -r, move.length + r, r}, whole_grid(grid_));
+  Cutting(grid_, top_, profile).cut_band(move, -r, move.length + r, whole_grid(grid_));
 }
 
 void HeightField::cut_path(const Cutter& cutter, std::span<const Eigen::Vector3d> tips) {
@@ -261,7 +278,6 @@ void HeightField::cut_path(const Cutter& cutter, std::span<const Eigen::Vector3d
     }
   }
 
-  const double r = profile.radius;
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, start.size() - 1, 1), [&](const auto& range) {
         for (std::size_t t = range.begin(); t != range.end(); ++t) {
@@ -280,15 +296,12 @@ void HeightField::cut_path(const Cutter& cutter, std::span<const Eigen::Vector3d
             const std::size_t j = bucket[k];
             const MoveFrame move = frame_of(profile, tip(j), tip(j + 1));
             if (move.lowest_tip >= highest) continue;
-            const Band band{&move, -move.reach_before, move.length + move.reach_after, r};
-            cutting.cut_band(band, box);
+            cutting.cut_band(move, -move.reach_before, move.length + move.reach_after, box);
             if (j == 0) cutting.cut_cap(tip(0), box);
             if (j + 1 == moves) {
               cutting.cut_cap(tip(moves), box);
             } else {
-              const MoveFrame next = frame_of(profile, tip(j + 1), tip(j + 2));
-              const Band next_band{&next, -next.reach_before, next.length + next.reach_after, r};
-              cutting.cut_joint(tip(j + 1), band, next_band, box);
+              cutting.cut_joint(tip(j + 1), move, frame_of(profile, tip(j + 1), tip(j + 2)), box);
             }
           }
         }

@@ -55,17 +55,45 @@ double torus_minimiser(const CutterProfile& profile, double slope, double e_abs)
 
 inline constexpr double kNoCut = std::numeric_limits<double>::infinity();
 
-// The lowest point of the swept cutter over the cell centre at (s, e) in
-// the move's frame; kNoCut where the cutter does not pass over it.
+// The underside's height over radial distance sqrt(r_sq) (r_sq <= R^2), for
+// the kernels below: no branch, so that their loops vectorise.
 template <ProfileKind Kind>
-inline double lowest_over(const CutterProfile& profile, const MoveFrame& move, double s, double e) {
+inline double underside(const CutterProfile& profile, double r_sq) {
+  if constexpr (Kind == ProfileKind::ball) {
+    return profile.radius - std::sqrt(std::max(0.0, profile.radius * profile.radius - r_sq));
+  } else if constexpr (Kind == ProfileKind::torus) {
+    const double d = std::max(0.0, std::sqrt(r_sq) - profile.flat_radius);
+    const double rc = profile.corner_radius;
+    return rc - std::sqrt(std::max(0.0, rc * rc - d * d));
+  } else if constexpr (Kind == ProfileKind::cone) {
+    return profile.cone_slope * std::sqrt(r_sq);
+  } else {
+    return 0.0;
+  }
+}
+
+// The lowest point of a level (or standing) move's cutter over the cell
+// centre at (s, e) in its frame: the cutter at the nearest tip; kNoCut
+// where the cutter does not pass over it.
+template <ProfileKind Kind>
+inline double lowest_level(const CutterProfile& profile, const MoveFrame& move, double s,
+                           double e) {
+  const double r = profile.radius;
+  const double beyond = std::min(s, 0.0) + std::max(s - move.length, 0.0);
+  const double d_sq = e * e + beyond * beyond;
+  const double z = move.z0 + underside<Kind>(profile, std::min(d_sq, r * r));
+  return d_sq <= r * r ? z : kNoCut;
+}
+
+// The same for a sloped move: the minimiser clamped (see above).
+template <ProfileKind Kind>
+inline double lowest_sloped(const CutterProfile& profile, const MoveFrame& move, double s,
+                            double e) {
   const double r = profile.radius;
   const double w_sq_max = r * r - e * e;
-  if (w_sq_max < 0) return kNoCut;
-  const double w_max = std::sqrt(w_sq_max);
+  const double w_max = std::sqrt(std::max(0.0, w_sq_max));
   const double lo = std::max(s - move.length, -w_max);
   const double hi = std::min(s, w_max);
-  if (lo > hi) return kNoCut;
   double w = 0;
   if constexpr (Kind == ProfileKind::ball) {
     w = move.ball_factor * w_max;
@@ -74,18 +102,18 @@ inline double lowest_over(const CutterProfile& profile, const MoveFrame& move, d
   } else if constexpr (Kind == ProfileKind::cone) {
     w = move.steeper_than_cone ? (move.slope > 0 ? hi : lo) : move.cone_factor * std::abs(e);
   } else {
-    w = move.slope == 0 ? 0.0 : torus_minimiser(profile, move.slope, std::abs(e));
+    w = w_sq_max >= 0 ? torus_minimiser(profile, move.slope, std::abs(e)) : 0.0;
   }
-  w = std::clamp(w, lo, hi);
-  double h = 0;
-  if constexpr (Kind == ProfileKind::ball) {
-    h = r - std::sqrt(std::max(0.0, w_sq_max - w * w));
-  } else if constexpr (Kind == ProfileKind::torus) {
-    h = profile.height(std::sqrt(w * w + e * e));
-  } else if constexpr (Kind == ProfileKind::cone) {
-    h = profile.cone_slope * std::sqrt(w * w + e * e);
-  }
-  return move.z0 + move.slope * (s - w) + h;
+  w = std::min(std::max(w, lo), hi);
+  const double z =
+      move.z0 + move.slope * (s - w) + underside<Kind>(profile, std::min(w * w + e * e, r * r));
+  return w_sq_max >= 0 && lo <= hi ? z : kNoCut;
+}
+
+template <ProfileKind Kind>
+inline double lowest_over(const CutterProfile& profile, const MoveFrame& move, double s, double e) {
+  return move.slope == 0 ? lowest_level<Kind>(profile, move, s, e)
+                         : lowest_sloped<Kind>(profile, move, s, e);
 }
 
 // Lowers the cells [i0, i1] of one row to the swept cutter; the cell i0's
@@ -93,9 +121,17 @@ inline double lowest_over(const CutterProfile& profile, const MoveFrame& move, d
 template <ProfileKind Kind>
 void cut_cells(const CutterProfile& profile, const MoveFrame& move, float* row, int i0, int i1,
                double s0, double e0, double ds, double de) {
+  if (move.slope == 0) {
+    for (int i = i0; i <= i1; ++i) {
+      const double step = i - i0;
+      const double z = lowest_level<Kind>(profile, move, s0 + step * ds, e0 + step * de);
+      row[i] = std::min(row[i], static_cast<float>(z));
+    }
+    return;
+  }
   for (int i = i0; i <= i1; ++i) {
     const double step = i - i0;
-    const double z = lowest_over<Kind>(profile, move, s0 + step * ds, e0 + step * de);
+    const double z = lowest_sloped<Kind>(profile, move, s0 + step * ds, e0 + step * de);
     row[i] = std::min(row[i], static_cast<float>(z));
   }
 }

@@ -29,12 +29,11 @@ inline CellRun cells_between(double x0, double x1, double origin, double inverse
   const double limit = static_cast<double>(n) + 2;
   const double lo = std::clamp((x0 - origin) * inverse_cell - 0.5, -2.0, limit);
   const double hi = std::clamp((x1 - origin) * inverse_cell - 0.5, -2.0, limit);
-  if (!(lo <= hi)) return {1, 0};
-  // ceil and floor on values in [-2, n + 2] (truncation rounds towards 0).
-  auto first = static_cast<std::int64_t>(lo), last = static_cast<std::int64_t>(hi);
-  first += static_cast<double>(first) < lo;
-  last -= static_cast<double>(last) > hi;
-  return {first, last};
+  // floor(hi) and ceil(lo) = -floor(-lo) by truncating positive values
+  // (rounding can only add a cell whose centre is a rounding error outside).
+  const double shift = limit + 1;
+  const auto whole = static_cast<std::int64_t>(shift);
+  return {whole - static_cast<std::int64_t>(shift - lo), static_cast<std::int64_t>(hi + 3) - 3};
 }
 
 class CellRegion {
@@ -44,15 +43,16 @@ class CellRegion {
   // Anchored at o: the half-planes and the disc are about o.
   explicit CellRegion(const Eigen::Vector2d& o) : origin_(o) {}
 
-  // Keeps the points q with n.(q - o) >= t - pad. A normal almost along y
-  // bounds no row's x (the rows' range bounds it: only more cells).
+  // Keeps the points q with n.(q - o) >= t - pad (at most two such sides
+  // bound x from below and two from above). A normal almost along y bounds
+  // no row's x (the rows' range bounds it: only more cells).
   void keep_side(const Eigen::Vector2d& n, double t, double pad) {
     if (std::abs(n.x()) < 1e-9) return;
-    Edge edge{origin_.x() + (t - pad) / n.x(), -n.y() / n.x()};
+    const Edge edge{origin_.x() + (t - pad) / n.x(), -n.y() / n.x()};
     if (n.x() > 0) {
-      lower_[lowers_++] = edge;
+      lower_.at(lowers_++) = edge;
     } else {
-      upper_[uppers_++] = edge;
+      upper_.at(uppers_++) = edge;
     }
   }
   // Keeps the points within r of o.
@@ -61,9 +61,8 @@ class CellRegion {
   // The cells of the row whose centre is at y.
   CellRun row(const Grid& g, double inverse_cell, double y) const {
     const double dy = y - origin_.y();
-    double x0 = -kInf, x1 = kInf;
-    for (int i = 0; i < lowers_; ++i) x0 = std::max(x0, lower_[i].c + lower_[i].k * dy);
-    for (int i = 0; i < uppers_; ++i) x1 = std::min(x1, upper_[i].c + upper_[i].k * dy);
+    double x0 = std::max(lower_[0].c + lower_[0].k * dy, lower_[1].c + lower_[1].k * dy);
+    double x1 = std::min(upper_[0].c + upper_[0].k * dy, upper_[1].c + upper_[1].k * dy);
     if (disc_ < kInf) {
       const double half_sq = disc_ * disc_ - dy * dy;
       if (half_sq < 0) return {1, 0};
@@ -79,7 +78,9 @@ class CellRegion {
     double c = 0, k = 0;  // x = c + k * dy
   };
   Eigen::Vector2d origin_;
-  std::array<Edge, 4> lower_{}, upper_{};
+  // Unused edges bound nothing: x >= -inf, x <= inf.
+  std::array<Edge, 2> lower_{Edge{-kInf, 0}, Edge{-kInf, 0}};
+  std::array<Edge, 2> upper_{Edge{kInf, 0}, Edge{kInf, 0}};
   int lowers_ = 0, uppers_ = 0;
   double disc_ = kInf;
 };

@@ -36,6 +36,8 @@ constexpr double kJointOverlap = 1e-6;
 // Cells are cut in chunks of up to kChunk along a row, each left out when
 // the move cannot lower it.
 constexpr std::int64_t kChunk = 32;
+// Shorter chunks are cut without the test (it costs about as much).
+constexpr std::int64_t kPrunable = 1;
 // Tiles of kTile x kTile cells are cut in parallel, each by its own thread.
 constexpr std::int64_t kTile = 256;
 
@@ -61,39 +63,51 @@ class Cutting {
   Cutting(const Grid& grid, std::vector<float>& tops, const CutterProfile& profile)
       : grid_(grid), inverse_cell_(1 / grid.cell_mm), tops_(tops), profile_(profile) {}
 
-  // The move's cutter over the cells [lo, hi] of row iy (clipped to box),
-  // chunk by chunk, leaving out chunks it cannot lower: those whose
-  // highest top is not above the move's lowest tip plus the cutter's
-  // underside at the chunk's least distance from the move.
-  void cut_run(const MoveFrame& move, std::int64_t iy, CellRun run, const CellBox& box) const {
-    const std::int64_t lo = std::max(run.lo, box.x0), hi = std::min(run.hi, box.x1);
-    if (lo > hi) return;
-    const double cell = grid_.cell_mm;
-    const double x = grid_.min.x() + (static_cast<double>(lo) + 0.5) * cell - move.start.x();
-    const double y = grid_.min.y() + (static_cast<double>(iy) + 0.5) * cell - move.start.y();
-    const double ux = move.u.x(), uy = move.u.y();
-    const double s0 = x * ux + y * uy, e0 = -x * uy + y * ux, ds = cell * ux, de = -cell * uy;
-    float* row = tops_.data() + static_cast<std::size_t>(iy) * grid_.nx;
-    const double r = profile_.radius;
-    with_kind(profile_.kind, [&](auto kind) {
-      constexpr ProfileKind Kind = decltype(kind)::value;
+  // The move's cutter over the region's cells in the rows from y_lo to
+  // y_hi (within box), chunk by chunk along each row; a chunk of kPrunable
+  // cells or more is left out when the move cannot lower it: its highest
+  // top is not above the move's lowest tip plus the cutter's underside at
+  // the chunk's least distance from the move.
+  template <ProfileKind Kind>
+  void cut_rows(const MoveFrame& move, const CellRegion& region, double y_lo, double y_hi,
+                const CellBox& box) const {
+    const CellRun rows = cells_between(y_lo, y_hi, grid_.min.y(), inverse_cell_, grid_.ny);
+    const double cell = grid_.cell_mm, r = profile_.radius;
+    const double ux = move.u.x(), uy = move.u.y(), ds = cell * ux, de = -cell * uy;
+    const double x_first = grid_.min.x() + 0.5 * cell - move.start.x();
+    for (std::int64_t iy = std::max(rows.lo, box.y0); iy <= std::min(rows.hi, box.y1); ++iy) {
+      const double y_cell = row_y(iy);
+      const CellRun run = region.row(grid_, inverse_cell_, y_cell);
+      const std::int64_t lo = std::max(run.lo, box.x0), hi = std::min(run.hi, box.x1);
+      if (lo > hi) continue;
+      const double x = x_first + static_cast<double>(lo) * cell, y = y_cell - move.start.y();
+      const double s0 = x * ux + y * uy, e0 = -x * uy + y * ux;
+      float* row = tops_.data() + static_cast<std::size_t>(iy) * grid_.nx;
       for (std::int64_t c0 = lo; c0 <= hi; c0 += kChunk) {
         const std::int64_t c1 = std::min(hi, c0 + kChunk - 1);
-        const float highest = highest_of(row + c0, row + c1 + 1);
-        if (move.lowest_tip >= highest) continue;
-        const double mid = 0.5 * static_cast<double>(c0 + c1 - 2 * lo);
-        const double s = s0 + mid * ds, e = e0 + mid * de;
-        const double beyond = std::min(s, 0.0) + std::max(s - move.length, 0.0);
-        const double nearest =
-            std::sqrt(e * e + beyond * beyond) - 0.5 * static_cast<double>(c1 - c0) * cell;
-        if (nearest > r) continue;
-        const double clear = std::max(nearest, 0.0);
-        if (move.lowest_tip + underside<Kind>(profile_, clear * clear) >= highest) continue;
         const auto skip = static_cast<double>(c0 - lo);
-        cut_cells<Kind>(profile_, move, row, static_cast<int>(c0), static_cast<int>(c1),
-                        s0 + skip * ds, e0 + skip * de, ds, de);
+        const double s = s0 + skip * ds, e = e0 + skip * de;
+        if (c1 - c0 + 1 >= kPrunable) {
+          const float highest = highest_of(row + c0, row + c1 + 1);
+          if (move.lowest_tip >= highest) continue;
+          const double half = 0.5 * static_cast<double>(c1 - c0);
+          const double s_mid = s + half * ds, e_mid = e + half * de;
+          const double beyond = std::min(s_mid, 0.0) + std::max(s_mid - move.length, 0.0);
+          const double nearest = std::sqrt(e_mid * e_mid + beyond * beyond) - half * cell;
+          if (nearest > r) continue;
+          const double clear = std::max(nearest, 0.0);
+          if (move.lowest_tip + underside<Kind>(profile_, clear * clear) >= highest) continue;
+        }
+        cut_cells<Kind>(profile_, move, row, static_cast<int>(c0), static_cast<int>(c1), s, e, ds,
+                        de);
       }
-    });
+    }
+  }
+
+  void cut_region(const MoveFrame& move, const CellRegion& region, double y_lo, double y_hi,
+                  const CellBox& box) const {
+    with_kind(profile_.kind,
+              [&](auto kind) { cut_rows<decltype(kind)::value>(move, region, y_lo, y_hi, box); });
   }
 
   // The move's band: the cells at s in [s_lo, s_hi] and |e| <= R of its frame.
@@ -134,6 +148,10 @@ class Cutting {
   // cell between them.
   void cut_joint(const Eigen::Vector3d& p, const MoveFrame& in, const MoveFrame& out,
                  const CellBox& box) const {
+    // Going on in the same direction, the bands meet (reaches are >= 0):
+    // past one and before the other is nothing but their padded edges.
+    const double turn = in.u.x() * out.u.y() - in.u.y() * out.u.x();
+    if (std::abs(turn) < 1e-12 && in.u.dot(out.u) > 0) return;
     const Eigen::Vector2d v = p.head<2>();
     // The wedge: |d| <= R, normal[k].d >= offset[k], d = q - v.
     const std::array<Eigen::Vector2d, 2> normal{in.u, -out.u};
@@ -149,15 +167,6 @@ class Cutting {
   }
 
  private:
-  // The region's cells in the rows from y_lo to y_hi (within box).
-  void cut_region(const MoveFrame& move, const CellRegion& region, double y_lo, double y_hi,
-                  const CellBox& box) const {
-    const CellRun rows = cells_between(y_lo, y_hi, grid_.min.y(), inverse_cell_, grid_.ny);
-    for (std::int64_t iy = std::max(rows.lo, box.y0); iy <= std::min(rows.hi, box.y1); ++iy) {
-      cut_run(move, iy, region.row(grid_, inverse_cell_, row_y(iy)), box);
-    }
-  }
-
   // The lowest and highest d.y of the convex region |d| <= R,
   // normal[k].d >= offset[k] (lowest > highest when it is empty): they lie
   // among the corners of its edges and the circle's own lowest and highest

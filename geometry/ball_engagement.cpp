@@ -511,9 +511,8 @@ double ball_mean_diameter(double radius, const CutSetup& setup, const CutFrame& 
   // root) and where the circle passes through the tool's tip (r has a kink
   // there): the stack is cut at those levels, and each piece integrated in
   // theta (integrate_smoothed_pieces), which makes the square roots smooth
-  // (a fifth of the slices adaptive bisection took, and closer: within
-  // 1.2e-6 mm of the same integral to 1e-12 on 3,000 random set-ups, where
-  // bisection was within 2.9e-5 mm).
+  // (fewer slices than adaptive bisection took, and closer: docs/models.md
+  // §2).
   std::vector<double> cuts{-R * ball.up.z(), R * up_across, -R * up_across};
   if (ball.ae < 2 * R) {
     // Where the previous pass's strip sigma b <= ae - w starts to cut: w = ae / 2.

@@ -98,25 +98,12 @@ Engagement evaluate_engagement(const Tool& tool, const CutSetup& setup,
 
 // Area-weighted mean of 2r over the engaged zone, by adaptive quadrature,
 // capped: a bounded number of evaluations whatever the set-up; empty when
-// nothing is engaged. Absolute error: for the ball within 1.2e-6 mm of
-// the same integral taken to 1e-12 (3,000 random set-ups). For the
-// bull-nose, round the engaged zone's boundary (Green's theorem on the
-// tool), within 1.3e-6 mm of the area integral over the groove taken to
-// 1e-10 (1,440 random set-ups; 3e-5 mm with |F_z| in 1e-3..3e-3, 200
-// set-ups, 3.1e-6 in 3e-3..1e-2; of 1,500 more, all but two within 1e-6
-// mm of the same boundary integral taken to 1e-9, one 5.4e-5 mm off both
-// it and the circle-by-circle oracle: one piece's error, 7e-5 mm^2 of
-// 17, was within the 1e-5 tolerance); where the end face is nearly parallel
-// to the feed (|F_z| in 1e-5..1e-3) finer, within 1.6e-5 mm (400; of
-// 1,429 more, 9 beyond 1e-5 mm of the same boundary integral taken to
-// 1e-9 and 1e-8, which agree within 1e-7 mm there, at most 5.3e-5). A
-// level feed (F_z = 0, Z-level passes), either tool, goes by one
-// integral along the tool's profile (level_engagement.h): within 6.3e-8
-// mm of that area integral (400 random set-ups), about 10 us a mean;
-// feeds all but level (|F_z| < 1e-5) are turned level first, within
-// 4.2e-4 mm (400). The flat end mill otherwise within 6.4e-4 mm of the
-// circle-by-circle oracle on 900 random set-ups (its circles' removed
-// arcs in closed form).
+// nothing is engaged. The ball's over the area; the bull-nose's round the
+// engaged zone's boundary (Green's theorem on the tool); a level feed (F_z
+// = 0, Z-level passes), either tool, by one integral along the tool's
+// profile (level_engagement.h), feeds all but level turned level first;
+// the flat end mill's circle by circle, its removed arcs in closed form.
+// How near each comes to the reference integrals: docs/models.md §2.
 std::optional<double> engaged_mean_diameter(const Tool& tool, const CutSetup& setup);
 
 // Up or down milling from the side of the previous pass and the spindle

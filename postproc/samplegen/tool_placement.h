@@ -49,7 +49,7 @@ struct ToolPlacement {
 // sign) and inside it (a crest under the flat part: gradient ascent from
 // the best of 7 inner points when that is higher than the rim, or from the
 // rim's best when the ground rises inwards there), O_z to about 1e-12 mm.
-// About 40 drops of the ball: 50 us a point on the wavy mould.
+// About 40 drops of the ball a point on the wavy mould.
 // `guess`: a nearby contact.
 // Throws SurfaceError when a contact leaves the patch.
 ToolPlacement drop_tool(const SampleSurface& surface, double flat_radius, double corner_radius,

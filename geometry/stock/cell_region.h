@@ -58,8 +58,9 @@ class CellRegion {
   // Keeps the points within r of o.
   void keep_disc(double r) { disc_ = r; }
 
-  // The cells of the row whose centre is at y.
-  CellRun row(const Grid& g, double inverse_cell, double y) const {
+  // The cells of the line (a row, or a column with x and y swapped
+  // throughout) whose centre is at y, along an axis of n cells from origin.
+  CellRun row(double origin, double inverse_cell, std::int64_t n, double y) const {
     const double dy = y - origin_.y();
     double x0 = std::max(lower_[0].c + lower_[0].k * dy, lower_[1].c + lower_[1].k * dy);
     double x1 = std::min(upper_[0].c + upper_[0].k * dy, upper_[1].c + upper_[1].k * dy);
@@ -70,7 +71,7 @@ class CellRegion {
       x0 = std::max(x0, origin_.x() - half);
       x1 = std::min(x1, origin_.x() + half);
     }
-    return cells_between(x0, x1, g.min.x(), inverse_cell, g.nx);
+    return cells_between(x0, x1, origin, inverse_cell, n);
   }
 
  private:

@@ -33,11 +33,9 @@ namespace {
 constexpr double kEdgePad = 1e-7;
 // A joint's wedge overlaps the bands beside it by this (mm).
 constexpr double kJointOverlap = 1e-6;
-// Cells are cut in chunks of up to kChunk along a row, each left out when
+// Cells are cut in chunks of up to kChunk along a line, each left out when
 // the move cannot lower it.
 constexpr std::int64_t kChunk = 32;
-// Shorter chunks are cut without the test (it costs about as much).
-constexpr std::int64_t kPrunable = 1;
 // Tiles of kTile x kTile cells are cut in parallel, each by its own thread.
 constexpr std::int64_t kTile = 256;
 
@@ -47,14 +45,15 @@ struct CellBox {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// The highest of [first, last): four running maxima, so that the compare
-// latencies overlap.
-float highest_of(const float* first, const float* last) {
+// The highest of count tops, stride apart from first: four running
+// maxima, so that the compare latencies overlap.
+float highest_of(const float* first, std::ptrdiff_t stride, std::int64_t count) {
   std::array<float, 4> high{kNoMaterial, kNoMaterial, kNoMaterial, kNoMaterial};
-  for (; last - first >= 4; first += 4) {
-    for (int k = 0; k < 4; ++k) high[k] = std::max(high[k], first[k]);
+  std::int64_t i = 0;
+  for (; i + 4 <= count; i += 4) {
+    for (int k = 0; k < 4; ++k) high[k] = std::max(high[k], first[(i + k) * stride]);
   }
-  for (; first != last; ++first) high[0] = std::max(high[0], *first);
+  for (; i < count; ++i) high[0] = std::max(high[0], first[i * stride]);
   return std::max(std::max(high[0], high[1]), std::max(high[2], high[3]));
 }
 
@@ -63,51 +62,66 @@ class Cutting {
   Cutting(const Grid& grid, std::vector<float>& tops, const CutterProfile& profile)
       : grid_(grid), inverse_cell_(1 / grid.cell_mm), tops_(tops), profile_(profile) {}
 
-  // The move's cutter over the region's cells in the rows from y_lo to
-  // y_hi (within box), chunk by chunk along each row; a chunk of kPrunable
-  // cells or more is left out when the move cannot lower it: its highest
-  // top is not above the move's lowest tip plus the cutter's underside at
-  // the chunk's least distance from the move.
-  template <ProfileKind Kind>
-  void cut_rows(const MoveFrame& move, const CellRegion& region, double y_lo, double y_hi,
-                const CellBox& box) const {
-    const CellRun rows = cells_between(y_lo, y_hi, grid_.min.y(), inverse_cell_, grid_.ny);
+  // The move's cutter over the region's cells in the lines from y_lo to
+  // y_hi (within box): rows, or (Columns) columns with x and y swapped in
+  // the region and the bounds. Chunk by chunk along each line, a chunk left
+  // out when the move cannot lower it: its highest top is not above the
+  // move's lowest tip plus the cutter's underside at the chunk's least
+  // distance from the move.
+  template <ProfileKind Kind, bool Columns>
+  void cut_lines(const MoveFrame& move, const CellRegion& region, double y_lo, double y_hi,
+                 const CellBox& box) const {
+    constexpr int kAlong = Columns ? 1 : 0, kAcross = 1 - kAlong;
+    const std::int64_t n_along = Columns ? grid_.ny : grid_.nx;
+    const std::int64_t n_across = Columns ? grid_.nx : grid_.ny;
+    const std::int64_t box_lo = Columns ? box.y0 : box.x0, box_hi = Columns ? box.y1 : box.x1;
+    const std::int64_t lines_lo = Columns ? box.x0 : box.y0, lines_hi = Columns ? box.x1 : box.y1;
+    const std::ptrdiff_t stride = Columns ? grid_.nx : 1;
     const double cell = grid_.cell_mm, r = profile_.radius;
-    const double ux = move.u.x(), uy = move.u.y(), ds = cell * ux, de = -cell * uy;
-    const double x_first = grid_.min.x() + 0.5 * cell - move.start.x();
-    for (std::int64_t iy = std::max(rows.lo, box.y0); iy <= std::min(rows.hi, box.y1); ++iy) {
-      const double y_cell = row_y(iy);
-      const CellRun run = region.row(grid_, inverse_cell_, y_cell);
-      const std::int64_t lo = std::max(run.lo, box.x0), hi = std::min(run.hi, box.x1);
+    const double origin_along = grid_.min[kAlong], origin_across = grid_.min[kAcross];
+    const CellRun lines = cells_between(y_lo, y_hi, origin_across, inverse_cell_, n_across);
+    const double ux = move.u.x(), uy = move.u.y();
+    // One cell on along the line, in the move's frame.
+    const double ds = Columns ? cell * uy : cell * ux, de = Columns ? cell * ux : -cell * uy;
+    for (std::int64_t il = std::max(lines.lo, lines_lo); il <= std::min(lines.hi, lines_hi); ++il) {
+      const double across = origin_across + (static_cast<double>(il) + 0.5) * cell;
+      const CellRun run = region.row(origin_along, inverse_cell_, n_along, across);
+      const std::int64_t lo = std::max(run.lo, box_lo), hi = std::min(run.hi, box_hi);
       if (lo > hi) continue;
-      const double x = x_first + static_cast<double>(lo) * cell, y = y_cell - move.start.y();
-      const double s0 = x * ux + y * uy, e0 = -x * uy + y * ux;
-      float* row = tops_.data() + static_cast<std::size_t>(iy) * grid_.nx;
+      Eigen::Vector2d centre;
+      centre[kAlong] = origin_along + (static_cast<double>(lo) + 0.5) * cell;
+      centre[kAcross] = across;
+      const Eigen::Vector2d d = centre - move.start;
+      const double s0 = d.x() * ux + d.y() * uy, e0 = -d.x() * uy + d.y() * ux;
+      float* line = tops_.data() + (Columns ? static_cast<std::size_t>(il)
+                                            : static_cast<std::size_t>(il) * grid_.nx);
       for (std::int64_t c0 = lo; c0 <= hi; c0 += kChunk) {
         const std::int64_t c1 = std::min(hi, c0 + kChunk - 1);
         const auto skip = static_cast<double>(c0 - lo);
         const double s = s0 + skip * ds, e = e0 + skip * de;
-        if (c1 - c0 + 1 >= kPrunable) {
-          const float highest = highest_of(row + c0, row + c1 + 1);
-          if (move.lowest_tip >= highest) continue;
-          const double half = 0.5 * static_cast<double>(c1 - c0);
-          const double s_mid = s + half * ds, e_mid = e + half * de;
-          const double beyond = std::min(s_mid, 0.0) + std::max(s_mid - move.length, 0.0);
-          const double nearest = std::sqrt(e_mid * e_mid + beyond * beyond) - half * cell;
-          if (nearest > r) continue;
-          const double clear = std::max(nearest, 0.0);
-          if (move.lowest_tip + underside<Kind>(profile_, clear * clear) >= highest) continue;
-        }
-        cut_cells<Kind>(profile_, move, row, static_cast<int>(c0), static_cast<int>(c1), s, e, ds,
-                        de);
+        const float highest = highest_of(line + c0 * stride, stride, c1 - c0 + 1);
+        if (move.lowest_tip >= highest) continue;
+        const double half = 0.5 * static_cast<double>(c1 - c0);
+        const double s_mid = s + half * ds, e_mid = e + half * de;
+        const double beyond = std::min(s_mid, 0.0) + std::max(s_mid - move.length, 0.0);
+        const double nearest = std::sqrt(e_mid * e_mid + beyond * beyond) - half * cell;
+        if (nearest > r) continue;
+        const double clear = std::max(nearest, 0.0);
+        if (move.lowest_tip + underside<Kind>(profile_, clear * clear) >= highest) continue;
+        cut_cells<Kind, Columns>(profile_, move, line, stride, static_cast<int>(c0),
+                                 static_cast<int>(c1), s, e, ds, de);
       }
     }
   }
 
+  // The region's cells by rows from y_lo to y_hi, or by columns from x
+  // (given as y_lo and y_hi, the region built with x and y swapped).
+  template <bool Columns>
   void cut_region(const MoveFrame& move, const CellRegion& region, double y_lo, double y_hi,
                   const CellBox& box) const {
-    with_kind(profile_.kind,
-              [&](auto kind) { cut_rows<decltype(kind)::value>(move, region, y_lo, y_hi, box); });
+    with_kind(profile_.kind, [&](auto kind) {
+      cut_lines<decltype(kind)::value, Columns>(move, region, y_lo, y_hi, box);
+    });
   }
 
   // The move's band: the cells at s in [s_lo, s_hi] and |e| <= R of its frame.
@@ -115,20 +129,29 @@ class Cutting {
     const double r = profile_.radius;
     const Eigen::Vector2d& u = move.u;
     const Eigen::Vector2d n(-u.y(), u.x());
-    CellRegion region(move.start);
-    region.keep_side(u, s_lo, kEdgePad);
-    region.keep_side(-u, -s_hi, kEdgePad);
-    region.keep_side(n, -r, kEdgePad);
-    region.keep_side(-n, -r, kEdgePad);
-    double y_lo = kInf, y_hi = -kInf;
+    Eigen::Vector2d lo = Eigen::Vector2d::Constant(kInf), hi = Eigen::Vector2d::Constant(-kInf);
     for (const double s : {s_lo, s_hi}) {
       for (const double e : {-r, r}) {
-        const double y = move.start.y() + s * u.y() + e * n.y();
-        y_lo = std::min(y_lo, y);
-        y_hi = std::max(y_hi, y);
+        const Eigen::Vector2d corner = move.start + s * u + e * n;
+        lo = lo.cwiseMin(corner);
+        hi = hi.cwiseMax(corner);
       }
     }
-    cut_region(move, region, y_lo - kEdgePad, y_hi + kEdgePad, box);
+    // Fewer and longer lines: columns when the band is taller than wide.
+    const bool columns = hi.y() - lo.y() > hi.x() - lo.x();
+    const auto swap = [&](const Eigen::Vector2d& v) {
+      return columns ? Eigen::Vector2d(v.y(), v.x()) : v;
+    };
+    CellRegion region(swap(move.start));
+    region.keep_side(swap(u), s_lo, kEdgePad);
+    region.keep_side(swap(-u), -s_hi, kEdgePad);
+    region.keep_side(swap(n), -r, kEdgePad);
+    region.keep_side(swap(-n), -r, kEdgePad);
+    if (columns) {
+      cut_region<true>(move, region, lo.x() - kEdgePad, hi.x() + kEdgePad, box);
+    } else {
+      cut_region<false>(move, region, lo.y() - kEdgePad, hi.y() + kEdgePad, box);
+    }
   }
 
   // The cutter standing at tip p over its whole disc.
@@ -136,7 +159,7 @@ class Cutting {
     CellRegion region(p.head<2>());
     region.keep_disc(profile_.radius + kEdgePad);
     const double reach = profile_.radius + kEdgePad;
-    cut_region(frame_of(profile_, p, p), region, p.y() - reach, p.y() + reach, box);
+    cut_region<false>(frame_of(profile_, p, p), region, p.y() - reach, p.y() + reach, box);
   }
 
   // The cutter at the joint p over the cells of its disc beyond both
@@ -162,8 +185,8 @@ class Cutting {
     CellRegion region(v);
     region.keep_disc(profile_.radius + kEdgePad);
     for (int k = 0; k < 2; ++k) region.keep_side(normal[k], offset[k], kEdgePad);
-    cut_region(frame_of(profile_, p, p), region, v.y() + y_lo - kEdgePad, v.y() + y_hi + kEdgePad,
-               box);
+    cut_region<false>(frame_of(profile_, p, p), region, v.y() + y_lo - kEdgePad,
+                      v.y() + y_hi + kEdgePad, box);
   }
 
  private:
@@ -201,10 +224,6 @@ class Cutting {
             (normal[0].x() * offset[1] - normal[1].x() * offset[0]) / det});
     }
     return {y_lo, y_hi};
-  }
-
-  double row_y(std::int64_t iy) const {
-    return grid_.min.y() + (static_cast<double>(iy) + 0.5) * grid_.cell_mm;
   }
 
   const Grid& grid_;

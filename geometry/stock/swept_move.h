@@ -116,23 +116,25 @@ inline double lowest_over(const CutterProfile& profile, const MoveFrame& move, d
                          : lowest_sloped<Kind>(profile, move, s, e);
 }
 
-// Lowers the cells [i0, i1] of one row to the swept cutter; the cell i0's
-// centre is at (s0, e0) in the move's frame, each next one (ds, de) on.
-template <ProfileKind Kind>
-void cut_cells(const CutterProfile& profile, const MoveFrame& move, float* row, int i0, int i1,
-               double s0, double e0, double ds, double de) {
+// Lowers the cells [i0, i1] of one row (Strided: every stride-th cell from
+// line on, a column) to the swept cutter; the cell i0's centre is at
+// (s0, e0) in the move's frame, each next one (ds, de) on.
+template <ProfileKind Kind, bool Strided>
+void cut_cells(const CutterProfile& profile, const MoveFrame& move, float* line,
+               std::ptrdiff_t stride, int i0, int i1, double s0, double e0, double ds, double de) {
+  const auto at = [&](int i) -> float& { return line[Strided ? i * stride : i]; };
   if (move.slope == 0) {
     for (int i = i0; i <= i1; ++i) {
       const double step = i - i0;
       const double z = lowest_level<Kind>(profile, move, s0 + step * ds, e0 + step * de);
-      row[i] = std::min(row[i], static_cast<float>(z));
+      at(i) = std::min(at(i), static_cast<float>(z));
     }
     return;
   }
   for (int i = i0; i <= i1; ++i) {
     const double step = i - i0;
     const double z = lowest_sloped<Kind>(profile, move, s0 + step * ds, e0 + step * de);
-    row[i] = std::min(row[i], static_cast<float>(z));
+    at(i) = std::min(at(i), static_cast<float>(z));
   }
 }
 

@@ -88,6 +88,8 @@ struct Move {
 std::vector<Move> moves() {
   return {{"level along x", {10.13, 15.07, 0}, {29.9, 15.07, 0}},
           {"level diagonal", {10.3, 8.2, 1}, {27.1, 21.7, 1}},
+          {"level along y (by columns)", {20.1, 8.2, 0}, {20.1, 21.9, 0}},
+          {"sloped along y (by columns)", {19.3, 21.1, 3}, {20.2, 8.3, 0}},
           {"sloped up", {10.3, 12.2, 0}, {28.1, 18.7, 3.3}},
           {"sloped down", {28.1, 18.7, 3.3}, {10.3, 12.2, 0}},
           {"steep up", {18.2, 14.9, 0}, {21.5, 16.1, 9.6}},

@@ -182,15 +182,26 @@ class Cutting {
                                        out.reach_before - kJointOverlap};
     const auto [y_lo, y_hi] = wedge_rows(normal, offset);
     if (y_lo > y_hi) return;
-    CellRegion region(v);
+    // By columns when the wedge is narrower than tall: x and y swapped.
+    const auto swap = [](const Eigen::Vector2d& w) { return Eigen::Vector2d(w.y(), w.x()); };
+    const std::array<Eigen::Vector2d, 2> swapped{swap(normal[0]), swap(normal[1])};
+    const auto [x_lo, x_hi] = wedge_rows(swapped, offset);
+    const bool columns = x_hi - x_lo < y_hi - y_lo;
+    CellRegion region(columns ? swap(v) : v);
     region.keep_disc(profile_.radius + kEdgePad);
-    for (int k = 0; k < 2; ++k) region.keep_side(normal[k], offset[k], kEdgePad);
-    cut_region<false>(frame_of(profile_, p, p), region, v.y() + y_lo - kEdgePad,
-                      v.y() + y_hi + kEdgePad, box);
+    for (int k = 0; k < 2; ++k)
+      region.keep_side(columns ? swapped[k] : normal[k], offset[k], kEdgePad);
+    const MoveFrame cap = frame_of(profile_, p, p);
+    if (columns) {
+      cut_region<true>(cap, region, v.x() + x_lo - kEdgePad, v.x() + x_hi + kEdgePad, box);
+    } else {
+      cut_region<false>(cap, region, v.y() + y_lo - kEdgePad, v.y() + y_hi + kEdgePad, box);
+    }
   }
 
  private:
   // The lowest and highest d.y of the convex region |d| <= R,
+  // (with the normals' x and y swapped: of d.x)
   // normal[k].d >= offset[k] (lowest > highest when it is empty): they lie
   // among the corners of its edges and the circle's own lowest and highest
   // points.

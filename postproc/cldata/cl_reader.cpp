@@ -111,15 +111,15 @@ void ClReader::require_numbers(const ClRecord& r) const {
 
 void ClReader::check_axis(const Vec& axis, std::uint32_t line, std::uint32_t column) {
   const double n = axis.norm();
-  if (!(n > 0) || (axis / n - frame_axis_).norm() > options_.axis_tolerance) {
-    if (frame_.is_identity()) {
+  if (!(n > 0) || (axis / n - csys_.axis).norm() > options_.axis_tolerance) {
+    if (csys_.frame.is_identity()) {
       fail(ClCode::tool_axis_not_z, line, column,
            "tool axis " + xyz(axis) +
                " is not +Z: a tilted tool (3+2) needs the CSYS of its frame first, and a tool "
                "axis that changes along the path (5-axis simultaneous) is not evaluated yet");
     }
     fail(ClCode::tool_axis_not_z, line, column,
-         "tool axis " + xyz(axis) + " is not the CSYS frame's z axis " + xyz(frame_axis_) +
+         "tool axis " + xyz(axis) + " is not the CSYS frame's z axis " + xyz(csys_.axis) +
              ": a tool axis that changes along the path (5-axis simultaneous) is not evaluated "
              "yet; a fixed tilt (3+2) is, with the CSYS of its frame");
   }
@@ -127,10 +127,10 @@ void ClReader::check_axis(const Vec& axis, std::uint32_t line, std::uint32_t col
 
 std::optional<program::Event> ClReader::next() {
   while (queue_.empty()) {
-    if (input_done_) return std::nullopt;
+    if (end_.input_done) return std::nullopt;
     if (!lexer_.next(record_)) {
       finish_input();
-      input_done_ = true;
+      end_.input_done = true;
       continue;
     }
     ++records_;
@@ -142,13 +142,14 @@ std::optional<program::Event> ClReader::next() {
 }
 
 void ClReader::finish_input() {
-  if (nurbs_active_) finish_nurbs();
-  if (arc_pending_) {
-    fail(ClCode::arc_without_goto, arc_pending_->source.line, arc_pending_->source.column,
+  if (nurbs_.active) finish_nurbs();
+  if (next_motion_.arc_pending) {
+    fail(ClCode::arc_without_goto, next_motion_.arc_pending->source.line,
+         next_motion_.arc_pending->source.column,
          "CIRCLE is not followed by a GOTO before the end of the file");
   }
-  if (!ended_) {
-    if (!end_of_path_) {
+  if (!end_.fini_seen) {
+    if (!end_.end_of_path) {
       warn(ClCode::missing_fini, SourceRef{lexer_.line_number(), 1, 0},
            "the file ends without FINI or END-OF-PATH: it may be truncated");
     }
@@ -158,13 +159,13 @@ void ClReader::finish_input() {
 
 void ClReader::process(const ClRecord& r) {
   if (r.kind == ClRecordKind::comment) {
-    if (!ended_) {
+    if (!end_.fini_seen) {
       creo_cutter_comment(r);
       comment(r);
     }
     return;
   }
-  if (ended_) {
+  if (end_.fini_seen) {
     if (warnings_.empty() || warnings_.back().code != ClCode::after_fini) {
       warn(ClCode::after_fini, r.source, "records after FINI are ignored");
     }
@@ -172,8 +173,8 @@ void ClReader::process(const ClRecord& r) {
   }
   last_source_ = r.source;
   if (r.kind == ClRecordKind::points) {
-    if (nurbs_active_) finish_nurbs();
-    if (!in_goto_) {
+    if (nurbs_.active) finish_nurbs();
+    if (!next_motion_.in_goto) {
       fail(ClCode::orphan_points, r,
            "a line of coordinates must follow a GOTO record (or end the previous one with '$')");
     }
@@ -181,22 +182,22 @@ void ClReader::process(const ClRecord& r) {
     return;
   }
   const std::string_view m = r.major;
-  if (nurbs_active_ && m != "KNOT" && m != "CNTRL") finish_nurbs();
-  end_of_path_ = false;
+  if (nurbs_.active && m != "KNOT" && m != "CNTRL") finish_nurbs();
+  end_.end_of_path = false;
 
   if (m == "GOTO") {
-    in_goto_ = true;
-    rapid_active_ = std::exchange(rapid_pending_, false);
-    if (arc_pending_)
-      arc_active_ = std::exchange(arc_pending_, std::nullopt);
+    next_motion_.in_goto = true;
+    next_motion_.rapid_active = std::exchange(next_motion_.rapid_pending, false);
+    if (next_motion_.arc_pending)
+      next_motion_.arc_active = std::exchange(next_motion_.arc_pending, std::nullopt);
     else
-      arc_active_.reset();
+      next_motion_.arc_active.reset();
     process_motion_points(r, false);
     return;
   }
-  in_goto_ = false;
-  arc_active_.reset();
-  rapid_active_ = false;
+  next_motion_.in_goto = false;
+  next_motion_.arc_active.reset();
+  next_motion_.rapid_active = false;
 
   if (r.separator == '=') apt_source(r);
   const RecordRule* rule = find_rule(m);
@@ -212,7 +213,7 @@ void ClReader::process(const ClRecord& r) {
 
 // --- one handler per record family ------------------------------------------
 
-void ClReader::rapid(const ClRecord& /*record*/) { rapid_pending_ = true; }
+void ClReader::rapid(const ClRecord& /*record*/) { next_motion_.rapid_pending = true; }
 
 void ClReader::from(const ClRecord& r) {
   require_numbers(r);
@@ -234,7 +235,7 @@ void ClReader::godlta(const ClRecord& r) {
   if (r.params.size() == 1) {
     delta = unit_ * number(r, 0) * Vec::UnitZ();
   } else if (r.params.size() == 3 || r.params.size() == 6) {
-    delta = rotation_ * (unit_ * Vec(number(r, 0), number(r, 1), number(r, 2)));
+    delta = csys_.rotation * (unit_ * Vec(number(r, 0), number(r, 1), number(r, 2)));
     if (r.params.size() == 6) {
       check_axis(Vec(number(r, 3), number(r, 4), number(r, 5)), r.params[3].line,
                  r.params[3].column);
@@ -242,14 +243,14 @@ void ClReader::godlta(const ClRecord& r) {
   } else {
     fail(ClCode::wrong_parameters, r, "GODLTA needs d, or dx,dy,dz[,i,j,k]");
   }
-  rapid_active_ = std::exchange(rapid_pending_, false);
-  if (arc_pending_) {
-    fail(ClCode::arc_without_goto, arc_pending_->source.line, arc_pending_->source.column,
-         "CIRCLE must be followed by GOTO, not GODLTA");
+  next_motion_.rapid_active = std::exchange(next_motion_.rapid_pending, false);
+  if (next_motion_.arc_pending) {
+    fail(ClCode::arc_without_goto, next_motion_.arc_pending->source.line,
+         next_motion_.arc_pending->source.column, "CIRCLE must be followed by GOTO, not GODLTA");
   }
   begin_motion(r.source);
   move_to(*position_ + delta, r.source);
-  rapid_active_ = false;
+  next_motion_.rapid_active = false;
 }
 
 void ClReader::loadtl(const ClRecord& r) {
@@ -258,50 +259,50 @@ void ClReader::loadtl(const ClRecord& r) {
 }
 
 void ClReader::tool_changed(int number) {
-  tool_ = number;
-  named_tool_.reset();
-  toolno_pending_ = false;
-  moved_ = false;
-  new_cutter_.reset();
+  tool_.in_spindle = number;
+  tool_.named.reset();
+  tool_.toolno_pending = false;
+  tool_.moved = false;
+  tool_.new_cutter.reset();
 }
 
 // TOOLNO/n[,diameter,...]: the number of the tool change to come.
 void ClReader::toolno(const ClRecord& r) {
-  named_tool_ = integer(r, 0);
-  toolno_pending_ = true;
+  tool_.named = integer(r, 0);
+  tool_.toolno_pending = true;
 }
 
 // After a cutter record: another cutter than the section's, once the
 // section has moved, is a tool change (made at the next motion).
 void ClReader::note_cutter(const ClRecord& r) {
-  if (!moved_ || !section_cutter_) return;
-  const ClCutter& now = cutters_[*section_cutter_];
+  if (!tool_.moved || !tool_.section_cutter) return;
+  const ClCutter& now = cutters_[*tool_.section_cutter];
   const ClCutter& next = cutters_.back();
   if (now.source_word == next.source_word && now.params == next.params) return;
-  new_cutter_ =
+  tool_.new_cutter =
       NewCutter{std::string(r.major) + "/" + std::string(r.text), r.source.line, r.source.column};
 }
 
 // Before the events of a motion record: the tool change TOOLNO or another
 // cutter asked for, and the section's cutter at its first motion.
 void ClReader::begin_motion(const SourceRef& src) {
-  const bool toolno_change = toolno_pending_ && named_tool_ != tool_;
-  toolno_pending_ = false;
-  if (new_cutter_ || toolno_change) {
-    if (!named_tool_) {
-      fail(ClCode::tool_change_without_number, new_cutter_->line, new_cutter_->column,
-           new_cutter_->record +
+  const bool toolno_change = tool_.toolno_pending && tool_.named != tool_.in_spindle;
+  tool_.toolno_pending = false;
+  if (tool_.new_cutter || toolno_change) {
+    if (!tool_.named) {
+      fail(ClCode::tool_change_without_number, tool_.new_cutter->line, tool_.new_cutter->column,
+           tool_.new_cutter->record +
                " is another tool than the one cutting, but no LOAD/TOOL, LOADTL, TOOLNO or "
                "SELECT/TOOL gives its number: the tool change cannot be written (give the tool "
                "numbers in the CAM system)");
     }
-    const int number = *named_tool_;
+    const int number = *tool_.named;
     queue_.push_back(program::ChangeTool{number, src});
     tool_changed(number);
   }
-  if (!moved_) {
-    moved_ = true;
-    if (!cutters_.empty()) section_cutter_ = cutters_.size() - 1;
+  if (!tool_.moved) {
+    tool_.moved = true;
+    if (!cutters_.empty()) tool_.section_cutter = cutters_.size() - 1;
   }
 }
 
@@ -330,7 +331,7 @@ void ClReader::load_or_select(const ClRecord& r) {
     tool_changed(integer(r, 1));
   } else {
     queue_.push_back(program::SelectTool{integer(r, 1), r.source});
-    named_tool_ = integer(r, 1);
+    tool_.named = integer(r, 1);
   }
 }
 
@@ -400,8 +401,9 @@ void ClReader::cutcom(const ClRecord& r) {
 void ClReader::delay(const ClRecord& r) {
   double seconds = 0;
   if (!r.params.empty() && word_is(r.params[0], "REV")) {
-    if (!(rpm_ > 0)) fail(ClCode::wrong_parameters, r, "DELAY/REV with the spindle stopped");
-    seconds = number(r, 1) * 60.0 / rpm_;
+    if (!(spindle_.rpm > 0))
+      fail(ClCode::wrong_parameters, r, "DELAY/REV with the spindle stopped");
+    seconds = number(r, 1) * 60.0 / spindle_.rpm;
   } else {
     seconds = number(r, 0);
   }
@@ -414,12 +416,12 @@ void ClReader::stop(const ClRecord& r) {
 }
 
 void ClReader::fini(const ClRecord& r) {
-  if (cycle_) cycle_.reset();
+  if (cycle_.active) cycle_.active.reset();
   queue_.push_back(program::ProgramEnd{r.source});
-  ended_ = true;
+  end_.fini_seen = true;
 }
 
-void ClReader::end_of_path(const ClRecord& /*record*/) { end_of_path_ = true; }
+void ClReader::end_of_path(const ClRecord& /*record*/) { end_.end_of_path = true; }
 
 // A `$$` comment record: a comment of the output, where it stands (the
 // CAM system's operation names, notes for the operator), blanks trimmed.
@@ -460,26 +462,26 @@ void ClReader::nurbs(const ClRecord& r) {
   }
   if (!position_) fail(ClCode::no_start_position, r, "NURBS before any position");
   begin_motion(r.source);
-  nurbs_active_ = true;
-  nurbs_rapid_ = std::exchange(rapid_pending_, false);
-  nurbs_source_ = r.source;
-  knots_.clear();
-  cntrl_.clear();
+  nurbs_.active = true;
+  nurbs_.rapid = std::exchange(next_motion_.rapid_pending, false);
+  nurbs_.source = r.source;
+  nurbs_.knots.clear();
+  nurbs_.cntrl.clear();
 }
 
 void ClReader::nurbs_data(const ClRecord& r) {
   const std::string_view m = r.major;
-  if (!nurbs_active_) fail(ClCode::bad_nurbs, r, std::string(m) + " outside a NURBS/ block");
+  if (!nurbs_.active) fail(ClCode::bad_nurbs, r, std::string(m) + " outside a NURBS/ block");
   require_numbers(r);
   if (m == "KNOT") {
-    for (std::size_t i = 0; i < r.params.size(); ++i) knots_.push_back(number(r, i));
+    for (std::size_t i = 0; i < r.params.size(); ++i) nurbs_.knots.push_back(number(r, i));
   } else {
     if (r.params.size() != 3 && r.params.size() != 4) {
       fail(ClCode::bad_nurbs, r, "CNTRL needs x,y,z or x,y,z,w");
     }
     const double w = r.params.size() == 4 ? number(r, 3) : 1.0;
     const Vec p = place(unit_ * Vec(number(r, 0), number(r, 1), number(r, 2)));
-    cntrl_.emplace_back(w * p.x(), w * p.y(), w * p.z(), w);
+    nurbs_.cntrl.emplace_back(w * p.x(), w * p.y(), w * p.z(), w);
   }
 }
 
@@ -525,9 +527,9 @@ void ClReader::csys(const ClRecord& r) {
   const bool about_z = std::abs(rotation(2, 2) - 1) <= tolerance;
   program::WorkingFrame frame;
   if (about_z) {
-    rotation_ = rotation;
-    offset_ = offset;
-    frame_axis_ = Vec::UnitZ();
+    csys_.rotation = rotation;
+    csys_.offset = offset;
+    csys_.axis = Vec::UnitZ();
   } else {
     // Exactly orthonormal (a turn by multiples of 90 degrees stays exact),
     // so that turning in and out leaves the points where they are.
@@ -538,13 +540,13 @@ void ClReader::csys(const ClRecord& r) {
     exact.col(1) = exact.col(2).cross(exact.col(0));
     frame.rotation = exact;
     frame.origin = offset;
-    rotation_ = exact.transpose();
-    offset_ = -(exact.transpose() * offset);
-    frame_axis_ = exact.col(2);
+    csys_.rotation = exact.transpose();
+    csys_.offset = -(exact.transpose() * offset);
+    csys_.axis = exact.col(2);
   }
   frame.source = r.source;
-  if (frame.rotation != frame_.rotation || frame.origin != frame_.origin) {
-    frame_ = frame;
+  if (frame.rotation != csys_.frame.rotation || frame.origin != csys_.frame.origin) {
+    csys_.frame = frame;
     queue_.push_back(frame);
   }
 }
@@ -699,7 +701,7 @@ void ClReader::process_motion_points(const ClRecord& r, bool continuation) {
     }
     const Vec p =
         place(unit_ * Vec(r.params[i].value, r.params[i + 1].value, r.params[i + 2].value));
-    if (cycle_) {
+    if (cycle_.active) {
       drill(p, r.source);
     } else {
       move_to(p, r.source);
@@ -712,13 +714,13 @@ void ClReader::move_to(const Vec& p, const SourceRef& src) {
     fail(ClCode::bad_number, src.line, src.column, "coordinate out of range after units");
   }
   const Vec start = position_.value_or(p);
-  if (arc_active_) {
+  if (next_motion_.arc_active) {
     if (!position_) {
       fail(ClCode::no_start_position, src.line, src.column,
            "circular move before any position: the arc has no start");
     }
-    emit_arc(start, p, *arc_active_, src);
-  } else if (rapid_active_) {
+    emit_arc(start, p, *next_motion_.arc_active, src);
+  } else if (next_motion_.rapid_active) {
     queue_.push_back(program::StraightTraverse{start, p, src});
   } else {
     queue_.push_back(program::StraightFeed{start, p, src});
@@ -803,8 +805,8 @@ void ClReader::emit_arc(const Vec& start, const Vec& end, const Arc& arc, const 
 }
 
 void ClReader::set_feed(const Feed& f, const SourceRef& src) {
-  if (machine_feed_ && *machine_feed_ == f) return;
-  machine_feed_ = f;
+  if (feed_.emitted && *feed_.emitted == f) return;
+  feed_.emitted = f;
   queue_.push_back(program::SetFeedRate{f.rate, f.mode, src});
 }
 
@@ -838,8 +840,8 @@ void ClReader::fedrat(const ClRecord& r) {
   }
   if (!value) fail(ClCode::wrong_parameters, r, "FEDRAT needs a feed value");
   if (!(*value > 0)) fail(ClCode::wrong_parameters, r, "FEDRAT must be positive");
-  program_feed_ = Feed{*value * factor, mode};
-  if (!cycle_) set_feed(*program_feed_, r.source);
+  feed_.programmed = Feed{*value * factor, mode};
+  if (!cycle_.active) set_feed(*feed_.programmed, r.source);
 }
 
 void ClReader::spindl(const ClRecord& r) {
@@ -858,9 +860,9 @@ void ClReader::spindl(const ClRecord& r) {
     } else if (word_is(p, "SFM")) {
       kind = Kind::sfm;
     } else if (word_is(p, "CLW")) {
-      direction_ = program::SpindleDirection::clockwise;
+      spindle_.direction = program::SpindleDirection::clockwise;
     } else if (word_is(p, "CCLW")) {
-      direction_ = program::SpindleDirection::counterclockwise;
+      spindle_.direction = program::SpindleDirection::counterclockwise;
     } else if (word_is(p, "OFF")) {
       off = true;
     } else if (word_is(p, "ON")) {
@@ -891,14 +893,14 @@ void ClReader::spindl(const ClRecord& r) {
       const double vc = kind == Kind::smm ? *value : *value * 0.3048;  // m/min
       rpm = 1000.0 * vc / (std::numbers::pi * d);
     }
-    rpm_ = rpm;
+    spindle_.rpm = rpm;
     queue_.push_back(program::SetSpindleSpeed{rpm, r.source});
     if (rpm == 0) {
       queue_.push_back(program::SpindleOff{r.source});
       return;
     }
   }
-  queue_.push_back(program::SpindleOn{direction_, r.source});
+  queue_.push_back(program::SpindleOn{spindle_.direction, r.source});
 }
 
 void ClReader::cutter(const ClRecord& r) {
@@ -1024,19 +1026,19 @@ void ClReader::circle(const ClRecord& r) {
   }
   const double norm = arc.axis.norm();
   if (!(norm > 0)) fail(ClCode::wrong_parameters, r, "circle axis is a zero vector");
-  arc.axis = rotation_ * (arc.axis / norm);
+  arc.axis = csys_.rotation * (arc.axis / norm);
   arc.centre = place(unit_ * Vec(number(r, 0), number(r, 1), number(r, 2)));
   if (arc.radius && !(*arc.radius > 0))
     fail(ClCode::wrong_parameters, r, "circle radius must be positive");
-  arc_pending_ = arc;
+  next_motion_.arc_pending = arc;
 }
 
 void ClReader::cycle(const ClRecord& r) {
   if (r.params.empty()) fail(ClCode::wrong_parameters, r, "CYCLE needs a cycle word");
   const ClParam& kind = r.params[0];
   if (word_is(kind, "OFF")) {
-    cycle_.reset();
-    if (program_feed_) set_feed(*program_feed_, r.source);
+    cycle_.active.reset();
+    if (feed_.programmed) set_feed(*feed_.programmed, r.source);
     return;
   }
   // SolidWorks' markers before a cycle (CLEAR: its parameters start afresh,
@@ -1044,11 +1046,11 @@ void ClReader::cycle(const ClRecord& r) {
   if (word_is(kind, "INIT") || word_is(kind, "CLEAR")) return;
   if (word_is(kind, "ON")) {
     // CAMWorks writes CYCLE/ON before the cycle itself: nothing to resume yet.
-    if (last_cycle_) cycle_ = last_cycle_;
+    if (cycle_.last) cycle_.active = cycle_.last;
     return;
   }
-  cycle_ = parse_cycle(r, unit_, lexer_.file_name());
-  last_cycle_ = cycle_;
+  cycle_.active = parse_cycle(r, unit_, lexer_.file_name());
+  cycle_.last = cycle_.active;
 }
 
 namespace {
@@ -1074,13 +1076,13 @@ program::CannedCycle canned_cycle(const ClCycle& c, int code, const Vec& p, cons
 // The canned cycle's moves at the hole whose top is p; the cycle's feed
 // comes before its first feed move, not before the rapids to the hole.
 void ClReader::drill(const Vec& p, const SourceRef& src) {
-  const ClCycle& c = *cycle_;
+  const ClCycle& c = *cycle_.active;
   const Vec start = position_.value_or(p + c.retract.value_or(c.clearance) * Vec::UnitZ());
   const std::size_t marker = queue_.size();
-  const std::optional<int> code = canned_code(c, direction_);
+  const std::optional<int> code = canned_code(c, spindle_.direction);
   if (code) queue_.push_back(canned_cycle(c, *code, p, src));
   const std::size_t first = queue_.size();
-  expand_cycle(c, p, start, direction_, src, queue_);
+  expand_cycle(c, p, start, spindle_.direction, src, queue_);
   if (code) {
     auto& m = std::get<program::CannedCycle>(queue_[marker]);
     for (std::size_t i = first; i < queue_.size(); ++i) {
@@ -1089,11 +1091,11 @@ void ClReader::drill(const Vec& p, const SourceRef& src) {
     }
   }
   const Feed feed{c.feed, c.mode};
-  if (!machine_feed_ || !(*machine_feed_ == feed)) {
+  if (!feed_.emitted || !(*feed_.emitted == feed)) {
     auto at = queue_.begin() + static_cast<std::ptrdiff_t>(first);
     while (at != queue_.end() && !std::holds_alternative<program::StraightFeed>(*at)) ++at;
     queue_.insert(at, program::SetFeedRate{feed.rate, feed.mode, src});
-    machine_feed_ = feed;
+    feed_.emitted = feed;
   }
   for (auto it = queue_.rbegin(); it != queue_.rend(); ++it) {
     if (program::is_motion(*it)) {
@@ -1106,21 +1108,21 @@ void ClReader::drill(const Vec& p, const SourceRef& src) {
 }
 
 void ClReader::finish_nurbs() {
-  nurbs_active_ = false;
+  nurbs_.active = false;
   std::string error;
-  const auto curve = nx_nurbs(*position_, knots_, cntrl_, error);
-  if (!curve) fail(ClCode::bad_nurbs, nurbs_source_.line, nurbs_source_.column, error);
-  scratch_.clear();
-  if (!flatten(*curve, options_.chord_tolerance, scratch_)) {
-    fail(ClCode::bad_nurbs, nurbs_source_.line, nurbs_source_.column,
+  const auto curve = nx_nurbs(*position_, nurbs_.knots, nurbs_.cntrl, error);
+  if (!curve) fail(ClCode::bad_nurbs, nurbs_.source.line, nurbs_.source.column, error);
+  nurbs_.scratch.clear();
+  if (!flatten(*curve, options_.chord_tolerance, nurbs_.scratch)) {
+    fail(ClCode::bad_nurbs, nurbs_.source.line, nurbs_.source.column,
          "NURBS needs more than a million lines within the chord tolerance");
   }
   Vec previous = *position_;
-  for (const Vec& p : scratch_) {
-    if (nurbs_rapid_) {
-      queue_.push_back(program::StraightTraverse{previous, p, nurbs_source_});
+  for (const Vec& p : nurbs_.scratch) {
+    if (nurbs_.rapid) {
+      queue_.push_back(program::StraightTraverse{previous, p, nurbs_.source});
     } else {
-      queue_.push_back(program::StraightFeed{previous, p, nurbs_source_});
+      queue_.push_back(program::StraightFeed{previous, p, nurbs_.source});
     }
     previous = p;
   }

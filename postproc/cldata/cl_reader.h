@@ -209,53 +209,83 @@ class ClReader {
   std::vector<ClCutter> cutters_;
   std::uint64_t records_ = 0;
 
-  double unit_ = 1.0;  // mm per file length unit
-  // The last CSYS: points p are placed at rotation_ p + offset_ (mm), in
-  // the coordinates of frame_ (a tilted CSYS's; identity otherwise).
-  Eigen::Matrix3d rotation_ = Eigen::Matrix3d::Identity();
-  Eigen::Vector3d offset_ = Eigen::Vector3d::Zero();
-  program::WorkingFrame frame_;
-  Eigen::Vector3d frame_axis_ = Eigen::Vector3d::UnitZ();  // the tool axis as the file gives it
-  Eigen::Vector3d place(const Eigen::Vector3d& p) const { return rotation_ * p + offset_; }
+  double unit_ = 1.0;    // mm per file length unit
+  bool multax_ = false;  // GOTO records carry the tool axis (i, j, k)
   std::optional<Eigen::Vector3d> position_;
-  bool multax_ = false;
+  program::SourceRef last_source_;
+
+  // The last CSYS: points p are placed at rotation p + offset (mm), in the
+  // coordinates of `frame` (a tilted CSYS's; identity otherwise).
+  struct Csys {
+    Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+    Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+    program::WorkingFrame frame;
+    Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  // the tool axis as the file gives it
+  };
+  Csys csys_;
+  Eigen::Vector3d place(const Eigen::Vector3d& p) const {
+    return csys_.rotation * p + csys_.offset;
+  }
 
   // RAPID and CIRCLE apply to the next GOTO record and its continuation lines.
-  bool rapid_pending_ = false;
-  bool rapid_active_ = false;
-  std::optional<Arc> arc_pending_;
-  std::optional<Arc> arc_active_;
-  bool in_goto_ = false;  // the last statement was GOTO (continuation lines allowed)
+  struct NextMotion {
+    bool rapid_pending = false;
+    bool rapid_active = false;
+    std::optional<Arc> arc_pending;
+    std::optional<Arc> arc_active;
+    bool in_goto = false;  // the last statement was GOTO (continuation lines allowed)
+  };
+  NextMotion next_motion_;
 
-  std::optional<Feed> program_feed_;  // last FEDRAT
-  std::optional<Feed> machine_feed_;  // last SetFeedRate emitted
-  double rpm_ = 0;
-  program::SpindleDirection direction_ = program::SpindleDirection::clockwise;
+  struct Feeds {
+    std::optional<Feed> programmed;  // last FEDRAT
+    std::optional<Feed> emitted;     // last SetFeedRate emitted
+  };
+  Feeds feed_;
+  struct Spindle {
+    double rpm = 0;
+    program::SpindleDirection direction = program::SpindleDirection::clockwise;
+  };
+  Spindle spindle_;
+
   // Tool changes the CL data make without LOAD/TOOL or LOADTL.
-  std::optional<int> tool_;                    // the tool in the spindle (the last ChangeTool)
-  std::optional<int> named_tool_;              // TOOLNO or SELECT/TOOL since the last change
-  bool toolno_pending_ = false;                // TOOLNO since the last motion or change
-  bool moved_ = false;                         // a motion since the last change
-  std::optional<std::size_t> section_cutter_;  // cutters_ index: the section's cutter
   struct NewCutter {
     std::string record;  // "CUTTER/6,3"
     std::uint32_t line = 0, column = 0;
   };
-  std::optional<NewCutter> new_cutter_;  // a cutter record of another tool since
-  std::optional<ClCycle> cycle_;
-  std::optional<ClCycle> last_cycle_;
+  struct Tool {
+    std::optional<int> in_spindle;              // the last ChangeTool's
+    std::optional<int> named;                   // TOOLNO or SELECT/TOOL since the last change
+    bool toolno_pending = false;                // TOOLNO since the last motion or change
+    bool moved = false;                         // a motion since the last change
+    std::optional<std::size_t> section_cutter;  // cutters_ index: the section's cutter
+    std::optional<NewCutter> new_cutter;        // a cutter record of another tool since
+  };
+  Tool tool_;
 
-  bool nurbs_active_ = false;
-  bool nurbs_rapid_ = false;
-  program::SourceRef nurbs_source_;
-  std::vector<double> knots_;
-  std::vector<Eigen::Vector4d> cntrl_;
-  std::vector<Eigen::Vector3d> scratch_;
+  struct Cycles {
+    std::optional<ClCycle> active;  // CYCLE/ on: each GOTO is a hole
+    std::optional<ClCycle> last;    // the last CYCLE/<kind>: CYCLE/ON resumes it
+  };
+  Cycles cycle_;
 
-  bool ended_ = false;        // FINI seen
-  bool end_of_path_ = false;  // the last statement was END-OF-PATH
-  bool input_done_ = false;
-  program::SourceRef last_source_;
+  // NX's NURBS/ KNOT/ CNTRL/ records, collected until the curve ends.
+  struct NurbsInput {
+    bool active = false;
+    bool rapid = false;
+    program::SourceRef source;
+    std::vector<double> knots;
+    std::vector<Eigen::Vector4d> cntrl;
+    std::vector<Eigen::Vector3d> scratch;
+  };
+  NurbsInput nurbs_;
+
+  struct Ending {
+    bool fini_seen = false;    // FINI
+    bool end_of_path = false;  // the last statement was END-OF-PATH
+    bool input_done = false;
+  };
+  Ending end_;
 };
 
 }  // namespace vcpost::cldata

@@ -83,6 +83,13 @@ void print_allowances(const post::PostSummary& summary) {
   }
 }
 
+// The in-process stock: what it was, what ap it gave; its warnings.
+void print_stock(const post::PostSummary& summary) {
+  if (!summary.stock) return;
+  for (const std::string& line : post::stock_lines(*summary.stock)) log().info("  {}", line);
+  for (const std::string& warning : summary.stock->warnings) log().warn("{}", warning);
+}
+
 // Gouge and lift depths of the evaluated sections, and the diagnosis of a
 // path consistently off the model.
 void print_depths(const post::PostSummary& summary) {
@@ -168,6 +175,7 @@ void finish_job(const PostArguments& args, const JobRun& run) {
   log().info("{}", totals.str());
   print_sections(summary);
   print_allowances(summary);
+  print_stock(summary);
   for (const auto& path : args.reports) {
     if (path != "-") log().info("report written to {}", path);
   }

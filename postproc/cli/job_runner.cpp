@@ -12,6 +12,7 @@
 #include <functional>
 #include <iostream>
 
+#include "geometry/mesh/stl_reader.h"
 #include "machines/builtin.h"
 #include "postproc/cldata/cl_codes.h"
 #include "postproc/cli/atomic_file.h"
@@ -33,7 +34,8 @@ namespace vcpost::cli {
 namespace {
 
 std::vector<NamedFile> job_inputs(const PostArguments& args) {
-  std::vector<NamedFile> inputs{{"program", args.program}, {"--model", args.model}};
+  std::vector<NamedFile> inputs{
+      {"program", args.program}, {"--model", args.model}, {"--stock-model", args.stock_model}};
   if (!machines::is_builtin_profile(args.machine)) inputs.push_back({"--machine", args.machine});
   inputs.push_back({"--tools", args.tools_file});
   return inputs;
@@ -112,6 +114,25 @@ LoadedModel placed_model(const PostArguments& args) {
     log().debug("model {}: {}, loaded in {:.3f} s", args.model, model.description,
                 seconds_since(stage));
   return model;
+}
+
+// --stock-model's triangles, placed like the model (the shared VERICUT
+// projects place the stock STL as the design STL).
+void load_stock_model(const PostArguments& args, post::StockSettings& stock) {
+  if (args.stock_model.empty()) return;
+  const mesh::StlMesh stl = mesh::read_stl_file(args.stock_model);
+  std::optional<ModelPlacement> placement;
+  if (!args.model_transform.empty()) placement = parse_model_placement(args.model_transform);
+  auto corners = std::make_shared<std::vector<Eigen::Vector3f>>();
+  corners->reserve(3 * stl.triangles.size());
+  for (const auto& t : stl.triangles) {
+    for (const std::uint32_t v : t) {
+      const Eigen::Vector3d p =
+          placement ? placement->transform.apply(stl.vertices[v]) : stl.vertices[v];
+      corners->push_back(p.cast<float>());
+    }
+  }
+  stock.triangles = std::move(corners);
 }
 
 // The post's progress: on a terminal (`show`), one line rewritten in
@@ -255,6 +276,7 @@ JobRun run_job(const PostArguments& args, bool write_program) {
     log().debug("normals from the toolpath: {} points, found in {:.3f} s",
                 settings.path_normals->size(), seconds_since(stage));
   }
+  if (settings.stock) load_stock_model(args, *settings.stock);
 
   // On a terminal at the info level, one line rewritten in place.
   const bool show_progress = log().level() == spdlog::level::info && ::isatty(STDERR_FILENO);

@@ -40,6 +40,30 @@ tools::ToolChoices tool_choices(const PostArguments& args) {
   return choices;
 }
 
+// The in-process stock's settings but the triangles of --stock-model,
+// which the run reads (job_runner.cpp); none without a source.
+std::optional<post::StockSettings> stock_settings(const PostArguments& args) {
+  const int sources = (args.stock_from_program ? 1 : 0) + (args.stock_box.empty() ? 0 : 1) +
+                      (args.stock_model.empty() ? 0 : 1);
+  if (sources == 0) {
+    if (args.stock_cell)
+      throw CommandError("--stock-cell: sets the grid of a stock; none is given");
+    return std::nullopt;
+  }
+  if (sources > 1)
+    throw CommandError("E4725",
+                       "--stock-from-program, --stock-box and --stock-model: give one stock");
+  if (args.model.empty())
+    throw CommandError("--model: required with an in-process stock (ap is taken at the contact)");
+  post::StockSettings stock;
+  stock.from_program = args.stock_from_program;
+  if (!args.stock_box.empty()) stock.box = post::parse_stock_box(args.stock_box);
+  stock.model_name = args.stock_model;
+  stock.cell_mm = args.stock_cell;
+  stock.memory_limit = static_cast<std::size_t>(args.stock_memory_mb * (1 << 20));
+  return stock;
+}
+
 }  // namespace
 
 post::PostSettings settings_from(const PostArguments& args) {
@@ -48,6 +72,7 @@ post::PostSettings settings_from(const PostArguments& args) {
   settings.tools = tool_choices(args);
   if (!args.model.empty() && !(args.ap > 0)) throw CommandError("--ap: required");
   settings.point.ap = args.ap;
+  settings.stock = stock_settings(args);
   settings.point.ae = args.ae;
   settings.point.ae_override = args.ae_override;
   settings.point.contact_tolerance = args.tolerance;
@@ -100,8 +125,29 @@ void add_job_options(CLI::App& command, PostArguments& args) {
       "mills (repeatable): contact, ae and the engagement are taken on the model offset by it");
   command
       .add_option("--ap", args.ap,
-                  "depth of cut along the surface normal, mm (required with --model)")
+                  "depth of cut along the surface normal, mm (required with --model); with an "
+                  "in-process stock the nominal one, and the one tilted (3+2) points take")
       ->check(positive_number());
+  command.add_flag("--stock-from-program", args.stock_from_program,
+                   "in-process stock: the block the program declares (Klartext BLK FORM, APT CL "
+                   "INSERT/Stock Size); ap at each point from the material the earlier sections "
+                   "left (not the --stock allowance)");
+  command.add_option("--stock-box", args.stock_box,
+                     "in-process stock: a block XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX, mm, in the "
+                     "program's frame");
+  command.add_option("--stock-model", args.stock_model,
+                     "in-process stock: an STL of the raw part (mm), placed like the model by "
+                     "--model-transform");
+  command
+      .add_option("--stock-cell", args.stock_cell,
+                  "the in-process stock's grid cell, mm (default: the smallest evaluated tool's "
+                  "D/50 within [0.05, 1], coarser where --stock-memory requires)")
+      ->check(positive_number(0.001, 100));
+  command
+      .add_option("--stock-memory", args.stock_memory_mb,
+                  "most memory the in-process stock and its copies take, MB")
+      ->check(positive_number(1, 1 << 20))
+      ->capture_default_str();
   command
       .add_option("--ae", args.ae,
                   "width of cut, mm: used where the toolpath shows no neighbouring pass")

@@ -25,6 +25,11 @@ struct PostArguments {
   std::string tools_file, post_tools;  // --tools FILE.toml, --post-tools T2,T8
   std::vector<std::string> vc;         // --vc: "120" (every tool) or "T2=150"
   std::vector<std::string> stock;      // --stock: "0.3" (every tool), "T3=-1.2" or "T3=0.2:0.1"
+  // The in-process stock (docs/stock.md): at most one source.
+  bool stock_from_program = false;     // --stock-from-program
+  std::string stock_box, stock_model;  // --stock-box, --stock-model FILE.stl
+  std::optional<double> stock_cell;    // --stock-cell MM
+  double stock_memory_mb = 1024;       // --stock-memory MB
   double ap = 0, spacing = 0.5, tolerance = 0.01;
   std::optional<double> ae, fz;
   std::optional<int> teeth;

@@ -1,5 +1,6 @@
 #include "postproc/pipeline/point_evaluator.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "geometry/rigid_transform.h"
@@ -15,6 +16,20 @@ std::string_view to_string(AeSource source) {
       return "given";
     case AeSource::first_pass:
       return "first_pass";
+  }
+  return "?";
+}
+
+std::string_view to_string(ApSource source) {
+  switch (source) {
+    case ApSource::given:
+      return "given";
+    case ApSource::stock:
+      return "stock";
+    case ApSource::clamped:
+      return "clamped";
+    case ApSource::air:
+      return "air";
   }
   return "?";
 }
@@ -153,7 +168,22 @@ void PointEvaluator::place(const PathSample& sample, PointResult& out) {
 
 void PointEvaluator::engage(const PathSample& sample, PointResult& out) const {
   if (!cuts(out.contact)) return;
-  const geometry::CutSetup setup{settings_.ap, out.ae, out.contact.normal,
+  out.ap = settings_.ap;
+  // A tilted frame's points: the stock is a height field along the
+  // machine's z, not the frame's tool axis.
+  if (material_ != nullptr && sample.frame == nullptr && out.contact.contact) {
+    const double limit = kMaxApShare * settings_.tool.diameter;
+    const double depth = material_->depth_along(out.contact.contact->point, out.contact.normal,
+                                                settings_.tool.diameter);
+    if (!(depth >= air_mm_)) {
+      out.ap = 0;
+      out.ap_source = ApSource::air;
+      return;
+    }
+    out.ap = std::min(depth, limit);
+    out.ap_source = depth > limit ? ApSource::clamped : ApSource::stock;
+  }
+  const geometry::CutSetup setup{out.ap, out.ae, out.contact.normal,
                                  out.feed.isZero() ? sample.direction : out.feed, out.side};
   out.engagement = geometry::evaluate_engagement(settings_.tool, setup, cutting_points_);
   const auto& e = *out.engagement;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <optional>
 #include <string_view>
 
@@ -26,6 +27,30 @@ enum class AeSource {
 };
 std::string_view to_string(AeSource source);
 
+// Where the depth of cut came from.
+enum class ApSource : std::uint8_t {
+  given,    // --ap (no stock model, or a tilted frame's point)
+  stock,    // the in-process stock along the normal at the contact point
+  clamped,  // the stock's, held just under the tool's diameter (the engine's limit)
+  air,      // the stock has (next to) no material there: the tool cuts nothing
+};
+std::string_view to_string(ApSource source);
+
+// The material still there before a section: its depth along a direction
+// (an in-process stock, postproc/post/stock_timeline.h). Thread-safe reads.
+class MaterialDepth {
+ public:
+  virtual ~MaterialDepth() = default;
+  // The distance from p along the unit direction n to where the material
+  // ends (0 where p is not in it), at most max_mm.
+  virtual double depth_along(const Eigen::Vector3d& p, const Eigen::Vector3d& n,
+                             double max_mm) const = 0;
+};
+
+// The largest ap the engagement takes, as a share of the tool's diameter:
+// at ap >= D the engine finds no rim (every edge of the end is in the stock).
+inline constexpr double kMaxApShare = 0.999;
+
 struct PointSettings {
   geometry::Tool tool = geometry::Tool::ball(10);  // any shape (tool_contact.h)
   double ap = 0.3;                                 // mm
@@ -47,6 +72,8 @@ struct PointResult {
   Eigen::Vector3d feed = Eigen::Vector3d::Zero();  // F on the tangent plane (zero without contact)
   double ae = 0;
   AeSource ae_source = AeSource::first_pass;
+  ApSource ap_source = ApSource::given;
+  double ap = 0;  // the depth of cut the engagement took, mm (0 where it was not evaluated)
   geometry::Side side = geometry::Side::left;
   std::optional<geometry::Engagement> engagement;  // when the tool touches (or gouges)
   std::optional<double> d_ref;                     // the policy's diameter, mm
@@ -83,6 +110,14 @@ class PointEvaluator {
   // Engagement, d_ref and target of a placed result that cuts.
   void engage(const PathSample& sample, PointResult& result) const;
 
+  // The stock the section cuts (null: --ap everywhere): engage() then takes
+  // ap at each untilted point as the material's depth along the normal at
+  // the contact point; under `air_mm` of it the tool cuts nothing there.
+  void set_material(const MaterialDepth* material, double air_mm) {
+    material_ = material;
+    air_mm_ = air_mm;
+  }
+
   // Call after a rapid: the next contact point starts a new pass.
   void break_pass() { tracker_.break_pass(); }
 
@@ -97,6 +132,8 @@ class PointEvaluator {
   PassTracker tracker_;
   bool had_contact_ = false;
   const geometry::RigidTransform* frame_ = nullptr;  // of the last placed sample
+  const MaterialDepth* material_ = nullptr;
+  double air_mm_ = 0;
 };
 
 }  // namespace vcpost::pipeline

@@ -73,6 +73,9 @@ class EventSource {
     klartext_->set_program_loader(std::move(loader));
     klartext_->refuse_tool_calls_in_called_programs();
   }
+  std::optional<heidenhain::StockBox> klartext_stock() const {
+    return klartext_ ? klartext_->stock() : std::nullopt;
+  }
   // Bytes of the text read so far (CL; G-code reports its block offsets).
   std::uint64_t consumed() const { return buffer_.consumed(); }
   // G-code: the reader's warning on lines left unread after the closing '%'
@@ -306,6 +309,10 @@ PathReader::~PathReader() = default;
 
 void PathReader::set_program_loader(heidenhain::ProgramLoader loader) {
   state_->source.set_program_loader(std::move(loader));
+}
+
+std::optional<heidenhain::StockBox> PathReader::klartext_stock() const {
+  return state_->source.klartext_stock();
 }
 
 const std::vector<std::string>& PathReader::tool_notes() const {

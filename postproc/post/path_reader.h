@@ -14,6 +14,7 @@
 
 #include "machines/profile.h"
 #include "postproc/gcode/dialect.h"
+#include "postproc/heidenhain/interpreter.h"
 #include "postproc/heidenhain/program_loader.h"
 #include "postproc/pipeline/point_evaluator.h"
 #include "postproc/plan/spindle_plan.h"
@@ -129,6 +130,8 @@ class PathReader {
   bool read(Chunk& chunk, std::size_t samples);
 
   const ReadTotals& totals() const { return totals_; }
+  // Klartext: the stock box its BLK FORM declared (read so far).
+  std::optional<heidenhain::StockBox> klartext_stock() const;
   // Notes on tool comments that could not be read, in file order.
   const std::vector<std::string>& tool_notes() const;
 

@@ -28,6 +28,7 @@
 #include "postproc/post/program_writer.h"
 #include "postproc/post/section_ledgers.h"
 #include "postproc/post/speed_statistics.h"
+#include "postproc/post/stock_timeline.h"
 #include "postproc/post/tallies.h"
 
 namespace vcpost::post {
@@ -163,6 +164,7 @@ class Finisher {
         summary_.stopped_spindle_cuts++ == 0) {
       summary_.first_stopped_spindle_line = slot.sample.source.line;
     }
+    if (summary_.stock) count_ap(r, slot.weight_s);
     if (r.engagement) {
       switch (r.ae_source) {
         case pipeline::AeSource::measured:
@@ -195,6 +197,36 @@ class Finisher {
     held_.push_back({r.d_ref ? static_cast<float>(*r.d_ref) : NAN, slot.weight_s, slot.plan.block,
                      slot.plan.time_s});
     if (points_) held_points_.push_back({slot.sample, std::move(r)});
+  }
+
+  // The stock's ap at an evaluated point, by band against --ap.
+  void count_ap(const pipeline::PointResult& r, double weight_s) {
+    StockSummary& s = *summary_.stock;
+    switch (r.ap_source) {
+      case pipeline::ApSource::given:
+        if (r.engagement) ++s.points_given;
+        return;
+      case pipeline::ApSource::air:
+        ++s.points_air;
+        s.air_time_s += weight_s;
+        return;
+      case pipeline::ApSource::clamped:
+        ++s.points_clamped;
+        break;
+      case pipeline::ApSource::stock:
+        break;
+    }
+    ++s.points_stock;
+    s.stock_time_s += weight_s;
+    const double ratio = r.ap / s.nominal_ap_mm;
+    std::size_t band = 0;
+    while (band < kApBandLimits.size() && ratio > kApBandLimits[band]) ++band;
+    s.band_time_s[band] += weight_s;
+    if (ratio > 1) {
+      ++s.over_nominal_points;
+      s.over_nominal_time_s += weight_s;
+    }
+    s.ap_max_mm = std::max(s.ap_max_mm, r.ap);
   }
 
   // Final blocks go out in order; those of a pending section wait.
@@ -477,8 +509,8 @@ namespace {
 class SectionEvaluators {
  public:
   SectionEvaluators(const geometry::SurfaceModel& model, const pipeline::PointSettings& point,
-                    bool cutting_points)
-      : model_(model), point_(point), cutting_points_(cutting_points) {}
+                    bool cutting_points, const StockTimeline* stock)
+      : model_(model), point_(point), cutting_points_(cutting_points), stock_(stock) {}
 
   void attach(Chunk& chunk) {
     for (const ToolSection& section : chunk.sections) {
@@ -490,6 +522,10 @@ class SectionEvaluators {
       point_settings.cutting_points = cutting_points_;  // only the report reads them
       evaluators_[section.index] =
           std::make_unique<pipeline::PointEvaluator>(model_for(section), point_settings);
+      // Material thinner than the contact tolerance is taken as none.
+      if (stock_ != nullptr)
+        evaluators_[section.index]->set_material(stock_->before(section.index),
+                                                 point_.contact_tolerance);
     }
     std::uint32_t last = chunk.first_section;
     for (const Slot& slot : chunk.slots) last = std::max(last, slot.section);
@@ -514,6 +550,7 @@ class SectionEvaluators {
   const geometry::SurfaceModel& model_;
   const pipeline::PointSettings& point_;
   bool cutting_points_;
+  const StockTimeline* stock_;
   std::vector<std::unique_ptr<geometry::OffsetModel>> offset_models_;
   std::vector<std::unique_ptr<pipeline::PointEvaluator>> evaluators_;
 };
@@ -585,7 +622,6 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
       [&decides](std::uint32_t section) { return decides->keeps(section); });
   Finisher finisher(profile, settings, writer, points, summary);
   decides = &finisher;
-  SectionEvaluators evaluators(model, settings.point, static_cast<bool>(points));
 
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const int threads = settings.threads > 0 ? settings.threads : cores;
@@ -610,6 +646,14 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
     }
     summary.path_normals = pipeline::count_sources(*path_normals);
   }
+  std::unique_ptr<StockTimeline> stock;
+  if (settings.stock) {
+    arena.execute([&] {
+      stock = build_stock_timeline(text, file_name, kind, dialect, profile, settings, choices);
+    });
+    summary.stock = stock->summary();
+  }
+  SectionEvaluators evaluators(model, settings.point, static_cast<bool>(points), stock.get());
   std::uint64_t samples_read = 0;
 
   auto read = [&](tbb::flow_control& control) -> Chunk* {

@@ -20,6 +20,8 @@
 #include "postproc/heidenhain/program_loader.h"
 #include "postproc/pipeline/point_evaluator.h"
 #include "postproc/plan/spindle_plan.h"
+#include "postproc/post/stock_source.h"
+#include "postproc/post/stock_summary.h"
 #include "postproc/post/tool_sections.h"
 #include "postproc/tools/tool_table.h"
 #include "postproc/verify/verify.h"
@@ -75,6 +77,10 @@ struct PostSettings {
   // (read_path_normals) for the same text and settings; empty: the job
   // reads them itself.
   std::shared_ptr<const std::vector<pipeline::PathNormal>> path_normals;
+  // An in-process stock (docs/stock.md): ap at each untilted point of the
+  // evaluated sections from the material the earlier sections left, instead
+  // of point.ap; none: point.ap everywhere.
+  std::optional<StockSettings> stock;
 };
 
 // A dialect named apart from the profile (--dialect names the language)
@@ -139,6 +145,8 @@ struct PostSummary : ContactCounts {
   // Without a model (PostSettings::normals_from_path): how the normal of
   // each sample of the posted sections was found.
   std::optional<pipeline::PathNormalCounts> path_normals;
+  // With PostSettings::stock: the stock and the ap it gave.
+  std::optional<StockSummary> stock;
 };
 
 // One evaluated point of the path with the spindle speed before (the

@@ -75,6 +75,9 @@ void append_row(std::string& out, const PointRow& r) {
   field(out, r.rz_um, 3);
   out += ',';
   out += r.normal_source ? pipeline::to_string(*r.normal_source) : "model";
+  field(out, r.ap, 4);
+  out += ',';
+  if (r.ap) out += pipeline::to_string(r.ap_source);
 }
 
 }  // namespace

@@ -35,23 +35,28 @@ json flat_points(const std::vector<PlotPoint>& points, double x_step, double y_s
 
 // The plan grids, sparse: the occupied cells (any grid) as gaps between
 // their row-major indices, and each grid's values there (null where empty).
-json sparse_grids(const PlanGrid& before, const PlanGrid& after, const PlanGrid& cusp) {
-  json index_gaps = json::array(), b = json::array(), a = json::array(), c = json::array();
+json sparse_grids(const PlanGrid& before, const PlanGrid& after, const PlanGrid& cusp,
+                  const PlanGrid& ap, bool with_ap) {
+  json index_gaps = json::array(), b = json::array(), a = json::array(), c = json::array(),
+       p = json::array();
   auto value = [](const std::optional<float>& v, double scale, double step) {
     return v ? json(round_to(scale * static_cast<double>(*v), step)) : json(nullptr);
   };
   std::size_t last = 0;
   for (std::size_t i = 0; i < after.cells().size(); ++i) {
-    if (!before.cells()[i] && !after.cells()[i] && !cusp.cells()[i]) continue;
+    if (!before.cells()[i] && !after.cells()[i] && !cusp.cells()[i] && !ap.cells()[i]) continue;
     index_gaps.push_back(i - last);
     last = i;
     b.push_back(value(before.cells()[i], 100, 0.01));
     a.push_back(value(after.cells()[i], 100, 0.01));
     c.push_back(value(cusp.cells()[i], 1, 0.01));
+    p.push_back(value(ap.cells()[i], 1, 0.001));
   }
-  return {{"nx", after.nx()},     {"ny", after.ny()},     {"cell", after.cell()},
-          {"x0", after.lo().x()}, {"y0", after.lo().y()}, {"index_gaps", index_gaps},
-          {"before_pct", b},      {"after_pct", a},       {"cusp_um", c}};
+  json out = {{"nx", after.nx()},     {"ny", after.ny()},     {"cell", after.cell()},
+              {"x0", after.lo().x()}, {"y0", after.lo().y()}, {"index_gaps", index_gaps},
+              {"before_pct", b},      {"after_pct", a},       {"cusp_um", c}};
+  if (with_ap) out["ap_mm"] = std::move(p);  // with an in-process stock only
+  return out;
 }
 
 std::string_view bound_text(plan::Bound bound) {
@@ -118,7 +123,7 @@ json page_data(const ReportData& d) {
         {"limit_pct", 100 * d.histogram.limit},
         {"before_s", d.histogram.before_s},
         {"after_s", d.histogram.after_s}}},
-      {"grid", sparse_grids(d.dev_before, d.dev_after, d.cusp)},
+      {"grid", sparse_grids(d.dev_before, d.dev_after, d.cusp, d.ap, d.summary.stock.has_value())},
       {"regions",
        {{"after", regions_json(d.regions_after)},
         {"before", regions_json(d.regions_before)},

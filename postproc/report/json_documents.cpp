@@ -193,6 +193,39 @@ void add_normals(json& out, const post::PostSummary& job) {
   }
 }
 
+// The in-process stock and the ap it gave (docs/stock.md).
+json stock_json(const post::StockSummary& s) {
+  const auto& b = s.box;
+  return {
+      {"source", s.source},
+      {"box_mm", {b.min().x(), b.min().y(), b.min().z(), b.max().x(), b.max().y(), b.max().z()}},
+      {"cell_mm", s.cell_mm},
+      {"cells", {s.nx, s.ny}},
+      {"cell_note", s.cell_note},
+      {"memory_bytes", s.memory_bytes},
+      {"copies", s.copies},
+      {"sections_swept", s.swept},
+      {"warnings", s.warnings},
+      {"build_s", s.build_s},
+      {"ap_nominal_mm", s.nominal_ap_mm},
+      {"points",
+       {{"stock", s.points_stock},
+        {"clamped", s.points_clamped},
+        {"air", s.points_air},
+        {"given", s.points_given},
+        {"over_nominal", s.over_nominal_points}}},
+      {"time_s",
+       {{"stock", s.stock_time_s},
+        {"air", s.air_time_s},
+        {"over_nominal", s.over_nominal_time_s},
+        {"ap_bands",
+         {{"upto_1x", s.band_time_s[0]},
+          {"upto_1_5x", s.band_time_s[1]},
+          {"upto_2x", s.band_time_s[2]},
+          {"over_2x", s.band_time_s[3]}}}}},
+      {"ap_max_mm", s.ap_max_mm}};
+}
+
 // The keys both documents carry.
 json common_json(const char* schema, const ReportInputs& in, bool tool_known, json vc_nominal,
                  const post::PostSummary& job, double run_time_s) {
@@ -229,6 +262,7 @@ json report_json(const ReportData& data) {
                     {"rz_um", distribution_json(st.rz_um)}};
   out["section_marks"] = marks_json(data);
   add_normals(out, job);
+  if (job.stock) out["stock"] = stock_json(*job.stock);
   return out;
 }
 
@@ -247,6 +281,7 @@ json post_summary_json(const ReportInputs& inputs, bool tool_posted,
                      {"rate", summary.time_rate_s}};
   out["after"] = std::move(after);
   add_normals(out, summary);
+  if (summary.stock) out["stock"] = stock_json(*summary.stock);
   return out;
 }
 

@@ -79,6 +79,10 @@ PointRow make_row(const pipeline::PathSample& sample, const pipeline::PointResul
   row.feed = result.feed;
   row.ae = result.ae;
   row.ae_source = result.ae_source;
+  if (result.engagement || result.ap_source == pipeline::ApSource::air) {
+    row.ap = result.ap;
+    row.ap_source = result.ap_source;
+  }
   row.s_before = record.s_before;
   row.s_after = record.s_after;
   row.time_s = record.time_s;

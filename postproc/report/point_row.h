@@ -69,6 +69,10 @@ struct PointRow {
   Eigen::Vector3d feed = Eigen::Vector3d::Zero();   // F on the tangent plane (zero without contact)
   double ae = 0;
   pipeline::AeSource ae_source = pipeline::AeSource::first_pass;
+  // The depth of cut the engagement took (--ap, or the in-process stock's:
+  // docs/stock.md), and where it came from; empty where not evaluated.
+  std::optional<double> ap;
+  pipeline::ApSource ap_source = pipeline::ApSource::given;
   geometry::BallStatus status = geometry::BallStatus::missed;
   std::optional<double> d_ref, d_max, d_min, d_cut;  // mm
   double s_before = 0, s_after = 0;                  // rpm

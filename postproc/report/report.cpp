@@ -18,6 +18,7 @@ ReportCollector::ReportCollector(ReportInputs inputs, std::size_t plot_buckets, 
       dev_before_(inputs_.plan_min, inputs_.plan_max, grid_cells),
       dev_after_(inputs_.plan_min, inputs_.plan_max, grid_cells),
       cusp_(inputs_.plan_min, inputs_.plan_max, grid_cells),
+      ap_(inputs_.plan_min, inputs_.plan_max, grid_cells),
       regions_after_(kRegionThresholdAfter, 20),
       regions_before_(kRegionThresholdBefore, 20) {}
 
@@ -38,6 +39,8 @@ const PointRow& ReportCollector::add(const pipeline::PathSample& sample,
     dev_after_.add(xy, *row_.dev_after);
   }
   if (row_.cusp_um) cusp_.add(row_.point.head<2>(), *row_.cusp_um);
+  if (row_.ap && row_.ap_source != pipeline::ApSource::given)
+    ap_.add(row_.point.head<2>(), *row_.ap);
   regions_after_.add(row_, row_.vc_after, row_.dev_after, cut_time_s_);
   regions_before_.add(row_, row_.vc_before, row_.dev_before, cut_time_s_);
   cut_time_s_ += row_.weight_s;
@@ -69,7 +72,8 @@ ReportData ReportCollector::finish(const post::PostSummary& summary, double run_
                     cusp_,
                     regions_after_.result(),
                     regions_before_.result(),
-                    section_marks_};
+                    section_marks_,
+                    ap_};
 }
 
 std::optional<ReportFormat> format_of(std::string_view file_name) {

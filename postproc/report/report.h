@@ -40,6 +40,9 @@ struct ReportData {
   PlanGrid dev_before, dev_after, cusp;
   std::vector<Region> regions_after, regions_before;
   std::vector<SectionMark> section_marks;  // one per section with evaluated points
+  // With an in-process stock: the highest real ap per cell (mm, the
+  // stock's, 0 where nothing was there to cut).
+  PlanGrid ap;
 };
 
 class ReportCollector {
@@ -67,7 +70,7 @@ class ReportCollector {
   StatisticsAccumulator statistics_;
   MinMaxDecimator decimator_;
   DeviationHistogram histogram_;
-  PlanGrid dev_before_, dev_after_, cusp_;
+  PlanGrid dev_before_, dev_after_, cusp_, ap_;
   RegionTracker regions_after_, regions_before_;
   std::vector<SectionMark> section_marks_;
 };

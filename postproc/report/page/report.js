@@ -236,6 +236,18 @@ if (N) {
   legend('cusplegend', seqColor);
   document.getElementById('cuspmax').textContent = (S.surface.cusp_um && cuspTop < S.surface.cusp_um.max ? '\u2265 ' : '') + cuspTop.toFixed(1) + ' um';
 }
+// The real ap (in-process stock only): the scale tops out at twice the
+// nominal --ap or the highest ap, whichever is lower.
+var extraMaps = [];
+if (G.ap_mm && S.stock) {
+  document.getElementById('apsection').hidden = false;
+  var apTop = Math.max(1e-3, Math.min(S.stock.ap_max_mm, 2 * S.stock.ap_nominal_mm));
+  drawMap('apmap', unpack(G.ap_mm), function (v) { return seqColor(v / apTop); }, 'aptip', 'mm');
+  legend('aplegend', seqColor);
+  document.getElementById('apmax').textContent = (apTop < S.stock.ap_max_mm ? '\u2265 ' : '') + apTop.toFixed(2) + ' mm';
+  document.getElementById('apnominal').textContent = '(--ap ' + S.stock.ap_nominal_mm + ' mm)';
+  extraMaps.push('apmap');
+}
 
 // Worst regions.
 function regionTable(id, rows, side) {
@@ -278,7 +290,7 @@ function inked(canvas) {
   for (var k = 3; k < d.length; k += 4) if (d[k] !== 0) { if (++n > 50) return true; }
   return false;
 }
-var ids = ['vcplot', 'histplot', 'splot', 'devmap'].concat(N ? [] : ['cuspmap']), drawn = ids.filter(function (id) { return inked(document.getElementById(id)); });
+var ids = ['vcplot', 'histplot', 'splot', 'devmap'].concat(N ? [] : ['cuspmap'], extraMaps), drawn = ids.filter(function (id) { return inked(document.getElementById(id)); });
 // The section marks the vc plot draws: label and time.
 var drawnMarks = vcChart.data.datasets.filter(function (ds) { return marks.some(function (m) { return m.label === ds.label; }); })
   .map(function (ds) { return {label: ds.label, x: ds.data[0].x}; });

@@ -1,0 +1,8 @@
+0 BEGIN PGM BLK MM
+1 ; expect E4721: --stock-from-program
+2 BLK FORM 0.1 Z X-10 Y-10 Z-5
+3 TOOL CALL 1 Z S8000
+4 L X+0 Y+0 Z+5 R0 FMAX M3
+5 L Z+0 F1000
+6 L X+10
+7 END PGM BLK MM

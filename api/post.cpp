@@ -63,6 +63,20 @@ cli::PostArguments arguments_from(const PostOptions& options) {
   args.fz = options.fz_mm;
   args.teeth = options.teeth;
   args.threads = options.threads;
+  args.stock_from_program = options.stock_from_program;
+  if (options.stock_box) {
+    for (std::size_t i = 0; i < options.stock_box->size(); ++i) {
+      std::array<char, 32> number{};
+      const double v = (*options.stock_box)[i];
+      args.stock_box +=
+          (i > 0 ? "," : "") +
+          std::string(number.data(), std::to_chars(number.begin(), number.end(), v).ptr);
+    }
+  }
+  args.stock_model = options.stock_model;
+  args.stock_cell = options.stock_cell_mm;
+  positive(options.stock_memory_mb, "--stock-memory");
+  args.stock_memory_mb = options.stock_memory_mb;
   return args;
 }
 
@@ -92,6 +106,22 @@ PostSummary summary_from(const post::PostSummary& s) {
   out.f_words = s.f_words;
   out.vc_before = statistics(s.before);
   out.vc_after = statistics(s.after);
+  if (const auto& k = s.stock) {
+    out.stock = StockSummary{k->source,
+                             k->cell_mm,
+                             k->nx,
+                             k->ny,
+                             k->memory_bytes,
+                             k->warnings,
+                             k->points_stock,
+                             k->points_clamped,
+                             k->points_air,
+                             k->points_given,
+                             k->band_time_s,
+                             k->over_nominal_points,
+                             k->over_nominal_time_s,
+                             k->ap_max_mm};
+  }
   return out;
 }
 
@@ -102,7 +132,8 @@ PostResult post(std::string_view program, const std::string& program_name, const
   return guarded(
       [&] {
         const cli::PostArguments args = arguments_from(options);
-        const post::PostSettings settings = cli::settings_from(args);
+        post::PostSettings settings = cli::settings_from(args);
+        if (settings.stock) cli::load_stock_model(args, *settings.stock);
         PostResult result;
         const auto sink = [&](std::string_view bytes) { result.program.append(bytes); };
         post::PointSink points;
@@ -117,6 +148,8 @@ PostResult post(std::string_view program, const std::string& program_name, const
             if (point.contact.contact) p.contact = vec(point.contact.contact->point);
             p.normal = vec(point.contact.normal);
             p.d_ref = point.d_ref;
+            if (point.engagement || point.ap_source == pipeline::ApSource::air) p.ap = point.ap;
+            p.ap_from_stock = point.ap_source != pipeline::ApSource::given;
             p.s_before = record.s_before;
             p.s_after = record.s_after;
             result.points.push_back(p);

@@ -6,6 +6,7 @@
 // data comes out as G-code in the profile's format.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -65,6 +66,13 @@ struct PostOptions {
   std::optional<int> teeth;            // default: the profile's
   int threads = 0;                     // worker threads; 0: one per core (same output for any)
   bool keep_points = false;            // fill PostResult::points (memory grows with the program)
+  // The in-process stock (docs/stock.md), at most one of the three: ap at
+  // each point from the material the earlier sections left; none: `ap`.
+  bool stock_from_program = false;                 // Klartext BLK FORM, APT CL INSERT/Stock Size
+  std::optional<std::array<double, 6>> stock_box;  // xmin, ymin, zmin, xmax, ymax, zmax, mm
+  std::string stock_model;                         // an STL of the raw part (mm), program frame
+  std::optional<double> stock_cell_mm;             // default: the smallest tool's D/50 in [0.05, 1]
+  double stock_memory_mb = 1024;                   // the field and its copies
 };
 
 // Cutting speed over the cutting points, weighted by cutting time, m/min.
@@ -72,6 +80,20 @@ struct VcStatistics {
   double min = 0, max = 0, mean = 0;
   double within_5_percent = 0;   // share of cutting time with |vc/vc_nominal - 1| <= 5 %
   double within_10_percent = 0;  // ... <= 10 %
+};
+
+// The in-process stock and the ap it gave (docs/stock.md, docs/json.md `stock`).
+struct StockSummary {
+  std::string source;  // e.g. "BLK FORM at part.h:19", "--stock-box"
+  double cell_mm = 0;
+  std::uint32_t nx = 0, ny = 0;
+  std::uint64_t memory_bytes = 0;
+  std::vector<std::string> warnings;  // sections left unswept (W4730, W4731)
+  std::uint64_t points_stock = 0, points_clamped = 0, points_air = 0, points_given = 0;
+  // Cutting time of the stock's points by ap / ap nominal: <= 1, <= 1.5, <= 2, > 2.
+  std::array<double, 4> band_time_s{};
+  std::uint64_t over_nominal_points = 0;  // ap above PostOptions::ap
+  double over_nominal_time_s = 0, ap_max_mm = 0;
 };
 
 struct PostSummary {
@@ -82,6 +104,7 @@ struct PostSummary {
   double program_time_s = 0, cutting_time_s = 0;
   std::uint64_t s_words = 0, f_words = 0;           // words written
   std::optional<VcStatistics> vc_before, vc_after;  // empty when no point cut
+  std::optional<StockSummary> stock;                // with an in-process stock
 };
 
 // One evaluated point of the path (with keep_points).
@@ -93,6 +116,8 @@ struct PostPoint {
   std::optional<Vec3> contact;       // closest point on the model, mm
   Vec3 normal{0, 0, 1};              // the normal the tool sees
   std::optional<double> d_ref;       // the policy's working diameter, mm
+  std::optional<double> ap;          // the depth of cut taken, mm (empty: not evaluated)
+  bool ap_from_stock = false;        // from the in-process stock (0: nothing there to cut)
   double s_before = 0, s_after = 0;  // spindle speed in effect, rpm
 };
 

@@ -96,6 +96,8 @@ bool without_model_use(const PostArguments& args, std::string_view text,
         "G-code and Klartext are reported without one, with the normals from the toolpath)");
   if (!args.model_transform.empty())
     throw CommandError("--model-transform: places a --model; none is given");
+  if (settings.stock)
+    throw CommandError("--model: required with an in-process stock (ap is taken at the contact)");
   if (!translate_only) {
     if (!(args.ap > 0)) throw CommandError("--ap: required");
     settings.normals_from_path = true;
@@ -114,25 +116,6 @@ LoadedModel placed_model(const PostArguments& args) {
     log().debug("model {}: {}, loaded in {:.3f} s", args.model, model.description,
                 seconds_since(stage));
   return model;
-}
-
-// --stock-model's triangles, placed like the model (the shared VERICUT
-// projects place the stock STL as the design STL).
-void load_stock_model(const PostArguments& args, post::StockSettings& stock) {
-  if (args.stock_model.empty()) return;
-  const mesh::StlMesh stl = mesh::read_stl_file(args.stock_model);
-  std::optional<ModelPlacement> placement;
-  if (!args.model_transform.empty()) placement = parse_model_placement(args.model_transform);
-  auto corners = std::make_shared<std::vector<Eigen::Vector3f>>();
-  corners->reserve(3 * stl.triangles.size());
-  for (const auto& t : stl.triangles) {
-    for (const std::uint32_t v : t) {
-      const Eigen::Vector3d p =
-          placement ? placement->transform.apply(stl.vertices[v]) : stl.vertices[v];
-      corners->push_back(p.cast<float>());
-    }
-  }
-  stock.triangles = std::move(corners);
 }
 
 // The post's progress: on a terminal (`show`), one line rewritten in
@@ -233,6 +216,23 @@ void note_links(const AtomicFile& file, const std::string& name, std::vector<std
     notes.push_back("'" + name + "' is a symbolic link: wrote its target '" +
                     file.written().string() + "'");
   }
+}
+
+void load_stock_model(const PostArguments& args, post::StockSettings& stock) {
+  if (args.stock_model.empty()) return;
+  const mesh::StlMesh stl = mesh::read_stl_file(args.stock_model);
+  std::optional<ModelPlacement> placement;
+  if (!args.model_transform.empty()) placement = parse_model_placement(args.model_transform);
+  auto corners = std::make_shared<std::vector<Eigen::Vector3f>>();
+  corners->reserve(3 * stl.triangles.size());
+  for (const auto& t : stl.triangles) {
+    for (const std::uint32_t v : t) {
+      const Eigen::Vector3d p =
+          placement ? placement->transform.apply(stl.vertices[v]) : stl.vertices[v];
+      corners->push_back(p.cast<float>());
+    }
+  }
+  stock.triangles = std::move(corners);
 }
 
 void require_accepted(const post::Verdict& verdict) {

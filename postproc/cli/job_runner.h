@@ -41,6 +41,11 @@ JobRun run_job(const PostArguments& args, bool write_program);
 // never touches the model, E2011 for a gross mismatch, E2001 for the rest.
 void require_accepted(const post::Verdict& verdict);
 
+// --stock-model's triangles into `stock`, placed like the model by
+// --model-transform (the shared VERICUT projects place the stock STL as the
+// design STL); nothing without --stock-model. Throws the STL reader's errors.
+void load_stock_model(const PostArguments& args, post::StockSettings& stock);
+
 // The program's name in messages ("<stdin>" for '-').
 std::string program_name(const PostArguments& args);
 

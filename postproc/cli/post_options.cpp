@@ -53,8 +53,6 @@ std::optional<post::StockSettings> stock_settings(const PostArguments& args) {
   if (sources > 1)
     throw CommandError("E4725",
                        "--stock-from-program, --stock-box and --stock-model: give one stock");
-  if (args.model.empty())
-    throw CommandError("--model: required with an in-process stock (ap is taken at the contact)");
   post::StockSettings stock;
   stock.from_program = args.stock_from_program;
   if (!args.stock_box.empty()) stock.box = post::parse_stock_box(args.stock_box);

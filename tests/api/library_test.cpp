@@ -187,3 +187,54 @@ TEST(Library, OneVersionForTheLibraryAndTheCommand) {
 }
 
 }  // namespace
+
+namespace {
+
+// A D10 ball along X over a level face with 0.5 mm of stock on it: the
+// library's stock options give ap 0.5 at every point, and the program the
+// command writes with the same options.
+TEST(Library, InProcessStockGivesApPerPointAsTheCommandDoes) {
+  const fs::path folder =
+      fs::temp_directory_path() / ("vcpost_library_stock_" + std::to_string(::getpid()));
+  fs::create_directories(folder);
+  std::ofstream(folder / "face.stl")
+      << "solid f\nfacet normal 0 0 1\nouter loop\nvertex -40 -40 0\nvertex 40 -40 0\n"
+         "vertex 40 40 0\nendloop\nendfacet\nfacet normal 0 0 1\nouter loop\nvertex -40 -40 0\n"
+         "vertex 40 40 0\nvertex -40 40 0\nendloop\nendfacet\nendsolid f\n";
+  const std::string program =
+      "G21 G90 G17\nT1 M6\nS8000 M3\nG0 X-10 Y0 Z5\nG1 Z0 F1000\nG1 X10\nG1 Y1\nG1 X-10\n"
+      "G0 Z5\nM5\nM30\n";
+  std::ofstream(folder / "p.ngc") << program;
+  int exit_code = -1;
+  const std::string expected = run_vcpost(
+      "post '" + (folder / "p.ngc").string() + "' --model '" + (folder / "face.stl").string() +
+          "' --tool ball:10 --vc 120 --ap 0.3 --stock-box=-20,-20,-5,20,20,0.5 --stock-cell 0.1 "
+          "-q -o -",
+      exit_code);
+  ASSERT_EQ(exit_code, 0);
+  api::PostOptions options;
+  options.tool = "ball:10";
+  options.vc = 120;
+  options.ap = 0.3;
+  options.keep_points = true;
+  options.stock_box = std::array<double, 6>{-20, -20, -5, 20, 20, 0.5};
+  options.stock_cell_mm = 0.1;
+  const api::PostResult result =
+      api::post(program, "p.ngc", api::Model::load((folder / "face.stl").string()),
+                api::MachineProfile::load("generic"), options);
+  fs::remove_all(folder);
+  EXPECT_EQ(result.program, expected);
+  ASSERT_TRUE(result.summary.stock.has_value());
+  EXPECT_EQ(result.summary.stock->source, "--stock-box");
+  EXPECT_GT(result.summary.stock->points_stock, 20u);
+  EXPECT_NEAR(result.summary.stock->ap_max_mm, 0.5, 1e-3);
+  std::size_t from_stock = 0;
+  for (const api::PostPoint& p : result.points) {
+    if (!p.ap || !p.ap_from_stock) continue;
+    EXPECT_NEAR(*p.ap, 0.5, 1e-3) << p.line;
+    ++from_stock;
+  }
+  EXPECT_EQ(from_stock, result.summary.stock->points_stock);
+}
+
+}  // namespace

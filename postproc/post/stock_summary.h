@@ -20,9 +20,9 @@ struct StockSummary {
   Eigen::AlignedBox3d box;  // the stock's extent, mm
   double cell_mm = 0;
   std::uint32_t nx = 0, ny = 0;
-  std::string cell_note;              // how the cell was chosen (default, coarsened)
-  std::uint64_t memory_bytes = 0;     // the height field and the copies kept of it
-  std::uint32_t copies = 0;           // copies kept: one per posted section's start
+  std::string cell_note;           // how the cell was chosen (default, coarsened)
+  std::uint64_t memory_bytes = 0;  // the height field and the copies kept of it
+  std::uint32_t copies = 0;  // copies kept: one per evaluated section but the last (the field)
   std::vector<std::uint32_t> swept;   // sections swept (ToolSection::index), in program order
   std::vector<std::string> warnings;  // sections left unswept (W4730, W4731), in words
   double build_s = 0;                 // the read-ahead's time

@@ -137,10 +137,12 @@ std::unique_ptr<StockTimeline> build_stock_timeline(std::string_view text,
   // The cell: given, or from the smallest evaluated tool, coarsened to fit
   // the memory the field and its copies may take.
   std::uint32_t evaluated = 0;
+  std::uint32_t last_evaluated = 0;  // no section after it needs the stock
   double smallest = 0;
   for (const SectionPlan& p : plans) {
     if (!p.section || !p.section->postable) continue;
     ++evaluated;
+    last_evaluated = p.section->index;
     const double d = p.section->entry->diameter;
     smallest = smallest > 0 ? std::min(smallest, d) : d;
   }
@@ -215,7 +217,11 @@ std::unique_ptr<StockTimeline> build_stock_timeline(std::string_view text,
       const SectionPlan& plan = plans.at(index);
       const ToolSection& s = *plan.section;
       if (s.postable) {
-        if (cut_since_copy || !last_copy) {
+        if ((cut_since_copy || !last_copy) && index == last_evaluated) {
+          // Nothing is swept after it: the field itself, not a copy.
+          last_copy = std::make_shared<const HeightField>(std::move(field));
+          cut_since_copy = false;
+        } else if (cut_since_copy || !last_copy) {
           last_copy = std::make_shared<const HeightField>(field);
           memory += last_copy->memory_bytes();
           ++summary.copies;
@@ -223,6 +229,13 @@ std::unique_ptr<StockTimeline> build_stock_timeline(std::string_view text,
         }
         timeline->before_[index] = std::make_shared<FieldDepth>(last_copy);
       }
+      if (plan.tilted) {
+        summary.warnings.push_back(
+            "W4731: " + named(s) +
+            " works in a tilted plane (3+2): its tilted moves are not swept (the stock is a "
+            "height field along the machine's Z) and its tilted points take --ap");
+      }
+      if (index >= last_evaluated) return;  // nothing evaluated after it: not swept
       cutter = cutter_of(s);
       if (!cutter) {
         summary.warnings.push_back("W4730: " + named(s) + ": its tool's shape is unknown (" +
@@ -231,12 +244,6 @@ std::unique_ptr<StockTimeline> build_stock_timeline(std::string_view text,
         return;
       }
       tool = cutter->tool;
-      if (plan.tilted) {
-        summary.warnings.push_back(
-            "W4731: " + named(s) +
-            " works in a tilted plane (3+2): its tilted moves are not swept (the stock is a "
-            "height field along the machine's Z) and its tilted points take --ap");
-      }
     };
     while (reader.read(chunk, chunk_samples)) {
       for (const Slot& slot : chunk.slots) {

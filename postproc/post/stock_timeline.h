@@ -42,7 +42,9 @@ class StockTimeline {
 };
 
 // Reads the program twice ahead of the job (its sections and tools, then
-// its moves) and builds the stock of settings.stock (which must be set).
+// its moves) and builds the stock of settings.stock (which must be set);
+// the sections from the last evaluated one on are not swept (nothing after
+// them reads the stock).
 // Throws vcpost::Error: E4720 (no stock declared where the program's was
 // asked for), E4721/E4722 (a declaration it cannot take), E4724 (the
 // field and its copies need more than --stock-memory at --stock-cell), the

@@ -119,7 +119,7 @@ TEST(InProcessStock, FlatRoughingStepsThenBallFinish) {
                                        box_stock({-30, -30, -5}, {30, 30, 3}, cell));
   ASSERT_TRUE(run.summary.stock);
   const StockSummary& s = *run.summary.stock;
-  EXPECT_EQ(s.swept, (std::vector<std::uint32_t>{1, 2}));
+  EXPECT_EQ(s.swept, (std::vector<std::uint32_t>{1}));
   EXPECT_TRUE(s.warnings.empty());
   std::size_t checked = 0;
   for (const Point& point : run.points) {
@@ -193,7 +193,7 @@ TEST(InProcessStock, DrilledHoleIsNotEngaged) {
   const StockRun run = post_with_stock(p.str(), {"T1=drill:8", "T2=ball:10"}, {},
                                        box_stock({-20, -20, -20}, {20, 20, 0.3}, cell));
   ASSERT_TRUE(run.summary.stock);
-  EXPECT_EQ(run.summary.stock->swept, (std::vector<std::uint32_t>{1, 2}));
+  EXPECT_EQ(run.summary.stock->swept, (std::vector<std::uint32_t>{1}));
   std::size_t over_hole = 0, beside = 0, air = 0;
   for (const Point& point : run.points) {
     if (point.section != 2) continue;

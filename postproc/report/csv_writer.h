@@ -22,7 +22,8 @@ namespace vcpost::report {
 inline constexpr std::string_view kCsvHeader =
     "line,x,y,z,cc_x,cc_y,cc_z,n_x,n_y,n_z,f_x,f_y,f_z,ae,d_ref,d_max,d_min,d_cut,"
     "s_before,s_after,vc_before,vc_after,dev_pct,flags,"
-    "time_s,weight_s,dev_before_pct,status,ae_source,bound,cusp_um,ra_um,rz_um,normal,ap_mm,ap_source";
+    "time_s,weight_s,dev_before_pct,status,ae_source,bound,cusp_um,ra_um,rz_um,normal,ap_mm,ap_"
+    "source";
 
 class CsvWriter {
  public:

@@ -26,7 +26,7 @@ std::string outcome(const fs::path& file, const std::string& options) {
   cli::PostArguments args;
   CLI::App app;
   cli::add_job_options(app, args);
-  const std::string machine = file.extension() == ".h" ? "heidenhain-tnc640" : "mazak-3axis";
+  const std::string machine = file.extension() == ".H" ? "heidenhain-tnc640" : "mazak-3axis";
   const bool own_machine = options.find("--machine") != std::string::npos;
   const std::string line = "'" + file.string() + "' --model face --vc 150 --ap 0.3 " +
                            (own_machine ? "" : "--machine " + machine + " ") +

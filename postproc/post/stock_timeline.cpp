@@ -199,6 +199,7 @@ std::unique_ptr<StockTimeline> build_stock_timeline(std::string_view text,
     geometry::Tool tool;
     std::optional<std::uint32_t> current;
     bool swept_any = false;
+    bool unknown_tool = false;  // the current section's tool shape is unknown, not yet warned
     auto flush = [&] {
       if (cutter && !tips.empty()) {
         field.cut_path(*cutter, tips);
@@ -214,6 +215,7 @@ std::unique_ptr<StockTimeline> build_stock_timeline(std::string_view text,
       current = index;
       swept_any = false;
       cutter.reset();
+      unknown_tool = false;
       const SectionPlan& plan = plans.at(index);
       const ToolSection& s = *plan.section;
       if (s.postable) {
@@ -237,20 +239,24 @@ std::unique_ptr<StockTimeline> build_stock_timeline(std::string_view text,
       }
       if (index >= last_evaluated) return;  // nothing evaluated after it: not swept
       cutter = cutter_of(s);
-      if (!cutter) {
-        summary.warnings.push_back("W4730: " + named(s) + ": its tool's shape is unknown (" +
-                                   (s.entry ? s.entry->describe() : std::string("no tool")) +
-                                   "): not swept, the stock keeps its material there");
-        return;
-      }
-      tool = cutter->tool;
+      unknown_tool = !cutter;  // warned at its first cutting move, if it has one
+      if (cutter) tool = cutter->tool;
     };
     while (reader.read(chunk, chunk_samples)) {
       for (const Slot& slot : chunk.slots) {
         if (slot.section != current) open_section(slot.section);
         if (slot.kind == SlotKind::rapid || slot.break_pass) flush();
         if (slot.kind != SlotKind::sample && slot.kind != SlotKind::kept) continue;
-        if (!cutter) continue;
+        if (!cutter) {
+          if (unknown_tool) {
+            const ToolSection& s = *plans.at(slot.section).section;
+            summary.warnings.push_back("W4730: " + named(s) + ": its tool's shape is unknown (" +
+                                       (s.entry ? s.entry->describe() : std::string("no tool")) +
+                                       "): not swept, the stock keeps its material there");
+            unknown_tool = false;
+          }
+          continue;
+        }
         if (slot.sample.frame != nullptr) {
           flush();
           continue;

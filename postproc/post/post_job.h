@@ -20,6 +20,7 @@
 #include "postproc/heidenhain/program_loader.h"
 #include "postproc/pipeline/point_evaluator.h"
 #include "postproc/plan/spindle_plan.h"
+#include "postproc/post/program_kind.h"
 #include "postproc/post/stock_source.h"
 #include "postproc/post/stock_summary.h"
 #include "postproc/post/tool_sections.h"
@@ -28,32 +29,10 @@
 
 namespace vcpost::post {
 
-enum class ProgramKind { gcode, cldata, heidenhain };
-std::string_view to_string(ProgramKind kind);  // "gcode", "cldata", "heidenhain"
-
-// The G-code dialect a machine profile reads.
-gcode::Dialect dialect_of(const machines::MachineProfile& profile);
-// The dialect of the G-code vcpost writes from CL data for the profile (its
-// output format): what that output is read back in (verify). It differs
-// from dialect_of where the control reads two languages and vcpost writes
-// one (sinumerik-840d: Siemens language in, ISO dialect out).
-gcode::Dialect output_dialect_of(const machines::MachineProfile& profile);
-
 // How `vcpost verify` reads the G-code vcpost wrote from CL data for the
 // profile: its output dialect, grid (decimals), cutter compensation and
 // tool change form. The tolerance stays the default.
 verify::Options cl_output_verify_options(const machines::MachineProfile& profile);
-
-// G-code, APT CL data or Klartext, recognised by content: CL records are
-// `WORD/...` statements (GOTO/, FEDRAT/, CUTTER/ ...) or bare PARTNO/FINI
-// lines; a Klartext program's first block is `[n] BEGIN PGM <name> MM|INCH`.
-ProgramKind detect_program_kind(std::string_view text);
-// The kind for a dialect the user named (or the profile's): the heidenhain
-// dialect reads Klartext whatever the content shows (its reader says what
-// is wrong) but APT CL data, which is read as CL (a Heidenhain profile
-// posts CL data to Klartext); every other dialect leaves the choice to the
-// content.
-ProgramKind program_kind(std::string_view text, const gcode::Dialect& dialect);
 
 struct PostSettings {
   // Every posted section's settings but its tool and vc, which come from
@@ -83,10 +62,6 @@ struct PostSettings {
   std::optional<StockSettings> stock;
 };
 
-// A dialect named apart from the profile (--dialect names the language)
-// with the profile's speed output (output.speed_word, the machine's
-// wiring) where it is rs274ngc.
-gcode::Dialect with_speed_output(gcode::Dialect dialect, const machines::MachineProfile& profile);
 // The dialect the job reads its G-code input in: --dialect
 // (PostSettings::dialect) or the profile's, with the profile's speed output
 // (output.speed_word) for an rs274ngc program.

@@ -17,6 +17,7 @@
 
 #include "geometry/mesh/mesh_model.h"
 #include "geometry/mesh/stl_reader.h"
+#include "tests/geometry/bad_input_list.h"
 
 namespace vcpost::mesh {
 namespace {
@@ -348,15 +349,8 @@ TEST(StlReader, BinaryCountBelowTheRecordsIsRefused) {
 
 TEST(StlReader, BadFilesGiveTheirMessages) {
   const fs::path dir = fs::path(VCPOST_SOURCE_DIR) / "tests/geometry/bad/stl";
-  std::ifstream list(dir / "expected.txt");
-  ASSERT_TRUE(list) << "missing " << (dir / "expected.txt");
-  std::string line;
   int cases = 0;
-  while (std::getline(list, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    const auto tab = line.find('\t');
-    ASSERT_NE(tab, std::string::npos) << line;
-    const std::string file = line.substr(0, tab), expected = line.substr(tab + 1);
+  for (const auto& [file, expected] : vcpost::testing::read_bad_input_list(dir)) {
     try {
       read_stl_file(dir / file);
       ADD_FAILURE() << file << " was accepted";

@@ -15,6 +15,7 @@
 
 #include "core/error.h"
 #include "geometry/stock/height_field.h"
+#include "tests/geometry/bad_input_list.h"
 
 namespace vcpost::geometry::stock {
 namespace {
@@ -211,15 +212,8 @@ void run_bad_input(const fs::path& file) {
 
 TEST(Stock, BadInputsGiveTheirCodes) {
   const fs::path dir = fs::path(VCPOST_SOURCE_DIR) / "tests/geometry/bad/stock";
-  std::ifstream list(dir / "expected.txt");
-  ASSERT_TRUE(list) << "missing " << (dir / "expected.txt");
-  std::string line;
   std::set<std::string> codes;
-  while (std::getline(list, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    const auto tab = line.find('\t');
-    ASSERT_NE(tab, std::string::npos) << line;
-    const std::string file = line.substr(0, tab), expected = line.substr(tab + 1);
+  for (const auto& [file, expected] : vcpost::testing::read_bad_input_list(dir)) {
     try {
       run_bad_input(dir / file);
       ADD_FAILURE() << file << " was accepted";

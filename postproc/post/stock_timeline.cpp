@@ -175,10 +175,10 @@ std::unique_ptr<StockTimeline> build_stock_timeline(std::string_view text,
     }
   }
   // The engine's own check is per field; the copies are counted above.
-  const std::size_t field_limit = stock.memory_limit;
-  HeightField field = stock.triangles && !stock.from_program && !stock.box
-                          ? HeightField::from_triangles(*stock.triangles, cell, field_limit)
-                          : HeightField::block(extent.min(), extent.max(), cell, field_limit);
+  HeightField field =
+      stock.triangles && !stock.from_program && !stock.box
+          ? HeightField::from_triangles(*stock.triangles, cell, stock.memory_limit)
+          : HeightField::block(extent.min(), extent.max(), cell, stock.memory_limit);
   summary.cell_mm = cell;
   summary.nx = field.grid().nx;
   summary.ny = field.grid().ny;
@@ -196,14 +196,12 @@ std::unique_ptr<StockTimeline> build_stock_timeline(std::string_view text,
     Chunk chunk;
     std::vector<Eigen::Vector3d> tips;
     std::optional<Cutter> cutter;
-    geometry::Tool tool;
     std::optional<std::uint32_t> current;
     bool swept_any = false;
     bool unknown_tool = false;  // the current section's tool shape is unknown, not yet warned
     auto flush = [&] {
       if (cutter && !tips.empty()) {
         field.cut_path(*cutter, tips);
-
         cut_since_copy = true;
         swept_any = true;
       }
@@ -219,14 +217,14 @@ std::unique_ptr<StockTimeline> build_stock_timeline(std::string_view text,
       const SectionPlan& plan = plans.at(index);
       const ToolSection& s = *plan.section;
       if (s.postable) {
-        if ((cut_since_copy || !last_copy) && index == last_evaluated) {
-          // Nothing is swept after it: the field itself, not a copy.
-          last_copy = std::make_shared<const HeightField>(std::move(field));
-          cut_since_copy = false;
-        } else if (cut_since_copy || !last_copy) {
-          last_copy = std::make_shared<const HeightField>(field);
-          memory += last_copy->memory_bytes();
-          ++summary.copies;
+        if (cut_since_copy || !last_copy) {
+          if (index == last_evaluated) {  // nothing is swept after it: the field, not a copy
+            last_copy = std::make_shared<const HeightField>(std::move(field));
+          } else {
+            last_copy = std::make_shared<const HeightField>(field);
+            memory += last_copy->memory_bytes();
+            ++summary.copies;
+          }
           cut_since_copy = false;
         }
         timeline->before_[index] = std::make_shared<FieldDepth>(last_copy);
@@ -240,7 +238,6 @@ std::unique_ptr<StockTimeline> build_stock_timeline(std::string_view text,
       if (index >= last_evaluated) return;  // nothing evaluated after it: not swept
       cutter = cutter_of(s);
       unknown_tool = !cutter;  // warned at its first cutting move, if it has one
-      if (cutter) tool = cutter->tool;
     };
     while (reader.read(chunk, chunk_samples)) {
       for (const Slot& slot : chunk.slots) {
@@ -261,6 +258,7 @@ std::unique_ptr<StockTimeline> build_stock_timeline(std::string_view text,
           flush();
           continue;
         }
+        const geometry::Tool& tool = cutter->tool;
         const Eigen::Vector3d origin =
             geometry::tool_origin(slot.sample.point, tool, settings.point.cl_point);
         tips.push_back(origin - Eigen::Vector3d(0, 0, tool.corner_radius));

@@ -369,17 +369,34 @@ std::optional<ToolSection> first_postable_section(std::string_view text,
   return std::nullopt;
 }
 
+namespace {
+
+// The threads of one run: PostSettings::threads, 0 for one per core. More
+// than cores: oneTBB caps its workers at the core count by default (and
+// warns on stderr), so the cap is lifted while this lives.
+class RunThreads {
+ public:
+  explicit RunThreads(int asked) {
+    const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    count_ = asked > 0 ? asked : cores;
+    if (count_ > cores) parallelism_.emplace(tbb::global_control::max_allowed_parallelism, count_);
+  }
+  int count() const { return count_; }
+
+ private:
+  int count_ = 1;
+  std::optional<tbb::global_control> parallelism_;
+};
+
+}  // namespace
+
 PathNormalsAhead read_path_normals(std::string_view text, const std::string& file_name,
                                    const machines::MachineProfile& profile,
                                    const PostSettings& settings) {
   const gcode::Dialect dialect = reading_dialect(settings, profile);
   const ProgramKind kind = program_kind(text, dialect);
-  // As post_program runs it: settings.threads threads, the cores' cap lifted.
-  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  const int threads = settings.threads > 0 ? settings.threads : cores;
-  std::optional<tbb::global_control> parallelism;
-  if (threads > cores) parallelism.emplace(tbb::global_control::max_allowed_parallelism, threads);
-  tbb::task_arena arena(threads);
+  const RunThreads threads(settings.threads);  // as post_program runs it
+  tbb::task_arena arena(threads.count());
   PathNormalsAhead ahead;
   arena.execute([&] {
     ahead =
@@ -510,12 +527,8 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
   Finisher finisher(profile, settings, writer, points, summary);
   decides = &finisher;
 
-  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  const int threads = settings.threads > 0 ? settings.threads : cores;
-  // More threads than cores: oneTBB caps its workers at the core count by
-  // default (and warns on stderr); lift the cap for this run.
-  std::optional<tbb::global_control> parallelism;
-  if (threads > cores) parallelism.emplace(tbb::global_control::max_allowed_parallelism, threads);
+  const RunThreads run_threads(settings.threads);
+  const int threads = run_threads.count();
   // Chunks in flight: enough to keep every thread busy, few enough to bound memory.
   const std::size_t tokens = 2 * static_cast<std::size_t>(threads) + 2;
   ChunkPool pool(tokens);

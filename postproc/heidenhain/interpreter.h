@@ -152,8 +152,10 @@ class Interpreter {
     program::SourceRef call_source;
   };
 
+  // interpreter.cpp: the block transaction, values and words.
   bool read_block();
   void execute(std::vector<program::Event>& events);
+  [[noreturn]] void refuse_block() const;
   [[noreturn]] void fail(Code code, std::uint32_t at, std::string message) const;
   void warn(Code code, std::uint32_t at, std::string message);
   void warn_once(Code code, long key, std::uint32_t at, std::string message);
@@ -168,14 +170,20 @@ class Interpreter {
   double feed_rate(double program_units) const {
     return inches_ ? program_units * 2.54 : program_units;  // inch programs: 1/10 inch/min
   }
+  struct WordReader;
   Words read_words(std::uint32_t allowed) const;
 
   void begin_program();
   void blk_form();
+
+  // interpreter_functions.cpp: TOOL CALL, M functions, FUNCTION.
   void tool_call(std::vector<program::Event>& events);
-  void motion(std::vector<program::Event>& events);
   void start_functions(const Words& w, std::vector<program::Event>& events);
   void end_functions(const Words& w, std::vector<program::Event>& events);
+  void function_block();
+
+  // interpreter_moves.cpp: L, LN, LP, CC, C, CR, CT, CP, RND, CHF.
+  void motion(std::vector<program::Event>& events);
   void set_feed_and_compensation(const Words& w, std::vector<program::Event>& events);
   void rotary(const Words& w);
   Eigen::Vector3d cartesian_target(const Words& w) const;
@@ -193,11 +201,15 @@ class Interpreter {
   void finish_corner(const Eigen::Vector3d& end, std::vector<program::Event>& events);
   bool corner_follows() const;
   void machine_retract(const Words& w, std::vector<program::Event>& events);
+
+  // interpreter_approach.cpp: APPR, DEP.
   LinkWords link_words(bool departure) const;
   void approach(std::vector<program::Event>& events);
   void link_approach(std::vector<program::Event>& events, std::size_t before);
   [[noreturn]] void fail_approach(const std::string& why) const;
   void departure(std::vector<program::Event>& events);
+
+  // interpreter_flow.cpp: FN, formulas, labels, calls, called programs.
   void fn(std::vector<program::Event>& events);
   void formula();
   void label_block();
@@ -206,15 +218,18 @@ class Interpreter {
   void return_from_program();
   void jump_to(const Label& label, std::uint32_t at);
   Place find_label(const Label& label, std::uint32_t at);
+  void count_jump(std::uint32_t at);
+
+  // interpreter_cycles.cpp: CYCL DEF, CYCL CALL, the drilling cycles.
   void cycle_def(std::vector<program::Event>& events);
   void cycle_call(std::vector<program::Event>& events);
   void run_cycle(std::uint32_t at, std::vector<program::Event>& events);
   void bore_milling(DrillHole& hole, std::uint32_t at);
+
+  // interpreter_plane.cpp: PLANE and the tilted frame.
   void plane_block(std::vector<program::Event>& events);
   void tilt(const Eigen::Matrix3d& rotation, std::vector<program::Event>& events);
   Eigen::Matrix3d points_plane(const WorkingPlane& p) const;
-  void function_block();
-  void count_jump(std::uint32_t at);
 
   std::string_view text_;
   InterpreterLimits limits_;
@@ -249,15 +264,14 @@ class Interpreter {
   std::optional<WorkingPlane> plane_;
   std::optional<Held> held_;
   std::optional<PendingApproach> approach_;
-  bool last_rapid_ = false;
+  bool last_rapid_ = false;  // the last move was FMAX (APPR goes on at rapid)
   ProgramLoader loader_;
   bool called_tool_calls_refused_ = false;
-  std::vector<Caller> programs_;         // the callers of the program being read
-  std::string program_name_;             // "" while the main program is read
-  std::optional<std::string> selected_;  // SEL PGM
-  std::optional<double> tool_radius_;    // set_tool_radius, TOOL DEF R
-  std::vector<std::pair<int, double>>
-      defined_radii_;  // TOOL DEF n R  // the last move was FMAX (APPR goes on at rapid)
+  std::vector<Caller> programs_;                       // the callers of the program being read
+  std::string program_name_;                           // "" while the main program is read
+  std::optional<std::string> selected_;                // SEL PGM
+  std::optional<double> tool_radius_;                  // set_tool_radius, TOOL DEF R
+  std::vector<std::pair<int, double>> defined_radii_;  // TOOL DEF n R
   std::optional<std::uint64_t> repeat_from_;
   std::vector<std::pair<std::string, int>> tool_names_;
   std::vector<Frame> frames_;

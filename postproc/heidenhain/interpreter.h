@@ -152,7 +152,7 @@ class Interpreter {
     program::SourceRef call_source;
   };
 
-  // interpreter.cpp: the block transaction, values and words.
+  // interpreter.cpp: the block transaction.
   bool read_block();
   void execute(std::vector<program::Event>& events);
   [[noreturn]] void refuse_block() const;
@@ -161,6 +161,7 @@ class Interpreter {
   void warn_once(Code code, long key, std::uint32_t at, std::string message);
   program::SourceRef source() const;
 
+  // interpreter_words.cpp: values and a block's words.
   double value(const Value& v, std::uint32_t at) const;
   // Where a Q, QL or QR parameter lives in q_ (fails when out of range).
   std::size_t parameter_index(const Value& v, std::uint32_t at) const;
@@ -173,6 +174,7 @@ class Interpreter {
   struct WordReader;
   Words read_words(std::uint32_t allowed) const;
 
+  // interpreter.cpp: BEGIN PGM, BLK FORM.
   void begin_program();
   void blk_form();
 

@@ -1,10 +1,10 @@
 // The interpreter's own: what its files share (interpreter.cpp, the block
-// transaction and the words; interpreter_moves.cpp, interpreter_approach.cpp,
-// interpreter_functions.cpp, interpreter_flow.cpp, interpreter_cycles.cpp,
-// interpreter_plane.cpp, the handlers): a block's words as the handlers read
-// them (Interpreter::Words), the families of words a block kind takes, the M
-// functions the reader follows, and the plane geometry of the contour. Not
-// for other modules.
+// transaction; interpreter_words.cpp, the words; interpreter_moves.cpp,
+// interpreter_approach.cpp, interpreter_functions.cpp, interpreter_flow.cpp,
+// interpreter_cycles.cpp, interpreter_plane.cpp, the handlers): a block's
+// words as the handlers read them (Interpreter::Words), the families of
+// words a block kind takes, the M functions the reader follows, and the
+// plane geometry of the contour. Not for other modules.
 #pragma once
 
 #include <Eigen/Core>

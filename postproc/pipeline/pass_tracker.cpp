@@ -570,10 +570,55 @@ bool PassTracker::consider(Search& s, const Eigen::Vector3d& p, double fraction)
   return true;
 }
 
+namespace {
+// Whether the segment from a point at h_from along the feed (from the
+// plane across it through CC) to one at h_to crosses that plane (the end
+// point on it counts, the start point does not: a crossing at a shared
+// point is the segment's before it).
+bool crosses(double h_from, double h_to) { return (h_from <= 0) != (h_to <= 0) || h_to == 0; }
+}  // namespace
+
+// Whether the stretch of earlier pass that ends at entry i (its first
+// entry, looking forward, or its last, looking back) crosses the plane
+// across the feed through CC on a segment of its own that evaluate_range
+// takes, before it leaves the abeam allowance along the feed.
+bool PassTracker::stretch_crosses(const Search& s, std::uint64_t i, bool forward) const {
+  const auto h = [&](std::uint64_t j) { return s.feed.dot(ring_[j & mask_].point - s.cc); };
+  // The segment into entry j is the pass's (and a candidate's) when j is
+  // joined to a kept entry, before the cutoff and parallel.
+  const auto takes = [&](std::uint64_t j) {
+    const Entry& e = ring_[j & mask_];
+    return j < cutoff_ && j > s.kept && e.joined && std::abs(e.feed.dot(s.feed)) >= parallel_cos;
+  };
+  if (forward) {
+    double h_from = h(i);
+    for (std::uint64_t j = i + 1; takes(j); ++j) {
+      const double h_to = h(j);
+      if (crosses(h_from, h_to)) return true;
+      if (std::abs(h_to) > abeam_) return false;
+      h_from = h_to;
+    }
+  } else {
+    double h_to = h(i);
+    for (std::uint64_t j = i; takes(j); --j) {
+      const double h_from = h(j - 1);
+      if (crosses(h_from, h_to)) return true;
+      if (std::abs(h_from) > abeam_) return false;
+      h_to = h_from;
+    }
+  }
+  return false;
+}
+
 // The candidate of an entry of an earlier, roughly parallel pass: where
 // that pass crosses the plane across the feed through CC, on the segment
-// from its previous point; or, when the crossing lies on another segment
-// (or at a pass end), the point itself if almost abeam.
+// from its previous point; or, at an end of a stretch of pass that does
+// not reach the plane, the end point itself if almost abeam. A point
+// inside a stretch is no candidate on its own, nor is the end of one that
+// crosses the plane within the abeam allowance: where the pass leans
+// across the feed (a ball's contact track on a surface whose slope turns)
+// or bends towards CC (an offset contour inside the last), its points
+// ahead or behind lie nearer than the pass does across the feed.
 // flat: all candidates of the run lie within `tie` of each other across
 // the feed, so the first one compared stands for all.
 // Evaluates the entries from..to (sequences) of run id.
@@ -592,16 +637,25 @@ bool PassTracker::evaluate_range(Search& s, std::uint64_t id, bool flat, std::ui
     h0 = h1;
     if (std::abs(e.feed.dot(feed)) < parallel_cos) continue;
     s.evaluating_entry = i;
-    if (e.joined && i > s.kept) {  // the entry before is kept
-      if ((h_before <= 0) != (h1 <= 0) || h1 == 0) {
-        const Eigen::Vector3d& before = ring_[(i - 1) & mask_].point;
-        // h0 == h1 == 0: the segment lies in the plane
-        const double t = h_before == h1 ? 1.0 : h_before / (h_before - h1);
-        if (consider(s, before + t * (e.point - before), t) && flat) return true;
-        continue;
-      }
+    const bool has_before = e.joined && i > s.kept;  // the entry before is kept
+    if (has_before && crosses(h_before, h1)) {
+      const Eigen::Vector3d& before = ring_[(i - 1) & mask_].point;
+      // h0 == h1 == 0: the segment lies in the plane
+      const double t = h_before == h1 ? 1.0 : h_before / (h_before - h1);
+      if (consider(s, before + t * (e.point - before), t) && flat) return true;
+      continue;
     }
     if (std::abs(h1) > abeam_) continue;
+    // The entry after continues the stretch when the segment into it is
+    // one evaluate_range takes.
+    const Entry* after = i + 1 < cutoff_ ? &ring_[(i + 1) & mask_] : nullptr;
+    const bool has_after =
+        after != nullptr && after->joined && std::abs(after->feed.dot(feed)) >= parallel_cos;
+    if (has_before == has_after) {
+      if (has_before) continue;  // inside a stretch: its crossing is the candidate
+    } else if (stretch_crosses(s, i, has_after)) {
+      continue;  // an end of a stretch that reaches the plane nearby
+    }
     if (!flat) {
       // Only a nearer candidate matters here, and most are not.
       const Eigen::Vector3d d = e.point - cc;

@@ -37,9 +37,11 @@ struct NeighbourPass {
 // along the path (spirals never turn).
 //
 // The candidates from an earlier pass are where it crosses the plane across
-// the feed through CC, and its points within 0.1 search radius of that plane
-// along the feed whose own segment does not cross it (pass ends); the
-// nearest of them across the feed wins (ties within 1e-10 mm: any one).
+// the feed through CC, and its pass ends within 0.1 search radius of that
+// plane along the feed whose stretch of pass does not cross it within that
+// distance (its other points are not: where a pass leans across the feed,
+// they lie nearer than the pass does); the nearest candidate across the
+// feed wins (ties within 1e-10 mm: any one).
 // Earlier passes are those of the newest three through each grid cell
 // (retraced or very close passes crowd a cell; the nearest is among the
 // newest), so a step costs about the same whatever the passes' spacing.
@@ -187,6 +189,7 @@ class PassTracker {
   bool evaluate_range(Search& s, std::uint64_t id, bool flat, std::uint64_t from,
                       std::uint64_t end) const;
   bool consider(Search& s, const Eigen::Vector3d& p, double fraction) const;
+  bool stretch_crosses(const Search& s, std::uint64_t i, bool forward) const;
   std::optional<std::pair<double, bool>> measure(const Search& s, const Run& r, double worst) const;
   double worst(const Search& s) const;
 

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "postproc/samplegen/parts.h"
+#include "postproc/samplegen/tool_placement.h"
 #include "postproc/samplegen/toolpath.h"
 
 namespace vcpost::pipeline {
@@ -47,8 +48,8 @@ std::vector<std::optional<NeighbourPass>> track(PassTracker& tracker,
 
 // Straight passes along u, `stepover` apart along v = n x u, points
 // `spacing` apart, each pass `length` long, starting at `origin`.
-std::vector<Point> raster(Vector3d origin, Vector3d u, Vector3d n, double stepover, double spacing,
-                          double length, int passes, bool zigzag) {
+std::vector<Point> raster(const Vector3d& origin, const Vector3d& u, const Vector3d& n,
+                          double stepover, double spacing, double length, int passes, bool zigzag) {
   const Vector3d v = n.cross(u);
   const auto count = static_cast<int>(std::lround(length / spacing));
   std::vector<Point> path;
@@ -234,23 +235,20 @@ TEST(PassTrackerGeometry, OffsetContoursOutwardsMeasureTheOffset) {
   }
 }
 
-TEST(PassTrackerGeometry, OffsetContoursInwardsTakeTheNearestPointWithinTheAbeamAllowance) {
+TEST(PassTrackerGeometry, OffsetContoursInwardsMeasureTheOffsetNotTheNearerPointsAhead) {
   // Each circle 0.7 inside the previous one (radius R = r + 0.7): the
-  // previous circle bends towards the feed line, and its points within
-  // 0.1 D = 1 mm along the feed count on their own (the abeam allowance).
-  // The point j deg away lies R sin(j deg) along the feed and
-  // r - R cos(j deg) across; the farthest within 1 mm is j = 2 for R = 20.7
-  // and 20 (R sin 3 deg > 1 > R sin 2 deg), so ae = 0.7 - R (1 - cos 2 deg).
+  // previous circle bends towards the feed line, and its points 2 deg
+  // along (R sin 2 deg < 1 mm = 0.1 D, within the abeam allowance) lie
+  // 0.7 - R (1 - cos 2 deg) = 0.687 across, its first point 1 deg behind
+  // the second point of an arc 0.697. The circle itself lies 0.7 away
+  // across the feed: its crossing, not a point of it ahead or behind, is ae.
   PassTracker tracker(10, 40, 1 << 16);
   const auto path = circles({20.7, 20, 19.3}, 0, {0, 0, 1});
   const auto found = track(tracker, path);
   for (std::size_t i = 0; i < path.size(); ++i) {
     if (path[i].pass == 0) continue;
-    const double outer = path[i].pass == 1 ? 20.7 : 20;
-    ASSERT_GT(outer * std::sin(3 * pi / 180), 1);
-    ASSERT_LT(outer * std::sin(2 * pi / 180), 1);
     ASSERT_TRUE(found[i]) << i;
-    EXPECT_NEAR(found[i]->ae, 0.7 - outer * (1 - std::cos(2 * pi / 180)), 1e-9) << i;
+    EXPECT_NEAR(found[i]->ae, 0.7, 1e-9) << i;
     EXPECT_EQ(found[i]->side, Side::right) << i;  // outside an anticlockwise feed
   }
 }
@@ -273,6 +271,108 @@ TEST(PassTrackerGeometry, ZLevelPassesOnACylinderWallMeasureTheStepDown) {
     EXPECT_EQ(found[i]->side, Side::left) << i;
     EXPECT_NEAR(found[i]->point.z(), path[i].cc.z() + 0.7, 1e-9) << i;
   }
+}
+
+// A ball raster of the sample generator against the exact width of cut:
+// for every contact point P of a pass (feed F: the written motion on the
+// tangent plane, as the post takes it), where the previous pass's contact
+// track crosses the plane through P across F, and the distance to that
+// crossing. The track is the exact contact of the ball dropped at every
+// point of that pass's straight xy line (the generator's drop-cutter),
+// found by bisection on the line: no sampled point of the path, no rule
+// of the tracker. The tracker's ae must be that distance, within
+// `tolerance` (it follows straight chords between points at most 0.5 mm
+// apart). On these surfaces the contact track of a pass leans off the
+// written line (the ball's contact moves across it as the normal turns),
+// so other points of the previous pass near the plane lie nearer across
+// F than the crossing.
+void expect_exact_raster_ae(const std::string& part_name, const samplegen::PathSpec& spec,
+                            double tolerance) {
+  const auto part = samplegen::make_part(part_name);
+  ASSERT_TRUE(part) << part_name;
+  const samplegen::SampleSurface& surface = *part->surface;
+  std::vector<samplegen::PathPoint> points;
+  samplegen::generate(surface, spec, 6,
+                      [&](const samplegen::PathPoint& p) { points.push_back(p); });
+  const double radius = spec.tool_radius;
+  PassTracker tracker(2 * radius, 8 * radius, 1 << 16);
+  // Each pass's written line in xy (its first and last point off the link).
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> lines;
+  for (const auto& p : points) {
+    if (p.link) continue;
+    if (static_cast<std::size_t>(p.pass) >= lines.size())
+      lines.emplace_back(p.tip.head<2>(), Eigen::Vector2d::Zero());
+    lines.back().second = p.tip.head<2>();
+  }
+  double worst = 0, sum_below = 0;
+  int checked = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto& p = points[i];
+    const bool starts = p.pass_start || i == 0;
+    Vector3d motion =
+        starts ? Vector3d(points[i + 1].tip - p.tip) : Vector3d(p.tip - points[i - 1].tip);
+    motion -= motion.dot(p.normal) * p.normal;
+    if (starts) tracker.break_pass();
+    const Vector3d feed = motion.normalized();
+    const auto found = tracker.step(p.cc, p.normal, feed);
+    if (p.link || p.pass == 0) continue;
+    // The previous pass's exact contact track where it crosses the plane.
+    const Eigen::Vector2d a = lines[static_cast<std::size_t>(p.pass - 1)].first;
+    const Eigen::Vector2d b = lines[static_cast<std::size_t>(p.pass - 1)].second;
+    const Eigen::Vector2d u = (b - a).normalized();
+    const double length = (b - a).norm();
+    const auto contact = [&](double s) {
+      const auto placed = samplegen::drop_tool(surface, 0, radius, a + s * u, p.uv);
+      return Vector3d(surface.point(placed.uv));
+    };
+    const auto height = [&](double s) { return feed.dot(contact(s) - p.cc); };
+    const double s0 = (p.tip.head<2>() - a).dot(u);
+    double lo = std::max(0.0, s0 - 3), hi = std::min(length, s0 + 3);
+    const double h_lo = height(lo), h_hi = height(hi);
+    if ((h_lo < 0) == (h_hi < 0)) continue;  // the previous pass ends beside P
+    for (int k = 0; k < 60; ++k) {
+      const double mid = (lo + hi) / 2;
+      ((height(mid) < 0) == (h_lo < 0) ? lo : hi) = mid;
+    }
+    const Vector3d d = contact(lo) - p.cc;
+    const double exact = (d - d.dot(feed) * feed).norm();
+    ASSERT_TRUE(found) << part_name << " point " << i;
+    worst = std::max(worst, std::abs(found->ae - exact));
+    sum_below += exact - found->ae;
+    EXPECT_NEAR(found->ae, exact, tolerance)
+        << part_name << " point " << i << " pass " << p.pass << " at " << p.cc.transpose();
+    ++checked;
+  }
+  std::cout << part_name << ": " << checked << " points, ae off the exact by at most " << worst
+            << " mm, " << sum_below / checked << " mm below it on average\n";
+  EXPECT_GT(checked, 500) << part_name;
+}
+
+TEST(PassTrackerGeometry, WavyRasterMeasuresTheExactSpacingOfTheContactTracks) {
+  // The wavy sample's raster along x at ae 0.5 mm over y 10..13 (D 10).
+  const auto part = samplegen::make_part("wavy");
+  samplegen::PathSpec spec;
+  spec.tool_radius = part->tool_diameter / 2;
+  spec.stepover = 0.5;
+  spec.step = 0.5;
+  spec.chord_tolerance = samplegen::kSampleChordTolerance;
+  spec.window = Eigen::AlignedBox2d(Eigen::Vector2d(10, 10), Eigen::Vector2d(110, 13));
+  expect_exact_raster_ae("wavy", spec, 5e-4);
+}
+
+TEST(PassTrackerGeometry, CylinderRasterAt45DegreesMeasuresTheExactSpacingOfTheContactTracks) {
+  // The R100 semi-cylinder's raster at 45 deg to its axis, ae 0.2 (D 12):
+  // the contact tracks lie at 43.3 deg to the axis in xy (their y is the
+  // centre's times 100/106), 1.7 deg off the feed.
+  const auto part = samplegen::make_part("cylinder");
+  samplegen::PathSpec spec;
+  spec.tool_radius = part->tool_diameter / 2;
+  spec.angle_deg = 45;
+  spec.stepover = 0.2;
+  spec.step = 0.5;
+  spec.chord_tolerance = samplegen::kSampleChordTolerance;
+  spec.window = part->raster_window;
+  expect_exact_raster_ae("cylinder", spec, 5e-4);
 }
 
 // The tracker's rule written plainly: every kept point, no index.
@@ -300,17 +400,39 @@ class Reference {
       const Stored& e = stored_[i];
       if (std::abs(e.feed.dot(f)) < cos45) continue;                   // not parallel
       if (e.pass == pass_ && current.path - e.path <= gap_) continue;  // this pass, just behind
-      const double h1 = f.dot(e.point - cc);
+      const auto h = [&](std::size_t j) { return f.dot(stored_[j].point - cc); };
+      const auto crosses = [](double from, double to) {
+        return (from <= 0) != (to <= 0) || to == 0;
+      };
+      // The segment into entry j belongs to an earlier pass's stretch
+      // parallel to the feed (and is looked at for a crossing).
+      const auto segment_into = [&](std::size_t j) {
+        const Stored& s = stored_[j];
+        return j > first && j < stored_.size() && s.joined && std::abs(s.feed.dot(f)) >= cos45 &&
+               !(s.pass == pass_ && current.path - s.path <= gap_);
+      };
+      const double h1 = h(i);
       std::optional<Vector3d> candidate;
-      if (e.joined && i > first) {
+      if (segment_into(i) && crosses(h(i - 1), h1)) {  // crosses the plane across the feed
         const Vector3d& p0 = stored_[i - 1].point;
-        const double h0 = f.dot(p0 - cc);
-        if ((h0 <= 0) != (h1 <= 0) || h1 == 0) {  // crosses the plane across the feed
-          const double t = h0 == h1 ? 1.0 : h0 / (h0 - h1);
-          candidate = p0 + t * (e.point - p0);
+        const double h0 = h(i - 1);
+        const double t = h0 == h1 ? 1.0 : h0 / (h0 - h1);
+        candidate = p0 + t * (e.point - p0);
+      } else if (std::abs(h1) <= 0.1 * radius_) {
+        // Almost abeam: a lone point, or an end of a stretch that does not
+        // cross the plane before it leaves the abeam allowance.
+        const bool before = segment_into(i), after = segment_into(i + 1);
+        bool reaches = before && after;
+        for (std::size_t j = i + 1; after && !before && segment_into(j); ++j) {
+          if (crosses(h(j - 1), h(j))) reaches = true;
+          if (reaches || std::abs(h(j)) > 0.1 * radius_) break;
         }
+        for (std::size_t j = i; before && !after && segment_into(j); --j) {
+          if (crosses(h(j - 1), h(j))) reaches = true;
+          if (reaches || std::abs(h(j - 1)) > 0.1 * radius_) break;
+        }
+        if (!reaches) candidate = e.point;
       }
-      if (!candidate && std::abs(h1) <= 0.1 * radius_) candidate = e.point;  // almost abeam
       if (!candidate) continue;
       const Vector3d d = *candidate - cc;
       const double across = std::hypot(left.dot(d), n.dot(d));

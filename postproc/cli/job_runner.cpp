@@ -268,13 +268,11 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   Eigen::AlignedBox3d plan = model.model->bounds();
   if (settings.normals_from_path) {
     stage = std::chrono::steady_clock::now();
-    post::PathNormalsAhead ahead = located_errors(
-        name, [&] { return post::read_path_normals(text, name, profile, settings); });
-    settings.path_normals =
-        std::make_shared<const std::vector<pipeline::PathNormal>>(std::move(ahead.normals));
-    plan = ahead.bounds;
+    settings.path_normals = std::make_shared<const post::PathNormalsAhead>(located_errors(
+        name, [&] { return post::read_path_normals(text, name, profile, settings); }));
+    plan = settings.path_normals->bounds;
     log().debug("normals from the toolpath: {} points, found in {:.3f} s",
-                settings.path_normals->size(), seconds_since(stage));
+                settings.path_normals->normals.size(), seconds_since(stage));
   }
   if (settings.stock) load_stock_model(args, *settings.stock);
 

@@ -300,7 +300,8 @@ std::optional<Vector3d> two_sided(const Vector3d& t, const Vector3d& d1, const V
 
 std::vector<PathNormal> estimate_path_normals(std::span<const Vector3d> points,
                                               std::span<const std::uint8_t> starts,
-                                              const PathNormalSettings& settings) {
+                                              const PathNormalSettings& settings,
+                                              std::vector<EarlierPass>* earlier_passes) {
   const std::size_t n = points.size();
   std::vector<Tangent> tangents(n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& range) {
@@ -311,6 +312,11 @@ std::vector<PathNormal> estimate_path_normals(std::span<const Vector3d> points,
   tbb::parallel_invoke([&] { earlier = nearest_passes(points, starts, tangents, false, settings); },
                        [&] { later = nearest_passes(points, starts, tangents, true, settings); });
 
+  // The earlier passes as the tracker found them, for the width of cut:
+  // it is measured as the post's own tracker measures it (a pass end abeam
+  // counts), while a normal needs the pass where it crosses the plane.
+  std::vector<Neighbour> tracked;
+  if (earlier_passes != nullptr) tracked = earlier;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& range) {
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
       for (std::vector<Neighbour>* side : {&earlier, &later}) {
@@ -416,6 +422,31 @@ std::vector<PathNormal> estimate_path_normals(std::span<const Vector3d> points,
   });
   for (std::size_t i = 0; i < n; ++i) {
     if (carried[i].source == NormalSource::one_sided) out[i] = carried[i];
+  }
+  if (earlier_passes != nullptr) {
+    // The earlier neighbour on the path surface, with the normal between
+    // those of its segment's ends (either end's where the other has none,
+    // the point's own where neither has: a ring closing on its own start,
+    // whose first points have no pass before them, lies within ae of it).
+    earlier_passes->assign(n, EarlierPass{});
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& range) {
+      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+        const Neighbour& nb = tracked[i];
+        if (!nb.found) continue;
+        const PathNormal& to = out[nb.to];
+        const PathNormal& from = out[nb.from];
+        const bool has_to = to.source != NormalSource::kept;
+        const bool has_from = from.source != NormalSource::kept;
+        if (!has_to && !has_from && out[i].source == NormalSource::kept) continue;
+        const Vector3d m =
+            !has_to && !has_from ? out[i].normal
+            : !has_from          ? to.normal
+            : !has_to            ? from.normal
+                      : Vector3d(nb.fraction * to.normal + (1 - nb.fraction) * from.normal);
+        if (m.norm() < 0.5) continue;
+        (*earlier_passes)[i] = {on_surface(nb, points, starts, tangents), m.normalized(), true};
+      }
+    });
   }
   return out;
 }

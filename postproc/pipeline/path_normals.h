@@ -37,6 +37,16 @@ struct PathNormal {
   NormalSource source = NormalSource::kept;
 };
 
+// The nearest earlier pass beside a point as the forward pass tracker
+// found it (where it crosses the plane across the feed, or a pass end
+// abeam: the post's own tracker's rule), what its width of cut is measured
+// to: that point on the path surface, and the normal there.
+struct EarlierPass {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  bool found = false;  // none, or no normal there nor at the point
+};
+
 struct PathNormalCounts {
   std::uint64_t two_sided = 0, one_sided = 0, kept = 0;
   PathNormalCounts& operator+=(const PathNormalCounts& other);
@@ -58,9 +68,12 @@ struct PathNormalSettings {
 // point by two pass trackers, the normals) run on the calling thread's
 // task arena in parallel. REQUIRES: starts.size() == points.size(),
 // search_radius > 0.
+// With `earlier` given: also the nearest earlier pass of every point
+// (the width of cut without a second tracker).
 std::vector<PathNormal> estimate_path_normals(std::span<const Eigen::Vector3d> points,
                                               std::span<const std::uint8_t> starts,
-                                              const PathNormalSettings& settings);
+                                              const PathNormalSettings& settings,
+                                              std::vector<EarlierPass>* earlier = nullptr);
 
 PathNormalCounts count_sources(std::span<const PathNormal> normals);
 

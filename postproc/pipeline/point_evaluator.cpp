@@ -146,13 +146,46 @@ void PointEvaluator::place(const PathSample& sample, PointResult& out) {
   // are followed by the tool's own position (on the wavy raster their
   // contact points gave ae 0.016-0.1 mm for a 0.077 mm stepover, and the
   // tracker looked at 400 runs a step instead of 6).
-  const geometry::Tool& tool = settings_.tool;
-  const Eigen::Vector3d tracked =
-      tool.kind == geometry::ToolKind::ball
-          ? out.contact.contact->point
-          : geometry::tool_origin(sample.point, tool, settings_.cl_point);
-  const auto neighbour = out.feed.isZero() ? std::nullopt : tracker_.step(tracked, n, out.feed);
+  const auto neighbour =
+      out.feed.isZero() ? std::nullopt : tracker_.step(tracked(sample, out.contact), n, out.feed);
+  set_ae(neighbour, out);
+}
 
+Eigen::Vector3d PointEvaluator::tracked(const PathSample& sample,
+                                        const geometry::BallContact& contact) const {
+  const geometry::Tool& tool = settings_.tool;
+  return tool.kind == geometry::ToolKind::ball
+             ? contact.contact->point
+             : geometry::tool_origin(sample.point, tool, settings_.cl_point);
+}
+
+void PointEvaluator::place(const PathSample& sample, PointResult& out,
+                           const EarlierPass& earlier) const {
+  if (!cuts(out.contact)) return;
+  const Eigen::Vector3d& n = out.contact.normal;
+  out.feed = feed_on_surface(sample.direction, n);
+  std::optional<NeighbourPass> neighbour;
+  if (earlier.found && !out.feed.isZero()) {
+    // The tracker's measure (pass_tracker.h) on the earlier pass's point:
+    // the distance across the feed between the points the passes follow.
+    PathSample beside = sample;
+    beside.point = earlier.point;
+    const geometry::BallContact there =
+        contact(beside, PathNormal{earlier.normal, NormalSource::two_sided});
+    if (there.contact) {
+      const Eigen::Vector3d d = tracked(beside, there) - tracked(sample, out.contact);
+      const double across = (d - d.dot(out.feed) * out.feed).norm();
+      if (across > 1e-9 && across <= settings_.tool.diameter) {
+        neighbour = NeighbourPass{
+            across, n.cross(out.feed).dot(d) >= 0 ? geometry::Side::left : geometry::Side::right,
+            earlier.point};
+      }
+    }
+  }
+  set_ae(neighbour, out);
+}
+
+void PointEvaluator::set_ae(const std::optional<NeighbourPass>& neighbour, PointResult& out) const {
   if (settings_.ae && (settings_.ae_override || !neighbour)) {
     out.ae = *settings_.ae;
     out.ae_source = AeSource::given;

@@ -107,6 +107,10 @@ class PointEvaluator {
   // Feed on the tangent plane, the neighbouring pass, ae and side; leaves
   // the engagement empty (and the tool not cutting stays so).
   void place(const PathSample& sample, PointResult& result);
+  // Without a model: as place(), ae measured to the earlier pass the
+  // normals' read-ahead found beside the sample (path_normals.h), instead
+  // of this evaluator's own pass tracker.
+  void place(const PathSample& sample, PointResult& result, const EarlierPass& earlier) const;
   // Engagement, d_ref and target of a placed result that cuts.
   void engage(const PathSample& sample, PointResult& result) const;
 
@@ -125,6 +129,10 @@ class PointEvaluator {
   const geometry::ContactHint& hint() const { return hint_; }
 
  private:
+  // The point the passes are followed by (place()).
+  Eigen::Vector3d tracked(const PathSample& sample, const geometry::BallContact& contact) const;
+  // ae, its source and the side from the earlier pass (or none).
+  void set_ae(const std::optional<NeighbourPass>& neighbour, PointResult& out) const;
   const geometry::SurfaceModel& model_;
   PointSettings settings_;
   geometry::CuttingPointsWanted cutting_points_;  // decided once from settings_

@@ -63,6 +63,8 @@ PathNormalsAhead normals_from_path(std::string_view text, const std::string& fil
   }
   std::vector<pipeline::PathNormal> at_ends;
   at_ends.reserve(points.size());
+  std::vector<pipeline::EarlierPass> earlier_at_ends, earlier_found;
+  earlier_at_ends.reserve(points.size());
   for (std::size_t r = 0; r < runs.size(); ++r) {
     const std::size_t begin = runs[r].begin;
     const std::size_t end = r + 1 < runs.size() ? runs[r + 1].begin : points.size();
@@ -71,11 +73,32 @@ PathNormalsAhead normals_from_path(std::string_view text, const std::string& fil
     path_settings.min_path_gap = 4 * runs[r].diameter;  // as the post's own pass tracker
     const auto found = pipeline::estimate_path_normals(
         std::span(points).subspan(begin, end - begin),
-        std::span(starts).subspan(begin, end - begin), path_settings);
+        std::span(starts).subspan(begin, end - begin), path_settings, &earlier_found);
     at_ends.insert(at_ends.end(), found.begin(), found.end());
+    earlier_at_ends.insert(earlier_at_ends.end(), earlier_found.begin(), earlier_found.end());
   }
-  PathNormalsAhead ahead{std::vector<pipeline::PathNormal>(places.size()), bounds};
+  PathNormalsAhead ahead{std::vector<pipeline::PathNormal>(places.size()),
+                         std::vector<pipeline::EarlierPass>(places.size()), bounds};
   std::vector<pipeline::PathNormal>& normals = ahead.normals;
+  for (std::size_t i = 0; i < places.size(); ++i) {
+    // The earlier pass of a sample inside a move: between its ends' (or
+    // the one end's that has one; ae is measured across the feed, so a
+    // point a little along it still serves).
+    const Place& p = places[i];
+    if (p.fraction >= 1 || p.end + 1 >= earlier_at_ends.size()) {
+      ahead.earlier[i] = earlier_at_ends[p.end];
+      continue;
+    }
+    const pipeline::EarlierPass& a = earlier_at_ends[p.end];
+    const pipeline::EarlierPass& b = earlier_at_ends[p.end + 1];
+    if (!a.found || !b.found) {
+      ahead.earlier[i] = a.found ? a : b;
+      continue;
+    }
+    const Eigen::Vector3d m = (1 - p.fraction) * a.normal + p.fraction * b.normal;
+    if (m.norm() < 0.5) continue;
+    ahead.earlier[i] = {(1 - p.fraction) * a.point + p.fraction * b.point, m.normalized(), true};
+  }
   for (std::size_t i = 0; i < places.size(); ++i) {
     const Place& p = places[i];
     if (p.fraction >= 1 || p.end + 1 >= at_ends.size()) {

@@ -536,15 +536,15 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
   tbb::task_arena arena(threads);
 
   // Read ahead by the caller (read_path_normals), or here.
-  std::shared_ptr<const std::vector<pipeline::PathNormal>> path_normals = settings.path_normals;
+  std::shared_ptr<const PathNormalsAhead> path_normals = settings.path_normals;
   if (settings.normals_from_path) {
     if (!path_normals) {
       arena.execute([&] {
-        path_normals = std::make_shared<const std::vector<pipeline::PathNormal>>(
-            normals_from_path(text, file_name, kind, dialect, profile, settings, choices).normals);
+        path_normals = std::make_shared<const PathNormalsAhead>(
+            normals_from_path(text, file_name, kind, dialect, profile, settings, choices));
       });
     }
-    summary.path_normals = pipeline::count_sources(*path_normals);
+    summary.path_normals = pipeline::count_sources(path_normals->normals);
   }
   std::unique_ptr<StockTimeline> stock;
   if (settings.stock) {
@@ -578,7 +578,7 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
       const pipeline::PointEvaluator& evaluator = *chunk->evaluator(slot.section);
       pipeline::PointResult& result = chunk->results.emplace_back();
       if (settings.normals_from_path) {
-        const pipeline::PathNormal& normal = path_normals->at(sample++);
+        const pipeline::PathNormal& normal = path_normals->normals.at(sample++);
         result.contact = evaluator.contact(slot.sample, normal);
         result.normal_source = normal.source;
       } else {
@@ -593,8 +593,16 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
       pipeline::PointEvaluator* evaluator = chunk->evaluator(slot.section);
       if (evaluator == nullptr) continue;  // a section not posted: no pass, no sample
       if (slot.break_pass) evaluator->break_pass();
-      if (slot.kind == SlotKind::sample)
-        evaluator->place(slot.sample, chunk->results[sample_index++]);
+      if (slot.kind != SlotKind::sample) continue;
+      pipeline::PointResult& result = chunk->results[sample_index];
+      if (settings.normals_from_path) {
+        // The earlier pass the normals' read-ahead found: no second tracker.
+        evaluator->place(slot.sample, result,
+                         path_normals->earlier.at(chunk->first_sample + sample_index));
+      } else {
+        evaluator->place(slot.sample, result);
+      }
+      ++sample_index;
     }
     return chunk;
   };

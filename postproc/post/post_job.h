@@ -34,6 +34,16 @@ namespace vcpost::post {
 // tool change form. The tolerance stays the default.
 verify::Options cl_output_verify_options(const machines::MachineProfile& profile);
 
+// Without a model: the normal at every sample of the posted sections, in
+// path order (path_normal_reader.h), the earlier pass beside it (its width
+// of cut is measured to), and the bounds of those samples' programmed
+// points (empty: none).
+struct PathNormalsAhead {
+  std::vector<pipeline::PathNormal> normals;
+  std::vector<pipeline::EarlierPass> earlier;
+  Eigen::AlignedBox3d bounds;
+};
+
 struct PostSettings {
   // Every posted section's settings but its tool and vc, which come from
   // `tools` section by section. Without `tools`, point.tool is every
@@ -55,7 +65,7 @@ struct PostSettings {
   // With normals_from_path: the normals read ahead by the caller
   // (read_path_normals) for the same text and settings; empty: the job
   // reads them itself.
-  std::shared_ptr<const std::vector<pipeline::PathNormal>> path_normals;
+  std::shared_ptr<const PathNormalsAhead> path_normals;
   // An in-process stock (docs/stock.md): ap at each untilted point of the
   // evaluated sections from the material the earlier sections left, instead
   // of point.ap; none: point.ap everywhere.
@@ -150,15 +160,9 @@ std::optional<ToolSection> first_postable_section(std::string_view text,
                                                   const machines::MachineProfile& profile,
                                                   const PostSettings& settings);
 
-// Without a model (PostSettings::normals_from_path): the normal at every
-// sample of the posted sections, in path order (path_normal_reader.h), and
-// the bounds of those samples' programmed points (empty: none), read ahead
-// of the job: for a report, whose top views span the path, and for
-// PostSettings::path_normals. Throws as post_program's reading does.
-struct PathNormalsAhead {
-  std::vector<pipeline::PathNormal> normals;
-  Eigen::AlignedBox3d bounds;
-};
+// Without a model (PostSettings::normals_from_path): read ahead of the job
+// for PostSettings::path_normals, and for a report, whose top views span
+// the path. Throws as post_program's reading does.
 PathNormalsAhead read_path_normals(std::string_view text, const std::string& file_name,
                                    const machines::MachineProfile& profile,
                                    const PostSettings& settings);

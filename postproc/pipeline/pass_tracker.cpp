@@ -823,8 +823,13 @@ void PassTracker::search_outwards(Search& s) {
     const bool small = first && reach <= nearby_reach * cell_;
     bool listed = small && nearby_covers(cc, feed, reach, abeam_);
     if (small && !listed) {
+      // Steps longer than a cell (long moves of a program read without a
+      // model: 10 mm on NX's finishing profile) would stretch the list's
+      // box with them, across as well, to hundreds of thousands of cells;
+      // such steps outrun any list, each takes one of its own.
       const Entry* last = next_ > 0 ? entry(next_ - 1) : nullptr;
-      const double step = last && s.current.joined ? s.current.path - last->path : 0.0;
+      const double step =
+          last && s.current.joined ? std::min(s.current.path - last->path, cell_) : 0.0;
       fill_nearby(cc, s.normal, feed, reach + nearby_across * std::max(reach, step),
                   abeam_ * (1 + nearby_behind),
                   abeam_ + std::max(nearby_ahead * abeam_, nearby_steps * step));

@@ -10,8 +10,6 @@ namespace vcpost::heidenhain {
 
 namespace {
 
-Eigen::Vector2d left_normal(const Eigen::Vector2d& d) { return {-d.y(), d.x()}; }
-
 Eigen::Vector2d turned(const Eigen::Vector2d& v, double degrees) {
   return Eigen::Rotation2Dd(degrees * kDeg) * v;
 }

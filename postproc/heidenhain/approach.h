@@ -14,6 +14,9 @@
 
 namespace vcpost::heidenhain {
 
+// `d` turned by +90 degrees: the normal on the left of a direction.
+inline Eigen::Vector2d left_normal(const Eigen::Vector2d& d) { return {-d.y(), d.x()}; }
+
 enum class ContourLink : std::uint8_t {
   line_tangent,    // LT: on the tangent's extension, LEN from the contour
   line_normal,     // LN: on the normal, LEN from the contour

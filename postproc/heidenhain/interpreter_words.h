@@ -15,6 +15,7 @@
 #include <optional>
 #include <vector>
 
+#include "postproc/heidenhain/approach.h"
 #include "postproc/heidenhain/interpreter.h"
 #include "postproc/program/events.h"
 
@@ -63,7 +64,6 @@ enum class MAction {
 };
 
 inline Eigen::Vector2d xy(const Eigen::Vector3d& p) { return {p.x(), p.y()}; }
-inline Eigen::Vector2d left_normal(const Eigen::Vector2d& d) { return {-d.y(), d.x()}; }
 
 // Direction of an arc's tangent at `p` (unit, XY), rotation +1 ccw.
 inline Eigen::Vector2d arc_tangent(const Eigen::Vector2d& centre, const Eigen::Vector2d& p,

@@ -69,7 +69,7 @@ Error error_from_message(const std::string& what) {
 
 Error error_from(const vcpost::Error& error, const std::string& program_file) {
   const std::string what = error.what();
-  const std::string code(error.code());
+  const std::string code(error.id());
   const Severity severity =
       error.severity() == vcpost::Severity::error ? Severity::error : Severity::warning;
   SourceLocation where = error.where();
@@ -84,8 +84,8 @@ Error error_from(const vcpost::Error& error, const std::string& program_file) {
   const std::size_t at = what.find(marker);
   const std::string message = at == std::string::npos ? what : what.substr(at + marker.size());
   if (where.file.empty()) where.file = program_file;
-  return Error(format_diagnostic(code, where, message), code, message, where.file, where.line,
-               where.column, std::string(error.hint()), severity);
+  return Error(format_diagnostic(error.code(), where, message), code, message, where.file,
+               where.line, where.column, std::string(error.hint()), severity);
 }
 
 }  // namespace vcpost::api

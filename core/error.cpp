@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <ostream>
 
 namespace vcpost {
 
@@ -10,6 +11,12 @@ namespace {
 constexpr CodeInfo kTable[] = {
 #include "core/error_table.inc"
 };
+
+// code_info indexes the table by the enumerator: row i is Code(i).
+static_assert(std::size(kTable) == kCodeCount);
+static_assert(std::ranges::all_of(kTable, [](const CodeInfo& row) {
+  return &row - std::begin(kTable) == static_cast<std::ptrdiff_t>(row.code);
+}));
 
 }  // namespace
 
@@ -28,13 +35,13 @@ const CodeInfo* find_code(std::string_view id) {
   return it == std::end(kTable) ? nullptr : &*it;
 }
 
-const CodeInfo& code_info(std::string_view id) {
-  if (const CodeInfo* row = find_code(id)) return *row;
-  return *find_code("E9999");
-}
+const CodeInfo& code_info(Code code) { return kTable[static_cast<std::size_t>(code)]; }
 
-std::string format_diagnostic(std::string_view code, const SourceLocation& where,
-                              std::string_view message) {
+std::string_view to_string(Code code) { return code_info(code).id; }
+
+std::ostream& operator<<(std::ostream& out, Code code) { return out << to_string(code); }
+
+std::string format_diagnostic(Code code, const SourceLocation& where, std::string_view message) {
   std::string out = where.file;
   if (where.line > 0) {
     if (!out.empty()) out += ':';
@@ -42,15 +49,16 @@ std::string format_diagnostic(std::string_view code, const SourceLocation& where
     if (where.column > 0) out += ':' + std::to_string(where.column);
   }
   if (!out.empty()) out += ": ";
-  out += to_string(code_info(code).severity);
+  const CodeInfo& row = code_info(code);
+  out += to_string(row.severity);
   out += '[';
-  out += code;
+  out += row.id;
   out += "]: ";
   out += message;
   return out;
 }
 
-Error::Error(std::string_view code, const std::string& text, SourceLocation where, std::string hint)
+Error::Error(Code code, const std::string& text, SourceLocation where, std::string hint)
     : std::runtime_error(text),
       info_(&code_info(code)),
       where_(std::move(where)),

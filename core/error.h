@@ -1,8 +1,10 @@
 // One error type and one table of diagnostic codes for all of vcpost.
 //
 // The table is data: core/error_codes.csv (code, name, exit status, summary,
-// what to do), compiled into the lookup below and into docs/errors.md at
-// build time. Every error vcpost reports is a vcpost::Error (or a subclass
+// what to do), compiled at build time into the enum vcpost::Code
+// (core/code.h: Code::E1403, Code::W1402 ...), the lookup below and
+// docs/errors.md. Modules name a code by its enumerator only, so a code not
+// in the table does not compile. Every error vcpost reports is a vcpost::Error (or a subclass
 // of it that adds the module's own typed fields) carrying a code from that
 // table; the command line turns it into one line on stderr and the table's
 // exit status. Anything else that escapes is an internal error (exit 3).
@@ -12,11 +14,13 @@
 #pragma once
 
 #include <cstdint>
+#include <iosfwd>
 #include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 
+#include "core/code.h"  // generated from core/error_codes.csv
 #include "vcpost/severity.h"
 
 namespace vcpost {
@@ -25,6 +29,7 @@ std::string_view to_string(Severity severity);  // "error", "warning"
 
 // One row of the code table.
 struct CodeInfo {
+  Code code;                 // Code::E1403
   std::string_view id;       // "E1403"
   std::string_view name;     // "modal_group_conflict"
   Severity severity;         // E... error, W... warning
@@ -36,12 +41,16 @@ struct CodeInfo {
 // The whole table, in code order.
 std::span<const CodeInfo> code_table();
 
-// The row of `id` ("E1403"; case-insensitive), or nullptr when no such code.
+// The row of `id` ("E1403"; case-insensitive), or nullptr when no such code
+// (for codes the user types, as `vcpost explain`'s).
 const CodeInfo* find_code(std::string_view id);
 
-// The row of `id`, which must be in the table; an unknown id gives the row
-// of E9999 (internal error), so a slip never hides the error itself.
-const CodeInfo& code_info(std::string_view id);
+// The row of `code`.
+const CodeInfo& code_info(Code code);
+
+// "E1403": the code as users see it. Tests print it too.
+std::string_view to_string(Code code);
+std::ostream& operator<<(std::ostream& out, Code code);
 
 // Where a diagnostic points. line and column are 1-based; 0 = not known.
 struct SourceLocation {
@@ -52,8 +61,7 @@ struct SourceLocation {
 
 // "file:line:col: error[E1403]: message"; ":line:col" is left out when line
 // is 0 (":col" when column is 0), "file:" when file is empty.
-std::string format_diagnostic(std::string_view code, const SourceLocation& where,
-                              std::string_view message);
+std::string format_diagnostic(Code code, const SourceLocation& where, std::string_view message);
 
 // The error every module throws (directly or through a subclass). what() is
 // the whole text the user sees after "vcpost: error: ".
@@ -62,10 +70,10 @@ class Error : public std::runtime_error {
   // `text` is the complete message (modules that format their own
   // "file:line:col: error[...]" prefix pass it whole); `where` tells tools
   // the position; `hint` overrides the table's "what to do".
-  Error(std::string_view code, const std::string& text, SourceLocation where = {},
-        std::string hint = {});
+  Error(Code code, const std::string& text, SourceLocation where = {}, std::string hint = {});
 
-  std::string_view code() const { return info_->id; }
+  Code code() const { return info_->code; }
+  std::string_view id() const { return info_->id; }  // "E1403"
   const CodeInfo& info() const { return *info_; }
   Severity severity() const { return info_->severity; }
   int exit_code() const { return info_->exit_code; }

@@ -22,7 +22,7 @@ inline std::string run_cldata(std::string_view text) {
       clock.advance(*event);
     }
   } catch (const cldata::ClError& e) {
-    return std::string(cldata::info(e.code()).id);
+    return std::string(e.id());
   } catch (const program::TimingError&) {
     return "timing";
   }

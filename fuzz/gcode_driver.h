@@ -59,7 +59,7 @@ inline std::string run_gcode(std::string_view text, const gcode::Dialect& dialec
       if (offsets.size() < 64) offsets.push_back(interpreter.block().offset);
     }
   } catch (const gcode::GcodeError& e) {
-    outcome = gcode::code_id(e.diagnostic().code, e.diagnostic().severity);
+    outcome = std::string(to_string(e.diagnostic().code));
   } catch (const program::TimingError&) {
     outcome = "timing";
   }

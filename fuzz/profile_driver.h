@@ -23,7 +23,7 @@ inline std::string run_profile(std::string_view text) {
     }
     if (once != twice) throw FuzzFinding("profile changed in its TOML round trip");
   } catch (const machines::ProfileError& e) {
-    return e.code();
+    return std::string(e.id());
   }
   return "ok";
 }

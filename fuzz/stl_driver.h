@@ -17,7 +17,7 @@ inline std::string run_stl(std::string_view bytes) {
   try {
     mesh = mesh::parse_stl(bytes, "fuzz.stl");
   } catch (const mesh::StlError& e) {
-    return mesh::code_id(e.code());
+    return std::string(e.id());
   }
   for (const auto& v : mesh.vertices) {
     if (!v.allFinite()) throw FuzzFinding("STL vertex not finite");

@@ -36,10 +36,9 @@ inline bool within_budget(std::string_view text, const gcode::Dialect& dialect) 
       if (blocks > 200'000) return false;
     }
   } catch (const gcode::GcodeError& e) {
-    return e.diagnostic().code != gcode::Code::loop_limit &&
-           e.diagnostic().code != gcode::Code::block_limit &&
-           e.diagnostic().code != gcode::Code::cycle_moves &&
-           e.diagnostic().code != gcode::Code::call_depth;
+    return e.diagnostic().code != vcpost::Code::E1307 &&
+           e.diagnostic().code != vcpost::Code::E1309 &&
+           e.diagnostic().code != vcpost::Code::E1308 && e.diagnostic().code != vcpost::Code::E1304;
   }
   return true;
 }
@@ -47,7 +46,7 @@ inline bool within_budget(std::string_view text, const gcode::Dialect& dialect) 
 // verify's documented refusal of an input that does not read: the G-code
 // (E1...) or CL (E3...) reader's error, passed on as a vcpost::Error.
 inline bool reader_refusal(const vcpost::Error& e) {
-  return e.code().starts_with("E1") || e.code().starts_with("E3");
+  return e.id().starts_with("E1") || e.id().starts_with("E3");
 }
 
 // With the separator: verifies the two halves as G-code and as CL in /

@@ -15,12 +15,8 @@
 namespace vcpost::geometry {
 namespace {
 
-std::string_view code_text(TransformErrorCode code) {
-  return code == TransformErrorCode::syntax ? "E4110" : "E4111";
-}
-
 [[noreturn]] void fail_syntax(const std::string& message) {
-  throw TransformError(TransformErrorCode::syntax, "--model-transform: " + message);
+  throw TransformError(Code::E4110, "--model-transform: " + message);
 }
 
 std::vector<std::string_view> split(std::string_view text) {
@@ -60,9 +56,6 @@ std::pair<double, double> cos_sin(double degrees) {
 
 }  // namespace
 
-TransformError::TransformError(TransformErrorCode code, const std::string& message)
-    : vcpost::Error(code_text(code), message), code_(code) {}
-
 RigidTransform turn_about(int axis, double degrees) {
   const auto [c, s] = cos_sin(degrees);
   const int a = (axis + 1) % 3, b = (axis + 2) % 3;
@@ -93,7 +86,7 @@ RigidTransform rigid_from_matrix(const Eigen::Matrix4d& matrix) {
   if (why.tellp() == 0 && !(shift.cwiseAbs().maxCoeff() <= kMaxReachMm))
     why << "its shift reaches beyond 100000 mm";
   if (why.tellp() != 0) {
-    throw TransformError(TransformErrorCode::not_rigid,
+    throw TransformError(Code::E4111,
                          "--model-transform: the matrix is not a rigid transform: " + why.str());
   }
   // The nearest rotation (R = U V^T), so that typed decimals leave no scale.

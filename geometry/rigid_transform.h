@@ -46,18 +46,11 @@ RigidTransform turn_about(int axis, double degrees);
 // typed with 6 decimals pass; the rotation is then made exactly orthonormal.
 inline constexpr double kRigidTolerance = 1e-5;
 
-enum class TransformErrorCode {
-  syntax,     // E4110: the text is not a list of steps
-  not_rigid,  // E4111: a matrix that scales, shears, mirrors or projects
-};
-
+// E4110: the text is not a list of steps; E4111: a matrix that scales,
+// shears, mirrors or projects.
 class TransformError : public vcpost::Error {
  public:
-  TransformError(TransformErrorCode code, const std::string& message);
-  TransformErrorCode code() const { return code_; }
-
- private:
-  TransformErrorCode code_;
+  TransformError(Code code, const std::string& message) : vcpost::Error(code, message) {}
 };
 
 // The rigid transform of a 4x4 matrix (row-major text order: r11 r12 r13

@@ -13,11 +13,10 @@
 
 namespace vcpost::machines {
 
-ProfileError::ProfileError(std::string code, std::string file, std::uint32_t line,
-                           std::uint32_t column, const std::string& message)
+ProfileError::ProfileError(Code code, std::string file, std::uint32_t line, std::uint32_t column,
+                           const std::string& message)
     : vcpost::Error(code, format_diagnostic(code, {file, line, column}, message),
                     {file, line, column}),
-      code_(std::move(code)),
       file_(std::move(file)),
       line_(line),
       column_(column) {}
@@ -133,9 +132,9 @@ class Reader {
  public:
   Reader(const toml::table& root, const std::string& file) : root_(root), file_(file) {}
 
-  [[noreturn]] void fail(std::string_view code, const toml::source_region& where,
+  [[noreturn]] void fail(Code code, const toml::source_region& where,
                          const std::string& message) const {
-    throw ProfileError(std::string(code), file_, where.begin.line, where.begin.column, message);
+    throw ProfileError(code, file_, where.begin.line, where.begin.column, message);
   }
 
   // Rejects tables and keys outside the schema, in the order of the file.
@@ -143,11 +142,11 @@ class Reader {
     for (const auto& [key, node] : root_) {
       const std::string_view name = key.str();
       if (std::find(kTables.begin(), kTables.end(), name) == kTables.end()) {
-        fail(codes::unknown_key, key.source(),
+        fail(Code::E5002, key.source(),
              cat({"unknown table '", name, "' (known: ", join(kTables), ")"}));
       }
       if (!node.is_table()) {
-        fail(codes::wrong_type, key.source(), cat({"'", name, "' must be a table ([", name, "])"}));
+        fail(Code::E5003, key.source(), cat({"'", name, "' must be a table ([", name, "])"}));
       }
       if (name == "sources") continue;
       std::vector<std::string_view> known;
@@ -158,7 +157,7 @@ class Reader {
       for (const auto& item : *node.as_table()) {
         const toml::key& sub = item.first;
         if (std::find(known.begin(), known.end(), sub.str()) == known.end()) {
-          fail(codes::unknown_key, sub.source(),
+          fail(Code::E5002, sub.source(),
                cat({"unknown key '", name, ".", sub.str(), "' (known in [", name,
                     "]: ", join(known), ")"}));
         }
@@ -179,10 +178,10 @@ class Reader {
       if (!t) {
         toml::source_region start;
         start.begin = {1, 1};
-        fail(codes::missing_key, start,
+        fail(Code::E5004, start,
              cat({"missing table [", tbl, "] (needed for ", quoted(tbl, key), ")"}));
       }
-      fail(codes::missing_key, t->source(), cat({"missing required key ", quoted(tbl, key)}));
+      fail(Code::E5004, t->source(), cat({"missing required key ", quoted(tbl, key)}));
     }
     return n;
   }
@@ -196,11 +195,9 @@ class Reader {
     } else if (const auto* f = n->as_floating_point()) {
       v = f->get();
     } else {
-      fail(codes::wrong_type, n->source(),
-           quoted(tbl, key) + " must be a number, not " + type_name(*n));
+      fail(Code::E5003, n->source(), quoted(tbl, key) + " must be a number, not " + type_name(*n));
     }
-    if (!std::isfinite(v))
-      fail(codes::out_of_range, n->source(), quoted(tbl, key) + " must be finite");
+    if (!std::isfinite(v)) fail(Code::E5005, n->source(), quoted(tbl, key) + " must be finite");
     return v;
   }
 
@@ -209,15 +206,14 @@ class Reader {
     const auto* n = node(tbl, key, required);
     if (!n) return std::nullopt;
     if (const auto* i = n->as_integer()) return i->get();
-    fail(codes::wrong_type, n->source(),
-         quoted(tbl, key) + " must be an integer, not " + type_name(*n));
+    fail(Code::E5003, n->source(), quoted(tbl, key) + " must be an integer, not " + type_name(*n));
   }
 
   std::optional<bool> boolean(std::string_view tbl, std::string_view key, bool required) const {
     const auto* n = node(tbl, key, required);
     if (!n) return std::nullopt;
     if (const auto* b = n->as_boolean()) return b->get();
-    fail(codes::wrong_type, n->source(),
+    fail(Code::E5003, n->source(),
          quoted(tbl, key) + " must be true or false, not " + type_name(*n));
   }
 
@@ -226,13 +222,12 @@ class Reader {
     const auto* n = node(tbl, key, required);
     if (!n) return std::nullopt;
     if (const auto* s = n->as_string()) return s->get();
-    fail(codes::wrong_type, n->source(),
-         quoted(tbl, key) + " must be a string, not " + type_name(*n));
+    fail(Code::E5003, n->source(), quoted(tbl, key) + " must be a string, not " + type_name(*n));
   }
 
   // Range checks on a key already read (it exists).
   void require(bool ok, std::string_view tbl, std::string_view key, const std::string& reason,
-               std::string_view code = codes::out_of_range) const {
+               Code code = Code::E5005) const {
     if (ok) return;
     fail(code, node(tbl, key, true)->source(), quoted(tbl, key) + " " + reason);
   }
@@ -245,7 +240,7 @@ class Reader {
       if (name == value) return e;
     std::vector<std::string_view> list;
     for (const auto& [name, e] : names) list.push_back(name);
-    fail(codes::bad_choice, node(tbl, key, true)->source(),
+    fail(Code::E5007, node(tbl, key, true)->source(),
          quoted(tbl, key) + " is \"" + value + "\", not one of: " + join(list));
   }
 
@@ -295,7 +290,7 @@ void require_ordered(const Reader& r, std::string_view tbl, std::string_view lo_
   r.require(lo <= hi, tbl, lo_key,
             cat({"(", number_text(lo), ") is greater than ", tbl, ".", hi_key, " (",
                  number_text(hi), ")"}),
-            codes::inconsistent);
+            Code::E5006);
 }
 
 constexpr std::array<std::pair<std::string_view, Dialect>, 5> kDialects = {
@@ -396,7 +391,7 @@ SpindleSpec read_spindle(const Reader& r) {
   r.require(
       std::ceil(s.n_min_rpm / s.s_resolution_rpm) <= std::floor(s.n_max_rpm / s.s_resolution_rpm),
       "spindle", "s_resolution_rpm", "leaves no S value between n_min_rpm and n_max_rpm",
-      codes::inconsistent);
+      Code::E5006);
   s.min_change_rpm = *r.number("spindle", "min_change_rpm", true);
   r.require(s.min_change_rpm >= 0, "spindle", "min_change_rpm", "must be >= 0 rpm");
   r.require(s.min_change_rpm <= s.n_max_rpm, "spindle", "min_change_rpm",
@@ -414,10 +409,10 @@ SpindleSpec read_spindle(const Reader& r) {
   if (s.change_in_motion == SChangeInMotion::code) {
     r.require(!s.change_code.empty(), "spindle", "change_in_motion",
               "is \"code\", but spindle.change_code does not name the code (e.g. \"G117\")",
-              codes::inconsistent);
+              Code::E5006);
   } else if (!s.change_code.empty()) {
     r.require(false, "spindle", "change_code",
-              "is only meaningful with change_in_motion = \"code\"", codes::inconsistent);
+              "is only meaningful with change_in_motion = \"code\"", Code::E5006);
   }
   s.stops_path_on_change = *r.boolean("spindle", "stops_path_on_change", true);
   if (const auto v = r.number("spindle", "stop_cost_s", false)) {
@@ -435,7 +430,7 @@ SpindleSpec read_spindle(const Reader& r) {
     r.require(s.s_in_feed == SInFeed::never || s.stops_path_on_change, "spindle", "s_in_feed",
               "is \"priced\", but the path does not stop at an S word "
               "(stops_path_on_change = false): every block may take one",
-              codes::inconsistent);
+              Code::E5006);
   }
   return s;
 }
@@ -487,15 +482,15 @@ std::string coolant_code(const Reader& r, std::string_view key, std::string fall
   const auto* end = text->data() + text->size();
   const bool is_m = text->size() >= 2 && text->size() <= 4 && (*text)[0] == 'M' &&
                     std::from_chars(text->data() + 1, end, m).ptr == end;
-  r.require(is_m, "output", key, "must be an M code such as \"M8\"", codes::bad_choice);
+  r.require(is_m, "output", key, "must be an M code such as \"M8\"", Code::E5007);
   if (format == OutputFormat::rs274ngc) {
     r.require(m >= 7 && m <= 9, "output", key,
-              "must be M7, M8 or M9 with output_format \"rs274ngc\"", codes::bad_choice);
+              "must be M7, M8 or M9 with output_format \"rs274ngc\"", Code::E5007);
   }
   constexpr std::array<int, 10> kTaken = {0, 1, 2, 3, 4, 5, 6, 30, 98, 99};
   r.require(std::find(kTaken.begin(), kTaken.end(), m) == kTaken.end(), "output", key,
             "is " + *text + ", a code with another meaning (stop, end, spindle, tool change, call)",
-            codes::bad_choice);
+            Code::E5007);
   return *text;
 }
 
@@ -542,12 +537,12 @@ OutputSpec read_output(const Reader& r, OutputFormat format) {
     if (o.tilted_plane == TiltedPlane::plane_spatial)
       r.require(klartext, "output", "tilted_plane",
                 "\"plane-spatial\" is Klartext's; G-code output takes \"g68.2\" or \"setup\"",
-                codes::bad_choice);
+                Code::E5007);
     if (o.tilted_plane == TiltedPlane::g68_2)
       r.require(!klartext && format != OutputFormat::rs274ngc, "output", "tilted_plane",
                 "\"g68.2\" is Fanuc's (output_format \"fanuc\" or \"mazak\"); LinuxCNC has no "
                 "tilted plane (\"setup\"), Klartext takes \"plane-spatial\"",
-                codes::bad_choice);
+                Code::E5007);
   }
   return o;
 }
@@ -568,13 +563,13 @@ std::optional<int> speed_output(const Reader& r, Dialect dialect, OutputFormat f
   r.require(m67, "output", "speed_word",
             cat({"is \"", *text, "\", not \"S\" or \"M67 E<n>\" with n in 0..",
                  std::to_string(kMaxAnalogOutput), " (LinuxCNC's motion.analog-out-<n>)"}),
-            codes::bad_speed_word);
+            Code::E5020);
   r.require(dialect == Dialect::rs274ngc && format == OutputFormat::rs274ngc, "output",
             "speed_word",
             "is \"" + *text +
                 "\", LinuxCNC's analog output: it needs machine.dialect and "
                 "machine.output_format \"rs274ngc\"",
-            codes::speed_word_control);
+            Code::E5021);
   return n;
 }
 
@@ -585,12 +580,12 @@ std::vector<SourceNote> read_sources(const Reader& r) {
     for (const auto& [key, node] : *sources) {
       const std::string k(key.str());
       if (!schema_has(k)) {
-        r.fail(codes::bad_source, key.source(),
+        r.fail(Code::E5008, key.source(),
                "'sources.\"" + k + "\"' names no key or table of the profile");
       }
       const auto* text_node = node.as_string();
       if (!text_node) {
-        r.fail(codes::wrong_type, node.source(),
+        r.fail(Code::E5003, node.source(),
                "'sources.\"" + k + "\"' must be a string \"vendor: ...\" or \"assumed: ...\"");
       }
       const std::string& note = text_node->get();
@@ -606,11 +601,11 @@ std::vector<SourceNote> read_sources(const Reader& r) {
       } else if (note.rfind("assumed:", 0) == 0) {
         n.text = rest(8);
       } else {
-        r.fail(codes::bad_source, node.source(),
+        r.fail(Code::E5008, node.source(),
                "'sources.\"" + k + "\"' must start with \"vendor:\" or \"assumed:\"");
       }
       if (n.text.empty()) {
-        r.fail(codes::bad_source, node.source(),
+        r.fail(Code::E5008, node.source(),
                "'sources.\"" + k + "\"' needs the document or the reason after the colon");
       }
       // Notes are printed as one-line comments, where no control character
@@ -618,7 +613,7 @@ std::vector<SourceNote> read_sources(const Reader& r) {
       if (std::any_of(n.text.begin(), n.text.end(), [](char c) {
             return (static_cast<unsigned char>(c) < 0x20 && c != '\t') || c == 0x7f;
           })) {
-        r.fail(codes::bad_source, node.source(),
+        r.fail(Code::E5008, node.source(),
                "'sources.\"" + k + "\"' must be one line of text without control characters");
       }
       notes.push_back(std::move(n));
@@ -644,31 +639,30 @@ void check_heidenhain(const Reader& r, Dialect dialect, OutputFormat format,
                        "a control's language is read and written by one dialect"
                      : "is \"heidenhain\" (Klartext), but machine.output_format is G-code: "
                        "a control's language is read and written by one dialect",
-              codes::heidenhain_pairing);
+              Code::E5011);
   }
   if (!reads) return;
   r.require(change_in_motion == SChangeInMotion::own_block, "spindle", "change_in_motion",
             "must be \"own_block\" on a Heidenhain control: a TNC takes a new S only in a "
             "`TOOL CALL S` block of its own",
-            codes::heidenhain_s_block);
+            Code::E5012);
   for (const auto key : kGcodeOnlyOutputKeys) {
     if (r.node("output", key, false)) {
       r.require(false, "output", key,
                 "is a G-code setting that Klartext output has no use for (remove it from a "
                 "Heidenhain profile)",
-                codes::heidenhain_output);
+                Code::E5013);
     }
   }
   if (const auto compensation = r.boolean("output", "cutter_compensation", false)) {
     r.require(!*compensation, "output", "cutter_compensation",
               "must be false on a Heidenhain control: the CL path is the tool centre and "
               "Klartext output writes CUTCOM as a comment with R0",
-              codes::heidenhain_output);
+              Code::E5013);
   }
   if (const auto change = r.string("output", "tool_change", false)) {
     r.require(*change == "m6", "output", "tool_change",
-              "must be \"m6\" (the TNC's TOOL CALL) on a Heidenhain control",
-              codes::heidenhain_output);
+              "must be \"m6\" (the TNC's TOOL CALL) on a Heidenhain control", Code::E5013);
   }
 }
 
@@ -679,8 +673,8 @@ MachineProfile profile_from_toml(std::string_view text, const std::string& file)
   try {
     root = toml::parse(text, file);
   } catch (const toml::parse_error& e) {
-    throw ProfileError(std::string(codes::syntax), file, e.source().begin.line,
-                       e.source().begin.column, std::string(e.description()));
+    throw ProfileError(Code::E5001, file, e.source().begin.line, e.source().begin.column,
+                       std::string(e.description()));
   }
   const Reader r(root, file);
   r.check_unknown();
@@ -719,7 +713,7 @@ SpindleSpec planned_spindle(const MachineProfile& profile) {
 MachineProfile profile_from_stream(std::istream& in, const std::string& file) {
   std::ostringstream text;
   text << in.rdbuf();
-  if (in.bad()) throw ProfileError(std::string(codes::unreadable), file, 0, 0, "cannot read");
+  if (in.bad()) throw ProfileError(Code::E5010, file, 0, 0, "cannot read");
   return profile_from_toml(text.str(), file);
 }
 

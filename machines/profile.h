@@ -147,41 +147,17 @@ class MachineProfile;
 // ":<line>:<col>" when no position applies, e.g. an unreadable file).
 class ProfileError : public vcpost::Error {
  public:
-  ProfileError(std::string code, std::string file, std::uint32_t line, std::uint32_t column,
+  ProfileError(Code code, std::string file, std::uint32_t line, std::uint32_t column,
                const std::string& message);
-  const std::string& code() const { return code_; }  // "E5002"
   const std::string& file() const { return file_; }
   std::uint32_t line() const { return line_; }  // 1-based; 0 when no position applies
   std::uint32_t column() const { return column_; }
 
  private:
-  std::string code_;
   std::string file_;
   std::uint32_t line_;
   std::uint32_t column_;
 };
-
-// Stable diagnostic codes of profile loading.
-namespace codes {
-inline constexpr std::string_view syntax = "E5001";           // not valid TOML
-inline constexpr std::string_view unknown_key = "E5002";      // key or table not in the schema
-inline constexpr std::string_view wrong_type = "E5003";       // e.g. a string where a number is due
-inline constexpr std::string_view missing_key = "E5004";      // required key absent
-inline constexpr std::string_view out_of_range = "E5005";     // negative rate, n_min <= 0 ...
-inline constexpr std::string_view inconsistent = "E5006";     // n_min > n_max, f_min > f_max ...
-inline constexpr std::string_view bad_choice = "E5007";       // dialect not one of the names
-inline constexpr std::string_view bad_source = "E5008";       // [sources] note malformed
-inline constexpr std::string_view unknown_profile = "E5009";  // no built-in profile of that name
-inline constexpr std::string_view unreadable = "E5010";       // file cannot be read
-// A Heidenhain control's profile: Klartext in and out together, S changes
-// in a block of their own (TOOL CALL S), no G-code-only [output] key.
-inline constexpr std::string_view heidenhain_pairing = "E5011";  // dialect vs output_format
-inline constexpr std::string_view heidenhain_s_block = "E5012";  // change_in_motion not own_block
-inline constexpr std::string_view heidenhain_output = "E5013";   // a G-code-only [output] key
-inline constexpr std::string_view bad_speed_word = "E5020";  // output.speed_word not S / M67 E<n>
-inline constexpr std::string_view speed_word_control =
-    "E5021";  // M67 E<n> on a non-LinuxCNC control
-}  // namespace codes
 
 // The validated profile. Immutable: built only by the loaders below.
 class MachineProfile {

@@ -1,11 +1,12 @@
 // Build-time generator: reads the code table (core/error_codes.csv) and the
-// group titles (core/error_groups.csv) and writes the C++ table that
-// core/error.cpp includes and the documentation page docs/errors.md.
+// group titles (core/error_groups.csv) and writes the enum of codes
+// (core/code.h, vcpost::Code), the C++ table that core/error.cpp includes
+// and the documentation page docs/errors.md.
 // Refuses a table that breaks its own rules (duplicate or malformed code,
 // empty text, a warning with a non-zero exit code), so a bad row fails the
 // build instead of reaching a user.
 //
-// usage: gen_error_table CODES.csv GROUPS.csv OUT.inc OUT.md
+// usage: gen_error_table CODES.csv GROUPS.csv OUT.h OUT.inc OUT.md
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
@@ -103,8 +104,8 @@ bool valid_name(const std::string& name) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 5) {
-    std::cerr << "usage: gen_error_table CODES.csv GROUPS.csv OUT.inc OUT.md\n";
+  if (argc != 6) {
+    std::cerr << "usage: gen_error_table CODES.csv GROUPS.csv OUT.h OUT.inc OUT.md\n";
     return 2;
   }
   const std::string codes_path = argv[1], groups_path = argv[2];
@@ -151,10 +152,23 @@ int main(int argc, char** argv) {
     return best;
   };
 
+  // The enumerators are named after the codes themselves: the name column
+  // is not unique (E1402 and W1402 are both unknown_m_code). Their values
+  // are the rows' positions, so a code's row is found by indexing.
+  std::ostringstream header;
+  header << "// Generated from core/error_codes.csv by core/gen/gen_error_table.cpp: do not edit.\n"
+            "// Every diagnostic code of vcpost; a new one is a row of the CSV.\n"
+            "#pragma once\n\n#include <cstddef>\n#include <cstdint>\n\nnamespace vcpost {\n\n"
+            "enum class Code : std::uint16_t {\n";
+  for (const auto& r : rows)
+    header << "  " << r.code << ",  // " << r.name << ": " << r.summary << "\n";
+  header << "};\n\ninline constexpr std::size_t kCodeCount = " << rows.size()
+         << ";\n\n}  // namespace vcpost\n";
+
   std::ostringstream inc;
   inc << "// Generated from core/error_codes.csv by core/gen/gen_error_table.cpp: do not edit.\n";
   for (const auto& r : rows) {
-    inc << "{" << cpp_literal(r.code) << ", " << cpp_literal(r.name) << ", "
+    inc << "{Code::" << r.code << ", " << cpp_literal(r.code) << ", " << cpp_literal(r.name) << ", "
         << (r.code[0] == 'E' ? "Severity::error" : "Severity::warning") << ", " << r.exit << ", "
         << cpp_literal(r.summary) << ", " << cpp_literal(r.hint) << "},\n";
   }
@@ -195,7 +209,8 @@ int main(int argc, char** argv) {
     out << text;
     if (!out) die(path, "cannot write");
   };
-  write(argv[3], inc.str());
-  write(argv[4], md.str());
+  write(argv[3], header.str());
+  write(argv[4], inc.str());
+  write(argv[5], md.str());
   return 0;
 }

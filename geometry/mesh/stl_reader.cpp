@@ -153,7 +153,7 @@ void weld_binary(std::string_view bytes, const std::string& file, double unit, s
         if (!std::isfinite(f)) {
           const std::uint64_t off = 84 + 50 * t + 12 + 12 * static_cast<std::uint64_t>(c) +
                                     4 * static_cast<std::uint64_t>(k);
-          throw StlError(StlCode::bad_number, file, off,
+          throw StlError(Code::E4605, file, off,
                          "triangle " + std::to_string(t + 1) + " vertex " + std::to_string(c + 1) +
                              " has a non-finite coordinate (" + std::to_string(f) + ")");
         }
@@ -168,7 +168,7 @@ StlMesh parse_binary(std::string_view bytes, const std::string& file, double uni
   StlMesh mesh;
   mesh.format = StlFormat::binary;
   if (bytes.size() < 84) {
-    throw StlError(StlCode::truncated, file, bytes.size(),
+    throw StlError(Code::E4604, file, bytes.size(),
                    "binary STL shorter than its 84-byte header (" + std::to_string(bytes.size()) +
                        " bytes), and not ASCII STL either");
   }
@@ -181,7 +181,7 @@ StlMesh parse_binary(std::string_view bytes, const std::string& file, double uni
   const std::uint64_t need = 84 + 50 * count;
   if (bytes.size() < need) {
     const std::uint64_t complete = (bytes.size() - 84) / 50;
-    throw StlError(StlCode::truncated, file, 84 + 50 * complete,
+    throw StlError(Code::E4604, file, 84 + 50 * complete,
                    "binary STL truncated: header announces " + std::to_string(count) +
                        " triangles (" + std::to_string(need) + " bytes) but the file has " +
                        std::to_string(bytes.size()) + " bytes (" + std::to_string(complete) +
@@ -191,7 +191,7 @@ StlMesh parse_binary(std::string_view bytes, const std::string& file, double uni
   if (mesh.trailing_bytes >= 50) {
     // More whole triangles than the count says: reading up to the count
     // would silently drop part of the model.
-    throw StlError(StlCode::count_mismatch, file, need,
+    throw StlError(Code::E4609, file, need,
                    "binary STL header announces " + std::to_string(count) +
                        " triangles but the file holds " + std::to_string((bytes.size() - 84) / 50) +
                        " whole triangle records; the count is wrong (a damaged or concatenated "
@@ -252,7 +252,7 @@ StlMesh parse_binary(std::string_view bytes, const std::string& file, double uni
     mesh.degenerate_dropped += second.degenerate_dropped;
   }
   if (mesh.triangles.empty()) {
-    throw StlError(StlCode::no_triangles, file, 80,
+    throw StlError(Code::E4606, file, 80,
                    (count == 0 ? std::string("binary STL with zero triangles")
                                : "binary STL whose " + std::to_string(count) +
                                      " triangles are all degenerate"));
@@ -334,7 +334,7 @@ StlMesh parse_ascii(std::string_view bytes, const std::string& file, double unit
   auto expect = [&](std::string_view keyword, std::string_view context) {
     const Words::Word w = words.next();
     if (!iequals(w.text, keyword)) {
-      const StlCode code = w.text.empty() ? StlCode::truncated : StlCode::syntax;
+      const Code code = w.text.empty() ? Code::E4604 : Code::E4607;
       throw StlError(code, {file, w.line, w.column},
                      "expected '" + std::string(keyword) + "' " + std::string(context) +
                          ", found " + word_text(w));
@@ -348,11 +348,11 @@ StlMesh parse_ascii(std::string_view bytes, const std::string& file, double unit
     if (!w.text.empty() && *b == '+') ++b;  // from_chars refuses a leading '+'
     const auto [ptr, ec] = std::from_chars(b, e, v);
     if (w.text.empty()) {
-      throw StlError(StlCode::truncated, {file, w.line, w.column},
+      throw StlError(Code::E4604, {file, w.line, w.column},
                      "file ends inside a facet (expected " + std::string(what) + ")");
     }
     if (ec != std::errc() || ptr != e || (must_be_finite && !std::isfinite(v))) {
-      throw StlError(StlCode::bad_number, {file, w.line, w.column},
+      throw StlError(Code::E4605, {file, w.line, w.column},
                      std::string(what) + " is not a finite number: '" + std::string(w.text) + "'");
     }
     return v;
@@ -363,10 +363,10 @@ StlMesh parse_ascii(std::string_view bytes, const std::string& file, double unit
     Words::Word w = words.next();
     if (w.text.empty()) {
       if (any_solid) break;
-      throw StlError(StlCode::empty, {file, w.line, w.column}, "STL file holds only white space");
+      throw StlError(Code::E4603, {file, w.line, w.column}, "STL file holds only white space");
     }
     if (!iequals(w.text, "solid")) {
-      throw StlError(StlCode::syntax, {file, w.line, w.column},
+      throw StlError(Code::E4607, {file, w.line, w.column},
                      "expected 'solid', found " + word_text(w));
     }
     any_solid = true;
@@ -379,7 +379,7 @@ StlMesh parse_ascii(std::string_view bytes, const std::string& file, double unit
         break;
       }
       if (!iequals(w.text, "facet")) {
-        const StlCode code = w.text.empty() ? StlCode::truncated : StlCode::syntax;
+        const Code code = w.text.empty() ? Code::E4604 : Code::E4607;
         throw StlError(code, {file, w.line, w.column},
                        "expected 'facet' or 'endsolid', found " + word_text(w));
       }
@@ -401,7 +401,7 @@ StlMesh parse_ascii(std::string_view bytes, const std::string& file, double unit
   }
   if (mesh.triangles.empty()) {
     throw StlError(
-        StlCode::no_triangles, {file, 1, 1},
+        Code::E4606, {file, 1, 1},
         (facets == 0 ? std::string("ASCII STL with no facet")
                      : "ASCII STL whose " + std::to_string(facets) + " facets are all degenerate"));
   }
@@ -423,26 +423,20 @@ std::string format_double(double v, int precision) {
 
 }  // namespace
 
-std::string code_id(StlCode code) {
-  std::string id(1, 'E');  // not "E" + ...: GCC 12 warns falsely (-Wrestrict) on that
-  id += std::to_string(static_cast<int>(code));
-  return id;
-}
-
 StlMesh parse_stl(std::string_view bytes, const std::string& file_name, const StlOptions& options) {
   if (!(options.unit_mm > 0.0) || !std::isfinite(options.unit_mm)) {
     throw StlError(
-        StlCode::bad_unit, {file_name},
+        Code::E4608, {file_name},
         "model unit must be a positive length in mm, got " + std::to_string(options.unit_mm));
   }
   if (bytes.empty()) {
-    throw StlError(StlCode::empty, file_name, 0, "STL file is empty (0 bytes)");
+    throw StlError(Code::E4603, file_name, 0, "STL file is empty (0 bytes)");
   }
   const bool blank = std::all_of(bytes.begin(), bytes.end(), [](char c) {
     return std::isspace(static_cast<unsigned char>(c));
   });
   if (blank) {
-    throw StlError(StlCode::empty, file_name, 0, "STL file holds only white space");
+    throw StlError(Code::E4603, file_name, 0, "STL file holds only white space");
   }
   // Binary when the size matches the count exactly: the only reliable sign.
   if (bytes.size() >= 84) {
@@ -461,7 +455,7 @@ StlMesh parse_stl(std::string_view bytes, const std::string& file_name, const St
     return u < 0x09 || (u > 0x0D && u < 0x20) || u == 0x7F;
   });
   if (text) {
-    throw StlError(StlCode::syntax, {file_name, 1, 1},
+    throw StlError(Code::E4607, {file_name, 1, 1},
                    "text file that is not ASCII STL (it does not start "
                    "with 'solid') nor binary STL");
   }
@@ -472,10 +466,10 @@ StlMesh read_stl_file(const std::filesystem::path& path, const StlOptions& optio
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
   if (!std::filesystem::exists(status)) {
-    throw StlError(StlCode::missing, {path.string()}, "STL file not found");
+    throw StlError(Code::E4601, {path.string()}, "STL file not found");
   }
   if (std::filesystem::is_directory(status)) {
-    throw StlError(StlCode::unreadable, {path.string()}, "is a directory, not an STL file");
+    throw StlError(Code::E4602, {path.string()}, "is a directory, not an STL file");
   }
   // The file is mapped, not copied: a 500 MB mesh would otherwise be read
   // through a growing buffer (twice its size at the peak) before parsing.
@@ -483,7 +477,7 @@ StlMesh read_stl_file(const std::filesystem::path& path, const StlOptions& optio
   struct stat info {};
   if (fd < 0 || ::fstat(fd, &info) != 0) {
     if (fd >= 0) ::close(fd);
-    throw StlError(StlCode::unreadable, {path.string()}, "cannot read the file (permissions?)");
+    throw StlError(Code::E4602, {path.string()}, "cannot read the file (permissions?)");
   }
   const auto size = static_cast<std::size_t>(info.st_size);
   if (!S_ISREG(info.st_mode) || size == 0) {
@@ -495,14 +489,14 @@ StlMesh read_stl_file(const std::filesystem::path& path, const StlOptions& optio
       bytes.append(chunk, static_cast<std::size_t>(got));
     ::close(fd);
     if (got < 0) {
-      throw StlError(StlCode::unreadable, {path.string()}, "cannot read the file (permissions?)");
+      throw StlError(Code::E4602, {path.string()}, "cannot read the file (permissions?)");
     }
     return parse_stl(bytes, path.string(), options);
   }
   void* const map = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
   ::close(fd);  // the mapping keeps the file
   if (map == MAP_FAILED) {
-    throw StlError(StlCode::unreadable, {path.string()}, "cannot read the file (permissions?)");
+    throw StlError(Code::E4602, {path.string()}, "cannot read the file (permissions?)");
   }
   ::madvise(map, size, MADV_SEQUENTIAL);
   struct Unmap {

@@ -7,7 +7,7 @@
 // when its header starts with "solid" (SolidWorks and others write that);
 // otherwise a file starting with "solid" is read as ASCII.
 //
-// Errors are thrown as StlError with a stable code (table below) and a
+// Errors are thrown as StlError with a code E46xx (core/error_codes.csv) and a
 // message "<file>:<line>:<col>: error[E46xx]: ..." (ASCII) or
 // "<file>: offset <byte>: error[E46xx]: ..." (binary).
 #pragma once
@@ -26,39 +26,16 @@
 
 namespace vcpost::mesh {
 
-// Stable codes; never renumber.
-enum class StlCode : std::uint16_t {
-  missing = 4601,         // the file does not exist
-  unreadable = 4602,      // exists but cannot be read (permissions, a directory)
-  empty = 4603,           // zero bytes
-  truncated = 4604,       // binary shorter than its triangle count says; ASCII without endsolid
-  bad_number = 4605,      // NaN, infinity or not a number in a coordinate
-  no_triangles = 4606,    // a valid file with no (non-degenerate) triangle
-  syntax = 4607,          // ASCII: a keyword other than the one expected
-  bad_unit = 4608,        // unit_mm not a positive finite number
-  count_mismatch = 4609,  // binary: whole triangles past the count (the count is wrong)
-};
-
-// "E4604"
-std::string code_id(StlCode code);
-
 // Placed at a line and column (ASCII STL), at a byte offset (binary STL:
 // "file: offset N: error[...]"), or at the file alone.
 class StlError : public vcpost::Error {
  public:
-  StlError(StlCode code, const SourceLocation& where, const std::string& message)
-      : vcpost::Error(code_id(code), format_diagnostic(code_id(code), where, message), where),
-        code_(code) {}
-  StlError(StlCode code, const std::string& file, std::uint64_t offset, const std::string& message)
-      : vcpost::Error(code_id(code),
-                      format_diagnostic(code_id(code),
-                                        {file + ": offset " + std::to_string(offset)}, message),
-                      {file}),
-        code_(code) {}
-  StlCode code() const { return code_; }
-
- private:
-  StlCode code_;
+  StlError(Code code, const SourceLocation& where, const std::string& message)
+      : vcpost::Error(code, format_diagnostic(code, where, message), where) {}
+  StlError(Code code, const std::string& file, std::uint64_t offset, const std::string& message)
+      : vcpost::Error(
+            code, format_diagnostic(code, {file + ": offset " + std::to_string(offset)}, message),
+            {file}) {}
 };
 
 struct StlOptions {

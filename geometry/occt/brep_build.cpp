@@ -184,7 +184,7 @@ BrepModel model_from_shape(const TopoDS_Shape& shape, const BrepOptions& options
     TopExp::MapShapes(shape, TopAbs_FACE, face_map);
     TopExp::MapShapes(shape, TopAbs_EDGE, edge_map);
     if (face_map.Extent() == 0) {
-      throw ModelError(ModelErrorCode::no_faces, source,
+      throw ModelError(Code::E4105, source,
                        "the model holds no faces (points, curves or an empty assembly only); "
                        "export the finished surfaces or the solid");
     }
@@ -200,7 +200,7 @@ BrepModel model_from_shape(const TopoDS_Shape& shape, const BrepOptions& options
         std::ostringstream text;
         text << "the model reaches " << reach << " mm from the origin; parts within "
              << kMaxModelReachMm << " mm (100 m) of it are read (a stray point or a wrong unit?)";
-        throw ModelError(ModelErrorCode::bad_values, source, text.str());
+        throw ModelError(Code::E4107, source, text.str());
       }
     }
     double deflection = options.deflection;
@@ -219,7 +219,7 @@ BrepModel model_from_shape(const TopoDS_Shape& shape, const BrepOptions& options
       add_face(*impl, TopoDS::Face(face_map(i)), edge_map, orient_up);
     }
     if (impl->faces.empty()) {
-      throw ModelError(ModelErrorCode::no_faces, source, "no face of the model has a surface");
+      throw ModelError(Code::E4105, source, "no face of the model has a surface");
     }
     std::vector<Eigen::AlignedBox3d> boxes;
     for (const FaceData& f : impl->faces) {
@@ -233,7 +233,7 @@ BrepModel model_from_shape(const TopoDS_Shape& shape, const BrepOptions& options
     impl->info.deflection = deflection;
   } catch (const Standard_Failure& failure) {
     throw ModelError(
-        ModelErrorCode::kernel_failure, source,
+        Code::E4106, source,
         std::string("OpenCASCADE failed while indexing the model: ") + failure.GetMessageString());
   }
   return BrepModel(std::move(impl));

@@ -6,14 +6,8 @@
 
 namespace vcpost::occt {
 
-// The enumerators are the codes' numbers: the id is the table's own.
-std::string_view code_of(ModelErrorCode code) {
-  return code_info("E" + std::to_string(static_cast<int>(code))).id;
-}
-
-ModelError::ModelError(ModelErrorCode code, const std::string& path, const std::string& message)
-    : vcpost::Error(code_of(code), format_diagnostic(code_of(code), {path}, message), {path}),
-      code_(code) {}
+ModelError::ModelError(Code code, const std::string& path, const std::string& message)
+    : vcpost::Error(code, format_diagnostic(code, {path}, message), {path}) {}
 
 BrepModel::BrepModel(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 BrepModel::BrepModel(BrepModel&&) noexcept = default;

@@ -34,28 +34,10 @@
 
 namespace vcpost::occt {
 
-// Stable codes of the errors a model load can raise: each enumerator is
-// its code's number in core/error_codes.csv (E41xx).
-enum class ModelErrorCode {
-  file_missing = 4101,     // no such file
-  file_unreadable = 4102,  // exists but cannot be opened or read
-  file_empty = 4103,       // zero bytes
-  not_step = 4104,         // not a STEP file, or the reader refused it
-  no_faces = 4105,         // read, but holds no face to touch
-  kernel_failure = 4106,   // OpenCASCADE failed during transfer or meshing
-  bad_values = 4107,       // a number or unit no model can hold (not finite; not a length)
-};
-
-std::string_view code_of(ModelErrorCode code);  // "E4101" ...: the table's id
-
 // Thrown by the loaders; what() is "<path>: error[E41xx]: <message>".
 class ModelError : public vcpost::Error {
  public:
-  ModelError(ModelErrorCode code, const std::string& path, const std::string& message);
-  ModelErrorCode code() const { return code_; }
-
- private:
-  ModelErrorCode code_;
+  ModelError(Code code, const std::string& path, const std::string& message);
 };
 
 // The farthest a model's point may lie from the origin, mm (the part's

@@ -35,18 +35,17 @@ void check_file(const std::filesystem::path& path) {
   std::error_code error;
   const auto status = std::filesystem::status(path, error);
   if (!std::filesystem::exists(status)) {
-    throw ModelError(ModelErrorCode::file_missing, name, "no such file");
+    throw ModelError(Code::E4101, name, "no such file");
   }
   if (std::filesystem::is_directory(status)) {
-    throw ModelError(ModelErrorCode::file_unreadable, name, "is a directory, not a STEP file");
+    throw ModelError(Code::E4102, name, "is a directory, not a STEP file");
   }
   std::ifstream in(path, std::ios::binary);
   if (!in.is_open()) {
-    throw ModelError(ModelErrorCode::file_unreadable, name,
-                     "cannot be opened for reading (check its permissions)");
+    throw ModelError(Code::E4102, name, "cannot be opened for reading (check its permissions)");
   }
   if (std::filesystem::file_size(path, error) == 0 && !error) {
-    throw ModelError(ModelErrorCode::file_empty, name, "the file is empty");
+    throw ModelError(Code::E4103, name, "the file is empty");
   }
   std::string head(64, '\0');
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
@@ -54,7 +53,7 @@ void check_file(const std::filesystem::path& path) {
   if (head.rfind("\xEF\xBB\xBF", 0) == 0) head.erase(0, 3);  // UTF-8 byte-order mark
   head.erase(0, head.find_first_not_of(" \t\r\n"));
   if (head.rfind("ISO-10303-21", 0) != 0) {
-    throw ModelError(ModelErrorCode::not_step, name,
+    throw ModelError(Code::E4104, name,
                      "not a STEP file: it does not start with 'ISO-10303-21;' "
                      "(STEP part 21 files do; STL models are read as meshes)");
   }
@@ -82,7 +81,7 @@ void check_entities(const StepData_StepModel& model, const std::string& name) {
   }
   if (!errors.empty()) {
     const std::size_t more = errors.size() - 1;
-    throw ModelError(ModelErrorCode::not_step, name,
+    throw ModelError(Code::E4104, name,
                      "the STEP reader found errors (" + errors.front() +
                          (more > 0 ? "; and " + std::to_string(more) + " more" : "") +
                          "); OpenCASCADE would leave those entities out and load a different "
@@ -96,7 +95,7 @@ void check_entities(const StepData_StepModel& model, const std::string& name) {
     if (const auto point = Handle(StepGeom_CartesianPoint)::DownCast(entity)) {
       for (int k = 1; k <= point->NbCoordinates(); ++k) {
         if (!std::isfinite(point->CoordinatesValue(k))) {
-          throw ModelError(ModelErrorCode::bad_values, name,
+          throw ModelError(Code::E4107, name,
                            label(entity) +
                                " CARTESIAN_POINT has a coordinate that is not a "
                                "finite number (beyond about 1.8E308)");
@@ -105,13 +104,13 @@ void check_entities(const StepData_StepModel& model, const std::string& name) {
     } else if (const auto direction = Handle(StepGeom_Direction)::DownCast(entity)) {
       for (int k = 1; k <= direction->NbDirectionRatios(); ++k) {
         if (!std::isfinite(direction->DirectionRatiosValue(k))) {
-          throw ModelError(ModelErrorCode::bad_values, name,
+          throw ModelError(Code::E4107, name,
                            label(entity) + " DIRECTION has a ratio that is not a finite number");
         }
       }
     } else if (const auto unit = Handle(StepBasic_SiUnitAndLengthUnit)::DownCast(entity)) {
       if (unit->Name() != StepBasic_sunMetre) {
-        throw ModelError(ModelErrorCode::bad_values, name,
+        throw ModelError(Code::E4107, name,
                          label(entity) +
                              " LENGTH_UNIT is an SI unit other than the metre: "
                              "lengths in this file cannot be read (export in mm "
@@ -135,7 +134,7 @@ BrepModel BrepModel::load_step(const std::filesystem::path& path, const BrepOpti
     Interface_Static::SetCVal("xstep.cascade.unit", "MM");
     STEPControl_Reader reader;
     if (reader.ReadFile(name.c_str()) != IFSelect_RetDone) {
-      throw ModelError(ModelErrorCode::not_step, name,
+      throw ModelError(Code::E4104, name,
                        "the STEP reader refused the file (syntax errors or an unsupported "
                        "schema; AP203, AP214 and AP242 are read)");
     }
@@ -147,7 +146,7 @@ BrepModel BrepModel::load_step(const std::filesystem::path& path, const BrepOpti
     if (lengths.Length() > 0) unit = lengths.First().ToCString();
     const int roots = reader.NbRootsForTransfer();
     if (reader.TransferRoots() == 0) {
-      throw ModelError(ModelErrorCode::no_faces, name,
+      throw ModelError(Code::E4105, name,
                        roots == 0
                            ? std::string("the STEP file holds no shape entity (no solid, "
                                          "shell or face) to transfer")
@@ -159,11 +158,11 @@ BrepModel BrepModel::load_step(const std::filesystem::path& path, const BrepOpti
     shape = reader.OneShape();
   } catch (const Standard_Failure& failure) {
     throw ModelError(
-        ModelErrorCode::kernel_failure, name,
+        Code::E4106, name,
         std::string("OpenCASCADE failed while reading: ") + failure.GetMessageString());
   }
   if (shape.IsNull()) {
-    throw ModelError(ModelErrorCode::no_faces, name, "the STEP file holds no shape");
+    throw ModelError(Code::E4105, name, "the STEP file holds no shape");
   }
   return model_from_shape(shape, options, name, unit);
 }

@@ -9,7 +9,9 @@ namespace vcpost::geometry::stock {
 
 namespace {
 
-[[noreturn]] void bad_cutter(const std::string& what) { throw Error("E4706", "stock: " + what); }
+[[noreturn]] void bad_cutter(const std::string& what) {
+  throw Error(Code::E4706, "stock: " + what);
+}
 
 }  // namespace
 

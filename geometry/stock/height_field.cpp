@@ -21,7 +21,7 @@ void check_cell(double cell_mm) {
   if (cell_mm > 0 && std::isfinite(cell_mm)) return;
   std::ostringstream text;
   text << "stock: cell size " << cell_mm << " mm is not a positive length";
-  throw Error("E4702", text.str());
+  throw Error(Code::E4702, text.str());
 }
 
 // The grid over [min, max] in xy: whole cells from min on, at least one.
@@ -38,7 +38,7 @@ Grid grid_over(const Eigen::Vector2d& min, const Eigen::Vector2d& max, double ce
     text.precision(15);
     text << "stock: " << cells.x() << " x " << cells.y() << " cells of " << cell_mm << " mm need "
          << bytes << " bytes, over the limit of " << memory_limit << " bytes";
-    throw Error("E4703", text.str());
+    throw Error(Code::E4703, text.str());
   }
   grid.nx = static_cast<std::uint32_t>(cells.x());
   grid.ny = static_cast<std::uint32_t>(cells.y());
@@ -52,7 +52,7 @@ HeightField::HeightField(const Grid& grid, float fill) : grid_(grid), top_(grid.
 HeightField HeightField::block(const Eigen::Vector3d& min, const Eigen::Vector3d& max,
                                double cell_mm, std::size_t memory_limit) {
   if (!min.allFinite() || !max.allFinite() || !(min.array() < max.array()).all()) {
-    throw Error("E4701",
+    throw Error(Code::E4701,
                 "stock: block from " + point_text(min) + " to " + point_text(max) +
                     " is empty: each coordinate of the maximum must be above the minimum's");
   }
@@ -64,17 +64,17 @@ HeightField HeightField::block(const Eigen::Vector3d& min, const Eigen::Vector3d
 HeightField HeightField::from_triangles(std::span<const Eigen::Vector3f> corners, double cell_mm,
                                         std::size_t memory_limit) {
   if (corners.size() % 3 != 0) {
-    throw Error("E4704", "stock: " + std::to_string(corners.size()) +
-                             " triangle corners, not a whole number of triangles");
+    throw Error(Code::E4704, "stock: " + std::to_string(corners.size()) +
+                                 " triangle corners, not a whole number of triangles");
   }
   for (std::size_t i = 0; i < corners.size(); ++i) {
     if (!corners[i].allFinite()) {
-      throw Error("E4704", "stock: triangle " + std::to_string(i / 3) +
-                               " has a corner that is not a finite point");
+      throw Error(Code::E4704, "stock: triangle " + std::to_string(i / 3) +
+                                   " has a corner that is not a finite point");
     }
   }
   check_cell(cell_mm);
-  if (corners.empty()) throw Error("E4705", "stock: the stock mesh has no triangle");
+  if (corners.empty()) throw Error(Code::E4705, "stock: the stock mesh has no triangle");
   Eigen::Vector2d lo = corners[0].head<2>().cast<double>(), hi = lo;
   for (const Eigen::Vector3f& c : corners) {
     lo = lo.cwiseMin(c.head<2>().cast<double>());
@@ -119,7 +119,8 @@ HeightField HeightField::from_triangles(std::span<const Eigen::Vector3f> corners
     }
   }
   if (std::all_of(field.top_.begin(), field.top_.end(), [](float z) { return z == kNoMaterial; })) {
-    throw Error("E4705", "stock: no triangle of the stock mesh covers a cell centre seen from +z");
+    throw Error(Code::E4705,
+                "stock: no triangle of the stock mesh covers a cell centre seen from +z");
   }
   return field;
 }

@@ -246,8 +246,8 @@ class Cutting {
 void check_tips(std::span<const Eigen::Vector3d> tips) {
   for (std::size_t i = 0; i < tips.size(); ++i) {
     if (!tips[i].allFinite()) {
-      throw Error("E4707", "stock: tip " + std::to_string(i) + " of " +
-                               std::to_string(tips.size()) + " is not a finite point");
+      throw Error(Code::E4707, "stock: tip " + std::to_string(i) + " of " +
+                                   std::to_string(tips.size()) + " is not a finite point");
     }
   }
 }

@@ -46,20 +46,20 @@ std::string xyz(const Vec& v) {
 ClReader::ClReader(std::istream& in, std::string file_name, ClReadOptions options)
     : lexer_(in, std::move(file_name), options.lex), options_(options) {}
 
-void ClReader::fail(ClCode code, std::uint32_t line, std::uint32_t column,
+void ClReader::fail(Code code, std::uint32_t line, std::uint32_t column,
                     std::string message) const {
   throw ClError(ClDiagnostic{code, line, column, std::move(message)}, lexer_.file_name());
 }
 
-void ClReader::fail(ClCode code, const ClRecord& r, std::string message) const {
+void ClReader::fail(Code code, const ClRecord& r, std::string message) const {
   fail(code, r.source.line, r.source.column, std::move(message));
 }
 
-void ClReader::fail(ClCode code, const ClParam& p, std::string message) const {
+void ClReader::fail(Code code, const ClParam& p, std::string message) const {
   fail(code, p.line, p.column, std::move(message));
 }
 
-void ClReader::warn(ClCode code, const SourceRef& src, std::string message) {
+void ClReader::warn(Code code, const SourceRef& src, std::string message) {
   warnings_.push_back(ClDiagnostic{code, src.line, src.column, std::move(message)});
 }
 
@@ -75,13 +75,13 @@ bool ClReader::word_is(const ClParam& p, std::string_view upper_word) const {
 
 double ClReader::number(const ClRecord& r, std::size_t i) const {
   if (i >= r.params.size()) {
-    fail(ClCode::wrong_parameters, r,
+    fail(Code::E3104, r,
          std::string(r.major.empty() ? "coordinates" : r.major) + " needs at least " +
              std::to_string(i + 1) + " parameters, has " + std::to_string(r.params.size()));
   }
   const ClParam& p = r.params[i];
   if (p.is_number) return p.value;
-  if (p.text.empty()) fail(ClCode::bad_number, p, "empty parameter where a number is expected");
+  if (p.text.empty()) fail(Code::E3103, p, "empty parameter where a number is expected");
   const char c = p.text.front();
   if ((c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.') {
     std::string_view t = p.text.substr(c == '+' ? 1 : 0);
@@ -89,17 +89,17 @@ double ClReader::number(const ClRecord& r, std::size_t i) const {
     const auto parsed = std::from_chars(t.data(), t.data() + t.size(), v);
     if (parsed.ec == std::errc::result_out_of_range ||
         (parsed.ec == std::errc() && parsed.ptr == t.data() + t.size() && std::isfinite(v)))
-      fail(ClCode::bad_number, p,
+      fail(Code::E3103, p,
            "number '" + std::string(p.text) + "' is out of range (at most 1e12 either way)");
-    fail(ClCode::bad_number, p, "malformed number '" + std::string(p.text) + "'");
+    fail(Code::E3103, p, "malformed number '" + std::string(p.text) + "'");
   }
-  fail(ClCode::wrong_parameters, p, "expected a number, found '" + std::string(p.text) + "'");
+  fail(Code::E3104, p, "expected a number, found '" + std::string(p.text) + "'");
 }
 
 int ClReader::integer(const ClRecord& r, std::size_t i) const {
   const double v = number(r, i);
   if (v < 0 || v > 1e9 || v != std::floor(v)) {
-    fail(ClCode::wrong_parameters, r.params[i],
+    fail(Code::E3104, r.params[i],
          "expected a whole number, found '" + std::string(r.params[i].text) + "'");
   }
   return static_cast<int>(v);
@@ -113,12 +113,12 @@ void ClReader::check_axis(const Vec& axis, std::uint32_t line, std::uint32_t col
   const double n = axis.norm();
   if (!(n > 0) || (axis / n - csys_.axis).norm() > options_.axis_tolerance) {
     if (csys_.frame.is_identity()) {
-      fail(ClCode::tool_axis_not_z, line, column,
+      fail(Code::E3108, line, column,
            "tool axis " + xyz(axis) +
                " is not +Z: a tilted tool (3+2) needs the CSYS of its frame first, and a tool "
                "axis that changes along the path (5-axis simultaneous) is not evaluated yet");
     }
-    fail(ClCode::tool_axis_not_z, line, column,
+    fail(Code::E3108, line, column,
          "tool axis " + xyz(axis) + " is not the CSYS frame's z axis " + xyz(csys_.axis) +
              ": a tool axis that changes along the path (5-axis simultaneous) is not evaluated "
              "yet; a fixed tilt (3+2) is, with the CSYS of its frame");
@@ -144,13 +144,13 @@ std::optional<program::Event> ClReader::next() {
 void ClReader::finish_input() {
   if (nurbs_.active) finish_nurbs();
   if (next_motion_.arc_pending) {
-    fail(ClCode::arc_without_goto, next_motion_.arc_pending->source.line,
+    fail(Code::E3110, next_motion_.arc_pending->source.line,
          next_motion_.arc_pending->source.column,
          "CIRCLE is not followed by a GOTO before the end of the file");
   }
   if (!end_.fini_seen) {
     if (!end_.end_of_path) {
-      warn(ClCode::missing_fini, SourceRef{lexer_.line_number(), 1, 0},
+      warn(Code::W3151, SourceRef{lexer_.line_number(), 1, 0},
            "the file ends without FINI or END-OF-PATH: it may be truncated");
     }
     queue_.push_back(program::ProgramEnd{last_source_});
@@ -166,8 +166,8 @@ void ClReader::process(const ClRecord& r) {
     return;
   }
   if (end_.fini_seen) {
-    if (warnings_.empty() || warnings_.back().code != ClCode::after_fini) {
-      warn(ClCode::after_fini, r.source, "records after FINI are ignored");
+    if (warnings_.empty() || warnings_.back().code != Code::W3152) {
+      warn(Code::W3152, r.source, "records after FINI are ignored");
     }
     return;
   }
@@ -175,7 +175,7 @@ void ClReader::process(const ClRecord& r) {
   if (r.kind == ClRecordKind::points) {
     if (nurbs_.active) finish_nurbs();
     if (!next_motion_.in_goto) {
-      fail(ClCode::orphan_points, r,
+      fail(Code::E3107, r,
            "a line of coordinates must follow a GOTO record (or end the previous one with '$')");
     }
     process_motion_points(r, true);
@@ -202,7 +202,7 @@ void ClReader::process(const ClRecord& r) {
   if (r.separator == '=') apt_source(r);
   const RecordRule* rule = find_rule(m);
   if (rule == nullptr) {
-    fail(ClCode::unknown_word, r,
+    fail(Code::E3118, r,
          "'" + std::string(m) +
              "' is not a record vcpost knows; it is refused rather than "
              "ignored, since it may move the tool or change the frame (record: " +
@@ -218,7 +218,7 @@ void ClReader::rapid(const ClRecord& /*record*/) { next_motion_.rapid_pending = 
 void ClReader::from(const ClRecord& r) {
   require_numbers(r);
   if (r.params.size() != 3 && r.params.size() != 6) {
-    fail(ClCode::wrong_parameters, r, "FROM needs x,y,z or x,y,z,i,j,k");
+    fail(Code::E3104, r, "FROM needs x,y,z or x,y,z,i,j,k");
   }
   if (r.params.size() == 6) {
     check_axis(Vec(number(r, 3), number(r, 4), number(r, 5)), r.params[3].line, r.params[3].column);
@@ -229,7 +229,7 @@ void ClReader::from(const ClRecord& r) {
 void ClReader::godlta(const ClRecord& r) {
   require_numbers(r);
   if (!position_) {
-    fail(ClCode::no_start_position, r, "GODLTA before any FROM or GOTO: no position to move from");
+    fail(Code::E3114, r, "GODLTA before any FROM or GOTO: no position to move from");
   }
   Vec delta;
   if (r.params.size() == 1) {
@@ -241,11 +241,11 @@ void ClReader::godlta(const ClRecord& r) {
                  r.params[3].column);
     }
   } else {
-    fail(ClCode::wrong_parameters, r, "GODLTA needs d, or dx,dy,dz[,i,j,k]");
+    fail(Code::E3104, r, "GODLTA needs d, or dx,dy,dz[,i,j,k]");
   }
   next_motion_.rapid_active = std::exchange(next_motion_.rapid_pending, false);
   if (next_motion_.arc_pending) {
-    fail(ClCode::arc_without_goto, next_motion_.arc_pending->source.line,
+    fail(Code::E3110, next_motion_.arc_pending->source.line,
          next_motion_.arc_pending->source.column, "CIRCLE must be followed by GOTO, not GODLTA");
   }
   begin_motion(r.source);
@@ -290,7 +290,7 @@ void ClReader::begin_motion(const SourceRef& src) {
   tool_.toolno_pending = false;
   if (tool_.new_cutter || toolno_change) {
     if (!tool_.named) {
-      fail(ClCode::tool_change_without_number, tool_.new_cutter->line, tool_.new_cutter->column,
+      fail(Code::E3120, tool_.new_cutter->line, tool_.new_cutter->column,
            tool_.new_cutter->record +
                " is another tool than the one cutting, but no LOAD/TOOL, LOADTL, TOOLNO or "
                "SELECT/TOOL gives its number: the tool change cannot be written (give the tool "
@@ -310,19 +310,18 @@ void ClReader::begin_motion(const SourceRef& src) {
 void ClReader::load_or_select(const ClRecord& r) {
   const std::string_view m = r.major;
   if (r.params.empty() || !word_is(r.params[0], "TOOL")) {
-    fail(ClCode::unexpected_word, r,
-         std::string(m) + " is understood only as " + std::string(m) + "/TOOL,n");
+    fail(Code::E3105, r, std::string(m) + " is understood only as " + std::string(m) + "/TOOL,n");
   }
   if (r.params.size() > 2 &&
       !(m == "LOAD" && r.params.size() == 4 && word_is(r.params[2], "ADJUST"))) {
-    fail(ClCode::unexpected_word, r.params[2],
+    fail(Code::E3105, r.params[2],
          "'" + std::string(r.params[2].text) + "' after " + std::string(m) +
              "/TOOL,n is not understood (ADJUST,h is, after LOAD)");
   }
   if (r.params.size() == 4) {
     // The length register: G43 H uses the tool number, which it must equal.
     if (integer(r, 3) != integer(r, 1)) {
-      fail(ClCode::unexpected_word, r.params[3],
+      fail(Code::E3105, r.params[3],
            "LOAD/TOOL,n,ADJUST,h with h other than n: the output's G43 uses H = the tool number");
     }
   }
@@ -336,7 +335,7 @@ void ClReader::load_or_select(const ClRecord& r) {
 }
 
 void ClReader::units(const ClRecord& r) {
-  if (r.params.size() != 1) fail(ClCode::bad_units, r, "UNITS needs one word: MM or INCHES");
+  if (r.params.size() != 1) fail(Code::E3116, r, "UNITS needs one word: MM or INCHES");
   const ClParam& p = r.params[0];
   if (word_is(p, "MM")) {
     unit_ = 1.0;
@@ -345,13 +344,13 @@ void ClReader::units(const ClRecord& r) {
   } else if (word_is(p, "CM")) {
     unit_ = 10.0;
   } else {
-    fail(ClCode::bad_units, p, "unknown units '" + std::string(p.text) + "'");
+    fail(Code::E3116, p, "unknown units '" + std::string(p.text) + "'");
   }
 }
 
 void ClReader::coolnt(const ClRecord& r) {
   using program::CoolantChange;
-  if (r.params.empty()) fail(ClCode::wrong_parameters, r, "COOLNT needs ON, FLOOD, MIST or OFF");
+  if (r.params.empty()) fail(Code::E3104, r, "COOLNT needs ON, FLOOD, MIST or OFF");
   const ClParam& p = r.params[0];
   CoolantChange change = CoolantChange::flood_on;
   if (word_is(p, "ON") || word_is(p, "FLOOD")) {
@@ -361,10 +360,9 @@ void ClReader::coolnt(const ClRecord& r) {
   } else if (word_is(p, "OFF")) {
     change = CoolantChange::off;
   } else if (word_is(p, "THRU") || word_is(p, "AIR") || word_is(p, "TAPKUL")) {
-    warn(ClCode::ignored_option, r.source,
-         "COOLNT/" + std::string(p.text) + " is written as flood coolant");
+    warn(Code::W3154, r.source, "COOLNT/" + std::string(p.text) + " is written as flood coolant");
   } else {
-    fail(ClCode::unexpected_word, p, "unknown COOLNT word '" + std::string(p.text) + "'");
+    fail(Code::E3105, p, "unknown COOLNT word '" + std::string(p.text) + "'");
   }
   queue_.push_back(program::Coolant{change, r.source});
 }
@@ -372,7 +370,7 @@ void ClReader::coolnt(const ClRecord& r) {
 // CUTCOM/LEFT|RIGHT|OFF[,XYPLAN][,register]; CAMWorks' CUTCOM/ON before the side.
 void ClReader::cutcom(const ClRecord& r) {
   using program::CompensationSide;
-  if (r.params.empty()) fail(ClCode::wrong_parameters, r, "CUTCOM needs LEFT, RIGHT or OFF");
+  if (r.params.empty()) fail(Code::E3104, r, "CUTCOM needs LEFT, RIGHT or OFF");
   const ClParam& p = r.params[0];
   CompensationSide side = CompensationSide::off;
   if (word_is(p, "ON")) return;  // CAMWorks: the side follows in its own record
@@ -381,7 +379,7 @@ void ClReader::cutcom(const ClRecord& r) {
   } else if (word_is(p, "RIGHT")) {
     side = CompensationSide::right;
   } else if (!word_is(p, "OFF")) {
-    fail(ClCode::unexpected_word, p, "unknown CUTCOM word '" + std::string(p.text) + "'");
+    fail(Code::E3105, p, "unknown CUTCOM word '" + std::string(p.text) + "'");
   }
   std::optional<int> register_number;
   for (std::size_t i = 1; i < r.params.size(); ++i) {
@@ -391,7 +389,7 @@ void ClReader::cutcom(const ClRecord& r) {
       register_number = integer(r, i);
       continue;
     }
-    fail(ClCode::unexpected_word, q,
+    fail(Code::E3105, q,
          "CUTCOM/" + std::string(p.text) + "," + std::string(q.text) +
              ": only the XYPLAN plane and one register number are understood");
   }
@@ -401,13 +399,12 @@ void ClReader::cutcom(const ClRecord& r) {
 void ClReader::delay(const ClRecord& r) {
   double seconds = 0;
   if (!r.params.empty() && word_is(r.params[0], "REV")) {
-    if (!(spindle_.rpm > 0))
-      fail(ClCode::wrong_parameters, r, "DELAY/REV with the spindle stopped");
+    if (!(spindle_.rpm > 0)) fail(Code::E3104, r, "DELAY/REV with the spindle stopped");
     seconds = number(r, 1) * 60.0 / spindle_.rpm;
   } else {
     seconds = number(r, 0);
   }
-  if (seconds < 0) fail(ClCode::wrong_parameters, r, "DELAY must not be negative");
+  if (seconds < 0) fail(Code::E3104, r, "DELAY must not be negative");
   queue_.push_back(program::Dwell{seconds, r.source});
 }
 
@@ -447,7 +444,7 @@ void ClReader::message(const ClRecord& r) {
 
 void ClReader::tlaxis(const ClRecord& r) {
   require_numbers(r);
-  if (r.params.size() < 3) fail(ClCode::wrong_parameters, r, "TLAXIS needs i,j,k");
+  if (r.params.size() < 3) fail(Code::E3104, r, "TLAXIS needs i,j,k");
   check_axis(Vec(number(r, 0), number(r, 1), number(r, 2)), r.params[0].line, r.params[0].column);
 }
 
@@ -458,9 +455,9 @@ void ClReader::multax(const ClRecord& r) {
 
 void ClReader::nurbs(const ClRecord& r) {
   if (!r.params.empty()) {
-    fail(ClCode::bad_nurbs, r, "NURBS/ with parameters is not understood");
+    fail(Code::E3111, r, "NURBS/ with parameters is not understood");
   }
-  if (!position_) fail(ClCode::no_start_position, r, "NURBS before any position");
+  if (!position_) fail(Code::E3114, r, "NURBS before any position");
   begin_motion(r.source);
   nurbs_.active = true;
   nurbs_.rapid = std::exchange(next_motion_.rapid_pending, false);
@@ -471,13 +468,13 @@ void ClReader::nurbs(const ClRecord& r) {
 
 void ClReader::nurbs_data(const ClRecord& r) {
   const std::string_view m = r.major;
-  if (!nurbs_.active) fail(ClCode::bad_nurbs, r, std::string(m) + " outside a NURBS/ block");
+  if (!nurbs_.active) fail(Code::E3111, r, std::string(m) + " outside a NURBS/ block");
   require_numbers(r);
   if (m == "KNOT") {
     for (std::size_t i = 0; i < r.params.size(); ++i) nurbs_.knots.push_back(number(r, i));
   } else {
     if (r.params.size() != 3 && r.params.size() != 4) {
-      fail(ClCode::bad_nurbs, r, "CNTRL needs x,y,z or x,y,z,w");
+      fail(Code::E3111, r, "CNTRL needs x,y,z or x,y,z,w");
     }
     const double w = r.params.size() == 4 ? number(r, 3) : 1.0;
     const Vec p = place(unit_ * Vec(number(r, 0), number(r, 1), number(r, 2)));
@@ -505,7 +502,7 @@ void ClReader::msys(const ClRecord& r) { require_numbers(r); }
 void ClReader::csys(const ClRecord& r) {
   require_numbers(r);
   if (r.params.size() != 12) {
-    fail(ClCode::wrong_parameters, r, "CSYS needs the 12 values of a 3x4 matrix");
+    fail(Code::E3104, r, "CSYS needs the 12 values of a 3x4 matrix");
   }
   Eigen::Matrix3d rotation;
   Vec offset;
@@ -520,7 +517,7 @@ void ClReader::csys(const ClRecord& r) {
        tolerance) &&
       rotation.determinant() > 0;
   if (!rigid) {
-    fail(ClCode::frame_not_identity, r,
+    fail(Code::E3119, r,
          "CSYS mirrors or scales (its 3x3 part is not a rotation within 1e-6): the points it "
          "places are not a rigid set-up's");
   }
@@ -553,11 +550,11 @@ void ClReader::csys(const ClRecord& r) {
 
 void ClReader::trntyp(const ClRecord& r) {
   if (r.params.empty() || !word_is(r.params[0], "WORLD")) {
-    fail(ClCode::frame_not_identity, r, "TRNTYP is understood only as TRNTYP/WORLD,0,0,0");
+    fail(Code::E3119, r, "TRNTYP is understood only as TRNTYP/WORLD,0,0,0");
   }
   for (std::size_t i = 1; i < r.params.size(); ++i) {
     if (number(r, i) != 0) {
-      fail(ClCode::frame_not_identity, r.params[i], "TRNTYP/WORLD with an offset is not applied");
+      fail(Code::E3119, r.params[i], "TRNTYP/WORLD with an offset is not applied");
     }
   }
 }
@@ -566,7 +563,7 @@ void ClReader::origin(const ClRecord& r) {
   require_numbers(r);
   for (std::size_t i = 0; i < r.params.size(); ++i) {
     if (number(r, i) != 0) {
-      fail(ClCode::frame_not_identity, r.params[i],
+      fail(Code::E3119, r.params[i],
            "ORIGIN other than 0,0,0 is not applied: give the CL file in the work frame");
     }
   }
@@ -577,7 +574,7 @@ void ClReader::origin(const ClRecord& r) {
 void ClReader::rotabl(const ClRecord& r) {
   for (std::size_t i = 0; i < r.params.size(); ++i) {
     if (r.params[i].is_number && r.params[i].value != 0) {
-      fail(ClCode::tool_axis_not_z, r.params[i],
+      fail(Code::E3108, r.params[i],
            "ROTABL turns the table by " + std::string(r.params[i].text) +
                ": an indexed rotary set-up is not 3-axis motion");
     }
@@ -585,18 +582,17 @@ void ClReader::rotabl(const ClRecord& r) {
 }
 
 void ClReader::tracut(const ClRecord& r) {
-  fail(ClCode::unsupported_record, r,
-       "TRACUT transformations are not applied; write the CL file without TRACUT");
+  fail(Code::E3117, r, "TRACUT transformations are not applied; write the CL file without TRACUT");
 }
 
 void ClReader::gohome(const ClRecord& r) {
-  fail(ClCode::unsupported_record, r,
+  fail(Code::E3117, r,
        "GOHOME needs the machine's home position, which vcpost does not know; give the CAM "
        "system's GOTO to the home point instead");
 }
 
 void ClReader::apt_source(const ClRecord& r) {
-  fail(ClCode::apt_source_statement, r,
+  fail(Code::E3113, r,
        "'" + std::string(r.major) +
            "' is an APT part-programming statement (geometry, not cutter locations); "
            "give the CAM system's CL output instead");
@@ -688,7 +684,7 @@ void ClReader::process_motion_points(const ClRecord& r, bool continuation) {
   // of exactly six: a tool axis written without MULTAX.
   const std::size_t group = multax_ || count == 6 ? 6 : 3;
   if (count == 0 || count % group != 0) {
-    fail(ClCode::wrong_parameters, r,
+    fail(Code::E3104, r,
          std::string(continuation ? "coordinate line" : "GOTO") + " has " + std::to_string(count) +
              " values; expected groups of " + std::to_string(group) +
              (group == 3 ? " (x,y,z)" : " (x,y,z,i,j,k)"));
@@ -711,12 +707,12 @@ void ClReader::process_motion_points(const ClRecord& r, bool continuation) {
 
 void ClReader::move_to(const Vec& p, const SourceRef& src) {
   if (!p.allFinite()) {
-    fail(ClCode::bad_number, src.line, src.column, "coordinate out of range after units");
+    fail(Code::E3103, src.line, src.column, "coordinate out of range after units");
   }
   const Vec start = position_.value_or(p);
   if (next_motion_.arc_active) {
     if (!position_) {
-      fail(ClCode::no_start_position, src.line, src.column,
+      fail(Code::E3114, src.line, src.column,
            "circular move before any position: the arc has no start");
     }
     emit_arc(start, p, *next_motion_.arc_active, src);
@@ -735,17 +731,17 @@ void ClReader::emit_arc(const Vec& start, const Vec& end, const Arc& arc, const 
   const double rs = s.norm();
   const double re = e.norm();
   if (std::abs(rs - re) > options_.arc_tolerance) {
-    fail(ClCode::arc_inconsistent, src.line, src.column,
+    fail(Code::E3109, src.line, src.column,
          "arc end point is " + fixed(re) + " mm from the centre, its start " + fixed(rs) +
              " mm (tolerance " + fixed(options_.arc_tolerance) + " mm)");
   }
   if (arc.radius && std::abs(*arc.radius - rs) > options_.arc_tolerance) {
-    fail(ClCode::arc_inconsistent, arc.source.line, arc.source.column,
+    fail(Code::E3109, arc.source.line, arc.source.column,
          "circle radius " + fixed(*arc.radius) + " mm, but the arc starts " + fixed(rs) +
              " mm from its centre");
   }
   if (!(rs > 0)) {
-    fail(ClCode::arc_inconsistent, src.line, src.column, "arc of zero radius");
+    fail(Code::E3109, src.line, src.column, "arc of zero radius");
   }
   // Principal axes become ARC_FEED in a plane; rotation sign = direction
   // about the plane's positive normal (rs274: XY about +Z, XZ about +Y,
@@ -783,7 +779,7 @@ void ClReader::emit_arc(const Vec& start, const Vec& end, const Arc& arc, const 
       r > options_.chord_tolerance ? 2 * std::acos(1 - options_.chord_tolerance / r) : sweep;
   const double lines = std::max(1.0, std::ceil(sweep / step));
   if (!(lines <= 1e6)) {
-    fail(ClCode::arc_inconsistent, src.line, src.column,
+    fail(Code::E3109, src.line, src.column,
          "tilted arc needs more than a million lines within the chord tolerance");
   }
   const auto n = static_cast<int>(lines);
@@ -816,7 +812,7 @@ void ClReader::fedrat(const ClRecord& r) {
   program::FeedMode mode = program::FeedMode::per_minute;
   for (const ClParam& p : r.params) {
     if (p.is_number) {
-      if (value) fail(ClCode::wrong_parameters, p, "FEDRAT has two numbers");
+      if (value) fail(Code::E3104, p, "FEDRAT has two numbers");
       value = p.value;
     } else if (word_is(p, "MMPM")) {
       factor = 1.0;
@@ -835,11 +831,11 @@ void ClReader::fedrat(const ClRecord& r) {
       mode = program::FeedMode::per_revolution;
     } else {
       number(r, static_cast<std::size_t>(&p - r.params.data()));  // bad number or word
-      fail(ClCode::unexpected_word, p, "unknown FEDRAT word '" + std::string(p.text) + "'");
+      fail(Code::E3105, p, "unknown FEDRAT word '" + std::string(p.text) + "'");
     }
   }
-  if (!value) fail(ClCode::wrong_parameters, r, "FEDRAT needs a feed value");
-  if (!(*value > 0)) fail(ClCode::wrong_parameters, r, "FEDRAT must be positive");
+  if (!value) fail(Code::E3104, r, "FEDRAT needs a feed value");
+  if (!(*value > 0)) fail(Code::E3104, r, "FEDRAT must be positive");
   feed_.programmed = Feed{*value * factor, mode};
   if (!cycle_.active) set_feed(*feed_.programmed, r.source);
 }
@@ -851,7 +847,7 @@ void ClReader::spindl(const ClRecord& r) {
   for (std::size_t i = 0; i < r.params.size(); ++i) {
     const ClParam& p = r.params[i];
     if (p.is_number) {
-      if (value) fail(ClCode::wrong_parameters, p, "SPINDL has two speeds");
+      if (value) fail(Code::E3104, p, "SPINDL has two speeds");
       value = p.value;
     } else if (word_is(p, "RPM")) {
       kind = Kind::rpm;
@@ -868,13 +864,13 @@ void ClReader::spindl(const ClRecord& r) {
     } else if (word_is(p, "ON")) {
       // the default
     } else if (word_is(p, "RANGE") || word_is(p, "MAXRPM")) {
-      warn(ClCode::ignored_option, r.source,
+      warn(Code::W3154, r.source,
            "SPINDL/" + std::string(p.text) + " ignored (gear range, speed limit)");
       ++i;  // its value
       number(r, i);
     } else {
       number(r, i);
-      fail(ClCode::unexpected_word, p, "unknown SPINDL word '" + std::string(p.text) + "'");
+      fail(Code::E3105, p, "unknown SPINDL word '" + std::string(p.text) + "'");
     }
   }
   if (off) {
@@ -883,12 +879,11 @@ void ClReader::spindl(const ClRecord& r) {
   }
   if (value) {
     double rpm = *value;
-    if (rpm < 0) fail(ClCode::wrong_parameters, r, "negative spindle speed");
+    if (rpm < 0) fail(Code::E3104, r, "negative spindle speed");
     if (kind != Kind::rpm) {
       const double d = cutters_.empty() ? 0.0 : cutters_.back().diameter();
       if (!(d > 0)) {
-        fail(ClCode::surface_speed_no_tool, r,
-             "SPINDL in surface speed needs a CUTTER/TLDATA diameter before it");
+        fail(Code::E3115, r, "SPINDL in surface speed needs a CUTTER/TLDATA diameter before it");
       }
       const double vc = kind == Kind::smm ? *value : *value * 0.3048;  // m/min
       rpm = 1000.0 * vc / (std::numbers::pi * d);
@@ -909,14 +904,14 @@ void ClReader::cutter(const ClRecord& r) {
       r.params.size() - (r.params.size() > 1 && r.params.back().text.empty() ? 1 : 0);
   for (std::size_t i = 0; i < n; ++i) number(r, i);
   if (n == 0 || n > 7) {
-    fail(ClCode::wrong_parameters, r, "CUTTER needs 1 to 7 values, has " + std::to_string(n));
+    fail(Code::E3104, r, "CUTTER needs 1 to 7 values, has " + std::to_string(n));
   }
   add_cutter(cutter_from_apt(cutter_values(r, 0, n)), r, "CUTTER: ");
 }
 
 void ClReader::tldata(const ClRecord& r) {
   if (r.params.empty() || r.params[0].is_number) {
-    fail(ClCode::wrong_parameters, r, "TLDATA needs a tool kind word first (MILL, DRILL, ...)");
+    fail(Code::E3104, r, "TLDATA needs a tool kind word first (MILL, DRILL, ...)");
   }
   if (!word_is(r.params[0], "MILL")) {
     ClCutter c;
@@ -925,7 +920,7 @@ void ClReader::tldata(const ClRecord& r) {
     add_cutter(std::move(c), r, "");
     return;
   }
-  if (r.params.size() < 3) fail(ClCode::wrong_parameters, r, "TLDATA/MILL needs d and r");
+  if (r.params.size() < 3) fail(Code::E3104, r, "TLDATA/MILL needs d and r");
   add_cutter(cutter_from_tldata_mill(cutter_values(r, 1, r.params.size())), r, "TLDATA/MILL: ");
 }
 
@@ -949,12 +944,12 @@ std::vector<double> ClReader::cutter_values(const ClRecord& r, std::size_t first
 // when it is another cutter (note_cutter).
 void ClReader::add_cutter(ClCutter c, const ClRecord& r, std::string_view what) {
   if (!c.params.empty() && !(c.diameter() > 0 && c.diameter() <= kLargestCutterDiameterMm)) {
-    fail(ClCode::bad_cutter_size, r,
+    fail(Code::E3122, r,
          std::string(what) + "diameter " + general(c.diameter()) +
              " mm is no milling tool's size (give a diameter above 0 and up to 5000 mm)");
   }
   c.source = r.source;
-  if (!c.tool) warn(ClCode::tool_not_modelled, r.source, std::string(what) + c.why_not);
+  if (!c.tool) warn(Code::W3153, r.source, std::string(what) + c.why_not);
   cutters_.push_back(std::move(c));
   note_cutter(r);
 }
@@ -995,7 +990,7 @@ void ClReader::circle(const ClRecord& r) {
   arc.source = r.source;
   if (n >= 2 && word_is(r.params[n - 2], "TIMES")) {
     arc.turns = integer(r, n - 1);
-    if (arc.turns > 1000) fail(ClCode::wrong_parameters, r.params[n - 1], "more than 1000 turns");
+    if (arc.turns > 1000) fail(Code::E3104, r.params[n - 1], "more than 1000 turns");
     n -= 2;
   }
   // CAMWorks names the direction: CLOCKWISE turns the other way about i,j,k.
@@ -1020,21 +1015,20 @@ void ClReader::circle(const ClRecord& r) {
     if (n >= 8) arc.axis = -arc.axis;
     if (clockwise_word) arc.axis = -arc.axis;
   } else {
-    fail(ClCode::wrong_parameters, r,
+    fail(Code::E3104, r,
          std::string(r.major) + " needs xc,yc,zc,i,j,k[,r,...] (or xc,yc,zc,r), has " +
              std::to_string(n) + " values");
   }
   const double norm = arc.axis.norm();
-  if (!(norm > 0)) fail(ClCode::wrong_parameters, r, "circle axis is a zero vector");
+  if (!(norm > 0)) fail(Code::E3104, r, "circle axis is a zero vector");
   arc.axis = csys_.rotation * (arc.axis / norm);
   arc.centre = place(unit_ * Vec(number(r, 0), number(r, 1), number(r, 2)));
-  if (arc.radius && !(*arc.radius > 0))
-    fail(ClCode::wrong_parameters, r, "circle radius must be positive");
+  if (arc.radius && !(*arc.radius > 0)) fail(Code::E3104, r, "circle radius must be positive");
   next_motion_.arc_pending = arc;
 }
 
 void ClReader::cycle(const ClRecord& r) {
-  if (r.params.empty()) fail(ClCode::wrong_parameters, r, "CYCLE needs a cycle word");
+  if (r.params.empty()) fail(Code::E3104, r, "CYCLE needs a cycle word");
   const ClParam& kind = r.params[0];
   if (word_is(kind, "OFF")) {
     cycle_.active.reset();
@@ -1111,10 +1105,10 @@ void ClReader::finish_nurbs() {
   nurbs_.active = false;
   std::string error;
   const auto curve = nx_nurbs(*position_, nurbs_.knots, nurbs_.cntrl, error);
-  if (!curve) fail(ClCode::bad_nurbs, nurbs_.source.line, nurbs_.source.column, error);
+  if (!curve) fail(Code::E3111, nurbs_.source.line, nurbs_.source.column, error);
   nurbs_.scratch.clear();
   if (!flatten(*curve, options_.chord_tolerance, nurbs_.scratch)) {
-    fail(ClCode::bad_nurbs, nurbs_.source.line, nurbs_.source.column,
+    fail(Code::E3111, nurbs_.source.line, nurbs_.source.column,
          "NURBS needs more than a million lines within the chord tolerance");
   }
   Vec previous = *position_;

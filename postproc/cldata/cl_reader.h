@@ -195,11 +195,11 @@ class ClReader {
   int integer(const ClRecord& r, std::size_t i) const;
   bool word_is(const ClParam& p, std::string_view upper_word) const;
   void require_numbers(const ClRecord& r) const;
-  [[noreturn]] void fail(ClCode code, std::uint32_t line, std::uint32_t column,
+  [[noreturn]] void fail(Code code, std::uint32_t line, std::uint32_t column,
                          std::string message) const;
-  [[noreturn]] void fail(ClCode code, const ClRecord& r, std::string message) const;
-  [[noreturn]] void fail(ClCode code, const ClParam& p, std::string message) const;
-  void warn(ClCode code, const program::SourceRef& src, std::string message);
+  [[noreturn]] void fail(Code code, const ClRecord& r, std::string message) const;
+  [[noreturn]] void fail(Code code, const ClParam& p, std::string message) const;
+  void warn(Code code, const program::SourceRef& src, std::string message);
 
   ClRecordReader lexer_;
   ClReadOptions options_;

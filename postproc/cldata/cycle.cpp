@@ -79,42 +79,41 @@ class CycleParser {
       couplets();
     }
     if (!has_depth_ || !has_feed_) {
-      fail_record(ClCode::unsupported_cycle,
+      fail_record(Code::E3112,
                   "CYCLE/" + std::string(kind_text_) + " needs a depth (FEDTO) and a feed");
     }
     if (!has_clearance_) {
-      fail_record(ClCode::unsupported_cycle,
+      fail_record(Code::E3112,
                   "CYCLE/" + std::string(kind_text_) + " needs RAPTO (where feeding starts)");
     }
-    if (!(c_.feed > 0)) fail_record(ClCode::wrong_parameters, "cycle feed must be positive");
+    if (!(c_.feed > 0)) fail_record(Code::E3104, "cycle feed must be positive");
     if (c_.depth < 0 || c_.first_peck < 0 || c_.next_peck < 0 || c_.dwell_s < 0) {
-      fail_record(ClCode::wrong_parameters, "cycle depth, pecks and dwell must not be negative");
+      fail_record(Code::E3104, "cycle depth, pecks and dwell must not be negative");
     }
     if (c_.clearance < -c_.depth) {
-      fail_record(ClCode::wrong_parameters, "cycle RAPTO lies below the bottom of the hole");
+      fail_record(Code::E3104, "cycle RAPTO lies below the bottom of the hole");
     }
     if (c_.retract && *c_.retract < c_.clearance) {
-      fail_record(ClCode::wrong_parameters, "cycle RTRCTO lies below RAPTO");
+      fail_record(Code::E3104, "cycle RTRCTO lies below RAPTO");
     }
     if (c_.next_peck == 0) c_.next_peck = c_.first_peck;
     return c_;
   }
 
  private:
-  [[noreturn]] void fail(ClCode code, const Item& item, std::string message) const {
+  [[noreturn]] void fail(Code code, const Item& item, std::string message) const {
     throw ClError(ClDiagnostic{code, item.line, item.column, std::move(message)}, file_);
   }
-  [[noreturn]] void fail_record(ClCode code, std::string message) const {
+  [[noreturn]] void fail_record(Code code, std::string message) const {
     throw ClError(
         ClDiagnostic{code, record_.source.line, record_.source.column, std::move(message)}, file_);
   }
 
   const Item& item() const {
     if (at_ >= items_.size()) {
-      throw ClError(
-          ClDiagnostic{ClCode::wrong_parameters, record_.source.line, record_.source.column,
-                       "CYCLE/" + std::string(kind_text_) + " ends where a value is due"},
-          file_);
+      throw ClError(ClDiagnostic{Code::E3104, record_.source.line, record_.source.column,
+                                 "CYCLE/" + std::string(kind_text_) + " ends where a value is due"},
+                    file_);
     }
     return items_[at_];
   }
@@ -122,7 +121,7 @@ class CycleParser {
   double number() {
     const Item& i = item();
     if (!i.is_number)
-      fail(ClCode::wrong_parameters, i, "expected a number, found '" + std::string(i.text) + "'");
+      fail(Code::E3104, i, "expected a number, found '" + std::string(i.text) + "'");
     ++at_;
     return i.value;
   }
@@ -143,7 +142,7 @@ class CycleParser {
   }
 
   void kind() {
-    if (items_.empty()) fail_record(ClCode::wrong_parameters, "CYCLE needs a cycle word");
+    if (items_.empty()) fail_record(Code::E3104, "CYCLE needs a cycle word");
     const Item& k = items_[at_++];
     kind_text_ = k.text;
     if (is_word(k, "DRILL")) {
@@ -171,13 +170,13 @@ class CycleParser {
     } else if (is_word(k, "BORE9")) {
       c_.kind = CycleKind::bore_dwell;
     } else {
-      fail(ClCode::unsupported_cycle, k,
+      fail(Code::E3112, k,
            "CYCLE/" + std::string(k.text) +
                " is not a cycle vcpost posts (DRILL, FACE, DEEP, DEEP2, PECK, BRKCHP, TAP, BORE, "
                "BORE5, BORE6, BORE9, REAM)");
     }
     if (at_ < items_.size() && (c_.kind == CycleKind::bore) && is_word(items_[at_], "BACK")) {
-      fail(ClCode::unsupported_cycle, items_[at_],
+      fail(Code::E3112, items_[at_],
            "CYCLE/BORE,BACK (back boring, G87) is not posted: it needs the spindle oriented "
            "and the tool shifted, which the CL data do not give");
     }
@@ -189,7 +188,7 @@ class CycleParser {
     has_depth_ = true;
     double factor = unit_;
     if (!feed_word(item(), factor)) {
-      fail(ClCode::unsupported_cycle, item(),
+      fail(Code::E3112, item(),
            "positional CYCLE/" + std::string(kind_text_) +
                " must be depth, MMPM|IPM|MMPR|IPR, feed, clearance[, retract]");
     }
@@ -199,7 +198,7 @@ class CycleParser {
     c_.clearance = length();
     has_clearance_ = true;
     if (at_ < items_.size()) c_.retract = length();
-    if (at_ < items_.size()) fail(ClCode::unsupported_cycle, items_[at_], "extra cycle value");
+    if (at_ < items_.size()) fail(Code::E3112, items_[at_], "extra cycle value");
   }
 
   // CAMWorks: depth[,PECKING,first,next],feed word,feed,clearance,retract[ retract][ DWELL,t]
@@ -214,7 +213,7 @@ class CycleParser {
     }
     double factor = unit_;
     if (!feed_word(item(), factor)) {
-      fail(ClCode::unsupported_cycle, item(), "expected MMPM, IPM, MMPR or IPR");
+      fail(Code::E3112, item(), "expected MMPM, IPM, MMPR or IPR");
     }
     ++at_;
     c_.feed = number() * factor;
@@ -226,7 +225,7 @@ class CycleParser {
     if (at_ < items_.size() && items_[at_].is_number) {
       const Item& again = items_[at_];
       if (std::abs(number() * unit_ - *c_.retract) > 1e-9) {
-        fail(ClCode::unsupported_cycle, again,
+        fail(Code::E3112, again,
              "second retract level '" + std::string(again.text) +
                  "' differs from the first: which one the tool returns to is not known");
       }
@@ -257,8 +256,7 @@ class CycleParser {
       } else if (is_word(w, "DWELL")) {
         ++at_;
         if (is_word(item(), "REV")) {
-          fail(ClCode::unsupported_cycle, item(),
-               "DWELL,REV in a cycle is not posted (give seconds)");
+          fail(Code::E3112, item(), "DWELL,REV in a cycle is not posted (give seconds)");
         }
         c_.dwell_s = number();
       } else if (is_word(w, "STEP")) {
@@ -277,7 +275,7 @@ class CycleParser {
         c_.feed = number() * factor;
         has_feed_ = true;
       } else {
-        fail(ClCode::unsupported_cycle, w,
+        fail(Code::E3112, w,
              "CYCLE/" + std::string(kind_text_) + "," + std::string(w.text) +
                  " is not understood (FEDTO, RAPTO, RTRCTO, DWELL, STEP, 1STPECK, SUBPECK and "
                  "MMPM/IPM/MMPR/IPR are)");

@@ -42,7 +42,7 @@ ClRecordReader::ClRecordReader(std::istream& in, std::string file_name, ClLexOpt
   buffer_.resize(chunk_size);
 }
 
-void ClRecordReader::fail(ClCode code, std::uint32_t line, std::uint32_t column,
+void ClRecordReader::fail(Code code, std::uint32_t line, std::uint32_t column,
                           std::string message) const {
   throw ClError(ClDiagnostic{code, line, column, std::move(message)}, file_name_);
 }
@@ -61,7 +61,7 @@ bool ClRecordReader::read_line(std::string_view& line) {
       ++line_number_;
       line_offset_ = offset_;
       if (length > options_.max_line_length) {
-        fail(ClCode::line_too_long, line_number_, 1,
+        fail(Code::E3101, line_number_, 1,
              "line of " + std::to_string(length) + " bytes is longer than the limit of " +
                  std::to_string(options_.max_line_length));
       }
@@ -69,7 +69,7 @@ bool ClRecordReader::read_line(std::string_view& line) {
       for (std::size_t i = 0; i < length; ++i) {
         const auto c = static_cast<unsigned char>(data[begin_ + i]);
         if ((c < 0x20 && c != '\t') || c == 0x7F) {
-          fail(ClCode::invalid_byte, line_number_, static_cast<std::uint32_t>(i + 1),
+          fail(Code::E3102, line_number_, static_cast<std::uint32_t>(i + 1),
                "invalid byte " + byte_name(c) + " in CL data");
         }
       }
@@ -84,7 +84,7 @@ bool ClRecordReader::read_line(std::string_view& line) {
     // within the limit instead of buffering it.
     const std::size_t pending = end_ - begin_;
     if (pending > options_.max_line_length + 1) {
-      fail(ClCode::line_too_long, line_number_ + 1, 1,
+      fail(Code::E3101, line_number_ + 1, 1,
            "line longer than the limit of " + std::to_string(options_.max_line_length) + " bytes");
     }
     if (begin_ > 0) {
@@ -130,7 +130,7 @@ void ClRecordReader::split_params(ClRecord& record, std::size_t text_begin) {
     for (std::size_t i = b; i < e; ++i) {
       if (static_cast<unsigned char>(all[i]) >= 0x80) {
         const auto [l, c] = position_of(i);
-        fail(ClCode::invalid_byte, l, c,
+        fail(Code::E3102, l, c,
              "invalid byte " + byte_name(static_cast<unsigned char>(all[i])) + " in a parameter");
       }
     }
@@ -162,8 +162,7 @@ bool ClRecordReader::next(ClRecord& record) {
   while (true) {
     if (!read_line(line)) {
       if (continued) {
-        fail(ClCode::truncated_record, line_number_, 1,
-             "the file ends inside a record continued with '$'");
+        fail(Code::E3106, line_number_, 1, "the file ends inside a record continued with '$'");
       }
       return false;
     }
@@ -233,7 +232,7 @@ bool ClRecordReader::next(ClRecord& record) {
   }
   if (major_.empty()) {
     const auto [l, c] = position_of(0);
-    fail(ClCode::unsupported_record, l, c,
+    fail(Code::E3117, l, c,
          "record does not start with a major word: '" + std::string(all.substr(0, 20)) + "'");
   }
   record.major = major_;

@@ -74,7 +74,7 @@ class ClRecordReader {
 
  private:
   bool read_line(std::string_view& line);
-  [[noreturn]] void fail(ClCode code, std::uint32_t line, std::uint32_t column,
+  [[noreturn]] void fail(Code code, std::uint32_t line, std::uint32_t column,
                          std::string message) const;
   void split_params(ClRecord& record, std::size_t text_begin);
   std::pair<std::uint32_t, std::uint32_t> position_of(std::size_t logical_offset) const;

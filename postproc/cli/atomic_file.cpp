@@ -78,7 +78,7 @@ std::filesystem::path follow_links(const std::filesystem::path& path) {
     if (error) return p;
     p = next.is_absolute() ? next : p.parent_path() / next;
   }
-  throw CommandError("E2003", "cannot write '" + path.string() + "': " + std::strerror(ELOOP));
+  throw CommandError(Code::E2003, "cannot write '" + path.string() + "': " + std::strerror(ELOOP));
 }
 
 AtomicFile::AtomicFile(std::filesystem::path target)
@@ -92,7 +92,7 @@ AtomicFile::AtomicFile(std::filesystem::path target)
                             : (flags & O_ACCMODE) == O_RDONLY ? "it is open for reading only"
                                                               : "";
     if (!why.empty())
-      throw CommandError("E2003", "cannot write '" + target_.string() + "': " + why);
+      throw CommandError(Code::E2003, "cannot write '" + target_.string() + "': " + why);
     written_ = target_;
     held_ = std::make_unique<HeldOutput>();
     return;
@@ -100,20 +100,20 @@ AtomicFile::AtomicFile(std::filesystem::path target)
   struct stat info {};
   const bool exists = ::stat(written_.c_str(), &info) == 0;
   if (exists && S_ISDIR(info.st_mode)) {
-    throw CommandError("E2003", "cannot write '" + target_.string() + "': it is a folder");
+    throw CommandError(Code::E2003, "cannot write '" + target_.string() + "': it is a folder");
   }
   if (exists && !S_ISREG(info.st_mode)) {
     // A device, FIFO or terminal: written in place on commit. Opening a FIFO
     // now would block, or tell its reader the output ended: check only.
     if (::access(written_.c_str(), W_OK) != 0) {
-      throw CommandError("E2003",
+      throw CommandError(Code::E2003,
                          "cannot write '" + target_.string() + "': " + std::strerror(errno));
     }
     held_ = std::make_unique<HeldOutput>();
     return;
   }
   if (exists && info.st_nlink > 1) {
-    throw CommandError("E2003",
+    throw CommandError(Code::E2003,
                        "cannot write '" + target_.string() + "': it has " +
                            std::to_string(info.st_nlink) +
                            " hard links and replacing it would split it from the others; remove "
@@ -127,7 +127,7 @@ AtomicFile::AtomicFile(std::filesystem::path target)
   const int fd = registration_.create(pattern);
   if (fd < 0) {
     const int error = errno;
-    throw CommandError("E2003",
+    throw CommandError(Code::E2003,
                        "cannot write '" + target_.string() + "': cannot create a file in '" +
                            (written_.has_parent_path() ? written_.parent_path().string() : ".") +
                            "': " + std::strerror(error));
@@ -167,7 +167,7 @@ void AtomicFile::fail(int error) {
   if (!temporary_.empty()) ::unlink(temporary_.c_str());
   temporary_.clear();
   registration_.release();
-  throw CommandError("E2003", "cannot write '" + target_.string() + "': " + reason(error));
+  throw CommandError(Code::E2003, "cannot write '" + target_.string() + "': " + reason(error));
 }
 
 void AtomicFile::write(std::string_view bytes) {
@@ -176,7 +176,7 @@ void AtomicFile::write(std::string_view bytes) {
     return;
   }
   if (!file_)
-    throw CommandError("E2003", "cannot write '" + target_.string() + "': already closed");
+    throw CommandError(Code::E2003, "cannot write '" + target_.string() + "': already closed");
   if (std::fwrite(bytes.data(), 1, bytes.size(), file_) != bytes.size()) fail(errno);
 }
 
@@ -197,7 +197,7 @@ void AtomicFile::commit_in_place() {
 void AtomicFile::commit() {
   if (held_) return commit_in_place();
   if (!file_)
-    throw CommandError("E2003", "cannot write '" + target_.string() + "': already closed");
+    throw CommandError(Code::E2003, "cannot write '" + target_.string() + "': already closed");
   int error = 0;
   errno = 0;
   if (std::fflush(file_) != 0 || std::ferror(file_) || ::fsync(::fileno(file_)) != 0) {
@@ -212,7 +212,7 @@ void AtomicFile::commit() {
     ::unlink(temporary_.c_str());
     temporary_.clear();
     registration_.release();
-    throw CommandError("E2003",
+    throw CommandError(Code::E2003,
                        "cannot create '" + target_.string() + "': " + std::strerror(rename_error));
   }
   temporary_.clear();

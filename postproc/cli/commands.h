@@ -25,10 +25,10 @@ enum ExitCode : int { exit_ok = 0, exit_warnings = 1, exit_input_error = 2, exit
 // Without a code it is E2001 (bad command line, exit 2).
 class CommandError : public vcpost::Error {
  public:
-  explicit CommandError(const std::string& message) : vcpost::Error("E2001", message) {}
-  CommandError(std::string_view code, const std::string& message) : vcpost::Error(code, message) {}
+  explicit CommandError(const std::string& message) : vcpost::Error(Code::E2001, message) {}
+  CommandError(Code code, const std::string& message) : vcpost::Error(code, message) {}
   // "file:line:col: error[code]: message".
-  CommandError(std::string_view code, const SourceLocation& where, const std::string& message)
+  CommandError(Code code, const SourceLocation& where, const std::string& message)
       : vcpost::Error(code, format_diagnostic(code, where, message), where) {}
 };
 

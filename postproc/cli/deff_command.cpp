@@ -120,7 +120,7 @@ void stream_batch(std::istream& in, const std::string& source, bool radius) {
     std::cout << row.text << ',' << cells << '\n';
   }
   if (!header_written) write_header();
-  if (in.bad()) throw vcpost::Error("E2002", source + ": read error");
+  if (in.bad()) throw vcpost::Error(Code::E2002, source + ": read error");
 }
 
 void run_batch(const Arguments& args) {
@@ -128,7 +128,7 @@ void run_batch(const Arguments& args) {
     if (args.batch == "-") return stream_batch(std::cin, "<stdin>", args.radius);
     std::ifstream file(args.batch);
     if (!file) {
-      throw CommandError("E2002", "--batch: cannot open '" + args.batch + "' for reading");
+      throw CommandError(Code::E2002, "--batch: cannot open '" + args.batch + "' for reading");
     }
     std::error_code error;
     if (std::filesystem::is_regular_file(args.batch, error)) {

@@ -117,22 +117,24 @@ bool has_warnings(const post::PostSummary& summary) {
 void print_warnings(const post::PostSummary& summary, const std::string& name) {
   if (summary.stopped_spindle_cuts > 0) {
     log().warn(
-        "{}:{}: W2030: {} points cut the model with the spindle stopped (S0, M5 or SPINDL/OFF "
+        "{}:{}: {}: {} points cut the model with the spindle stopped (S0, M5 or SPINDL/OFF "
         "before them): the control would cut with a standing tool; vcpost keeps their S",
-        name, summary.first_stopped_spindle_line, summary.stopped_spindle_cuts);
+        name, summary.first_stopped_spindle_line, to_string(Code::W2030),
+        summary.stopped_spindle_cuts);
   }
   if (clamped_speed_share(summary) >= kAllClamped) {
     log().warn(
-        "W2031: the spindle's {} speed decides S on {:.0f} % of the cutting time: vc {} m/min is "
+        "{}: the spindle's {} speed decides S on {:.0f} % of the cutting time: vc {} m/min is "
         "beyond this machine with this tool (check --vc, the tool and --machine)",
+        to_string(Code::W2031),
         summary.time_clamped_max_s >= summary.time_clamped_min_s ? "highest" : "lowest",
         100 * clamped_speed_share(summary), vc_words(summary));
   }
   if (clamped_feed_share(summary) >= kAllClamped) {
     log().warn(
-        "W2032: the machine's feed limit (f_min or f_max) decides F on {:.0f} % of the coupled "
+        "{}: the machine's feed limit (f_min or f_max) decides F on {:.0f} % of the coupled "
         "blocks: --fz is beyond this machine (check --fz, the teeth and --machine)",
-        100 * clamped_feed_share(summary));
+        to_string(Code::W2032), 100 * clamped_feed_share(summary));
   }
   if (summary.missing_end)
     log().warn("the program ends without M2, M30 or a closing '%': is the file complete?");

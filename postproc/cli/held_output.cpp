@@ -29,9 +29,9 @@ HeldOutput::~HeldOutput() {
 void HeldOutput::fail(const std::string& what, int error) const {
   std::string reason = std::strerror(error);
   if (error == ENOSPC || error == EFBIG || error == EDQUOT) reason += " (free some space there)";
-  throw CommandError("E2003", "cannot hold the program for standard output: " + what + " in '" +
-                                  folder_.string() + "': " + reason +
-                                  " (or write it to a file with -o FILE)");
+  throw CommandError(Code::E2003, "cannot hold the program for standard output: " + what + " in '" +
+                                      folder_.string() + "': " + reason +
+                                      " (or write it to a file with -o FILE)");
 }
 
 void HeldOutput::append(std::string_view bytes) {

@@ -56,7 +56,7 @@ std::string read_chart_library() {
   const std::string path(report::chart_library_path());
   std::ifstream in(path, std::ios::binary);
   if (!in) {
-    throw CommandError("E2004",
+    throw CommandError(Code::E2004,
                        "HTML report: the charting library '" + path + "' is missing; install " +
                            std::string(report::kChartLibraryPackage) + " (scripts/setup.sh)");
   }
@@ -93,7 +93,7 @@ std::string write_reports(const report::ReportData& data, std::vector<ReportFile
       try {
         bytes = report::render_html(data, chart_library);
       } catch (const std::invalid_argument& e) {
-        throw CommandError("E2004", std::string("HTML report: ") + e.what());
+        throw CommandError(Code::E2004, std::string("HTML report: ") + e.what());
       }
     }
     if (r.path == "-") {

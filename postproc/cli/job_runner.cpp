@@ -158,8 +158,8 @@ void deliver_standard_output(HeldOutput& pending, const std::string& to_stdout) 
   errno = 0;
   if (deliver(pending, std::cout)) std::cout << to_stdout << std::flush;
   if (!std::cout) {
-    throw CommandError("E2003", std::string("cannot write to standard output: ") +
-                                    (errno != 0 ? std::strerror(errno) : "write error"));
+    throw CommandError(Code::E2003, std::string("cannot write to standard output: ") +
+                                        (errno != 0 ? std::strerror(errno) : "write error"));
   }
 }
 
@@ -191,18 +191,18 @@ auto located_errors(const std::string& name, Work&& work) -> decltype(work()) {
 }
 
 // The command line's code for each refusal of post/acceptance.h.
-std::string_view code_of(post::Refusal refusal) {
+Code code_of(post::Refusal refusal) {
   switch (refusal) {
     case post::Refusal::never_touches:
-      return "E2005";
+      return Code::E2005;
     case post::Refusal::gross_mismatch:
-      return "E2011";
+      return Code::E2011;
     case post::Refusal::none:
     case post::Refusal::no_motion:
     case post::Refusal::no_tool:
       break;
   }
-  return "E2001";
+  return Code::E2001;
 }
 
 }  // namespace
@@ -320,7 +320,7 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   if (args.strict && has_warnings(summary)) {
     // Refused before anything is committed: --strict leaves no file it refused.
     print_warnings(summary, name);
-    throw CommandError("E2010", "warnings with --strict; nothing written");
+    throw CommandError(Code::E2010, "warnings with --strict; nothing written");
   }
   std::string to_stdout;  // written after every file is complete
 

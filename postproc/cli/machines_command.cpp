@@ -35,8 +35,8 @@ void refuse_non_toml(std::istream& in, const std::string& name) {
   }
   if (!what.empty()) {
     throw CommandError(
-        "E5010", "machine profile " + name + ": this is " + what +
-                     ", not a TOML profile (--machine takes a built-in name or a .toml file)");
+        Code::E5010, "machine profile " + name + ": this is " + what +
+                         ", not a TOML profile (--machine takes a built-in name or a .toml file)");
   }
 }
 
@@ -50,10 +50,10 @@ machines::MachineProfile load_machine(const std::string& name_or_file) {
   if (!std::filesystem::is_regular_file(path, ec)) {
     if (path.extension() != ".toml" && path.parent_path().empty())
       return machines::builtin_profile(name_or_file);  // throws with the list of names
-    throw CommandError("E5010", "machine profile " + name_or_file + ": no such file");
+    throw CommandError(Code::E5010, "machine profile " + name_or_file + ": no such file");
   }
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw CommandError("E5010", "machine profile " + name_or_file + ": cannot open");
+  if (!in) throw CommandError(Code::E5010, "machine profile " + name_or_file + ": cannot open");
   refuse_non_toml(in, name_or_file);
   return machines::profile_from_stream(in, name_or_file);
 }

@@ -35,10 +35,11 @@ bool named_step(const std::filesystem::path& path) {
 void refuse_degenerate(const geometry::SurfaceModel& model, const std::filesystem::path& path) {
   const Eigen::AlignedBox3d box = model.bounds();
   if (box.isEmpty() || !(box.diagonal().norm() < 1e-3)) return;
-  throw CommandError("E4120", "--model: '" + path.string() +
-                                  "': the model has no extent (its faces lie within 0.001 mm of "
-                                  "one point): a length unit of 0 or degenerate faces? Export the "
-                                  "model again");
+  throw CommandError(Code::E4120,
+                     "--model: '" + path.string() +
+                         "': the model has no extent (its faces lie within 0.001 mm of "
+                         "one point): a length unit of 0 or degenerate faces? Export the "
+                         "model again");
 }
 
 }  // namespace
@@ -52,11 +53,11 @@ LoadedModel load_model(const std::filesystem::path& path) {
     // A FIFO or device cannot be sniffed and then read again: its bytes
     // would be gone (or the second open would wait forever for a writer).
     throw CommandError(
-        "E4101", "--model: '" + path.string() +
-                     "' is not a regular file (a FIFO or a device); give the model as a file");
+        Code::E4101, "--model: '" + path.string() +
+                         "' is not a regular file (a FIFO or a device); give the model as a file");
   }
   if (!step && !std::filesystem::is_regular_file(status)) {
-    throw CommandError("E4101", "--model: '" + path.string() + "': no such file");
+    throw CommandError(Code::E4101, "--model: '" + path.string() + "': no such file");
   }
   // An occt::ModelError or mesh::StlError leaves with its own code.
   if (step || looks_like_step(path)) {
@@ -70,7 +71,7 @@ LoadedModel load_model(const std::filesystem::path& path) {
   auto mesh = mesh::read_stl_file(path);
   for (const auto& v : mesh.vertices) {
     if (!(v.cwiseAbs().maxCoeff() <= occt::kMaxModelReachMm)) {
-      throw CommandError("E4107",
+      throw CommandError(Code::E4107,
                          "--model: '" + path.string() +
                              "': the model reaches beyond 100000 mm (100 m) from the origin; parts "
                              "within it are read (a stray point or a wrong unit?)");

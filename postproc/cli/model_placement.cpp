@@ -16,7 +16,7 @@ namespace {
 using geometry::RigidTransform;
 
 [[noreturn]] void refuse(const std::string& name, const std::string& why) {
-  throw CommandError("E4112", "--model-transform: '" + name + "': " + why);
+  throw CommandError(Code::E4112, "--model-transform: '" + name + "': " + why);
 }
 
 // One element's text: from `<tag` at `from` to its closing tag (or the end
@@ -185,7 +185,7 @@ ModelPlacement parse_model_placement(const std::string& text) {
     return {geometry::parse_rigid_transform(text), "placed by " + text};
   const std::string file = text.substr(kProject.size());
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw CommandError("E2002", "--model-transform: cannot read '" + file + "'");
+  if (!in) throw CommandError(Code::E2002, "--model-transform: cannot read '" + file + "'");
   std::ostringstream xml;
   xml << in.rdbuf();
   const ProjectPlacement p = read_vcproject_placement(xml.str(), file);

@@ -16,7 +16,7 @@ namespace {
 
 std::string read_text_file(const std::string& path, const std::string& option) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw CommandError("E2002", option + ": cannot read '" + path + "'");
+  if (!in) throw CommandError(Code::E2002, option + ": cannot read '" + path + "'");
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
@@ -51,7 +51,7 @@ std::optional<post::StockSettings> stock_settings(const PostArguments& args) {
     return std::nullopt;
   }
   if (sources > 1)
-    throw CommandError("E4725",
+    throw CommandError(Code::E4725,
                        "--stock-from-program, --stock-box and --stock-model: give one stock");
   post::StockSettings stock;
   stock.from_program = args.stock_from_program;

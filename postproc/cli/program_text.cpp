@@ -33,7 +33,7 @@ std::string temporary_folder() {
   const std::size_t last_nl = before_nul.rfind('\n');
   const std::size_t column =
       before_nul.size() - (last_nl == std::string_view::npos ? 0 : last_nl + 1) + 1;
-  throw CommandError("E1002",
+  throw CommandError(Code::E1002,
                      {name, static_cast<std::uint32_t>(line), static_cast<std::uint32_t>(column)},
                      "NUL byte: this is no text program (binary data?); nothing read past it");
 }
@@ -46,7 +46,7 @@ ProgramText::ProgramText(const std::string& path) {
   if (path != "-") {
     fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
     if (fd < 0) {
-      throw CommandError("E2002",
+      throw CommandError(Code::E2002,
                          "'" + path + "': cannot open the program: " + std::strerror(errno));
     }
   }
@@ -54,9 +54,9 @@ ProgramText::ProgramText(const std::string& path) {
   if (::fstat(fd, &info) != 0 || S_ISDIR(info.st_mode)) {
     const int error = errno;
     if (fd != STDIN_FILENO) ::close(fd);
-    throw CommandError("E2002", "'" + name + "': cannot open the program: " +
-                                    (S_ISDIR(info.st_mode) ? std::string("it is a folder")
-                                                           : std::strerror(error)));
+    throw CommandError(Code::E2002, "'" + name + "': cannot open the program: " +
+                                        (S_ISDIR(info.st_mode) ? std::string("it is a folder")
+                                                               : std::strerror(error)));
   }
   if (S_ISREG(info.st_mode) && path != "-") {
     const auto size = static_cast<std::size_t>(info.st_size);
@@ -72,8 +72,8 @@ ProgramText::ProgramText(const std::string& path) {
   if (copy < 0) {
     const int error = errno;
     if (fd != STDIN_FILENO) ::close(fd);
-    throw CommandError("E2002", "'" + name + "': cannot hold the program in '" +
-                                    temporary_folder() + "': " + std::strerror(error));
+    throw CommandError(Code::E2002, "'" + name + "': cannot hold the program in '" +
+                                        temporary_folder() + "': " + std::strerror(error));
   }
   ::unlink(pattern.c_str());
   std::vector<char> buffer(std::size_t{1} << 20);
@@ -88,7 +88,7 @@ ProgramText::ProgramText(const std::string& path) {
       const int error = errno;
       ::close(copy);
       if (fd != STDIN_FILENO) ::close(fd);
-      throw CommandError("E2002",
+      throw CommandError(Code::E2002,
                          "'" + name + "': cannot read the program: " + std::strerror(error));
     }
     const std::string_view piece(buffer.data(), static_cast<std::size_t>(got));
@@ -101,7 +101,8 @@ ProgramText::ProgramText(const std::string& path) {
       const std::size_t last_nl = before.rfind('\n');
       const std::size_t col = last_nl == std::string_view::npos ? column + nul : nul - last_nl;
       throw CommandError(
-          "E1002", {name, static_cast<std::uint32_t>(lines + 1), static_cast<std::uint32_t>(col)},
+          Code::E1002,
+          {name, static_cast<std::uint32_t>(lines + 1), static_cast<std::uint32_t>(col)},
           "NUL byte: this is no text program (binary data?); nothing read past it");
     }
     newlines += static_cast<std::uint64_t>(std::count(piece.begin(), piece.end(), '\n'));
@@ -114,8 +115,8 @@ ProgramText::ProgramText(const std::string& path) {
         const int error = errno;
         ::close(copy);
         if (fd != STDIN_FILENO) ::close(fd);
-        throw CommandError("E2002", "'" + name + "': cannot hold the program in '" +
-                                        temporary_folder() + "': " + std::strerror(error));
+        throw CommandError(Code::E2002, "'" + name + "': cannot hold the program in '" +
+                                            temporary_folder() + "': " + std::strerror(error));
       }
       done += static_cast<std::size_t>(put);
     }
@@ -138,7 +139,7 @@ void ProgramText::refuse_cr_only(const std::string& name) const {
   if (cr == std::string_view::npos || head.find('\n') != std::string_view::npos ||
       cr + 1 >= view_.size())
     return;
-  throw CommandError("E2033", {name, 1, static_cast<std::uint32_t>(cr + 1)},
+  throw CommandError(Code::E2033, {name, 1, static_cast<std::uint32_t>(cr + 1)},
                      "the lines end with a lone CR (old Mac text), which no reader takes as a "
                      "line end: convert them to LF (tr '\\r' '\\n')");
 }
@@ -149,7 +150,8 @@ void ProgramText::map(int fd, std::size_t size, const std::string& name) {
   if (map_ == MAP_FAILED) {
     const int error = errno;
     map_ = nullptr;
-    throw CommandError("E2002", "'" + name + "': cannot read the program: " + std::strerror(error));
+    throw CommandError(Code::E2002,
+                       "'" + name + "': cannot read the program: " + std::strerror(error));
   }
   ::madvise(map_, map_size_, MADV_SEQUENTIAL);
   view_ = std::string_view(static_cast<const char*>(map_), map_size_);

@@ -84,7 +84,7 @@ nlohmann::json to_json(const verify::Result& r) {
                        {"added", c.added}});
   nlohmann::json violations = nlohmann::json::array();
   for (const auto& v : r.violations)
-    violations.push_back({{"code", verify::code_id(v.code)},
+    violations.push_back({{"code", std::string(to_string(v.code))},
                           {"line", v.line},
                           {"column", v.column},
                           {"input_line", v.input_line},
@@ -157,9 +157,9 @@ void run(const Arguments& args) {
     const std::uint64_t shown = std::min<std::uint64_t>(result.violations.size(), kShown);
     if (result.violation_count > shown)
       std::cerr << "... and " << result.violation_count - shown << " more\n";
-    throw CommandError("E7199", "verify: " + out_name + " differs from " + in_name + " in " +
-                                    std::to_string(result.violation_count) +
-                                    " place(s) other than S and F words");
+    throw CommandError(Code::E7199, "verify: " + out_name + " differs from " + in_name + " in " +
+                                        std::to_string(result.violation_count) +
+                                        " place(s) other than S and F words");
   }
   if (!args.json)
     std::cout << "verified: only S and F words differ (" << result.s_changes << " S words, "

@@ -34,18 +34,18 @@ std::vector<std::string> split_csv_line(const std::string& line) {
   csv::SplitLine split = csv::split_line(line, {.trim_blanks = true, .quote_in_unquoted = true});
   if (!split.error) return std::move(split.cells);
   if (*split.error == csv::LineError::unterminated_quote) {
-    throw vcpost::Error("E2006", "unterminated quoted cell");
+    throw vcpost::Error(Code::E2006, "unterminated quoted cell");
   }
-  throw vcpost::Error("E2006",
+  throw vcpost::Error(Code::E2006,
                       "text after a closing quote in cell " + std::to_string(split.error_cell));
 }
 
 BatchReader::BatchReader(std::istream& in, std::string source)
     : in_(&in), source_(std::move(source)) {
   if (!read_line(header_)) {
-    throw vcpost::Error("E2006", source_ +
-                                     ": empty input, expected a header row with the columns "
-                                     "d,ap,ae,nx,ny,nz,fx,fy,fz,side");
+    throw vcpost::Error(Code::E2006, source_ +
+                                         ": empty input, expected a header row with the columns "
+                                         "d,ap,ae,nx,ny,nz,fx,fy,fz,side");
   }
   // A byte-order mark is what spreadsheet programs put before the header.
   if (header_.rfind("\xEF\xBB\xBF", 0) == 0) header_.erase(0, 3);
@@ -53,20 +53,21 @@ BatchReader::BatchReader(std::istream& in, std::string source)
   try {
     names = split_csv_line(header_);
   } catch (const vcpost::Error& e) {
-    throw vcpost::Error("E2006", where() + e.what());
+    throw vcpost::Error(Code::E2006, where() + e.what());
   }
   cell_count_ = names.size();
   for (std::size_t i = 0; i < names.size(); ++i) {
     if (names[i].empty()) {
-      throw vcpost::Error("E2006", where() + "header cell " + std::to_string(i + 1) + " is empty");
+      throw vcpost::Error(Code::E2006,
+                          where() + "header cell " + std::to_string(i + 1) + " is empty");
     }
     if (!columns_.emplace(names[i], i).second) {
-      throw vcpost::Error("E2006", where() + "column '" + names[i] + "' appears twice");
+      throw vcpost::Error(Code::E2006, where() + "column '" + names[i] + "' appears twice");
     }
   }
   for (const char* name : kRequired) {
     if (!columns_.contains(name)) {
-      throw vcpost::Error("E2006",
+      throw vcpost::Error(Code::E2006,
                           where() + "missing column '" + name +
                               "' (the header needs d,ap,ae,nx,ny,nz,fx,fy,fz,side in any order)");
     }
@@ -88,7 +89,7 @@ double BatchReader::number(const std::vector<std::string>& cells, const std::str
   try {
     return parse_number(cells[columns_.at(column)]);
   } catch (const vcpost::Error& e) {
-    throw vcpost::Error("E2006", where() + "column '" + column + "': " + e.what());
+    throw vcpost::Error(Code::E2006, where() + "column '" + column + "': " + e.what());
   }
 }
 
@@ -99,12 +100,12 @@ bool BatchReader::next(BatchRow& row) {
   try {
     cells = split_csv_line(text);
   } catch (const vcpost::Error& e) {
-    throw vcpost::Error("E2006", where() + e.what());
+    throw vcpost::Error(Code::E2006, where() + e.what());
   }
   if (cells.size() != cell_count_) {
-    throw vcpost::Error("E2006", where() + "expected " + std::to_string(cell_count_) +
-                                     " cells as in the header, found " +
-                                     std::to_string(cells.size()));
+    throw vcpost::Error(Code::E2006, where() + "expected " + std::to_string(cell_count_) +
+                                         " cells as in the header, found " +
+                                         std::to_string(cells.size()));
   }
 
   const double diameter = number(cells, "d");
@@ -116,12 +117,13 @@ bool BatchReader::next(BatchRow& row) {
   try {
     setup.side = parse_side(cells[columns_.at("side")]);
   } catch (const vcpost::Error& e) {
-    throw vcpost::Error("E2006", where() + "column 'side': " + e.what());
+    throw vcpost::Error(Code::E2006, where() + "column 'side': " + e.what());
   }
 
   if (!(diameter > 0)) {
-    throw vcpost::Error("E2006", where() + "column 'd': the tool diameter must be > 0 mm, got '" +
-                                     cells[columns_.at("d")] + "'");
+    throw vcpost::Error(Code::E2006, where() +
+                                         "column 'd': the tool diameter must be > 0 mm, got '" +
+                                         cells[columns_.at("d")] + "'");
   }
   const auto tool_column = columns_.find("tool");
   const std::string kind = tool_column == columns_.end() ? "" : cells[tool_column->second];
@@ -130,7 +132,7 @@ bool BatchReader::next(BatchRow& row) {
   geometry::Tool tool;
   if (kind.empty() || kind == "ball" || kind == "flat") {
     if (has_rc) {
-      throw vcpost::Error("E2006",
+      throw vcpost::Error(Code::E2006,
                           where() +
                               "column 'rc': only a bull tool takes a corner radius, this row's "
                               "tool is " +
@@ -139,11 +141,12 @@ bool BatchReader::next(BatchRow& row) {
     tool = kind == "flat" ? geometry::Tool::flat(diameter) : geometry::Tool::ball(diameter);
   } else if (kind == "bull") {
     if (!has_rc) {
-      throw vcpost::Error("E2006", where() + "column 'rc': a bull tool needs its corner radius");
+      throw vcpost::Error(Code::E2006,
+                          where() + "column 'rc': a bull tool needs its corner radius");
     }
     const double corner = number(cells, "rc");
     if (!(corner > 0 && corner <= diameter / 2)) {
-      throw vcpost::Error("E2006",
+      throw vcpost::Error(Code::E2006,
                           where() + "column 'rc': the corner radius must lie in (0, d/2], got '" +
                               cells[rc_column->second] + "'");
     }
@@ -151,14 +154,14 @@ bool BatchReader::next(BatchRow& row) {
     tool = corner == diameter / 2 ? geometry::Tool::ball(diameter)
                                   : geometry::Tool::bull_nose(diameter, corner);
   } else {
-    throw vcpost::Error("E2006", where() + "column 'tool': unknown tool '" + kind +
-                                     "' (expected ball, bull or flat)");
+    throw vcpost::Error(Code::E2006, where() + "column 'tool': unknown tool '" + kind +
+                                         "' (expected ball, bull or flat)");
   }
 
   try {
     row.setup = checked_setup(tool, setup);
   } catch (const SetupError& e) {
-    throw vcpost::Error("E2006", where() + column_label(e.field()) + ": " + e.what());
+    throw vcpost::Error(Code::E2006, where() + column_label(e.field()) + ": " + e.what());
   }
   row.tool = tool;
   row.line = line_;

@@ -26,7 +26,7 @@ double parse_number(std::string_view text) {
   // from_chars refuses a leading '+', which people do write.
   if (body.size() > 1 && body.front() == '+') body.remove_prefix(1);
   const std::optional<double> value = finite_number(body);
-  if (!value) throw vcpost::Error("E2001", "'" + std::string(text) + "' is not a number");
+  if (!value) throw vcpost::Error(Code::E2001, "'" + std::string(text) + "' is not a number");
   return *value;
 }
 
@@ -37,16 +37,16 @@ Eigen::Vector3d parse_vector(std::string_view text, std::string_view names) {
     const std::size_t comma = text.find(',', start);
     const bool last = i == 2;
     if (last != (comma == std::string_view::npos)) {
-      throw vcpost::Error("E2001", "expected three numbers " + std::string(names) + ", got '" +
-                                       std::string(text) + "'");
+      throw vcpost::Error(Code::E2001, "expected three numbers " + std::string(names) + ", got '" +
+                                           std::string(text) + "'");
     }
     const std::string_view part = text.substr(start, last ? text.npos : comma - start);
     try {
       vector[i] = parse_number(part);
     } catch (const vcpost::Error&) {
-      throw vcpost::Error("E2001", "expected three numbers " + std::string(names) + ", got '" +
-                                       std::string(text) + "' ('" + std::string(part) +
-                                       "' is not a number)");
+      throw vcpost::Error(Code::E2001, "expected three numbers " + std::string(names) + ", got '" +
+                                           std::string(text) + "' ('" + std::string(part) +
+                                           "' is not a number)");
     }
     start = comma + 1;
   }
@@ -57,7 +57,7 @@ geometry::Side parse_side(std::string_view text) {
   const std::string_view body = trim(text, kBlanks);
   if (body == "left") return geometry::Side::left;
   if (body == "right") return geometry::Side::right;
-  throw vcpost::Error("E2001",
+  throw vcpost::Error(Code::E2001,
                       "'" + std::string(text) + "' is not a side (expected left or right)");
 }
 
@@ -166,7 +166,7 @@ Sweep parse_sweep(std::string_view text) {
       "(degrees), e.g. feed-angle=0:360:15";
   const std::size_t equals = text.find('=');
   if (equals == std::string_view::npos) {
-    throw vcpost::Error("E2001", "'" + std::string(text) + "': " + form);
+    throw vcpost::Error(Code::E2001, "'" + std::string(text) + "': " + form);
   }
   const std::string_view name = trim(text.substr(0, equals), kBlanks);
   Sweep sweep;
@@ -177,7 +177,7 @@ Sweep parse_sweep(std::string_view text) {
   } else if (name == "azimuth") {
     sweep.parameter = SweepParameter::azimuth;
   } else {
-    throw vcpost::Error("E2001", "unknown parameter '" + std::string(name) + "': " + form);
+    throw vcpost::Error(Code::E2001, "unknown parameter '" + std::string(name) + "': " + form);
   }
 
   const std::string_view range = text.substr(equals + 1);
@@ -185,26 +185,26 @@ Sweep parse_sweep(std::string_view text) {
   const std::size_t colon2 =
       colon1 == std::string_view::npos ? colon1 : range.find(':', colon1 + 1);
   if (colon2 == std::string_view::npos || range.find(':', colon2 + 1) != std::string_view::npos) {
-    throw vcpost::Error("E2001", "'" + std::string(text) + "': " + form);
+    throw vcpost::Error(Code::E2001, "'" + std::string(text) + "': " + form);
   }
   try {
     sweep.start = parse_number(range.substr(0, colon1));
     sweep.stop = parse_number(range.substr(colon1 + 1, colon2 - colon1 - 1));
     sweep.step = parse_number(range.substr(colon2 + 1));
   } catch (const vcpost::Error& e) {
-    throw vcpost::Error("E2001", "'" + std::string(text) + "': " + e.what() + "; " + form);
+    throw vcpost::Error(Code::E2001, "'" + std::string(text) + "': " + e.what() + "; " + form);
   }
   if (!(sweep.step > 0)) {
-    throw vcpost::Error("E2001", "'" + std::string(text) + "': the step must be > 0");
+    throw vcpost::Error(Code::E2001, "'" + std::string(text) + "': the step must be > 0");
   }
   if (sweep.stop < sweep.start) {
-    throw vcpost::Error("E2001",
+    throw vcpost::Error(Code::E2001,
                         "'" + std::string(text) + "': the stop must not be below the start");
   }
   if ((sweep.stop - sweep.start) / sweep.step >= static_cast<double>(kMaxSweepPoints)) {
-    throw vcpost::Error("E2001", "'" + std::string(text) + "': more than " +
-                                     std::to_string(kMaxSweepPoints) +
-                                     " values; use a larger step");
+    throw vcpost::Error(Code::E2001, "'" + std::string(text) + "': more than " +
+                                         std::to_string(kMaxSweepPoints) +
+                                         " values; use a larger step");
   }
   return sweep;
 }

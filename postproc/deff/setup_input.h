@@ -28,7 +28,7 @@ enum class SetupField { diameter, ap, ae, normal, feed };
 class SetupError : public vcpost::Error {
  public:
   SetupError(SetupField field, const std::string& message)
-      : vcpost::Error("E2001", message), field_(field) {}
+      : vcpost::Error(Code::E2001, message), field_(field) {}
   SetupField field() const { return field_; }
 
  private:

@@ -87,7 +87,7 @@ void BlockParser::read(Block& out) {
       ++i_;
       skip_blanks();
       if (!at_end())
-        fail(Code::bad_character, i_,
+        fail(Code::E1001, i_,
              "'%' must stand alone on its line (the program's first and last), as rs274 "
              "requires; text after it would not be read");
     }
@@ -172,7 +172,7 @@ bool BlockParser::read_o_name(std::string& name, bool throwing) {
   if (!at_end() && s_[i_] == '<') {
     const std::size_t open = i_;
     if (!read_angle_name(name)) {
-      if (throwing) fail(Code::bad_expression, open, "O-word name not closed with '>'");
+      if (throwing) fail(Code::E1201, open, "O-word name not closed with '>'");
       return false;
     }
     return !name.empty();
@@ -184,7 +184,7 @@ bool BlockParser::read_o_name(std::string& name, bool throwing) {
   // Leading zeros do not make another O number.
   const auto nz = name.find_first_not_of('0');
   if (!name.empty()) name = nz == std::string::npos ? "0" : name.substr(nz);
-  if (name.empty() && throwing) fail(Code::bad_number, i_, "O word without a number or <name>");
+  if (name.empty() && throwing) fail(Code::E1003, i_, "O word without a number or <name>");
   return !name.empty();
 }
 
@@ -217,7 +217,7 @@ void BlockParser::read_items(Block& out) {
     } else if (is_alpha(c)) {
       const char letter = upper(c);
       if (!siemens() && i_ + 1 < s_.size() && is_alpha(s_[i_ + 1]) && looks_siemens())
-        fail(Code::dialect_mismatch, i_,
+        fail(Code::E1010, i_,
              "this is Sinumerik 840D syntax (MSG, MCALL, CYCLE.., CR=): read the program with "
              "--dialect sinumerik or --machine sinumerik-840d");
       if (siemens() && i_ + 1 < s_.size() && (is_alpha(s_[i_ + 1]) || s_[i_ + 1] == '_')) {
@@ -236,8 +236,8 @@ void BlockParser::read_items(Block& out) {
     } else {
       check_byte(i_);
       if (static_cast<unsigned char>(c) >= 0x80)
-        fail(Code::bad_character, i_, "non-ASCII byte outside a comment");
-      fail(Code::bad_character, i_, std::string("unexpected character '") + c + "'");
+        fail(Code::E1001, i_, "non-ASCII byte outside a comment");
+      fail(Code::E1001, i_, std::string("unexpected character '") + c + "'");
     }
   }
 }
@@ -259,21 +259,21 @@ void BlockParser::read_sequence_number(Block& out) {
   if (!at_end() && s_[i_] == '.')
     while (++i_ < s_.size() && is_digit(s_[i_])) {
     }
-  if (!any) fail(Code::bad_number, start, "N without a sequence number");
+  if (!any) fail(Code::E1003, start, "N without a sequence number");
   out.n = n;
 }
 
 void BlockParser::read_word(Block& out, char letter) {
   const std::size_t start = i_;
   if (!is_word_letter(letter))
-    fail(Code::unknown_word, start, std::string("unknown word '") + letter + "'");
+    fail(Code::E1007, start, std::string("unknown word '") + letter + "'");
   ++i_;
   skip_blanks();
   Word w;
   w.letter = letter;
   w.column = static_cast<std::uint32_t>(start + 1);
   w.begin = static_cast<std::uint32_t>(start);
-  if (at_end()) fail(Code::bad_number, start, std::string(1, letter) + " word without a value");
+  if (at_end()) fail(Code::E1003, start, std::string(1, letter) + " word without a value");
   if (siemens() && s_[i_] == '=') {
     ++i_;
     skip_blanks();
@@ -281,7 +281,7 @@ void BlockParser::read_word(Block& out, char letter) {
       // T="name": a tool by name; no number to select.
       while (++i_ < s_.size() && s_[i_] != '"') {
       }
-      if (at_end()) fail(Code::bad_expression, start, "tool name not closed with '\"'");
+      if (at_end()) fail(Code::E1201, start, "tool name not closed with '\"'");
       ++i_;
       return;
     }
@@ -320,7 +320,7 @@ void BlockParser::read_assignment(Block& out) {
   Ref ref = parameter_ref();
   skip_blanks();
   if (at_end() || s_[i_] != '=')
-    fail(Code::bad_expression, hash, "a parameter outside a word must be set with '='");
+    fail(Code::E1201, hash, "a parameter outside a word must be set with '='");
   ++i_;
   // Fanuc macros allow "#1 = #2 + 3" without brackets; RS274NGC takes one value.
   const Value v = d_.fanuc_macros ? binary(0, hash) : unary(hash);
@@ -336,7 +336,7 @@ void BlockParser::read_o_word(Block& out) {
   if (!d_.o_word_control) {
     skip_blanks();
     c.name = read_digits_text();
-    if (c.name.empty()) fail(Code::bad_number, start, "O without a program number");
+    if (c.name.empty()) fail(Code::E1003, start, "O without a program number");
     c.kind = ControlKind::program_number;
     return;
   }
@@ -350,15 +350,14 @@ void BlockParser::read_o_word(Block& out) {
       c.name.find_first_not_of("0123456789") == std::string::npos)
     c.kind = ControlKind::program_number;
   if (c.kind == ControlKind::none)
-    fail(Code::unknown_word, key_at, "unknown O-word keyword '" + key + "'");
+    fail(Code::E1007, key_at, "unknown O-word keyword '" + key + "'");
   switch (c.kind) {
     case ControlKind::if_:
     case ControlKind::elseif:
     case ControlKind::while_:
     case ControlKind::repeat: {
       skip_blanks();
-      if (at_end() || s_[i_] != '[')
-        fail(Code::bad_expression, key_at, key + " needs a condition in [ ]");
+      if (at_end() || s_[i_] != '[') fail(Code::E1201, key_at, key + " needs a condition in [ ]");
       c.condition = bracket().number;
       break;
     }
@@ -384,7 +383,7 @@ void BlockParser::read_o_word(Block& out) {
     } else if (s_[i_] == ';') {
       i_ = s_.size();
     } else {
-      fail(Code::bad_character, i_, "only comments may follow an O-word");
+      fail(Code::E1001, i_, "only comments may follow an O-word");
     }
   }
 }
@@ -398,7 +397,7 @@ bool BlockParser::read_macro_statement(Block& out) {
   c.column = static_cast<std::uint32_t>(start + 1);
   if (key == "IF") {
     skip_blanks();
-    if (at_end() || s_[i_] != '[') fail(Code::bad_expression, start, "IF needs a condition in [ ]");
+    if (at_end() || s_[i_] != '[') fail(Code::E1201, start, "IF needs a condition in [ ]");
     const bool taken = bracket().number != 0.0;
     skip_blanks();
     const std::size_t key_at = i_;
@@ -409,8 +408,7 @@ bool BlockParser::read_macro_statement(Block& out) {
       c.name = "GOTO";
       return false;
     }
-    if (then != "THEN")
-      fail(Code::bad_expression, key_at, "IF [..] must be followed by THEN or GOTO");
+    if (then != "THEN") fail(Code::E1201, key_at, "IF [..] must be followed by THEN or GOTO");
     skip_blanks();
     if (at_end() || s_[i_] == '(' || s_[i_] == ';') {
       c.kind = ControlKind::if_;
@@ -463,7 +461,7 @@ void read_block(std::string_view line, std::uint32_t line_number, std::uint64_t 
   out.offset = offset;
   if (line.size() > kMaxLineLength)
     throw GcodeError(Diagnostic{
-        Code::line_too_long, Severity::error, line_number, 1,
+        Code::E1006, line_number, 1,
         "line longer than " + std::to_string(kMaxLineLength) + " bytes, the reader's limit"});
   syntax::BlockParser reader(line, line_number, dialect, &parameters);
   reader.read(out);

@@ -104,10 +104,10 @@ struct Block {
   const Word* find(char letter) const;  // first word with this letter
 };
 
-// Longest line the reader accepts (longer ones are Code::line_too_long).
+// Longest line the reader accepts (longer ones are Code::E1006).
 inline constexpr std::size_t kMaxLineLength = 65536;
 
-// Largest magnitude of a word's or a cycle argument's value (Code::bad_number
+// Largest magnitude of a word's or a cycle argument's value (Code::E1003
 // beyond): 10^12 mm is far past any machine, and keeps every sum, square and
 // arc the interpreter forms from such values finite.
 inline constexpr double kMaxWordMagnitude = 1e12;

@@ -47,18 +47,18 @@ void BlockParser::read_r_assignment(Block& out) {
 // A quoted string after '(' (MSG("...")): its text; i_ after the ')'.
 std::string BlockParser::read_quoted_call(std::size_t start, const std::string& key) {
   skip_blanks();
-  if (at_end() || s_[i_] != '(') fail(Code::bad_expression, start, key + " needs (\"text\")");
+  if (at_end() || s_[i_] != '(') fail(Code::E1201, start, key + " needs (\"text\")");
   ++i_;
   skip_blanks();
   std::string text;
   if (!at_end() && s_[i_] == '"') {
     ++i_;
     while (!at_end() && s_[i_] != '"') text += s_[i_++];
-    if (at_end()) fail(Code::bad_expression, start, "string not closed with '\"'");
+    if (at_end()) fail(Code::E1201, start, "string not closed with '\"'");
     ++i_;
   }
   skip_blanks();
-  if (at_end() || s_[i_] != ')') fail(Code::bad_expression, start, key + "( not closed with ')'");
+  if (at_end() || s_[i_] != ')') fail(Code::E1201, start, key + "( not closed with ')'");
   ++i_;
   return text;
 }
@@ -69,12 +69,11 @@ std::vector<std::optional<double>> BlockParser::read_call_arguments(std::size_t 
                                                                     bool strings) {
   std::vector<std::optional<double>> args;
   skip_blanks();
-  if (at_end() || s_[i_] != '(')
-    fail(Code::bad_expression, start, key + " needs its arguments in ( )");
+  if (at_end() || s_[i_] != '(') fail(Code::E1201, start, key + " needs its arguments in ( )");
   ++i_;
   while (true) {
     skip_blanks();
-    if (at_end()) fail(Code::bad_expression, start, key + "( not closed with ')'");
+    if (at_end()) fail(Code::E1201, start, key + "( not closed with ')'");
     if (s_[i_] == ')') {
       if (!args.empty()) args.emplace_back();  // "a,)" : a trailing empty argument
       ++i_;
@@ -89,7 +88,7 @@ std::vector<std::optional<double>> BlockParser::read_call_arguments(std::size_t 
       // A name (CYCLE800's swivel data set "TC1"): not a number vcpost uses.
       ++i_;
       while (!at_end() && s_[i_] != '"') ++i_;
-      if (at_end()) fail(Code::bad_expression, start, "string not closed with '\"'");
+      if (at_end()) fail(Code::E1201, start, "string not closed with '\"'");
       ++i_;
       args.emplace_back();
     } else {
@@ -110,7 +109,7 @@ std::vector<std::optional<double>> BlockParser::read_call_arguments(std::size_t 
       ++i_;
       break;
     }
-    fail(Code::bad_expression, i_, "',' or ')' expected in the arguments of " + key);
+    fail(Code::E1201, i_, "',' or ')' expected in the arguments of " + key);
   }
   return args;
 }
@@ -131,14 +130,14 @@ void BlockParser::skip_parenthesised() {
       return;
     }
   }
-  fail(Code::bad_expression, i_ == 0 ? 0 : i_ - 1, "'(' not closed with ')'");
+  fail(Code::E1201, i_ == 0 ? 0 : i_ - 1, "'(' not closed with ')'");
 }
 
 // "KEY = expression" after a keyword that began at `start`: the word of
 // `letter` it stands for, spanning the keyword and its value.
 Word BlockParser::read_keyword_word(char letter, std::size_t start, const char* no_equals) {
   skip_blanks();
-  if (at_end() || s_[i_] != '=') fail(Code::bad_expression, start, no_equals);
+  if (at_end() || s_[i_] != '=') fail(Code::E1201, start, no_equals);
   ++i_;
   Word w;
   w.letter = letter;
@@ -184,8 +183,7 @@ void BlockParser::read_siemens_keyword(Block& out) {
       std::string name;
       while (!at_end() && (is_alpha(s_[i_]) || is_digit(s_[i_]))) name += upper(s_[i_++]);
       if (!read_cycle(name, at, cycle))
-        fail(Code::unsupported_code, at,
-             "MCALL " + name + ": vcpost follows MCALL of CYCLE81-CYCLE89 only");
+        fail(Code::E1404, at, "MCALL " + name + ": vcpost follows MCALL of CYCLE81-CYCLE89 only");
       cycle.kind = SiemensCycle::Kind::modal_call;
     }
     return;
@@ -210,7 +208,7 @@ void BlockParser::read_siemens_keyword(Block& out) {
   for (const auto noted : kNoted) {
     if (key == noted) {
       if (key == "SUPA")
-        fail(Code::unsupported_code, start,
+        fail(Code::E1404, start,
              "SUPA (machine coordinates without any frame) is not followed; use G53");
       skip_parenthesised();
       out.noted_keywords.emplace_back(key, column);
@@ -222,7 +220,7 @@ void BlockParser::read_siemens_keyword(Block& out) {
                                                  "TRAORI", "ROTS",   "AROTS"};
   for (const auto frame : kFrames)
     if (key == frame)
-      fail(Code::unsupported_code, start,
+      fail(Code::E1404, start,
            key +
                " moves, rotates, scales or mirrors the coordinate frame; vcpost does not follow "
                "frames: remove it or post without it");
@@ -231,11 +229,11 @@ void BlockParser::read_siemens_keyword(Block& out) {
       "IF",    "ELSE",  "ENDIF", "REPEAT", "UNTIL", "CALL",    "PCALL", "RET",      "DEF", "PROC"};
   for (const auto flow : kFlow)
     if (key == flow)
-      fail(Code::unsupported_flow, start,
+      fail(Code::E1301, start,
            key +
                ": Sinumerik program flow and subprograms are not followed by vcpost; expand them "
                "in CAM");
-  fail(Code::unknown_word, start, "unknown Sinumerik word or statement '" + key + "'");
+  fail(Code::E1007, start, "unknown Sinumerik word or statement '" + key + "'");
 }
 
 bool BlockParser::read_cycle(const std::string& name, std::size_t start, SiemensCycle& cycle) {

@@ -16,11 +16,11 @@ Value ExpressionReader::unary(std::size_t word_start) {
     Level& operator=(const Level&) = delete;
   } level(nesting_);
   if (nesting_ > kMaxValueNesting)
-    fail(Code::bad_expression, i_,
+    fail(Code::E1201, i_,
          "value nested more than " + std::to_string(kMaxValueNesting) +
              " deep (signs, '#' and brackets inside each other), the reader's limit");
   skip_blanks();
-  if (at_end()) fail(Code::bad_expression, word_start, "value missing at end of line");
+  if (at_end()) fail(Code::E1201, word_start, "value missing at end of line");
   const char c = s_[i_];
   if (c == '-' || c == '+') {
     ++i_;
@@ -30,7 +30,7 @@ Value ExpressionReader::unary(std::size_t word_start) {
   }
   if (c == '[') {
     if (!d_.numbered_parameters && !d_.named_parameters)
-      fail(Code::parameters_not_in_dialect, i_, "expressions are not part of this dialect");
+      fail(Code::E1206, i_, "expressions are not part of this dialect");
     return bracket();
   }
   if (c == '#') return parameter_value();
@@ -45,7 +45,7 @@ Value ExpressionReader::unary(std::size_t word_start) {
     return Value{r_value(read_r_number(start)), false};
   }
   if (is_alpha(c)) return function();
-  fail(Code::bad_expression, i_, std::string("unexpected '") + c + "' where a value is expected");
+  fail(Code::E1201, i_, std::string("unexpected '") + c + "' where a value is expected");
 }
 
 // The expression between the opening character at the cursor and `close`.
@@ -54,7 +54,7 @@ Value ExpressionReader::enclosed(char close, const char* not_closed) {
   ++i_;
   Value v = binary(0, open);
   skip_blanks();
-  if (at_end() || s_[i_] != close) fail(Code::bad_expression, open, not_closed);
+  if (at_end() || s_[i_] != close) fail(Code::E1201, open, not_closed);
   ++i_;
   return v;
 }
@@ -137,15 +137,14 @@ Value ExpressionReader::binary(int min_precedence, std::size_t open) {
 
 Value ExpressionReader::finite(Value v, std::size_t at) const {
   if (!std::isfinite(v.number))
-    fail(Code::math_domain, at, "the expression's result is too large to be a number");
+    fail(Code::E1205, at, "the expression's result is too large to be a number");
   return v;
 }
 
 void ExpressionReader::out_of_range(double v, std::size_t at, const std::string& what) const {
   char text[32];
   std::snprintf(text, sizeof text, "%.15g", v);
-  fail(Code::bad_number, at,
-       what + " value " + text + " is out of range (at most 1e12 either way)");
+  fail(Code::E1003, at, what + " value " + text + " is out of range (at most 1e12 either way)");
 }
 
 Value ExpressionReader::apply_unchecked(Op op, Value a, Value b, std::size_t at) const {
@@ -155,15 +154,15 @@ Value ExpressionReader::apply_unchecked(Op op, Value a, Value b, std::size_t at)
   switch (op) {
     case Op::power:
       if (x < 0 && y != std::floor(y))
-        fail(Code::math_domain, at, "negative base to a non-integer power");
+        fail(Code::E1205, at, "negative base to a non-integer power");
       return Value{std::pow(x, y), false};
     case Op::times:
       return Value{x * y, false};
     case Op::divide:
-      if (y == 0.0) fail(Code::math_domain, at, "division by zero");
+      if (y == 0.0) fail(Code::E1205, at, "division by zero");
       return Value{x / y, false};
     case Op::mod: {
-      if (y == 0.0) fail(Code::math_domain, at, "MOD by zero");
+      if (y == 0.0) fail(Code::E1205, at, "MOD by zero");
       double r = std::fmod(x, y);
       if (r < 0) r += std::abs(y);  // LinuxCNC: result has the divisor's sign convention
       return Value{r, false};
@@ -203,43 +202,41 @@ Value ExpressionReader::function_unchecked() {
   skip_blanks();
   if (name == "EXISTS" && d_.named_parameters) {
     // EXISTS[#<name>]
-    if (at_end() || s_[i_] != '[') fail(Code::bad_expression, start, "EXISTS without '['");
+    if (at_end() || s_[i_] != '[') fail(Code::E1201, start, "EXISTS without '['");
     ++i_;
     skip_blanks();
     if (i_ + 1 >= s_.size() || s_[i_] != '#' || s_[i_ + 1] != '<')
-      fail(Code::bad_expression, start, "EXISTS needs a named parameter #<name>");
+      fail(Code::E1201, start, "EXISTS needs a named parameter #<name>");
     ++i_;
     const std::string key = read_name();
     skip_blanks();
-    if (at_end() || s_[i_] != ']') fail(Code::bad_expression, start, "EXISTS not closed");
+    if (at_end() || s_[i_] != ']') fail(Code::E1201, start, "EXISTS not closed");
     ++i_;
     return Value{p_->exists(key) ? 1.0 : 0.0, false};
   }
   const bool round_brackets = siemens() && !at_end() && s_[i_] == '(';
   if (at_end() || (s_[i_] != '[' && !round_brackets))
-    fail(Code::bad_expression, start,
-         "unknown word or function '" + name + "'" + dialect_hint(name));
+    fail(Code::E1201, start, "unknown word or function '" + name + "'" + dialect_hint(name));
   const double x = round_brackets ? paren().number : bracket().number;
   if (round_brackets && name == "AC") {
     ac_seen_ = true;
     return Value{x, false};
   }
   if (round_brackets && name == "IC")
-    fail(Code::unsupported_code, start, "IC() (incremental for one word) is not followed; use G91");
+    fail(Code::E1404, start, "IC() (incremental for one word) is not followed; use G91");
   constexpr double deg = std::numbers::pi / 180.0;
   if (name == "ATAN") {
     skip_blanks();
-    if (at_end() || s_[i_] != '/')
-      fail(Code::bad_expression, start, "ATAN needs the form ATAN[y]/[x]");
+    if (at_end() || s_[i_] != '/') fail(Code::E1201, start, "ATAN needs the form ATAN[y]/[x]");
     ++i_;
     skip_blanks();
-    if (at_end() || s_[i_] != '[') fail(Code::bad_expression, start, "ATAN needs [x] after '/'");
+    if (at_end() || s_[i_] != '[') fail(Code::E1201, start, "ATAN needs [x] after '/'");
     const double y = bracket().number;
     return Value{std::atan2(x, y) / deg, false};
   }
   if (name == "ABS") return Value{std::abs(x), false};
   if (name == "ACOS" || name == "ASIN") {
-    if (x < -1.0 || x > 1.0) fail(Code::math_domain, start, name + " argument outside [-1, 1]");
+    if (x < -1.0 || x > 1.0) fail(Code::E1205, start, name + " argument outside [-1, 1]");
     return Value{(name == "ACOS" ? std::acos(x) : std::asin(x)) / deg, false};
   }
   if (name == "COS") return Value{std::cos(x * deg), false};
@@ -247,17 +244,17 @@ Value ExpressionReader::function_unchecked() {
   if (name == "TAN") return Value{std::tan(x * deg), false};
   if (name == "EXP") return Value{std::exp(x), false};
   if (name == "LN") {
-    if (x <= 0.0) fail(Code::math_domain, start, "LN of a number <= 0");
+    if (x <= 0.0) fail(Code::E1205, start, "LN of a number <= 0");
     return Value{std::log(x), false};
   }
   if (name == "SQRT") {
-    if (x < 0.0) fail(Code::math_domain, start, "SQRT of a negative number");
+    if (x < 0.0) fail(Code::E1205, start, "SQRT of a negative number");
     return Value{std::sqrt(x), false};
   }
   if (name == "FIX") return Value{std::floor(x), false};
   if (name == "FUP") return Value{std::ceil(x), false};
   if (name == "ROUND") return Value{std::round(x), false};
-  fail(Code::bad_expression, start, "unknown function '" + name + "'");
+  fail(Code::E1201, start, "unknown function '" + name + "'");
 }
 
 // For a word that is plainly another dialect's: which --dialect reads it.
@@ -273,9 +270,8 @@ std::string ExpressionReader::dialect_hint(const std::string& name) const {
 std::string ExpressionReader::read_name() {
   const std::size_t open = i_;
   std::string key;
-  if (!read_angle_name(key))
-    fail(Code::bad_expression, open, "named parameter not closed with '>'");
-  if (key.empty()) fail(Code::bad_expression, open, "empty parameter name");
+  if (!read_angle_name(key)) fail(Code::E1201, open, "named parameter not closed with '>'");
+  if (key.empty()) fail(Code::E1201, open, "empty parameter name");
   return key;
 }
 
@@ -285,17 +281,16 @@ ExpressionReader::Ref ExpressionReader::parameter_ref() {
   skip_blanks();
   if (!at_end() && s_[i_] == '<') {
     if (!d_.named_parameters)
-      fail(Code::parameters_not_in_dialect, hash,
+      fail(Code::E1206, hash,
            "named parameters are not part of this dialect; an RS274NGC (LinuxCNC) program is read "
            "with --dialect rs274ngc");
     return Ref{0, read_name()};
   }
-  if (!d_.numbered_parameters)
-    fail(Code::parameters_not_in_dialect, hash, "parameters are not part of this dialect");
+  if (!d_.numbered_parameters) fail(Code::E1206, hash, "parameters are not part of this dialect");
   const double v = unary(hash).number;
   const double r = std::round(v);
   if (std::abs(v - r) > 1e-6 || r < 0 || r > 1e6)
-    fail(Code::parameter_out_of_range, hash, "parameter number must be a whole number");
+    fail(Code::E1203, hash, "parameter number must be a whole number");
   return Ref{static_cast<int>(r), {}};
 }
 
@@ -307,7 +302,7 @@ int ExpressionReader::read_r_number(std::size_t start) {
   for (const char d : digits) {
     number = number * 10 + (d - '0');
     if (number > kMaxRParameter)
-      fail(Code::parameter_out_of_range, start,
+      fail(Code::E1203, start,
            "R" + std::string(digits) + " is beyond R" + std::to_string(kMaxRParameter) +
                ", the last R parameter vcpost keeps (a control has R0 to R99 unless its machine "
                "data gives more)");

@@ -5,7 +5,7 @@
 // and the functions (SIN .. ROUND, ATAN[y]/[x], EXISTS). It only computes
 // numbers: parameters are read from `Parameters`, never written (the block
 // parser returns assignments for the interpreter to commit). Every result
-// is finite (Code::math_domain otherwise).
+// is finite (Code::E1205 otherwise).
 #pragma once
 
 #include <cmath>

@@ -74,15 +74,13 @@ void Interpreter::jump(std::uint64_t offset, std::uint32_t number) {
 }
 
 void Interpreter::fail(Code code, std::uint32_t column, std::string message) const {
-  throw GcodeError(Diagnostic{code, Severity::error, block_.line, column == 0 ? 1u : column,
-                              std::move(message)});
+  throw GcodeError(Diagnostic{code, block_.line, column == 0 ? 1u : column, std::move(message)});
 }
 
 void Interpreter::warn(Code code, std::uint32_t column, std::string message) {
   ++warning_count_;
   if (warnings_.size() >= limits_.max_warnings) return;
-  warnings_.push_back(Diagnostic{code, Severity::warning, block_.line, column == 0 ? 1u : column,
-                                 std::move(message)});
+  warnings_.push_back(Diagnostic{code, block_.line, column == 0 ? 1u : column, std::move(message)});
 }
 
 bool Interpreter::next(std::vector<Event>& events) {
@@ -93,11 +91,11 @@ bool Interpreter::next(std::vector<Event>& events) {
       ended_ = true;
       if (!frames_.empty() || !flow_.empty()) {
         block_.line = line_ == 0 ? 1 : line_;
-        fail(Code::unmatched_control, 1, "program ends inside a subroutine or control block");
+        fail(Code::E1303, 1, "program ends inside a subroutine or control block");
       }
       if (!percent_seen_) {
         block_.line = line_ == 0 ? 1 : line_;
-        warn(Code::missing_program_end, 1, "program ends without M2 or M30");
+        warn(Code::W1305, 1, "program ends without M2 or M30");
       }
       return false;
     }
@@ -105,7 +103,7 @@ bool Interpreter::next(std::vector<Event>& events) {
     line_ = l.number;
     block_.line = l.number;  // for errors thrown while reading
     if (++lines_read_ > limits_.max_blocks)
-      fail(Code::block_limit, 1,
+      fail(Code::E1309, 1,
            "program runs more than " + std::to_string(limits_.max_blocks) +
                " blocks (loops and calls counted), the limit");
     read_block(l.text, l.number, l.offset, dialect_, parameters_, block_);
@@ -120,7 +118,7 @@ bool Interpreter::next(std::vector<Event>& events) {
       }
       // rs274 takes '%' as the opening only on the program's first line.
       if (content_seen_ && dialect_.kind == machines::Dialect::rs274ngc)
-        fail(Code::bad_character, 1,
+        fail(Code::E1001, 1,
              "'%' in the middle of a program that did not open with '%': rs274 refuses it "
              "(\"Bad character '%' used\")");
       percent_seen_ = true;
@@ -157,7 +155,7 @@ void Interpreter::warn_unread_rest() {
     ++unread;
   }
   if (unread > 0)
-    warn(Code::text_after_end, 1,
+    warn(Code::W1311, 1,
          std::to_string(unread) + " line" + (unread == 1 ? "" : "s") +
              " after the closing '%' (from line " + std::to_string(first) +
              ") are not read, neither checked nor posted: the control stops at the '%'");
@@ -304,20 +302,20 @@ void Interpreter::index_words(Step& step) {
         std::snprintf(text, sizeof text, "G%g", w.value);
         const bool fanuc_code = dialect_.kind == machines::Dialect::rs274ngc &&
                                 find_g_code(machines::Dialect::fanuc, w.value).has_value();
-        fail(Code::unknown_g_code, w.column,
+        fail(Code::E1401, w.column,
              std::string("unknown G code ") + text +
                  (fanuc_code ? "; it is a Fanuc-like control's code: read a Fanuc, Haas or Makino "
                                "program with --dialect fanuc (or its --machine)"
                              : ""));
       }
       if (entry->support == Support::refused)
-        fail(Code::unsupported_code, w.column,
+        fail(Code::E1404, w.column,
              code_text('G', entry->code) +
                  " changes the motion in a way vcpost does not follow (it " +
                  (entry->what ? entry->what : "is not followed") +
                  "); remove it or expand it in CAM");
       if (entry->support == Support::noted)
-        warn_once('G', entry->code, Code::mode_code_passed, w.column,
+        warn_once('G', entry->code, Code::W1406, w.column,
                   code_text('G', entry->code) +
                       " is a mode of the control that does not change the path vcpost reads; "
                       "passed through unchanged");
@@ -339,23 +337,21 @@ void Interpreter::index_words(Step& step) {
         // G53 combines with one other non-modal code only in theory; refuse
         // two non-modal codes as LinuxCNC does.
         const bool non_modal = grp == Group::non_modal;
-        fail(Code::modal_group_conflict, w.column,
+        fail(Code::E1403, w.column,
              code_text('G', code_of(*before)) + " and " + code_text('G', entry->code) +
                  (non_modal ? " are both non-modal codes" : " are in the same modal group"));
       }
       index.g[group] = slot_of_w;
     } else if (w.letter == 'M') {
       // LinuxCNC's limit; Fanuc-like controls allow fewer.
-      if (++m_words > 4)
-        fail(Code::too_many_m_codes, w.column, "more than four M codes in one block");
+      if (++m_words > 4) fail(Code::E1405, w.column, "more than four M codes in one block");
       if (index_m_word(step, w, slot_of_w)) continue;
     } else {
       const char l = w.letter;
       if ((l == 'A' || l == 'B' || l == 'C' || l == 'U' || l == 'V' || l == 'W') && !axis_word)
         axis_word = &w;
       auto& slot = index.by_letter[static_cast<std::size_t>(w.letter - 'A')];
-      if (slot != 0)
-        fail(Code::word_repeated, w.column, std::string(1, w.letter) + " word given twice");
+      if (slot != 0) fail(Code::E1008, w.column, std::string(1, w.letter) + " word given twice");
       slot = slot_of_w;
     }
   }
@@ -363,7 +359,7 @@ void Interpreter::index_words(Step& step) {
   // arguments (#1, #2, #3, #21, #22, #23).
   const Word* g65 = step.at(index.g[static_cast<std::size_t>(Group::non_modal)]);
   if (axis_word && !(fanuc_like && g65 && code_of(*g65) == G_65_macro_call))
-    fail(Code::axis_not_supported, axis_word->column,
+    fail(Code::E1506, axis_word->column,
          std::string(1, axis_word->letter) + " axis: vcpost reads 3-axis (X Y Z) programs only");
 }
 
@@ -381,17 +377,17 @@ bool Interpreter::index_m_word(Step& step, const Word& w, std::uint8_t slot) {
     char text[32];
     std::snprintf(text, sizeof text, "M%g", w.value);
     if (dialect_.unknown_m_is_error)
-      fail(Code::unknown_m_code, w.column,
+      fail(Code::E1402, w.column,
            std::string("unknown M code ") + text +
                "; if it is a machine's own M code of a Fanuc-like program, read it with "
                "--dialect fanuc (or its --machine)");
-    warn_once('M', static_cast<int>(std::lround(w.value * 10.0)), Code::unknown_m_code, w.column,
+    warn_once('M', static_cast<int>(std::lround(w.value * 10.0)), Code::W1402, w.column,
               std::string("M code ") + text +
                   " is not known to vcpost (a machine's own function); passed through unchanged");
     return true;
   }
   if (entry->support == Support::refused)
-    fail(Code::unsupported_code, w.column,
+    fail(Code::E1404, w.column,
          code_text('M', entry->code) +
              " changes the program's state in a way vcpost does not follow (it " + entry->what +
              ")");
@@ -404,7 +400,7 @@ bool Interpreter::index_m_word(Step& step, const Word& w, std::uint8_t slot) {
       step.mist_and_flood = true;
       return true;
     }
-    fail(Code::modal_group_conflict, w.column,
+    fail(Code::E1403, w.column,
          code_text('M', code_of(*before)) + " and " + code_text('M', entry->code) +
              " are in the same modal group");
   }
@@ -429,11 +425,11 @@ void Interpreter::classify_words(Step& step) {
   const int motion_code = step.motion_code;
   if (step.motion_word && motion_code == G_80_cycle_off && step.has_xyz &&
       !uses_axis_words(nonmodal_code))
-    fail(Code::words_without_motion, step.first_axis_column(0),
+    fail(Code::E1508, step.first_axis_column(0),
          "axis words with G80: without a motion mode (G0/G1/G2/G3)");
   if (step.nonmodal && uses_axis_words(nonmodal_code) && step.motion_word &&
       motion_code != G_80_cycle_off && step.has_xyz)
-    fail(Code::modal_group_conflict, step.nonmodal->column,
+    fail(Code::E1403, step.nonmodal->column,
          code_text('G', nonmodal_code) + " and " + code_text('G', motion_code) +
              " both use the axis words");
   step.macro_call = nonmodal_code == G_65_macro_call;
@@ -492,7 +488,7 @@ void Interpreter::check_unused_words(const Step& step) {
   const bool m19 = step.m(Group::spindle) && step.m_code(Group::spindle) == M_19_spindle_orient;
   auto unused = [&](char letter, bool used, const char* users) {
     if (const Word* w = step.word(letter); w && !used)
-      fail(Code::word_without_use, w->column,
+      fail(Code::E1009, w->column,
            std::string(1, letter) + " word with no " + users + " to use it");
   };
   unused('D', comp_on || to_be == G_73_chip_break_drill || to_be == G_83_peck_drill,
@@ -522,7 +518,7 @@ void Interpreter::check_unused_words(const Step& step) {
                             : s.plane == program::Plane::xz ? 'J'
                                                             : 'I';
     if (const Word* w = step.word(plane_axis))
-      fail(Code::word_without_use, w->column,
+      fail(Code::E1009, w->column,
            std::string(1, plane_axis) + " word given for an arc in the " +
                (s.plane == program::Plane::xy   ? "XY"
                 : s.plane == program::Plane::xz ? "XZ"
@@ -560,7 +556,7 @@ void Interpreter::set_feed_mode(Step& step) {
 void Interpreter::set_feed(Step& step) {
   const Word* f = step.word('F');
   ModalState& s = step.state;
-  if (f->value < 0) fail(Code::bad_word_value, f->column, "negative feed rate");
+  if (f->value < 0) fail(Code::E1511, f->column, "negative feed rate");
   if (s.feed_mode == program::FeedMode::inverse_time) {
     s.feed = f->value;
     step.inverse_f = f;
@@ -572,7 +568,7 @@ void Interpreter::set_feed(Step& step) {
 
 void Interpreter::set_spindle_speed(Step& step) {
   const Word* sw = step.word('S');
-  if (sw->value < 0) fail(Code::bad_word_value, sw->column, "negative spindle speed");
+  if (sw->value < 0) fail(Code::E1511, sw->column, "negative spindle speed");
   step.state.spindle_rpm = sw->value;
   step.emit(program::SetSpindleSpeed{sw->value, source(step.b, sw->column)});
 }
@@ -587,12 +583,12 @@ void Interpreter::analog_output(Step& step) {
   const Word* e = step.word('E');
   const Word* q = step.word('Q');
   if (!e || !q)
-    fail(Code::speed_output_words, m->column,
+    fail(Code::E1621, m->column,
          std::string(c == M_67_analog_output_sync ? "M67" : "M68") +
              " needs E (the output) and Q (its value)");
   if (e->value != *dialect_.speed_output) return;
   if (q->value < 0)
-    fail(Code::negative_speed_output, q->column,
+    fail(Code::E1620, q->column,
          "negative spindle speed on the speed output E" + std::to_string(*dialect_.speed_output));
   step.state.spindle_rpm = q->value;
   step.emit(program::SetSpindleSpeed{q->value, source(step.b, m->column)});
@@ -601,7 +597,7 @@ void Interpreter::analog_output(Step& step) {
 void Interpreter::select_tool(Step& step) {
   const Word* t = step.word('T');
   if (!whole_number(t->value))
-    fail(Code::bad_word_value, t->column, "tool number must be a whole number from 0 to 1e9");
+    fail(Code::E1511, t->column, "tool number must be a whole number from 0 to 1e9");
   step.state.selected_tool = static_cast<int>(t->value);
   step.emit(program::SelectTool{step.state.selected_tool, source(step.b, t->column)});
 }
@@ -646,7 +642,7 @@ void Interpreter::dwell(Step& step) {
   double seconds = 0.0;
   if (dialect_.kind == machines::Dialect::rs274ngc) {
     const Word* p = step.word('P');
-    if (!p) fail(Code::missing_word, g4->column, "G4 needs P (seconds)");
+    if (!p) fail(Code::E1514, g4->column, "G4 needs P (seconds)");
     seconds = p->value;
   } else if (step.siemens_dwell) {
     if (const Word* f = step.word('F')) {
@@ -654,16 +650,16 @@ void Interpreter::dwell(Step& step) {
     } else if (const Word* sw = step.word('S'); sw && step.state.spindle_rpm > 0) {
       seconds = sw->value / step.state.spindle_rpm * 60.0;
     } else {
-      fail(Code::missing_word, g4->column, "G4 needs F (seconds) or S (spindle turns)");
+      fail(Code::E1514, g4->column, "G4 needs F (seconds) or S (spindle turns)");
     }
   } else if (step.dwell_x) {
     seconds = step.dwell_x->value;
   } else if (const Word* p = step.word('P')) {
     seconds = p->decimal_point ? p->value : p->value / 1000.0;
   } else {
-    fail(Code::missing_word, g4->column, "G4 needs X (s) or P (ms)");
+    fail(Code::E1514, g4->column, "G4 needs X (s) or P (ms)");
   }
-  if (seconds < 0) fail(Code::bad_word_value, g4->column, "negative dwell");
+  if (seconds < 0) fail(Code::E1511, g4->column, "negative dwell");
   step.emit(program::Dwell{seconds, source(step.b, g4->column)});
 }
 
@@ -697,8 +693,7 @@ void Interpreter::tool_length(Step& step) {
                               source(step.b, g->column)};
   if (const Word* h = step.word('H')) {
     if (!whole_number(h->value))
-      fail(Code::bad_word_value, h->column,
-           "H (offset register) must be a whole number from 0 to 1e9");
+      fail(Code::E1511, h->column, "H (offset register) must be a whole number from 0 to 1e9");
     t.register_number = static_cast<int>(h->value);
   } else if (t.enabled) {
     t.register_number = step.state.tool_in_spindle;
@@ -749,11 +744,11 @@ void Interpreter::set_origins(Step& step) {
   if (step.offset_after != step.offset_before) {
     s.position += step.offset_before - step.offset_after;
     if (s.moved)
-      warn_once('F', 0, Code::frame_change, step.nonmodal ? step.nonmodal->column : 1,
+      warn_once('F', 0, Code::W1512, step.nonmodal ? step.nonmodal->column : 1,
                 "the program's coordinate frame moves here (G10, G52, G92 or another work system); "
                 "positions after it are read in the new frame, as rs274 does");
   } else if (step.g(Group::coordinate) && state_.work_system != s.work_system && s.moved) {
-    warn_once('F', 1, Code::frame_change, step.g(Group::coordinate)->column,
+    warn_once('F', 1, Code::W1512, step.g(Group::coordinate)->column,
               "switching from " + code_text('G', state_.work_system) + " to " +
                   code_text('G', s.work_system) +
                   " after motion: its offsets are unknown and taken as equal (as rs274 does)");
@@ -767,17 +762,15 @@ void Interpreter::set_origin_g10(Step& step) {
   const ModalState& s = step.state;
   const Word* l = step.word('L');
   const Word* p = step.word('P');
-  if (!l) fail(Code::missing_word, step.nonmodal->column, "G10 needs L (what it sets)");
+  if (!l) fail(Code::E1514, step.nonmodal->column, "G10 needs L (what it sets)");
   const long lv = std::lround(l->value);
   const bool sets_origin = lv == 2 || (lv == 20 && !fanuc_like);
   if (sets_origin) {
-    if (!p)
-      fail(Code::missing_word, step.nonmodal->column, "G10 L2/L20 needs P (coordinate system)");
+    if (!p) fail(Code::E1514, step.nonmodal->column, "G10 L2/L20 needs P (coordinate system)");
     const long pv = std::lround(p->value);
-    if (pv < 0 || pv > 9)
-      fail(Code::bad_word_value, p->column, "G10 P must be 0 (the active system) to 9");
+    if (pv < 0 || pv > 9) fail(Code::E1511, p->column, "G10 P must be 0 (the active system) to 9");
     if (const Word* r = step.word('R'))
-      fail(Code::unsupported_code, r->column,
+      fail(Code::E1404, r->column,
            "G10 R rotates the coordinate system; vcpost does not follow rotation");
     static constexpr int kSystems[] = {G_54_work_1,   G_55_work_2,   G_56_work_3,
                                        G_57_work_4,   G_58_work_5,   G_59_work_6,
@@ -797,7 +790,7 @@ void Interpreter::set_origin_g10(Step& step) {
       }
     }
   } else if (lv == 20 && fanuc_like) {
-    warn_once('L', 20, Code::mode_code_passed, l->column,
+    warn_once('L', 20, Code::W1406, l->column,
               "G10 L20 sets an extended work offset (G54.1 P..); taken as not changing the "
               "active frame");
   }
@@ -811,8 +804,7 @@ void Interpreter::set_origin_g92_g52(Step& step) {
   const bool g92 = step.nonmodal_code == G_92_set_position;
   step.origins = origins_;
   Origins& origins = *step.origins;
-  if (g92 && !step.has_xyz)
-    fail(Code::missing_axis_word, step.nonmodal->column, "G92 needs an axis word");
+  if (g92 && !step.has_xyz) fail(Code::E1507, step.nonmodal->column, "G92 needs an axis word");
   for (int k = 0; k < 3; ++k) {
     const Word* w = step.word(kAxes[k]);
     if (!w) continue;
@@ -848,12 +840,12 @@ void Interpreter::tilt_working_plane(Step& step) {
   frame.source = source(step.b, g->column);
   if (c == G_68_2_tilted_plane) {
     if (const Word* p = step.word('P'); p && p->value != 0)
-      fail(Code::unsupported_code, p->column,
+      fail(Code::E1404, p->column,
            "G68.2 with P (three points, two vectors or projection angles) is not read: write the "
            "tilt "
            "as G68.2 X Y Z I J K (Euler angles)");
     if (!tilt_.is_identity())
-      fail(Code::unsupported_code, g->column,
+      fail(Code::E1404, g->column,
            "G68.2 while a tilted plane is active (a multiple tilt) is not read: G69 first");
     Eigen::Vector3d origin = Eigen::Vector3d::Zero();
     for (int k = 0; k < 3; ++k)
@@ -890,10 +882,10 @@ void Interpreter::take_axis_words(Step& step) {
   const bool g117 = nonmodal_code == G_117_position_output;
   if (g117) {
     if (const Word* sw = step.word('S'))
-      fail(Code::unsupported_code, sw->column,
+      fail(Code::E1404, sw->column,
            "S in a G117 block changes the speed inside the next move; vcpost cannot place it");
     if (const Word* m = step.m(Group::spindle))
-      fail(Code::unsupported_code, m->column,
+      fail(Code::E1404, m->column,
            "spindle M code in a G117 block acts inside the next move; vcpost cannot place it");
   }
   // G43.1: the axis words are the tool length offset.
@@ -984,7 +976,7 @@ void Interpreter::reference_return(Step& step) {
   Eigen::Vector3d home = via;
   for (int k = 0; k < 3; ++k)
     if (!step.has_axis || step.word(kAxes[k])) home[k] = reference[k];
-  warn_once('G', code, Code::machine_coordinates, g->column,
+  warn_once('G', code, Code::W1509, g->column,
             code_text('G', code) +
                 " reference point taken as machine 0 with the program's offsets "
                 "(rs274's default parameters; the machine's are unknown)");
@@ -1002,12 +994,11 @@ void Interpreter::canned_cycle(Step& step) {
   ModalState& s = step.state;
   const int c = s.cycle;
   const std::uint32_t column = step.motion_column;
-  if (s.feed <= 0.0)
-    fail(Code::missing_feed, column, "canned cycle with no feed rate (F) in effect");
+  if (s.feed <= 0.0) fail(Code::E1505, column, "canned cycle with no feed rate (F) in effect");
   if (s.feed_mode == program::FeedMode::inverse_time)
-    fail(Code::cycle_value, column, "canned cycles cannot run in inverse-time feed (G93)");
+    fail(Code::E1513, column, "canned cycles cannot run in inverse-time feed (G93)");
   if (s.plane != program::Plane::xy)
-    fail(Code::unsupported_code, column, "canned cycles are followed in the XY plane (G17) only");
+    fail(Code::E1404, column, "canned cycles are followed in the XY plane (G17) only");
   const bool same = state_.cycle == c;
   CycleCall call;
   call.code = c;
@@ -1021,21 +1012,19 @@ void Interpreter::canned_cycle(Step& step) {
     s.cycle_initial_set = true;
   }
   const Word* r = step.word('R');
-  if (!r && !same) fail(Code::cycle_value, column, code_text('G', c) + " needs R (the R plane)");
+  if (!r && !same) fail(Code::E1513, column, code_text('G', c) + " needs R (the R plane)");
   const Word* z = step.word('Z');
-  if (!z && !same)
-    fail(Code::cycle_value, column, code_text('G', c) + " needs Z (the hole bottom)");
+  if (!z && !same) fail(Code::E1513, column, code_text('G', c) + " needs Z (the hole bottom)");
   const double r_word = r ? length(*r, s.inches) : s.cycle_r;
   const double z_word = z ? length(*z, s.inches) : s.cycle_z;
   s.cycle_r = r_word;
   s.cycle_z = z_word;
   const Word* q = step.word('Q');
   if (c == G_73_chip_break_drill || c == G_83_peck_drill) {
-    if (!q && !same)
-      fail(Code::cycle_value, column, code_text('G', c) + " needs Q (the peck depth)");
+    if (!q && !same) fail(Code::E1513, column, code_text('G', c) + " needs Q (the peck depth)");
     const double qv = q ? length(*q, s.inches) : s.cycle_q;
     if (qv <= 0.0)
-      fail(Code::cycle_value, q ? q->column : column,
+      fail(Code::E1513, q ? q->column : column,
            code_text('G', c) + " with a peck depth Q <= 0 (the control alarms too)");
     s.cycle_q = qv;
     call.q = qv;
@@ -1044,7 +1033,7 @@ void Interpreter::canned_cycle(Step& step) {
   const bool dwell_needed = c == G_82_drill_dwell || c == G_86_bore_spindle_stop ||
                             c == G_88_bore_manual_out || c == G_89_bore_dwell_feed_out;
   if (dwell_needed && !p && !same && !fanuc_like)
-    fail(Code::cycle_value, column, code_text('G', c) + " needs P (the dwell)");
+    fail(Code::E1513, column, code_text('G', c) + " needs P (the dwell)");
   if (p) s.cycle_p = fanuc_like && !p->decimal_point ? p->value / 1000.0 : p->value;
   call.dwell =
       (dwell_needed || c == G_74_left_hand_tap || c == G_84_right_hand_tap || c == G_76_fine_bore)
@@ -1052,7 +1041,7 @@ void Interpreter::canned_cycle(Step& step) {
           : 0.0;
   if (c == G_87_back_bore && !fanuc_like) {
     if (!same && (!step.word('I') || !step.word('J') || !step.word('K')))
-      fail(Code::cycle_value, column, "G87 needs I, J and K");
+      fail(Code::E1513, column, "G87 needs I, J and K");
     if (const Word* w = step.word('I')) s.cycle_i = length(*w, s.inches);
     if (const Word* w = step.word('J')) s.cycle_j = length(*w, s.inches);
     if (const Word* w = step.word('K')) s.cycle_k = length(*w, s.inches);
@@ -1060,22 +1049,21 @@ void Interpreter::canned_cycle(Step& step) {
     call.j = s.cycle_j;
   }
   if ((c == G_76_fine_bore || c == G_87_back_bore) && fanuc_like)
-    warn_once('G', c, Code::mode_code_passed, column,
+    warn_once('G', c, Code::W1406, column,
               code_text('G', c) +
                   ": the tool's shift at the hole bottom (Q, direction a machine "
                   "parameter) is not followed; the path is read without it");
   call.repeats = cycle_repeats(step);
   place_cycle(step, call, r_word, z_word);
   if (call.r < call.bottom && !(c == G_87_back_bore && fanuc_like))
-    fail(Code::cycle_value, r ? r->column : column,
-         "R plane below the hole bottom Z in a canned cycle");
+    fail(Code::E1513, r ? r->column : column, "R plane below the hole bottom Z in a canned cycle");
   call.retract_to_r = s.retract_to_r && !(c == G_87_back_bore && fanuc_like);
   if (call.repeats > 0) {
     // Each hole: its pecks (three moves each at most) and three more.
     const bool pecks = (c == G_73_chip_break_drill || c == G_83_peck_drill) && call.q > 0;
     const double per_hole = 3.0 * ((pecks ? (call.r - call.bottom) / call.q : 0.0) + 1.0) + 3.0;
     if (per_hole * call.repeats > static_cast<double>(limits_.max_cycle_moves))
-      fail(Code::cycle_moves, column,
+      fail(Code::E1308, column,
            "canned cycle makes more than " + std::to_string(limits_.max_cycle_moves) +
                " moves in one block (L repeats times pecks), the limit");
     s.position = expand_cycle(call, step.events);
@@ -1091,10 +1079,10 @@ int Interpreter::cycle_repeats(const Step& step) const {
   const Word* kw = fanuc_like ? step.word('K') : nullptr;
   const Word* rep = kw ? kw : l;
   if (rep && (rep->value < 0 || rep->value > 1e6 || rep->value != std::floor(rep->value)))
-    fail(Code::bad_word_value, rep->column, "cycle repeat count must be a whole number");
+    fail(Code::E1511, rep->column, "cycle repeat count must be a whole number");
   const int repeats = rep ? static_cast<int>(rep->value) : 1;
   if (rep && repeats == 0 && !fanuc_like)
-    fail(Code::cycle_value, rep->column, "cannot do zero repeats of a canned cycle");
+    fail(Code::E1513, rep->column, "cannot do zero repeats of a canned cycle");
   return repeats;
 }
 
@@ -1131,8 +1119,8 @@ void Interpreter::motion(Step& step) {
   const bool machine = step.nonmodal_code == G_53_machine_coordinates;
   if (machine) {
     if (s.motion != Motion::rapid && s.motion != Motion::linear)
-      fail(Code::unsupported_code, nonmodal->column, "G53 needs G0 or G1");
-    warn_once('G', G_53_machine_coordinates, Code::machine_coordinates, nonmodal->column,
+      fail(Code::E1404, nonmodal->column, "G53 needs G0 or G1");
+    warn_once('G', G_53_machine_coordinates, Code::W1509, nonmodal->column,
               "G53 machine coordinates: the offsets the program sets (G10, G92, G52) are taken "
               "off, the machine's own are unknown and taken as 0 (as rs274 does)");
   }
@@ -1148,14 +1136,14 @@ void Interpreter::motion(Step& step) {
   const auto src = source(step.b, step.motion_column);
   switch (s.motion) {
     case Motion::none:
-      fail(Code::words_without_motion, step.first_axis_column(1),
+      fail(Code::E1508, step.first_axis_column(1),
            "axis words without a motion mode (G0/G1/G2/G3)");
     case Motion::rapid:
       step.emit(program::StraightTraverse{s.position, end, src});
       break;
     case Motion::linear:
       if (s.feed <= 0.0 || (s.feed_mode == program::FeedMode::inverse_time && !step.word('F')))
-        fail(Code::missing_feed, step.motion_column, "G1 with no feed rate (F) in effect");
+        fail(Code::E1505, step.motion_column, "G1 with no feed rate (F) in effect");
       step.emit_inverse_f([&] { return s.feed * (end - s.position).norm(); });
       step.emit(program::StraightFeed{s.position, end, src});
       break;
@@ -1180,7 +1168,7 @@ void Interpreter::arc(Step& step, const Eigen::Vector3d& end) {
   const ModalState& s = step.state;
   const std::uint32_t column = step.motion_column;
   if (s.feed <= 0.0 || (s.feed_mode == program::FeedMode::inverse_time && !step.word('F')))
-    fail(Code::missing_feed, column, "arc with no feed rate (F) in effect");
+    fail(Code::E1505, column, "arc with no feed rate (F) in effect");
   const bool cw = s.motion == Motion::arc_cw;
   const Eigen::Vector3d centre =
       step.word('R') ? centre_from_radius(step, end, cw) : centre_from_offsets(step, end);
@@ -1188,7 +1176,7 @@ void Interpreter::arc(Step& step, const Eigen::Vector3d& end) {
   if (const Word* p = step.word('P'); p && (dialect_.kind == machines::Dialect::rs274ngc ||
                                             dialect_.kind == machines::Dialect::sinumerik)) {
     if (p->value < 1 || !whole_number(p->value))
-      fail(Code::bad_word_value, p->column,
+      fail(Code::E1511, p->column,
            dialect_.kind == machines::Dialect::sinumerik
                ? "TURN= (full turns beyond the end point) must be a whole number from 0 to "
                  "999999999"
@@ -1211,22 +1199,21 @@ void Interpreter::spline(Step& step, const Eigen::Vector3d& end) {
   const bool cubic = s.motion == Motion::spline_cubic;
   const char* code = cubic ? "G5" : "G5.1";
   if (s.feed <= 0.0 || (s.feed_mode == program::FeedMode::inverse_time && !step.word('F')))
-    fail(Code::missing_feed, column, std::string(code) + " with no feed rate (F) in effect");
+    fail(Code::E1505, column, std::string(code) + " with no feed rate (F) in effect");
   if (s.plane != program::Plane::xy)
-    fail(Code::unsupported_code, column,
+    fail(Code::E1404, column,
          std::string(code) + ": splines are in the XY plane (G17) only, as rs274 reads them");
   if (const Word* z = step.word('Z'))
-    fail(Code::unsupported_code, z->column,
+    fail(Code::E1404, z->column,
          std::string(code) + ": a spline may not move Z (rs274 refuses it too)");
   const Word* i = step.word('I');
   const Word* j = step.word('J');
   if ((i == nullptr) != (j == nullptr) || (!cubic && i == nullptr))
-    fail(Code::missing_word, column,
+    fail(Code::E1514, column,
          std::string(code) + (cubic ? " needs both I and J, or neither" : " needs both I and J"));
   const Word* p = step.word('P');
   const Word* q = step.word('Q');
-  if (cubic && (p == nullptr || q == nullptr))
-    fail(Code::missing_word, column, "G5 needs both P and Q");
+  if (cubic && (p == nullptr || q == nullptr)) fail(Code::E1514, column, "G5 needs both P and Q");
   const Eigen::Vector2d start = s.position.head<2>();
   const Eigen::Vector2d to = end.head<2>();
   const Eigen::Vector2d first =
@@ -1279,7 +1266,7 @@ void Interpreter::nurbs_point(Step& step, const Eigen::Vector3d& end) {
   nurbs_.add(words, continues, zero_feed, Eigen::Vector2d(s.position[ax[0]], s.position[ax[1]]),
              Eigen::Vector2d(end[ax[0]], end[ax[1]]), nurbs_frame(step), step.b.line);
   if (const Word* other = step.word(kAxes[ax[2]]))
-    warn_once('G', 52, Code::nurbs_axis_ignored, other->column,
+    warn_once('G', 52, Code::W1516, other->column,
               std::string(1, kAxes[ax[2]]) +
                   " in a G5.2 block: the curve lies in the working plane, LinuxCNC (and vcpost) "
                   "leave " +
@@ -1293,7 +1280,7 @@ void Interpreter::end_nurbs(Step& step) {
   ModalState& s = step.state;
   const std::uint32_t column = step.nonmodal->column;
   if (step.motion_word && step.motion_code != G_5_2_nurbs)
-    fail(Code::modal_group_conflict, step.motion_word->column,
+    fail(Code::E1403, step.motion_word->column,
          "G5.3 with " + code_text('G', step.motion_code) +
              ": only G5.2 may share a block with G5.3 (rs274: \"Between G5.2 and G5.3 codes, "
              "only additional G5.2 codes are allowed.\")");
@@ -1301,9 +1288,9 @@ void Interpreter::end_nurbs(Step& step) {
   const Eigen::Vector2d last =
       nurbs_.end(state_.motion == Motion::nurbs, nurbs_frame(step), column, step.b.line, points);
   if (s.feed_mode == program::FeedMode::inverse_time && !step.word('F'))
-    fail(Code::missing_feed, column,
+    fail(Code::E1505, column,
          "G5.3 in inverse time (G93) needs its F word: the curve takes 1/F minutes");
-  if (s.feed <= 0.0) fail(Code::missing_feed, column, "G5.3 with no feed rate (F) in effect");
+  if (s.feed <= 0.0) fail(Code::E1505, column, "G5.3 with no feed rate (F) in effect");
   const auto ax = program::plane_axes(s.plane);
   auto in_space = [&](const Eigen::Vector2d& p) {
     Eigen::Vector3d q = s.position;
@@ -1346,13 +1333,13 @@ Eigen::Vector3d Interpreter::centre_from_radius(const Step& step, const Eigen::V
   const double radius = length(*r, s.inches);
   const double chord = std::hypot(a1 - a0, b1 - b0);
   if (chord < 1e-9)
-    fail(Code::missing_arc_data, r->column,
+    fail(Code::E1501, r->column,
          "R arc with the same start and end point: a full circle needs I/J/K");
   const double half = chord / 2.0;
   const double abs_r = std::abs(radius);
-  if (abs_r < 1e-9) fail(Code::arc_zero_radius, r->column, "arc radius R0");
+  if (abs_r < 1e-9) fail(Code::E1504, r->column, "arc radius R0");
   if (abs_r < half - kArcRadiusTolerance)
-    fail(Code::arc_r_too_small, r->column,
+    fail(Code::E1503, r->column,
          "R = " + std::to_string(abs_r) + " mm is smaller than half the chord (" +
              std::to_string(half) + " mm)");
   const double h = abs_r > half ? std::sqrt(abs_r * abs_r - half * half) : 0.0;
@@ -1378,7 +1365,7 @@ Eigen::Vector3d Interpreter::centre_from_offsets(const Step& step,
   const double a0 = s.position[ax[0]], b0 = s.position[ax[1]];
   const double a1 = end[ax[0]], b1 = end[ax[1]];
   if (!off0 && !off1)
-    fail(Code::missing_arc_data, column,
+    fail(Code::E1501, column,
          std::string("arc needs ") + letters[ax[0]] + " or " + letters[ax[1]] +
              " (centre) or R (radius)");
   if (off0)
@@ -1390,12 +1377,12 @@ Eigen::Vector3d Interpreter::centre_from_offsets(const Step& step,
   const double r0 = std::hypot(a0 - centre[ax[0]], b0 - centre[ax[1]]);
   const double r1 = std::hypot(a1 - centre[ax[0]], b1 - centre[ax[1]]);
   if (r0 < kArcRadiusTolerance || r1 < kArcRadiusTolerance)
-    fail(Code::arc_zero_radius, column, "arc with zero radius at start or end");
+    fail(Code::E1504, column, "arc with zero radius at start or end");
   const double err = std::abs(r1 - r0);
   const double tolerance = s.inches ? kCentreArcToleranceInch : kCentreArcToleranceMm;
   if (err > 100.0 * tolerance ||
       (err > tolerance && err / std::max(r0, r1) > kArcRelativeTolerance))
-    fail(Code::arc_radius_mismatch, column,
+    fail(Code::E1502, column,
          "radius to end " + std::to_string(r1) + " mm differs from radius to start " +
              std::to_string(r0) + " mm");
   return centre;
@@ -1415,7 +1402,7 @@ bool Interpreter::stop(Step& step) {
     end_program = true;
   } else if (c == M_99_return) {
     if (const Word* p = step.word('P'))
-      fail(Code::unsupported_flow, p->column,
+      fail(Code::E1301, p->column,
            "M99 P (return to a sequence number) is a jump vcpost does not follow");
     if (!frames_.empty()) return true;
     end_program = true;  // M99 in a main program repeats it on the control: end here

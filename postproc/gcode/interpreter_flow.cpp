@@ -41,8 +41,8 @@ void Interpreter::skip_to(const std::string& name, std::initializer_list<Control
     line_ = l.number;
     ++lines_read_;
   }
-  throw GcodeError(Diagnostic{Code::unmatched_control, Severity::error, from, 1,
-                              "no matching end for the control word of this line"});
+  throw GcodeError(
+      Diagnostic{Code::E1303, from, 1, "no matching end for the control word of this line"});
 }
 
 // The subroutine (o-word sub, or program O<number>) in this file; the first
@@ -71,7 +71,7 @@ Interpreter::Sub* Interpreter::lookup_sub(const std::string& name, bool fanuc) {
 Interpreter::Sub& Interpreter::find_sub(const std::string& name, bool fanuc) {
   Sub* sub = lookup_sub(name, fanuc);
   if (!sub)
-    fail(Code::unknown_subroutine, block_.control.column,
+    fail(Code::E1302, block_.control.column,
          (fanuc ? "program O" : "subroutine o<") + name + (fanuc ? "" : ">") +
              " not found in this file");
   if (!fanuc && !sub->met) sub->called_ahead = true;
@@ -86,11 +86,11 @@ void Interpreter::define_sub(const Control& c) {
   Sub& sub = it->second;
   if (!fresh && dialect_.kind == machines::Dialect::rs274ngc) {
     if (sub.body_line != line_ + 1)
-      fail(Code::sub_definition, c.column,
+      fail(Code::E1310, c.column,
            "subroutine o<" + c.name + "> is defined twice (first at line " +
                std::to_string(sub.body_line - 1) + "); rs274 refuses the second definition");
     if (sub.met || sub.called_ahead)
-      fail(Code::sub_definition, c.column,
+      fail(Code::E1310, c.column,
            "subroutine o<" + c.name +
                "> is defined after a call that ran it; rs274 refuses the definition here "
                "(\"found in illegal location\"): define it before its calls, or after the "
@@ -111,7 +111,7 @@ std::size_t Interpreter::call_depth_limit() const {
 void Interpreter::call(const std::string& name, const std::vector<double>& arguments, bool fanuc,
                        long repeat, bool own_locals) {
   if (frames_.size() >= call_depth_limit())
-    fail(Code::call_depth, block_.control.column,
+    fail(Code::E1304, block_.control.column,
          "subroutine calls nested more than " + std::to_string(call_depth_limit()) + " deep" +
              (dialect_.kind == machines::Dialect::rs274ngc ? " (rs274's limit)" : ""));
   const Sub& sub = find_sub(name, fanuc);
@@ -123,14 +123,14 @@ void Interpreter::call(const std::string& name, const std::vector<double>& argum
 
 void Interpreter::count_pass(std::uint64_t pass_start, long left, std::uint32_t column) {
   if (++loop_iterations_ > limits_.max_loop_iterations)
-    fail(Code::loop_limit, column,
+    fail(Code::E1307, column,
          "loop or subprogram repeat runs more than " + std::to_string(limits_.max_loop_iterations) +
              " passes, the iteration limit");
   const std::uint64_t pass = lines_read_ - pass_start;
   const auto more = static_cast<std::uint64_t>(std::max(left, 0L));
   if (pass > 0 && lines_read_ <= limits_.max_blocks &&
       more > (limits_.max_blocks - lines_read_) / pass)
-    fail(Code::block_limit, column,
+    fail(Code::E1309, column,
          std::to_string(more) + " more passes of " + std::to_string(pass) +
              " lines would run the program past " + std::to_string(limits_.max_blocks) +
              " blocks (loops and calls counted), the limit");
@@ -170,7 +170,7 @@ void Interpreter::handle_control() {
     case ControlKind::endsub:
     case ControlKind::return_:
       if (!return_from_sub())
-        fail(Code::unmatched_control, c.column, "return from a subroutine that was not called");
+        fail(Code::E1303, c.column, "return from a subroutine that was not called");
       return;
     case ControlKind::call:
       call(c.name, c.arguments, false, 1, true);
@@ -190,11 +190,11 @@ void Interpreter::handle_control() {
     case ControlKind::do_:
     case ControlKind::break_:
     case ControlKind::continue_:
-      fail(Code::unsupported_flow, c.column,
+      fail(Code::E1301, c.column,
            "do/break/continue loops are not followed by vcpost; use while/endwhile or repeat");
     case ControlKind::fanuc_goto:
       if (c.condition.value_or(0.0) != 0.0)
-        fail(Code::unsupported_flow, c.column,
+        fail(Code::E1301, c.column,
              c.name + " jumps within the program; vcpost does not follow macro jumps and loops");
       // An IF [..] GOTO not taken: nothing happens, but the block's other
       // words (none are allowed) do not run.
@@ -229,13 +229,11 @@ void Interpreter::branch(const Control& c) {
     return;
   }
   if (c.kind == ControlKind::endif) {
-    if (!flow_top_is(ControlKind::if_))
-      fail(Code::unmatched_control, c.column, "endif without its if");
+    if (!flow_top_is(ControlKind::if_)) fail(Code::E1303, c.column, "endif without its if");
     flow_.pop_back();
     return;
   }
-  if (!flow_top_is(ControlKind::if_))
-    fail(Code::unmatched_control, c.column, "else without its if");
+  if (!flow_top_is(ControlKind::if_)) fail(Code::E1303, c.column, "else without its if");
   Flow& f = flow_.back();
   const bool take = !f.taken && (c.kind == ControlKind::else_ || c.condition.value_or(0.0) != 0.0);
   if (take) {
@@ -272,7 +270,7 @@ void Interpreter::loop(const Control& c) {
     }
     case ControlKind::endwhile: {
       if (!flow_top_is(ControlKind::while_))
-        fail(Code::unmatched_control, c.column, "endwhile without its while");
+        fail(Code::E1303, c.column, "endwhile without its while");
       count_pass(lines_read_, 0, c.column);
       const Flow f = flow_.back();
       flow_.pop_back();
@@ -281,7 +279,7 @@ void Interpreter::loop(const Control& c) {
     }
     default: {  // endrepeat
       if (!flow_top_is(ControlKind::repeat))
-        fail(Code::unmatched_control, c.column, "endrepeat without its repeat");
+        fail(Code::E1303, c.column, "endrepeat without its repeat");
       Flow& f = flow_.back();
       count_pass(f.pass_start, f.remaining - 1, c.column);
       if (--f.remaining > 0) {
@@ -304,16 +302,16 @@ void Interpreter::loop(const Control& c) {
 void Interpreter::macro_call(const Step& step) {
   const Word* p = step.word('P');
   const Word* g65 = step.nonmodal;
-  if (!p) fail(Code::missing_word, g65->column, "G65 needs P (program number)");
+  if (!p) fail(Code::E1514, g65->column, "G65 needs P (program number)");
   if (p->value < 0 || p->value > 1e9 || p->value != std::floor(p->value))
-    fail(Code::bad_word_value, p->column, "G65 P must be a program number, a whole number");
+    fail(Code::E1511, p->column, "G65 P must be a program number, a whole number");
   const Word* l = step.word('L');
   if (l && (l->value < 0 || l->value > 1e9 || l->value != std::floor(l->value)))
-    fail(Code::bad_word_value, l->column,
+    fail(Code::E1511, l->column,
          "G65 L (the number of passes) must be a whole number from 0 to 1e9");
   const std::string name = std::to_string(static_cast<long>(p->value));
   if (!lookup_sub(name, true)) {
-    warn_once('G', G_65_macro_call, Code::external_macro, g65->column,
+    warn_once('G', G_65_macro_call, Code::W1306, g65->column,
               "G65 P" + name +
                   " calls a macro program that is not in this file (a machine maker's macro): "
                   "taken as not moving the tool");
@@ -340,14 +338,14 @@ void Interpreter::macro_call(const Step& step) {
 void Interpreter::call_subprogram(const Step& step) {
   const Word* m = step.m(Group::subprogram);
   const Word* p = step.word('P');
-  if (!p) fail(Code::missing_word, m->column, "M98 needs P (program number)");
+  if (!p) fail(Code::E1514, m->column, "M98 needs P (program number)");
   const Word* l = step.word('L');
   if (p->value < 0 || p->value > 1e9 || p->value != std::floor(p->value))
-    fail(Code::bad_word_value, p->column, "M98 P must be a program number, a whole number");
+    fail(Code::E1511, p->column, "M98 P must be a program number, a whole number");
   // L counts the passes, as rs274 and Fanuc do: L0 runs none; a negative or
   // fractional count is refused (rs274: "Negative l word used").
   if (l && (l->value < 0 || l->value > 1e9 || l->value != std::floor(l->value)))
-    fail(Code::bad_word_value, l->column,
+    fail(Code::E1511, l->column,
          "M98 L (the number of passes) must be a whole number from 0 to 1e9");
   auto number = static_cast<long>(p->value);
   long count = l ? static_cast<long>(l->value) : 1;

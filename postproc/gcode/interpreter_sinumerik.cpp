@@ -26,11 +26,9 @@ void Interpreter::run_siemens_cycle(ModalState& s, const SiemensCycle& sc,
   auto arg = [&](std::size_t k) { return k < sc.args.size() && sc.args[k] ? *sc.args[k] : 0.0; };
   auto given = [&](std::size_t k) { return k < sc.args.size() && sc.args[k].has_value(); };
   auto mm = [&](double v) { return to_mm(v, s.inches); };
-  if (s.feed <= 0.0)
-    fail(Code::missing_feed, sc.column, "drilling cycle with no feed rate (F) in effect");
+  if (s.feed <= 0.0) fail(Code::E1505, sc.column, "drilling cycle with no feed rate (F) in effect");
   if (s.plane != program::Plane::xy)
-    fail(Code::unsupported_code, sc.column,
-         "drilling cycles are followed in the XY plane (G17) only");
+    fail(Code::E1404, sc.column, "drilling cycles are followed in the XY plane (G17) only");
   const double rtp = mm(arg(0)), rfp = mm(arg(1)), sdis = mm(std::abs(arg(2)));
   const double bottom = given(3) ? mm(arg(3)) : rfp - mm(std::abs(arg(4)));
   CycleCall call;
@@ -58,7 +56,7 @@ void Interpreter::run_siemens_cycle(ModalState& s, const SiemensCycle& sc,
       // the chip with a short back-off, 1 lifts to the R plane.
       const double first = given(5) ? rfp - mm(arg(5)) : mm(std::abs(arg(6)));
       if (first <= 0.0)
-        fail(Code::cycle_value, sc.column, "CYCLE83 needs a first drilling depth (FDEP or FDPR)");
+        fail(Code::E1513, sc.column, "CYCLE83 needs a first drilling depth (FDEP or FDPR)");
       call.code = arg(11) != 0.0 ? G_83_peck_drill : G_73_chip_break_drill;
       call.q = first;
       call.peck_clearance = 1.0;
@@ -81,10 +79,10 @@ void Interpreter::run_siemens_cycle(ModalState& s, const SiemensCycle& sc,
       call.dwell = arg(5);
       break;
     default:
-      fail(Code::unsupported_code, sc.column, "drilling cycle not followed by vcpost");
+      fail(Code::E1404, sc.column, "drilling cycle not followed by vcpost");
   }
   if (call.r < call.bottom)
-    fail(Code::cycle_value, sc.column, "the cycle's depth lies above its reference plane");
+    fail(Code::E1513, sc.column, "the cycle's depth lies above its reference plane");
   const Eigen::Vector3d end = expand_cycle(call, events);
   // The control ends at the retract plane RTP.
   if (end.z() != rtp) {
@@ -113,14 +111,14 @@ void Interpreter::swivel_working_plane(Step& step, const SiemensCycle& sc) {
     const double st = arg(2), mode = arg(3);
     const int units = static_cast<int>(std::fmod(std::abs(st), 10.0));
     if (st != std::floor(st) || units > 1)
-      fail(Code::cycle_value, sc.column,
+      fail(Code::E1513, sc.column,
            "CYCLE800 _ST units digit " + std::to_string(units) +
                ": vcpost reads 0 (a new plane) and 1 (added to the plane in effect)");
     if (mode != std::floor(mode) || mode < 0 || mode > 255)
-      fail(Code::cycle_value, sc.column, "CYCLE800 _MODE must be a whole number 0..255");
+      fail(Code::E1513, sc.column, "CYCLE800 _MODE must be a whole number 0..255");
     const int bits = static_cast<int>(mode);
     if ((bits >> 6) != 0)
-      fail(Code::unsupported_code, sc.column,
+      fail(Code::E1404, sc.column,
            "CYCLE800 by projection angles, solid angle or rotary axes direct (_MODE " +
                std::to_string(bits) +
                ") is not read: write the swivel axis by axis (_MODE 57: X Y Z)");
@@ -128,7 +126,7 @@ void Interpreter::swivel_working_plane(Step& step, const SiemensCycle& sc) {
     for (int k = 0; k < 3; ++k) {
       const int axis = (bits >> (2 * k)) & 3;
       if (axis == 0)
-        fail(Code::cycle_value, sc.column,
+        fail(Code::E1513, sc.column,
              "CYCLE800 _MODE " + std::to_string(bits) + " names no axis for turn " +
                  std::to_string(k + 1) + " (bits 1 X, 2 Y, 3 Z)");
       r = r * program::turn_about(axis - 1, arg(7 + static_cast<std::size_t>(k)));
@@ -153,7 +151,7 @@ void Interpreter::siemens_words(Step& step) {
   for (const auto& [name, column] : b.noted_keywords) {
     int key = 0;
     for (char ch : name) key = key * 31 + ch;
-    warn_once('K', key, Code::mode_code_passed, column,
+    warn_once('K', key, Code::W1406, column,
               name +
                   " is a mode of the control that does not change the path vcpost reads; "
                   "passed through unchanged");

@@ -8,14 +8,13 @@
 namespace vcpost::gcode::syntax {
 
 void Lexer::fail(Code code, std::size_t at, std::string message) const {
-  throw GcodeError(Diagnostic{code, Severity::error, line_, static_cast<std::uint32_t>(at + 1),
-                              std::move(message)});
+  throw GcodeError(Diagnostic{code, line_, static_cast<std::uint32_t>(at + 1), std::move(message)});
 }
 
 void Lexer::fail_control_byte(unsigned char c, std::size_t at) const {
   const char* digits = "0123456789ABCDEF";
   const std::string hex{digits[(c >> 4) & 15], digits[c & 15]};
-  fail(Code::nul_byte, at, "control byte 0x" + hex + " in the program text");
+  fail(Code::E1002, at, "control byte 0x" + hex + " in the program text");
 }
 
 double Lexer::read_general_number(bool& decimal_point, std::size_t word_start, char letter) {
@@ -34,7 +33,7 @@ double Lexer::read_general_number(bool& decimal_point, std::size_t word_start, c
       mantissa = mantissa * 10 + static_cast<std::uint64_t>(c - '0');
       if (point) ++fraction;
     } else if (c == '.') {
-      if (point) fail(Code::bad_number, i_, "second decimal point in a number");
+      if (point) fail(Code::E1003, i_, "second decimal point in a number");
       point = true;
     } else if (is_blank(c) && literal_follows(i_)) {
       ++i_;
@@ -45,13 +44,13 @@ double Lexer::read_general_number(bool& decimal_point, std::size_t word_start, c
     if (compact_length < sizeof compact) compact[compact_length++] = c;
     ++i_;
   }
-  if (!any) fail(Code::bad_number, word_start, std::string(1, letter) + " word without a number");
+  if (!any) fail(Code::E1003, word_start, std::string(1, letter) + " word without a number");
   decimal_point = point;
   if (digits <= 15 && fraction <= 22) return static_cast<double>(mantissa) / kPow10[fraction];
-  if (compact_length >= sizeof compact) fail(Code::bad_number, word_start, "number too long");
+  if (compact_length >= sizeof compact) fail(Code::E1003, word_start, "number too long");
   double v = 0.0;
   const auto r = std::from_chars(compact, compact + compact_length, v);
-  if (r.ec != std::errc()) fail(Code::bad_number, word_start, "number out of range");
+  if (r.ec != std::errc()) fail(Code::E1003, word_start, "number out of range");
   return v;
 }
 
@@ -60,11 +59,11 @@ std::string_view Lexer::read_comment_text() {
   ++i_;
   const std::size_t begin = i_;
   while (!at_end() && s_[i_] != ')') {
-    if (s_[i_] == '(') fail(Code::nested_comment, i_, "'(' inside a comment");
+    if (s_[i_] == '(') fail(Code::E1005, i_, "'(' inside a comment");
     check_byte(i_);
     ++i_;
   }
-  if (at_end()) fail(Code::unclosed_comment, open, "comment opened here is not closed");
+  if (at_end()) fail(Code::E1004, open, "comment opened here is not closed");
   const std::string_view text = s_.substr(begin, i_ - begin);
   ++i_;
   return text;

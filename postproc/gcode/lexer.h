@@ -134,7 +134,7 @@ class Lexer {
   // A NUL or control byte at `at` fails (tab, CR and form feed pass).
   void check_byte(std::size_t at) const {
     const auto c = static_cast<unsigned char>(s_[at]);
-    if (c == 0) fail(Code::nul_byte, at, "NUL byte in the program text");
+    if (c == 0) fail(Code::E1002, at, "NUL byte in the program text");
     if (c < 0x20 && c != '\t' && c != '\r' && c != '\f') fail_control_byte(c, at);
   }
 

@@ -13,8 +13,7 @@ namespace vcpost::gcode {
 namespace {
 
 [[noreturn]] void refuse(Code code, std::uint32_t line, std::uint32_t column, std::string message) {
-  throw GcodeError(
-      Diagnostic{code, Severity::error, line, column == 0 ? 1u : column, std::move(message)});
+  throw GcodeError(Diagnostic{code, line, column == 0 ? 1u : column, std::move(message)});
 }
 
 // The plane's axis pair as rs274's messages name it.
@@ -85,7 +84,7 @@ void NurbsCurve::add(const NurbsWords& words, bool continues, bool zero_feed,
   const std::string pair = axis_pair(frame.plane);
   const bool has_point = words.first != nullptr && words.second != nullptr;
   if ((words.first == nullptr) != (words.second == nullptr))
-    refuse(Code::missing_axis_word, line, (words.first ? words.first : words.second)->column,
+    refuse(Code::E1507, line, (words.first ? words.first : words.second)->column,
            "a G5.2 control point needs both " + pair + " (rs274: \"You must specify both " + pair +
                " coordinates for Control Points\")");
   // rs274 checks against the points it keeps, those of a curve that another
@@ -93,7 +92,7 @@ void NurbsCurve::add(const NurbsWords& words, bool continues, bool zero_feed,
   const bool kept = !points_.empty();
   const Word* p = words.p;
   if (!has_point && p && p->value > 0 && kept)
-    refuse(Code::missing_axis_word, line, p->column,
+    refuse(Code::E1507, line, p->column,
            "P without " + pair +
                " is the weight of the curve's first point (the tool's position), given on the "
                "G5.2 that opens the curve only (rs274: \"Can specify P without " +
@@ -104,13 +103,13 @@ void NurbsCurve::add(const NurbsWords& words, bool continues, bool zero_feed,
   const std::string weight_rule =
       " (rs274: \"Must specify positive weight P for every Control Point\")";
   if (p && !(p->value > 0 && std::isfinite(p->value)))
-    refuse(Code::bad_word_value, line, p->column,
+    refuse(Code::E1511, line, p->column,
            "P (a control point's weight) must be positive" + weight_rule);
   if (!p && (kept || has_point))
-    refuse(Code::missing_word, line, words.column,
+    refuse(Code::E1514, line, words.column,
            "a G5.2 control point needs its weight P" + weight_rule);
   if (zero_feed)
-    refuse(Code::missing_feed, line, words.column,
+    refuse(Code::E1505, line, words.column,
            "G5.2 with no feed rate (F) in effect (rs274: \"Cannot make a NURBS with 0 "
            "feedrate\")");
   if (!continues) points_.clear();
@@ -120,18 +119,18 @@ void NurbsCurve::add(const NurbsWords& words, bool continues, bool zero_feed,
     frame_ = frame;
     first_line_ = line;
   } else if (!(frame == frame_)) {
-    refuse(Code::nurbs_curve, line, words.column,
+    refuse(Code::E1515, line, words.column,
            "the plane, the units or an origin offset changed since the G5.2 on line " +
                std::to_string(first_line_) +
                " that opened the curve: its control points would mix two frames");
   }
   if (const Word* l = words.l) {
     if (l->value != std::floor(l->value) || std::abs(l->value) > 1e9)
-      refuse(Code::bad_word_value, line, l->column,
+      refuse(Code::E1511, line, l->column,
              "L (the curve's order) must be a whole number (rs274: \"Non integer value for "
              "integer\")");
     if (l->value > kMaxNurbsOrder)
-      refuse(Code::bad_word_value, line, l->column,
+      refuse(Code::E1511, line, l->column,
              "L (the curve's order) above " + std::to_string(kMaxNurbsOrder) +
                  ": LinuxCNC's evaluation doubles its work with each order (2^(L-1) steps per "
                  "basis function and point), vcpost follows up to L" +
@@ -141,7 +140,7 @@ void NurbsCurve::add(const NurbsWords& words, bool continues, bool zero_feed,
   }
   if (has_point) {
     if (points_.size() >= max_moves_)
-      refuse(Code::nurbs_curve, line, words.column,
+      refuse(Code::E1515, line, words.column,
              "the curve has more than " + std::to_string(max_moves_) +
                  " control points, the limit of moves one block may make");
     points_.push_back(NurbsControlPoint{point, p->value});
@@ -151,17 +150,17 @@ void NurbsCurve::add(const NurbsWords& words, bool continues, bool zero_feed,
 Eigen::Vector2d NurbsCurve::end(bool open, const NurbsFrame& frame, std::uint32_t column,
                                 std::uint32_t line, std::vector<Eigen::Vector2d>& out) {
   if (!open)
-    refuse(Code::nurbs_curve, line, column,
+    refuse(Code::E1515, line, column,
            "G5.3 ends no curve: the motion mode is not G5.2 (rs274: \"Cannot use G5.3 without "
            "G5.2 first\")");
   if (!(frame == frame_))
-    refuse(Code::nurbs_curve, line, column,
+    refuse(Code::E1515, line, column,
            "the plane, the units or an origin offset changed since the G5.2 on line " +
                std::to_string(first_line_) +
                " that opened the curve: its control points would mix two frames");
   const std::string order = std::to_string(order_);
   if (points_.size() < static_cast<std::size_t>(order_))
-    refuse(Code::nurbs_curve, line, column,
+    refuse(Code::E1515, line, column,
            "the curve opened on line " + std::to_string(first_line_) + " has " +
                std::to_string(points_.size()) +
                " control points (the tool's position included), fewer than its order L = " + order +
@@ -169,7 +168,7 @@ Eigen::Vector2d NurbsCurve::end(bool open, const NurbsFrame& frame, std::uint32_
                "order L = " +
                order + "\")");
   if (!nurbs_polyline(points_, order_, kSplineTolerance, out, max_moves_))
-    refuse(Code::nurbs_curve, line, column,
+    refuse(Code::E1515, line, column,
            "the curve opened on line " + std::to_string(first_line_) + " needs more than " +
                std::to_string(max_moves_) + " straight moves within " +
                std::to_string(kSplineTolerance) +

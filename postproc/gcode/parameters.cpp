@@ -99,23 +99,23 @@ Access Parameters::read(int number) const {
   name += std::to_string(number);
   if (kind_ == machines::Dialect::rs274ngc) {
     if (number < 1 || number > kNgcLast)
-      return refuse(Code::parameter_out_of_range, "parameter " + name + " does not exist");
+      return refuse(Code::E1203, "parameter " + name + " does not exist");
     if (number <= local_count()) return {true, {}, {}, frames_.back().locals[number]};
     if (number >= kNgcMachineFirst && !set_[number])
-      return refuse(Code::machine_state, "parameter " + name +
-                                             " holds machine state (offsets, tool or position) "
-                                             "that only the running control knows");
+      return refuse(Code::E1204, "parameter " + name +
+                                     " holds machine state (offsets, tool or position) "
+                                     "that only the running control knows");
     return {true, {}, {}, globals_[number]};
   }
   if (number == 0) return {true, {}, {}, Value{0.0, true}};
   if (number >= kFanucSystemFirst)
-    return refuse(Code::machine_state, "system variable " + name +
-                                           " holds machine state that only the running control "
-                                           "knows");
+    return refuse(Code::E1204, "system variable " + name +
+                                   " holds machine state that only the running control "
+                                   "knows");
   if (number <= local_count()) return {true, {}, {}, frames_.back().locals[number]};
   if ((number >= 100 && number <= 199) || (number >= 500 && number <= kFanucLast))
     return {true, {}, {}, globals_[number]};
-  return refuse(Code::parameter_out_of_range, "variable " + name + " does not exist");
+  return refuse(Code::E1203, "variable " + name + " does not exist");
 }
 
 Access Parameters::read(std::string_view name) const {
@@ -126,7 +126,7 @@ Access Parameters::read(std::string_view name) const {
   } else if (auto it = frames_.back().named.find(key); it != frames_.back().named.end()) {
     return {true, {}, {}, Value{it->second, false}};
   }
-  return refuse(Code::unknown_parameter,
+  return refuse(Code::E1202,
                 "named parameter #<" + key + "> is read before it is set" +
                     (key.empty() || key[0] != '_' ? std::string()
                                                   : " (predefined #<_...> parameters are machine "
@@ -144,7 +144,7 @@ Access Parameters::write(int number, double value) {
   name += std::to_string(number);
   if (kind_ == machines::Dialect::rs274ngc) {
     if (number < 1 || number > kNgcLast)
-      return refuse(Code::parameter_out_of_range, "parameter " + name + " does not exist");
+      return refuse(Code::E1203, "parameter " + name + " does not exist");
     if (number <= local_count()) {
       frames_.back().locals[number] = Value{value, false};
       return {};
@@ -154,7 +154,7 @@ Access Parameters::write(int number, double value) {
     return {};
   }
   if (number >= kFanucSystemFirst)
-    return refuse(Code::machine_state,
+    return refuse(Code::E1204,
                   "writing system variable " + name +
                       " acts on the running control (alarm, message, offsets); vcpost cannot "
                       "follow it");
@@ -167,14 +167,14 @@ Access Parameters::write(int number, double value) {
     set_[number] = true;
     return {};
   }
-  return refuse(Code::parameter_out_of_range, "variable " + name + " cannot be written");
+  return refuse(Code::E1203, "variable " + name + " cannot be written");
 }
 
 Access Parameters::write(std::string_view name, double value) {
   if (kind_ == machines::Dialect::rs274ngc &&
       std::binary_search(kPredefined.begin(), kPredefined.end(), name))
-    return refuse(Code::machine_state, "predefined parameter #<" + std::string(name) +
-                                           "> is read-only: it reports the control's state");
+    return refuse(Code::E1204, "predefined parameter #<" + std::string(name) +
+                                   "> is read-only: it reports the control's state");
   const std::string key(name);
   if (!key.empty() && key[0] == '_')
     global_named_[key] = value;

@@ -1,7 +1,7 @@
 // Parameters (variables) of RS274NGC and Fanuc/Mazak macros, as far as a
 // program computes them itself. What only the running control knows
 // (positions, offsets, tool data, alarms: #5000+ in RS274NGC, #1000+ in
-// Fanuc) is refused with Code::machine_state, never guessed.
+// Fanuc) is refused with Code::E1204, never guessed.
 #pragma once
 
 #include <array>
@@ -26,7 +26,7 @@ struct Value {
 // refusal (the reader adds the position).
 struct Access {
   bool ok = true;
-  Code code = Code::bad_expression;
+  Code code = Code::E1201;
   std::string message;
   Value value;
 };

@@ -22,14 +22,17 @@ std::string code_id(Code code) {
   return id(severity_of(code) == Severity::error ? 'E' : 'W', code);
 }
 
+// The table's code of the reader's enumerator (its row exists: tested).
+vcpost::Code table_code(Code code) { return vcpost::find_code(code_id(code))->code; }
+
 std::string format(const Diagnostic& d, std::string_view file_name) {
   return vcpost::format_diagnostic(
-      code_id(d.code), {d.file.empty() ? std::string(file_name) : d.file, d.line, d.column},
+      table_code(d.code), {d.file.empty() ? std::string(file_name) : d.file, d.line, d.column},
       d.message);
 }
 
 KlartextError::KlartextError(Diagnostic diagnostic)
-    : vcpost::Error(code_id(diagnostic.code), format(diagnostic, ""),
+    : vcpost::Error(table_code(diagnostic.code), format(diagnostic, ""),
                     {diagnostic.file, diagnostic.line, diagnostic.column}),
       diagnostic_(std::move(diagnostic)) {}
 

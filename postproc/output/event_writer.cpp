@@ -8,15 +8,14 @@
 
 namespace vcpost::output {
 
-OutputError::OutputError(std::string_view code, const std::string& message,
-                         program::SourceRef source)
+OutputError::OutputError(Code code, const std::string& message, program::SourceRef source)
     : vcpost::Error(code, format_diagnostic(code, {"", source.line, source.column}, message),
                     {"", source.line, source.column}),
       source_(source) {}
 
 std::string fixed_number(double value, int decimals, const program::SourceRef& source) {
   if (!std::isfinite(value) || std::abs(value) >= 1e9) {
-    throw OutputError("E3203", "value cannot be written: " + std::to_string(value), source);
+    throw OutputError(Code::E3203, "value cannot be written: " + std::to_string(value), source);
   }
   char buffer[64];
   const auto r =

@@ -20,7 +20,7 @@ namespace vcpost::output {
 // too large); Klartext: E3250, E3251, E3252 (klartext_writer.h).
 class OutputError : public vcpost::Error {
  public:
-  OutputError(std::string_view code, const std::string& message, program::SourceRef source);
+  OutputError(Code code, const std::string& message, program::SourceRef source);
   const program::SourceRef& source() const { return source_; }
 
  private:

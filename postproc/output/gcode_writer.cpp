@@ -344,7 +344,7 @@ void GcodeWriter::motion(const Event& event) {
     }
   } else if (const auto* a = std::get_if<ArcFeed>(&event)) {
     if (std::abs(a->rotation) != 1) {
-      throw OutputError("E3201", "arc of more than one turn (P word) is not written", source);
+      throw OutputError(Code::E3201, "arc of more than one turn (P word) is not written", source);
     }
     const int plane = a->plane == Plane::xy ? 17 : a->plane == Plane::xz ? 18 : 19;
     if (plane != plane_) {
@@ -392,7 +392,7 @@ void GcodeWriter::write(const Event& event) {
           motion(event);
         } else if constexpr (std::is_same_v<T, SetFeedRate>) {
           if (e.mode == FeedMode::inverse_time) {
-            throw OutputError("E3202", "inverse-time feed (G93) is not written", e.source);
+            throw OutputError(Code::E3202, "inverse-time feed (G93) is not written", e.source);
           }
           // A later F replaces an unwritten one, and its mode the unwritten
           // mode: one G94/G95 at most per block.
@@ -582,7 +582,7 @@ void GcodeWriter::new_setup(const WorkingFrame& frame) {
   const auto number = static_cast<int>(at - setups_.begin()) + 1;
   const int offset = format_.work_offset + number - 1;
   if (offset > 59) {
-    throw OutputError("E3205",
+    throw OutputError(Code::E3205,
                       "set-up " + std::to_string(number) + " needs work offset G" +
                           std::to_string(offset) +
                           ", beyond G59 (output.tilted_plane \"setup\", "

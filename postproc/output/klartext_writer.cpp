@@ -161,7 +161,7 @@ void KlartextWriter::arc(const ArcFeed& given) {
   a.centre = written(a.centre);
   const SourceRef& source = a.source;
   if (a.plane != Plane::xy) {
-    throw OutputError("E3250",
+    throw OutputError(Code::E3250,
                       "an arc outside the XY plane is not written in Klartext (a TNC takes it "
                       "with the tool axis turned): output the path with arcs in XY or as lines",
                       source);
@@ -195,7 +195,7 @@ void KlartextWriter::arc(const ArcFeed& given) {
   sweep += turn * (std::abs(a.rotation) - 1);
   const double degrees = sweep * 180 / std::numbers::pi;
   if (degrees > 5400) {
-    throw OutputError("E3252",
+    throw OutputError(Code::E3252,
                       "a helix of more than 15 turns is not written (a TNC's IPA holds at most "
                       "5400 deg): split it in the CAM system",
                       source);
@@ -234,7 +234,8 @@ void KlartextWriter::write(const Event& event) {
           motion(event);
         } else if constexpr (std::is_same_v<T, SetFeedRate>) {
           if (e.mode == FeedMode::inverse_time)
-            throw OutputError("E3251", "inverse-time feed is not written in Klartext", e.source);
+            throw OutputError(Code::E3251, "inverse-time feed is not written in Klartext",
+                              e.source);
           pending_feed_ = PendingFeed{e.rate, e.mode == FeedMode::per_revolution};
         } else if constexpr (std::is_same_v<T, SetSpindleSpeed>) {
           // The speed of a tool change goes into its TOOL CALL; any other

@@ -116,7 +116,7 @@ struct SpindlePlan {
 // caller's bug, not the user's input (E9001, exit 3).
 class PlanError : public vcpost::Error {
  public:
-  explicit PlanError(const std::string& message) : vcpost::Error("E9001", message) {}
+  explicit PlanError(const std::string& message) : vcpost::Error(Code::E9001, message) {}
 };
 
 // Plans the spindle over the whole timeline. The spec must be valid (as a

@@ -83,7 +83,7 @@ class EventSource {
   std::string unread_after_end() const {
     if (!gcode_) return {};
     for (const gcode::Diagnostic& d : gcode_->warnings())
-      if (d.code == gcode::Code::text_after_end) return gcode::format(d, file_name_);
+      if (d.code == vcpost::Code::W1311) return gcode::format(d, file_name_);
     return {};
   }
   // G-code: the line of the first construct after which lines may run

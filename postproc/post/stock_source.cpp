@@ -43,8 +43,9 @@ std::optional<DeclaredStock> cl_declared_stock(std::string_view text,
     }
     for (const auto& s : size) {
       if (!s || !(*s > 0))
-        throw vcpost::Error("E4722", where + ": '" + std::string(raw) +
-                                         "': the stock's X, Y and Z sizes, each above 0, expected");
+        throw vcpost::Error(Code::E4722,
+                            where + ": '" + std::string(raw) +
+                                "': the stock's X, Y and Z sizes, each above 0, expected");
     }
     DeclaredStock stock;
     stock.box = Eigen::AlignedBox3d(Eigen::Vector3d(0, 0, -*size[2]),
@@ -59,8 +60,8 @@ std::optional<DeclaredStock> cl_declared_stock(std::string_view text,
 DeclaredStock klartext_declared_stock(const Eigen::Vector3d& min, const Eigen::Vector3d& max,
                                       const std::string& where) {
   if (!(max.array() > min.array()).all())
-    throw vcpost::Error("E4721", where + ": BLK FORM from " + shown(min) + " to " + shown(max) +
-                                     " has no volume (a BLK FORM 0.1 without its 0.2?)");
+    throw vcpost::Error(Code::E4721, where + ": BLK FORM from " + shown(min) + " to " + shown(max) +
+                                         " has no volume (a BLK FORM 0.1 without its 0.2?)");
   return {Eigen::AlignedBox3d(min, max), where, "BLK FORM"};
 }
 
@@ -69,7 +70,7 @@ Eigen::AlignedBox3d parse_stock_box(std::string_view text) {
   std::size_t count = 0;
   std::size_t pos = 0;
   auto bad = [&](const std::string& why) {
-    return vcpost::Error("E4723", "--stock-box '" + std::string(text) + "': " + why);
+    return vcpost::Error(Code::E4723, "--stock-box '" + std::string(text) + "': " + why);
   };
   while (pos <= text.size()) {
     std::size_t comma = text.find(',', pos);

@@ -120,9 +120,10 @@ std::unique_ptr<StockTimeline> build_stock_timeline(std::string_view text,
                                          file_name + ":" + std::to_string(blk_form->source.line));
     }
     if (!declared)
-      throw vcpost::Error("E4720", file_name +
-                                       ": the program declares no stock (Klartext BLK FORM, APT CL "
-                                       "INSERT/Stock Size): give --stock-box or --stock-model");
+      throw vcpost::Error(Code::E4720,
+                          file_name +
+                              ": the program declares no stock (Klartext BLK FORM, APT CL "
+                              "INSERT/Stock Size): give --stock-box or --stock-model");
     extent = declared->box;
     summary.source = declared->words + " at " + declared->where;
   } else if (stock.box) {
@@ -157,12 +158,13 @@ std::unique_ptr<StockTimeline> build_stock_timeline(std::string_view text,
     cell = *stock.cell_mm;
     summary.cell_note = "--stock-cell";
     if (need(cell) > limit)
-      throw vcpost::Error(
-          "E4724", "the stock at --stock-cell " + mm(cell) + " mm needs " +
-                       mm(std::ceil(need(cell) / (1 << 20))) + " MB (the field and " +
-                       std::to_string(evaluated) + " copies, one per evaluated section), above " +
-                       "--stock-memory " + std::to_string(stock.memory_limit >> 20) +
-                       " MB: give a coarser cell or more memory");
+      throw vcpost::Error(Code::E4724, "the stock at --stock-cell " + mm(cell) + " mm needs " +
+                                           mm(std::ceil(need(cell) / (1 << 20))) +
+                                           " MB (the field and " + std::to_string(evaluated) +
+                                           " copies, one per evaluated section), above " +
+                                           "--stock-memory " +
+                                           std::to_string(stock.memory_limit >> 20) +
+                                           " MB: give a coarser cell or more memory");
   } else {
     cell = std::clamp(smallest > 0 ? smallest * kCellPerDiameter : kMaxCell, kMinCell, kMaxCell);
     summary.cell_note = "the smallest evaluated tool's D/50 within [0.05, 1] mm";
@@ -231,7 +233,7 @@ std::unique_ptr<StockTimeline> build_stock_timeline(std::string_view text,
       }
       if (plan.tilted) {
         summary.warnings.push_back(
-            "W4731: " + named(s) +
+            std::string(to_string(Code::W4731)) + ": " + named(s) +
             " works in a tilted plane (3+2): its tilted moves are not swept (the stock is a "
             "height field along the machine's Z) and its tilted points take --ap");
       }
@@ -247,7 +249,8 @@ std::unique_ptr<StockTimeline> build_stock_timeline(std::string_view text,
         if (!cutter) {
           if (unknown_tool) {
             const ToolSection& s = *plans.at(slot.section).section;
-            summary.warnings.push_back("W4730: " + named(s) + ": its tool's shape is unknown (" +
+            summary.warnings.push_back(std::string(to_string(Code::W4730)) + ": " + named(s) +
+                                       ": its tool's shape is unknown (" +
                                        (s.entry ? s.entry->describe() : std::string("no tool")) +
                                        "): not swept, the stock keeps its material there");
             unknown_tool = false;

@@ -48,7 +48,7 @@ void check_stock(const geometry::Allowance& stock, const tools::ToolEntry& tool,
     message << "--stock " << stock.radial << ":" << stock.axial << " for " << name
             << ", a ball-end mill: a ball has one allowance, along the surface normal; give one "
                "value";
-    throw PostError("E6003", message.str());
+    throw PostError(Code::E6003, message.str());
   }
   const double radius = tool.diameter / 2;
   if (!(radius + stock.radial > 0) || !(radius + stock.axial > 0)) {
@@ -57,7 +57,7 @@ void check_stock(const geometry::Allowance& stock, const tools::ToolEntry& tool,
     message << " for " << name << " (" << tool.describe()
             << "): a negative allowance as deep as the tool's radius " << radius
             << " mm leaves no tool to touch the model";
-    throw PostError("E6002", message.str());
+    throw PostError(Code::E6002, message.str());
   }
 }
 
@@ -106,7 +106,7 @@ ToolSection decide_section(std::uint32_t index, std::optional<int> number, std::
     message << "--ap " << ap_mm << " must be below the diameter of " << name << " ("
             << tool->describe() << ", from the " << tools::to_string(tool->origin)
             << (tool->where.empty() ? std::string() : " at " + tool->where) << ")";
-    throw PostError("E2001", message.str());
+    throw PostError(Code::E2001, message.str());
   }
   s.stock = choices.stock_of(number);
   check_stock(s.stock, *tool, name);

@@ -23,15 +23,16 @@ double PathClock::feed_minutes(double length, SourceRef source) const {
   switch (mode_) {
     case FeedMode::per_minute:
       if (rate_ > 0.0) return length / rate_;
-      throw TimingError("E6101", "feed move with no feed rate in effect", source);
+      throw TimingError(Code::E6101, "feed move with no feed rate in effect", source);
     case FeedMode::inverse_time:
       if (rate_ > 0.0) return 1.0 / rate_;
-      throw TimingError("E6102", "inverse-time (G93) move with no F", source);
+      throw TimingError(Code::E6102, "inverse-time (G93) move with no F", source);
     case FeedMode::per_revolution:
       if (rate_ > 0.0 && rpm_ > 0.0 && spindle_turning_) return length / (rate_ * rpm_);
       if (rate_ > 0.0)
-        throw TimingError("E6103", "feed per revolution (G95) with the spindle stopped", source);
-      throw TimingError("E6101", "feed per revolution (G95) move with no feed rate", source);
+        throw TimingError(Code::E6103, "feed per revolution (G95) with the spindle stopped",
+                          source);
+      throw TimingError(Code::E6101, "feed per revolution (G95) move with no feed rate", source);
   }
   return 0.0;
 }

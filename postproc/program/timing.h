@@ -45,7 +45,7 @@ struct EventTime {
 // what() is the message alone; the caller adds the file and line.
 class TimingError : public vcpost::Error {
  public:
-  TimingError(std::string_view code, const std::string& message, SourceRef source)
+  TimingError(Code code, const std::string& message, SourceRef source)
       : vcpost::Error(code, message, {"", source.line, source.column}), source_(source) {}
   SourceRef source() const { return source_; }
   // "file:line:col: error[E6101]: message", as the readers word their errors.

@@ -30,7 +30,7 @@ using namespace vcpost::samplegen;
 namespace fs = std::filesystem;
 
 struct UsageError : vcpost::Error {
-  explicit UsageError(const std::string& message) : vcpost::Error("E2001", message) {}
+  explicit UsageError(const std::string& message) : vcpost::Error(vcpost::Code::E2001, message) {}
 };
 
 // An output file written through a temporary name, renamed on commit().

@@ -25,7 +25,7 @@ namespace vcpost::samplegen {
 // (the generator was asked for a window the surface cannot serve).
 class SurfaceError : public vcpost::Error {
  public:
-  explicit SurfaceError(const std::string& message) : vcpost::Error("E8001", message) {}
+  explicit SurfaceError(const std::string& message) : vcpost::Error(Code::E8001, message) {}
 };
 
 class SampleSurface {

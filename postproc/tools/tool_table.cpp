@@ -22,7 +22,7 @@ std::string quoted(std::string_view text) { return "'" + std::string(text) + "'"
 
 double parse_number(std::string_view text, const std::string& what) {
   const std::optional<double> value = finite_number(text);
-  if (!value) throw ToolTableError("E1601", what + ": " + quoted(text) + " is not a number");
+  if (!value) throw ToolTableError(Code::E1601, what + ": " + quoted(text) + " is not a number");
   return *value;
 }
 
@@ -107,7 +107,7 @@ void ToolTable::add(ToolEntry entry) {
     return;
   }
   if (same->origin == ToolOrigin::command_line && entry.origin == ToolOrigin::command_line) {
-    throw ToolTableError("E1606",
+    throw ToolTableError(Code::E1606,
                          "--tool: tool T" + std::to_string(*entry.number) + " is given twice");
   }
   if (rank(entry) <= rank(*same)) *same = std::move(entry);
@@ -151,8 +151,8 @@ int parse_tool_number(std::string_view text, std::string_view option) {
   int value = -1;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (text.empty() || error != std::errc{} || end != text.data() + text.size() || value < 0) {
-    throw ToolTableError(
-        "E1602", std::string(option) + ": " + quoted(original) + " is not a tool number (T2 or 2)");
+    throw ToolTableError(Code::E1602, std::string(option) + ": " + quoted(original) +
+                                          " is not a tool number (T2 or 2)");
   }
   return value;
 }
@@ -170,9 +170,9 @@ ToolEntry parse_tool_option(std::string_view text) {
   const std::string_view word = spec.substr(0, colon);
   const auto shape = shape_from_word(word);
   if (!shape) {
-    throw ToolTableError("E1601", "--tool " + quoted(text) + ": unknown shape " + quoted(word) +
-                                      " (expected ball:D, bull:D:rc, flat:D, drill:D or other, "
-                                      "optionally after T<n>=)");
+    throw ToolTableError(Code::E1601, "--tool " + quoted(text) + ": unknown shape " + quoted(word) +
+                                          " (expected ball:D, bull:D:rc, flat:D, drill:D or other, "
+                                          "optionally after T<n>=)");
   }
   entry.shape = *shape;
   if (entry.shape == ToolShape::other) {
@@ -187,15 +187,15 @@ ToolEntry parse_tool_option(std::string_view text) {
       entry.diameter = tool.diameter;
       entry.corner_radius = tool.corner_radius;
     } catch (const std::invalid_argument& e) {
-      throw ToolTableError("E1601", std::string("--tool: ") + e.what());
+      throw ToolTableError(Code::E1601, std::string("--tool: ") + e.what());
     }
     return entry;
   }
   if (colon == std::string_view::npos)
-    throw ToolTableError("E1601", "--tool " + quoted(text) + ": expected drill:D");
+    throw ToolTableError(Code::E1601, "--tool " + quoted(text) + ": expected drill:D");
   entry.diameter = parse_number(spec.substr(colon + 1), "--tool " + quoted(text));
   if (!(entry.diameter > 0))
-    throw ToolTableError("E1601", "--tool " + quoted(text) + ": diameter must be > 0");
+    throw ToolTableError(Code::E1601, "--tool " + quoted(text) + ": diameter must be > 0");
   return entry;
 }
 
@@ -218,13 +218,15 @@ void add_vc_option(std::string_view text, ToolChoices& choices) {
     value = text.substr(eq + 1);
   }
   const double vc = parse_number(value, "--vc " + quoted(text));
-  if (!(vc > 0)) throw ToolTableError("E1603", "--vc " + quoted(text) + ": must be > 0 m/min");
+  if (!(vc > 0)) throw ToolTableError(Code::E1603, "--vc " + quoted(text) + ": must be > 0 m/min");
   if (number) {
     if (!choices.vc_by_tool.emplace(*number, vc).second)
-      throw ToolTableError("E1606", "--vc: tool T" + std::to_string(*number) + " is given twice");
+      throw ToolTableError(Code::E1606,
+                           "--vc: tool T" + std::to_string(*number) + " is given twice");
   } else {
     if (choices.vc)
-      throw ToolTableError("E1606", "--vc: given twice for every tool (use T<n>=vc for one tool)");
+      throw ToolTableError(Code::E1606,
+                           "--vc: given twice for every tool (use T<n>=vc for one tool)");
     choices.vc = vc;
   }
 }
@@ -240,7 +242,7 @@ void add_stock_option(std::string_view text, ToolChoices& choices) {
     try {
       number = parse_tool_number(text.substr(0, eq), "--stock");
     } catch (const ToolTableError& e) {
-      throw ToolTableError("E2012", e.what());
+      throw ToolTableError(Code::E2012, e.what());
     }
     value = text.substr(eq + 1);
   }
@@ -249,10 +251,10 @@ void add_stock_option(std::string_view text, ToolChoices& choices) {
     try {
       v = parse_number(part, what);
     } catch (const ToolTableError& e) {
-      throw ToolTableError("E2012", e.what());
+      throw ToolTableError(Code::E2012, e.what());
     }
     if (!(std::abs(v) < kMaxStockMm))
-      throw ToolTableError("E2012", what + ": an allowance of 100 mm or more (a unit slip?)");
+      throw ToolTableError(Code::E2012, what + ": an allowance of 100 mm or more (a unit slip?)");
     return v;
   };
   geometry::Allowance allowance;
@@ -263,11 +265,11 @@ void add_stock_option(std::string_view text, ToolChoices& choices) {
   }
   if (number) {
     if (!choices.stock_by_tool.emplace(*number, allowance).second)
-      throw ToolTableError("E2012",
+      throw ToolTableError(Code::E2012,
                            "--stock: tool T" + std::to_string(*number) + " is given twice");
   } else {
     if (choices.stock)
-      throw ToolTableError("E2012",
+      throw ToolTableError(Code::E2012,
                            "--stock: given twice for every tool (use T<n>=MM for one tool)");
     choices.stock = allowance;
   }

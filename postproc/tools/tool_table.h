@@ -62,7 +62,7 @@ struct ToolEntry {
 // file:line:col and carries a stable code (E16xx, see tools/README.md).
 class ToolTableError : public vcpost::Error {
  public:
-  ToolTableError(std::string_view code, const std::string& message, SourceLocation where = {})
+  ToolTableError(Code code, const std::string& message, SourceLocation where = {})
       : vcpost::Error(code, message, std::move(where)) {}
 };
 

@@ -412,7 +412,7 @@ class Comparer {
     changes(cl, out);
     const bool cl_motion = program::is_motion(cl.event), out_motion = program::is_motion(out.event);
     if (cl_motion != out_motion) {
-      add(cl_motion ? Code::motion_count : Code::spindle_or_tool, cl, out,
+      add(cl_motion ? Code::E7131 : Code::E7135, cl, out,
           std::string("the output has a ") + kind_name(out.event) + " where the CL data have a " +
               kind_name(cl.event) + ": " + event_text(out.event) + " vs " + event_text(cl.event));
       return false;
@@ -420,7 +420,7 @@ class Comparer {
     if (!cl_motion) return compare_control(cl, out);
     ++result_.motions;
     if (cl.event.index() != out.event.index()) {
-      add(Code::motion_kind, cl, out,
+      add(Code::E7133, cl, out,
           std::string("the output has a ") + kind_name(out.event) + " where the CL data have a " +
               kind_name(cl.event));
     }
@@ -432,7 +432,7 @@ class Comparer {
     }
     const double off = (b - a).cwiseAbs().maxCoeff();
     if (!(off <= tolerance_ + 1e-9)) {
-      add(Code::end_point, cl, out,
+      add(Code::E7132, cl, out,
           "end point " + point(b) + " is " + number_um(off) + " from the CL point " + point(a) +
               " (tolerance " + number_um(tolerance_) + " per axis)");
     }
@@ -455,13 +455,13 @@ class Comparer {
 
   bool compare_control(const Item& cl, const Item& out) {
     if (cl.event.index() != out.event.index()) {
-      add(Code::spindle_or_tool, cl, out,
+      add(Code::E7135, cl, out,
           std::string("the output has a ") + kind_name(out.event) + " where the CL data have a " +
               kind_name(cl.event));
       return false;
     }
     if (!same_event(cl.event, out.event, false))
-      add(Code::spindle_or_tool, cl, out,
+      add(Code::E7135, cl, out,
           "the output means " + event_text(out.event) + " where the CL data mean " +
               event_text(cl.event));
     return true;
@@ -470,7 +470,7 @@ class Comparer {
   void compare_arc(const program::ArcFeed& a, const program::ArcFeed& b, const Item& cl,
                    const Item& out) {
     if (a.plane != b.plane || a.rotation != b.rotation) {
-      add(Code::arc_differs, cl, out,
+      add(Code::E7134, cl, out,
           "arc " + event_text(out.event) + " differs in plane or direction from the CL's " +
               event_text(cl.event));
       return;
@@ -484,7 +484,7 @@ class Comparer {
               .cwiseAbs();
     d[a.plane == program::Plane::xy ? 2 : a.plane == program::Plane::xz ? 1 : 0] = 0;
     if (!(d.maxCoeff() <= centre_tolerance_ + 1e-9))
-      add(Code::arc_differs, cl, out,
+      add(Code::E7134, cl, out,
           "arc centre " + point(b.centre) + " is " + number_um(d.maxCoeff()) + " from the CL's " +
               point(a.centre) + " (tolerance " + number_um(centre_tolerance_) + " per axis)");
   }
@@ -504,7 +504,7 @@ class Comparer {
     reported_ = true;
     const Eigen::Vector3d za = cl.frame.rotation.col(2), zb = out.frame.rotation.col(2);
     const Eigen::Vector3d xa = cl.frame.rotation.col(0), xb = out.frame.rotation.col(0);
-    add(Code::frame_differs, cl, out,
+    add(Code::E7143, cl, out,
         "the output's working plane has the tool axis " + point(zb) + " and x " + point(xb) +
             " where the CL's has " + point(za) + " and " + point(xa));
   }
@@ -564,7 +564,7 @@ Result compare_with_cl(std::string_view cl_text, std::string_view output, const 
     const std::optional<Item> a = cl.next();
     OutputRead read = next_output();
     if (const auto* u = std::get_if<Unreadable>(&read)) {
-      sink.add(Code::output_unreadable, u->line, u->column, a ? a->line : 0,
+      sink.add(Code::E7123, u->line, u->column, a ? a->line : 0,
                "the output does not interpret: " + u->message +
                    " (is --machine the profile the output was posted for?)");
       break;
@@ -573,11 +573,11 @@ Result compare_with_cl(std::string_view cl_text, std::string_view output, const 
     if (!a && !b) break;
     if (!a || !b) {
       if (b)
-        sink.add(Code::motion_count, b->line, b->column, 0,
+        sink.add(Code::E7131, b->line, b->column, 0,
                  std::string("the output has a ") + kind_name(b->event) +
                      " after the CL data's last (" + event_text(b->event) + ")");
       else
-        sink.add(Code::motion_count,
+        sink.add(Code::E7131,
                  static_cast<std::uint32_t>(std::count(output.begin(), output.end(), '\n') + 1), 1,
                  a->line,
                  std::string("the output ends before the CL data's ") + kind_name(a->event) + " (" +
@@ -600,7 +600,7 @@ Result verify_cl(std::string_view cl_text, std::string_view output, const Option
       return out.next();
     } catch (const gcode::GcodeError& e) {
       const auto& d = e.diagnostic();
-      return Unreadable{d.line, d.column, gcode::code_id(d.code, d.severity) + " " + d.message};
+      return Unreadable{d.line, d.column, std::string(to_string(d.code)) + " " + d.message};
     }
   });
 }
@@ -613,7 +613,7 @@ Result verify_cl_klartext(std::string_view cl_text, std::string_view output, con
       return out.next();
     } catch (const heidenhain::KlartextError& e) {
       const auto& d = e.diagnostic();
-      return Unreadable{d.line, d.column, std::string(e.code()) + " " + d.message};
+      return Unreadable{d.line, d.column, std::string(e.id()) + " " + d.message};
     }
   });
 }

@@ -104,8 +104,7 @@ class LineComparer {
     mark_arguments(a_, a_);
     if (!fold_speed_output(in, out, changes, sink)) return;
     if (in.eol != out.eol)
-      sink.add(Code::line_ending, out.number, static_cast<std::uint32_t>(out.text.size() + 1),
-               in.number,
+      sink.add(Code::E7102, out.number, static_cast<std::uint32_t>(out.text.size() + 1), in.number,
                "line ends with " + eol_name(out.eol) + " where the input has " + eol_name(in.eol));
 
     std::array<int, 2> count_a{0, 0}, count_b{0, 0};
@@ -129,13 +128,13 @@ class LineComparer {
       bool& first = seen[letter_index(t.letter())];
       if (first) {
         sink.add(
-            Code::sf_repeated, out.number, t.column, in.number,
+            Code::E7110, out.number, t.column, in.number,
             quoted(t.text) + " is a second " + std::string(1, t.letter()) + " word in this block");
         continue;
       }
       first = true;
       if (!is_plain_positive(t.value()))
-        sink.add(Code::bad_sf_value, out.number, t.column, in.number,
+        sink.add(Code::E7111, out.number, t.column, in.number,
                  "added " + quoted(t.text) + ": the value is not a plain positive number");
       changes.push_back(
           Change{out.number, t.column, in.number, t.letter(), "", std::string(t.text), true});
@@ -148,7 +147,7 @@ class LineComparer {
       const bool same_sf_word = x.is_sf() && y.kind == TokenKind::word && y.text[0] == x.text[0];
       if (same_sf_word && x.text != y.text) {
         if (!is_plain_positive(y.value()))
-          sink.add(Code::bad_sf_value, out.number, y.column, in.number,
+          sink.add(Code::E7111, out.number, y.column, in.number,
                    quoted(x.text) + " became " + quoted(y.text) +
                        ": the value is not a plain positive number");
         changes.push_back(Change{out.number, y.column, in.number, x.letter(), std::string(x.text),
@@ -173,7 +172,7 @@ class LineComparer {
     if (!speed_output_) {
       const auto added = find_analog(b_, std::nullopt);
       if (!added || find_analog(a_, std::nullopt)) return true;
-      sink.add(Code::speed_output_unexpected, out.number, b_[added->m].column, in.number,
+      sink.add(Code::E7151, out.number, b_[added->m].column, in.number,
                quoted(b_[added->m].text) +
                    " sets an analog output the input does not: if it carries the spindle "
                    "speed, give verify the --machine whose output.speed_word names it");
@@ -186,7 +185,7 @@ class LineComparer {
     const std::size_t begin = m.column - 1;
     const std::string text(out.text.substr(begin, q.column - 1 + q.text.size() - begin));
     if (!is_plain_positive(q.value()))
-      sink.add(Code::bad_speed_output_value, out.number, q.column, in.number,
+      sink.add(Code::E7150, out.number, q.column, in.number,
                quoted(text) + ": the speed is not a plain positive number");
     if (const auto own = find_analog(a_, speed_output_)) {
       const Token& q_in = a_[own->q];
@@ -238,32 +237,30 @@ class LineComparer {
         x && x->column != column ? " (input column " + std::to_string(x->column) + ")" : "";
     if (x && x->is_sf() && !(y && y->kind == TokenKind::word && y->text[0] == x->text[0]) &&
         count_b[letter_index(x->letter())] < count_a[letter_index(x->letter())]) {
-      add(Code::sf_removed, quoted(x->text) + " removed" + in_col);
+      add(Code::E7109, quoted(x->text) + " removed" + in_col);
       return;
     }
     if (y && y->is_sf() &&
         count_b[letter_index(y->letter())] > count_a[letter_index(y->letter())]) {
-      add(Code::sf_repeated,
+      add(Code::E7110,
           quoted(y->text) + " is a second " + std::string(1, y->letter()) + " word in this block");
       return;
     }
     if ((x && x->kind == TokenKind::blank) || (y && y->kind == TokenKind::blank)) {
       if (x && y && x->kind == TokenKind::blank && y->kind == TokenKind::blank)
-        add(Code::whitespace_changed,
-            "blanks " + quoted(x->text) + " became " + quoted(y->text) + in_col);
+        add(Code::E7106, "blanks " + quoted(x->text) + " became " + quoted(y->text) + in_col);
       else if (x && x->kind == TokenKind::blank)
-        add(Code::whitespace_changed, "blank " + quoted(x->text) + " removed" + in_col);
+        add(Code::E7106, "blank " + quoted(x->text) + " removed" + in_col);
       else
-        add(Code::whitespace_changed, "blank " + quoted(y->text) + " added");
+        add(Code::E7106, "blank " + quoted(y->text) + " added");
       return;
     }
     if (x && y && x->kind == TokenKind::comment && y->kind == TokenKind::comment) {
       if (comment_words_only(x->text, y->text))
-        add(Code::word_in_comment, "an S/F word inside the comment changed: " + quoted(x->text) +
-                                       " became " + quoted(y->text) +
-                                       " (comments are never edited)");
+        add(Code::E7108, "an S/F word inside the comment changed: " + quoted(x->text) + " became " +
+                             quoted(y->text) + " (comments are never edited)");
       else
-        add(Code::comment_changed, "comment " + quoted(x->text) + " became " + quoted(y->text));
+        add(Code::E7107, "comment " + quoted(x->text) + " became " + quoted(y->text));
       return;
     }
     // One token missing or extra, when the rest lines up again after it.
@@ -283,16 +280,16 @@ class LineComparer {
       return std::string(t.kind == TokenKind::comment ? "comment " : "") + quoted(t.text);
     };
     if (removed && !added) {
-      add(Code::token_removed, what(*x) + " removed" + in_col);
+      add(Code::E7105, what(*x) + " removed" + in_col);
     } else if (added && !removed) {
-      add(Code::token_added, what(*y) + " added");
+      add(Code::E7104, what(*y) + " added");
     } else if (x && y) {
-      add(Code::word_changed, quoted(x->text) + " changed to " + quoted(y->text) + in_col);
+      add(Code::E7103, quoted(x->text) + " changed to " + quoted(y->text) + in_col);
     } else if (x) {
-      add(Code::token_removed,
+      add(Code::E7105,
           "the rest of the line " + quoted(in.text.substr(x->column - 1)) + " removed" + in_col);
     } else {
-      add(Code::token_added, quoted(out.text.substr(y->column - 1)) + " added");
+      add(Code::E7104, quoted(out.text.substr(y->column - 1)) + " added");
     }
   }
 
@@ -390,7 +387,7 @@ void compare_lines(std::string_view input, std::string_view output, std::optiona
     message = "input " + range(head + 1, a_mid) + " became output " + range(head + 1, b_mid);
   message +=
       " (the input has " + std::to_string(na) + " lines, the output " + std::to_string(nb) + ")";
-  sink.add(Code::line_count, head + 1, 1, head + 1, message);
+  sink.add(Code::E7101, head + 1, 1, head + 1, message);
   for (std::uint32_t k = 1; k <= tail; ++k) {
     ea = line_at(input, ea, na - tail + k, x);
     eb = line_at(output, eb, nb - tail + k, y);
@@ -446,15 +443,15 @@ void compare_events(std::string_view input, std::string_view output, const Optio
       y = b.next();
     } catch (const gcode::GcodeError& e) {
       const auto& d = e.diagnostic();
-      sink.add(Code::output_unreadable, d.line, d.column, x ? program::source_of(*x).line : 0,
+      sink.add(Code::E7123, d.line, d.column, x ? program::source_of(*x).line : 0,
                "the output does not interpret where the input does: " +
-                   gcode::code_id(d.code, d.severity) + " " + d.message);
+                   std::string(to_string(d.code)) + " " + d.message);
       return;
     }
     if (!x && !y) return;
     if (!x || !y) {
       const auto line = y ? program::source_of(*y).line : 0;
-      sink.add(Code::event_count, line, y ? program::source_of(*y).column : 0,
+      sink.add(Code::E7122, line, y ? program::source_of(*y).column : 0,
                x ? program::source_of(*x).line : 0,
                y ? "the output has more events than the input, from " + event_text(*y)
                  : "the output ends before the input's " + event_text(*x));
@@ -463,7 +460,7 @@ void compare_events(std::string_view input, std::string_view output, const Optio
     if (program::is_motion(*x)) ++result.motions;
     if (!same_event(*x, *y, same_lines)) {
       const auto sy = program::source_of(*y);
-      sink.add(Code::event_differs, sy.line, sy.column, program::source_of(*x).line,
+      sink.add(Code::E7121, sy.line, sy.column, program::source_of(*x).line,
                "the output means " + event_text(*y) + " where the input means " + event_text(*x));
       return;
     }
@@ -483,13 +480,13 @@ Result verify_gcode(std::string_view input, std::string_view output, const Optio
   const std::string too_long =
       "line longer than " + std::to_string(gcode::kMaxLineLength) + " bytes, the reader's limit";
   if (const std::uint32_t line = first_line_longer_than(input, gcode::kMaxLineLength)) {
-    const gcode::Diagnostic d{gcode::Code::line_too_long, Severity::error, line, 1, too_long};
-    throw vcpost::Error(gcode::code_id(d.code, d.severity), gcode::format(d, input_name));
+    const gcode::Diagnostic d{vcpost::Code::E1006, line, 1, too_long};
+    throw vcpost::Error(d.code, gcode::format(d, input_name));
   }
   if (const std::uint32_t line = first_line_longer_than(output, gcode::kMaxLineLength)) {
-    sink.add(Code::output_unreadable, line, 1, 0,
+    sink.add(Code::E7123, line, 1, 0,
              "the output does not interpret where the input does: " +
-                 gcode::code_id(gcode::Code::line_too_long, Severity::error) + " " + too_long);
+                 std::string(to_string(vcpost::Code::E1006)) + " " + too_long);
     sink.move_into(result);
     return result;
   }
@@ -497,7 +494,7 @@ Result verify_gcode(std::string_view input, std::string_view output, const Optio
   compare_lines(input, output, options.speed_output, changes, sink);
   // The interpreted events carry their lines; with lines added or removed
   // only the order of events can be compared.
-  const bool same_lines = sink.count_of(Code::line_count) == 0;
+  const bool same_lines = sink.count_of(Code::E7101) == 0;
   ViolationSink semantic(options.max_violations);
   compare_events(input, output, options, same_lines, input_name, result, semantic);
   // The second proof's finding is news only on a line the first did not flag.

@@ -113,12 +113,12 @@ class BlockComparer {
     std::optional<Block> inserted;  // the last TOOL CALL S inserted, waiting for its move
     while (a || b) {
       if (!b) {
-        sink_.add(Code::klartext_block_added, last_line_ + 1, 1, a->line,
+        sink_.add(Code::E7139, last_line_ + 1, 1, a->line,
                   "the output ends before the input's block '" + head(*a) + "'");
         return;
       }
       if (!a) {
-        sink_.add(Code::klartext_block_added, b->line, 1, 0,
+        sink_.add(Code::E7139, b->line, 1, 0,
                   "the output has a block after the input's last: '" + head(*b) + "'");
         return;
       }
@@ -128,7 +128,7 @@ class BlockComparer {
         const std::uint32_t line = b->line;
         b = out.next();
         if (!moves(*a))
-          sink_.add(Code::klartext_misplaced_speed, line, 1, a->line,
+          sink_.add(Code::E7138, line, 1, a->line,
                     "an inserted TOOL CALL S stands before '" + head(*a) +
                         "', a block that does not move the tool");
         continue;
@@ -162,7 +162,7 @@ class BlockComparer {
     const std::string_view digits =
         b.text.substr(b.s_span->begin + 1 - b.offset, b.s_span->end - b.s_span->begin - 1);
     if (!plain_positive(digits))
-      sink_.add(Code::klartext_bad_value, b.line, 1, a.line,
+      sink_.add(Code::E7140, b.line, 1, a.line,
                 "inserted TOOL CALL S" + std::string(digits) +
                     ": the speed is not a plain positive number");
     check_number(a, b, static_cast<std::int64_t>(inserted_) - 1);
@@ -173,7 +173,7 @@ class BlockComparer {
   void check_number(const Block& a, const Block& b, std::int64_t shift) {
     if (a.number.has_value() != b.number.has_value() ||
         (a.number && static_cast<std::int64_t>(*b.number) != *a.number + shift)) {
-      sink_.add(Code::klartext_numbering, b.line, 1, a.line,
+      sink_.add(Code::E7137, b.line, 1, a.line,
                 "block number " + (b.number ? std::to_string(*b.number) : std::string("none")) +
                     " where " +
                     (a.number ? std::to_string(*a.number + shift) : std::string("none")) +
@@ -185,7 +185,7 @@ class BlockComparer {
 
   bool compare(const Block& a, const Block& b) {
     if (!same_block(a, b)) {
-      sink_.add(Code::klartext_block_changed, b.line, 1, a.line,
+      sink_.add(Code::E7136, b.line, 1, a.line,
                 "block '" + head(b) + "' differs from the input's '" + head(a) +
                     "' beyond its number, S and F digits" +
                     (a.eol != b.eol ? std::string(" (its line ending)") : std::string()));
@@ -206,7 +206,7 @@ class BlockComparer {
       const auto column = static_cast<std::uint32_t>(start);  // the letter's, 1-based
       if (!plain_positive(new_digits))
         sink_.add(
-            Code::klartext_bad_value, b.line, column, a.line,
+            Code::E7140, b.line, column, a.line,
             std::string(1, e.letter) + std::string(new_digits) + ": not a plain positive number");
       changes_.add(Change{b.line, column, a.line, e.letter,
                           std::string(1, e.letter) + std::string(old_digits),
@@ -258,15 +258,14 @@ void compare_events(std::string_view input, std::string_view output, Result& res
       more_out = fill(out, ys, j);
     } catch (const heidenhain::KlartextError& e) {
       const heidenhain::Diagnostic& d = e.diagnostic();
-      sink.add(Code::klartext_output_unreadable, d.line, d.column, 0,
-               "the output does not read: " + d.message);
+      sink.add(Code::E7142, d.line, d.column, 0, "the output does not read: " + d.message);
       return;
     }
     if (!more_in && !more_out) return;
     if (!more_in || !more_out) {
       const auto& rest = more_in ? xs[i] : ys[j];
       const auto src = program::source_of(rest);
-      sink.add(Code::klartext_event_differs, more_out ? src.line : 0, 1, more_in ? src.line : 0,
+      sink.add(Code::E7141, more_out ? src.line : 0, 1, more_in ? src.line : 0,
                std::string(more_in ? "the output ends before the input's " : "the output has ") +
                    program::transcript(rest));
       return;
@@ -275,8 +274,7 @@ void compare_events(std::string_view input, std::string_view output, Result& res
     const program::Event& y = ys[j++];
     if (program::is_motion(x)) ++result.motions;
     if (!same_event(x, y, false)) {
-      sink.add(Code::klartext_event_differs, program::source_of(y).line, 1,
-               program::source_of(x).line,
+      sink.add(Code::E7141, program::source_of(y).line, 1, program::source_of(x).line,
                "the output means " + program::transcript(y) + " where the input means " +
                    program::transcript(x));
       return;

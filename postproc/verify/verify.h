@@ -37,54 +37,9 @@
 
 namespace vcpost::verify {
 
-// Stable codes of verification findings (never renumber). Identifiers are
-// "E7101" style; all are errors (a verification either holds or fails).
-enum class Code : std::uint16_t {
-  // 71xx: lexical comparison (G-code in, G-code out)
-  line_count = 7101,          // lines added or removed
-  line_ending = 7102,         // a line terminator changed (CRLF vs LF, final newline)
-  word_changed = 7103,        // a word other than S/F with another letter or value
-  token_added = 7104,         // a word, comment or other token only in the output
-  token_removed = 7105,       // a word, comment or other token missing from the output
-  whitespace_changed = 7106,  // blanks added, removed or changed
-  comment_changed = 7107,     // a comment's text changed
-  word_in_comment = 7108,     // an S/F word inside a comment changed or inserted
-  sf_removed = 7109,          // an S or F word of the input is missing
-  sf_repeated = 7110,         // a second S or F word in one block
-  bad_sf_value = 7111,        // a new S/F value that is not a plain positive number
-  // 712x: interpreted comparison (G-code in, G-code out)
-  event_differs = 7121,      // a motion or other non-S/F event differs
-  event_count = 7122,        // one program has events the other lacks
-  output_unreadable = 7123,  // the output fails to interpret where the input does not
-  // 713x: CL in, G-code out
-  motion_count = 7131,     // a motion (or spindle/tool event) only on one side
-  end_point = 7132,        // a motion's end point beyond the tolerance
-  motion_kind = 7133,      // rapid vs feed vs arc
-  arc_differs = 7134,      // arc centre beyond the tolerance, plane or direction
-  spindle_or_tool = 7135,  // spindle on/off or tool change different or out of order
-  // 7136-7142: Klartext in, Klartext out
-  klartext_block_changed = 7136,      // bytes changed outside the number, S and F digits
-  klartext_numbering = 7137,          // a block number not the input's plus the inserted blocks
-  klartext_misplaced_speed = 7138,    // an inserted TOOL CALL S not right before a move
-  klartext_block_added = 7139,        // a block (not TOOL CALL S) added, or one removed
-  klartext_bad_value = 7140,          // a new S/F that is not a plain positive number
-  klartext_event_differs = 7141,      // the programs mean other events (S/F aside)
-  klartext_output_unreadable = 7142,  // the output does not read where the input does
-  frame_differs = 7143,               // CL: the output's tilted working plane is not the CL's
-  // 715x: the speed on an analog output (Options::speed_output)
-  bad_speed_output_value = 7150,   // M67/M68 E<n> Q<value> written with a Q not plain positive
-  speed_output_unexpected = 7151,  // an M67/M68 speed word where verify knows no speed output
-};
-
-struct CodeInfo {
-  Code code;
-  std::string_view summary;
-};
-
-// The table of all codes, in code order.
-const std::vector<CodeInfo>& code_table();
-const CodeInfo& info(Code code);
-std::string code_id(Code code);  // "E7103"
+// The findings' codes are rows of the one code table (E71xx: vcpost::Code);
+// all are errors (a verification either holds or fails).
+using vcpost::Code;
 
 // One S or F word that the output changed or added (an analog speed word
 // counts as an S word: letter 'S', its text "M67 E0 Q9870").
@@ -99,7 +54,7 @@ struct Change {
 };
 
 struct Violation {
-  Code code = Code::word_changed;
+  Code code = Code::E7103;
   std::uint32_t line = 0;        // output line, 1-based (0: no place, e.g. end of file)
   std::uint32_t column = 0;      // output column, 1-based
   std::uint32_t input_line = 0;  // the input's line (CL record) it was compared with

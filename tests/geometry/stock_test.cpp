@@ -219,9 +219,9 @@ TEST(Stock, BadInputsGiveTheirCodes) {
       ADD_FAILURE() << file << " was accepted";
     } catch (const Error& e) {
       EXPECT_EQ(e.what(), expected) << file;
-      EXPECT_EQ(e.code(), file.substr(0, 5)) << file;
+      EXPECT_EQ(e.id(), file.substr(0, 5)) << file;
       EXPECT_EQ(e.exit_code(), 2) << file;
-      codes.insert(std::string(e.code()));
+      codes.insert(std::string(e.id()));
     }
   }
   for (int code = 4701; code <= 4707; ++code) {

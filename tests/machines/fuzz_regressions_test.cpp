@@ -57,7 +57,7 @@ TEST(FuzzRegressions, ControlCharacterInANoteIsNamed) {
     machines::profile_from_toml(read_file(kFolder / "note_line_break.toml"), "p.toml");
     FAIL() << "loaded";
   } catch (const machines::ProfileError& e) {
-    EXPECT_EQ(e.code(), "E5008");
+    EXPECT_EQ(e.code(), Code::E5008);
     EXPECT_EQ(e.line(), 44u);
     EXPECT_NE(std::string(e.what()).find("'sources.\"feed\"' must be one line of text"),
               std::string::npos)

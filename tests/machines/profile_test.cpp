@@ -125,7 +125,7 @@ TEST(ProfileLoading, StopCostAndAtSpeedWindowAreOptionalAndRangeChecked) {
       profile_from_toml(with(bad), "a.toml");
       ADD_FAILURE() << "accepted";
     } catch (const ProfileError& e) {
-      EXPECT_EQ(e.code(), "E5005") << e.what();
+      EXPECT_EQ(e.code(), Code::E5005) << e.what();
     }
   }
 }
@@ -169,7 +169,7 @@ TEST(ProfileLoading, ToolChangeFormAndCoolantCodesAreChoicesChecked) {
       profile_from_toml(with(format, bad), "a.toml");
       ADD_FAILURE() << "accepted";
     } catch (const ProfileError& e) {
-      EXPECT_EQ(e.code(), "E5007") << e.what();
+      EXPECT_EQ(e.code(), Code::E5007) << e.what();
       EXPECT_EQ(e.line(), 25u) << e.what();  // the key's line: kMinimal has 23, [output] 24
     }
   }
@@ -200,7 +200,7 @@ TEST(ProfileLoading, SpeedWordIsSOrAnAnalogOutputOfLinuxCnc) {
       profile_from_toml(with(dialect, word), "a.toml");
       ADD_FAILURE() << "accepted";
     } catch (const ProfileError& e) {
-      EXPECT_EQ(e.code(), dialect == "fanuc" ? "E5021" : "E5020") << e.what();
+      EXPECT_EQ(e.code(), dialect == "fanuc" ? Code::E5021 : Code::E5020) << e.what();
       EXPECT_EQ(e.line(), 25u) << e.what();  // the key's line: kMinimal has 23, [output] 24
     }
   }
@@ -298,7 +298,7 @@ TEST(ProfileLoading, HeidenhainRefusesCutterCompensationAndManualToolChange) {
       profile_from_toml(text + "[output]\n" + bad + "\n", "h.toml");
       ADD_FAILURE() << "accepted";
     } catch (const ProfileError& e) {
-      EXPECT_EQ(e.code(), "E5013") << e.what();
+      EXPECT_EQ(e.code(), Code::E5013) << e.what();
     }
   }
 }
@@ -343,7 +343,7 @@ TEST(BuiltinProfiles, UnknownNameListsTheShippedOnes) {
     builtin_profile("mazak");
     FAIL() << "no error";
   } catch (const ProfileError& e) {
-    EXPECT_EQ(e.code(), "E5009");
+    EXPECT_EQ(e.code(), Code::E5009);
     EXPECT_NE(std::string(e.what()).find("mazak-3axis"), std::string::npos) << e.what();
   }
   EXPECT_TRUE(is_builtin_profile("generic"));
@@ -377,7 +377,7 @@ TEST(ProfileLoading, EveryBadFileGivesItsExpectedDiagnostic) {
       profile_from_toml(text, path);
       ADD_FAILURE() << "loaded without error";
     } catch (const ProfileError& e) {
-      EXPECT_EQ(e.code(), expect[1].str());
+      EXPECT_EQ(e.id(), expect[1].str());
       EXPECT_EQ(e.file(), path);
       EXPECT_EQ(e.line(), std::stoul(expect[2].str()));
       if (expect[3].str() != "*") {

@@ -495,7 +495,7 @@ TEST(BrepModel, SharedStepFilesLoadAndAgreeWithBRepExtrema) {
     } catch (const ModelError& error) {
       // OCCT 7.6 transfers no shape from the NIST AP242 file (bug 29241):
       // a refusal must say so with the no-faces code and the path.
-      EXPECT_EQ(error.code(), ModelErrorCode::no_faces) << error.what();
+      EXPECT_EQ(error.code(), Code::E4105) << error.what();
       EXPECT_NE(std::string(error.what()).find(entry.path().string()), std::string::npos);
       std::cout << "refused (allowed): " << error.what() << "\n";
       ++refused;
@@ -591,7 +591,7 @@ TEST(BrepModel, WarmStartFromAFarQueryFindsTheGlobalClosestPoint) {
   EXPECT_EQ(hint.warm_queries, warm + 1);
 }
 
-void expect_error(const fs::path& path, ModelErrorCode code, const std::string& words) {
+void expect_error(const fs::path& path, Code code, const std::string& words) {
   try {
     (void)BrepModel::load_step(path);
     ADD_FAILURE() << "no error for " << path;
@@ -599,36 +599,36 @@ void expect_error(const fs::path& path, ModelErrorCode code, const std::string& 
     EXPECT_EQ(error.code(), code) << error.what();
     const std::string what = error.what();
     EXPECT_NE(what.find(path.string()), std::string::npos) << what;
-    EXPECT_NE(what.find(std::string(code_of(code))), std::string::npos) << what;
+    EXPECT_NE(what.find(std::string(to_string(code))), std::string::npos) << what;
     EXPECT_NE(what.find(words), std::string::npos) << what;
   }
 }
 
 TEST(BrepModel, BadInputGetsTypedErrorsWithStableCodes) {
   const fs::path dir = temp_dir();
-  expect_error(dir / "missing.step", ModelErrorCode::file_missing, "no such file");
-  expect_error(dir, ModelErrorCode::file_unreadable, "directory");
+  expect_error(dir / "missing.step", Code::E4101, "no such file");
+  expect_error(dir, Code::E4102, "directory");
   std::ofstream(dir / "empty.step").close();
-  expect_error(dir / "empty.step", ModelErrorCode::file_empty, "empty");
+  expect_error(dir / "empty.step", Code::E4103, "empty");
   std::ofstream(dir / "garbage.step") << "solid stl\nfacet normal 0 0 1\n";
-  expect_error(dir / "garbage.step", ModelErrorCode::not_step, "not a STEP file");
+  expect_error(dir / "garbage.step", Code::E4104, "not a STEP file");
   std::ofstream(dir / "points.step")
       << "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\n"
          "FILE_NAME('p','2024-01-01T00:00:00',(''),(''),'','','');\n"
          "FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));\nENDSEC;\nDATA;\n"
          "#1=CARTESIAN_POINT('',(0.,0.,0.));\nENDSEC;\nEND-ISO-10303-21;\n";
-  expect_error(dir / "points.step", ModelErrorCode::no_faces, "no");
+  expect_error(dir / "points.step", Code::E4105, "no");
   // A wire (curves only) is a valid STEP model without faces.
   const fs::path wire = write_step(
       BRepBuilderAPI_MakePolygon(gp_Pnt(0, 0, 0), gp_Pnt(10, 0, 0), gp_Pnt(10, 10, 0)).Wire(),
       "wire.step");
-  expect_error(wire, ModelErrorCode::no_faces, "no");
+  expect_error(wire, Code::E4105, "no");
   // Unreadable: only meaningful when not running as root.
   const fs::path locked = dir / "locked.step";
   std::ofstream(locked) << "ISO-10303-21;\n";
   fs::permissions(locked, fs::perms::none);
   if (!std::ifstream(locked).is_open()) {
-    expect_error(locked, ModelErrorCode::file_unreadable, "cannot be opened");
+    expect_error(locked, Code::E4102, "cannot be opened");
   }
   fs::permissions(locked, fs::perms::owner_all);
 }

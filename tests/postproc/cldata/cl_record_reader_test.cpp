@@ -113,7 +113,7 @@ TEST(ClRecordReader, NulByteIsRefusedWithItsColumn) {
     reader.next(r);
     FAIL() << "no error";
   } catch (const ClError& e) {
-    EXPECT_EQ(e.code(), ClCode::invalid_byte);
+    EXPECT_EQ(e.code(), Code::E3102);
     EXPECT_EQ(e.diagnostic().line, 2u);
     EXPECT_EQ(e.diagnostic().column, 8u);
     EXPECT_STREQ(e.what(), "t.cl:2:8: error[E3102]: invalid byte 0x00 in CL data");
@@ -132,7 +132,7 @@ TEST(ClRecordReader, TenMegabyteLineIsRefusedWithoutBufferingIt) {
     reader.next(r);
     FAIL() << "no error";
   } catch (const ClError& e) {
-    EXPECT_EQ(e.code(), ClCode::line_too_long);
+    EXPECT_EQ(e.code(), Code::E3101);
     EXPECT_EQ(e.diagnostic().line, 2u);
   }
 }
@@ -146,7 +146,7 @@ TEST(ClRecordReader, ContinuationAtEndOfFileIsTruncation) {
         try {
           reader.next(r);
         } catch (const ClError& e) {
-          EXPECT_EQ(e.code(), ClCode::truncated_record);
+          EXPECT_EQ(e.code(), Code::E3106);
           throw;
         }
       },

@@ -49,7 +49,7 @@ Outcome run(const std::string& text, const Dialect& dialect, InterpreterLimits l
 }
 
 std::string code_of(const Outcome& o) {
-  return o.error ? code_id(o.error->code, o.error->severity) : std::string("none");
+  return o.error ? std::string(to_string(o.error->code)) : std::string("none");
 }
 
 // ---- values nested deep ----------------------------------------------------
@@ -244,7 +244,7 @@ TEST(HostileReading, G65OfAMacroElsewhereTakesABCAsArguments) {
   const Outcome o = run("O1\nG65 P9010 A1. B2.\nG0 X1.\nM30\n", fanuc_dialect());
   EXPECT_EQ(code_of(o), "none");
   ASSERT_EQ(o.warnings.size(), 1u);
-  EXPECT_EQ(code_id(o.warnings[0].code, o.warnings[0].severity), "W1306");
+  EXPECT_EQ(o.warnings[0].code, Code::W1306);
   // Elsewhere A is still an axis.
   EXPECT_EQ(code_of(run("O1\nG0 A1.\nM30\n", fanuc_dialect())), "E1506");
 }

@@ -95,9 +95,8 @@ TEST(FanucTiltedPlane, OtherFormsAreRefused) {
     }
     return Code{};
   };
-  EXPECT_EQ(code_of("G68.2 P1 X0 Y0 Z0 I0 J30 K0\nM30\n"), Code::unsupported_code);
-  EXPECT_EQ(code_of("G68.2 X0 Y0 Z0 I0 J30 K0\nG68.2 X0 Y0 Z0 I0 J30 K0\nM30\n"),
-            Code::unsupported_code);
+  EXPECT_EQ(code_of("G68.2 P1 X0 Y0 Z0 I0 J30 K0\nM30\n"), Code::E1404);
+  EXPECT_EQ(code_of("G68.2 X0 Y0 Z0 I0 J30 K0\nG68.2 X0 Y0 Z0 I0 J30 K0\nM30\n"), Code::E1404);
   // G69 alone changes nothing: no frame event.
   const Reading r = read("G69\nG0 X1 Y2 Z3\nM30\n");
   EXPECT_TRUE(r.frames.empty());
@@ -158,15 +157,12 @@ TEST(SinumerikSwivel, OtherFormsAreRefused) {
     return Code{};
   };
   // Projection angles (64), solid angle (128), rotary axes direct (192).
-  EXPECT_EQ(code_of("CYCLE800(1,\"TC1\",0,64,0,0,0,10,20,0,0,0,0,1)\nM30\n"),
-            Code::unsupported_code);
-  EXPECT_EQ(code_of("CYCLE800(1,\"TC1\",0,192,0,0,0,10,20,0,0,0,0,1)\nM30\n"),
-            Code::unsupported_code);
-  EXPECT_EQ(code_of("CYCLE800(1,\"TC1\",0,56,0,0,0,10,20,0,0,0,0,1)\nM30\n"), Code::cycle_value);
-  EXPECT_EQ(code_of("CYCLE800(1,\"TC1\",2,57,0,0,0,10,20,0,0,0,0,1)\nM30\n"), Code::cycle_value);
-  EXPECT_EQ(code_of("MCALL CYCLE800(1,\"TC1\",0,57,0,0,0,10,20,0,0,0,0,1)\nM30\n"),
-            Code::unsupported_code);
-  EXPECT_EQ(code_of("CYCLE800(1,\"TC1,0,57)\nM30\n"), Code::bad_expression);
+  EXPECT_EQ(code_of("CYCLE800(1,\"TC1\",0,64,0,0,0,10,20,0,0,0,0,1)\nM30\n"), Code::E1404);
+  EXPECT_EQ(code_of("CYCLE800(1,\"TC1\",0,192,0,0,0,10,20,0,0,0,0,1)\nM30\n"), Code::E1404);
+  EXPECT_EQ(code_of("CYCLE800(1,\"TC1\",0,56,0,0,0,10,20,0,0,0,0,1)\nM30\n"), Code::E1513);
+  EXPECT_EQ(code_of("CYCLE800(1,\"TC1\",2,57,0,0,0,10,20,0,0,0,0,1)\nM30\n"), Code::E1513);
+  EXPECT_EQ(code_of("MCALL CYCLE800(1,\"TC1\",0,57,0,0,0,10,20,0,0,0,0,1)\nM30\n"), Code::E1404);
+  EXPECT_EQ(code_of("CYCLE800(1,\"TC1,0,57)\nM30\n"), Code::E1201);
 }
 
 }  // namespace

@@ -216,7 +216,7 @@ TEST(GcodeWriter, ArcPlanesAndRefusals) {
     writer.write(xz);
     FAIL();
   } catch (const OutputError& e) {
-    EXPECT_EQ(e.code(), "E3201");
+    EXPECT_EQ(e.code(), Code::E3201);
   }
   EXPECT_THROW(writer.write(SetFeedRate{10, FeedMode::inverse_time, {}}), OutputError);
 }

@@ -105,7 +105,7 @@ TEST(KlartextWriter, RefusesWhatATncDoesNotTake) {
     try {
       write_program({StraightFeed{{0, 0, 0}, {1, 0, 0}, {}}, event});
     } catch (const OutputError& e) {
-      return std::string(e.code());
+      return std::string(e.id());
     }
     return std::string("none");
   };

@@ -225,10 +225,10 @@ TEST(TiltedOutput, VerifyNamesAnotherFrame) {
   options.dialect = gcode::fanuc_dialect();
   const verify::Result result = verify::verify_cl(cl, g, options, "t.cl");
   ASSERT_FALSE(result.violations.empty());
-  EXPECT_EQ(result.violations.front().code, verify::Code::frame_differs);
-  const auto frames = std::count_if(
-      result.violations.begin(), result.violations.end(),
-      [](const verify::Violation& v) { return v.code == verify::Code::frame_differs; });
+  EXPECT_EQ(result.violations.front().code, vcpost::Code::E7143);
+  const auto frames =
+      std::count_if(result.violations.begin(), result.violations.end(),
+                    [](const verify::Violation& v) { return v.code == vcpost::Code::E7143; });
   EXPECT_EQ(frames, 1);
 }
 
@@ -250,7 +250,7 @@ TEST(TiltedOutput, SetUpsBeyondG59AreRefused) {
     gcode_of(cl, TiltedPlane::setup);
     FAIL() << "no error";
   } catch (const OutputError& e) {
-    EXPECT_EQ(e.code(), "E3205");
+    EXPECT_EQ(e.code(), Code::E3205);
     EXPECT_NE(std::string(e.what()).find("set-up 7 needs work offset G60"), std::string::npos)
         << e.what();
   }
@@ -346,8 +346,7 @@ TEST(TiltedVerify, AnotherTiltInTheOutputIsNamed) {
     const Result r = verify_gcode(c.text, turned, options);
     ASSERT_FALSE(r.ok());
     const bool named = std::any_of(r.violations.begin(), r.violations.end(), [](const auto& v) {
-      return v.code == Code::event_differs || v.code == Code::word_changed ||
-             v.code == Code::comment_changed;
+      return v.code == Code::E7121 || v.code == Code::E7103 || v.code == Code::E7107;
     });
     EXPECT_TRUE(named) << format(r.violations.front(), "out");
   }

@@ -48,7 +48,7 @@ std::string outcome(const fs::path& file, const std::string& options) {
       for (const std::string& w : summary.stock->warnings) codes += w.substr(0, 5) + " ";
     return codes;
   } catch (const vcpost::Error& e) {
-    return std::string(e.code());
+    return std::string(e.id());
   }
 }
 

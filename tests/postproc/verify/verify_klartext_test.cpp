@@ -48,8 +48,8 @@ TEST(VerifyKlartext, ACoordinateChangedIsRefused) {
   const Result r =
       verify_klartext(kKlartextInput, replaced(kKlartextPosted, "8 L X+10", "8 L X+11"), Options{});
   EXPECT_FALSE(r.ok());
-  EXPECT_TRUE(has(r, Code::klartext_block_changed));
-  EXPECT_TRUE(has(r, Code::klartext_event_differs));
+  EXPECT_TRUE(has(r, Code::E7136));
+  EXPECT_TRUE(has(r, Code::E7141));
   EXPECT_EQ(r.violations.front().line, 8u);
 }
 
@@ -58,31 +58,31 @@ TEST(VerifyKlartext, AToolCallSBeforeABlockThatDoesNotMoveIsRefused) {
   std::string forged = replaced(kKlartextPosted, "10 TOOL CALL S3200\r\n", "");
   forged = replaced(forged, "9 CYCL DEF 200", "9 TOOL CALL S3200\r\n10 CYCL DEF 200");
   const Result r = verify_klartext(kKlartextInput, forged, Options{});
-  EXPECT_TRUE(has(r, Code::klartext_misplaced_speed));
+  EXPECT_TRUE(has(r, Code::E7138));
   EXPECT_EQ(r.violations.front().line, 9u);
 }
 
 TEST(VerifyKlartext, ASkippedNumberIsRefused) {
   const Result r = verify_klartext(kKlartextInput,
                                    replaced(kKlartextPosted, "11 L X+20", "12 L X+20"), Options{});
-  EXPECT_TRUE(has(r, Code::klartext_numbering));
+  EXPECT_TRUE(has(r, Code::E7137));
   EXPECT_EQ(r.violations.front().line, 19u);
   // Not renumbered after an insert: the move keeps the number of the new block.
   const Result same =
       verify_klartext(kKlartextInput, replaced(kKlartextPosted, "7 L Z-1", "6 L Z-1"), Options{});
-  EXPECT_TRUE(has(same, Code::klartext_numbering));
+  EXPECT_TRUE(has(same, Code::E7137));
 }
 
 TEST(VerifyKlartext, ARemovedBlockAndABadSpeedAreRefused) {
   EXPECT_TRUE(has(verify_klartext(kKlartextInput,
                                   replaced(kKlartextPosted, "3 FN 0: Q1=500\r\n", ""), Options{}),
-                  Code::klartext_block_changed));
+                  Code::E7136));
   EXPECT_TRUE(has(verify_klartext(kKlartextInput,
                                   replaced(kKlartextPosted, "12 END PGM T MM\r\n", ""), Options{}),
-                  Code::klartext_block_added));
+                  Code::E7139));
   EXPECT_TRUE(
       has(verify_klartext(kKlartextInput, replaced(kKlartextPosted, "S3000", "S0"), Options{}),
-          Code::klartext_bad_value));
+          Code::E7140));
 }
 
 }  // namespace

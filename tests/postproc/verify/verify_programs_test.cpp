@@ -247,7 +247,7 @@ TEST(VerifyPrograms, VerdictAgreesWithLinuxcncRs274) {
   ASSERT_GT(line, 0u);
   const Result r = verify_gcode(input, changed, Options{});
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.violations[0].code, Code::word_changed);
+  EXPECT_EQ(r.violations[0].code, Code::E7103);
   EXPECT_EQ(r.violations[0].line, line);
   EXPECT_NE(rs274_motion(dir, "changed.ngc", changed), a);
   fs::remove_all(dir);
@@ -324,7 +324,7 @@ TEST(VerifyPrograms, ClEndPointMovedByAMicronFailsByATenthPasses) {
   ASSERT_GT(line, 0u);
   const Result bad = verify_cl(cl, far, mazak_options(), name);
   ASSERT_FALSE(bad.ok());
-  EXPECT_EQ(bad.violations[0].code, Code::end_point);
+  EXPECT_EQ(bad.violations[0].code, Code::E7132);
   EXPECT_EQ(bad.violations[0].line, line);
   EXPECT_NE(bad.violations[0].message.find("0.0010 mm"), std::string::npos)
       << bad.violations[0].message;
@@ -354,7 +354,7 @@ TEST(VerifyPrograms, ClRapidWrittenAsFeedAndMissingMotionAreCaught) {
       1);
   const Result r = verify_cl(cl, as_feed, mazak_options(), name);
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.violations[0].code, Code::motion_kind);
+  EXPECT_EQ(r.violations[0].code, Code::E7133);
   EXPECT_EQ(r.violations[0].line, g0_line);
   // The final retract (the last G0 block) removed: where the CL data
   // retract, the output stops the spindle.
@@ -367,7 +367,7 @@ TEST(VerifyPrograms, ClRapidWrittenAsFeedAndMissingMotionAreCaught) {
       1);
   const Result r2 = verify_cl(cl, shorter, mazak_options(), name);
   ASSERT_EQ(r2.violation_count, 1u);
-  EXPECT_EQ(r2.violations[0].code, Code::motion_count);
+  EXPECT_EQ(r2.violations[0].code, Code::E7131);
   EXPECT_EQ(r2.violations[0].line, last_line);  // the M5 block moved up into its place
 }
 
@@ -415,7 +415,7 @@ TEST(VerifyPrograms, SharedClProgramsWrittenByTheGcodeWriterVerify) {
     ASSERT_GT(line, 0u);
     const Result bad = verify_cl(cl, far, options, name);
     ASSERT_FALSE(bad.ok());
-    EXPECT_EQ(bad.violations[0].code, Code::arc_differs) << format(bad.violations[0], "out");
+    EXPECT_EQ(bad.violations[0].code, Code::E7134) << format(bad.violations[0], "out");
     EXPECT_EQ(bad.violations[0].line, line);
     const auto [near, line2] = moved(out.str(), "I", 1, 0.0001);
     const Result good = verify_cl(cl, near, options, name);

@@ -83,7 +83,7 @@ class BlockParser : public syntax::Lexer {
     const std::string_view key = read_letters();
     if (key.empty()) {
       check_word_byte(pos());
-      fail(Code::unknown_block, pos(), std::string("a block starts with '") + peek() + "'");
+      fail(Code::E3304, pos(), std::string("a block starts with '") + peek() + "'");
     }
     keyword(key);
   }
@@ -100,7 +100,7 @@ class BlockParser : public syntax::Lexer {
     double number = 0;
     while (is_digit(peek())) seek(pos() + 1);
     const std::size_t last = pos();
-    if (last - first > 9) fail(Code::bad_number, first, "block number too long");
+    if (last - first > 9) fail(Code::E3303, first, "block number too long");
     for (std::size_t k = first; k < last; ++k) number = number * 10 + (text()[k] - '0');
     // A number runs into a keyword only where the program has none ("5L"
     // is no block): digits must be followed by a blank, '/', ';' or the end.
@@ -401,14 +401,14 @@ class BlockParser : public syntax::Lexer {
     }
     double number = 0;
     if (!read_unsigned(number) || number != static_cast<double>(static_cast<long>(number)))
-      fail(Code::bad_number, pos(), "a label is a number or a \"name\"");
+      fail(Code::E3303, pos(), "a label is a number or a \"name\"");
     l.number = static_cast<long>(number);
     return l;
   }
 
   void expect(char c, std::string_view what) {
     skip_blanks();
-    if (peek() != c) fail(Code::missing_word, pos(), std::string("expected ") + std::string(what));
+    if (peek() != c) fail(Code::E3308, pos(), std::string("expected ") + std::string(what));
     seek(pos() + 1);
     skip_blanks();
   }
@@ -419,8 +419,7 @@ class BlockParser : public syntax::Lexer {
     Value v;
     char sign = 0;
     if (!read_value(v, sign))
-      fail(Code::missing_word, pos(),
-           "expected " + std::string(what) + " (a number or Q parameter)");
+      fail(Code::E3308, pos(), "expected " + std::string(what) + " (a number or Q parameter)");
     out = v;
     return at;
   }
@@ -429,27 +428,26 @@ class BlockParser : public syntax::Lexer {
   void fn_statement() {
     skip_blanks();
     double number = 0;
-    if (!read_unsigned(number)) fail(Code::missing_word, pos(), "FN needs its number (FN 0: ...)");
+    if (!read_unsigned(number)) fail(Code::E3308, pos(), "FN needs its number (FN 0: ...)");
     FnStatement& f = b_.fn;
     f.number = static_cast<int>(number);
     expect(':', "':' after FN " + std::to_string(f.number));
     if (f.number >= 9 && f.number <= 12) {
-      if (read_letters() != "IF") fail(Code::missing_word, pos(), "expected IF");
+      if (read_letters() != "IF") fail(Code::E3308, pos(), "expected IF");
       f.a_begin = value_into(f.a, "the first operand");
       skip_blanks();
       read_letters();  // EQU, NE, GT, LT: the FN number says which
       f.b_begin = value_into(f.b, "the second operand");
       skip_blanks();
       if (read_letters() != "GOTO" || !next_is("LBL"))
-        fail(Code::missing_word, pos(), "expected GOTO LBL");
+        fail(Code::E3308, pos(), "expected GOTO LBL");
       skip_blanks();
       f.jump = label();
       return words();
     }
     if (f.number > 13) return rest_as_sub_keyword();  // FN 14 and on: the interpreter says
     value_into(f.target, "the Q parameter set");
-    if (!f.target->is_parameter())
-      fail(Code::bad_parameter, pos(), "FN sets a Q parameter (Q, QL or QR)");
+    if (!f.target->is_parameter()) fail(Code::E3309, pos(), "FN sets a Q parameter (Q, QL or QR)");
     expect('=', "'='");
     if (f.number >= 5 && f.number <= 7) read_letters();  // SQRT, SIN, COS
     f.a_begin = value_into(f.a, "an operand");
@@ -457,8 +455,7 @@ class BlockParser : public syntax::Lexer {
       skip_blanks();
       if (read_letters().empty()) {
         if (peek() != '+' && peek() != '-' && peek() != '*')
-          fail(Code::missing_word, pos(),
-               "expected the operator of FN " + std::to_string(f.number));
+          fail(Code::E3308, pos(), "expected the operator of FN " + std::to_string(f.number));
         seek(pos() + 1);
       }
       f.b_begin = value_into(f.b, "the second operand");
@@ -469,7 +466,7 @@ class BlockParser : public syntax::Lexer {
   void cycle_def() {
     skip_blanks();
     double number = 0;
-    if (!read_unsigned(number)) fail(Code::missing_word, pos(), "CYCL DEF needs its number");
+    if (!read_unsigned(number)) fail(Code::E3308, pos(), "CYCL DEF needs its number");
     // hyperMILL writes "CYCL DEF9 .0": the part after a blank.
     const std::size_t back = pos();
     skip_blanks();
@@ -509,7 +506,7 @@ class BlockParser : public syntax::Lexer {
           p.begin = static_cast<std::uint32_t>(at);
           char sign = 0;
           if (!read_value(p.value, sign))
-            fail(Code::bad_number, pos(), "Q" + std::to_string(p.number) + "= needs a value");
+            fail(Code::E3303, pos(), "Q" + std::to_string(p.number) + "= needs a value");
           b_.cycle_parameters.push_back(p);
           continue;
         }
@@ -534,7 +531,7 @@ class BlockParser : public syntax::Lexer {
       }
       if (!is_upper(c)) {
         check_word_byte(pos());
-        fail(Code::unexpected_word, pos(), std::string("unexpected '") + c + "'");
+        fail(Code::E3307, pos(), std::string("unexpected '") + c + "'");
       }
       word();
     }
@@ -555,7 +552,7 @@ class BlockParser : public syntax::Lexer {
       }
     }
     if (letters.size() > 8)
-      fail(Code::unexpected_word, w.begin, "unknown word '" + std::string(letters) + "'");
+      fail(Code::E3307, w.begin, "unknown word '" + std::string(letters) + "'");
     w.key = name(letters);
     w.has_value = read_value(w.value, w.sign);
     if (!w.has_value && w.sign == 0 && (w.key == name("F") || w.key == name("MB"))) {
@@ -574,7 +571,7 @@ class BlockParser : public syntax::Lexer {
     w.end = static_cast<std::uint32_t>(pos());
     if (!at_end() && !is_blank(peek()) && peek() != ';' && !is_upper(peek())) {
       check_word_byte(pos());
-      fail(Code::bad_number, pos(), "'" + std::string(letters) + "' followed by '" + peek() + "'");
+      fail(Code::E3303, pos(), "'" + std::string(letters) + "' followed by '" + peek() + "'");
     }
     b_.words.push_back(w);
   }
@@ -600,7 +597,7 @@ std::uint64_t split_block(std::string_view text, std::uint64_t offset, std::uint
     eol = text.substr(text_end, pos - text_end);
     if (end - offset > kMaxBlockLength) {
       throw KlartextError(
-          Diagnostic{Code::line_too_long,
+          Diagnostic{Code::E3301,
                      line,
                      1,
                      "block longer than " + std::to_string(kMaxBlockLength) + " bytes",

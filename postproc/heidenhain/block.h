@@ -194,14 +194,14 @@ struct Block {
 };
 
 // Longest block the reader takes (its ~ lines together); longer ones are
-// Code::line_too_long.
+// Code::E3301.
 inline constexpr std::size_t kMaxBlockLength = 65536;
 
 // The block of `text` that starts at `offset` (a block start, `line` its
 // 1-based line): sets `out`'s text, eol, offset, end, line and lines (a line,
 // with the lines a trailing '~' continues) and returns the offset of the
 // next block. The reader and the writers of Klartext cut a text into blocks
-// with it. Throws KlartextError (Code::line_too_long) for a block longer
+// with it. Throws KlartextError (Code::E3301) for a block longer
 // than kMaxBlockLength.
 std::uint64_t split_block(std::string_view text, std::uint64_t offset, std::uint32_t line,
                           Block& out);

@@ -42,9 +42,9 @@ class FormulaParser {
     sum(0);
     l_.skip_blanks();
     if (!l_.at_end() && l_.peek() != ';') {
-      if (l_.peek() == ')') l_.fail(Code::bad_formula, l_.pos(), "')' without its '('");
+      if (l_.peek() == ')') l_.fail(Code::E3328, l_.pos(), "')' without its '('");
       l_.check_word_byte(l_.pos());
-      l_.fail(Code::bad_formula, l_.pos(),
+      l_.fail(Code::E3328, l_.pos(),
               std::string("expected an operator (+ - * / % ^) before '") + l_.peek() + "'");
     }
   }
@@ -102,7 +102,7 @@ class FormulaParser {
   void operand(int depth) {
     l_.skip_blanks();
     const std::size_t at = l_.pos();
-    if (depth > kMaxNesting) l_.fail(Code::bad_formula, at, "a formula nested too deep");
+    if (depth > kMaxNesting) l_.fail(Code::E3328, at, "a formula nested too deep");
     const char c = l_.peek();
     if ((c == '+' || c == '-') && !value_follows(at + 1)) {
       // A sign before a parenthesis, a function or PI.
@@ -121,7 +121,7 @@ class FormulaParser {
       l_.seek(l_.pos() + 1);
       sum(depth + 1);
       l_.skip_blanks();
-      if (l_.peek() != ')') l_.fail(Code::bad_formula, l_.pos(), "expected ')'");
+      if (l_.peek() != ')') l_.fail(Code::E3328, l_.pos(), "expected ')'");
       l_.seek(l_.pos() + 1);
       return;
     }
@@ -138,13 +138,13 @@ class FormulaParser {
       return;
     }
     if (!word.empty())
-      l_.fail(Code::bad_formula, at,
+      l_.fail(Code::E3328, at,
               "'" + std::string(word) +
                   "' is no function of a formula (SQ SQRT SIN COS TAN ASIN ACOS ATAN ABS INT "
                   "FRAC SGN LN LOG EXP NEG PI)");
-    if (l_.at_end() || l_.peek() == ';') l_.fail(Code::bad_formula, at, "the formula ends early");
+    if (l_.at_end() || l_.peek() == ';') l_.fail(Code::E3328, at, "the formula ends early");
     l_.check_word_byte(l_.pos());
-    l_.fail(Code::bad_formula, at,
+    l_.fail(Code::E3328, at,
             std::string("expected a number, a Q parameter or '(' at '") + l_.peek() + "'");
   }
 
@@ -157,7 +157,7 @@ class FormulaParser {
 
 [[noreturn]] void fail_at(const Block& block, std::uint32_t at, std::string message) {
   const auto [line, column] = block.position(at);
-  throw KlartextError(Diagnostic{Code::math_domain, line, column, std::move(message), {}});
+  throw KlartextError(Diagnostic{Code::E3318, line, column, std::move(message), {}});
 }
 
 }  // namespace

@@ -17,14 +17,14 @@ namespace vcpost::heidenhain {
 
 namespace syntax {
 // Reads a formula from the lexer's cursor to the end of the block or a ';'
-// comment into `out` (cleared first). Throws KlartextError (Code::bad_formula)
+// comment into `out` (cleared first). Throws KlartextError (Code::E3328)
 // at the first byte that does not fit.
 void parse_formula(Lexer& lexer, std::vector<FormulaStep>& out);
 }  // namespace syntax
 
 // The value of a parsed formula; `parameter` gives a Q, QL or QR
 // parameter's value (and fails for one out of range). Throws KlartextError
-// (Code::math_domain) at the step out of its domain: division by zero, the
+// (Code::E3318) at the step out of its domain: division by zero, the
 // root or logarithm of a negative number, ASIN/ACOS beyond 1, a result past
 // 1e12.
 double evaluate_formula(const Block& block, const std::vector<FormulaStep>& steps,

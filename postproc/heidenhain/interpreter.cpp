@@ -67,17 +67,17 @@ bool Interpreter::next(std::vector<Event>& events) {
         ended_ = true;
         if (held_) {
           block_.clear();
-          fail(Code::corner_not_between_lines, 0, "RND/CHF at the end of the program");
+          fail(Code::E3314, 0, "RND/CHF at the end of the program");
         }
         if (approach_) fail_approach("no contour element follows it before the program ends");
         if (!end_event_) {
           block_.line = line_;
-          warn(Code::missing_end, 0, "the program ends without END PGM, M2 or M30 (cut short?)");
+          warn(Code::W3343, 0, "the program ends without END PGM, M2 or M30 (cut short?)");
         }
         return false;
       }
       if (++blocks_run_ > limits_.max_blocks)
-        fail(Code::loop_limit, 0, "the program runs more blocks than the limit");
+        fail(Code::E3317, 0, "the program runs more blocks than the limit");
       const std::size_t before = events.size();
       execute(events);
       if (approach_ && block_.kind != BlockKind::approach) link_approach(events, before);
@@ -101,18 +101,18 @@ void Interpreter::execute(std::vector<Event>& events) {
   if (kind == BlockKind::empty || kind == BlockKind::comment) return;
   if (!begun_) {
     if (kind != BlockKind::begin_pgm)
-      fail(Code::missing_begin, block_.keyword_begin,
+      fail(Code::E3305, block_.keyword_begin,
            "a Klartext program starts with BEGIN PGM <name> MM|INCH");
     return begin_program();
   }
   if (held_ && kind != BlockKind::rounding && kind != BlockKind::chamfer &&
       !(held_->corner_read && (kind == BlockKind::line || kind == BlockKind::line_polar))) {
-    fail(Code::corner_not_between_lines, block_.keyword_begin,
+    fail(Code::E3314, block_.keyword_begin,
          "RND and CHF stand between two straight lines (L or LP)");
   }
   switch (kind) {
     case BlockKind::begin_pgm:
-      fail(Code::unknown_block, block_.keyword_begin, "a second BEGIN PGM");
+      fail(Code::E3304, block_.keyword_begin, "a second BEGIN PGM");
     case BlockKind::end_pgm:
       if (!programs_.empty()) return return_from_program();
       ended_ = true;
@@ -155,8 +155,7 @@ void Interpreter::execute(std::vector<Event>& events) {
       return;
     case BlockKind::call_selected:
       if (!selected_)
-        fail(Code::program_not_found, block_.keyword_begin,
-             "CALL SELECTED without a SEL PGM before it");
+        fail(Code::E3331, block_.keyword_begin, "CALL SELECTED without a SEL PGM before it");
       return call_program(*selected_);
     case BlockKind::cycle_def:
       return cycle_def(events);
@@ -183,20 +182,19 @@ void Interpreter::refuse_block() const {
   static constexpr std::string_view free_contour[] = {"FC",   "FCT",     "FL",  "FLT",
                                                       "FPOL", "FSELECT", "FCP", "FLP"};
   if (std::find(std::begin(free_contour), std::end(free_contour), key) != std::end(free_contour))
-    fail(Code::fk_contour, block_.keyword_begin,
+    fail(Code::E3330, block_.keyword_begin,
          std::string(key) +
              ": FK free contour programming is not read (the control solves the contour from "
              "its elements' relations); convert it to Klartext on the TNC (FK to Klartext "
              "conversion) or have the CAM system write L, C, CR and CT");
   if (std::find(std::begin(refused), std::end(refused), key) != std::end(refused)) {
-    fail(Code::unsupported_function, block_.keyword_begin,
+    fail(Code::E3319, block_.keyword_begin,
          std::string(key) + " blocks are not read (" +
              (key == "CALL" || key == "SEL" ? "another program's moves are not in this file"
                                             : "write the path with L, C, CC, CR, CT and FN 0-4") +
              ")");
   }
-  fail(Code::unknown_block, block_.keyword_begin,
-       "'" + std::string(key) + "' starts no Klartext block");
+  fail(Code::E3304, block_.keyword_begin, "'" + std::string(key) + "' starts no Klartext block");
 }
 
 // ---- Program structure
@@ -208,7 +206,7 @@ void Interpreter::begin_program() {
   } else if (units == "INCH") {
     inches_ = true;
   } else {
-    fail(Code::bad_units, block_.keyword_begin,
+    fail(Code::E3306, block_.keyword_begin,
          "BEGIN PGM needs its units: MM or INCH (found '" + std::string(units) + "')");
   }
   begun_ = true;
@@ -216,7 +214,7 @@ void Interpreter::begin_program() {
 
 void Interpreter::blk_form() {
   if (!block_.sub_keyword.empty()) {
-    warn_once(Code::function_passed, 1, block_.keyword_begin,
+    warn_once(Code::W3344, 1, block_.keyword_begin,
               "BLK FORM " + std::string(block_.sub_keyword) + " is not read: no stock box");
     return;
   }
@@ -224,7 +222,7 @@ void Interpreter::blk_form() {
   if (!block_.words.empty() && !block_.words.front().has_value) {
     const Name axis = block_.words.front().key;
     if (axis != name("Z"))
-      fail(Code::tool_axis_change, block_.words.front().begin, "BLK FORM for tool axis Z only");
+      fail(Code::E3321, block_.words.front().begin, "BLK FORM for tool axis Z only");
     block_.words.erase(block_.words.begin());
   }
   const Words w = read_words(a_xyz);

@@ -57,7 +57,7 @@ Interpreter::LinkWords Interpreter::link_words(bool departure) const {
   bool polar = false;
   const auto link = link_of(block_.sub_keyword, polar);
   if (!link || (departure && polar && *link != ContourLink::line_circle))
-    fail(Code::unexpected_word, block_.keyword_begin,
+    fail(Code::E3307, block_.keyword_begin,
          std::string(block_.keyword) + " " + std::string(block_.sub_keyword) +
              " is no approach or departure (LT, LN, CT, LCT; polar PLT, PLN, PCT, PLCT)");
   out.words = read_words(a_xyz | a_polar | a_r | a_comp | a_feed | a_m | a_link);
@@ -69,7 +69,7 @@ Interpreter::LinkWords Interpreter::link_words(bool departure) const {
   const bool arc = *link == ContourLink::circle_tangent || *link == ContourLink::line_circle;
   if (arc) out.in.radius = length(w.r.value_or(0));
   if (!arc && w.r) {
-    if (*w.r != 0) fail(Code::unexpected_word, w.first_word, "R is no word of an LT or LN path");
+    if (*w.r != 0) fail(Code::E3307, w.first_word, "R is no word of an LT or LN path");
     out.words.comp = program::CompensationSide::off;  // R0
   }
   return out;
@@ -97,7 +97,7 @@ void Interpreter::approach(std::vector<Event>& events) {
   if (w.fauto) feed_ = tool_feed_;
   a.feed = feed_;
   if (feed_ <= 0 && !a.rapid)
-    fail(Code::missing_feed, block_.keyword_begin, "APPR before any feed rate F");
+    fail(Code::E3325, block_.keyword_begin, "APPR before any feed rate F");
   a.source = source();
   const auto [line, column] = block_.position(block_.keyword_begin);
   a.line = line;
@@ -111,7 +111,7 @@ void Interpreter::approach(std::vector<Event>& events) {
 
 void Interpreter::fail_approach(const std::string& why) const {
   const PendingApproach& a = *approach_;
-  throw KlartextError(Diagnostic{Code::approach_undefined, a.line, a.column, "APPR " + why, {}});
+  throw KlartextError(Diagnostic{Code::E3329, a.line, a.column, "APPR " + why, {}});
 }
 
 // The approach, once the contour element after it is known (its direction
@@ -157,7 +157,7 @@ void Interpreter::link_approach(std::vector<Event>& events, std::size_t before) 
     } else {
       if (a.feed_before <= 0 && !lct)
         throw KlartextError(
-            Diagnostic{Code::missing_feed,
+            Diagnostic{Code::E3325,
                        a.line,
                        a.column,
                        "APPR moves to its auxiliary point at the feed before it: none was given",
@@ -186,23 +186,21 @@ void Interpreter::departure(std::vector<Event>& events) {
   Words& w = lw.words;
   start_functions(w, events);
   if (!tangent_)
-    fail(Code::approach_undefined, block_.keyword_begin,
+    fail(Code::E3329, block_.keyword_begin,
          "DEP leaves a contour: a contour element must come right before it");
   lw.in.side = side_of(compensation_);
   w.comp.reset();
   set_feed_and_compensation(w, events);
-  if (feed_ <= 0 && !w.fmax)
-    fail(Code::missing_feed, block_.keyword_begin, "DEP before any feed rate F");
+  if (feed_ <= 0 && !w.fmax) fail(Code::E3325, block_.keyword_begin, "DEP before any feed rate F");
   const Eigen::Vector3d target = lw.polar ? polar_target(w, true) : cartesian_target(w);
   const bool given_xy = w.axis[0] || w.axis[1] || w.inc[0] || w.inc[1] || w.pa || w.ipa;
   const bool lct = lw.in.link == ContourLink::line_circle;
   if (!lct && given_xy)
-    fail(Code::unexpected_word, w.first_word, "DEP LT, LN and CT take no end point but Z");
-  if (lct && !given_xy)
-    fail(Code::missing_word, block_.keyword_begin, "DEP LCT needs its end point X Y");
+    fail(Code::E3307, w.first_word, "DEP LT, LN and CT take no end point but Z");
+  if (lct && !given_xy) fail(Code::E3308, block_.keyword_begin, "DEP LCT needs its end point X Y");
   std::string why;
   const auto path = departure_path(lw.in, xy(position_), *tangent_, xy(target), why);
-  if (!path) fail(Code::approach_undefined, block_.keyword_begin, "DEP " + why);
+  if (!path) fail(Code::E3329, block_.keyword_begin, "DEP " + why);
   const program::SourceRef src = source();
   // The tool axis reaches the DEP's height on the way to PN (TNC 620/640 manuals).
   const Eigen::Vector3d end(path->end.x(), path->end.y(), target.z());

@@ -42,7 +42,7 @@ void Interpreter::cycle_def(std::vector<Event>& events) {
       while (e > 0 && !(t[e - 1] >= '0' && t[e - 1] <= '9')) --e;
       std::size_t b = e;
       while (b > 0 && ((t[b - 1] >= '0' && t[b - 1] <= '9') || t[b - 1] == '.')) --b;
-      if (b == e) fail(Code::missing_word, at, "CYCL DEF 9.1 needs the dwell time in seconds");
+      if (b == e) fail(Code::E3308, at, "CYCL DEF 9.1 needs the dwell time in seconds");
       events.emplace_back(program::Dwell{std::stod(std::string(t.substr(b, e - b))), source()});
       return;
     }
@@ -75,14 +75,14 @@ void Interpreter::cycle_def(std::vector<Event>& events) {
     case 11:
     case 26:
       if (minor == 0) return;
-      fail(Code::unsupported_cycle, at,
+      fail(Code::E3322, at,
            "CYCL DEF " + std::to_string(major) +
                " (mirror, rotation or scaling) changes the frame: it is not read");
     default:
       break;
   }
   if (major >= 300) {
-    warn_once(Code::machine_cycle, major, at,
+    warn_once(Code::W3340, major, at,
               "CYCL DEF " + std::to_string(major) +
                   " passed: a machine or probing cycle, taken as moving nothing");
     return;
@@ -105,17 +105,17 @@ void Interpreter::cycle_call(std::vector<Event>& events) {
     position_ = end;
     highest_z_ = std::max(highest_z_, end.z());
   } else if (w.any_xyz()) {
-    fail(Code::unexpected_word, w.first_word, "CYCL CALL takes a position only as CYCL CALL POS");
+    fail(Code::E3307, w.first_word, "CYCL CALL takes a position only as CYCL CALL POS");
   }
   run_cycle(block_.keyword_begin, events);
   end_functions(w, events);
 }
 
 void Interpreter::run_cycle(std::uint32_t at, std::vector<Event>& events) {
-  if (cycle_ == 0) fail(Code::cycle_not_defined, at, "a cycle call without a CYCL DEF before it");
+  if (cycle_ == 0) fail(Code::E3324, at, "a cycle call without a CYCL DEF before it");
   if (cycle_ != 200 && cycle_ != 201 && cycle_ != 203 && cycle_ != 205 && cycle_ != 207 &&
       cycle_ != 208)
-    fail(Code::unsupported_cycle, at,
+    fail(Code::E3322, at,
          "cycle " + std::to_string(cycle_) +
              " makes moves vcpost does not model (drilling cycles "
              "200, 201, 203, 205, 207 and 208 are read)");
@@ -133,22 +133,21 @@ void Interpreter::run_cycle(std::uint32_t at, std::vector<Event>& events) {
   h.spindle_ccw = spindle_ccw_;
   h.restore_feed = feed_;
   h.source = source();
-  if (h.depth > 0)
-    fail(Code::cycle_value, at, "Q201, the depth, is negative (below the surface Q203)");
+  if (h.depth > 0) fail(Code::E3323, at, "Q201, the depth, is negative (below the surface Q203)");
   if (h.depth == 0) return;  // the control runs no hole of depth 0
   if (cycle_ == 207) {
     const double pitch = length(q(239));
     if (pitch == 0 || spindle_rpm_ <= 0)
-      fail(Code::cycle_value, at, "cycle 207 needs the pitch Q239 and a spindle speed");
+      fail(Code::E3323, at, "cycle 207 needs the pitch Q239 and a spindle speed");
     h.feed = std::abs(pitch) * spindle_rpm_;
     h.spindle_ccw = pitch < 0 ? !spindle_ccw_ : spindle_ccw_;
   } else {
     h.feed = feed_rate(q(206));
-    if (h.feed <= 0) fail(Code::cycle_value, at, "Q206, the plunging feed, must be positive");
+    if (h.feed <= 0) fail(Code::E3323, at, "Q206, the plunging feed, must be positive");
   }
   if (cycle_ == 200 || cycle_ == 203 || cycle_ == 205) {
     h.plunge = length(q(202));
-    if (h.plunge <= 0) fail(Code::cycle_value, at, "Q202, the plunging depth, must be positive");
+    if (h.plunge <= 0) fail(Code::E3323, at, "Q202, the plunging depth, must be positive");
     if (cycle_ != 200) {
       h.decrement = length(q(212));
       h.min_plunge = length(q(205));
@@ -159,7 +158,7 @@ void Interpreter::run_cycle(std::uint32_t at, std::vector<Event>& events) {
     }
     const double pecks = std::abs(h.depth) / std::max(h.min_plunge, std::max(h.plunge - 0.0, 1e-3));
     if (pecks * 3 > static_cast<double>(limits_.max_cycle_moves))
-      fail(Code::cycle_value, at, "the hole's pecks (Q201 / Q202) make more moves than the limit");
+      fail(Code::E3323, at, "the hole's pecks (Q201 / Q202) make more moves than the limit");
   }
   if (cycle_ == 208) bore_milling(h, at);
   position_ = expand_hole(h, events);
@@ -174,19 +173,19 @@ void Interpreter::run_cycle(std::uint32_t at, std::vector<Event>& events) {
 void Interpreter::bore_milling(DrillHole& h, std::uint32_t at) {
   const double nominal = length(q_[335]);
   const double pitch = length(q_[334]);
-  if (pitch <= 0) fail(Code::cycle_value, at, "Q334, the depth per helix turn, must be positive");
+  if (pitch <= 0) fail(Code::E3323, at, "Q334, the depth per helix turn, must be positive");
   if (!tool_radius_) {
-    warn_once(Code::helix_unknown, 208, at,
+    warn_once(Code::W3345, 208, at,
               "cycle 208 taken along the hole's axis: its helix needs the tool's radius, which is "
               "in the control's tool table (give the tool with --tool or a CAM comment)");
     return;
   }
   const double radius = nominal / 2 - *tool_radius_;
   if (radius < -1e-9)
-    fail(Code::cycle_value, at, "cycle 208: the tool is wider than the nominal diameter Q335");
+    fail(Code::E3323, at, "cycle 208: the tool is wider than the nominal diameter Q335");
   if (radius <= 1e-9) return;  // as wide as the hole: straight down, as the control bores it
   if (std::abs(h.depth) / pitch + 4 > static_cast<double>(limits_.max_cycle_moves))
-    fail(Code::cycle_value, at, "the helix's turns (Q201 / Q334) make more moves than the limit");
+    fail(Code::E3323, at, "the helix's turns (Q201 / Q334) make more moves than the limit");
   h.helix_radius = radius;
   h.pitch = pitch;
   h.helix_rotation = (q_[351] < 0 ? -1 : 1) * (spindle_ccw_ ? -1 : 1);

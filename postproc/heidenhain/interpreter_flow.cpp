@@ -31,15 +31,15 @@ void Interpreter::fn(std::vector<Event>& events) {
       case 16:
       case 19:
         warn_once(
-            Code::function_passed, f.number, at,
+            Code::W3344, f.number, at,
             "FN " + std::to_string(f.number) + " passed (print or PLC output: moves nothing)");
         return;
       case 14:
-        fail(Code::unsupported_function, at,
+        fail(Code::E3319, at,
              "FN 14 raises an error on the control (" + std::string(block_.sub_keyword) +
                  "): the program stops there");
       default:
-        fail(Code::unsupported_function, at,
+        fail(Code::E3319, at,
              "FN " + std::to_string(f.number) + " is not read (it needs the control's own data)");
     }
   }
@@ -68,11 +68,11 @@ void Interpreter::fn(std::vector<Event>& events) {
       result = a * b;
       break;
     case 4:
-      if (b == 0) fail(Code::math_domain, f.b_begin, "FN 4: division by zero");
+      if (b == 0) fail(Code::E3318, f.b_begin, "FN 4: division by zero");
       result = a / b;
       break;
     case 5:
-      if (a < 0) fail(Code::math_domain, f.a_begin, "FN 5: square root of a negative number");
+      if (a < 0) fail(Code::E3318, f.a_begin, "FN 5: square root of a negative number");
       result = std::sqrt(a);
       break;
     case 6:
@@ -88,7 +88,7 @@ void Interpreter::fn(std::vector<Event>& events) {
       result = std::atan2(b, a) / kDeg;
       break;  // 13: ANG
   }
-  if (!(std::abs(result) <= 1e12)) fail(Code::math_domain, at, "FN result out of range");
+  if (!(std::abs(result) <= 1e12)) fail(Code::E3318, at, "FN result out of range");
   q_[parameter_index(*f.target, at)] = result;
 }
 
@@ -142,7 +142,7 @@ Interpreter::Place Interpreter::find_label(const Label& label, std::uint32_t at)
   if (it != labels_->end() && programs_.empty())
     repeat_from_ = std::min(repeat_from_.value_or(it->second.offset), it->second.offset);
   if (it == labels_->end()) {
-    fail(Code::unknown_label, at,
+    fail(Code::E3315, at,
          "no LBL " +
              (label.number >= 0 ? std::to_string(label.number)
                                 : "\"" + std::string(label.name) + "\"") +
@@ -153,14 +153,13 @@ Interpreter::Place Interpreter::find_label(const Label& label, std::uint32_t at)
 
 void Interpreter::count_jump(std::uint32_t at) {
   if (++jumps_ > limits_.max_loop_iterations)
-    fail(Code::loop_limit, at,
+    fail(Code::E3317, at,
          "repeats and jumps run past the limit of " + std::to_string(limits_.max_loop_iterations) +
              " (an endless loop?)");
 }
 
 void Interpreter::jump_to(const Label& label, std::uint32_t at) {
-  if (label.number == 0)
-    fail(Code::unknown_label, at, "LBL 0 ends a subprogram: it cannot be jumped to");
+  if (label.number == 0) fail(Code::E3315, at, "LBL 0 ends a subprogram: it cannot be jumped to");
   const Place p = find_label(label, at);
   count_jump(at);
   pos_ = p.offset;
@@ -191,11 +190,11 @@ void Interpreter::call_label() {
   if (const Word* rep = block_.find(name("REP"))) {
     const double n = rep->has_value ? value(rep->value, rep->begin) : -1;
     if (n < 0 || n != std::floor(n) || n > 65534)
-      fail(Code::bad_number, rep->begin, "REP takes a count 0-65534");
+      fail(Code::E3303, rep->begin, "REP takes a count 0-65534");
     repeats = static_cast<long>(n);
   }
   for (const Word& w : block_.words) {
-    if (w.key != name("REP")) fail(Code::unexpected_word, w.begin, "CALL LBL takes REP only");
+    if (w.key != name("REP")) fail(Code::E3307, w.begin, "CALL LBL takes REP only");
   }
   // The end of a repeated section: this very block called it.
   if (!frames_.empty() && frames_.back().section && frames_.back().call_offset == block_.offset) {
@@ -211,10 +210,10 @@ void Interpreter::call_label() {
     return;
   }
   if (label.number == 0)
-    fail(Code::unknown_label, label.begin, "LBL 0 ends a subprogram: it cannot be called");
+    fail(Code::E3315, label.begin, "LBL 0 ends a subprogram: it cannot be called");
   const Place p = find_label(label, label.begin);
   if (frames_.size() >= limits_.max_call_depth)
-    fail(Code::call_depth, label.begin,
+    fail(Code::E3316, label.begin,
          "calls nested deeper than " + std::to_string(limits_.max_call_depth));
   // With REP n, a section before the call has run once already and runs n
   // more times, back to this block each time; any other call is a
@@ -238,19 +237,19 @@ void Interpreter::call_label() {
 
 void Interpreter::call_program(std::string_view path) {
   const std::uint32_t at = block_.keyword_begin;
-  if (path.empty()) fail(Code::missing_word, at, "CALL PGM needs the program's name or path");
+  if (path.empty()) fail(Code::E3308, at, "CALL PGM needs the program's name or path");
   if (!loader_)
-    fail(Code::program_not_found, at,
+    fail(Code::E3331, at,
          "CALL PGM " + std::string(path) +
              ": the called program is read only where its folder is known (vcpost moves, "
              "report and post read it beside the calling program)");
   if (programs_.size() + frames_.size() >= limits_.max_call_depth)
-    fail(Code::call_depth, at,
+    fail(Code::E3316, at,
          "calls nested deeper than " + std::to_string(limits_.max_call_depth) +
              " (a program that calls itself?)");
   const std::optional<CalledProgram> called = loader_(path, program_name_);
   if (!called)
-    fail(Code::program_not_found, at,
+    fail(Code::E3331, at,
          "CALL PGM " + std::string(path) +
              ": no such program beside the calling one (a path relative to it, or TNC:\\ "
              "taken from the main program's folder)");

@@ -17,7 +17,7 @@ using program::Event;
 void Interpreter::tool_call(std::vector<Event>& events) {
   const bool call = block_.kind == BlockKind::tool_call;
   if (call && called_tool_calls_refused_ && !programs_.empty())
-    fail(Code::called_tool_call, block_.keyword_begin,
+    fail(Code::E3332, block_.keyword_begin,
          "TOOL CALL in the called program " + program_name_ +
              ": vcpost post writes the calling program's blocks only and cannot change a speed "
              "in another file; post the called program on its own");
@@ -25,7 +25,7 @@ void Interpreter::tool_call(std::vector<Event>& events) {
   if (const Word* t = block_.find(name("T"))) {
     const double n = value(t->value, t->begin);
     if (n < 0 || n != std::floor(n) || n > 32767)
-      fail(Code::bad_number, t->begin, "a tool number is a whole number 0-32767");
+      fail(Code::E3303, t->begin, "a tool number is a whole number 0-32767");
     number = static_cast<int>(n);
   } else if (!block_.tool_name.empty()) {
     number = tool_number(block_.tool_name);
@@ -41,23 +41,21 @@ void Interpreter::tool_call(std::vector<Event>& events) {
         break;
       case name("X"):
       case name("Y"):
-        if (w.has_value)
-          fail(Code::unexpected_word, w.begin, "a TOOL CALL takes its axis without a value");
-        fail(Code::tool_axis_change, w.begin,
+        if (w.has_value) fail(Code::E3307, w.begin, "a TOOL CALL takes its axis without a value");
+        fail(Code::E3321, w.begin,
              "tool axis " + std::string(1, static_cast<char>(w.key)) +
                  ": only tool axis Z is read (a horizontal spindle turns the frame)");
       case name("Z"):
-        if (w.has_value)
-          fail(Code::unexpected_word, w.begin, "a TOOL CALL takes its axis without a value");
+        if (w.has_value) fail(Code::E3307, w.begin, "a TOOL CALL takes its axis without a value");
         break;
       case name("S"):
         if (!w.has_value)
-          fail(Code::bad_number, w.begin, "S needs the spindle speed (S(VC=..) is not read)");
+          fail(Code::E3303, w.begin, "S needs the spindle speed (S(VC=..) is not read)");
         speed = value(w.value, w.begin);
-        if (*speed < 0) fail(Code::bad_number, w.begin, "a spindle speed is not negative");
+        if (*speed < 0) fail(Code::E3303, w.begin, "a spindle speed is not negative");
         break;
       case name("F"):
-        if (!w.has_value) fail(Code::bad_number, w.begin, "F needs a value");
+        if (!w.has_value) fail(Code::E3303, w.begin, "F needs a value");
         tool_feed_ = feed_rate(value(w.value, w.begin));
         break;
       case name("DL"):
@@ -66,16 +64,16 @@ void Interpreter::tool_call(std::vector<Event>& events) {
       case name("DL2"):
         break;  // oversizes: the path is the programmed one (see the header)
       case name("R"):
-        if (call) fail(Code::unexpected_word, w.begin, "TOOL CALL takes DL and DR, not L and R");
+        if (call) fail(Code::E3307, w.begin, "TOOL CALL takes DL and DR, not L and R");
         if (number && w.has_value)
           defined_radii_.emplace_back(*number, length(value(w.value, w.begin)));
         break;
       case name("L"):
       case name("R2"):
-        if (call) fail(Code::unexpected_word, w.begin, "TOOL CALL takes DL and DR, not L and R");
+        if (call) fail(Code::E3307, w.begin, "TOOL CALL takes DL and DR, not L and R");
         break;  // TOOL DEF's length and second radius
       default:
-        fail(Code::unexpected_word, w.begin,
+        fail(Code::E3307, w.begin,
              "'" + std::string(block_.text.substr(w.begin, w.end - w.begin)) + "' is no word of " +
                  std::string(block_.keyword));
     }
@@ -120,14 +118,14 @@ void Interpreter::start_functions(const Words& w, std::vector<Event>& events) {
         tcpm_ = true;
         break;
       case MAction::refused:
-        fail(Code::unsupported_function, m.at,
+        fail(Code::E3319, m.at,
              "M" + std::to_string(m.number) +
                  (m.number == 89    ? " (modal cycle call) is not read: call each hole with M99"
                   : m.number == 103 ? " (plunging feed factor) is not read"
                                     : " (feed per revolution) is not read"));
       case MAction::passed:
         warn_once(
-            Code::m_code_passed, m.number, m.at,
+            Code::W3341, m.number, m.at,
             "M" + std::to_string(m.number) + " passed: a machine function taken as moving nothing");
         break;
       default:
@@ -165,7 +163,7 @@ void Interpreter::end_functions(const Words& w, std::vector<Event>& events) {
   for (const Words::M& m : w.m) {
     if (m.action == MAction::end) {
       if (!programs_.empty())
-        fail(Code::unsupported_function, m.at,
+        fail(Code::E3319, m.at,
              "M" + std::to_string(m.number) +
                  " in a called program (the TNC manual: a called program must not contain M2 or "
                  "M30; end it with END PGM)");
@@ -184,7 +182,7 @@ void Interpreter::function_block() {
   } else if (what.starts_with("TCPM")) {
     tcpm_ = true;
   } else if (!what.starts_with("MODE MILL")) {
-    warn_once(Code::function_passed, 1000 + static_cast<long>(what.size()), block_.keyword_begin,
+    warn_once(Code::W3344, 1000 + static_cast<long>(what.size()), block_.keyword_begin,
               "FUNCTION " + std::string(what.substr(0, what.find(' '))) +
                   " passed: taken as moving nothing");
   }

@@ -75,7 +75,7 @@ void Interpreter::motion(std::vector<Event>& events) {
       rotary(w);
       if (block_.kind == BlockKind::line_normal &&
           (std::abs(w.normal[3].value_or(0)) > 1e-9 || std::abs(w.normal[4].value_or(0)) > 1e-9)) {
-        fail(Code::tool_axis_change, w.first_word, "LN with a tool orientation TX/TY off Z");
+        fail(Code::E3321, w.first_word, "LN with a tool orientation TX/TY off Z");
       }
       if (w.has(MAction::machine_frame)) {
         machine_retract(w, events);
@@ -127,7 +127,7 @@ void Interpreter::set_feed_and_compensation(const Words& w, std::vector<Event>& 
   if (w.feed) rate = feed_rate(*w.feed);
   if (w.fauto) rate = tool_feed_;
   if (rate) {
-    if (*rate < 0) fail(Code::bad_number, w.first_word, "a feed rate is not negative");
+    if (*rate < 0) fail(Code::E3303, w.first_word, "a feed rate is not negative");
     if (*rate != feed_) {
       feed_ = *rate;
       events.emplace_back(program::SetFeedRate{feed_, program::FeedMode::per_minute, src});
@@ -143,7 +143,7 @@ void Interpreter::rotary(const Words& w) {
     if (std::abs(std::remainder(to, 360.0)) > 1e-9) {
       char text[64];
       std::snprintf(text, sizeof text, "%c%+g", letters[a], to);
-      fail(Code::tool_axis_change, w.first_word,
+      fail(Code::E3321, w.first_word,
            std::string(text) +
                (tcpm_ ? ": M128 with rotary axes moving changes the tool axis along the path; "
                         "only 3-axis motion is read"
@@ -165,7 +165,7 @@ Eigen::Vector3d Interpreter::cartesian_target(const Words& w) const {
 }
 
 Eigen::Vector3d Interpreter::polar_target(const Words& w, bool line) const {
-  if (!pole_) fail(Code::no_pole, block_.keyword_begin, "polar coordinates need a pole: CC first");
+  if (!pole_) fail(Code::E3312, block_.keyword_begin, "polar coordinates need a pole: CC first");
   const Eigen::Vector2d rel = xy(position_) - *pole_;
   double radius = rel.norm();
   double angle = std::atan2(rel.y(), rel.x()) / kDeg;
@@ -174,7 +174,7 @@ Eigen::Vector3d Interpreter::polar_target(const Words& w, bool line) const {
   if (line) {
     if (w.pr) radius = length(*w.pr);
     if (w.ipr) radius += length(*w.ipr);
-    if (radius < 0) fail(Code::bad_number, w.first_word, "a polar radius is not negative");
+    if (radius < 0) fail(Code::E3303, w.first_word, "a polar radius is not negative");
   }
   Eigen::Vector3d end = position_;
   end.x() = pole_->x() + radius * std::cos(angle * kDeg);
@@ -182,7 +182,7 @@ Eigen::Vector3d Interpreter::polar_target(const Words& w, bool line) const {
   if (w.axis[2]) end.z() = length(*w.axis[2]) + shift_.z();
   if (w.inc[2]) end.z() += length(*w.inc[2]);
   if (w.axis[0] || w.axis[1] || w.inc[0] || w.inc[1])
-    fail(Code::unexpected_word, w.first_word, "polar blocks take PA/PR, not X/Y");
+    fail(Code::E3307, w.first_word, "polar blocks take PA/PR, not X/Y");
   return end;
 }
 
@@ -210,8 +210,7 @@ void Interpreter::straight(const Words& w, const Eigen::Vector3d& end, std::vect
     emit_move(program::StraightTraverse{position_, end, src}, events);
     return;
   }
-  if (feed_ <= 0)
-    fail(Code::missing_feed, block_.keyword_begin, "a feed move before any feed rate F");
+  if (feed_ <= 0) fail(Code::E3325, block_.keyword_begin, "a feed move before any feed rate F");
   emit_move(program::StraightFeed{position_, end, src}, events);
 }
 
@@ -220,14 +219,14 @@ void Interpreter::machine_retract(const Words& w, std::vector<Event>& events) {
   const bool m140 = w.has(MAction::retract);
   if (m140 && !w.mb_max) {
     // M140 MB <distance>: back along the tool axis by that much.
-    if (!w.mb) fail(Code::missing_word, w.first_word, "M140 needs MB <distance> or MB MAX");
+    if (!w.mb) fail(Code::E3308, w.first_word, "M140 needs MB <distance> or MB MAX");
     const Eigen::Vector3d end = position_ + Eigen::Vector3d(0, 0, length(*w.mb));
     emit_move(program::StraightTraverse{position_, end, source()}, events);
     return;
   }
   // The machine datum is unknown: the move stands for a retract (see the header).
   const bool z_given = w.axis[2].has_value() || w.inc[2].has_value() || m140;
-  warn_once(Code::machine_coordinates, 0, w.m.empty() ? 0 : w.m.front().at,
+  warn_once(Code::W3342, 0, w.m.empty() ? 0 : w.m.front().at,
             "M91/M92/M140 moves in machine coordinates are taken as retracts to a safe height "
             "(the stock's top or the highest point so far); their X and Y are not followed");
   if (!z_given) return;
@@ -243,14 +242,14 @@ void Interpreter::machine_retract(const Words& w, std::vector<Event>& events) {
 // A corner's RND/CHF block: its size and feed wait for the next line.
 void Interpreter::corner(const Words& w) {
   if (!held_ || held_->corner_read)
-    fail(Code::corner_not_between_lines, block_.keyword_begin,
+    fail(Code::E3314, block_.keyword_begin,
          "RND and CHF stand between two straight lines (L or LP)");
   const bool rounding = block_.kind == BlockKind::rounding;
   const std::optional<double> size = rounding ? w.r : w.chf;
   if (!size)
-    fail(Code::missing_word, block_.keyword_begin,
+    fail(Code::E3308, block_.keyword_begin,
          rounding ? "RND needs R<radius>" : "CHF needs its length");
-  if (*size <= 0) fail(Code::bad_number, w.first_word, "a corner's size is positive");
+  if (*size <= 0) fail(Code::E3303, w.first_word, "a corner's size is positive");
   held_->corner = length(*size);
   held_->rounding = rounding;
   held_->corner_source = source();
@@ -290,16 +289,15 @@ void Interpreter::finish_corner(const Eigen::Vector3d& end, std::vector<Event>& 
   const Eigen::Vector3d& p2 = end;
   const std::uint32_t at = block_.keyword_begin;
   if (std::abs(p0.z() - p1.z()) > 1e-9 || std::abs(p1.z() - p2.z()) > 1e-9)
-    fail(Code::corner_not_between_lines, at,
-         "RND/CHF between lines in the working plane (Z constant) only");
+    fail(Code::E3314, at, "RND/CHF between lines in the working plane (Z constant) only");
   const Eigen::Vector2d a = xy(p1 - p0), b = xy(p2 - p1);
   if (a.norm() < 1e-9 || b.norm() < 1e-9)
-    fail(Code::corner_not_between_lines, at, "RND/CHF next to a line of no length");
+    fail(Code::E3314, at, "RND/CHF next to a line of no length");
   const Eigen::Vector2d u1 = a.normalized(), u2 = b.normalized();
   const double turn = std::atan2(cross(u1, u2), u1.dot(u2));  // signed turn angle
   const double cut = held.rounding ? held.corner * std::tan(std::abs(turn) / 2) : held.corner;
   if (cut > a.norm() + 1e-9 || cut > b.norm() + 1e-9)
-    fail(Code::corner_not_between_lines, at, "the RND/CHF corner is larger than its lines");
+    fail(Code::E3314, at, "the RND/CHF corner is larger than its lines");
   const Eigen::Vector3d t1(p1.x() - u1.x() * cut, p1.y() - u1.y() * cut, p1.z());
   const Eigen::Vector3d t2(p1.x() + u2.x() * cut, p1.y() + u2.y() * cut, p1.z());
   if (traverse) traverse->end = t1;
@@ -326,8 +324,7 @@ void Interpreter::finish_corner(const Eigen::Vector3d& end, std::vector<Event>& 
 
 void Interpreter::centre(const Words& w) {
   Eigen::Vector2d c = xy(position_);
-  if (w.axis[2] || w.inc[2])
-    fail(Code::unexpected_word, w.first_word, "CC takes X and Y (tool axis Z)");
+  if (w.axis[2] || w.inc[2]) fail(Code::E3307, w.first_word, "CC takes X and Y (tool axis Z)");
   for (std::size_t a = 0; a < 2; ++a) {
     const auto i = static_cast<Eigen::Index>(a);
     if (w.axis[a]) c[i] = length(*w.axis[a]) + shift_[i];
@@ -339,7 +336,7 @@ void Interpreter::centre(const Words& w) {
 void Interpreter::arc(const Words& w, const Eigen::Vector3d& end, const Eigen::Vector2d& centre,
                       int rotation, std::vector<Event>& events) {
   set_feed_and_compensation(w, events);
-  if (feed_ <= 0) fail(Code::missing_feed, block_.keyword_begin, "an arc before any feed rate F");
+  if (feed_ <= 0) fail(Code::E3325, block_.keyword_begin, "an arc before any feed rate F");
   const double r0 = (xy(position_) - centre).norm();
   const double r1 = (xy(end) - centre).norm();
   if (std::abs(r0 - r1) > kArcTolerance + kArcRelativeTolerance * std::max(r0, r1)) {
@@ -348,9 +345,9 @@ void Interpreter::arc(const Words& w, const Eigen::Vector3d& end, const Eigen::V
                   "the arc's end is %.4f mm from its centre, its start %.4f mm (the end is not on "
                   "the circle)",
                   r1, r0);
-    fail(Code::arc_radius_mismatch, block_.keyword_begin, text);
+    fail(Code::E3310, block_.keyword_begin, text);
   }
-  if (r0 < 1e-9) fail(Code::arc_radius_mismatch, block_.keyword_begin, "an arc of radius 0");
+  if (r0 < 1e-9) fail(Code::E3310, block_.keyword_begin, "an arc of radius 0");
   events.emplace_back(program::ArcFeed{position_, end,
                                        Eigen::Vector3d(centre.x(), centre.y(), position_.z()),
                                        program::Plane::xy, rotation, source()});
@@ -360,31 +357,30 @@ void Interpreter::arc(const Words& w, const Eigen::Vector3d& end, const Eigen::V
 }
 
 void Interpreter::circle(const Words& w, std::vector<Event>& events) {
-  if (!pole_) fail(Code::no_pole, block_.keyword_begin, "C needs a circle centre: CC first");
+  if (!pole_) fail(Code::E3312, block_.keyword_begin, "C needs a circle centre: CC first");
   if (w.dr != 0) arc_direction_ = w.dr;
   if (arc_direction_ == 0)
-    fail(Code::missing_word, block_.keyword_begin, "C needs its direction DR+ or DR-");
+    fail(Code::E3308, block_.keyword_begin, "C needs its direction DR+ or DR-");
   arc(w, cartesian_target(w), *pole_, arc_direction_, events);
 }
 
 void Interpreter::circle_radius(const Words& w, std::vector<Event>& events) {
-  if (!w.r) fail(Code::missing_word, block_.keyword_begin, "CR needs its radius R");
+  if (!w.r) fail(Code::E3308, block_.keyword_begin, "CR needs its radius R");
   if (w.dr != 0) arc_direction_ = w.dr;
   if (arc_direction_ == 0)
-    fail(Code::missing_word, block_.keyword_begin, "CR needs its direction DR+ or DR-");
+    fail(Code::E3308, block_.keyword_begin, "CR needs its direction DR+ or DR-");
   const Eigen::Vector3d end = cartesian_target(w);
   const double r = length(*w.r);
   const Eigen::Vector2d chord = xy(end - position_);
   const double c = chord.norm();
   if (c < 1e-9)
-    fail(Code::arc_radius_too_small, block_.keyword_begin,
-         "CR to its own start: a full circle needs C");
+    fail(Code::E3311, block_.keyword_begin, "CR to its own start: a full circle needs C");
   const double half = c / 2;
   if (std::abs(r) < half - kArcTolerance) {
     char text[128];
     std::snprintf(text, sizeof text, "radius %.4f mm is below half the chord (%.4f mm)",
                   std::abs(r), half);
-    fail(Code::arc_radius_too_small, block_.keyword_begin, text);
+    fail(Code::E3311, block_.keyword_begin, text);
   }
   const double h = std::sqrt(std::max(0.0, r * r - half * half));
   // DR+ with R+ (at most half a circle): the centre is left of the chord.
@@ -395,26 +391,24 @@ void Interpreter::circle_radius(const Words& w, std::vector<Event>& events) {
 
 void Interpreter::circle_tangent(const Words& w, std::vector<Event>& events) {
   if (!tangent_)
-    fail(Code::tangent_undefined, block_.keyword_begin,
-         "CT continues a contour: a move must come first");
+    fail(Code::E3313, block_.keyword_begin, "CT continues a contour: a move must come first");
   const Eigen::Vector3d end = cartesian_target(w);
   const Eigen::Vector2d d = xy(end - position_);
   const Eigen::Vector2d n = left_normal(*tangent_);
   const double dn = d.dot(n);
   if (std::abs(dn) < 1e-9)
-    fail(Code::tangent_undefined, block_.keyword_begin,
-         "CT's end lies on the tangent: no arc (write L)");
+    fail(Code::E3313, block_.keyword_begin, "CT's end lies on the tangent: no arc (write L)");
   const double k = d.squaredNorm() / (2 * dn);
   const Eigen::Vector2d centre = xy(position_) + k * n;
   arc(w, end, centre, k > 0 ? 1 : -1, events);
 }
 
 void Interpreter::circle_polar(const Words& w, std::vector<Event>& events) {
-  if (!pole_) fail(Code::no_pole, block_.keyword_begin, "CP needs a pole: CC first");
+  if (!pole_) fail(Code::E3312, block_.keyword_begin, "CP needs a pole: CC first");
   if (w.dr != 0) arc_direction_ = w.dr;
   if (arc_direction_ == 0)
-    fail(Code::missing_word, block_.keyword_begin, "CP needs its direction DR+ or DR-");
-  if (!w.pa && !w.ipa) fail(Code::missing_word, block_.keyword_begin, "CP needs PA or IPA");
+    fail(Code::E3308, block_.keyword_begin, "CP needs its direction DR+ or DR-");
+  if (!w.pa && !w.ipa) fail(Code::E3308, block_.keyword_begin, "CP needs PA or IPA");
   const Eigen::Vector3d end = polar_target(w, false);
   int rotation = arc_direction_;
   if (w.ipa) {
@@ -422,10 +416,10 @@ void Interpreter::circle_polar(const Words& w, std::vector<Event>& events) {
     const double turns = std::abs(*w.ipa) / 360.0;
     rotation *= std::max(1, static_cast<int>(std::ceil(turns - 1e-9)));
     if ((*w.ipa > 0) != (arc_direction_ > 0))
-      fail(Code::unexpected_word, w.first_word, "IPA's sign and DR disagree");
+      fail(Code::E3307, w.first_word, "IPA's sign and DR disagree");
   }
   set_feed_and_compensation(w, events);
-  if (feed_ <= 0) fail(Code::missing_feed, block_.keyword_begin, "an arc before any feed rate F");
+  if (feed_ <= 0) fail(Code::E3325, block_.keyword_begin, "an arc before any feed rate F");
   events.emplace_back(program::ArcFeed{position_, end,
                                        Eigen::Vector3d(pole_->x(), pole_->y(), position_.z()),
                                        program::Plane::xy, rotation, source()});

@@ -55,7 +55,7 @@ void Interpreter::plane_block(std::vector<program::Event>& events) {
         program::frame_from_vectors(Eigen::Vector3d(get("BX", 1), get("BY", 0), get("BZ", 0)),
                                     Eigen::Vector3d(get("NX", 0), get("NY", 0), get("NZ", 1)));
     if (!r)
-      fail(Code::bad_number, block_.keyword_begin,
+      fail(Code::E3303, block_.keyword_begin,
            "PLANE VECTOR needs a normal vector and a base vector not parallel to it");
     rotation = *r;
   } else if (p.kind == "RELATIV") {
@@ -65,7 +65,7 @@ void Interpreter::plane_block(std::vector<program::Event>& events) {
   } else if (p.kind == "PROJECTED") {
     const auto r = projected_angles(get("PROPR", 0), get("PROMIN", 0), get("ROT", 0));
     if (!r)
-      fail(Code::tilted_plane, block_.keyword_begin,
+      fail(Code::E3320, block_.keyword_begin,
            "PLANE PROJECTED: PROPR and PROMIN of +-90 both give no plane");
     rotation = *r;
   } else if (p.kind == "POINTS") {
@@ -79,13 +79,13 @@ void Interpreter::plane_block(std::vector<program::Event>& events) {
       if (std::abs(std::remainder(angle, 360.0)) < 1e-9) continue;
       if (letter != "A" && letter != "B" && letter != "C") continue;
       if (++turned > 1)
-        fail(Code::tilted_plane, block_.keyword_begin,
+        fail(Code::E3320, block_.keyword_begin,
              "PLANE AXIAL with more than one rotary axis turned: the plane depends on the "
              "machine's kinematics (the order of its axes); write the tilt as PLANE SPATIAL");
       rotation = program::turn_about(letter[0] - 'A', angle);
     }
   } else {
-    fail(Code::tilted_plane, block_.keyword_begin,
+    fail(Code::E3320, block_.keyword_begin,
          "PLANE " + p.kind +
              " is not read: write the tilt as PLANE SPATIAL, PROJECTED, EULER, VECTOR, POINTS "
              "or AXIAL");
@@ -111,7 +111,7 @@ Eigen::Matrix3d Interpreter::points_plane(const WorkingPlane& p) const {
   }
   const auto r = plane_through(points[0], points[1], points[2]);
   if (!r)
-    fail(Code::tilted_plane, block_.keyword_begin,
+    fail(Code::E3320, block_.keyword_begin,
          "PLANE POINTS: the three points lie on one line (or P1 to P3 are missing)");
   return *r;
 }

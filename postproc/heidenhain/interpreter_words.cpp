@@ -71,18 +71,18 @@ std::size_t Interpreter::parameter_index(const Value& v, std::uint32_t at) const
   std::size_t index = n;
   switch (v.bank) {
     case Value::Bank::q:
-      if (n >= kQ) fail(Code::bad_parameter, at, "Q parameters run from Q0 to Q1999");
+      if (n >= kQ) fail(Code::E3309, at, "Q parameters run from Q0 to Q1999");
       break;
     case Value::Bank::ql:
-      if (n >= kQL) fail(Code::bad_parameter, at, "QL parameters run from QL0 to QL499");
+      if (n >= kQL) fail(Code::E3309, at, "QL parameters run from QL0 to QL499");
       index = kQ + n;
       break;
     case Value::Bank::qr:
-      if (n >= kQR) fail(Code::bad_parameter, at, "QR parameters run from QR0 to QR499");
+      if (n >= kQR) fail(Code::E3309, at, "QR parameters run from QR0 to QR499");
       index = kQ + kQL + n;
       break;
     case Value::Bank::literal:
-      fail(Code::bad_parameter, at, "a Q parameter is expected here");
+      fail(Code::E3309, at, "a Q parameter is expected here");
   }
   return index;
 }
@@ -114,15 +114,14 @@ struct Interpreter::WordReader {
     return std::string(in.block_.text.substr(word.begin, word.end - word.begin));
   }
   [[noreturn]] void refuse(const Word& word) const {
-    in.fail(Code::unexpected_word, word.begin,
+    in.fail(Code::E3307, word.begin,
             "'" + text(word) + "' is no word of " + std::string(in.block_.keyword) + " blocks");
   }
   void expect(const Word& word, std::uint32_t family) const {
     if (!(allowed & family)) refuse(word);
   }
   double value(const Word& word) const {
-    if (!word.has_value)
-      in.fail(Code::bad_number, word.begin, "'" + text(word) + "' needs a value");
+    if (!word.has_value) in.fail(Code::E3303, word.begin, "'" + text(word) + "' needs a value");
     return in.value(word.value, word.begin);
   }
   bool take(const Word& word, std::uint32_t family, std::optional<double>& into) const {
@@ -259,7 +258,7 @@ struct Interpreter::WordReader {
         return true;
       case name("FU"):
       case name("FZ"):
-        in.fail(Code::unsupported_function, word.begin,
+        in.fail(Code::E3319, word.begin,
                 "feed per revolution or per tooth (FU, FZ) is not read: write F in mm/min");
       default:
         return false;
@@ -273,7 +272,7 @@ struct Interpreter::WordReader {
         expect(word, a_m);
         const double m = value(word);
         if (m < 0 || m != std::floor(m) || m > 999)
-          in.fail(Code::bad_number, word.begin, "M takes a whole number 0-999");
+          in.fail(Code::E3303, word.begin, "M takes a whole number 0-999");
         const auto number = static_cast<long>(m);
         w.m.push_back({number, m_action(number), word.begin});
         return true;

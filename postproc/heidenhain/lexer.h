@@ -28,7 +28,7 @@ inline constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e
                                     1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
                                     1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
 
-// Largest magnitude of a literal (Code::bad_number beyond), as the G-code
+// Largest magnitude of a literal (Code::E3303 beyond), as the G-code
 // reader's: far past any machine, keeps every sum and square finite.
 inline constexpr double kMaxMagnitude = 1e12;
 
@@ -75,7 +75,7 @@ class Lexer {
     if (digits + fraction > 19 || fraction > 22) return read_long_number(k, out);
     i_ = k;
     out = static_cast<double>(mantissa) / kPow10[fraction];
-    if (out > kMaxMagnitude) fail(Code::bad_number, i_ - 1, "number too large");
+    if (out > kMaxMagnitude) fail(Code::E3303, i_ - 1, "number too large");
     return true;
   }
 

@@ -95,9 +95,6 @@ TEST(Error, FormatsDiagnostics) {
 TEST(CodeTable, EveryRowIsRaisedOrSaysItIsNoLonger) {
   const fs::path root(VCPOST_SOURCE_DIR);
   const std::regex token(R"(\bCode::([EW][0-9]{4})\b)");
-  // The Klartext reader's enumeration of numbered codes (`bad_units = 3306,`).
-  const std::regex enumeration(R"(enum\s+class\s+\w+[^{;]*\{([^}]*)\})");
-  const std::regex numbered(R"(\b[a-z_0-9]+\s*=\s*([0-9]{4})\s*[,/\n])");
   std::set<std::string> raised;
   int files = 0;
   for (const char* folder : {"core", "geometry", "machines", "postproc", "api"}) {
@@ -108,13 +105,6 @@ TEST(CodeTable, EveryRowIsRaisedOrSaysItIsNoLonger) {
       const std::string text = read(entry.path());
       for (std::sregex_iterator it(text.begin(), text.end(), token), end; it != end; ++it)
         raised.insert((*it)[1].str());
-      for (std::sregex_iterator e(text.begin(), text.end(), enumeration), end; e != end; ++e) {
-        const std::string body = (*e)[1].str();
-        for (std::sregex_iterator it(body.begin(), body.end(), numbered); it != end; ++it) {
-          raised.insert("E" + (*it)[1].str());
-          raised.insert("W" + (*it)[1].str());
-        }
-      }
     }
   }
   EXPECT_GT(files, 50);

@@ -172,15 +172,15 @@ TEST(KlartextApproach, RefusedWhereTheControlRefuses) {
   // DEP with nothing to leave.
   EXPECT_EQ(error_of("BEGIN PGM T MM\nL X+40 Y+10 F100\nAPPR LT X+20 Y+20 LEN15 RL\n"
                      "TOOL CALL 1 Z S1000\n"),
-            Code::approach_undefined);
+            Code::E3329);
   EXPECT_EQ(error_of("BEGIN PGM T MM\nL X+40 Y+10 F100\nAPPR CT X+20 Y+20 CCA90 R5\nL X+30\n"),
-            Code::approach_undefined);
+            Code::E3329);
   EXPECT_EQ(error_of("BEGIN PGM T MM\nL X+21 Y+22 F100\nAPPR LCT X+20 Y+20 R5 RL\nL X+30\n"),
-            Code::approach_undefined);
-  EXPECT_EQ(error_of("BEGIN PGM T MM\nDEP LT LEN5 F100\n"), Code::approach_undefined);
+            Code::E3329);
+  EXPECT_EQ(error_of("BEGIN PGM T MM\nDEP LT LEN5 F100\n"), Code::E3329);
   EXPECT_EQ(error_of("BEGIN PGM T MM\nL X+1 F100\nAPPR LT X+20 Y+20 LEN15 RL\n"),
-            Code::approach_undefined);  // the program ends
-  EXPECT_EQ(error_of("BEGIN PGM T MM\nL X+1 F100\nAPPR XY X+20\nL X+2\n"), Code::unexpected_word);
+            Code::E3329);  // the program ends
+  EXPECT_EQ(error_of("BEGIN PGM T MM\nL X+1 F100\nAPPR XY X+20\nL X+2\n"), Code::E3307);
 }
 
 }  // namespace

@@ -90,7 +90,7 @@ TEST(KlartextBoreMilling, UnknownToolGoesAlongTheAxis) {
   ASSERT_EQ(m.size(), 5u);
   expect_point(end_of(m[2]), 10, 20, -5);
   ASSERT_EQ(interpreter.warnings().size(), 1u);
-  EXPECT_EQ(interpreter.warnings()[0].code, Code::helix_unknown);
+  EXPECT_EQ(interpreter.warnings()[0].code, Code::W3345);
   // A radius given by the caller (CAM comment, --tool: the post gives it
   // before each block, as a TOOL CALL takes it back) makes the helix.
   const std::string no_call = hole("2", "", "M3");
@@ -98,13 +98,13 @@ TEST(KlartextBoreMilling, UnknownToolGoesAlongTheAxis) {
   given.set_tool_radius(3);
   EXPECT_EQ(motions(run("", &given)).size(), 10u);
   EXPECT_EQ(error_of(hole("2", "TOOL DEF 1 L+0 R+9\nTOOL CALL 1 Z S1000\n", "M3")),
-            Code::cycle_value);  // wider than the hole
+            Code::E3323);  // wider than the hole
 }
 
 TEST(KlartextFreeContour, IsRefusedWithItsOwnCode) {
-  EXPECT_EQ(error_of("BEGIN PGM T MM\nL X+0 Y+0 F100\nFPOL X+20 Y+30\n"), Code::fk_contour);
-  EXPECT_EQ(error_of("BEGIN PGM T MM\nL X+0 Y+0 F100\nFL LEN 10 AN+15\n"), Code::fk_contour);
-  EXPECT_EQ(error_of("BEGIN PGM T MM\nL X+0 Y+0 F100\nFCT DR- R15\n"), Code::fk_contour);
+  EXPECT_EQ(error_of("BEGIN PGM T MM\nL X+0 Y+0 F100\nFPOL X+20 Y+30\n"), Code::E3330);
+  EXPECT_EQ(error_of("BEGIN PGM T MM\nL X+0 Y+0 F100\nFL LEN 10 AN+15\n"), Code::E3330);
+  EXPECT_EQ(error_of("BEGIN PGM T MM\nL X+0 Y+0 F100\nFCT DR- R15\n"), Code::E3330);
 }
 
 }  // namespace

@@ -82,18 +82,18 @@ TEST(KlartextCallProgram, ReadsTheCalledProgramInline) {
 
 TEST(KlartextCallProgram, RefusedWithTheCalledFileNamed) {
   const std::string head = "BEGIN PGM MAIN MM\nL X+0 Y+0 Z+0 F100\n";
-  EXPECT_EQ(error_with_calls(head + "CALL PGM NONE\n")->code, Code::program_not_found);
-  EXPECT_EQ(error_with_calls(head + "CALL SELECTED\n")->code, Code::program_not_found);
-  EXPECT_EQ(error_with_calls(head + "CALL PGM SELF\n")->code, Code::call_depth);
-  EXPECT_EQ(error_with_calls(head + "CALL PGM ENDS\n")->code, Code::unsupported_function);
+  EXPECT_EQ(error_with_calls(head + "CALL PGM NONE\n")->code, Code::E3331);
+  EXPECT_EQ(error_with_calls(head + "CALL SELECTED\n")->code, Code::E3331);
+  EXPECT_EQ(error_with_calls(head + "CALL PGM SELF\n")->code, Code::E3316);
+  EXPECT_EQ(error_with_calls(head + "CALL PGM ENDS\n")->code, Code::E3319);
   const auto bad = error_with_calls(head + "CALL PGM BAD\n");
   ASSERT_TRUE(bad);
-  EXPECT_EQ(bad->code, Code::no_pole);
+  EXPECT_EQ(bad->code, Code::E3312);
   EXPECT_EQ(bad->file, "BAD");
   EXPECT_EQ(bad->line, 3u);
   EXPECT_EQ(format(*bad, "main.h").rfind("BAD:3:1: error[E3312]", 0), 0u);
   EXPECT_FALSE(error_with_calls(head + "CALL PGM TOOL\n"));  // reading: a TOOL CALL is fine
-  EXPECT_EQ(error_with_calls(head + "CALL PGM TOOL\n", true)->code, Code::called_tool_call);
+  EXPECT_EQ(error_with_calls(head + "CALL PGM TOOL\n", true)->code, Code::E3332);
   const std::string text = head + "CALL PGM SUB1\n";  // the interpreter reads it in place
   Interpreter alone(text);                            // no loader: refused, not skipped
   EXPECT_THROW(testing::run("", &alone), KlartextError);

@@ -59,18 +59,18 @@ TEST(KlartextFormula, ValuesAsTheControlComputesThem) {
 }
 
 TEST(KlartextFormula, RefusesWhatTheControlRefuses) {
-  EXPECT_EQ(error_of("BEGIN PGM T MM\nFN 0: Q2 = +4\nQ1 = 1 / ( Q2 - 4 )\n"), Code::math_domain);
-  EXPECT_EQ(error_of("BEGIN PGM T MM\nQ1 = SQRT -1\n"), Code::math_domain);
-  EXPECT_EQ(error_of("BEGIN PGM T MM\nQ1 = LN 0\n"), Code::math_domain);
-  EXPECT_EQ(error_of("BEGIN PGM T MM\nQ1 = ASIN 2\n"), Code::math_domain);
-  EXPECT_EQ(error_of("BEGIN PGM T MM\nQ1 = 2 +\n"), Code::bad_formula);
-  EXPECT_EQ(error_of("BEGIN PGM T MM\nQ1 = FOO 2\n"), Code::bad_formula);
-  EXPECT_EQ(error_of("BEGIN PGM T MM\nQ1 = 2 )\n"), Code::bad_formula);
-  EXPECT_EQ(error_of("BEGIN PGM T MM\nQ1 = 2 3\n"), Code::bad_formula);
-  EXPECT_EQ(error_of("BEGIN PGM T MM\nQ1 = " + std::string(100, '(') + "1\n"), Code::bad_formula);
-  EXPECT_EQ(error_of("BEGIN PGM T MM\nQ2000 = 1\n"), Code::bad_parameter);
-  EXPECT_EQ(error_of("BEGIN PGM T MM\nQ1 = QL500\n"), Code::bad_parameter);
-  EXPECT_EQ(error_of("BEGIN PGM T MM\nQS1 = \"TEXT\"\n"), Code::unsupported_function);
+  EXPECT_EQ(error_of("BEGIN PGM T MM\nFN 0: Q2 = +4\nQ1 = 1 / ( Q2 - 4 )\n"), Code::E3318);
+  EXPECT_EQ(error_of("BEGIN PGM T MM\nQ1 = SQRT -1\n"), Code::E3318);
+  EXPECT_EQ(error_of("BEGIN PGM T MM\nQ1 = LN 0\n"), Code::E3318);
+  EXPECT_EQ(error_of("BEGIN PGM T MM\nQ1 = ASIN 2\n"), Code::E3318);
+  EXPECT_EQ(error_of("BEGIN PGM T MM\nQ1 = 2 +\n"), Code::E3328);
+  EXPECT_EQ(error_of("BEGIN PGM T MM\nQ1 = FOO 2\n"), Code::E3328);
+  EXPECT_EQ(error_of("BEGIN PGM T MM\nQ1 = 2 )\n"), Code::E3328);
+  EXPECT_EQ(error_of("BEGIN PGM T MM\nQ1 = 2 3\n"), Code::E3328);
+  EXPECT_EQ(error_of("BEGIN PGM T MM\nQ1 = " + std::string(100, '(') + "1\n"), Code::E3328);
+  EXPECT_EQ(error_of("BEGIN PGM T MM\nQ2000 = 1\n"), Code::E3309);
+  EXPECT_EQ(error_of("BEGIN PGM T MM\nQ1 = QL500\n"), Code::E3309);
+  EXPECT_EQ(error_of("BEGIN PGM T MM\nQS1 = \"TEXT\"\n"), Code::E3319);
 }
 
 }  // namespace

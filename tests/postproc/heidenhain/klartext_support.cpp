@@ -51,7 +51,7 @@ Code error_of(std::string_view text) {
   } catch (const KlartextError& e) {
     return e.diagnostic().code;
   }
-  return Code::missing_end;  // no error
+  return Code::W3343;  // no error
 }
 
 }  // namespace vcpost::heidenhain::testing

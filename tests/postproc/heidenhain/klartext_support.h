@@ -28,7 +28,7 @@ std::vector<Eigen::Vector3d> program_ends(const std::vector<program::Event>& eve
 
 void expect_point(const Eigen::Vector3d& p, double x, double y, double z, double tol = 1e-9);
 
-// The code of the error `text` stops with; Code::missing_end when none
+// The code of the error `text` stops with; Code::W3343 when none
 // (loops are bounded at 1000 jumps).
 Code error_of(std::string_view text);
 

@@ -58,7 +58,7 @@ TEST(KlartextPlaneForms, ProjectedBothAnglesAndRotation) {
   // with x = 0 is (0, 1, 1)/sqrt2.
   EXPECT_NEAR(want.col(2).dot(Eigen::Vector3d(0, c, c)), 0, 1e-12);
   EXPECT_EQ(error_of("BEGIN PGM T MM\nPLANE PROJECTED PROPR+90 PROMIN+90 ROT+0 STAY\n"),
-            Code::tilted_plane);
+            Code::E3320);
 }
 
 // POINTS (0,0,0), (10,0,0), (0,10,10): x = (1,0,0), z from (10,0,0) x
@@ -75,8 +75,8 @@ TEST(KlartextPlaneForms, PointsAndAxial) {
   expect_matrix(frame_of("PLANE AXIAL A-90 C+0 STAY"), program::spatial_angles(-90, 0, 0));
   EXPECT_EQ(error_of("BEGIN PGM T MM\nPLANE POINTS P1X+0 P1Y+0 P1Z+0 P2X+10 P2Y+0 P2Z+0 "
                      "P3X+20 P3Y+0 P3Z+0 STAY\n"),
-            Code::tilted_plane);  // on one line
-  EXPECT_EQ(error_of("BEGIN PGM T MM\nPLANE AXIAL A+10 C+20 STAY\n"), Code::tilted_plane);
+            Code::E3320);  // on one line
+  EXPECT_EQ(error_of("BEGIN PGM T MM\nPLANE AXIAL A+10 C+20 STAY\n"), Code::E3320);
 }
 
 }  // namespace

@@ -7,6 +7,35 @@
 
 namespace vcpost::post {
 
+namespace {
+
+// The normal of a sample `t` along a move between its ends' normals; one
+// end without a normal (a pass's last move): the other end's.
+pipeline::PathNormal normal_between(const pipeline::PathNormal& a, const pipeline::PathNormal& b,
+                                    double t) {
+  if (a.source == pipeline::NormalSource::kept || b.source == pipeline::NormalSource::kept) {
+    const pipeline::PathNormal& found = a.source == pipeline::NormalSource::kept ? b : a;
+    if (found.source == pipeline::NormalSource::kept) return {};
+    return {found.normal, pipeline::NormalSource::one_sided};
+  }
+  const Eigen::Vector3d m = (1 - t) * a.normal + t * b.normal;
+  if (m.norm() < 0.5) return {};
+  return {m.normalized(), std::max(a.source, b.source)};  // the weaker of the two
+}
+
+// The earlier pass of a sample `t` along a move: between its ends' (or the
+// one end's that has one; ae is measured across the feed, so a point a
+// little along it still serves).
+pipeline::EarlierPass earlier_between(const pipeline::EarlierPass& a,
+                                      const pipeline::EarlierPass& b, double t) {
+  if (!a.found || !b.found) return a.found ? a : b;
+  const Eigen::Vector3d m = (1 - t) * a.normal + t * b.normal;
+  if (m.norm() < 0.5) return {};
+  return {(1 - t) * a.point + t * b.point, m.normalized(), true};
+}
+
+}  // namespace
+
 PathNormalsAhead normals_from_path(std::string_view text, const std::string& file_name,
                                    ProgramKind kind, const gcode::Dialect& dialect,
                                    const machines::MachineProfile& profile,
@@ -81,42 +110,15 @@ PathNormalsAhead normals_from_path(std::string_view text, const std::string& fil
                          std::vector<pipeline::EarlierPass>(places.size()), bounds};
   std::vector<pipeline::PathNormal>& normals = ahead.normals;
   for (std::size_t i = 0; i < places.size(); ++i) {
-    // The earlier pass of a sample inside a move: between its ends' (or
-    // the one end's that has one; ae is measured across the feed, so a
-    // point a little along it still serves).
-    const Place& p = places[i];
-    if (p.fraction >= 1 || p.end + 1 >= earlier_at_ends.size()) {
-      ahead.earlier[i] = earlier_at_ends[p.end];
-      continue;
-    }
-    const pipeline::EarlierPass& a = earlier_at_ends[p.end];
-    const pipeline::EarlierPass& b = earlier_at_ends[p.end + 1];
-    if (!a.found || !b.found) {
-      ahead.earlier[i] = a.found ? a : b;
-      continue;
-    }
-    const Eigen::Vector3d m = (1 - p.fraction) * a.normal + p.fraction * b.normal;
-    if (m.norm() < 0.5) continue;
-    ahead.earlier[i] = {(1 - p.fraction) * a.point + p.fraction * b.point, m.normalized(), true};
-  }
-  for (std::size_t i = 0; i < places.size(); ++i) {
     const Place& p = places[i];
     if (p.fraction >= 1 || p.end + 1 >= at_ends.size()) {
       normals[i] = at_ends[p.end];
+      ahead.earlier[i] = earlier_at_ends[p.end];
       continue;
     }
-    const pipeline::PathNormal& a = at_ends[p.end];
-    const pipeline::PathNormal& b = at_ends[p.end + 1];
-    // One end without a normal (a pass's last move): the other end's.
-    if (a.source == pipeline::NormalSource::kept || b.source == pipeline::NormalSource::kept) {
-      const pipeline::PathNormal& found = a.source == pipeline::NormalSource::kept ? b : a;
-      if (found.source != pipeline::NormalSource::kept)
-        normals[i] = {found.normal, pipeline::NormalSource::one_sided};
-      continue;
-    }
-    const Eigen::Vector3d m = (1 - p.fraction) * a.normal + p.fraction * b.normal;
-    if (m.norm() < 0.5) continue;
-    normals[i] = {m.normalized(), std::max(a.source, b.source)};  // the weaker of the two
+    normals[i] = normal_between(at_ends[p.end], at_ends[p.end + 1], p.fraction);
+    ahead.earlier[i] =
+        earlier_between(earlier_at_ends[p.end], earlier_at_ends[p.end + 1], p.fraction);
   }
   return ahead;
 }

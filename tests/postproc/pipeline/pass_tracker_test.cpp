@@ -348,14 +348,21 @@ void expect_exact_raster_ae(const std::string& part_name, const samplegen::PathS
   EXPECT_GT(checked, 500) << part_name;
 }
 
+// A raster of the part's own ball at ae `stepover` (mm), points at most
+// 0.5 mm apart and as near the ball-centre path as the samples'.
+samplegen::PathSpec ball_raster(const samplegen::Part& part, double stepover) {
+  samplegen::PathSpec spec;
+  spec.tool_radius = part.tool_diameter / 2;
+  spec.stepover = stepover;
+  spec.step = 0.5;
+  spec.chord_tolerance = samplegen::kSampleChordTolerance;
+  return spec;
+}
+
 TEST(PassTrackerGeometry, WavyRasterMeasuresTheExactSpacingOfTheContactTracks) {
   // The wavy sample's raster along x at ae 0.5 mm over y 10..13 (D 10).
   const auto part = samplegen::make_part("wavy");
-  samplegen::PathSpec spec;
-  spec.tool_radius = part->tool_diameter / 2;
-  spec.stepover = 0.5;
-  spec.step = 0.5;
-  spec.chord_tolerance = samplegen::kSampleChordTolerance;
+  samplegen::PathSpec spec = ball_raster(*part, 0.5);
   spec.window = Eigen::AlignedBox2d(Eigen::Vector2d(10, 10), Eigen::Vector2d(110, 13));
   expect_exact_raster_ae("wavy", spec, 5e-4);
 }
@@ -365,12 +372,8 @@ TEST(PassTrackerGeometry, CylinderRasterAt45DegreesMeasuresTheExactSpacingOfTheC
   // the contact tracks lie at 43.3 deg to the axis in xy (their y is the
   // centre's times 100/106), 1.7 deg off the feed.
   const auto part = samplegen::make_part("cylinder");
-  samplegen::PathSpec spec;
-  spec.tool_radius = part->tool_diameter / 2;
+  samplegen::PathSpec spec = ball_raster(*part, 0.2);
   spec.angle_deg = 45;
-  spec.stepover = 0.2;
-  spec.step = 0.5;
-  spec.chord_tolerance = samplegen::kSampleChordTolerance;
   spec.window = part->raster_window;
   expect_exact_raster_ae("cylinder", spec, 5e-4);
 }

@@ -2,9 +2,9 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_invoke.h>
 
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "postproc/pipeline/pass_tracker.h"
@@ -63,6 +63,11 @@ constexpr double same_point = 1e-9;
 // the two passes within 30 deg of each other: beyond, the passes are too
 // far apart for the surface between them to be one smooth piece.
 constexpr double one_sided_max_turn_cos = 0.866;
+// A pass end counts as abeam of a point within this fraction of the search
+// radius along the feed (the pass tracker's rule).
+constexpr double abeam_along = 0.1;
+// A pass runs along the feed within 45 deg (the pass tracker's rule).
+constexpr double parallel_cos = 0.7071;
 
 bool smooth(const Vector3d& in, const Vector3d& out) {
   const double a = in.norm(), b = out.norm();
@@ -161,21 +166,19 @@ struct Neighbour {
   bool found = false;
 };
 
-// The nearest earlier pass at every point (or, backward, the nearest later one).
-std::vector<Neighbour> nearest_passes(std::span<const Vector3d> p,
-                                      std::span<const std::uint8_t> starts,
-                                      std::span<const Tangent> tangents, bool backward,
-                                      const PathNormalSettings& settings) {
+// The nearest earlier pass at every point.
+std::vector<Neighbour> earlier_neighbours(std::span<const Vector3d> p,
+                                          std::span<const std::uint8_t> starts,
+                                          std::span<const Tangent> tangents,
+                                          const PathNormalSettings& settings) {
   const std::size_t n = p.size();
   std::vector<Neighbour> out(n);
   PassTracker tracker(settings.search_radius, settings.min_path_gap, PassTracker::kPostMemory);
   std::vector<std::size_t> index_of;  // the point of each tracker step
   index_of.reserve(n);
   bool open = false;
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::size_t i = backward ? n - 1 - k : k;
-    const bool starts_pass = backward ? (i + 1 == n || starts[i + 1] != 0) : starts[i] != 0;
-    if (starts_pass && open) tracker.break_pass();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (starts[i] != 0 && open) tracker.break_pass();
     const Vector3d& t = tangents[i].along;
     if (t.isZero()) {  // a lone point: no feed to look across
       if (open) tracker.break_pass();
@@ -183,8 +186,7 @@ std::vector<Neighbour> nearest_passes(std::span<const Vector3d> p,
       continue;
     }
     open = true;
-    const Vector3d feed = backward ? Vector3d(-t) : t;
-    const auto found = tracker.step(p[i], across_feed(feed), feed);
+    const auto found = tracker.step(p[i], across_feed(t), t);
     index_of.push_back(i);
     if (!found) continue;
     Neighbour& nb = out[i];
@@ -193,6 +195,73 @@ std::vector<Neighbour> nearest_passes(std::span<const Vector3d> p,
     nb.to = index_of[found->entry];
     nb.from = found->fraction < 1 && found->entry > 0 ? index_of[found->entry - 1] : nb.to;
     nb.fraction = found->fraction;
+  }
+  return out;
+}
+
+// The nearest later pass at every point, from the earlier passes: a point
+// whose earlier pass runs through point j lies on a later pass beside j
+// (the nearest such point names it). A point none names takes the later
+// pass named at the nearest point of its own pass that has one, within
+// `reach` along the pass (a later pass sampled more sparsely names fewer
+// points). That is a point of the later pass near the plane across the
+// feed; crossing() follows the pass to the plane. As for the tracker, only
+// a pass within 45 deg of the point's feed counts (not at a corner, whose
+// feed turns onto a link).
+std::vector<Neighbour> later_neighbours(std::span<const Neighbour> earlier,
+                                        std::span<const Vector3d> p,
+                                        std::span<const std::uint8_t> starts,
+                                        std::span<const Tangent> tangents, double reach) {
+  constexpr std::size_t unnamed = std::numeric_limits<std::size_t>::max();
+  constexpr double far = std::numeric_limits<double>::infinity();
+  const std::size_t n = p.size();
+  std::vector<std::size_t> named(n, unnamed);  // the later point naming point j
+  std::vector<double> across(n, far);          // and how far across it lies
+  for (std::size_t i = 0; i < n; ++i) {
+    const Neighbour& nb = earlier[i];
+    if (!nb.found) continue;
+    const double d = (p[i] - nb.point).norm();
+    for (const std::size_t j : {nb.from, nb.to}) {
+      if (d < across[j]) {
+        across[j] = d;
+        named[j] = i;
+      }
+    }
+  }
+  // The nearest point of the same pass that is named, either way along it.
+  std::vector<std::size_t> source(n, unnamed);
+  std::vector<double> along(n, far);
+  std::size_t last = unnamed;
+  double since = 0;
+  for (std::size_t j = 0; j < n; ++j) {
+    since = starts[j] != 0 || j == 0 ? 0 : since + (p[j] - p[j - 1]).norm();
+    if (starts[j] != 0) last = unnamed;
+    if (named[j] != unnamed) {
+      last = j;
+      since = 0;
+    }
+    if (last != unnamed && since <= reach) {
+      source[j] = last;
+      along[j] = since;
+    }
+  }
+  last = unnamed;
+  for (std::size_t k = n; k-- > 0;) {
+    const bool pass_ends = k + 1 == n || starts[k + 1] != 0;
+    since = pass_ends ? 0 : since + (p[k + 1] - p[k]).norm();
+    if (pass_ends) last = unnamed;
+    if (named[k] != unnamed) {
+      last = k;
+      since = 0;
+    }
+    if (last != unnamed && since < along[k]) source[k] = last;
+  }
+  std::vector<Neighbour> out(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    if (source[j] == unnamed) continue;
+    const std::size_t i = named[source[j]];
+    if (std::abs(tangents[i].along.dot(tangents[j].along)) < parallel_cos) continue;
+    out[j] = {p[i], i, i, 1, true};
   }
   return out;
 }
@@ -296,159 +365,206 @@ std::optional<Vector3d> two_sided(const Vector3d& t, const Vector3d& d1, const V
   return oriented(n.normalized(), t);
 }
 
+// One path's normals, step by step (estimate_path_normals).
+class Estimate {
+ public:
+  Estimate(std::span<const Vector3d> points, std::span<const std::uint8_t> starts,
+           const PathNormalSettings& settings)
+      : p_(points), starts_(starts), settings_(settings), tangents_(points.size()) {
+    tbb::parallel_for(blocks(points.size()), [&](const auto& range) {
+      for (std::size_t i = range.begin(); i != range.end(); ++i)
+        tangents_[i] = tangent_at(p_, starts_, i);
+    });
+    earlier_ = earlier_neighbours(p_, starts_, tangents_, settings_);
+    later_ = later_neighbours(earlier_, p_, starts_, tangents_, settings_.search_radius);
+  }
+
+  // The earlier passes as the tracker found them, for the width of cut:
+  // it is measured as the post's own tracker measures it (a pass end abeam
+  // counts), while a normal needs the pass where it crosses the plane.
+  // Before find_normals().
+  void keep_tracked() { tracked_ = earlier_; }
+
+  void find_normals() {
+    to_crossings();
+    out_.assign(p_.size(), PathNormal{});
+    tbb::parallel_for(blocks(p_.size()), [&](const auto& range) {
+      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+        if (!earlier_[i].found || !later_[i].found) continue;
+        const auto normal = two_sided(tangents_[i].along, on_surface(earlier_[i]) - p_[i],
+                                      on_surface(later_[i]) - p_[i]);
+        if (normal) out_[i] = {*normal, NormalSource::two_sided};
+      }
+    });
+    fill_kept([&](std::size_t i) { return one_sided_normal(i); });
+    fill_kept([&](std::size_t i) {
+      auto m = carried_normal(i, false);
+      return m ? m : carried_normal(i, true);
+    });
+  }
+  std::vector<PathNormal> take_normals() { return std::move(out_); }
+
+  // After find_normals(), with keep_tracked(): the earlier neighbour on the path
+  // surface, with the normal between those of its segment's ends (either
+  // end's where the other has none, the point's own where neither has: a
+  // ring closing on its own start, whose first points have no pass before
+  // them, lies within ae of it).
+  std::vector<EarlierPass> earlier_passes() const {
+    std::vector<EarlierPass> passes(p_.size());
+    tbb::parallel_for(blocks(p_.size()), [&](const auto& range) {
+      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+        const Neighbour& nb = tracked_[i];
+        if (!nb.found) continue;
+        const PathNormal& to = out_[nb.to];
+        const PathNormal& from = out_[nb.from];
+        const bool has_to = to.source != NormalSource::kept;
+        const bool has_from = from.source != NormalSource::kept;
+        if (!has_to && !has_from && out_[i].source == NormalSource::kept) continue;
+        const Vector3d m =
+            !has_to && !has_from ? out_[i].normal
+            : !has_from          ? to.normal
+            : !has_to            ? from.normal
+                      : Vector3d(nb.fraction * to.normal + (1 - nb.fraction) * from.normal);
+        if (m.norm() < 0.5) continue;
+        passes[i] = {on_surface(nb), m.normalized(), true};
+      }
+    });
+    return passes;
+  }
+
+ private:
+  static tbb::blocked_range<std::size_t> blocks(std::size_t n) {
+    return tbb::blocked_range<std::size_t>(0, n, 4096);
+  }
+
+  Vector3d on_surface(const Neighbour& nb) const {
+    return pipeline::on_surface(nb, p_, starts_, tangents_);
+  }
+
+  // Each neighbour moved to where its pass crosses the plane across the feed.
+  void to_crossings() {
+    tbb::parallel_for(blocks(p_.size()), [&](const auto& range) {
+      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+        const Vector3d& t = tangents_[i].along;
+        for (Neighbour* nb : {&earlier_[i], &later_[i]}) {
+          if (!nb->found) continue;
+          const auto abeam = crossing(*nb, p_[i], t, p_, starts_);
+          if (abeam) {
+            *nb = *abeam;
+          } else if (const double along = std::abs((nb->point - p_[i]).dot(t));
+                     along > across(nb->point - p_[i], t).norm() ||
+                     along > abeam_along * settings_.search_radius) {
+            nb->found = false;  // a pass end farther along the feed than across, or than abeam
+          }
+        }
+      }
+    });
+  }
+
+  // The points without a normal yet given the one `find` returns (if any),
+  // in parallel: `find` reads only normals found two-sided, which this
+  // does not change.
+  template <class Find>
+  void fill_kept(Find&& find) {
+    std::vector<std::size_t> kept;
+    for (std::size_t i = 0; i < out_.size(); ++i) {
+      if (out_[i].source == NormalSource::kept) kept.push_back(i);
+    }
+    std::vector<std::optional<Vector3d>> found(kept.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kept.size(), 256), [&](const auto& range) {
+      for (std::size_t k = range.begin(); k != range.end(); ++k) found[k] = find(kept[k]);
+    });
+    for (std::size_t k = 0; k < kept.size(); ++k) {
+      if (found[k]) out_[kept[k]] = {*found[k], NormalSource::one_sided};
+    }
+  }
+
+  // The normal at a neighbour's point between those of its segment's ends,
+  // both found two-sided.
+  std::optional<Vector3d> normal_at(const Neighbour& nb) const {
+    const PathNormal& to = out_[nb.to];
+    const PathNormal& from = out_[nb.from];
+    if (to.source != NormalSource::two_sided || from.source != NormalSource::two_sided)
+      return std::nullopt;
+    const Vector3d m = nb.fraction * to.normal + (1 - nb.fraction) * from.normal;
+    if (m.norm() < 0.5) return std::nullopt;
+    return m.normalized();
+  }
+
+  // One side: the chord c to the neighbour Q across the feed is
+  // perpendicular to n_P + n_Q to second order (exactly on a circle), with
+  // n_Q interpolated between the normals of its segment's ends, both found
+  // two-sided: n_P = -(c.n_Q) c + sqrt(1 - (c.n_Q)^2) (t x c), turned to
+  // n_Q. The nearer neighbour's where both give one.
+  std::optional<Vector3d> one_sided_normal(std::size_t i) const {
+    const Vector3d& t = tangents_[i].along;
+    std::optional<Vector3d> best;
+    double best_h = 0;
+    for (const Neighbour* nb : {&earlier_[i], &later_[i]}) {
+      if (!nb->found) continue;
+      const Vector3d a = across(on_surface(*nb) - p_[i], t);
+      const double h = a.norm();
+      if (h < same_point || (best && h >= best_h)) continue;
+      const auto nq = normal_at(*nb);
+      if (!nq) continue;
+      const Vector3d c = a / h;
+      const double cn = -c.dot(*nq);
+      const Vector3d e2 = t.cross(c);
+      const double side = e2.dot(*nq) >= 0 ? 1 : -1;
+      const Vector3d np = cn * c + side * std::sqrt(std::max(0.0, 1 - cn * cn)) * e2;
+      if (np.dot(*nq) < one_sided_max_turn_cos) continue;
+      best = np.normalized();
+      best_h = h;
+    }
+    return best;
+  }
+
+  // A point no pass lies abeam of (a pass end, a zig-zag's turn onto its
+  // link at the edge of the window): the normals of the two points before
+  // it on its path (or after it), found from their neighbours, carried on
+  // to it along the path as the line through them (second order where the
+  // points are a sample step apart, as the normal turns smoothly).
+  std::optional<Vector3d> carried_normal(std::size_t i, bool ahead) const {
+    const std::size_t n = p_.size();
+    std::size_t j1 = i, j2 = i;
+    if (ahead) {
+      if (i + 2 >= n || starts_[i + 1] != 0 || starts_[i + 2] != 0) return std::nullopt;
+      j1 = i + 1;
+      j2 = i + 2;
+    } else {
+      if (i < 2 || starts_[i] != 0 || starts_[i - 1] != 0) return std::nullopt;
+      j1 = i - 1;
+      j2 = i - 2;
+    }
+    if (out_[j1].source != NormalSource::two_sided || out_[j2].source != NormalSource::two_sided)
+      return std::nullopt;
+    const double s1 = (p_[j1] - p_[i]).norm();
+    const double s12 = (p_[j2] - p_[j1]).norm();
+    if (s12 < same_point || s1 > 2 * s12 || out_[j1].normal.dot(out_[j2].normal) < smooth_cos)
+      return std::nullopt;
+    const Vector3d m = out_[j1].normal + (s1 / s12) * (out_[j1].normal - out_[j2].normal);
+    return m.normalized();
+  }
+
+  std::span<const Vector3d> p_;
+  std::span<const std::uint8_t> starts_;
+  const PathNormalSettings& settings_;
+  std::vector<Tangent> tangents_;
+  std::vector<Neighbour> earlier_, later_, tracked_;
+  std::vector<PathNormal> out_;
+};
+
 }  // namespace
 
 std::vector<PathNormal> estimate_path_normals(std::span<const Vector3d> points,
                                               std::span<const std::uint8_t> starts,
                                               const PathNormalSettings& settings,
                                               std::vector<EarlierPass>* earlier_passes) {
-  const std::size_t n = points.size();
-  std::vector<Tangent> tangents(n);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& range) {
-    for (std::size_t i = range.begin(); i != range.end(); ++i)
-      tangents[i] = tangent_at(points, starts, i);
-  });
-  std::vector<Neighbour> earlier, later;
-  tbb::parallel_invoke([&] { earlier = nearest_passes(points, starts, tangents, false, settings); },
-                       [&] { later = nearest_passes(points, starts, tangents, true, settings); });
-
-  // The earlier passes as the tracker found them, for the width of cut:
-  // it is measured as the post's own tracker measures it (a pass end abeam
-  // counts), while a normal needs the pass where it crosses the plane.
-  std::vector<Neighbour> tracked;
-  if (earlier_passes != nullptr) tracked = earlier;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& range) {
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      for (std::vector<Neighbour>* side : {&earlier, &later}) {
-        Neighbour& nb = (*side)[i];
-        if (!nb.found) continue;
-        const auto abeam = crossing(nb, points[i], tangents[i].along, points, starts);
-        if (abeam) {
-          nb = *abeam;
-        } else if (std::abs((nb.point - points[i]).dot(tangents[i].along)) >
-                   across(nb.point - points[i], tangents[i].along).norm()) {
-          nb.found = false;  // a pass end farther along the feed than across
-        }
-      }
-    }
-  });
-
-  std::vector<PathNormal> out(n);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& range) {
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      if (!earlier[i].found || !later[i].found) continue;
-      const auto normal =
-          two_sided(tangents[i].along, on_surface(earlier[i], points, starts, tangents) - points[i],
-                    on_surface(later[i], points, starts, tangents) - points[i]);
-      if (normal) out[i] = {*normal, NormalSource::two_sided};
-    }
-  });
-
-  // One side: the chord c to the neighbour Q across the feed is
-  // perpendicular to n_P + n_Q to second order (exactly on a circle), with
-  // n_Q interpolated between the normals of its segment's ends, both found
-  // two-sided: n_P = -(c.n_Q) c + sqrt(1 - (c.n_Q)^2) (t x c), turned to n_Q.
-  auto normal_at = [&](const Neighbour& nb) -> std::optional<Vector3d> {
-    const PathNormal& to = out[nb.to];
-    const PathNormal& from = out[nb.from];
-    if (to.source != NormalSource::two_sided || from.source != NormalSource::two_sided)
-      return std::nullopt;
-    const Vector3d m = nb.fraction * to.normal + (1 - nb.fraction) * from.normal;
-    if (m.norm() < 0.5) return std::nullopt;
-    return m.normalized();
-  };
-  std::vector<PathNormal> one_side(n);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& range) {
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      if (out[i].source == NormalSource::two_sided) continue;
-      const Vector3d& t = tangents[i].along;
-      std::optional<Vector3d> best;
-      double best_h = 0;
-      for (const Neighbour* nb : {&earlier[i], &later[i]}) {
-        if (!nb->found) continue;
-        const Vector3d a = across(on_surface(*nb, points, starts, tangents) - points[i], t);
-        const double h = a.norm();
-        if (h < same_point || (best && h >= best_h)) continue;
-        const auto nq = normal_at(*nb);
-        if (!nq) continue;
-        const Vector3d c = a / h;
-        const double cn = -c.dot(*nq);
-        const Vector3d e2 = t.cross(c);
-        const double side = e2.dot(*nq) >= 0 ? 1 : -1;
-        const Vector3d np = cn * c + side * std::sqrt(std::max(0.0, 1 - cn * cn)) * e2;
-        if (np.dot(*nq) < one_sided_max_turn_cos) continue;
-        best = np.normalized();
-        best_h = h;
-      }
-      if (best) one_side[i] = {*best, NormalSource::one_sided};
-    }
-  });
-  for (std::size_t i = 0; i < n; ++i) {
-    if (one_side[i].source == NormalSource::one_sided) out[i] = one_side[i];
-  }
-  // A point no pass lies abeam of (a pass end, a zig-zag's turn onto its
-  // link at the edge of the window): the normals of the two points before
-  // it on its path (or after it), found from their neighbours, carried on
-  // to it along the path as the line through them (second order where the
-  // points are a sample step apart, as the normal turns smoothly).
-  auto extrapolated = [&](std::size_t i, bool ahead) -> std::optional<Vector3d> {
-    std::size_t j1 = i, j2 = i;
-    if (ahead) {
-      if (i + 2 >= n || starts[i + 1] != 0 || starts[i + 2] != 0) return std::nullopt;
-      j1 = i + 1;
-      j2 = i + 2;
-    } else {
-      if (i < 2 || starts[i] != 0 || starts[i - 1] != 0) return std::nullopt;
-      j1 = i - 1;
-      j2 = i - 2;
-    }
-    if (out[j1].source != NormalSource::two_sided || out[j2].source != NormalSource::two_sided)
-      return std::nullopt;
-    const double s1 = (points[j1] - points[i]).norm();
-    const double s12 = (points[j2] - points[j1]).norm();
-    if (s12 < same_point || s1 > 2 * s12 || out[j1].normal.dot(out[j2].normal) < smooth_cos)
-      return std::nullopt;
-    const Vector3d m = out[j1].normal + (s1 / s12) * (out[j1].normal - out[j2].normal);
-    return m.normalized();
-  };
-  std::vector<PathNormal> carried(n);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& range) {
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      if (out[i].source != NormalSource::kept) continue;
-      auto m = extrapolated(i, false);
-      if (!m) m = extrapolated(i, true);
-      if (m) carried[i] = {*m, NormalSource::one_sided};
-    }
-  });
-  for (std::size_t i = 0; i < n; ++i) {
-    if (carried[i].source == NormalSource::one_sided) out[i] = carried[i];
-  }
-  if (earlier_passes != nullptr) {
-    // The earlier neighbour on the path surface, with the normal between
-    // those of its segment's ends (either end's where the other has none,
-    // the point's own where neither has: a ring closing on its own start,
-    // whose first points have no pass before them, lies within ae of it).
-    earlier_passes->assign(n, EarlierPass{});
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& range) {
-      for (std::size_t i = range.begin(); i != range.end(); ++i) {
-        const Neighbour& nb = tracked[i];
-        if (!nb.found) continue;
-        const PathNormal& to = out[nb.to];
-        const PathNormal& from = out[nb.from];
-        const bool has_to = to.source != NormalSource::kept;
-        const bool has_from = from.source != NormalSource::kept;
-        if (!has_to && !has_from && out[i].source == NormalSource::kept) continue;
-        const Vector3d m =
-            !has_to && !has_from ? out[i].normal
-            : !has_from          ? to.normal
-            : !has_to            ? from.normal
-                      : Vector3d(nb.fraction * to.normal + (1 - nb.fraction) * from.normal);
-        if (m.norm() < 0.5) continue;
-        (*earlier_passes)[i] = {on_surface(nb, points, starts, tangents), m.normalized(), true};
-      }
-    });
-  }
-  return out;
+  Estimate estimate(points, starts, settings);
+  if (earlier_passes != nullptr) estimate.keep_tracked();
+  estimate.find_normals();
+  if (earlier_passes != nullptr) *earlier_passes = estimate.earlier_passes();
+  return estimate.take_normals();
 }
 
 }  // namespace vcpost::pipeline

@@ -63,11 +63,12 @@ struct PathNormalSettings {
 
 // Normals at `points`, one path in path order (a tool's fixed point at
 // every sample; one tool: one offset surface). starts[i] != 0: a new pass
-// starts at point i (a rapid or lost contact came before). The three
-// steps (tangents along the passes, the nearest pass before and after each
-// point by two pass trackers, the normals) run on the calling thread's
-// task arena in parallel. REQUIRES: starts.size() == points.size(),
-// search_radius > 0.
+// starts at point i (a rapid or lost contact came before). The steps:
+// tangents along the passes, the nearest earlier pass of each point by a
+// pass tracker, the nearest later one from those (a point whose earlier
+// pass is near point j lies on a later pass beside j), the normals. All
+// but the tracker run on the calling thread's task arena in parallel.
+// REQUIRES: starts.size() == points.size(), search_radius > 0.
 // With `earlier` given: also the nearest earlier pass of every point
 // (the width of cut without a second tracker).
 std::vector<PathNormal> estimate_path_normals(std::span<const Eigen::Vector3d> points,

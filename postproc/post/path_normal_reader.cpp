@@ -91,20 +91,26 @@ PathNormalsAhead normals_from_path(std::string_view text, const std::string& fil
     }
   }
   std::vector<pipeline::PathNormal> at_ends;
-  at_ends.reserve(points.size());
   std::vector<pipeline::EarlierPass> earlier_at_ends, earlier_found;
-  earlier_at_ends.reserve(points.size());
   for (std::size_t r = 0; r < runs.size(); ++r) {
     const std::size_t begin = runs[r].begin;
     const std::size_t end = r + 1 < runs.size() ? runs[r + 1].begin : points.size();
     pipeline::PathNormalSettings path_settings;
     path_settings.search_radius = runs[r].diameter;
     path_settings.min_path_gap = 4 * runs[r].diameter;  // as the post's own pass tracker
-    const auto found = pipeline::estimate_path_normals(
-        std::span(points).subspan(begin, end - begin),
-        std::span(starts).subspan(begin, end - begin), path_settings, &earlier_found);
+    auto found = pipeline::estimate_path_normals(std::span(points).subspan(begin, end - begin),
+                                                 std::span(starts).subspan(begin, end - begin),
+                                                 path_settings, &earlier_found);
+    if (r == 0) {  // most programs: one section, no copy
+      at_ends = std::move(found);
+      earlier_at_ends = std::move(earlier_found);
+      continue;
+    }
     at_ends.insert(at_ends.end(), found.begin(), found.end());
     earlier_at_ends.insert(earlier_at_ends.end(), earlier_found.begin(), earlier_found.end());
+  }
+  if (places.size() == points.size()) {  // every sample a move's end
+    return {std::move(at_ends), std::move(earlier_at_ends), bounds};
   }
   PathNormalsAhead ahead{std::vector<pipeline::PathNormal>(places.size()),
                          std::vector<pipeline::EarlierPass>(places.size()), bounds};

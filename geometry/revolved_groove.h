@@ -193,52 +193,128 @@ class Groove {
 
   // The left (smallest b) or right boundary point of Q at level c.
   BoundaryPoint boundary(double c, bool left) const {
-    const double phi_end = left ? phi_left_ : phi_right_;
-    const Vector3d& foot = left ? foot_left_ : foot_right_;
-    const double c_foot = c_foot_[left ? 0 : 1];
-    if (c >= c_foot) {
-      const double t = (c - c_foot) / normal_.z();
-      const Vector3d p = foot + t * Vector3d::UnitZ();
-      return {p, side_.dot(p), phi_end, t};
-    }
+    if (c >= c_foot_[left ? 0 : 1]) return on_shank_ray(c, left);
     // Just beside the bottom normal: an edge-on face's end, not its middle.
     const double phi_bottom = phi_bottom_ + (left ? -1e-10 : 1e-10);
     if (c <= c_min_) {
       const Vector3d p = silhouette(phi_bottom);
       return {p, side_.dot(p), phi_bottom, 0};
     }
-    double a = left ? phi_end : phi_bottom, b = left ? phi_bottom : phi_end;
     if (corner_ == 0 && !edge_on_) return rim_boundary(c, left);
-    // Newton's method on c(phi) = c inside the bracket, bisecting whenever a
-    // step leaves it (c is monotone on each side of the bottom).
-    const double sign = left ? -1.0 : 1.0;  // c decreases along the left branch
-    // Started at the last root on this side (the searches ask at nearby
-    // levels one after another), the first time from the bottom's
-    // osculating circle: c - c_min = rho (phi - phi_bottom)^2 / 2
-    // (finishing set-ups: 27 steps in the 5.8 solves of an evaluation
-    // instead of 30 from the bracket's middle).
-    double& warm = warm_start_[left ? 0 : 1];
-    double phi = 0.5 * (a + b);
-    if (warm > a && warm < b) {
-      phi = warm;
-    } else if (rim_tilt_ > 1e-6) {
+    return silhouette_boundary(c, left, phi_bottom);
+  }
+
+  // Q's side at level c at or above the foot: the shank's silhouette line.
+  BoundaryPoint on_shank_ray(double c, bool left) const {
+    const Vector3d& foot = left ? foot_left_ : foot_right_;
+    const double t = (c - c_foot_[left ? 0 : 1]) / normal_.z();
+    const Vector3d p = foot + t * Vector3d::UnitZ();
+    return {p, side_.dot(p), left ? phi_left_ : phi_right_, t};
+  }
+
+  // The silhouette solve's bracket on phi, with c(phi) - c at its ends (NaN
+  // until evaluated there).
+  struct Bracket {
+    double a, b;
+    double g_a = std::numeric_limits<double>::quiet_NaN();
+    double g_b = std::numeric_limits<double>::quiet_NaN();
+
+    double middle() const { return 0.5 * (a + b); }
+    bool inside(double phi) const { return phi > a && phi < b; }
+    // phi, where c(phi) - c = g, becomes the end on its side of the root
+    // (`beyond`: c(phi) is past c, the root lies below phi).
+    void narrow(double phi, double g, bool beyond) {
+      if (beyond) {
+        b = phi;
+        g_b = g;
+      } else {
+        a = phi;
+        g_a = g;
+      }
+    }
+    // Where the solve goes after a step from phi. A step out of the bracket
+    // goes to the end it passes when that end was never evaluated (a root
+    // at the foot or the bottom is reached in one step, not by 30
+    // bisections), else to the middle (c(phi) jumps across a face nearly
+    // parallel to F: the secant of the ends crawled); so does a step not
+    // below half the last (across such a jump Halley's steps went to and
+    // fro inside the bracket).
+    double after_step(double phi, double step, double last_step) const {
+      const double next = phi - step;
+      if (std::abs(step) > 0.5 * last_step) return middle();
+      if (inside(next)) return next;
+      const bool low = !(next > a);
+      return std::isnan(low ? g_a : g_b) && std::isfinite(next) ? (low ? a : b) : middle();
+    }
+  };
+
+  // Where the solve on one side starts: at the last root on this side (the
+  // searches ask at nearby levels one after another), the first time from
+  // the bottom's osculating circle: c - c_min = rho (phi - phi_bottom)^2 / 2
+  // (finishing set-ups: 27 steps in the 5.8 solves of an evaluation
+  // instead of 30 from the bracket's middle).
+  double first_phi(double c, double sign, const Bracket& bracket, double warm) const {
+    if (bracket.inside(warm)) return warm;
+    if (rim_tilt_ > 1e-6) {
       const double rho = bottom_curvature_radius();
       const double guess = phi_bottom_ + sign * std::sqrt(2 * (c - c_min_) / rho);
-      if (guess > a && guess < b) phi = guess;
+      if (bracket.inside(guess)) return guess;
     }
-    // c(phi) - c at the bracket's ends, NaN until evaluated there.
-    double g_a = std::numeric_limits<double>::quiet_NaN(), g_b = g_a;
+    return bracket.middle();
+  }
+
+  // c' and c'' of c = N.(R0 W + rc U), W = U_xy / |U_xy| = (cos a, sin a):
+  // W' = a' W+, W'' = a'' W+ - a'^2 W (W+ = W turned a quarter), a' =
+  // (U_xy x U_xy') / |U_xy|^2 and, as U'' = -U, a'' = -2 a' (U_xy.U_xy')
+  // / |U_xy|^2; N.U = sin(phi), N.U' = cos(phi). From U, U' and 1 / |U_xy|.
+  struct LevelDerivatives {
+    double turn, turn_rate;  // a', a''
+    double slope, bend;      // c', c''
+  };
+  LevelDerivatives level_derivatives(const Vector3d& u, const Vector3d& du, double inverse,
+                                     double cos_phi, double sin_phi) const {
+    const double inverse2 = inverse * inverse;
+    const double turn = (u.x() * du.y() - u.y() * du.x()) * inverse2;
+    const double turn_rate = -2 * turn * (u.x() * du.x() + u.y() * du.y()) * inverse2;
+    const double n_along = (normal_.x() * u.x() + normal_.y() * u.y()) * inverse;
+    const double n_across = (normal_.y() * u.x() - normal_.x() * u.y()) * inverse;
+    return {turn, turn_rate, flat_radius_ * turn * n_across + corner_ * cos_phi,
+            flat_radius_ * (turn_rate * n_across - turn * turn * n_along) - corner_ * sin_phi};
+  }
+
+  // The silhouette point `step` back from p (at U, U'), by Taylor's
+  // polynomial of degree 2 (p'' = R0 W'' - rc U, W'' = a'' W+ - a'^2 W).
+  Vector3d stepped_back(const Vector3d& p, const Vector3d& u, const Vector3d& du, double inverse,
+                        const LevelDerivatives& d, double step) const {
+    const double wx = u.x() * inverse, wy = u.y() * inverse;
+    const Vector3d bend_p(
+        flat_radius_ * (-d.turn_rate * wy - d.turn * d.turn * wx) - corner_ * u.x(),
+        flat_radius_ * (d.turn_rate * wx - d.turn * d.turn * wy) - corner_ * u.y(),
+        -corner_ * u.z());
+    return p - step * silhouette_tangent(u, du, inverse) + 0.5 * step * step * bend_p;
+  }
+
+  // Q's lower boundary at level c between the foot and the bottom (at
+  // phi_bottom): the root of c(phi) = c, by Newton's method inside the
+  // bracket, bisecting whenever a step leaves it (c is monotone on each
+  // side of the bottom).
+  BoundaryPoint silhouette_boundary(double c, bool left, double phi_bottom) const {
+    const double phi_end = left ? phi_left_ : phi_right_;
+    Bracket bracket{left ? phi_end : phi_bottom, left ? phi_bottom : phi_end};
+    const double sign = left ? -1.0 : 1.0;  // c decreases along the left branch
+    double& warm = warm_start_[left ? 0 : 1];
+    double phi = first_phi(c, sign, bracket, warm);
     // cos and sin of phi, by rotation from those of the last phi.
     auto [cos_phi, sin_phi] = cos_sin(phi);
     double phi_at = phi, last_step = kInf;
-    for (int i = 0; i < 200 && b - a > 1e-14; ++i) {
+    for (int i = 0; i < 200 && bracket.b - bracket.a > 1e-14; ++i) {
       std::tie(cos_phi, sin_phi) = rotated(cos_phi, sin_phi, phi - phi_at);
       phi_at = phi;
       const Vector3d u = cos_phi * side_ + sin_phi * normal_;
       const Vector3d du = -sin_phi * side_ + cos_phi * normal_;
       const double length = length_of(u.x(), u.y());
       if (!(length > 1e-300)) {
-        phi = 0.5 * (a + b);
+        phi = bracket.middle();
         continue;
       }
       const double inverse = 1 / length;  // (one division, not six)
@@ -251,81 +327,50 @@ class Groove {
         return BoundaryPoint{p, side_.dot(p), phi, 0};
       };
       if (g == 0) return root_here();
-      if ((g > 0) == (sign > 0)) {
-        b = phi;  // c(phi) beyond c: the root is below phi
-        g_b = g;
-      } else {
-        a = phi;
-        g_a = g;
-      }
-      // c' and c'' of c = N.(R0 W + rc U), W = U_xy / |U_xy| = (cos a, sin a):
-      // W' = a' W+, W'' = a'' W+ - a'^2 W (W+ = W turned a quarter), a' =
-      // (U_xy x U_xy') / |U_xy|^2 and, as U'' = -U, a'' = -2 a' (U_xy.U_xy')
-      // / |U_xy|^2; N.U = sin(phi), N.U' = cos(phi).
-      const double inverse2 = inverse * inverse;
-      const double turn = (u.x() * du.y() - u.y() * du.x()) * inverse2;
-      const double turn_rate = -2 * turn * (u.x() * du.x() + u.y() * du.y()) * inverse2;
-      const double n_along = (normal_.x() * u.x() + normal_.y() * u.y()) * inverse;
-      const double n_across = (normal_.y() * u.x() - normal_.x() * u.y()) * inverse;
-      const double slope = flat_radius_ * turn * n_across + corner_ * cos_phi;
-      const double bend =
-          flat_radius_ * (turn_rate * n_across - turn * turn * n_along) - corner_ * sin_phi;
+      bracket.narrow(phi, g, (g > 0) == (sign > 0));
+      const LevelDerivatives d = level_derivatives(u, du, inverse, cos_phi, sin_phi);
       // Halley's step (three correct digits for one: from the osculating
       // circle's guess two steps, where Newton's took four), Newton's where
       // Halley's denominator does not keep the step's sign. Converged when
       // the step is round-off and so is the miss in c; where c(phi) is that
       // steep (near an edge-on face a step of 1e-14 still missed by 1e-5 mm)
       // the bracket is bisected onto the steep stretch, whose ends are
-      // interpolated below.
-      const double halley = slope * slope - 0.5 * g * bend;
-      const double step = slope == 0 ? kInf : halley > 0 ? g * slope / halley : g / slope;
+      // interpolated (across_jump).
+      const double halley = d.slope * d.slope - 0.5 * g * d.bend;
+      const double step = d.slope == 0 ? kInf : halley > 0 ? g * d.slope / halley : g / d.slope;
       if (std::abs(step) < 1e-14) {
         if (std::abs(g) < 1e-12 * radius_) return root_here();
-        phi = 0.5 * (a + b);
+        phi = bracket.middle();
         continue;
       }
       // A Halley step below 1e-4 L (L = |U_xy|), over which c' changes by
       // less than 1e-4 of itself, leaves an error of about its cube, and
       // the point at its end by Taylor's polynomial of degree 2 is off by
       // step^3 |p'''| / 6 (|p'''| ~ R / L^3): within 2e-13 R, the solve ends
-      // there (p'' = R0 W'' - rc U, W'' = a'' W+ - a'^2 W). Saves the
-      // confirming evaluation: 2.95 iterations a solve where the tangent's
-      // end below 1e-8 L took 3.3. (Beside an edge-on face c' changes by
-      // twice itself over a step of 1e-10: there the test on c'' keeps on
-      // solving.)
+      // there. Saves the confirming evaluation: 2.95 iterations a solve
+      // where the tangent's end below 1e-8 L took 3.3. (Beside an edge-on
+      // face c' changes by twice itself over a step of 1e-10: there the
+      // test on c'' keeps on solving.)
       if (halley > 0 && std::abs(step) < 1e-4 * length &&
-          std::abs(step * bend) < 1e-4 * std::abs(slope) && phi - step > a && phi - step < b) {
-        const double wx = u.x() * inverse, wy = u.y() * inverse;
-        const Vector3d bend_p(flat_radius_ * (-turn_rate * wy - turn * turn * wx) - corner_ * u.x(),
-                              flat_radius_ * (turn_rate * wx - turn * turn * wy) - corner_ * u.y(),
-                              -corner_ * u.z());
-        const Vector3d root =
-            p - step * silhouette_tangent(u, du, inverse) + 0.5 * step * step * bend_p;
+          std::abs(step * d.bend) < 1e-4 * std::abs(d.slope) && bracket.inside(phi - step)) {
+        const Vector3d root = stepped_back(p, u, du, inverse, d, step);
         warm = phi - step;
         return {root, side_.dot(root), warm, 0};
       }
-      // A step out of the bracket goes to the end it passes when that end
-      // was never evaluated (a root at the foot or the bottom is reached in
-      // one step, not by 30 bisections), else to the middle (c(phi) jumps
-      // across a face nearly parallel to F: the secant of the ends crawled);
-      // so does a step not below half the last (across such a jump Halley's
-      // steps went to and fro inside the bracket).
-      double next = phi - step;
-      if (std::abs(step) > 0.5 * last_step) {
-        next = 0.5 * (a + b);
-      } else if (!(next > a && next < b)) {
-        const bool low = !(next > a);
-        next = std::isnan(low ? g_a : g_b) && std::isfinite(next) ? (low ? a : b) : 0.5 * (a + b);
-      }
+      phi = bracket.after_step(phi, step, last_step);
       last_step = std::abs(step);
-      phi = next;
     }
-    warm = 0.5 * (a + b);
+    warm = bracket.middle();
+    return across_jump(c, bracket.a, bracket.b);
+  }
+
+  // The point at level c where the solve's bracket [a, b] closed without a
+  // root; one still open has closed onto a jump of c(phi).
+  BoundaryPoint across_jump(double c, double a, double b) const {
     if (a == b) {
       const Vector3d p = silhouette(a);
       return {p, side_.dot(p), a, 0};
     }
-    // A bracket still open here has closed onto a jump of c(phi).
     const Vector3d pa = silhouette(a), pb = silhouette(b);
     Vector3d p = pa;
     if ((pa - pb).norm() > 1e-9 * radius_) {

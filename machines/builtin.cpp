@@ -26,7 +26,7 @@ MachineProfile builtin_profile(std::string_view name) {
     names += names.empty() ? "" : ", ";
     names += p.name;
   }
-  throw ProfileError(Code::E5009, std::string(name), 0, 0,
+  throw ProfileError(Code::E5009, {std::string(name)},
                      "no built-in machine profile of this name (built-in: " + names +
                          "; a profile file's path must end in .toml)");
 }

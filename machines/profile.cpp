@@ -13,14 +13,6 @@
 
 namespace vcpost::machines {
 
-ProfileError::ProfileError(Code code, std::string file, std::uint32_t line, std::uint32_t column,
-                           const std::string& message)
-    : vcpost::Error(code, format_diagnostic(code, {file, line, column}, message),
-                    {file, line, column}),
-      file_(std::move(file)),
-      line_(line),
-      column_(column) {}
-
 namespace {
 
 // The schema: every table and its keys. Anything else in a file is an error.
@@ -134,7 +126,7 @@ class Reader {
 
   [[noreturn]] void fail(Code code, const toml::source_region& where,
                          const std::string& message) const {
-    throw ProfileError(code, file_, where.begin.line, where.begin.column, message);
+    throw ProfileError(code, {file_, where.begin.line, where.begin.column}, message);
   }
 
   // Rejects tables and keys outside the schema, in the order of the file.
@@ -673,7 +665,7 @@ MachineProfile profile_from_toml(std::string_view text, const std::string& file)
   try {
     root = toml::parse(text, file);
   } catch (const toml::parse_error& e) {
-    throw ProfileError(Code::E5001, file, e.source().begin.line, e.source().begin.column,
+    throw ProfileError(Code::E5001, {file, e.source().begin.line, e.source().begin.column},
                        std::string(e.description()));
   }
   const Reader r(root, file);
@@ -713,7 +705,7 @@ SpindleSpec planned_spindle(const MachineProfile& profile) {
 MachineProfile profile_from_stream(std::istream& in, const std::string& file) {
   std::ostringstream text;
   text << in.rdbuf();
-  if (in.bad()) throw ProfileError(Code::E5010, file, 0, 0, "cannot read");
+  if (in.bad()) throw ProfileError(Code::E5010, {file}, "cannot read");
   return profile_from_toml(text.str(), file);
 }
 

@@ -144,19 +144,12 @@ class MachineProfile;
 
 // A profile that failed to load. what() is the whole one-line message:
 // "<file>:<line>:<col>: error[E5xxx]: '<table.key>' <reason>" (no
-// ":<line>:<col>" when no position applies, e.g. an unreadable file).
+// ":<line>:<col>" when no position applies, e.g. an unreadable file);
+// where() holds the same place (line 0 when none applies).
 class ProfileError : public vcpost::Error {
  public:
-  ProfileError(Code code, std::string file, std::uint32_t line, std::uint32_t column,
-               const std::string& message);
-  const std::string& file() const { return file_; }
-  std::uint32_t line() const { return line_; }  // 1-based; 0 when no position applies
-  std::uint32_t column() const { return column_; }
-
- private:
-  std::string file_;
-  std::uint32_t line_;
-  std::uint32_t column_;
+  ProfileError(Code code, const SourceLocation& where, const std::string& message)
+      : vcpost::Error(code, format_diagnostic(code, where, message), where) {}
 };
 
 // The validated profile. Immutable: built only by the loaders below.

@@ -58,7 +58,7 @@ TEST(FuzzRegressions, ControlCharacterInANoteIsNamed) {
     FAIL() << "loaded";
   } catch (const machines::ProfileError& e) {
     EXPECT_EQ(e.code(), Code::E5008);
-    EXPECT_EQ(e.line(), 44u);
+    EXPECT_EQ(e.where().line, 44u);
     EXPECT_NE(std::string(e.what()).find("'sources.\"feed\"' must be one line of text"),
               std::string::npos)
         << e.what();

@@ -170,7 +170,7 @@ TEST(ProfileLoading, ToolChangeFormAndCoolantCodesAreChoicesChecked) {
       ADD_FAILURE() << "accepted";
     } catch (const ProfileError& e) {
       EXPECT_EQ(e.code(), Code::E5007) << e.what();
-      EXPECT_EQ(e.line(), 25u) << e.what();  // the key's line: kMinimal has 23, [output] 24
+      EXPECT_EQ(e.where().line, 25u) << e.what();  // the key's line: kMinimal has 23, [output] 24
     }
   }
 }
@@ -201,7 +201,7 @@ TEST(ProfileLoading, SpeedWordIsSOrAnAnalogOutputOfLinuxCnc) {
       ADD_FAILURE() << "accepted";
     } catch (const ProfileError& e) {
       EXPECT_EQ(e.code(), dialect == "fanuc" ? Code::E5021 : Code::E5020) << e.what();
-      EXPECT_EQ(e.line(), 25u) << e.what();  // the key's line: kMinimal has 23, [output] 24
+      EXPECT_EQ(e.where().line, 25u) << e.what();  // the key's line: kMinimal has 23, [output] 24
     }
   }
   // The profile written out loads again with its speed word.
@@ -378,10 +378,10 @@ TEST(ProfileLoading, EveryBadFileGivesItsExpectedDiagnostic) {
       ADD_FAILURE() << "loaded without error";
     } catch (const ProfileError& e) {
       EXPECT_EQ(e.id(), expect[1].str());
-      EXPECT_EQ(e.file(), path);
-      EXPECT_EQ(e.line(), std::stoul(expect[2].str()));
+      EXPECT_EQ(e.where().file, path);
+      EXPECT_EQ(e.where().line, std::stoul(expect[2].str()));
       if (expect[3].str() != "*") {
-        EXPECT_EQ(e.column(), std::stoul(expect[3].str()));
+        EXPECT_EQ(e.where().column, std::stoul(expect[3].str()));
       }
       const std::string what = e.what();
       EXPECT_EQ(what.rfind(path + ":" + expect[2].str() + ":", 0), 0u) << what;

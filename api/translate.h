@@ -11,16 +11,14 @@
 
 namespace vcpost::api {
 
-// The Error for an internal message in the command line's format,
-// "file:line:col: error[E1201]: message" (position and code each optional).
-Error error_from_message(const std::string& what);
-
 // The Error for one of vcpost's own: its code, hint, severity and place as
-// it carries them; `program_file` names the file of a place that has a
-// line but no file (the readers' errors: the text they read has no name).
+// it carries them (where(); the text is never read for a place);
+// `program_file` names the file of a place that has a line but no file
+// (the readers' errors: the text they read has no name).
 Error error_from(const vcpost::Error& error, const std::string& program_file);
 
-// Runs `work`; anything it throws but an Error leaves as an Error.
+// Runs `work`; anything it throws but an Error leaves as an Error (any
+// other exception with its text as the message, no code and no place).
 template <class Work>
 auto guarded(Work&& work, const std::string& program_file = {}) -> decltype(work()) {
   try {
@@ -30,7 +28,7 @@ auto guarded(Work&& work, const std::string& program_file = {}) -> decltype(work
   } catch (const vcpost::Error& e) {
     throw error_from(e, program_file);
   } catch (const std::exception& e) {
-    throw error_from_message(e.what());
+    throw Error(e.what(), {}, e.what());
   }
 }
 

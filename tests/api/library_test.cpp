@@ -177,6 +177,58 @@ TEST(Library, ATimingRefusalCarriesCodePlaceMessageAndHint) {
   }
 }
 
+// An error that carries no place (a bad --tool) leaves with its code and
+// hint, its whole text as the message and no file, line or column.
+TEST(Library, AnErrorWithoutAPlaceKeepsItsWholeTextAsTheMessage) {
+  api::PostOptions options;
+  options.tool = "cone:10";
+  options.vc = 120;
+  options.ap = 0.3;
+  try {
+    api::post("G1 X1\n", "p.nc", api::Model::load((samples() / "wavy.step").string()),
+              api::MachineProfile::load("generic"), options);
+    FAIL() << "an unknown tool kind posted";
+  } catch (const api::Error& e) {
+    EXPECT_EQ(e.code(), "E1601");
+    EXPECT_EQ(std::string(e.what()),
+              "--tool 'cone:10': unknown shape 'cone' (expected ball:D, bull:D:rc, flat:D, drill:D "
+              "or other, optionally after T<n>=)");
+    EXPECT_EQ(e.message(), e.what());
+    EXPECT_EQ(e.file(), "");
+    EXPECT_EQ(e.line(), 0u);
+    EXPECT_EQ(e.column(), 0u);
+    EXPECT_FALSE(e.hint().empty());
+  }
+}
+
+// The place and code come from the error, never from its text: a user's
+// text worded like a diagnostic is not read as one.
+TEST(Library, TextWordedLikeADiagnosticIsNotReadForAPlace) {
+  try {
+    api::parse_tool("x:7: error[E1201]: y");
+    FAIL() << "an unknown tool kind parsed";
+  } catch (const api::Error& e) {
+    EXPECT_EQ(e.code(), "");
+    EXPECT_EQ(e.message(), e.what());
+    EXPECT_EQ(e.file(), "");
+    EXPECT_EQ(e.line(), 0u);
+  }
+  api::PostOptions options;
+  options.tool = "x:7: error[E1201]: y";
+  options.vc = 120;
+  options.ap = 0.3;
+  try {
+    api::post("G1 X1\n", "p.nc", api::Model::load((samples() / "wavy.step").string()),
+              api::MachineProfile::load("generic"), options);
+    FAIL() << "an unknown tool kind posted";
+  } catch (const api::Error& e) {
+    EXPECT_EQ(e.code(), "E1601");
+    EXPECT_EQ(e.message(), e.what());
+    EXPECT_EQ(e.file(), "");
+    EXPECT_EQ(e.line(), 0u);
+  }
+}
+
 TEST(Library, OneVersionForTheLibraryAndTheCommand) {
   EXPECT_STREQ(api::version(), VCPOST_VERSION);
   const std::string line = api::version_line();

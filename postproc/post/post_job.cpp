@@ -502,6 +502,164 @@ void add_totals(PostSummary& summary, const PathReader& reader, const ProgramWri
   summary.unread_after_end = totals.unread_after_end;
 }
 
+// What the job reads of the program before its own read, in its arena.
+struct ReadAhead {
+  // The normals from the path itself (PostSettings::normals_from_path):
+  // read by the caller (read_path_normals), or here.
+  std::shared_ptr<const PathNormalsAhead> path_normals;
+  std::unique_ptr<StockTimeline> stock;  // PostSettings::stock
+};
+
+ReadAhead read_ahead(std::string_view text, const std::string& file_name, ProgramKind kind,
+                     const gcode::Dialect& dialect, const machines::MachineProfile& profile,
+                     const PostSettings& settings, const tools::ToolChoices& choices,
+                     tbb::task_arena& arena, PostSummary& summary) {
+  ReadAhead ahead;
+  ahead.path_normals = settings.path_normals;
+  if (settings.normals_from_path) {
+    if (!ahead.path_normals) {
+      arena.execute([&] {
+        ahead.path_normals = std::make_shared<const PathNormalsAhead>(
+            normals_from_path(text, file_name, kind, dialect, profile, settings, choices));
+      });
+    }
+    summary.path_normals = pipeline::count_sources(ahead.path_normals->normals);
+  }
+  if (settings.stock) {
+    arena.execute([&] {
+      ahead.stock =
+          build_stock_timeline(text, file_name, kind, dialect, profile, settings, choices);
+    });
+    summary.stock = ahead.stock->summary();
+  }
+  return ahead;
+}
+
+// The job's pipeline over the chunks: read (serial), contact (parallel),
+// place (serial: the passes follow the path), engage (parallel), finish
+// (serial, in order).
+class Stages {
+ public:
+  Stages(PathReader& reader, SectionEvaluators& evaluators, Finisher& finisher,
+         const PostSettings& settings, const PathNormalsAhead* path_normals, bool curvature,
+         ProgramKind kind, const Progress& progress,
+         const std::function<void(std::uint64_t)>& consumed, std::size_t tokens)
+      : reader_(reader),
+        evaluators_(evaluators),
+        finisher_(finisher),
+        settings_(settings),
+        path_normals_(path_normals),
+        curvature_(curvature),
+        kind_(kind),
+        progress_(progress),
+        consumed_(consumed),
+        tokens_(tokens),
+        pool_(tokens) {}
+
+  void run(tbb::task_arena& arena) {
+    arena.execute([&] {
+      tbb::parallel_pipeline(
+          tokens_,
+          tbb::make_filter<void, Chunk*>(tbb::filter_mode::serial_in_order,
+                                         [this](tbb::flow_control& c) { return read(c); }) &
+              tbb::make_filter<Chunk*, Chunk*>(tbb::filter_mode::parallel,
+                                               [this](Chunk* c) { return contact(c); }) &
+              tbb::make_filter<Chunk*, Chunk*>(tbb::filter_mode::serial_in_order,
+                                               [this](Chunk* c) { return place(c); }) &
+              tbb::make_filter<Chunk*, Chunk*>(tbb::filter_mode::parallel,
+                                               [this](Chunk* c) { return engage(c); }) &
+              tbb::make_filter<Chunk*, void>(tbb::filter_mode::serial_in_order,
+                                             [this](Chunk* c) { finish(c); }));
+    });
+  }
+
+ private:
+  Chunk* read(tbb::flow_control& control) {
+    Chunk* chunk = pool_.take();
+    if (!reader_.read(*chunk, chunk_samples)) {
+      control.stop();
+      return nullptr;
+    }
+    evaluators_.attach(*chunk);
+    chunk->first_sample = samples_read_;
+    for (const Slot& slot : chunk->slots) samples_read_ += slot.kind == SlotKind::sample ? 1 : 0;
+    if (kind_ == ProgramKind::cldata && consumed_) consumed_(chunk->read_bytes);
+    return chunk;
+  }
+
+  Chunk* contact(Chunk* chunk) const {
+    geometry::ContactHint hint;  // cold at the chunk's start
+    hint.curvature = curvature_;
+    chunk->results.clear();  // keeps its capacity
+    std::uint64_t sample = chunk->first_sample;
+    for (const Slot& slot : chunk->slots) {
+      if (slot.kind != SlotKind::sample) continue;
+      const pipeline::PointEvaluator& evaluator = *chunk->evaluator(slot.section);
+      pipeline::PointResult& result = chunk->results.emplace_back();
+      if (settings_.normals_from_path) {
+        const pipeline::PathNormal& normal = path_normals_->normals.at(sample++);
+        result.contact = evaluator.contact(slot.sample, normal);
+        result.normal_source = normal.source;
+      } else {
+        result.contact = evaluator.contact(slot.sample, hint);
+      }
+    }
+    return chunk;
+  }
+
+  Chunk* place(Chunk* chunk) const {
+    std::size_t sample_index = 0;
+    for (const Slot& slot : chunk->slots) {
+      pipeline::PointEvaluator* evaluator = chunk->evaluator(slot.section);
+      if (evaluator == nullptr) continue;  // a section not posted: no pass, no sample
+      if (slot.break_pass) evaluator->break_pass();
+      if (slot.kind != SlotKind::sample) continue;
+      pipeline::PointResult& result = chunk->results[sample_index];
+      if (settings_.normals_from_path) {
+        // The earlier pass the normals' read-ahead found: no second tracker.
+        evaluator->place(slot.sample, result,
+                         path_normals_->earlier.at(chunk->first_sample + sample_index));
+      } else {
+        evaluator->place(slot.sample, result);
+      }
+      ++sample_index;
+    }
+    return chunk;
+  }
+
+  static Chunk* engage(Chunk* chunk) {
+    std::size_t sample_index = 0;
+    for (const Slot& slot : chunk->slots) {
+      if (slot.kind == SlotKind::sample)
+        chunk->evaluator(slot.section)->engage(slot.sample, chunk->results[sample_index++]);
+    }
+    return chunk;
+  }
+
+  void finish(Chunk* chunk) {
+    finisher_.take(*chunk);
+    if (progress_ && chunk->read_fraction >= next_report_) {
+      progress_(std::min(chunk->read_fraction, 1.0));
+      next_report_ = chunk->read_fraction + 0.01;
+    }
+    pool_.give(chunk);
+  }
+
+  PathReader& reader_;
+  SectionEvaluators& evaluators_;
+  Finisher& finisher_;
+  const PostSettings& settings_;
+  const PathNormalsAhead* path_normals_;  // set with settings_.normals_from_path
+  bool curvature_;                        // only the report's points read curvatures
+  ProgramKind kind_;
+  const Progress& progress_;
+  const std::function<void(std::uint64_t)>& consumed_;
+  std::size_t tokens_;
+  ChunkPool pool_;
+  std::uint64_t samples_read_ = 0;
+  double next_report_ = 0.01;
+};
+
 }  // namespace
 
 PostSummary post_program(std::string_view text, const std::string& file_name,
@@ -531,106 +689,13 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
   const int threads = run_threads.count();
   // Chunks in flight: enough to keep every thread busy, few enough to bound memory.
   const std::size_t tokens = 2 * static_cast<std::size_t>(threads) + 2;
-  ChunkPool pool(tokens);
-  double next_report = 0.01;
   tbb::task_arena arena(threads);
-
-  // Read ahead by the caller (read_path_normals), or here.
-  std::shared_ptr<const PathNormalsAhead> path_normals = settings.path_normals;
-  if (settings.normals_from_path) {
-    if (!path_normals) {
-      arena.execute([&] {
-        path_normals = std::make_shared<const PathNormalsAhead>(
-            normals_from_path(text, file_name, kind, dialect, profile, settings, choices));
-      });
-    }
-    summary.path_normals = pipeline::count_sources(path_normals->normals);
-  }
-  std::unique_ptr<StockTimeline> stock;
-  if (settings.stock) {
-    arena.execute([&] {
-      stock = build_stock_timeline(text, file_name, kind, dialect, profile, settings, choices);
-    });
-    summary.stock = stock->summary();
-  }
-  SectionEvaluators evaluators(model, settings.point, static_cast<bool>(points), stock.get());
-  std::uint64_t samples_read = 0;
-
-  auto read = [&](tbb::flow_control& control) -> Chunk* {
-    Chunk* chunk = pool.take();
-    if (!reader.read(*chunk, chunk_samples)) {
-      control.stop();
-      return nullptr;
-    }
-    evaluators.attach(*chunk);
-    chunk->first_sample = samples_read;
-    for (const Slot& slot : chunk->slots) samples_read += slot.kind == SlotKind::sample ? 1 : 0;
-    if (kind == ProgramKind::cldata && consumed) consumed(chunk->read_bytes);
-    return chunk;
-  };
-  auto contact = [&](Chunk* chunk) -> Chunk* {
-    geometry::ContactHint hint;                  // cold at the chunk's start
-    hint.curvature = static_cast<bool>(points);  // only the report's points read curvatures
-    chunk->results.clear();                      // keeps its capacity
-    std::uint64_t sample = chunk->first_sample;
-    for (const Slot& slot : chunk->slots) {
-      if (slot.kind != SlotKind::sample) continue;
-      const pipeline::PointEvaluator& evaluator = *chunk->evaluator(slot.section);
-      pipeline::PointResult& result = chunk->results.emplace_back();
-      if (settings.normals_from_path) {
-        const pipeline::PathNormal& normal = path_normals->normals.at(sample++);
-        result.contact = evaluator.contact(slot.sample, normal);
-        result.normal_source = normal.source;
-      } else {
-        result.contact = evaluator.contact(slot.sample, hint);
-      }
-    }
-    return chunk;
-  };
-  auto place = [&](Chunk* chunk) -> Chunk* {
-    std::size_t sample_index = 0;
-    for (const Slot& slot : chunk->slots) {
-      pipeline::PointEvaluator* evaluator = chunk->evaluator(slot.section);
-      if (evaluator == nullptr) continue;  // a section not posted: no pass, no sample
-      if (slot.break_pass) evaluator->break_pass();
-      if (slot.kind != SlotKind::sample) continue;
-      pipeline::PointResult& result = chunk->results[sample_index];
-      if (settings.normals_from_path) {
-        // The earlier pass the normals' read-ahead found: no second tracker.
-        evaluator->place(slot.sample, result,
-                         path_normals->earlier.at(chunk->first_sample + sample_index));
-      } else {
-        evaluator->place(slot.sample, result);
-      }
-      ++sample_index;
-    }
-    return chunk;
-  };
-  auto engage = [&](Chunk* chunk) -> Chunk* {
-    std::size_t sample_index = 0;
-    for (const Slot& slot : chunk->slots) {
-      if (slot.kind == SlotKind::sample)
-        chunk->evaluator(slot.section)->engage(slot.sample, chunk->results[sample_index++]);
-    }
-    return chunk;
-  };
-  auto finish = [&](Chunk* chunk) {
-    finisher.take(*chunk);
-    if (progress && chunk->read_fraction >= next_report) {
-      progress(std::min(chunk->read_fraction, 1.0));
-      next_report = chunk->read_fraction + 0.01;
-    }
-    pool.give(chunk);
-  };
-
-  arena.execute([&] {
-    tbb::parallel_pipeline(
-        tokens, tbb::make_filter<void, Chunk*>(tbb::filter_mode::serial_in_order, read) &
-                    tbb::make_filter<Chunk*, Chunk*>(tbb::filter_mode::parallel, contact) &
-                    tbb::make_filter<Chunk*, Chunk*>(tbb::filter_mode::serial_in_order, place) &
-                    tbb::make_filter<Chunk*, Chunk*>(tbb::filter_mode::parallel, engage) &
-                    tbb::make_filter<Chunk*, void>(tbb::filter_mode::serial_in_order, finish));
-  });
+  const ReadAhead ahead =
+      read_ahead(text, file_name, kind, dialect, profile, settings, choices, arena, summary);
+  SectionEvaluators evaluators(model, settings.point, static_cast<bool>(points), ahead.stock.get());
+  Stages stages(reader, evaluators, finisher, settings, ahead.path_normals.get(),
+                static_cast<bool>(points), kind, progress, consumed, tokens);
+  stages.run(arena);
   finisher.finish();
   add_totals(summary, reader, writer);
   if (progress) progress(1.0);

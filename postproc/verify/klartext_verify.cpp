@@ -106,12 +106,16 @@ class BlockComparer {
   BlockComparer(Result& result, ChangeSink& changes, ViolationSink& sink)
       : result_(result), changes_(changes), sink_(sink) {}
 
+  // The line of the output block that did not parse (named E7142); none when all did.
+  std::optional<std::uint32_t> unreadable_line() const { return unreadable_line_; }
+
   void run(std::string_view input, std::string_view output) {
     Blocks in(input), out(output);
     const Block* a = in.next();
-    const Block* b = out.next();
+    const Block* b = next_output(out);
     std::optional<Block> inserted;  // the last TOOL CALL S inserted, waiting for its move
     while (a || b) {
+      if (unreadable_line_) return;
       if (!b) {
         sink_.add(Code::E7139, last_line_ + 1, 1, a->line,
                   "the output ends before the input's block '" + head(*a) + "'");
@@ -126,7 +130,7 @@ class BlockComparer {
       if (!same_block(*a, *b) && is_speed_call(*b)) {
         take_inserted(*a, *b);
         const std::uint32_t line = b->line;
-        b = out.next();
+        b = next_output(out);
         if (!moves(*a))
           sink_.add(Code::E7138, line, 1, a->line,
                     "an inserted TOOL CALL S stands before '" + head(*a) +
@@ -135,7 +139,21 @@ class BlockComparer {
       }
       if (!compare(*a, *b)) return;
       a = in.next();
-      b = out.next();
+      b = next_output(out);
+    }
+  }
+
+  // The output's next block; null at its end or at a block that does not
+  // parse, which is named here (E7142): the reader of the events stops
+  // there too, and no block after it can be compared.
+  const Block* next_output(Blocks& out) {
+    try {
+      return out.next();
+    } catch (const heidenhain::KlartextError& e) {
+      const heidenhain::Diagnostic& d = e.diagnostic();
+      sink_.add(Code::E7142, d.line, d.column, 0, "the output does not read: " + d.message);
+      unreadable_line_ = d.line;
+      return nullptr;
     }
   }
 
@@ -220,6 +238,7 @@ class BlockComparer {
   ViolationSink& sink_;
   std::uint64_t inserted_ = 0;
   std::uint32_t last_line_ = 0;
+  std::optional<std::uint32_t> unreadable_line_;  // of the output block that did not parse
 };
 
 bool is_speed_or_feed(const program::Event& e) {
@@ -228,8 +247,10 @@ bool is_speed_or_feed(const program::Event& e) {
 }
 
 // The events of both programs without speeds and feeds, one to one.
+// `unreadable_line`: where the block comparison found an output block that
+// does not parse, named there already.
 void compare_events(std::string_view input, std::string_view output, Result& result,
-                    ViolationSink& sink) {
+                    ViolationSink& sink, std::optional<std::uint32_t> unreadable_line) {
   heidenhain::Interpreter in(input), out(output);
   // A called program is the same file for both: read as empty on both
   // sides, the comparison of what the two programs differ in is the same.
@@ -258,7 +279,8 @@ void compare_events(std::string_view input, std::string_view output, Result& res
       more_out = fill(out, ys, j);
     } catch (const heidenhain::KlartextError& e) {
       const heidenhain::Diagnostic& d = e.diagnostic();
-      sink.add(Code::E7142, d.line, d.column, 0, "the output does not read: " + d.message);
+      if (d.line != unreadable_line)
+        sink.add(Code::E7142, d.line, d.column, 0, "the output does not read: " + d.message);
       return;
     }
     if (!more_in && !more_out) return;
@@ -291,8 +313,9 @@ Result verify_klartext(std::string_view input, std::string_view output, const Op
   result.kind = InputKind::klartext;
   ViolationSink sink(options.max_violations);
   ChangeSink changes(result, options.on_change);
-  BlockComparer(result, changes, sink).run(input, output);
-  compare_events(input, output, result, sink);
+  BlockComparer blocks(result, changes, sink);
+  blocks.run(input, output);
+  compare_events(input, output, result, sink, blocks.unreadable_line());
   sink.move_into(result);
   return result;
 }

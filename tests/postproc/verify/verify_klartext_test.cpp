@@ -85,5 +85,30 @@ TEST(VerifyKlartext, ARemovedBlockAndABadSpeedAreRefused) {
           Code::E7140));
 }
 
+// An F of the posted block 11 (output line 19, "11 L X+20 F...") that is a
+// plain positive number the reader refuses: over its 1e12 limit at the
+// 13th digit (column 24). The blocks before it compare, the output does not
+// read from there: named once, where the reader stops.
+TEST(VerifyKlartext, AnOutputThatDoesNotReadIsNamedWhereItStops) {
+  const Result r = verify_klartext(
+      kKlartextInput, replaced(kKlartextPosted, "11 L X+20 F300", "11 L X+20 F3000000000000"),
+      Options{});
+  ASSERT_EQ(r.violation_count, 1u) << format(r.violations.front(), "posted.h");
+  EXPECT_EQ(format(r.violations[0], "posted.h"),
+            "posted.h:19:24: error[E7142]: the output does not read: number too large");
+  // Refused by its meaning, not its syntax: F0 is no feed rate, so block 6
+  // (line 6) feeds before any is given; its F digits are no plain positive
+  // number either (E7140, at the digit, column 9).
+  const Result no_feed = verify_klartext(
+      kKlartextInput, replaced(kKlartextInput, "6 L Z-1 F200", "6 L Z-1 F0"), Options{});
+  ASSERT_EQ(no_feed.violation_count, 2u);
+  EXPECT_EQ(
+      format(no_feed.violations[0], "out.h"),
+      "out.h:6:3: error[E7142]: the output does not read: a feed move before any feed rate F");
+  EXPECT_EQ(no_feed.violations[1].code, Code::E7140);
+  EXPECT_EQ(no_feed.violations[1].line, 6u);
+  EXPECT_EQ(no_feed.violations[1].column, 9u);
+}
+
 }  // namespace
 }  // namespace vcpost::verify

@@ -310,6 +310,66 @@ TEST(VerifyGcode, SpeedOutputMutationsAreCaught) {
   EXPECT_EQ(r.violations.at(0).column, 10u);
 }
 
+// A token the input's line lacks, where the rest lines up around it, is
+// named at its column; a run of them at the line's end as one text.
+TEST(VerifyGcode, TokenAdded) {
+  // Line 6 "G0 X0 Y0 Z5": M8 at column 10, before Z5. (Its coolant event is
+  // news on a line the lexical proof flagged already: not named again.)
+  expect_one(replace(posted(kInput), "G0 X0 Y0 Z5", "G0 X0 Y0 M8 Z5"), Code::E7104, 6, 10);
+  // Line 11 "M5": a comment right after it (column 3), then two.
+  Result r = run(kInput, replace(posted(kInput), "M5\n", "M5(stop)\n"));
+  ASSERT_EQ(r.violation_count, 1u);
+  EXPECT_EQ(format(r.violations[0], "out"),
+            "out:11:3: error[E7104]: comment '(stop)' added (input line 11)");
+  r = run(kInput, replace(posted(kInput), "M5\n", "M5(stop)(now)\n"));
+  ASSERT_EQ(r.violation_count, 1u);
+  EXPECT_EQ(format(r.violations[0], "out"),
+            "out:11:3: error[E7104]: '(stop)(now)' added (input line 11)");
+}
+
+// The interpreted proof alone: a Sinumerik dwell in spindle turns (G4 S)
+// lasts 60 * turns / rpm seconds, so a legitimate new speed before it
+// makes another dwell (10 turns: 0.6 s at 1000 rpm, 0.3 s at 2000), found
+// at the dwell's line though its bytes are the input's.
+TEST(VerifyGcode, EventDiffersWhereTheTextIsTheInputsButItsSpeeds) {
+  Options siemens;
+  siemens.dialect = gcode::sinumerik_dialect();
+  const std::string input = "S1000 M3\nG4 S10\nG1 X10 F500\nM30\n";
+  const Result r = verify_gcode(input, replace(input, "S1000", "S2000"), siemens);
+  ASSERT_EQ(r.violation_count, 1u) << format(r.violations[0], "out");
+  EXPECT_EQ(r.violations[0].code, Code::E7121);
+  EXPECT_EQ(r.violations[0].line, 2u);
+  EXPECT_EQ(r.violations[0].column, 1u);
+  EXPECT_EQ(r.violations[0].input_line, 2u);
+  ASSERT_EQ(r.changes.size(), 1u);  // the S word itself is a change
+  EXPECT_EQ(describe(r.changes[0]), "S1000 -> S2000");
+}
+
+// Lines added or removed: the events are compared in order, and one side
+// running out of them is named where the other goes on (the output's
+// line), or at no line when the output ends first.
+TEST(VerifyGcode, EventCountDiffers) {
+  // The output ends first: "1 line removed" at line 2, and the input's
+  // second move has no counterpart (no output line: the end of the file).
+  Result r = run("G0 X1\nG0 X2\n", "G0 X1\n");
+  ASSERT_EQ(r.violation_count, 2u);
+  EXPECT_EQ(r.violations[0].code, Code::E7122);
+  EXPECT_EQ(r.violations[0].line, 0u);
+  EXPECT_EQ(r.violations[0].input_line, 2u);
+  EXPECT_EQ(r.violations[1].code, Code::E7101);
+  EXPECT_EQ(r.violations[1].line, 2u);
+  // The output goes on: its comment line 2 became lines 2..3, and the move
+  // of line 4 is one the input lacks (a line the first proof did not name).
+  r = run("G0 X1\n(a)\n", "G0 X1\n(b)\n(c)\nG0 X2\n");
+  ASSERT_EQ(r.violation_count, 2u);
+  EXPECT_EQ(r.violations[0].code, Code::E7101);
+  EXPECT_EQ(r.violations[0].line, 2u);
+  EXPECT_EQ(r.violations[1].code, Code::E7122);
+  EXPECT_EQ(r.violations[1].line, 4u);
+  EXPECT_EQ(r.violations[1].column, 1u);
+  EXPECT_EQ(r.violations[1].input_line, 0u);
+}
+
 TEST(VerifyGcode, CrlfInsteadOfLf) {
   const std::string out = posted(kInput);
   std::string crlf;

@@ -166,38 +166,70 @@ struct Neighbour {
   bool found = false;
 };
 
-// The nearest earlier pass at every point.
-std::vector<Neighbour> earlier_neighbours(std::span<const Vector3d> p,
-                                          std::span<const std::uint8_t> starts,
-                                          std::span<const Tangent> tangents,
-                                          const PathNormalSettings& settings) {
-  const std::size_t n = p.size();
-  std::vector<Neighbour> out(n);
-  PassTracker tracker(settings.search_radius, settings.min_path_gap, PassTracker::kPostMemory);
-  std::vector<std::size_t> index_of;  // the point of each tracker step
-  index_of.reserve(n);
-  bool open = false;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (starts[i] != 0 && open) tracker.break_pass();
-    const Vector3d& t = tangents[i].along;
-    if (t.isZero()) {  // a lone point: no feed to look across
-      if (open) tracker.break_pass();
-      open = false;
-      continue;
+// The nearest earlier pass at every point, found as the points arrive in
+// path order: a point is stepped once its tangent is settled (no later
+// point changes it: the pass goes on by two distinct points, or ends).
+class EarlierPasses {
+ public:
+  explicit EarlierPasses(const PathNormalSettings& settings)
+      : tracker_(settings.search_radius, settings.min_path_gap, PassTracker::kPostMemory) {}
+
+  // Steps the tracker over the points of `p` not stepped yet, up to the
+  // first whose tangent is not settled (all of them when `all`).
+  void track(std::span<const Vector3d> p, std::span<const std::uint8_t> starts, bool all) {
+    while (tangents_.size() < p.size() && (all || settled(p, starts, tangents_.size())))
+      step(p, starts, tangents_.size());
+  }
+  void reserve(std::size_t points) {
+    index_of_.reserve(points);
+    tangents_.reserve(points);
+    out_.reserve(points);
+  }
+  std::vector<Tangent> take_tangents() { return std::move(tangents_); }
+  std::vector<Neighbour> take_neighbours() { return std::move(out_); }
+
+ private:
+  static bool settled(std::span<const Vector3d> p, std::span<const std::uint8_t> starts,
+                      std::size_t i) {
+    const Vector3d* last = &p[i];
+    int distinct = 0;
+    for (std::size_t j = i + 1; j < p.size(); ++j) {
+      if (starts[j] != 0) return true;
+      if ((p[j] - *last).norm() > same_point) {
+        if (++distinct == 2) return true;
+        last = &p[j];
+      }
     }
-    open = true;
-    const auto found = tracker.step(p[i], across_feed(t), t);
-    index_of.push_back(i);
-    if (!found) continue;
-    Neighbour& nb = out[i];
+    return false;
+  }
+
+  void step(std::span<const Vector3d> p, std::span<const std::uint8_t> starts, std::size_t i) {
+    const Tangent& tangent = tangents_.emplace_back(tangent_at(p, starts, i));
+    Neighbour& nb = out_.emplace_back();
+    if (starts[i] != 0 && open_) tracker_.break_pass();
+    const Vector3d& t = tangent.along;
+    if (t.isZero()) {  // a lone point: no feed to look across
+      if (open_) tracker_.break_pass();
+      open_ = false;
+      return;
+    }
+    open_ = true;
+    const auto found = tracker_.step(p[i], across_feed(t), t);
+    index_of_.push_back(i);
+    if (!found) return;
     nb.found = true;
     nb.point = found->point;
-    nb.to = index_of[found->entry];
-    nb.from = found->fraction < 1 && found->entry > 0 ? index_of[found->entry - 1] : nb.to;
+    nb.to = index_of_[found->entry];
+    nb.from = found->fraction < 1 && found->entry > 0 ? index_of_[found->entry - 1] : nb.to;
     nb.fraction = found->fraction;
   }
-  return out;
-}
+
+  PassTracker tracker_;
+  std::vector<std::size_t> index_of_;  // the point of each tracker step
+  std::vector<Tangent> tangents_;      // of the points stepped
+  std::vector<Neighbour> out_;
+  bool open_ = false;
+};
 
 // The nearest later pass at every point, from the earlier passes: a point
 // whose earlier pass runs through point j lies on a later pass beside j
@@ -369,15 +401,14 @@ std::optional<Vector3d> two_sided(const Vector3d& t, const Vector3d& d1, const V
 class Estimate {
  public:
   Estimate(std::span<const Vector3d> points, std::span<const std::uint8_t> starts,
-           const PathNormalSettings& settings)
-      : p_(points), starts_(starts), settings_(settings), tangents_(points.size()) {
-    tbb::parallel_for(blocks(points.size()), [&](const auto& range) {
-      for (std::size_t i = range.begin(); i != range.end(); ++i)
-        tangents_[i] = tangent_at(p_, starts_, i);
-    });
-    earlier_ = earlier_neighbours(p_, starts_, tangents_, settings_);
-    later_ = later_neighbours(earlier_, p_, starts_, tangents_, settings_.search_radius);
-  }
+           const PathNormalSettings& settings, std::vector<Tangent> tangents,
+           std::vector<Neighbour> earlier)
+      : p_(points),
+        starts_(starts),
+        settings_(settings),
+        tangents_(std::move(tangents)),
+        earlier_(std::move(earlier)),
+        later_(later_neighbours(earlier_, p_, starts_, tangents_, settings_.search_radius)) {}
 
   // The earlier passes as the tracker found them, for the width of cut:
   // it is measured as the post's own tracker measures it (a pass end abeam
@@ -556,15 +587,53 @@ class Estimate {
 
 }  // namespace
 
-std::vector<PathNormal> estimate_path_normals(std::span<const Vector3d> points,
-                                              std::span<const std::uint8_t> starts,
-                                              const PathNormalSettings& settings,
-                                              std::vector<EarlierPass>* earlier_passes) {
-  Estimate estimate(points, starts, settings);
+struct PathNormalEstimator::State {
+  explicit State(const PathNormalSettings& s) : settings(s), earlier(std::in_place, s) {}
+  PathNormalSettings settings;
+  std::vector<Vector3d> points;
+  std::vector<std::uint8_t> starts;
+  std::optional<EarlierPasses> earlier;
+};
+
+PathNormalEstimator::PathNormalEstimator(const PathNormalSettings& settings)
+    : state_(std::make_unique<State>(settings)) {}
+PathNormalEstimator::~PathNormalEstimator() = default;
+PathNormalEstimator::PathNormalEstimator(PathNormalEstimator&&) noexcept = default;
+PathNormalEstimator& PathNormalEstimator::operator=(PathNormalEstimator&&) noexcept = default;
+
+void PathNormalEstimator::add(const Vector3d& point, bool starts_pass) {
+  state_->points.push_back(point);
+  state_->starts.push_back(starts_pass ? 1 : 0);
+}
+
+void PathNormalEstimator::reserve(std::size_t points) {
+  state_->points.reserve(points);
+  state_->starts.reserve(points);
+  state_->earlier->reserve(points);
+}
+
+void PathNormalEstimator::track() { state_->earlier->track(state_->points, state_->starts, false); }
+
+std::vector<PathNormal> PathNormalEstimator::finish(std::vector<EarlierPass>* earlier_passes) {
+  const std::unique_ptr<State> s = std::move(state_);  // its memory goes with the call
+  s->earlier->track(s->points, s->starts, true);
+  std::vector<Tangent> tangents = s->earlier->take_tangents();
+  std::vector<Neighbour> earlier = s->earlier->take_neighbours();
+  s->earlier.reset();  // the pass tracker's memory, before the rest needs more
+  Estimate estimate(s->points, s->starts, s->settings, std::move(tangents), std::move(earlier));
   if (earlier_passes != nullptr) estimate.keep_tracked();
   estimate.find_normals();
   if (earlier_passes != nullptr) *earlier_passes = estimate.earlier_passes();
   return estimate.take_normals();
+}
+
+std::vector<PathNormal> estimate_path_normals(std::span<const Vector3d> points,
+                                              std::span<const std::uint8_t> starts,
+                                              const PathNormalSettings& settings,
+                                              std::vector<EarlierPass>* earlier_passes) {
+  PathNormalEstimator estimator(settings);
+  for (std::size_t i = 0; i < points.size(); ++i) estimator.add(points[i], starts[i] != 0);
+  return estimator.finish(earlier_passes);
 }
 
 }  // namespace vcpost::pipeline

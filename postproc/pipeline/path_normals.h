@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -75,6 +76,34 @@ std::vector<PathNormal> estimate_path_normals(std::span<const Eigen::Vector3d> p
                                               std::span<const std::uint8_t> starts,
                                               const PathNormalSettings& settings,
                                               std::vector<EarlierPass>* earlier = nullptr);
+
+// The normals of one path whose points arrive in path order (a program
+// being read): the pass tracker, which needs path order, steps over each
+// point as soon as no later point can change its tangent, so track() runs
+// beside the reading; the rest runs in parallel at finish().
+// estimate_path_normals() is add() of every point, then finish().
+class PathNormalEstimator {
+ public:
+  explicit PathNormalEstimator(const PathNormalSettings& settings);
+  ~PathNormalEstimator();
+  PathNormalEstimator(PathNormalEstimator&&) noexcept;
+  PathNormalEstimator& operator=(PathNormalEstimator&&) noexcept;
+
+  // The next point of the path; starts_pass: a new pass starts at it (a
+  // rapid or lost contact came before).
+  void add(const Eigen::Vector3d& point, bool starts_pass);
+  // Room for about this many points (a guess: fewer or more may come).
+  void reserve(std::size_t points);
+  // Steps the tracker over the points added whose tangents are settled.
+  void track();
+  // All points added: their normals, and with `earlier` given, their
+  // nearest earlier passes. Once.
+  std::vector<PathNormal> finish(std::vector<EarlierPass>* earlier = nullptr);
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 PathNormalCounts count_sources(std::span<const PathNormal> normals);
 

@@ -1,6 +1,9 @@
 #include "postproc/post/path_normal_reader.h"
 
+#include <tbb/parallel_pipeline.h>
+
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -34,6 +37,100 @@ pipeline::EarlierPass earlier_between(const pipeline::EarlierPass& a,
   return {(1 - t) * a.point + t * b.point, m.normalized(), true};
 }
 
+// The moves' ends of the samples, chunk by chunk in path order, one
+// estimator a section (each tool's path lies on its own offset surface).
+class EndsBySection {
+ public:
+  // lines: the program's, a guess at its moves' ends (the room a section
+  // takes, as much as is left to read: one allocation, touched only as far
+  // as it is filled).
+  explicit EndsBySection(std::size_t lines) : lines_(lines) {}
+
+  void take(const Chunk& chunk) {
+    for (const ToolSection& s : chunk.sections) {
+      if (diameters_.size() <= s.index) diameters_.resize(s.index + 1, 0.0);
+      if (s.postable) diameters_[s.index] = s.entry->geometry()->diameter;
+    }
+    for (const Slot& slot : chunk.slots) {
+      if (slot.kind != SlotKind::sample) {
+        after_rapid_ = after_rapid_ || slot.kind == SlotKind::rapid;
+        continue;
+      }
+      bounds_.extend(slot.sample.point);
+      const bool new_section = slot.section != section_;
+      const bool inside = slot.sample.fraction > 0 && slot.sample.fraction < 1;
+      if (inside && !new_section && !slot.break_pass && !after_rapid_ && ends_ > 0) {
+        places_.push_back({ends_ - 1, slot.sample.fraction});
+        continue;
+      }
+      if (new_section) {
+        const double diameter = diameters_.at(slot.section);
+        pipeline::PathNormalSettings path_settings;
+        path_settings.search_radius = diameter;
+        path_settings.min_path_gap = 4 * diameter;  // as the post's own pass tracker
+        sections_.emplace_back(path_settings)
+            .reserve(static_cast<std::size_t>(static_cast<double>(lines_) * (1 - read_before_)));
+        section_ = slot.section;
+      }
+      sections_.back().add(slot.sample.point, new_section || slot.break_pass || after_rapid_);
+      after_rapid_ = false;
+      places_.push_back({ends_++, 1});
+    }
+    if (!sections_.empty()) sections_.back().track();
+    read_before_ = chunk.read_fraction;
+  }
+
+  // All read: the normals and earlier passes at the samples.
+  PathNormalsAhead finish() {
+    std::vector<pipeline::PathNormal> at_ends;
+    std::vector<pipeline::EarlierPass> earlier_at_ends, earlier_found;
+    for (std::size_t r = 0; r < sections_.size(); ++r) {
+      auto found = sections_[r].finish(&earlier_found);
+      if (r == 0) {  // most programs: one section, no copy
+        at_ends = std::move(found);
+        earlier_at_ends = std::move(earlier_found);
+        continue;
+      }
+      at_ends.insert(at_ends.end(), found.begin(), found.end());
+      earlier_at_ends.insert(earlier_at_ends.end(), earlier_found.begin(), earlier_found.end());
+    }
+    if (places_.size() == ends_) {  // every sample a move's end
+      return {std::move(at_ends), std::move(earlier_at_ends), bounds_};
+    }
+    PathNormalsAhead ahead{std::vector<pipeline::PathNormal>(places_.size()),
+                           std::vector<pipeline::EarlierPass>(places_.size()), bounds_};
+    for (std::size_t i = 0; i < places_.size(); ++i) {
+      const Place& p = places_[i];
+      if (p.fraction >= 1 || p.end + 1 >= at_ends.size()) {
+        ahead.normals[i] = at_ends[p.end];
+        ahead.earlier[i] = earlier_at_ends[p.end];
+        continue;
+      }
+      ahead.normals[i] = normal_between(at_ends[p.end], at_ends[p.end + 1], p.fraction);
+      ahead.earlier[i] =
+          earlier_between(earlier_at_ends[p.end], earlier_at_ends[p.end + 1], p.fraction);
+    }
+    return ahead;
+  }
+
+ private:
+  // Each sample: the move end it is (fraction 1), or the one before it and
+  // how far along the move to the next it lies.
+  struct Place {
+    std::size_t end = 0;
+    double fraction = 1;
+  };
+  std::vector<Place> places_;
+  std::size_t ends_ = 0;
+  std::size_t lines_;
+  double read_before_ = 0;  // share of the input read before this chunk
+  std::vector<pipeline::PathNormalEstimator> sections_;
+  std::vector<double> diameters_;  // by section index
+  std::optional<std::uint32_t> section_;
+  bool after_rapid_ = false;
+  Eigen::AlignedBox3d bounds_;
+};
+
 }  // namespace
 
 PathNormalsAhead normals_from_path(std::string_view text, const std::string& file_name,
@@ -44,89 +141,25 @@ PathNormalsAhead normals_from_path(std::string_view text, const std::string& fil
   PathReader reader(text, file_name, kind, dialect, profile, settings.sample_spacing_mm, false,
                     choices, settings.point.ap);
   reader.set_program_loader(settings.program_loader);
-  std::vector<Eigen::Vector3d> points;  // the moves' ends
-  std::vector<std::uint8_t> starts;
-  // Each sample: the move end it is (fraction 1), or the one before it and
-  // how far along the move to the next it lies.
-  struct Place {
-    std::size_t end = 0;
-    double fraction = 1;
-  };
-  std::vector<Place> places;
-  struct Run {
-    std::size_t begin = 0;
-    double diameter = 0;
-  };
-  std::vector<Run> runs;
-  std::vector<double> diameters;  // by section index
-  std::optional<std::uint32_t> section;
-  bool after_rapid = false;
-  Eigen::AlignedBox3d bounds;
-  Chunk chunk;
-  while (reader.read(chunk, chunk_samples)) {
-    for (const ToolSection& s : chunk.sections) {
-      if (diameters.size() <= s.index) diameters.resize(s.index + 1, 0.0);
-      if (s.postable) diameters[s.index] = s.entry->geometry()->diameter;
-    }
-    for (const Slot& slot : chunk.slots) {
-      if (slot.kind != SlotKind::sample) {
-        after_rapid = after_rapid || slot.kind == SlotKind::rapid;
-        continue;
-      }
-      bounds.extend(slot.sample.point);
-      const bool new_section = slot.section != section;
-      const bool inside = slot.sample.fraction > 0 && slot.sample.fraction < 1;
-      if (inside && !new_section && !slot.break_pass && !after_rapid && !points.empty()) {
-        places.push_back({points.size() - 1, slot.sample.fraction});
-        continue;
-      }
-      if (new_section) {
-        runs.push_back({points.size(), diameters.at(slot.section)});
-        section = slot.section;
-      }
-      starts.push_back(new_section || slot.break_pass || after_rapid ? 1 : 0);
-      after_rapid = false;
-      places.push_back({points.size(), 1});
-      points.push_back(slot.sample.point);
-    }
-  }
-  std::vector<pipeline::PathNormal> at_ends;
-  std::vector<pipeline::EarlierPass> earlier_at_ends, earlier_found;
-  for (std::size_t r = 0; r < runs.size(); ++r) {
-    const std::size_t begin = runs[r].begin;
-    const std::size_t end = r + 1 < runs.size() ? runs[r + 1].begin : points.size();
-    pipeline::PathNormalSettings path_settings;
-    path_settings.search_radius = runs[r].diameter;
-    path_settings.min_path_gap = 4 * runs[r].diameter;  // as the post's own pass tracker
-    auto found = pipeline::estimate_path_normals(std::span(points).subspan(begin, end - begin),
-                                                 std::span(starts).subspan(begin, end - begin),
-                                                 path_settings, &earlier_found);
-    if (r == 0) {  // most programs: one section, no copy
-      at_ends = std::move(found);
-      earlier_at_ends = std::move(earlier_found);
-      continue;
-    }
-    at_ends.insert(at_ends.end(), found.begin(), found.end());
-    earlier_at_ends.insert(earlier_at_ends.end(), earlier_found.begin(), earlier_found.end());
-  }
-  if (places.size() == points.size()) {  // every sample a move's end
-    return {std::move(at_ends), std::move(earlier_at_ends), bounds};
-  }
-  PathNormalsAhead ahead{std::vector<pipeline::PathNormal>(places.size()),
-                         std::vector<pipeline::EarlierPass>(places.size()), bounds};
-  std::vector<pipeline::PathNormal>& normals = ahead.normals;
-  for (std::size_t i = 0; i < places.size(); ++i) {
-    const Place& p = places[i];
-    if (p.fraction >= 1 || p.end + 1 >= at_ends.size()) {
-      normals[i] = at_ends[p.end];
-      ahead.earlier[i] = earlier_at_ends[p.end];
-      continue;
-    }
-    normals[i] = normal_between(at_ends[p.end], at_ends[p.end + 1], p.fraction);
-    ahead.earlier[i] =
-        earlier_between(earlier_at_ends[p.end], earlier_at_ends[p.end + 1], p.fraction);
-  }
-  return ahead;
+  EndsBySection ends(static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + 1);
+  // The reading and the pass tracker side by side: two chunks in flight,
+  // one more to fill.
+  constexpr std::size_t in_flight = 2;
+  std::array<Chunk, in_flight + 1> chunks;
+  std::size_t reads = 0;
+  tbb::parallel_pipeline(
+      in_flight, tbb::make_filter<void, Chunk*>(tbb::filter_mode::serial_in_order,
+                                                [&](tbb::flow_control& control) -> Chunk* {
+                                                  Chunk* chunk = &chunks[reads++ % chunks.size()];
+                                                  if (!reader.read(*chunk, chunk_samples)) {
+                                                    control.stop();
+                                                    return nullptr;
+                                                  }
+                                                  return chunk;
+                                                }) &
+                     tbb::make_filter<Chunk*, void>(tbb::filter_mode::serial_in_order,
+                                                    [&](Chunk* chunk) { ends.take(*chunk); }));
+  return ends.finish();
 }
 
 }  // namespace vcpost::post

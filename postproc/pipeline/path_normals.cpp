@@ -410,19 +410,17 @@ class Estimate {
         earlier_(std::move(earlier)),
         later_(later_neighbours(earlier_, p_, starts_, tangents_, settings_.search_radius)) {}
 
-  // The earlier passes as the tracker found them, for the width of cut:
-  // it is measured as the post's own tracker measures it (a pass end abeam
-  // counts), while a normal needs the pass where it crosses the plane.
-  // Before find_normals().
-  void keep_tracked() { tracked_ = earlier_; }
-
   void find_normals() {
-    to_crossings();
+    tbb::parallel_for(blocks(p_.size()), [&](const auto& range) {
+      for (std::size_t i = range.begin(); i != range.end(); ++i) later_[i] = abeam(later_[i], i);
+    });
     out_.assign(p_.size(), PathNormal{});
     tbb::parallel_for(blocks(p_.size()), [&](const auto& range) {
       for (std::size_t i = range.begin(); i != range.end(); ++i) {
         if (!earlier_[i].found || !later_[i].found) continue;
-        const auto normal = two_sided(tangents_[i].along, on_surface(earlier_[i]) - p_[i],
+        const Neighbour earlier = abeam(earlier_[i], i);
+        if (!earlier.found) continue;
+        const auto normal = two_sided(tangents_[i].along, on_surface(earlier) - p_[i],
                                       on_surface(later_[i]) - p_[i]);
         if (normal) out_[i] = {*normal, NormalSource::two_sided};
       }
@@ -435,8 +433,10 @@ class Estimate {
   }
   std::vector<PathNormal> take_normals() { return std::move(out_); }
 
-  // After find_normals(), with keep_tracked(): the earlier neighbour on the path
-  // surface, with the normal between those of its segment's ends (either
+  // After find_normals(): the earlier neighbour as the tracker found it
+  // (for the width of cut, measured as the post's own tracker measures it:
+  // a pass end abeam counts, where a normal needs the pass where it crosses
+  // the plane) on the path surface, with the normal between those of its segment's ends (either
   // end's where the other has none, the point's own where neither has: a
   // ring closing on its own start, whose first points have no pass before
   // them, lies within ae of it).
@@ -444,7 +444,7 @@ class Estimate {
     std::vector<EarlierPass> passes(p_.size());
     tbb::parallel_for(blocks(p_.size()), [&](const auto& range) {
       for (std::size_t i = range.begin(); i != range.end(); ++i) {
-        const Neighbour& nb = tracked_[i];
+        const Neighbour& nb = earlier_[i];
         if (!nb.found) continue;
         const PathNormal& to = out_[nb.to];
         const PathNormal& from = out_[nb.from];
@@ -472,24 +472,18 @@ class Estimate {
     return pipeline::on_surface(nb, p_, starts_, tangents_);
   }
 
-  // Each neighbour moved to where its pass crosses the plane across the feed.
-  void to_crossings() {
-    tbb::parallel_for(blocks(p_.size()), [&](const auto& range) {
-      for (std::size_t i = range.begin(); i != range.end(); ++i) {
-        const Vector3d& t = tangents_[i].along;
-        for (Neighbour* nb : {&earlier_[i], &later_[i]}) {
-          if (!nb->found) continue;
-          const auto abeam = crossing(*nb, p_[i], t, p_, starts_);
-          if (abeam) {
-            *nb = *abeam;
-          } else if (const double along = std::abs((nb->point - p_[i]).dot(t));
-                     along > across(nb->point - p_[i], t).norm() ||
-                     along > abeam_along * settings_.search_radius) {
-            nb->found = false;  // a pass end farther along the feed than across, or than abeam
-          }
-        }
-      }
-    });
+  // Point i's neighbour moved to where its pass crosses the plane across
+  // the feed (kept where it ends abeam).
+  Neighbour abeam(const Neighbour& nb, std::size_t i) const {
+    if (!nb.found) return nb;
+    const Vector3d& t = tangents_[i].along;
+    if (const auto crossed = crossing(nb, p_[i], t, p_, starts_)) return *crossed;
+    const double along = std::abs((nb.point - p_[i]).dot(t));
+    if (along > across(nb.point - p_[i], t).norm() ||
+        along > abeam_along * settings_.search_radius) {
+      return {};  // a pass end farther along the feed than across, or than abeam
+    }
+    return nb;
   }
 
   // The points without a normal yet given the one `find` returns (if any),
@@ -531,7 +525,8 @@ class Estimate {
     const Vector3d& t = tangents_[i].along;
     std::optional<Vector3d> best;
     double best_h = 0;
-    for (const Neighbour* nb : {&earlier_[i], &later_[i]}) {
+    const Neighbour earlier = abeam(earlier_[i], i);
+    for (const Neighbour* nb : {&earlier, &later_[i]}) {
       if (!nb->found) continue;
       const Vector3d a = across(on_surface(*nb) - p_[i], t);
       const double h = a.norm();
@@ -581,7 +576,9 @@ class Estimate {
   std::span<const std::uint8_t> starts_;
   const PathNormalSettings& settings_;
   std::vector<Tangent> tangents_;
-  std::vector<Neighbour> earlier_, later_, tracked_;
+  // earlier_ as the tracker found them, later_ where they cross the plane
+  // across the feed (after find_normals()).
+  std::vector<Neighbour> earlier_, later_;
   std::vector<PathNormal> out_;
 };
 
@@ -621,7 +618,6 @@ std::vector<PathNormal> PathNormalEstimator::finish(std::vector<EarlierPass>* ea
   std::vector<Neighbour> earlier = s->earlier->take_neighbours();
   s->earlier.reset();  // the pass tracker's memory, before the rest needs more
   Estimate estimate(s->points, s->starts, s->settings, std::move(tangents), std::move(earlier));
-  if (earlier_passes != nullptr) estimate.keep_tracked();
   estimate.find_normals();
   if (earlier_passes != nullptr) *earlier_passes = estimate.earlier_passes();
   return estimate.take_normals();

@@ -67,25 +67,28 @@ std::optional<AnalogTokens> find_analog(const std::vector<Token>& tokens,
 
 // S and F words that set no speed or feed on the control, so that a
 // change of theirs is a change of the program: G65's macro arguments
-// (S and F), Sinumerik's G25/G26 spindle limits (S). Decided by the
-// input's line and applied to both.
-void mark_arguments(const std::vector<Token>& decide, std::vector<Token>& tokens) {
-  bool macro = false, limit = false;
+// (S and F), Sinumerik's G25/G26 spindle limits (S) and its G4 dwell's
+// time (F seconds, S spindle turns; `siemens`). Decided by the input's
+// line and applied to both.
+void mark_arguments(const std::vector<Token>& decide, bool siemens, std::vector<Token>& tokens) {
+  bool macro = false, limit = false, dwell = false;
   for (const Token& t : decide) {
     if (t.letter() != 'G') continue;
     const auto code = number_of(t.value());
     macro = macro || code == 65.0;
     limit = limit || code == 25.0 || code == 26.0;
+    dwell = dwell || (siemens && code == 4.0);
   }
-  if (!macro && !limit) return;
+  if (!macro && !limit && !dwell) return;
   for (Token& t : tokens)
-    if (t.letter() == 'S' || (macro && t.letter() == 'F')) t.kind = TokenKind::argument;
+    if (t.letter() == 'S' || ((macro || dwell) && t.letter() == 'F')) t.kind = TokenKind::argument;
 }
 
 // Compares one line of the input with the same line of the output.
 class LineComparer {
  public:
-  explicit LineComparer(std::optional<int> speed_output) : speed_output_(speed_output) {}
+  LineComparer(std::optional<int> speed_output, bool siemens)
+      : speed_output_(speed_output), siemens_(siemens) {}
 
   // Appends the line's changes (by column) and violations to `changes` / `sink`.
   void compare(const Line& in, const Line& out, std::vector<Change>& changes, ViolationSink& sink) {
@@ -100,8 +103,8 @@ class LineComparer {
                       ViolationSink& sink) {
     tokenize(in.text, a_);
     tokenize(out.text, b_);
-    mark_arguments(a_, b_);
-    mark_arguments(a_, a_);
+    mark_arguments(a_, siemens_, b_);
+    mark_arguments(a_, siemens_, a_);
     if (!fold_speed_output(in, out, changes, sink)) return;
     if (in.eol != out.eol)
       sink.add(Code::E7102, out.number, static_cast<std::uint32_t>(out.text.size() + 1), in.number,
@@ -316,6 +319,7 @@ class LineComparer {
   }
 
   std::optional<int> speed_output_;
+  bool siemens_;  // Sinumerik: a G4's S and F are its dwell time
   std::vector<Token> a_, b_, kept_, ca_, cb_;
   std::string sa_, sb_;
 };
@@ -330,9 +334,9 @@ bool equivalent(LineComparer& comparer, const Line& in, const Line& out) {
 
 // Streams through both texts line by line (nothing is kept but the
 // current pair).
-void compare_lines(std::string_view input, std::string_view output, std::optional<int> speed_output,
+void compare_lines(std::string_view input, std::string_view output, const Options& options,
                    ChangeSink& changes, ViolationSink& sink) {
-  LineComparer comparer(speed_output);
+  LineComparer comparer(options.speed_output, options.dialect.kind == machines::Dialect::sinumerik);
   std::vector<Change> buffer;
   auto record = [&](const Line& x, const Line& y) {
     buffer.clear();
@@ -491,7 +495,7 @@ Result verify_gcode(std::string_view input, std::string_view output, const Optio
     return result;
   }
   ChangeSink changes(result, options.on_change);
-  compare_lines(input, output, options.speed_output, changes, sink);
+  compare_lines(input, output, options, changes, sink);
   // The interpreted events carry their lines; with lines added or removed
   // only the order of events can be compared.
   const bool same_lines = sink.count_of(Code::E7101) == 0;

@@ -232,6 +232,38 @@ TEST(VerifyGcode, MacroArgumentsAndSpindleLimitsAreNoSpeedWords) {
   EXPECT_TRUE(r.ok()) << (r.violations.empty() ? "" : format(r.violations[0], "out"));
 }
 
+// Sinumerik's G4 takes its time as F (seconds) or S (spindle turns): no
+// feed or speed, so a change of theirs is a changed word at its column, as
+// a macro argument's, not a speed change the events then contradict
+// (E7121 at column 1); one added to the dwell is text the input lacks.
+// Other dialects' F in a G4 block is a feed.
+TEST(VerifyGcode, SinumerikDwellTimesAreNoSpeedWords) {
+  Options siemens;
+  siemens.dialect = gcode::sinumerik_dialect();
+  const std::string dwell = "S1000 M3\nG4 F2\nG4 S10\nG1 X10 F500\nM30\n";
+  const auto one = [&](const std::string& output, Code code, std::uint32_t line,
+                       std::uint32_t column) {
+    const Result r = verify_gcode(dwell, output, siemens);
+    ASSERT_EQ(r.violation_count, 1u)
+        << (r.violations.empty() ? "" : format(r.violations[0], "out"));
+    EXPECT_EQ(r.violations[0].code, code) << format(r.violations[0], "out");
+    EXPECT_EQ(r.violations[0].line, line);
+    EXPECT_EQ(r.violations[0].column, column);
+    EXPECT_TRUE(r.changes.empty());
+  };
+  one(replace(dwell, "G4 F2", "G4 F3"), Code::E7103, 2, 4);
+  one(replace(dwell, "G4 S10", "G4 S20"), Code::E7103, 3, 4);
+  one(replace(dwell, "G4 F2", "G4 F2 S20"), Code::E7106, 2, 6);
+  // The speeds and feeds of the other blocks stay free.
+  const Result r = verify_gcode(dwell, replace(dwell, "F500", "F450"), siemens);
+  EXPECT_TRUE(r.ok()) << (r.violations.empty() ? "" : format(r.violations[0], "out"));
+  EXPECT_EQ(r.f_changes, 1u);
+  const std::string ngc = "G4 P1 F100\nG1 X10\nM30\n";
+  const Result feed = run(ngc, replace(ngc, "F100", "F90"));
+  EXPECT_TRUE(feed.ok()) << (feed.violations.empty() ? "" : format(feed.violations[0], "out"));
+  EXPECT_EQ(feed.f_changes, 1u);
+}
+
 // Issue 41: the input posted for a speed on analog output 0 (as
 // linuxcnc-3axis-m67 writes it): the start keeps its S word with M68 beside
 // it, the S word of line 8 becomes M67, lines 7 and 9 get one added.

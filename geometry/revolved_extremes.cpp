@@ -149,123 +149,184 @@ void Groove::shifted_ray_extremes(double c_lo, RadiusExtremes& out) const {
 // Every root of the piece's equation is a root of its polynomial; the
 // polynomials' roots on the arc are isolated by form_roots (a count, not a
 // scan), and each is kept if x lies on the tool as a leading point.
+
+// Those polynomials on one arc of the silhouette's parameter, their roots
+// added where they lie on their piece.
+class Groove::ShiftedArc {
+  enum class Piece { face, corner, shank };
+
+  const ArcForm<2>& s() const { return forms_.sin(); }
+
+  // Whether p lies on the piece, within round-off: beyond the face's rim
+  // its plane stays within 1e-9 R of the corner for sqrt(2e-9 R rc), so the
+  // surface test alone took the plane's root there for the corner's (D_min
+  // 5.3e-8 mm off, D 10, rc 2).
+  bool on(Piece piece, const Vector3d& p) const {
+    const double slack = 1e-12 * g_.radius_;
+    switch (piece) {
+      case Piece::face:
+        return length_of(p.x(), p.y()) <= g_.flat_radius_ + slack;
+      case Piece::corner:
+        return length_of(p.x(), p.y()) >= g_.flat_radius_ - slack && p.z() <= slack;
+      case Piece::shank:
+        return p.z() >= -slack;
+    }
+    return false;
+  }
+
+  // The point, from the silhouette normal's angle given by its cosine and sine.
+  std::optional<Vector3d> meridian_point_at(double cos_phi, double sin_phi) const {
+    const Vector3d u = cos_phi * g_.side_ + sin_phi * g_.normal_;
+    const double length = length_of(u.x(), u.y());
+    if (!(length > 0)) return std::nullopt;
+    const Vector3d x = (r0_ / length) * Vector3d(u.x(), u.y(), 0) + rc_ * u + ae_ * g_.side_;
+    const double across = g_.feed_.x() * u.y() - g_.feed_.y() * u.x();
+    if (across == 0) return std::nullopt;
+    return x - (x.x() * u.y() - x.y() * u.x()) / across * g_.feed_;
+  }
+
+  // What form_roots calls a root tau of a piece's polynomial with: its
+  // point added where it lies on that piece and on the tool as a leading
+  // point.
+  auto adds_on(Piece piece) const {
+    return [this, piece](double tau) {
+      const auto [cos_phi, sin_phi] = forms_.cos_sin_at(tau);
+      const auto p = meridian_point_at(cos_phi, sin_phi);
+      if (p && on(piece, *p) && std::abs(g_.outside_by(*p)) <= 1e-9 * g_.radius_ &&
+          g_.leads(g_.surface_normal(*p)))
+        out_.add(*p);
+    };
+  }
+
+ public:
+  ShiftedArc(const Groove& groove, double lo, double hi, RadiusExtremes& out)
+      : g_(groove),
+        out_(out),
+        forms_(lo, hi, groove.cos_sin(0.5 * (lo + hi))),
+        ez_(groove.side_.z()),
+        nz_(groove.normal_.z()),
+        fz_(groove.feed_.z()),
+        en_(groove.side_.x() * groove.normal_.y() - groove.side_.y() * groove.normal_.x()),
+        fe_(groove.feed_.x() * groove.side_.y() - groove.feed_.y() * groove.side_.x()),
+        fn_(groove.feed_.x() * groove.normal_.y() - groove.feed_.y() * groove.normal_.x()),
+        r0_(groove.flat_radius_),
+        rc_(groove.corner_),
+        ae_(groove.ae_),
+        shank_(groove.c0_ + groove.radius_ * groove.rim_tilt_ > -1e-9 * groove.radius_),
+        uphill_(!groove.edge_on_ && fz_ > 0),
+        d_(forms_.linear(fe_, fn_, 0)),
+        v_(forms_.linear(ez_, nz_, 0)),
+        d2_(d_ * d_),
+        m_low_(m_lower_bound()) {}
+
+  // The face, where it leads.
+  void face() const {
+    if (!g_.face_leads()) return;
+    form_roots(forms_.sum(forms_.linear(rc_ * ez_, rc_ * nz_, rc_ + ae_ * ez_) * d_,
+                          (-ae_ * en_ * fz_) * s()),
+               adds_on(Piece::face));
+  }
+
+  void corner() const {
+    if (!(rc_ > 0)) return;
+    form_roots(forms_.sum((ae_ * en_ * en_) * (s() * s()), forms_.linear(2 * rc_, 0, ae_) * d2_),
+               adds_on(Piece::corner));
+  }
+
+  // The corner across the axis (lambda <= -R0) and the shank (lambda =
+  // R, and -R where M <= -(R + R0) L may hold): M D and L^2 built only
+  // where one of them may hold a point.
+  void across_axis_and_shank() const {
+    const bool across_possible = rc_ > 0 && r0_ > 0 && !ruled_out(2 * r0_);
+    if (!shank_ && !across_possible) return;
+    const ArcForm<4> l2 = forms_.sum(forms_.one() * forms_.one(), (-1.0) * (v_ * v_));
+    const ArcForm<6> md = forms_.sum(
+        forms_.sum(rc_ * l2, forms_.linear(ae_ * (1 - ez_ * ez_), -ae_ * ez_ * nz_, 0)) * d_,
+        (ae_ * en_ * fz_) * (s() * v_));
+    if (across_possible && may_cross(md, 2 * r0_)) {
+      const ArcForm<6> g =
+          forms_.sum(forms_.linear(2 * rc_ * ae_, 0, ae_ * ae_ + 4 * r0_ * r0_) * d2_,
+                     (ae_ * ae_ * en_ * en_) * (s() * s()));
+      form_roots(forms_.sum(g * g * l2, (-16 * r0_ * r0_) * (md * md * d2_)),
+                 adds_on(Piece::corner));
+    }
+    if (!shank_) return;
+    if (rc_ > 0)
+      form_roots(forms_.sum(md * md, (-rc_ * rc_) * (l2 * d2_)), adds_on(Piece::shank));
+    else
+      form_roots(md, adds_on(Piece::shank));
+    const double across = g_.radius_ + r0_;
+    if (!ruled_out(across) && may_cross(md, across))
+      form_roots(forms_.sum(md * md, (-across * across) * (l2 * d2_)), adds_on(Piece::shank));
+  }
+
+ private:
+  // Whether M <= -k L can hold on the arc (lambda <= R0 - k): L >=
+  // |F_z| (v^2 <= e_z^2 + N_z^2 = 1 - F_z^2), so not where M > -k |F_z|
+  // on the whole arc. First by a bound: where D keeps its sign (its ends'
+  // signs agree: an arc < pi then holds no zero of D, and one of pi
+  // has ends of opposite signs), M = rc L^2 + ae (c - e_z v) + ae A F_z
+  // s v / D >= -ae (1 + |A F_z| / min |D|), |D| least at an end; this
+  // decides most finishing set-ups' arcs, for which building M D's form
+  // took a fifth of the evaluation. Else by the form (may_cross).
+  // (D's form at the arc's ends is D (1 + W^2) = D times one's end coefficient.)
+  double m_lower_bound() const {
+    const double d_lo = d_.a[0], d_hi = d_.a[2];
+    const double least_d = std::min(std::abs(d_lo), std::abs(d_hi)) / forms_.one().a[0];
+    const bool d_keeps_sign = (d_lo > 0 && d_hi > 0) || (d_lo < 0 && d_hi < 0);
+    return d_keeps_sign ? -ae_ * (1 + std::abs(en_ * fz_) / least_d) : -kInf;
+  }
+  // Ruled out without the form: uphill, or by the bound.
+  bool ruled_out(double k) const { return uphill_ || m_low_ > -k * std::abs(fz_); }
+  // By the form: not where D keeps its sign and M D + k |F_z| D has that
+  // sign on the whole arc.
+  bool may_cross(const ArcForm<6>& md, double k) const {
+    const ArcForm<6> bound =
+        forms_.sum(md, (k * std::abs(fz_)) * (d_ * forms_.one() * forms_.one()));
+    const auto all = [](const auto& form, bool positive) {
+      return std::all_of(form.a.begin(), form.a.end(),
+                         [positive](double x) { return positive ? x > 0 : x < 0; });
+    };
+    const bool positive = d_.a[0] > 0;
+    return !(all(d_, positive) && all(bound, positive));
+  }
+
+  const Groove& g_;
+  RadiusExtremes& out_;
+  const ArcForms forms_;
+  // e_z, N_z, F_z, and A, B and C above.
+  const double ez_, nz_, fz_, en_, fe_, fn_;
+  const double r0_, rc_, ae_;
+  // Whether the shank can hold a point of the groove (c <= c0 there).
+  const bool shank_;
+  // Going uphill (F_z > 0) no point across the axis (x_xy = lambda d,
+  // lambda < 0) leads: with U_z = v <= 0 on the lower boundary, U_xy.F_xy =
+  // -v F_z, there the corner's normal n = -cos(theta) d + sin(theta) z
+  // (theta in [-pi/2, 0]) has n.F = F_z (cos(theta) v / L + sin(theta)) <= 0
+  // and the shank's, -d, has n.F = v F_z / L <= 0.
+  const bool uphill_;
+  const ArcForm<2> d_, v_;  // D and v = U_z
+  const ArcForm<4> d2_;
+  const double m_low_;  // M >= m_low_ on the arc (see m_lower_bound)
+};
+
+// The shifted silhouette's extremes, arc by arc (the method above).
 void Groove::shifted_silhouette_extremes(double phi_top, double phi_star,
                                          RadiusExtremes& out) const {
   if (corner_ == 0 && !edge_on_) {
     flat_shifted_rim_extremes(std::min(phi_top, phi_star), std::max(phi_top, phi_star), out);
     return;
   }
-  // The point, from the silhouette normal's angle given by its cosine and sine.
-  const auto meridian_point_at = [&](double cos_phi, double sin_phi) -> std::optional<Vector3d> {
-    const Vector3d u = cos_phi * side_ + sin_phi * normal_;
-    const double length = length_of(u.x(), u.y());
-    if (!(length > 0)) return std::nullopt;
-    const Vector3d x =
-        (flat_radius_ / length) * Vector3d(u.x(), u.y(), 0) + corner_ * u + ae_ * side_;
-    const double across = feed_.x() * u.y() - feed_.y() * u.x();
-    if (across == 0) return std::nullopt;
-    return x - (x.x() * u.y() - x.y() * u.x()) / across * feed_;
-  };
   const double lo = std::min(phi_top, phi_star), hi = std::max(phi_top, phi_star);
   if (!(hi > lo)) return;
-  const double ez = side_.z(), nz = normal_.z(), fz = feed_.z();
-  // A, B and C above.
-  const double en = side_.x() * normal_.y() - side_.y() * normal_.x();
-  const double fe = feed_.x() * side_.y() - feed_.y() * side_.x();
-  const double fn = feed_.x() * normal_.y() - feed_.y() * normal_.x();
-  const double r0 = flat_radius_, rc = corner_, ae = ae_;
-  // Whether the shank can hold a point of the groove (c <= c0 there).
-  const bool shank = c0_ + radius_ * rim_tilt_ > -1e-9 * radius_;
-  // Going uphill (F_z > 0) no point across the axis (x_xy = lambda d,
-  // lambda < 0) leads: with U_z = v <= 0 on the lower boundary, U_xy.F_xy =
-  // -v F_z, there the corner's normal n = -cos(theta) d + sin(theta) z
-  // (theta in [-pi/2, 0]) has n.F = F_z (cos(theta) v / L + sin(theta)) <= 0
-  // and the shank's, -d, has n.F = v F_z / L <= 0.
-  const bool uphill = !edge_on_ && fz > 0;
   // Arcs of at most pi (the left boundary spans no more): W <= tan(pi / 4) = 1.
   const int arcs = std::max(1, static_cast<int>(std::ceil((hi - lo) / kPi)));
   for (int arc = 0; arc < arcs; ++arc) {
     const double arc_lo = lo + (hi - lo) * arc / arcs, arc_hi = lo + (hi - lo) * (arc + 1) / arcs;
-    const ArcForms forms(arc_lo, arc_hi, cos_sin(0.5 * (arc_lo + arc_hi)));
-    // A root of a piece's polynomial counts if x lies on that piece (within
-    // round-off): beyond the face's rim its plane stays within 1e-9 R of the
-    // corner for sqrt(2e-9 R rc), so the surface test alone took the
-    // plane's root there for the corner's (D_min 5.3e-8 mm off, D 10, rc 2).
-    const double slack = 1e-12 * radius_;
-    const auto on_face = [&](const Vector3d& p) {
-      return length_of(p.x(), p.y()) <= flat_radius_ + slack;
-    };
-    const auto on_corner = [&](const Vector3d& p) {
-      return length_of(p.x(), p.y()) >= flat_radius_ - slack && p.z() <= slack;
-    };
-    const auto on_shank = [&](const Vector3d& p) { return p.z() >= -slack; };
-    const auto test = [&](const auto& on_piece) {
-      return [&](double tau) {
-        const auto [cos_phi, sin_phi] = forms.cos_sin_at(tau);
-        const auto p = meridian_point_at(cos_phi, sin_phi);
-        if (p && on_piece(*p) && std::abs(outside_by(*p)) <= 1e-9 * radius_ &&
-            leads(surface_normal(*p)))
-          out.add(*p);
-      };
-    };
-    const ArcForm<2> d = forms.linear(fe, fn, 0), v = forms.linear(ez, nz, 0);
-    const ArcForm<2>& s = forms.sin();
-    // The face, where it leads.
-    if (face_leads())
-      form_roots(forms.sum(forms.linear(rc * ez, rc * nz, rc + ae * ez) * d, (-ae * en * fz) * s),
-                 test(on_face));
-    const ArcForm<4> d2 = d * d;
-    if (rc > 0) {
-      // The corner.
-      form_roots(forms.sum((ae * en * en) * (s * s), forms.linear(2 * rc, 0, ae) * d2),
-                 test(on_corner));
-    }
-    // Whether M <= -k L can hold on the arc (lambda <= R0 - k): L >=
-    // |F_z| (v^2 <= e_z^2 + N_z^2 = 1 - F_z^2), so not where M > -k |F_z|
-    // on the whole arc. First by a bound: where D keeps its sign (its ends'
-    // signs agree: an arc < pi then holds no zero of D, and one of pi
-    // has ends of opposite signs), M = rc L^2 + ae (c - e_z v) + ae A F_z
-    // s v / D >= -ae (1 + |A F_z| / min |D|), |D| least at an end; this
-    // decides most finishing set-ups' arcs, for which building M D's form
-    // took a fifth of the evaluation. Else by the form: not where D keeps
-    // its sign and M D + k |F_z| D has that sign on the whole arc.
-    // (D's form at the arc's ends is D (1 + W^2) = D times one's end coefficient.)
-    const double d_lo = d.a[0], d_hi = d.a[2];
-    const double least_d = std::min(std::abs(d_lo), std::abs(d_hi)) / forms.one().a[0];
-    const bool d_keeps_sign = (d_lo > 0 && d_hi > 0) || (d_lo < 0 && d_hi < 0);
-    const double m_low = d_keeps_sign ? -ae * (1 + std::abs(en * fz) / least_d) : -kInf;
-    // Ruled out without the form: uphill, or by the bound.
-    const auto ruled_out = [&](double k) { return uphill || m_low > -k * std::abs(fz); };
-    const bool across_possible = rc > 0 && r0 > 0 && !ruled_out(2 * r0);
-    if (!shank && !across_possible) continue;
-    // M D and L^2.
-    const ArcForm<4> l2 = forms.sum(forms.one() * forms.one(), (-1.0) * (v * v));
-    const ArcForm<6> md =
-        forms.sum(forms.sum(rc * l2, forms.linear(ae * (1 - ez * ez), -ae * ez * nz, 0)) * d,
-                  (ae * en * fz) * (s * v));
-    const auto may_cross = [&](double k) {
-      const ArcForm<6> bound = forms.sum(md, (k * std::abs(fz)) * (d * forms.one() * forms.one()));
-      const auto all = [](const auto& form, bool positive) {
-        return std::all_of(form.a.begin(), form.a.end(),
-                           [positive](double x) { return positive ? x > 0 : x < 0; });
-      };
-      const bool positive = d.a[0] > 0;
-      return !(all(d, positive) && all(bound, positive));
-    };
-    if (across_possible && may_cross(2 * r0)) {
-      // The corner across the axis: lambda <= -R0.
-      const ArcForm<6> g = forms.sum(forms.linear(2 * rc * ae, 0, ae * ae + 4 * r0 * r0) * d2,
-                                     (ae * ae * en * en) * (s * s));
-      form_roots(forms.sum(g * g * l2, (-16 * r0 * r0) * (md * md * d2)), test(on_corner));
-    }
-    if (!shank) continue;
-    if (rc > 0)
-      form_roots(forms.sum(md * md, (-rc * rc) * (l2 * d2)), test(on_shank));
-    else
-      form_roots(md, test(on_shank));
-    const double across = radius_ + r0;
-    if (!ruled_out(across) && may_cross(across))
-      form_roots(forms.sum(md * md, (-across * across) * (l2 * d2)), test(on_shank));
+    const ShiftedArc piece(*this, arc_lo, arc_hi, out);
+    piece.face();
+    piece.corner();
+    piece.across_axis_and_shank();
   }
 }
 

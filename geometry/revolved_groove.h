@@ -933,6 +933,8 @@ class Groove {
                         RadiusExtremes& out) const;
   void shifted_ray_extremes(double c_lo, RadiusExtremes& out) const;
   void shifted_silhouette_extremes(double phi_top, double phi_star, RadiusExtremes& out) const;
+  // One arc of the shifted silhouette, piece by piece (revolved_extremes.cpp).
+  class ShiftedArc;
   void flat_shifted_rim_extremes(double phi_lo, double phi_hi, RadiusExtremes& out) const;
   bool face_point_engaged(const Vector3d& p, double slack) const;
   // max(-z - rc, r - R, distance to the corner circle - rc): <= 0 exactly

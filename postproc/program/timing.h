@@ -42,19 +42,16 @@ struct EventTime {
 
 // A feed move whose duration is undefined: no feed rate in effect (E6101,
 // E6102), or a per-revolution feed while the spindle stands still (E6103).
-// what() is the message alone; the caller adds the file and line.
+// what() is the message alone; the caller adds the file and line. where()
+// holds the move's line and column, with no file (the clock knows none).
 class TimingError : public vcpost::Error {
  public:
   TimingError(Code code, const std::string& message, SourceRef source)
-      : vcpost::Error(code, message, {"", source.line, source.column}), source_(source) {}
-  SourceRef source() const { return source_; }
+      : vcpost::Error(code, message, {"", source.line, source.column}) {}
   // "file:line:col: error[E6101]: message", as the readers word their errors.
   std::string located(const std::string& file) const {
-    return format_diagnostic(code(), {file, source_.line, source_.column}, what());
+    return format_diagnostic(code(), {file, where().line, where().column}, what());
   }
-
- private:
-  SourceRef source_;
 };
 
 // Follows the feed, feed mode and spindle through the events of one program

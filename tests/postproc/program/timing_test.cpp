@@ -95,7 +95,8 @@ TEST(PathClock, FeedPerRevolutionUsesTheCurrentSpeed) {
     clock.advance(StraightFeed{{20, 0, 0}, {30, 0, 0}, {9, 1, 120}});
     FAIL() << "no TimingError";
   } catch (const TimingError& e) {
-    EXPECT_EQ(e.source().line, 9u);
+    EXPECT_EQ(e.where().line, 9u);
+    EXPECT_EQ(e.where().column, 1u);
     EXPECT_NE(std::string(e.what()).find("spindle stopped"), std::string::npos);
   }
 }

@@ -91,7 +91,10 @@ post::PostSettings settings_from(const PostArguments& args) {
   return settings;
 }
 
-void add_job_options(CLI::App& command, PostArguments& args) {
+namespace {
+
+// The program, the model and where the model sits.
+void add_input_options(CLI::App& command, PostArguments& args) {
   command.add_option("program", args.program, "G-code or APT CL program ('-': standard input)")
       ->required();
   command.add_option(
@@ -103,6 +106,10 @@ void add_job_options(CLI::App& command, PostArguments& args) {
       "where the model sits in the program's frame: steps applied in order, rx=DEG, ry=DEG, "
       "rz=DEG, x=MM, y=MM, z=MM, or matrix=16 numbers (e.g. rz=-90 or rx=180,rz=180,z=-22); "
       "or vcproject:FILE.vcproject (VERICUT's placement of the design STL)");
+}
+
+// The tools, their speeds and the allowance the CAM left on them.
+void add_tool_options(CLI::App& command, PostArguments& args) {
   command.add_option("--tool", args.tools,
                      "the tool: ball:D, bull:D:rc, flat:D, drill:D or other (mm), for every tool; "
                      "T8=ball:14 for tool 8 (repeatable; default: what the program says, CL "
@@ -121,11 +128,10 @@ void add_job_options(CLI::App& command, PostArguments& args) {
       "allowance the CAM left, mm, for every tool (0.3; negative: into the model, e.g. "
       "-1.2); T3=0.2 for tool 3, T3=0.2:0.1 radial:axial for bull-nose and flat end "
       "mills (repeatable): contact, ae and the engagement are taken on the model offset by it");
-  command
-      .add_option("--ap", args.ap,
-                  "depth of cut along the surface normal, mm (required with --model); with an "
-                  "in-process stock the nominal one, and the one tilted (3+2) points take")
-      ->check(positive_number());
+}
+
+// The in-process stock (docs/stock.md): its source, grid and memory.
+void add_in_process_stock_options(CLI::App& command, PostArguments& args) {
   command.add_flag("--stock-from-program", args.stock_from_program,
                    "in-process stock: the block the program declares (Klartext BLK FORM, APT CL "
                    "INSERT/Stock Size); ap at each point from the material the earlier sections "
@@ -146,12 +152,26 @@ void add_job_options(CLI::App& command, PostArguments& args) {
                   "most memory the in-process stock and its copies take, MB")
       ->check(positive_number(1, 1 << 20))
       ->capture_default_str();
+}
+
+// The depth and width of cut.
+void add_cut_options(CLI::App& command, PostArguments& args) {
+  command
+      .add_option("--ap", args.ap,
+                  "depth of cut along the surface normal, mm (required with --model); with an "
+                  "in-process stock the nominal one, and the one tilted (3+2) points take")
+      ->check(positive_number());
+  add_in_process_stock_options(command, args);
   command
       .add_option("--ae", args.ae,
                   "width of cut, mm: used where the toolpath shows no neighbouring pass")
       ->check(positive_number());
   command.add_flag("--ae-override", args.ae_override,
                    "use --ae everywhere instead of measuring it from the toolpath");
+}
+
+// The machine, how the speed is chosen and the feed coupled to it.
+void add_machine_options(CLI::App& command, PostArguments& args) {
   command
       .add_option("--machine", args.machine,
                   "machine profile: a built-in name (vcpost machines list) or a TOML file")
@@ -172,6 +192,10 @@ void add_job_options(CLI::App& command, PostArguments& args) {
                   "number of teeth for --adjust-feed: every tool's but those with teeth in "
                   "--tools (default: the profile's)")
       ->check(CLI::Range(1, 1000));
+}
+
+// How the program's path is read and evaluated.
+void add_path_options(CLI::App& command, PostArguments& args) {
   command
       .add_option("--cl-point", args.cl_point,
                   "what the program's points are: the tool tip or the ball centre")
@@ -190,6 +214,10 @@ void add_job_options(CLI::App& command, PostArguments& args) {
       ->capture_default_str();
   command.add_option("--dialect", args.dialect,
                      "G-code dialect: rs274ngc, fanuc, mazak, sinumerik (default: the profile's)");
+}
+
+// The run: its summary, threads and what it prints.
+void add_run_options(CLI::App& command, PostArguments& args) {
   command.add_option("--summary-json", args.summary_json,
                      "write the job's JSON summary to this file ('-': standard error)");
   command
@@ -207,6 +235,17 @@ void add_job_options(CLI::App& command, PostArguments& args) {
   command.add_flag("-v,--verbose", args.verbose, "the same as --log-level debug");
   command.add_flag("--strict", args.strict,
                    "exit 1 when there were warnings (gouges, points without contact)");
+}
+
+}  // namespace
+
+void add_job_options(CLI::App& command, PostArguments& args) {
+  add_input_options(command, args);
+  add_tool_options(command, args);
+  add_cut_options(command, args);
+  add_machine_options(command, args);
+  add_path_options(command, args);
+  add_run_options(command, args);
 }
 
 }  // namespace vcpost::cli

@@ -38,11 +38,12 @@ pipeline::EarlierPass earlier_between(const pipeline::EarlierPass& a,
 }
 
 // The moves' ends of the samples, chunk by chunk in path order, one
-// estimator a section (each tool's path lies on its own offset surface).
+// estimator a section (each tool's path lies on its own offset surface),
+// each section's normals found as soon as the next one starts.
 class EndsBySection {
  public:
   // lines: the program's, a guess at its moves' ends (the room a section
-  // takes, as much as is left to read: one allocation, touched only as far
+  // takes, as many as are left to read: one allocation, touched only as far
   // as it is filled).
   explicit EndsBySection(std::size_t lines) : lines_(lines) {}
 
@@ -63,57 +64,63 @@ class EndsBySection {
         places_.push_back({ends_ - 1, slot.sample.fraction});
         continue;
       }
-      if (new_section) {
-        const double diameter = diameters_.at(slot.section);
-        pipeline::PathNormalSettings path_settings;
-        path_settings.search_radius = diameter;
-        path_settings.min_path_gap = 4 * diameter;  // as the post's own pass tracker
-        sections_.emplace_back(path_settings)
-            .reserve(static_cast<std::size_t>(static_cast<double>(lines_) * (1 - read_before_)));
-        section_ = slot.section;
-      }
-      sections_.back().add(slot.sample.point, new_section || slot.break_pass || after_rapid_);
+      if (new_section) start_section(slot.section);
+      open_->add(slot.sample.point, new_section || slot.break_pass || after_rapid_);
       after_rapid_ = false;
       places_.push_back({ends_++, 1});
     }
-    if (!sections_.empty()) sections_.back().track();
+    if (open_) open_->track();
     read_before_ = chunk.read_fraction;
   }
 
   // All read: the normals and earlier passes at the samples.
   PathNormalsAhead finish() {
-    std::vector<pipeline::PathNormal> at_ends;
-    std::vector<pipeline::EarlierPass> earlier_at_ends, earlier_found;
-    for (std::size_t r = 0; r < sections_.size(); ++r) {
-      auto found = sections_[r].finish(&earlier_found);
-      if (r == 0) {  // most programs: one section, no copy
-        at_ends = std::move(found);
-        earlier_at_ends = std::move(earlier_found);
-        continue;
-      }
-      at_ends.insert(at_ends.end(), found.begin(), found.end());
-      earlier_at_ends.insert(earlier_at_ends.end(), earlier_found.begin(), earlier_found.end());
-    }
+    finish_section();
     if (places_.size() == ends_) {  // every sample a move's end
-      return {std::move(at_ends), std::move(earlier_at_ends), bounds_};
+      return {std::move(at_ends_), std::move(earlier_at_ends_), bounds_};
     }
     PathNormalsAhead ahead{std::vector<pipeline::PathNormal>(places_.size()),
                            std::vector<pipeline::EarlierPass>(places_.size()), bounds_};
     for (std::size_t i = 0; i < places_.size(); ++i) {
       const Place& p = places_[i];
-      if (p.fraction >= 1 || p.end + 1 >= at_ends.size()) {
-        ahead.normals[i] = at_ends[p.end];
-        ahead.earlier[i] = earlier_at_ends[p.end];
+      if (p.fraction >= 1 || p.end + 1 >= at_ends_.size()) {
+        ahead.normals[i] = at_ends_[p.end];
+        ahead.earlier[i] = earlier_at_ends_[p.end];
         continue;
       }
-      ahead.normals[i] = normal_between(at_ends[p.end], at_ends[p.end + 1], p.fraction);
+      ahead.normals[i] = normal_between(at_ends_[p.end], at_ends_[p.end + 1], p.fraction);
       ahead.earlier[i] =
-          earlier_between(earlier_at_ends[p.end], earlier_at_ends[p.end + 1], p.fraction);
+          earlier_between(earlier_at_ends_[p.end], earlier_at_ends_[p.end + 1], p.fraction);
     }
     return ahead;
   }
 
  private:
+  void start_section(std::uint32_t section) {
+    finish_section();
+    const double diameter = diameters_.at(section);
+    pipeline::PathNormalSettings path_settings;
+    path_settings.search_radius = diameter;
+    path_settings.min_path_gap = 4 * diameter;  // as the post's own pass tracker
+    open_.emplace(path_settings);
+    open_->reserve(static_cast<std::size_t>(static_cast<double>(lines_) * (1 - read_before_)));
+    section_ = section;
+  }
+
+  void finish_section() {
+    if (!open_) return;
+    std::vector<pipeline::EarlierPass> earlier;
+    std::vector<pipeline::PathNormal> found = open_->finish(&earlier);
+    open_.reset();
+    if (at_ends_.empty()) {  // most programs: one section, no copy
+      at_ends_ = std::move(found);
+      earlier_at_ends_ = std::move(earlier);
+      return;
+    }
+    at_ends_.insert(at_ends_.end(), found.begin(), found.end());
+    earlier_at_ends_.insert(earlier_at_ends_.end(), earlier.begin(), earlier.end());
+  }
+
   // Each sample: the move end it is (fraction 1), or the one before it and
   // how far along the move to the next it lies.
   struct Place {
@@ -123,8 +130,11 @@ class EndsBySection {
   std::vector<Place> places_;
   std::size_t ends_ = 0;
   std::size_t lines_;
-  double read_before_ = 0;  // share of the input read before this chunk
-  std::vector<pipeline::PathNormalEstimator> sections_;
+  double read_before_ = 0;                             // share of the input read before this chunk
+  std::optional<pipeline::PathNormalEstimator> open_;  // the section being read
+  // The normals and earlier passes at the ends of the sections read.
+  std::vector<pipeline::PathNormal> at_ends_;
+  std::vector<pipeline::EarlierPass> earlier_at_ends_;
   std::vector<double> diameters_;  // by section index
   std::optional<std::uint32_t> section_;
   bool after_rapid_ = false;

@@ -101,15 +101,9 @@ bool valid_name(const std::string& name) {
   });
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  if (argc != 6) {
-    std::cerr << "usage: gen_error_table CODES.csv GROUPS.csv OUT.h OUT.inc OUT.md\n";
-    return 2;
-  }
-  const std::string codes_path = argv[1], groups_path = argv[2];
-
+// The code table's rows, each checked against the table's rules and the
+// rows before it.
+std::vector<Row> read_codes(const std::string& codes_path) {
   std::vector<int> lines;
   std::vector<Row> rows;
   std::set<std::string> seen;
@@ -132,29 +126,39 @@ int main(int argc, char** argv) {
     if (r.summary.empty() || r.hint.empty()) die(where, "summary and hint must not be empty");
     rows.push_back(r);
   }
+  return rows;
+}
 
+// The groups' prefixes and titles, in the file's order.
+using Groups = std::vector<std::pair<std::string, std::string>>;
+
+Groups read_groups(const std::string& groups_path) {
   std::vector<int> group_lines;
-  std::vector<std::pair<std::string, std::string>> groups;
+  Groups groups;
   for (const auto& cells : read_csv(groups_path, "prefix,title", group_lines)) {
     const std::string where = groups_path + ":" + std::to_string(group_lines[groups.size()]);
     if (cells.size() != 2 || cells[0].empty() || cells[1].empty())
       die(where, "expected a prefix and a title");
     groups.emplace_back(cells[0], cells[1]);
   }
-  // The group of a code: the longest prefix of its number.
-  auto group_of = [&](const Row& r) -> std::string {
-    std::string best;
-    for (const auto& [prefix, title] : groups) {
-      if (r.code.compare(1, prefix.size(), prefix) == 0 && prefix.size() > best.size())
-        best = prefix;
-    }
-    if (best.empty()) die(codes_path + ":" + std::to_string(r.line), "no group for " + r.code);
-    return best;
-  };
+  return groups;
+}
 
-  // The enumerators are named after the codes themselves: the name column
-  // is not unique (E1402 and W1402 are both unknown_m_code). Their values
-  // are the rows' positions, so a code's row is found by indexing.
+// The group of a code: the longest prefix of its number.
+std::string group_of(const Row& r, const Groups& groups, const std::string& codes_path) {
+  std::string best;
+  for (const auto& [prefix, title] : groups) {
+    if (r.code.compare(1, prefix.size(), prefix) == 0 && prefix.size() > best.size()) best = prefix;
+  }
+  if (best.empty()) die(codes_path + ":" + std::to_string(r.line), "no group for " + r.code);
+  return best;
+}
+
+// core/code.h. The enumerators are named after the codes themselves: the
+// name column is not unique (E1402 and W1402 are both unknown_m_code).
+// Their values are the rows' positions, so a code's row is found by
+// indexing.
+std::string code_header(const std::vector<Row>& rows) {
   std::ostringstream header;
   header << "// Generated from core/error_codes.csv by core/gen/gen_error_table.cpp: do not edit.\n"
             "// Every diagnostic code of vcpost; a new one is a row of the CSV.\n"
@@ -164,7 +168,11 @@ int main(int argc, char** argv) {
     header << "  " << r.code << ",  // " << r.name << ": " << r.summary << "\n";
   header << "};\n\ninline constexpr std::size_t kCodeCount = " << rows.size()
          << ";\n\n}  // namespace vcpost\n";
+  return header.str();
+}
 
+// The table core/error.cpp includes, a row per code in the enum's order.
+std::string code_table(const std::vector<Row>& rows) {
   std::ostringstream inc;
   inc << "// Generated from core/error_codes.csv by core/gen/gen_error_table.cpp: do not edit.\n";
   for (const auto& r : rows) {
@@ -172,7 +180,12 @@ int main(int argc, char** argv) {
         << (r.code[0] == 'E' ? "Severity::error" : "Severity::warning") << ", " << r.exit << ", "
         << cpp_literal(r.summary) << ", " << cpp_literal(r.hint) << "},\n";
   }
+  return inc.str();
+}
 
+// docs/errors.md: a table per group.
+std::string errors_page(const std::vector<Row>& rows, const Groups& groups,
+                        const std::string& codes_path) {
   std::ostringstream md;
   md << "# Diagnostic codes\n\n"
         "<!-- Generated from core/error_codes.csv by core/gen/gen_error_table.cpp: edit the CSV,\n"
@@ -186,7 +199,7 @@ int main(int argc, char** argv) {
         "internal errors).\n";
   std::string current;
   for (const auto& r : rows) {
-    const std::string g = group_of(r);
+    const std::string g = group_of(r, groups, codes_path);
     if (g != current) {
       current = g;
       for (const auto& [prefix, title] : groups)
@@ -196,21 +209,38 @@ int main(int argc, char** argv) {
     md << "| " << r.code << " | `" << r.name << "` | " << r.exit << " | " << md_cell(r.summary)
        << " | " << md_cell(r.hint) << " |\n";
   }
+  return md.str();
+}
 
-  // Write only when the content changed, so dependents do not rebuild.
-  auto write = [](const std::string& path, const std::string& text) {
-    std::ifstream old(path, std::ios::binary);
-    if (old) {
-      std::ostringstream current_text;
-      current_text << old.rdbuf();
-      if (current_text.str() == text) return;
-    }
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-    if (!out) die(path, "cannot write");
-  };
-  write(argv[3], header.str());
-  write(argv[4], inc.str());
-  write(argv[5], md.str());
+// Writes only when the content changed, so dependents do not rebuild.
+void write_if_changed(const std::string& path, const std::string& text) {
+  std::ifstream old(path, std::ios::binary);
+  if (old) {
+    std::ostringstream current_text;
+    current_text << old.rdbuf();
+    if (current_text.str() == text) return;
+  }
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  if (!out) die(path, "cannot write");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 6) {
+    std::cerr << "usage: gen_error_table CODES.csv GROUPS.csv OUT.h OUT.inc OUT.md\n";
+    return 2;
+  }
+  const std::string codes_path = argv[1], groups_path = argv[2];
+  const std::vector<Row> rows = read_codes(codes_path);
+  const Groups groups = read_groups(groups_path);
+  // All three made before any is written: a code without a group fails the
+  // run with nothing written.
+  const std::string header = code_header(rows), table = code_table(rows),
+                    page = errors_page(rows, groups, codes_path);
+  write_if_changed(argv[3], header);
+  write_if_changed(argv[4], table);
+  write_if_changed(argv[5], page);
   return 0;
 }

@@ -286,7 +286,7 @@ std::vector<Neighbour> later_neighbours(std::span<const Neighbour> earlier,
       last = k;
       since = 0;
     }
-    if (last != unnamed && since < along[k]) source[k] = last;
+    if (last != unnamed && since <= reach && since < along[k]) source[k] = last;
   }
   std::vector<Neighbour> out(n);
   for (std::size_t j = 0; j < n; ++j) {

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iterator>
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include "vcpost/post.h"
@@ -177,18 +178,28 @@ TEST(Library, ATimingRefusalCarriesCodePlaceMessageAndHint) {
   }
 }
 
-// An error that carries no place (a bad --tool) leaves with its code and
-// hint, its whole text as the message and no file, line or column.
-TEST(Library, AnErrorWithoutAPlaceKeepsItsWholeTextAsTheMessage) {
+// The error of a post of one line with the tool `tool` (which must fail).
+std::optional<api::Error> post_error_with_tool(const std::string& tool) {
   api::PostOptions options;
-  options.tool = "cone:10";
+  options.tool = tool;
   options.vc = 120;
   options.ap = 0.3;
   try {
     api::post("G1 X1\n", "p.nc", api::Model::load((samples() / "wavy.step").string()),
               api::MachineProfile::load("generic"), options);
-    FAIL() << "an unknown tool kind posted";
   } catch (const api::Error& e) {
+    return e;
+  }
+  return std::nullopt;
+}
+
+// An error that carries no place (a bad --tool) leaves with its code and
+// hint, its whole text as the message and no file, line or column.
+TEST(Library, AnErrorWithoutAPlaceKeepsItsWholeTextAsTheMessage) {
+  const auto error = post_error_with_tool("cone:10");
+  ASSERT_TRUE(error) << "an unknown tool kind posted";
+  {
+    const api::Error& e = *error;
     EXPECT_EQ(e.code(), "E1601");
     EXPECT_EQ(std::string(e.what()),
               "--tool 'cone:10': unknown shape 'cone' (expected ball:D, bull:D:rc, flat:D, drill:D "
@@ -213,15 +224,10 @@ TEST(Library, TextWordedLikeADiagnosticIsNotReadForAPlace) {
     EXPECT_EQ(e.file(), "");
     EXPECT_EQ(e.line(), 0u);
   }
-  api::PostOptions options;
-  options.tool = "x:7: error[E1201]: y";
-  options.vc = 120;
-  options.ap = 0.3;
-  try {
-    api::post("G1 X1\n", "p.nc", api::Model::load((samples() / "wavy.step").string()),
-              api::MachineProfile::load("generic"), options);
-    FAIL() << "an unknown tool kind posted";
-  } catch (const api::Error& e) {
+  const auto error = post_error_with_tool("x:7: error[E1201]: y");
+  ASSERT_TRUE(error) << "an unknown tool kind posted";
+  {
+    const api::Error& e = *error;
     EXPECT_EQ(e.code(), "E1601");
     EXPECT_EQ(e.message(), e.what());
     EXPECT_EQ(e.file(), "");

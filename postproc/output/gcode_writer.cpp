@@ -390,102 +390,128 @@ void GcodeWriter::write(const Event& event) {
         if constexpr (std::is_same_v<T, StraightTraverse> || std::is_same_v<T, StraightFeed> ||
                       std::is_same_v<T, ArcFeed>) {
           motion(event);
-        } else if constexpr (std::is_same_v<T, SetFeedRate>) {
-          if (e.mode == FeedMode::inverse_time) {
-            throw OutputError(Code::E3202, "inverse-time feed (G93) is not written", e.source);
-          }
-          // A later F replaces an unwritten one, and its mode the unwritten
-          // mode: one G94/G95 at most per block.
-          const bool per_rev = e.mode == FeedMode::per_revolution;
-          pending_feed_ = PendingFeed{
-              per_rev, word('F', number(e.rate, per_rev ? 4 : format_.feed_decimals, e.source))};
-        } else if constexpr (std::is_same_v<T, SetSpindleSpeed>) {
-          const long s = std::lround(e.rpm);
-          if (format_.speed_output && s > 0) {
-            // One speed per block: a later one replaces an unwritten one.
-            const std::string analog =
-                " E" + std::to_string(*format_.speed_output) + " Q" + std::to_string(s);
-            pending_ = spindle_on_ ? "M67" + analog : "S" + std::to_string(s) + " M68" + analog;
-          } else {
-            pending_ += (pending_.empty() ? "S" : " S") + std::to_string(s);
-          }
-        } else if constexpr (std::is_same_v<T, SpindleOn>) {
-          std::string words = take_pending();
-          words += words.empty() ? "" : " ";
-          spindle_ccw_ = e.direction != SpindleDirection::clockwise;
-          words += spindle_ccw_ ? "M4" : "M3";
-          block(words);
-          spindle_on_ = true;
-        } else if constexpr (std::is_same_v<T, SpindleOff>) {
-          std::string words = take_pending();
-          block(words.empty() ? "M5" : words + " M5");
-          spindle_on_ = false;
-        } else if constexpr (std::is_same_v<T, SelectTool>) {
-          std::string words = take_pending();
-          block((words.empty() ? "" : words + " ") + "T" + std::to_string(e.number));
-        } else if constexpr (std::is_same_v<T, ChangeTool>) {
-          change_tool(e);
-        } else if constexpr (std::is_same_v<T, ToolLengthOffset>) {
-          if (e.enabled) {
-            block("G43 H" + std::to_string(e.register_number.value_or(0)));
-          } else {
-            block("G49");
-          }
-          pending_g43_.reset();
-        } else if constexpr (std::is_same_v<T, CutterCompensation>) {
-          // Written with the next move (compensation_words).
-          if (!format_.cutter_compensation) {
-            comment(e.side == CompensationSide::off ? "CUTCOM OFF"
-                    : e.side == CompensationSide::left
-                        ? "CUTCOM LEFT - CL PATH IS THE TOOL CENTRE"
-                        : "CUTCOM RIGHT - CL PATH IS THE TOOL CENTRE");
-          } else if (e.side != comp_wanted_ || e.register_number != comp_register_) {
-            if (e.side != CompensationSide::off && e.side == comp_written_)
-              end_compensation();  // another register: G41 again after G40
-            comp_wanted_ = e.side;
-            comp_register_ = e.register_number;
-          }
-        } else if constexpr (std::is_same_v<T, SelectPlane>) {
-          const int plane = e.plane == Plane::xy ? 17 : e.plane == Plane::xz ? 18 : 19;
-          if (plane != plane_) {
-            block(word('G', std::to_string(plane)));
-            plane_ = plane;
-          }
-        } else if constexpr (std::is_same_v<T, Coolant>) {
-          std::string words = take_pending();
-          words += words.empty() ? "" : " ";
-          words += e.change == CoolantChange::flood_on  ? format_.coolant_flood
-                   : e.change == CoolantChange::mist_on ? format_.coolant_mist
-                                                        : format_.coolant_off;
-          block(words);
-        } else if constexpr (std::is_same_v<T, Dwell>) {
-          std::string words = take_pending();
-          words += words.empty() ? "G4 " : " G4 ";
-          switch (format_.dwell) {
-            case DwellWord::x_seconds:
-              words += word('X', number(e.seconds, 3, e.source));
-              break;
-            case DwellWord::p_seconds:
-              words += word('P', number(e.seconds, 3, e.source));
-              break;
-            case DwellWord::p_milliseconds:
-              words += word('P', std::to_string(std::lround(e.seconds * 1000)));
-              break;
-          }
-          block(words);
-        } else if constexpr (std::is_same_v<T, ProgramStop>) {
-          std::string words = take_pending();
-          block((words.empty() ? "" : words + " ") + (e.optional ? "M1" : "M0"));
-        } else if constexpr (std::is_same_v<T, ProgramEnd>) {
-          end_program();
-        } else if constexpr (std::is_same_v<T, Message>) {
-          comment(e.text);
-        } else if constexpr (std::is_same_v<T, WorkingFrame>) {
-          working_frame(e);
+        } else {
+          write_event(e);
         }
       },
       event);
 }
+
+void GcodeWriter::write_event(const SetFeedRate& e) {
+  if (e.mode == FeedMode::inverse_time) {
+    throw OutputError(Code::E3202, "inverse-time feed (G93) is not written", e.source);
+  }
+  // A later F replaces an unwritten one, and its mode the unwritten mode:
+  // one G94/G95 at most per block.
+  const bool per_rev = e.mode == FeedMode::per_revolution;
+  pending_feed_ = PendingFeed{
+      per_rev, word('F', number(e.rate, per_rev ? 4 : format_.feed_decimals, e.source))};
+}
+
+void GcodeWriter::write_event(const SetSpindleSpeed& e) {
+  const long s = std::lround(e.rpm);
+  if (format_.speed_output && s > 0) {
+    // One speed per block: a later one replaces an unwritten one.
+    const std::string analog =
+        " E" + std::to_string(*format_.speed_output) + " Q" + std::to_string(s);
+    pending_ = spindle_on_ ? "M67" + analog : "S" + std::to_string(s) + " M68" + analog;
+  } else {
+    pending_ += (pending_.empty() ? "S" : " S") + std::to_string(s);
+  }
+}
+
+void GcodeWriter::write_event(const SpindleOn& e) {
+  std::string words = take_pending();
+  words += words.empty() ? "" : " ";
+  spindle_ccw_ = e.direction != SpindleDirection::clockwise;
+  words += spindle_ccw_ ? "M4" : "M3";
+  block(words);
+  spindle_on_ = true;
+}
+
+void GcodeWriter::write_event(const SpindleOff& /*e*/) {
+  std::string words = take_pending();
+  block(words.empty() ? "M5" : words + " M5");
+  spindle_on_ = false;
+}
+
+void GcodeWriter::write_event(const SelectTool& e) {
+  std::string words = take_pending();
+  block((words.empty() ? "" : words + " ") + "T" + std::to_string(e.number));
+}
+
+void GcodeWriter::write_event(const ChangeTool& e) { change_tool(e); }
+
+void GcodeWriter::write_event(const ToolLengthOffset& e) {
+  if (e.enabled) {
+    block("G43 H" + std::to_string(e.register_number.value_or(0)));
+  } else {
+    block("G49");
+  }
+  pending_g43_.reset();
+}
+
+// Written with the next move (compensation_words).
+void GcodeWriter::write_event(const CutterCompensation& e) {
+  if (!format_.cutter_compensation) {
+    comment(e.side == CompensationSide::off    ? "CUTCOM OFF"
+            : e.side == CompensationSide::left ? "CUTCOM LEFT - CL PATH IS THE TOOL CENTRE"
+                                               : "CUTCOM RIGHT - CL PATH IS THE TOOL CENTRE");
+  } else if (e.side != comp_wanted_ || e.register_number != comp_register_) {
+    if (e.side != CompensationSide::off && e.side == comp_written_)
+      end_compensation();  // another register: G41 again after G40
+    comp_wanted_ = e.side;
+    comp_register_ = e.register_number;
+  }
+}
+
+void GcodeWriter::write_event(const SelectPlane& e) {
+  const int plane = e.plane == Plane::xy ? 17 : e.plane == Plane::xz ? 18 : 19;
+  if (plane != plane_) {
+    block(word('G', std::to_string(plane)));
+    plane_ = plane;
+  }
+}
+
+void GcodeWriter::write_event(const Coolant& e) {
+  std::string words = take_pending();
+  words += words.empty() ? "" : " ";
+  words += e.change == CoolantChange::flood_on  ? format_.coolant_flood
+           : e.change == CoolantChange::mist_on ? format_.coolant_mist
+                                                : format_.coolant_off;
+  block(words);
+}
+
+void GcodeWriter::write_event(const Dwell& e) {
+  std::string words = take_pending();
+  words += words.empty() ? "G4 " : " G4 ";
+  switch (format_.dwell) {
+    case DwellWord::x_seconds:
+      words += word('X', number(e.seconds, 3, e.source));
+      break;
+    case DwellWord::p_seconds:
+      words += word('P', number(e.seconds, 3, e.source));
+      break;
+    case DwellWord::p_milliseconds:
+      words += word('P', std::to_string(std::lround(e.seconds * 1000)));
+      break;
+  }
+  block(words);
+}
+
+void GcodeWriter::write_event(const ProgramStop& e) {
+  std::string words = take_pending();
+  block((words.empty() ? "" : words + " ") + (e.optional ? "M1" : "M0"));
+}
+
+void GcodeWriter::write_event(const ProgramEnd& /*e*/) { end_program(); }
+
+void GcodeWriter::write_event(const Message& e) { comment(e.text); }
+
+void GcodeWriter::write_event(const WorkingFrame& e) { working_frame(e); }
+
+// Taken by write() before (start_hole).
+void GcodeWriter::write_event(const CannedCycle& /*e*/) {}
 
 void GcodeWriter::change_tool(const program::ChangeTool& change) {
   end_cycle();

@@ -133,6 +133,24 @@ class GcodeWriter : public EventWriter {
   void header();
   void block(std::string_view words);
   void motion(const program::Event& event);
+  // One writer per kind of event but the motions (motion()), which write()
+  // hands them to.
+  void write_event(const program::SetFeedRate& e);
+  void write_event(const program::SetSpindleSpeed& e);
+  void write_event(const program::SpindleOn& e);
+  void write_event(const program::SpindleOff& e);
+  void write_event(const program::SelectTool& e);
+  void write_event(const program::ChangeTool& e);
+  void write_event(const program::ToolLengthOffset& e);
+  void write_event(const program::CutterCompensation& e);
+  void write_event(const program::SelectPlane& e);
+  void write_event(const program::Coolant& e);
+  void write_event(const program::Dwell& e);
+  void write_event(const program::ProgramStop& e);
+  void write_event(const program::ProgramEnd& e);
+  void write_event(const program::Message& e);
+  void write_event(const program::WorkingFrame& e);
+  void write_event(const program::CannedCycle& e);
   std::string number(double value, int decimals, const program::SourceRef& source) const;
   void append_axis(std::string& words, char axis, double value, std::string& last, bool force,
                    const program::SourceRef& source);

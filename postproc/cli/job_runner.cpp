@@ -239,12 +239,85 @@ void require_accepted(const post::Verdict& verdict) {
   if (!verdict.accepted()) throw CommandError(code_of(verdict.refusal), verdict.message);
 }
 
-JobRun run_job(const PostArguments& args, bool write_program) {
-  const auto started = std::chrono::steady_clock::now();
-  // CLI11 admits only the levels' names.
+namespace {
+
+// The log's level: --quiet, --verbose or --log-level (CLI11 admits only
+// the levels' names).
+void set_log_level_of(const PostArguments& args) {
   set_log_level(args.quiet     ? spdlog::level::err
                 : args.verbose ? spdlog::level::debug
                                : parse_log_level(args.log_level).value_or(spdlog::level::info));
+}
+
+// Without a model: the normals, read ahead of the job into `settings`;
+// returns the extent of the path they lie on (the report's top views).
+Eigen::AlignedBox3d read_normals_ahead(std::string_view text, const std::string& name,
+                                       const machines::MachineProfile& profile,
+                                       post::PostSettings& settings) {
+  const auto stage = std::chrono::steady_clock::now();
+  settings.path_normals = std::make_shared<const post::PathNormalsAhead>(
+      located_errors(name, [&] { return post::read_path_normals(text, name, profile, settings); }));
+  log().debug("normals from the toolpath: {} points, found in {:.3f} s",
+              settings.path_normals->normals.size(), seconds_since(stage));
+  return settings.path_normals->bounds;
+}
+
+// Posts the program, its text behind the writer dropped as it goes.
+post::PostSummary post_dropping_text(ProgramText& program, const std::string& name,
+                                     const LoadedModel& model,
+                                     const machines::MachineProfile& profile,
+                                     const post::PostSettings& settings,
+                                     const std::function<void(std::string_view)>& sink,
+                                     const post::Progress& progress,
+                                     const post::PointSink& points) {
+  return located_errors(name, [&] {
+    return post::post_program(program.view(), name, *model.model, profile, settings, sink, progress,
+                              points,
+                              [&program](std::uint64_t offset) { program.release_before(offset); });
+  });
+}
+
+void log_posted(const post::PostSummary& summary, std::chrono::steady_clock::time_point stage) {
+  log().debug(
+      "posted in {:.3f} s: {} points ({} touching, {} gouging, {} in the air), {} S words, "
+      "{} F words, {} tool sections",
+      seconds_since(stage), summary.samples, summary.touching, summary.gouging,
+      summary.lifted + summary.missed, summary.s_words, summary.f_words, summary.sections.size());
+}
+
+// The job's verdict on the post (post/acceptance.h), then --strict's: both
+// before anything is committed (--strict leaves no file it refused).
+void require_acceptable(const post::PostSummary& summary, const std::string& name,
+                        bool translate_only, bool strict) {
+  require_accepted(translate_only ? post::judge_motion(summary, name)
+                                  : post::judge_posted(summary, name));
+  if (strict && has_warnings(summary)) {
+    print_warnings(summary, name);
+    throw CommandError(Code::E2010, "warnings with --strict; nothing written");
+  }
+}
+
+// The end of run's notes: the outputs written through a link, and the
+// tool choices no section used.
+std::vector<std::string> end_notes(const PostArguments& args,
+                                   const std::vector<ReportFile>& reports,
+                                   const ProgramOutput& output, const post::PostSettings& settings,
+                                   const post::PostSummary& summary) {
+  std::vector<std::string> notes;
+  for (const auto& r : reports) {
+    if (r.file) note_links(*r.file, r.path, notes);
+  }
+  if (output.file) note_links(*output.file, args.output, notes);
+  for (const std::string& w : post::unused_tool_choices(*settings.tools, summary.sections))
+    notes.push_back("warning: " + w);
+  return notes;
+}
+
+}  // namespace
+
+JobRun run_job(const PostArguments& args, bool write_program) {
+  const auto started = std::chrono::steady_clock::now();
+  set_log_level_of(args);
   require_distinct_files(job_inputs(args), job_outputs(args, write_program));
   ProgramText program(args.program);
   const std::string_view text = program.view();
@@ -263,17 +336,9 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   const bool translate_only =
       without_model_use(args, text, profile, write_program, !reports.empty(), settings);
   LoadedModel model = placed_model(args);
-  // Without a model: the normals, read ahead of the job, and the extent of
-  // the path they lie on (the report's top views).
-  Eigen::AlignedBox3d plan = model.model->bounds();
-  if (settings.normals_from_path) {
-    stage = std::chrono::steady_clock::now();
-    settings.path_normals = std::make_shared<const post::PathNormalsAhead>(located_errors(
-        name, [&] { return post::read_path_normals(text, name, profile, settings); }));
-    plan = settings.path_normals->bounds;
-    log().debug("normals from the toolpath: {} points, found in {:.3f} s",
-                settings.path_normals->normals.size(), seconds_since(stage));
-  }
+  const Eigen::AlignedBox3d plan = settings.normals_from_path
+                                       ? read_normals_ahead(text, name, profile, settings)
+                                       : model.model->bounds();
   if (settings.stock) load_stock_model(args, *settings.stock);
 
   // On a terminal at the info level, one line rewritten in place.
@@ -287,6 +352,7 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   // Reports: the CSV streams while the points come; the rest is written at the end.
   std::optional<report::ReportCollector> collector;
   std::vector<report::CsvWriter*> csv_writers;
+  post::PointSink points;
   if (!reports.empty()) {
     collector.emplace(report_inputs(
         args, settings, model, profile, post::detect_program_kind(text),
@@ -294,34 +360,17 @@ JobRun run_job(const PostArguments& args, bool write_program) {
                        [&] { return post::first_postable_section(text, name, profile, settings); }),
         plan));
     csv_writers = start_csv_reports(reports);
-  }
-  post::PointSink points;
-  if (collector) {
     points = collector->point_sink([&](const report::PointRow& row) {
       for (auto* csv : csv_writers) csv->write(row);
     });
   }
 
   stage = std::chrono::steady_clock::now();
-  // The program's text behind the writer is dropped as it goes.
-  const post::PostSummary summary = located_errors(name, [&] {
-    return post::post_program(program.view(), name, *model.model, profile, settings, sink, progress,
-                              points,
-                              [&program](std::uint64_t offset) { program.release_before(offset); });
-  });
+  const post::PostSummary summary =
+      post_dropping_text(program, name, model, profile, settings, sink, progress, points);
   if (show_progress) std::cerr << "\r\x1b[K";
-  log().debug(
-      "posted in {:.3f} s: {} points ({} touching, {} gouging, {} in the air), {} S words, "
-      "{} F words, {} tool sections",
-      seconds_since(stage), summary.samples, summary.touching, summary.gouging,
-      summary.lifted + summary.missed, summary.s_words, summary.f_words, summary.sections.size());
-  require_accepted(translate_only ? post::judge_motion(summary, name)
-                                  : post::judge_posted(summary, name));
-  if (args.strict && has_warnings(summary)) {
-    // Refused before anything is committed: --strict leaves no file it refused.
-    print_warnings(summary, name);
-    throw CommandError(Code::E2010, "warnings with --strict; nothing written");
-  }
+  log_posted(summary, stage);
+  require_acceptable(summary, name, translate_only, args.strict);
   std::string to_stdout;  // written after every file is complete
 
   const double run_time =
@@ -333,13 +382,7 @@ JobRun run_job(const PostArguments& args, bool write_program) {
   }
   // The program last: a failed report leaves no posted program behind.
   if (output.file) output.file->commit();
-  std::vector<std::string> notes;
-  for (const auto& r : reports) {
-    if (r.file) note_links(*r.file, r.path, notes);
-  }
-  if (output.file) note_links(*output.file, args.output, notes);
-  for (const std::string& w : post::unused_tool_choices(*settings.tools, summary.sections))
-    notes.push_back("warning: " + w);
+  std::vector<std::string> notes = end_notes(args, reports, output, settings, summary);
   deliver_standard_output(output.pending, to_stdout);
   JobRun run{summary, std::nullopt, std::nullopt, std::move(model), profile, run_time, notes};
   if (const post::ToolSection* first = first_posted(summary)) {

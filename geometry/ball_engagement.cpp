@@ -441,6 +441,124 @@ CuttingPoints cutting_points(const Ball& ball) {
   return out;
 }
 
+// Ball part of the mean: at height c the engaged arcs of the circle of
+// radius w(c), a = w cos t, b = w sin t, below the equator; area element
+// R dc dt (Archimedes).
+struct Slice {
+  double area = 0, moment = 0;
+};
+
+// The slice at height c. The slices' circles share the phases of b
+// (sigma pi/2) and of z: up_across = |up_xy|, z_phase = its angle.
+Slice ball_slice(const Ball& ball, double c, double up_across, double z_phase) {
+  const double R = ball.R;
+  Slice slice;
+  const double w = sqrt0(R * R - c * c);
+  if (w <= 0) return slice;
+  const FrameCircle circle{{0, 0, c}, {w, 0, 0}, {0, w, 0}};
+  AngleSet set({-half_pi, half_pi});
+  set.keep_where_polar(
+      w, [&] { return ball.sigma * half_pi; }, 0, ball.ae - w);
+  ball.remove_previous_shank(circle, set);
+  const Sinusoid z = circle.along(ball.up);
+  set.keep_where_polar(
+      w * up_across, [&] { return z_phase; }, z.c, 0);
+  const auto diameter = [&](double height) { return 2 * sqrt0(R * R - height * height); };
+  for (int i = 0; i < set.size(); ++i) {
+    slice.area += R * (set[i].hi - set[i].lo);
+    // About the arc's centre m, z(m +- d) = p cos d +- q sin d + z.c, the
+    // nodes' cos d and sin d from node_cos_sin: libm's sines and cosines
+    // of the nodes were most of the mean's time.
+    const double centre = 0.5 * (set[i].lo + set[i].hi);
+    const double cos_m = std::cos(centre), sin_m = std::sin(centre);
+    const double p = z.a * cos_m + z.b * sin_m, q = z.b * cos_m - z.a * sin_m;
+    const double half = 0.5 * (set[i].hi - set[i].lo);
+    const NodeCosSin node = node_cos_sin(half);
+    const auto pair = [&](std::size_t k, double /*d*/) {
+      const double even = p * node.cos[k] + z.c, odd = q * node.sin[k];
+      return diameter(even - odd) + diameter(even + odd);
+    };
+    slice.moment += R * kronrod_rule_by_pairs(diameter(p + z.c), pair, half);
+  }
+  return slice;
+}
+
+// The ball part's area and moment from the same slices, to 1e-7 of their
+// size: the mean to well under 1e-6 D, in a bounded number of slices. The
+// slices change shape abruptly where an arc appears or vanishes (it grows
+// as a square root) and where the circle passes through the tool's tip (r
+// has a kink there): the stack is cut at those levels, and each piece
+// integrated in theta (integrate_smoothed_pieces), which makes the square
+// roots smooth (fewer slices than adaptive bisection took, and closer:
+// docs/models.md §2).
+std::array<double, 2> ball_part(const Ball& ball, double tolerance) {
+  const double R = ball.R;
+  const double up_across = std::hypot(ball.up.x(), ball.up.y());
+  const double z_phase = std::atan2(ball.up.y(), ball.up.x());
+  std::vector<double> cuts{-R * ball.up.z(), R * up_across, -R * up_across};
+  if (ball.ae < 2 * R) {
+    // Where the previous pass's strip sigma b <= ae - w starts to cut: w = ae / 2.
+    const double touch = std::sqrt(R * R - 0.25 * ball.ae * ball.ae);
+    cuts.push_back(touch);
+    cuts.push_back(-touch);
+  }
+  return integrate_smoothed_pieces<2>(
+      [&](double c) {
+        const Slice slice = ball_slice(ball, c, up_across, z_phase);
+        return std::array<double, 2>{slice.area, slice.moment};
+      },
+      breaks_within(std::move(cuts), -R, ball.c0), 1e-7, tolerance, 24);
+}
+
+// Shank part (r = R): on the vertical line at angle phi, z runs from 0 up
+// to the stock plane and to where the line enters the previous shank's
+// sweep, less where it is inside the previous ball's cylinder.
+double shank_length(const Ball& ball, const CutFrame& frame, double phi) {
+  const double R = ball.R;
+  const Eigen::Vector3d& n = frame.normal;
+  const Eigen::Vector3d& f = frame.feed;
+  const Eigen::Vector3d centre_line = ball.offset * frame.side;
+  const Eigen::Vector3d u(std::cos(phi), std::sin(phi), 0);
+  if (f.x() * u.x() + f.y() * u.y() < 0) return 0.0;  // trailing side
+  double top = (ball.c0 - R * (n.x() * u.x() + n.y() * u.y())) / n.z();
+  const Eigen::Vector3d y = R * u - centre_line;  // the line's foot, from the centre line
+  if (ball.shank_sweep_matters) {
+    const FrameVector q(f.dot(y), frame.side.dot(y), n.dot(y));  // already relative to o
+    // v' grows with z at the rate |d| = along.(0, S0_z, N_z) along the line.
+    const double rate = ball.along.dot(ball.up);
+    if (std::abs(ball.across.dot(q)) < R) top = std::min(top, -ball.along.dot(q) / rate);
+  }
+  if (top <= 0) return 0.0;
+  // |Y + z e_z|^2 - ((Y + z e_z).F)^2 < R^2 is inside the previous cylinder.
+  const double qa = 1 - f.z() * f.z(), qb = 2 * (y.z() - y.dot(f) * f.z());
+  const double qc = y.squaredNorm() - std::pow(y.dot(f), 2) - R * R;
+  const double disc = qb * qb - 4 * qa * qc;
+  double length = top;
+  if (disc > 0 && qa > 0) {
+    const double z1 = (-qb - std::sqrt(disc)) / (2 * qa), z2 = (-qb + std::sqrt(disc)) / (2 * qa);
+    length -= std::max(0.0, std::min(z2, top) - std::max(z1, 0.0));
+  }
+  return length;
+}
+
+// The shank part's area, only where the line is on the leading side and
+// reaches into the stock.
+double shank_area(const Ball& ball, const CutFrame& frame, double tolerance) {
+  const double R = ball.R;
+  const Eigen::Vector3d& n = frame.normal;
+  const Eigen::Vector3d& f = frame.feed;
+  AngleSet lines({-std::numbers::pi, std::numbers::pi});
+  lines.keep_where({-f.x(), -f.y(), 0}, 0);              // F.u >= 0
+  lines.keep_where({R * n.x(), R * n.y(), 0}, ball.c0);  // N.(R u) <= c0 at z = 0
+  double area = 0;
+  for (int i = 0; i < lines.size(); ++i) {
+    area += integrate_capped<1>(
+        [&](double phi) { return std::array<double, 1>{R * shank_length(ball, frame, phi)}; },
+        lines[i].lo, lines[i].hi, 1e-7, tolerance, 24)[0];
+  }
+  return area;
+}
+
 }  // namespace
 
 void evaluate_ball(double radius, const CutSetup& setup, const CutCheck& check,
@@ -465,110 +583,10 @@ double ball_mean_diameter(double radius, const CutSetup& setup, const CutFrame& 
   const Ball ball(radius, setup, frame);
   const double R = ball.R;
   const double tolerance = 1e-9 * R * R;
-
-  // Ball part: at height c the engaged arcs of the circle of radius w(c),
-  // a = w cos t, b = w sin t, below the equator; area element R dc dt (Archimedes).
-  struct Slice {
-    double area = 0, moment = 0;
-  };
-  // The slices' circles share the phases of b (sigma pi/2) and of z.
-  const double up_across = std::hypot(ball.up.x(), ball.up.y());
-  const double z_phase = std::atan2(ball.up.y(), ball.up.x());
-  auto ball_slice = [&](double c) {
-    Slice slice;
-    const double w = sqrt0(R * R - c * c);
-    if (w <= 0) return slice;
-    const FrameCircle circle{{0, 0, c}, {w, 0, 0}, {0, w, 0}};
-    AngleSet set({-half_pi, half_pi});
-    set.keep_where_polar(
-        w, [&] { return ball.sigma * half_pi; }, 0, ball.ae - w);
-    ball.remove_previous_shank(circle, set);
-    const Sinusoid z = circle.along(ball.up);
-    set.keep_where_polar(
-        w * up_across, [&] { return z_phase; }, z.c, 0);
-    const auto diameter = [&](double height) { return 2 * sqrt0(R * R - height * height); };
-    for (int i = 0; i < set.size(); ++i) {
-      slice.area += R * (set[i].hi - set[i].lo);
-      // About the arc's centre m, z(m +- d) = p cos d +- q sin d + z.c, the
-      // nodes' cos d and sin d from node_cos_sin: libm's sines and cosines
-      // of the nodes were most of the mean's time.
-      const double centre = 0.5 * (set[i].lo + set[i].hi);
-      const double cos_m = std::cos(centre), sin_m = std::sin(centre);
-      const double p = z.a * cos_m + z.b * sin_m, q = z.b * cos_m - z.a * sin_m;
-      const double half = 0.5 * (set[i].hi - set[i].lo);
-      const NodeCosSin node = node_cos_sin(half);
-      const auto pair = [&](std::size_t k, double /*d*/) {
-        const double even = p * node.cos[k] + z.c, odd = q * node.sin[k];
-        return diameter(even - odd) + diameter(even + odd);
-      };
-      slice.moment += R * kronrod_rule_by_pairs(diameter(p + z.c), pair, half);
-    }
-    return slice;
-  };
-  // Area and moment from the same slices, to 1e-7 of their size: the mean
-  // to well under 1e-6 D, in a bounded number of slices. The slices change
-  // shape abruptly where an arc appears or vanishes (it grows as a square
-  // root) and where the circle passes through the tool's tip (r has a kink
-  // there): the stack is cut at those levels, and each piece integrated in
-  // theta (integrate_smoothed_pieces), which makes the square roots smooth
-  // (fewer slices than adaptive bisection took, and closer: docs/models.md
-  // §2).
-  std::vector<double> cuts{-R * ball.up.z(), R * up_across, -R * up_across};
-  if (ball.ae < 2 * R) {
-    // Where the previous pass's strip sigma b <= ae - w starts to cut: w = ae / 2.
-    const double touch = std::sqrt(R * R - 0.25 * ball.ae * ball.ae);
-    cuts.push_back(touch);
-    cuts.push_back(-touch);
-  }
-  const auto ball_part = integrate_smoothed_pieces<2>(
-      [&](double c) {
-        const Slice slice = ball_slice(c);
-        return std::array<double, 2>{slice.area, slice.moment};
-      },
-      breaks_within(std::move(cuts), -R, ball.c0), 1e-7, tolerance, 24);
-  const double ball_area = ball_part[0], ball_moment = ball_part[1];
-
-  // Shank part (r = R): on the vertical line at angle phi, z runs from 0 up
-  // to the stock plane and to where the line enters the previous shank's
-  // sweep, less where it is inside the previous ball's cylinder.
-  const Eigen::Vector3d& n = frame.normal;
-  const Eigen::Vector3d& f = frame.feed;
-  const Eigen::Vector3d centre_line = ball.offset * frame.side;
-  auto shank_length = [&](double phi) {
-    const Eigen::Vector3d u(std::cos(phi), std::sin(phi), 0);
-    if (f.x() * u.x() + f.y() * u.y() < 0) return 0.0;  // trailing side
-    double top = (ball.c0 - R * (n.x() * u.x() + n.y() * u.y())) / n.z();
-    const Eigen::Vector3d y = R * u - centre_line;  // the line's foot, from the centre line
-    if (ball.shank_sweep_matters) {
-      const FrameVector q(f.dot(y), frame.side.dot(y), n.dot(y));  // already relative to o
-      // v' grows with z at the rate |d| = along.(0, S0_z, N_z) along the line.
-      const double rate = ball.along.dot(ball.up);
-      if (std::abs(ball.across.dot(q)) < R) top = std::min(top, -ball.along.dot(q) / rate);
-    }
-    if (top <= 0) return 0.0;
-    // |Y + z e_z|^2 - ((Y + z e_z).F)^2 < R^2 is inside the previous cylinder.
-    const double qa = 1 - f.z() * f.z(), qb = 2 * (y.z() - y.dot(f) * f.z());
-    const double qc = y.squaredNorm() - std::pow(y.dot(f), 2) - R * R;
-    const double disc = qb * qb - 4 * qa * qc;
-    double length = top;
-    if (disc > 0 && qa > 0) {
-      const double z1 = (-qb - std::sqrt(disc)) / (2 * qa), z2 = (-qb + std::sqrt(disc)) / (2 * qa);
-      length -= std::max(0.0, std::min(z2, top) - std::max(z1, 0.0));
-    }
-    return length;
-  };
-  // Only where the line is on the leading side and reaches into the stock.
-  AngleSet lines({-std::numbers::pi, std::numbers::pi});
-  lines.keep_where({-f.x(), -f.y(), 0}, 0);              // F.u >= 0
-  lines.keep_where({R * n.x(), R * n.y(), 0}, ball.c0);  // N.(R u) <= c0 at z = 0
-  double shank_area = 0;
-  for (int i = 0; i < lines.size(); ++i) {
-    shank_area += integrate_capped<1>(
-        [&](double phi) { return std::array<double, 1>{R * shank_length(phi)}; }, lines[i].lo,
-        lines[i].hi, 1e-7, tolerance, 24)[0];
-  }
-  const double area = ball_area + shank_area;
-  return area > 0 ? (ball_moment + 2 * R * shank_area) / area : 0;
+  const auto [ball_area, ball_moment] = ball_part(ball, tolerance);
+  const double shank = shank_area(ball, frame, tolerance);
+  const double area = ball_area + shank;
+  return area > 0 ? (ball_moment + 2 * R * shank) / area : 0;
 }
 
 }  // namespace vcpost::geometry

@@ -308,14 +308,21 @@ void compare_events(std::string_view input, std::string_view output, Result& res
 
 Result verify_klartext(std::string_view input, std::string_view output, const Options& options,
                        const std::string& input_name) {
-  (void)input_name;
   Result result;
   result.kind = InputKind::klartext;
   ViolationSink sink(options.max_violations);
   ChangeSink changes(result, options.on_change);
   BlockComparer blocks(result, changes, sink);
-  blocks.run(input, output);
-  compare_events(input, output, result, sink, blocks.unreadable_line());
+  try {
+    blocks.run(input, output);
+    compare_events(input, output, result, sink, blocks.unreadable_line());
+  } catch (const heidenhain::KlartextError& e) {
+    // The input's: the output's are violations (E7142), caught where it is
+    // read. Named with its file as the G-code and CL inputs are.
+    const heidenhain::Diagnostic& d = e.diagnostic();
+    throw vcpost::Error(d.code, heidenhain::format(d, input_name),
+                        {d.file.empty() ? input_name : d.file, d.line, d.column});
+  }
   sink.move_into(result);
   return result;
 }

@@ -129,7 +129,8 @@ Result verify_cl(std::string_view cl_text, std::string_view output, const Option
 // TOOL CALL S values, inserted `TOOL CALL S` blocks (each right before a
 // block that moves) and plain F digits differ, and both programs read
 // into the same events but speeds and feeds (docs/heidenhain-output.md).
-// Throws vcpost::Error (the reader's code) when the input does not read.
+// Throws vcpost::Error (the reader's code; what() "file:line:col:
+// error[E....]: message", the file input_name) when the input does not read.
 Result verify_klartext(std::string_view input, std::string_view output, const Options& options,
                        const std::string& input_name = "input");
 

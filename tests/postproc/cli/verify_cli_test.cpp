@@ -141,6 +141,19 @@ TEST_F(VerifyCli, InputErrorsExitTwo) {
   EXPECT_EQ(r.exit_code, 2);
 }
 
+TEST_F(VerifyCli, KlartextInputErrorNamesItsFile) {
+  // Block 4's F is over the reader's 1e12 limit at its 13th digit, column 22.
+  const std::string bad =
+      "1 BEGIN PGM T MM\r\n2 TOOL CALL 5 Z S2500\r\n3 L X+0 Y+0 Z+5 R0 FMAX M3\r\n"
+      "4 L Z-1 F3000000000000\r\n5 END PGM T MM\r\n";
+  write("bad.h", bad);
+  const Outcome r = run("verify bad.h bad.h");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err.substr(0, r.err.find('\n')),
+            "vcpost: error: bad.h:4:22: error[E3303]: number too large")
+      << r.err;
+}
+
 TEST_F(VerifyCli, HelpTeachesTheExitCodes) {
   const Outcome r = run("verify --help");
   EXPECT_EQ(r.exit_code, 0);

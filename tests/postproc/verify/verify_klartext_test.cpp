@@ -110,5 +110,26 @@ TEST(VerifyKlartext, AnOutputThatDoesNotReadIsNamedWhereItStops) {
   EXPECT_EQ(no_feed.violations[1].column, 9u);
 }
 
+// An input that does not read is the reader's error, named with the
+// input's file as the G-code and CL inputs are: its syntax (F over the
+// reader's 1e12 limit at the 13th digit, column 22 of line 6) and its
+// meaning (F0 is no feed rate: block 6 feeds before any, at its L, column 3).
+TEST(VerifyKlartext, AnInputThatDoesNotReadIsNamedWithItsFile) {
+  const auto refusal = [](const std::string& input) -> std::string {
+    try {
+      verify_klartext(input, kKlartextPosted, Options{}, "in.h");
+    } catch (const vcpost::Error& e) {
+      EXPECT_EQ(e.where().file, "in.h");
+      EXPECT_EQ(e.where().line, 6u);
+      return e.what();
+    }
+    return "read";
+  };
+  EXPECT_EQ(refusal(replaced(kKlartextInput, "6 L Z-1 F200", "6 L Z-1 F3000000000000")),
+            "in.h:6:22: error[E3303]: number too large");
+  EXPECT_EQ(refusal(replaced(kKlartextInput, "6 L Z-1 F200", "6 L Z-1 F0")),
+            "in.h:6:3: error[E3325]: a feed move before any feed rate F");
+}
+
 }  // namespace
 }  // namespace vcpost::verify

@@ -7,7 +7,6 @@
 
 namespace vcpost::pipeline {
 namespace {
-constexpr double parallel_cos = 0.70710678118654752;  // cos 45 deg
 // Runs end after this many entries, or a cell length from their start.
 // (32 read 1.6 times the points a step on a dense raster over an STL, whose
 // contact points of neighbouring passes often lie within ae of each other
@@ -166,7 +165,7 @@ PassTracker::PassTracker(double search_radius, double min_path_gap, std::size_t 
     : radius_(search_radius),
       min_gap_(min_path_gap),
       cell_(search_radius / 16),
-      abeam_(0.1 * search_radius),
+      abeam_(kAbeamShare * search_radius),
       memory_(std::max<std::size_t>(memory, 1)),
       mask_(std::bit_ceil(memory_) - 1) {
   // The whole ring at once: pages never written cost no memory (the kernel
@@ -205,7 +204,7 @@ std::optional<NeighbourPass> PassTracker::step(const Eigen::Vector3d& cc,
                                                const Eigen::Vector3d& normal,
                                                const Eigen::Vector3d& feed) {
   const Entry* last = next_ > 0 ? entry(next_ - 1) : nullptr;
-  const bool turned = last && last->feed.dot(feed) < parallel_cos;
+  const bool turned = last && last->feed.dot(feed) < kParallelCos;
   if (!pass_open_ || turned) {
     ++pass_;
     pass_open_ = true;
@@ -588,7 +587,7 @@ bool PassTracker::stretch_crosses(const Search& s, std::uint64_t i, bool forward
   // joined to a kept entry, before the cutoff and parallel.
   const auto takes = [&](std::uint64_t j) {
     const Entry& e = ring_[j & mask_];
-    return j < cutoff_ && j > s.kept && e.joined && std::abs(e.feed.dot(s.feed)) >= parallel_cos;
+    return j < cutoff_ && j > s.kept && e.joined && std::abs(e.feed.dot(s.feed)) >= kParallelCos;
   };
   if (forward) {
     double h_from = h(i);
@@ -635,7 +634,7 @@ bool PassTracker::evaluate_range(Search& s, std::uint64_t id, bool flat, std::ui
     const double h1 = feed.dot(e.point - cc);
     const double h_before = h0;
     h0 = h1;
-    if (std::abs(e.feed.dot(feed)) < parallel_cos) continue;
+    if (std::abs(e.feed.dot(feed)) < kParallelCos) continue;
     s.evaluating_entry = i;
     const bool has_before = e.joined && i > s.kept;  // the entry before is kept
     if (has_before && crosses(h_before, h1)) {
@@ -650,7 +649,7 @@ bool PassTracker::evaluate_range(Search& s, std::uint64_t id, bool flat, std::ui
     // one evaluate_range takes.
     const Entry* after = i + 1 < cutoff_ ? &ring_[(i + 1) & mask_] : nullptr;
     const bool has_after =
-        after != nullptr && after->joined && std::abs(after->feed.dot(feed)) >= parallel_cos;
+        after != nullptr && after->joined && std::abs(after->feed.dot(feed)) >= kParallelCos;
     if (has_before == has_after) {
       if (has_before) continue;  // inside a stretch: its crossing is the candidate
     } else if (stretch_crosses(s, i, has_after)) {

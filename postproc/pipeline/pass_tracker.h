@@ -60,6 +60,12 @@ class PassTracker {
   // The points a tracker of the post keeps: a few passes of a large
   // program, its memory bounded whatever the program's length.
   static constexpr std::size_t kPostMemory = std::size_t{1} << 20;
+  // A stretch of path runs along the feed when it turns from it by at most
+  // 45 deg (either way).
+  static constexpr double kParallelCos = 0.70710678118654752;
+  // A pass end counts as abeam within this share of the search radius
+  // along the feed.
+  static constexpr double kAbeamShare = 0.1;
 
   // search_radius: farthest neighbour considered, mm (a pass farther than
   // the tool diameter removed nothing this pass would cut).

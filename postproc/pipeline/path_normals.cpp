@@ -48,7 +48,8 @@ PathNormalCounts count_sources(std::span<const PathNormal> normals) {
   return counts;
 }
 
-namespace {
+// Not an anonymous namespace: PathNormalEstimator::State holds its types.
+namespace path_normals_detail {
 
 using Eigen::Vector3d;
 
@@ -63,11 +64,6 @@ constexpr double same_point = 1e-9;
 // the two passes within 30 deg of each other: beyond, the passes are too
 // far apart for the surface between them to be one smooth piece.
 constexpr double one_sided_max_turn_cos = 0.866;
-// A pass end counts as abeam of a point within this fraction of the search
-// radius along the feed (the pass tracker's rule).
-constexpr double abeam_along = 0.1;
-// A pass runs along the feed within 45 deg (the pass tracker's rule).
-constexpr double parallel_cos = 0.7071;
 
 bool smooth(const Vector3d& in, const Vector3d& out) {
   const double a = in.norm(), b = out.norm();
@@ -292,7 +288,7 @@ std::vector<Neighbour> later_neighbours(std::span<const Neighbour> earlier,
   for (std::size_t j = 0; j < n; ++j) {
     if (source[j] == unnamed) continue;
     const std::size_t i = named[source[j]];
-    if (std::abs(tangents[i].along.dot(tangents[j].along)) < parallel_cos) continue;
+    if (std::abs(tangents[i].along.dot(tangents[j].along)) < PassTracker::kParallelCos) continue;
     out[j] = {p[i], i, i, 1, true};
   }
   return out;
@@ -469,7 +465,7 @@ class Estimate {
   }
 
   Vector3d on_surface(const Neighbour& nb) const {
-    return pipeline::on_surface(nb, p_, starts_, tangents_);
+    return path_normals_detail::on_surface(nb, p_, starts_, tangents_);
   }
 
   // Point i's neighbour moved to where its pass crosses the plane across
@@ -480,7 +476,7 @@ class Estimate {
     if (const auto crossed = crossing(nb, p_[i], t, p_, starts_)) return *crossed;
     const double along = std::abs((nb.point - p_[i]).dot(t));
     if (along > across(nb.point - p_[i], t).norm() ||
-        along > abeam_along * settings_.search_radius) {
+        along > PassTracker::kAbeamShare * settings_.search_radius) {
       return {};  // a pass end farther along the feed than across, or than abeam
     }
     return nb;
@@ -582,14 +578,14 @@ class Estimate {
   std::vector<PathNormal> out_;
 };
 
-}  // namespace
+}  // namespace path_normals_detail
 
 struct PathNormalEstimator::State {
   explicit State(const PathNormalSettings& s) : settings(s), earlier(std::in_place, s) {}
   PathNormalSettings settings;
-  std::vector<Vector3d> points;
+  std::vector<Eigen::Vector3d> points;
   std::vector<std::uint8_t> starts;
-  std::optional<EarlierPasses> earlier;
+  std::optional<path_normals_detail::EarlierPasses> earlier;
 };
 
 PathNormalEstimator::PathNormalEstimator(const PathNormalSettings& settings)
@@ -598,7 +594,7 @@ PathNormalEstimator::~PathNormalEstimator() = default;
 PathNormalEstimator::PathNormalEstimator(PathNormalEstimator&&) noexcept = default;
 PathNormalEstimator& PathNormalEstimator::operator=(PathNormalEstimator&&) noexcept = default;
 
-void PathNormalEstimator::add(const Vector3d& point, bool starts_pass) {
+void PathNormalEstimator::add(const Eigen::Vector3d& point, bool starts_pass) {
   state_->points.push_back(point);
   state_->starts.push_back(starts_pass ? 1 : 0);
 }
@@ -614,16 +610,17 @@ void PathNormalEstimator::track() { state_->earlier->track(state_->points, state
 std::vector<PathNormal> PathNormalEstimator::finish(std::vector<EarlierPass>* earlier_passes) {
   const std::unique_ptr<State> s = std::move(state_);  // its memory goes with the call
   s->earlier->track(s->points, s->starts, true);
-  std::vector<Tangent> tangents = s->earlier->take_tangents();
-  std::vector<Neighbour> earlier = s->earlier->take_neighbours();
+  auto tangents = s->earlier->take_tangents();
+  auto earlier = s->earlier->take_neighbours();
   s->earlier.reset();  // the pass tracker's memory, before the rest needs more
-  Estimate estimate(s->points, s->starts, s->settings, std::move(tangents), std::move(earlier));
+  path_normals_detail::Estimate estimate(s->points, s->starts, s->settings, std::move(tangents),
+                                         std::move(earlier));
   estimate.find_normals();
   if (earlier_passes != nullptr) *earlier_passes = estimate.earlier_passes();
   return estimate.take_normals();
 }
 
-std::vector<PathNormal> estimate_path_normals(std::span<const Vector3d> points,
+std::vector<PathNormal> estimate_path_normals(std::span<const Eigen::Vector3d> points,
                                               std::span<const std::uint8_t> starts,
                                               const PathNormalSettings& settings,
                                               std::vector<EarlierPass>* earlier_passes) {

@@ -117,6 +117,8 @@ class MeshModel final : public geometry::SurfaceModel {
 
   // Builds the pseudo-normals and the hierarchy (mesh_builder.h).
   struct Builder;
+  // One closest_point query's descent through the wide nodes (mesh_query.cpp).
+  class Walk;
   void test_slot(std::uint32_t slot, const Eigen::Vector3d& p, Hit& best) const;
   geometry::ModelContact make_contact(const Eigen::Vector3d& p, const Hit& hit) const;
   const std::uint32_t* corners_of(std::uint32_t face) const {

@@ -133,6 +133,101 @@ geometry::ModelContact MeshModel::make_contact(const Eigen::Vector3d& p, const H
   return c;
 }
 
+// Lower bounds of the squared distance from p to the four lanes' boxes,
+// in single precision: |axis.p - offset| is off by at most a few float
+// ulps of |p|_1 + |offset| (the margin and the grown half extents take
+// that off), and the float axes are orthonormal to ~1e-7 (the final
+// factor takes that back). The lanes still to open wait on a stack, each
+// with its bound.
+class MeshModel::Walk {
+ public:
+  // warm: the bound is already (nearly) the answer (closest_point's hint).
+  Walk(const Eigen::Vector3d& p, bool warm)
+      : px_(static_cast<float>(p.x())),
+        py_(static_cast<float>(p.y())),
+        pz_(static_cast<float>(p.z())),
+        // Rounding of axis.p in float: a few ulps of |p|_1 (the offsets'
+        // own share is in the half extents).
+        margin_(1e-6f * (std::abs(px_) + std::abs(py_) + std::abs(pz_))),
+        warm_(warm) {}
+
+  // Pushes the lanes of `n` whose bound is below best_d2.
+  void open(const WideNode& n, double best_d2) {
+    // The lanes' float bounds against best.d2 / shrink, rounded up (the
+    // 1e-6 is far above float rounding): a lane is skipped only when its
+    // bound times shrink is at least best.d2.
+    const auto bound = static_cast<float>(best_d2 / kShrink * (1 + 1e-6));
+    const F4 d2 = lane_bounds(n);
+    const I4 within = d2 < bound;
+    float lb[4];
+    std::memcpy(lb, &d2, sizeof lb);
+    // Cold, the nearest lanes go on top of the stack so the bound shrinks
+    // early; warm, the bound is already (nearly) the answer and the order
+    // hardly matters, so they go on as they are.
+    int order[4], m = 0;
+    for (int l = 0; l < 4; ++l) {
+      if (within[l]) {
+        int i = m++;
+        while (!warm_ && i > 0 && lb[order[i - 1]] < lb[l]) {
+          order[i] = order[i - 1];
+          --i;
+        }
+        order[i] = l;
+      }
+    }
+    for (int i = 0; i < m && top_ < max_stack; ++i) {
+      stack_link_[top_] = n.link[order[i]];
+      stack_d2_[top_++] = static_cast<double>(lb[order[i]]) * kShrink;
+    }
+  }
+
+  // The link of the next lane whose bound is below best_d2; false when
+  // none is left.
+  bool next(double best_d2, std::uint32_t& link) {
+    while (top_ > 0) {
+      --top_;
+      if (stack_d2_[top_] >= best_d2) continue;
+      link = stack_link_[top_];
+      return true;
+    }
+    return false;
+  }
+
+ private:
+  // Four lanes at once (GCC/Clang vector extension: SSE on x86-64).
+  using F4 = float __attribute__((vector_size(16)));
+  using I4 = std::int32_t __attribute__((vector_size(16)));
+  static constexpr double kShrink = 1 - 1e-5;
+
+  static F4 load(const float (&a)[4]) {
+    F4 v;
+    std::memcpy(&v, a, sizeof v);
+    return v;
+  }
+
+  // The four lanes' squared distances from p, at most the true ones.
+  F4 lane_bounds(const WideNode& n) const {
+    const F4 zero = {0, 0, 0, 0};
+    const I4 no_sign = {0x7fffffff, 0x7fffffff, 0x7fffffff, 0x7fffffff};
+    F4 d2 = zero;
+    for (int k = 0; k < 3; ++k) {
+      const F4 along = load(n.axis[k][0]) * px_ + load(n.axis[k][1]) * py_ +
+                       load(n.axis[k][2]) * pz_ - load(n.offset[k]);
+      F4 e =
+          reinterpret_cast<F4>(reinterpret_cast<I4>(along) & no_sign) - load(n.half[k]) - margin_;
+      e = e > zero ? e : zero;
+      d2 += e * e;
+    }
+    return d2;
+  }
+
+  const float px_, py_, pz_, margin_;
+  const bool warm_;
+  std::uint32_t stack_link_[max_stack];
+  double stack_d2_[max_stack];
+  int top_ = 0;
+};
+
 std::optional<geometry::ModelContact> MeshModel::closest_point(const Eigen::Vector3d& p,
                                                                double max_distance,
                                                                geometry::ContactHint* hint) const {
@@ -153,76 +248,16 @@ std::optional<geometry::ModelContact> MeshModel::closest_point(const Eigen::Vect
   }
   const double hint_d2 = best.d2;
 
-  // Lower bounds of the squared distance from p to the four lanes' boxes,
-  // in single precision: |axis.p - offset| is off by at most a few float
-  // ulps of |p|_1 + |offset| (the margin and the grown half extents take
-  // that off), and the float axes are orthonormal to ~1e-7 (the final
-  // factor takes that back).
-  const auto px = static_cast<float>(p.x()), py = static_cast<float>(p.y()),
-             pz = static_cast<float>(p.z());
-  // Rounding of axis.p in float: a few ulps of |p|_1 (the offsets' own
-  // share is in the half extents).
-  const float margin = 1e-6f * (std::abs(px) + std::abs(py) + std::abs(pz));
-  constexpr double shrink = 1 - 1e-5;
-  std::uint32_t stack_link[max_stack];
-  double stack_d2[max_stack];
-  int top = 0;
-  const auto open = [&](std::uint32_t index) {
-    const WideNode& n = wide_[index];
-    // The lanes' float bounds against best.d2 / shrink, rounded up (the
-    // 1e-6 is far above float rounding): a lane is skipped only when its
-    // bound times shrink is at least best.d2.
-    const auto bound = static_cast<float>(best.d2 / shrink * (1 + 1e-6));
-    // Four lanes at once (GCC/Clang vector extension: SSE on x86-64).
-    using F4 = float __attribute__((vector_size(16)));
-    const auto load = [](const float(&a)[4]) {
-      F4 v;
-      std::memcpy(&v, a, sizeof v);
-      return v;
-    };
-    using I4 = std::int32_t __attribute__((vector_size(16)));
-    const F4 zero = {0, 0, 0, 0};
-    const I4 no_sign = {0x7fffffff, 0x7fffffff, 0x7fffffff, 0x7fffffff};
-    F4 d2 = zero;
-    for (int k = 0; k < 3; ++k) {
-      const F4 along = load(n.axis[k][0]) * px + load(n.axis[k][1]) * py + load(n.axis[k][2]) * pz -
-                       load(n.offset[k]);
-      F4 e = reinterpret_cast<F4>(reinterpret_cast<I4>(along) & no_sign) - load(n.half[k]) - margin;
-      e = e > zero ? e : zero;
-      d2 += e * e;
-    }
-    const I4 within = d2 < bound;
-    float lb[4];
-    std::memcpy(lb, &d2, sizeof lb);
-    // Cold, the nearest lanes go on top of the stack so the bound shrinks
-    // early; warm, the bound is already (nearly) the answer and the order
-    // hardly matters, so they go on as they are.
-    int order[4], m = 0;
-    for (int l = 0; l < 4; ++l) {
-      if (within[l]) {
-        int i = m++;
-        while (!warm && i > 0 && lb[order[i - 1]] < lb[l]) {
-          order[i] = order[i - 1];
-          --i;
-        }
-        order[i] = l;
-      }
-    }
-    for (int i = 0; i < m && top < max_stack; ++i) {
-      stack_link[top] = n.link[order[i]];
-      stack_d2[top++] = static_cast<double>(lb[order[i]]) * shrink;
-    }
-  };
-  open(0);
-  while (top > 0) {
-    --top;
-    if (stack_d2[top] >= best.d2) continue;
-    const std::uint32_t child = stack_link[top] & ((1u << kCountShift) - 1);
-    const std::uint32_t count = stack_link[top] >> kCountShift;
+  Walk walk(p, warm);
+  walk.open(wide_[0], best.d2);
+  std::uint32_t link = 0;
+  while (walk.next(best.d2, link)) {
+    const std::uint32_t child = link & ((1u << kCountShift) - 1);
+    const std::uint32_t count = link >> kCountShift;
     if (count > 0) {
       for (std::uint32_t s = child; s < child + count; ++s) test_slot(s, p, best);
     } else {
-      open(child);
+      walk.open(wide_[child], best.d2);
     }
   }
   if (!(best.d2 < limit)) return std::nullopt;

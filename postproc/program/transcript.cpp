@@ -56,110 +56,137 @@ void append_quoted(std::string& out, std::string_view name, std::string_view tex
   out += "\")";
 }
 
+// The canonical call of each kind of event, as rs274 prints it.
+void append_call_of(std::string& out, const StraightTraverse& e) {
+  out += "STRAIGHT_TRAVERSE(";
+  append_xyz(out, e.end);
+}
+
+void append_call_of(std::string& out, const StraightFeed& e) {
+  out += "STRAIGHT_FEED(";
+  append_xyz(out, e.end);
+}
+
+void append_call_of(std::string& out, const ArcFeed& e) {
+  const auto ax = plane_axes(e.plane);
+  out += "ARC_FEED(";
+  append_number(out, e.end[ax[0]]);
+  out += ", ";
+  append_number(out, e.end[ax[1]]);
+  out += ", ";
+  append_number(out, e.centre[ax[0]]);
+  out += ", ";
+  append_number(out, e.centre[ax[1]]);
+  out += ", ";
+  append_int(out, e.rotation);
+  out += ", ";
+  append_number(out, e.end[ax[2]]);
+  out += ", 0.0000, 0.0000, 0.0000)";
+}
+
+void append_call_of(std::string& out, const SetFeedRate& e) {
+  if (e.mode == FeedMode::inverse_time && !e.path_rate) {
+    // rs274 prints nothing for an F that moves nothing in G93.
+    out += "COMMENT(\"interpreter: inverse-time feed ";
+    append_number(out, e.rate);
+    out += " with no feed move\")";
+  } else {
+    out += "SET_FEED_RATE(";
+    append_number(out, e.mode == FeedMode::inverse_time ? *e.path_rate : e.rate);
+    out += ')';
+  }
+}
+
+void append_call_of(std::string& out, const SetSpindleSpeed& e) {
+  out += "SET_SPINDLE_SPEED(0, ";
+  append_number(out, e.rpm);
+  out += ')';
+}
+
+void append_call_of(std::string& out, const SpindleOn& e) {
+  out += e.direction == SpindleDirection::clockwise ? "START_SPINDLE_CLOCKWISE(0)"
+                                                    : "START_SPINDLE_COUNTERCLOCKWISE(0)";
+}
+
+void append_call_of(std::string& out, const SpindleOff& /*e*/) { out += "STOP_SPINDLE_TURNING(0)"; }
+
+void append_call_of(std::string& out, const SelectTool& e) {
+  out += "SELECT_TOOL(";
+  append_int(out, e.number);
+  out += ')';
+}
+
+void append_call_of(std::string& out, const ChangeTool& e) {
+  out += "CHANGE_TOOL(";
+  append_int(out, e.number);
+  out += ')';
+}
+
+void append_call_of(std::string& out, const ToolLengthOffset& e) {
+  std::string text =
+      e.enabled ? "interpreter: tool length offset on" : "interpreter: tool length offset off";
+  if (e.enabled && e.register_number) {
+    text += " H";
+    append_int(text, *e.register_number);
+  }
+  append_quoted(out, "COMMENT", text);
+}
+
+void append_call_of(std::string& out, const CutterCompensation& e) {
+  append_quoted(out, "COMMENT",
+                e.side == CompensationSide::off ? "interpreter: cutter radius compensation off"
+                : e.side == CompensationSide::left
+                    ? "interpreter: cutter radius compensation on left"
+                    : "interpreter: cutter radius compensation on right");
+}
+
+void append_call_of(std::string& out, const SelectPlane& e) {
+  out += "SELECT_PLANE(";
+  out += plane_name(e.plane);
+  out += ')';
+}
+
+void append_call_of(std::string& out, const Coolant& e) {
+  out += e.change == CoolantChange::mist_on    ? "MIST_ON()"
+         : e.change == CoolantChange::flood_on ? "FLOOD_ON()"
+                                               : "MIST_OFF()\nFLOOD_OFF()";
+}
+
+void append_call_of(std::string& out, const Dwell& e) {
+  out += "DWELL(";
+  append_number(out, e.seconds);
+  out += ')';
+}
+
+void append_call_of(std::string& out, const ProgramStop& e) {
+  out += e.optional ? "OPTIONAL_PROGRAM_STOP()" : "PROGRAM_STOP()";
+}
+
+void append_call_of(std::string& out, const ProgramEnd& /*e*/) { out += "PROGRAM_END()"; }
+
+void append_call_of(std::string& out, const Message& e) { append_quoted(out, "MESSAGE", e.text); }
+
+// Not a call of rs274's (it has no tilted plane): the frame's origin, then
+// its x and z axes (z: the tool axis) in the program frame.
+void append_call_of(std::string& out, const WorkingFrame& e) {
+  out += "SET_WORKING_FRAME(";
+  append_number(out, e.origin.x());
+  for (const double v : {e.origin.y(), e.origin.z(), e.rotation(0, 0), e.rotation(1, 0),
+                         e.rotation(2, 0), e.rotation(0, 2), e.rotation(1, 2), e.rotation(2, 2)}) {
+    out += ", ";
+    append_number(out, v);
+  }
+  out += ')';
+}
+
+// rs274 prints a cycle's moves, which follow the marker, not the cycle
+// (append_transcript leaves it out).
+void append_call_of(std::string& /*out*/, const CannedCycle& /*e*/) {}
+
 // Writes the call(s) without the trailing newline; lines are separated by
 // '\n' and the caller adds the source suffix to each.
 void append_call(std::string& out, const Event& event) {
-  std::visit(
-      [&out](const auto& e) {
-        using T = std::decay_t<decltype(e)>;
-        if constexpr (std::is_same_v<T, StraightTraverse>) {
-          out += "STRAIGHT_TRAVERSE(";
-          append_xyz(out, e.end);
-        } else if constexpr (std::is_same_v<T, StraightFeed>) {
-          out += "STRAIGHT_FEED(";
-          append_xyz(out, e.end);
-        } else if constexpr (std::is_same_v<T, ArcFeed>) {
-          const auto ax = plane_axes(e.plane);
-          out += "ARC_FEED(";
-          append_number(out, e.end[ax[0]]);
-          out += ", ";
-          append_number(out, e.end[ax[1]]);
-          out += ", ";
-          append_number(out, e.centre[ax[0]]);
-          out += ", ";
-          append_number(out, e.centre[ax[1]]);
-          out += ", ";
-          append_int(out, e.rotation);
-          out += ", ";
-          append_number(out, e.end[ax[2]]);
-          out += ", 0.0000, 0.0000, 0.0000)";
-        } else if constexpr (std::is_same_v<T, SetFeedRate>) {
-          if (e.mode == FeedMode::inverse_time && !e.path_rate) {
-            // rs274 prints nothing for an F that moves nothing in G93.
-            out += "COMMENT(\"interpreter: inverse-time feed ";
-            append_number(out, e.rate);
-            out += " with no feed move\")";
-          } else {
-            out += "SET_FEED_RATE(";
-            append_number(out, e.mode == FeedMode::inverse_time ? *e.path_rate : e.rate);
-            out += ')';
-          }
-        } else if constexpr (std::is_same_v<T, SetSpindleSpeed>) {
-          out += "SET_SPINDLE_SPEED(0, ";
-          append_number(out, e.rpm);
-          out += ')';
-        } else if constexpr (std::is_same_v<T, SpindleOn>) {
-          out += e.direction == SpindleDirection::clockwise ? "START_SPINDLE_CLOCKWISE(0)"
-                                                            : "START_SPINDLE_COUNTERCLOCKWISE(0)";
-        } else if constexpr (std::is_same_v<T, SpindleOff>) {
-          out += "STOP_SPINDLE_TURNING(0)";
-        } else if constexpr (std::is_same_v<T, SelectTool>) {
-          out += "SELECT_TOOL(";
-          append_int(out, e.number);
-          out += ')';
-        } else if constexpr (std::is_same_v<T, ChangeTool>) {
-          out += "CHANGE_TOOL(";
-          append_int(out, e.number);
-          out += ')';
-        } else if constexpr (std::is_same_v<T, ToolLengthOffset>) {
-          std::string text = e.enabled ? "interpreter: tool length offset on"
-                                       : "interpreter: tool length offset off";
-          if (e.enabled && e.register_number) {
-            text += " H";
-            append_int(text, *e.register_number);
-          }
-          append_quoted(out, "COMMENT", text);
-        } else if constexpr (std::is_same_v<T, CutterCompensation>) {
-          append_quoted(out, "COMMENT",
-                        e.side == CompensationSide::off
-                            ? "interpreter: cutter radius compensation off"
-                        : e.side == CompensationSide::left
-                            ? "interpreter: cutter radius compensation on left"
-                            : "interpreter: cutter radius compensation on right");
-        } else if constexpr (std::is_same_v<T, SelectPlane>) {
-          out += "SELECT_PLANE(";
-          out += plane_name(e.plane);
-          out += ')';
-        } else if constexpr (std::is_same_v<T, Coolant>) {
-          out += e.change == CoolantChange::mist_on    ? "MIST_ON()"
-                 : e.change == CoolantChange::flood_on ? "FLOOD_ON()"
-                                                       : "MIST_OFF()\nFLOOD_OFF()";
-        } else if constexpr (std::is_same_v<T, Dwell>) {
-          out += "DWELL(";
-          append_number(out, e.seconds);
-          out += ')';
-        } else if constexpr (std::is_same_v<T, ProgramStop>) {
-          out += e.optional ? "OPTIONAL_PROGRAM_STOP()" : "PROGRAM_STOP()";
-        } else if constexpr (std::is_same_v<T, ProgramEnd>) {
-          out += "PROGRAM_END()";
-        } else if constexpr (std::is_same_v<T, Message>) {
-          append_quoted(out, "MESSAGE", e.text);
-        } else if constexpr (std::is_same_v<T, WorkingFrame>) {
-          // Not a call of rs274's (it has no tilted plane): the frame's
-          // origin, then its x and z axes (z: the tool axis) in the program
-          // frame.
-          out += "SET_WORKING_FRAME(";
-          append_number(out, e.origin.x());
-          for (const double v :
-               {e.origin.y(), e.origin.z(), e.rotation(0, 0), e.rotation(1, 0), e.rotation(2, 0),
-                e.rotation(0, 2), e.rotation(1, 2), e.rotation(2, 2)}) {
-            out += ", ";
-            append_number(out, v);
-          }
-          out += ')';
-        }
-      },
-      event);
+  std::visit([&out](const auto& e) { append_call_of(out, e); }, event);
 }
 
 void append_source(std::string& out, const SourceRef& source, const TranscriptOptions& options) {

@@ -110,6 +110,95 @@ double form_at(const ArcForm<N>& f, double tau) {
   return sum;
 }
 
+namespace form_roots_detail {
+
+// 1 / C(N, i) and N C(N - 1, i), fixed at compile time (their divisions
+// took a tenth of a shifted silhouette's roots).
+template <int N>
+inline constexpr auto kBinomials = [] {
+  std::array<std::array<double, N + 1>, 2> out{};
+  double binomial = 1, slope_binomial = N;
+  for (int i = 0; i <= N; ++i) {
+    out[0][i] = 1 / binomial;
+    out[1][i] = slope_binomial;
+    binomial = binomial * (N - i) / (i + 1);
+    slope_binomial = slope_binomial * (N - 1 - i) / (i + 1);
+  }
+  return out;
+}();
+
+// A piece [lo, hi] of (0, 1) and the form's Bernstein coefficients on it.
+template <int N>
+struct Cell {
+  std::array<double, N + 1> b;
+  double lo, hi;
+};
+
+template <int N>
+int sign_changes(const std::array<double, N + 1>& b) {
+  int changes = 0;
+  double last = 0;
+  for (const double x : b) {
+    if (x == 0) continue;
+    if (last != 0 && (x < 0) != (last < 0)) ++changes;
+    last = x;
+  }
+  return changes;
+}
+
+// The root in [lo, hi], where the form changes sign (its values at the
+// ends g_lo, g_hi): Newton's method (with the derivative's form `slope`)
+// kept in the shrinking bracket (a step leaving it bisects), until a step
+// is below 1e-6: that step's end is the root, within about the step
+// squared (the roots are stationary points of r and z, which their error
+// moves by its square again; at 1e-9 the polish took a sixth more steps
+// for the same extremes within 1e-10 mm).
+template <int N>
+double polished_root(const ArcForm<N>& f, const ArcForm<N - 1>& slope, double lo, double hi,
+                     double g_lo, double g_hi) {
+  double x = lo - g_lo * (hi - lo) / (g_hi - g_lo);
+  for (int i = 0; i < 100; ++i) {
+    const double g = form_at(f, x);
+    if (g == 0) return x;
+    if ((g < 0) == (g_lo < 0))
+      lo = x;
+    else
+      hi = x;
+    const double newton = x - g / form_at(slope, x), step = std::abs(newton - x);
+    if (step <= 1e-6) return newton;
+    if (hi - lo <= 2e-16) return 0.5 * (lo + hi);
+    x = newton > lo && newton < hi ? newton : 0.5 * (lo + hi);
+  }
+  return x;
+}
+
+// de Casteljau at the middle of `cell`: the left half's coefficients are
+// the triangle's left edge, the right half's its right edge.
+template <int N>
+void halve(const Cell<N>& cell, Cell<N>& left, Cell<N>& right) {
+  // (In place, unrolled: the row stays in registers; vectorised, the
+  // averaging stalled on its own stores.)
+  std::array<double, N + 1> row = cell.b;
+  [&]<int... K>(std::integer_sequence<int, K...>) {
+    const auto level = [&]<int k>(std::integral_constant<int, k>) {
+      left.b[k] = row[0];
+      right.b[N - k] = row[N - k];
+      [&]<int... I>(std::integer_sequence<int, I...>) {
+        ((row[I] = 0.5 * (row[I] + row[I + 1])), ...);
+      }
+      (std::make_integer_sequence<int, N - k>{});
+    };
+    (level(std::integral_constant<int, K>{}), ...);
+  }
+  (std::make_integer_sequence<int, N + 1>{});
+  const double middle = 0.5 * (cell.lo + cell.hi);
+  left.lo = cell.lo;
+  left.hi = right.lo = middle;
+  right.hi = cell.hi;
+}
+
+}  // namespace form_roots_detail
+
 // Calls found(tau) at every root of the form in (0, 1), and perhaps at a
 // few points that are not roots. Descartes' rule of signs in the Bernstein
 // basis: the roots in a cell number the sign changes of its coefficients
@@ -122,106 +211,37 @@ double form_at(const ArcForm<N>& f, double tau) {
 // coefficients around it: round-off in the coefficients cannot hide it.
 template <int N, class Found>
 void form_roots(const ArcForm<N>& f, const Found& found) {
-  struct Cell {
-    std::array<double, N + 1> b;
-    double lo, hi;
-  };
+  using namespace form_roots_detail;
   constexpr int kMaxDepth = 40;
-  std::array<Cell, kMaxDepth + 8> stack;
+  std::array<Cell<N>, kMaxDepth + 8> stack;
   int size = 0;
-  Cell& first = stack[size++];
+  Cell<N>& first = stack[size++];
   first.lo = 0;
   first.hi = 1;
-  // 1 / C(N, i) and N C(N - 1, i), fixed at compile time (their divisions
-  // took a tenth of a shifted silhouette's roots).
-  static constexpr auto kBinomials = [] {
-    std::array<std::array<double, N + 1>, 2> out{};
-    double binomial = 1, slope_binomial = N;
-    for (int i = 0; i <= N; ++i) {
-      out[0][i] = 1 / binomial;
-      out[1][i] = slope_binomial;
-      binomial = binomial * (N - i) / (i + 1);
-      slope_binomial = slope_binomial * (N - 1 - i) / (i + 1);
-    }
-    return out;
-  }();
-  for (int i = 0; i <= N; ++i) first.b[i] = f.a[i] * kBinomials[0][i];
-  const auto sign_changes = [](const std::array<double, N + 1>& b) {
-    int changes = 0;
-    double last = 0;
-    for (const double x : b) {
-      if (x == 0) continue;
-      if (last != 0 && (x < 0) != (last < 0)) ++changes;
-      last = x;
-    }
-    return changes;
-  };
+  for (int i = 0; i <= N; ++i) first.b[i] = f.a[i] * kBinomials<N>[0][i];
   // The derivative's form (degree N - 1), for Newton's steps.
   ArcForm<N - 1> slope;
-  for (int i = 0; i < N; ++i) slope.a[i] = kBinomials[1][i] * (first.b[i + 1] - first.b[i]);
-  // The root in [lo, hi], where the form changes sign (its values at the
-  // ends g_lo, g_hi): Newton's method kept in the shrinking bracket (a
-  // step leaving it bisects), until a step is below 1e-6: that step's end
-  // is the root, within about the step squared (the roots are stationary
-  // points of r and z, which their error moves by its square again; at
-  // 1e-9 the polish took a sixth more steps for the same extremes within
-  // 1e-10 mm).
-  const auto polish = [&](double lo, double hi, double g_lo, double g_hi) {
-    double x = lo - g_lo * (hi - lo) / (g_hi - g_lo);
-    for (int i = 0; i < 100; ++i) {
-      const double g = form_at(f, x);
-      if (g == 0) return x;
-      if ((g < 0) == (g_lo < 0))
-        lo = x;
-      else
-        hi = x;
-      const double newton = x - g / form_at(slope, x), step = std::abs(newton - x);
-      if (step <= 1e-6) return newton;
-      if (hi - lo <= 2e-16) return 0.5 * (lo + hi);
-      x = newton > lo && newton < hi ? newton : 0.5 * (lo + hi);
-    }
-    return x;
-  };
+  for (int i = 0; i < N; ++i) slope.a[i] = kBinomials<N>[1][i] * (first.b[i + 1] - first.b[i]);
   while (size > 0) {
-    const Cell cell = stack[--size];
+    const Cell<N> cell = stack[--size];
     const double b_lo = cell.b[0], b_hi = cell.b[N];
     // A root on a cell's end (shared with the next cell, whose count
     // leaves out the zero coefficient).
     if (b_lo == 0 && cell.lo > 0) found(cell.lo);
     if (b_hi == 0 && cell.hi < 1) found(cell.hi);
-    const int changes = sign_changes(cell.b);
+    const int changes = sign_changes<N>(cell.b);
     if (changes == 0) continue;
     if (changes == 1 && b_lo != 0 && b_hi != 0) {
-      found(polish(cell.lo, cell.hi, b_lo, b_hi));
+      found(polished_root(f, slope, cell.lo, cell.hi, b_lo, b_hi));
       continue;
     }
     if (cell.hi - cell.lo <= std::ldexp(1.0, -kMaxDepth)) {
       found(0.5 * (cell.lo + cell.hi));
       continue;
     }
-    // de Casteljau at the middle: the left half's coefficients are the
-    // triangle's left edge, the right half's its right edge.
-    Cell& right = stack[size++];
-    Cell& left = stack[size++];
-    // (In place, unrolled: the row stays in registers; vectorised, the
-    // averaging stalled on its own stores.)
-    std::array<double, N + 1> row = cell.b;
-    [&]<int... K>(std::integer_sequence<int, K...>) {
-      const auto level = [&]<int k>(std::integral_constant<int, k>) {
-        left.b[k] = row[0];
-        right.b[N - k] = row[N - k];
-        [&]<int... I>(std::integer_sequence<int, I...>) {
-          ((row[I] = 0.5 * (row[I] + row[I + 1])), ...);
-        }
-        (std::make_integer_sequence<int, N - k>{});
-      };
-      (level(std::integral_constant<int, K>{}), ...);
-    }
-    (std::make_integer_sequence<int, N + 1>{});
-    const double middle = 0.5 * (cell.lo + cell.hi);
-    left.lo = cell.lo;
-    left.hi = right.lo = middle;
-    right.hi = cell.hi;
+    Cell<N>& right = stack[size++];
+    Cell<N>& left = stack[size++];
+    halve(cell, left, right);
   }
 }
 

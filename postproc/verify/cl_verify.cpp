@@ -100,62 +100,60 @@ class ClItems {
     }
     if (queued_) return std::exchange(queued_, std::nullopt);
     using program::CompensationSide;
-    try {
-      while (auto event = reader_.next()) {
-        const auto src = program::source_of(*event);
-        last_ = src;
-        if (const auto* s = std::get_if<program::SetSpindleSpeed>(&*event)) {
-          s_ = SfValue{s->rpm, "", src.line, src.column};
-        } else if (const auto* f = std::get_if<program::SetFeedRate>(&*event)) {
-          f_ = SfValue{f->rate, "", src.line, src.column};
-        } else if (const auto* c = std::get_if<program::CutterCompensation>(&*event)) {
-          if (!compensation_) continue;
-          if (auto item = side_change(*c, src, side_)) return item;
-        } else if (const auto* w = std::get_if<program::WorkingFrame>(&*event)) {
-          if (w->rotation == frame_.rotation && w->origin == frame_.origin) continue;
-          frame_ = *w;
-          // The output ends the compensation before a new frame (G40) ...
-          if (side_ != CompensationSide::off) {
-            if (setups_ && spindle_on_) {
-              spindle_stop_ = true;
-              restart_ = direction_;
-            }
-            return side_change({CompensationSide::off, src}, src, side_);
-          }
-          // ... and a set-up stops the spindle for the operator (M5, M0, M3).
+    // A CL record that does not read leaves as the reader's ClError: its
+    // code, file:line:col and hint.
+    while (auto event = reader_.next()) {
+      const auto src = program::source_of(*event);
+      last_ = src;
+      if (const auto* s = std::get_if<program::SetSpindleSpeed>(&*event)) {
+        s_ = SfValue{s->rpm, "", src.line, src.column};
+      } else if (const auto* f = std::get_if<program::SetFeedRate>(&*event)) {
+        f_ = SfValue{f->rate, "", src.line, src.column};
+      } else if (const auto* c = std::get_if<program::CutterCompensation>(&*event)) {
+        if (!compensation_) continue;
+        if (auto item = side_change(*c, src, side_)) return item;
+      } else if (const auto* w = std::get_if<program::WorkingFrame>(&*event)) {
+        if (w->rotation == frame_.rotation && w->origin == frame_.origin) continue;
+        frame_ = *w;
+        // The output ends the compensation before a new frame (G40) ...
+        if (side_ != CompensationSide::off) {
           if (setups_ && spindle_on_) {
+            spindle_stop_ = true;
             restart_ = direction_;
-            return Item{
-                program::SpindleOff{src}, src.line, src.column, std::nullopt, std::nullopt, {}};
           }
-        } else if (is_item(*event)) {
-          Item item{*event, src.line, src.column, std::move(s_), std::move(f_), {}};
-          s_.reset();
-          f_.reset();
-          const bool change = std::holds_alternative<program::ChangeTool>(*event);
-          const bool spindle_was_on = spindle_on_;
-          if (const auto* on = std::get_if<program::SpindleOn>(&*event)) {
-            spindle_on_ = true;
-            direction_ = on->direction;
-          }
-          if (change || std::holds_alternative<program::SpindleOff>(*event)) spindle_on_ = false;
-          // The output ends the compensation before a tool change (G40)...
-          if (change && side_ != CompensationSide::off) {
-            queued_ = std::move(item);
-            if (manual_change_ && spindle_was_on) spindle_stop_ = true;
-            return side_change({CompensationSide::off, src}, src, side_);
-          }
-          // ... and stops the spindle before a change by hand (M5 before M0).
-          if (change && manual_change_ && spindle_was_on) {
-            queued_ = std::move(item);
-            return Item{
-                program::SpindleOff{src}, src.line, src.column, std::nullopt, std::nullopt, {}};
-          }
-          return item;
+          return side_change({CompensationSide::off, src}, src, side_);
         }
+        // ... and a set-up stops the spindle for the operator (M5, M0, M3).
+        if (setups_ && spindle_on_) {
+          restart_ = direction_;
+          return Item{
+              program::SpindleOff{src}, src.line, src.column, std::nullopt, std::nullopt, {}};
+        }
+      } else if (is_item(*event)) {
+        Item item{*event, src.line, src.column, std::move(s_), std::move(f_), {}};
+        s_.reset();
+        f_.reset();
+        const bool change = std::holds_alternative<program::ChangeTool>(*event);
+        const bool spindle_was_on = spindle_on_;
+        if (const auto* on = std::get_if<program::SpindleOn>(&*event)) {
+          spindle_on_ = true;
+          direction_ = on->direction;
+        }
+        if (change || std::holds_alternative<program::SpindleOff>(*event)) spindle_on_ = false;
+        // The output ends the compensation before a tool change (G40)...
+        if (change && side_ != CompensationSide::off) {
+          queued_ = std::move(item);
+          if (manual_change_ && spindle_was_on) spindle_stop_ = true;
+          return side_change({CompensationSide::off, src}, src, side_);
+        }
+        // ... and stops the spindle before a change by hand (M5 before M0).
+        if (change && manual_change_ && spindle_was_on) {
+          queued_ = std::move(item);
+          return Item{
+              program::SpindleOff{src}, src.line, src.column, std::nullopt, std::nullopt, {}};
+        }
+        return item;
       }
-    } catch (const cldata::ClError& e) {
-      throw vcpost::Error(e.vcpost::Error::code(), e.what());
     }
     // ... and before the program's end.
     return side_change({CompensationSide::off, last_}, last_, side_);

@@ -120,8 +120,9 @@ struct Options {
 Result verify_gcode(std::string_view input, std::string_view output, const Options& options,
                     const std::string& input_name = "input");
 
-// APT CL input vs G-code output. Throws vcpost::Error (the CL
-// reader's code) when the CL data do not read.
+// APT CL input vs G-code output. Throws the CL reader's cldata::ClError
+// (a vcpost::Error: its code, file:line:col and hint) when the CL data do
+// not read.
 Result verify_cl(std::string_view cl_text, std::string_view output, const Options& options,
                  const std::string& input_name = "input");
 

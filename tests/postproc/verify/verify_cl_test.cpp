@@ -5,8 +5,10 @@
 // own tool axis is named with its code at its output line.
 #include <gtest/gtest.h>
 
+#include <sstream>
 #include <string>
 
+#include "postproc/cldata/cl_reader.h"
 #include "postproc/verify/verify.h"
 
 namespace vcpost::verify {
@@ -99,6 +101,35 @@ TEST(VerifyCl, AFrameTurnedAboutTheToolAxisIsNamed) {
   EXPECT_EQ(only_violation(replaced(kGcode, "K0.", "K1.")),
             "out:10:1: error[E7143]: the output's working plane has the tool axis (0, -1, 0) and "
             "x (0.9998, 0, 0.0175) where the CL's has (0, -1, 0) and (1, 0, 0) (input line 7)");
+}
+
+// A CL record that does not read is the CL reader's error as `vcpost post`
+// gets it from the reader: its code, its file:line:col (the number on line
+// 9 starts at column 11, after "GOTO/0,-2,") and its hint.
+TEST(VerifyCl, AnInputThatDoesNotReadKeepsTheReadersPlaceAndHint) {
+  const std::string bad = replaced(kCl, "GOTO/0,-2,0,", "GOTO/0,-2,0.1.2,");
+  try {
+    verify_cl(bad, kGcode, fanuc(), "bad.cl");
+    ADD_FAILURE() << "read";
+  } catch (const vcpost::Error& e) {
+    EXPECT_STREQ(e.what(), "bad.cl:9:11: error[E3103]: malformed number '0.1.2'");
+    EXPECT_EQ(e.where().file, "bad.cl");
+    EXPECT_EQ(e.where().line, 9u);
+    EXPECT_EQ(e.where().column, 11u);
+    EXPECT_EQ(e.hint(), "Fix the number the column points at.");  // E3103's row
+  }
+  // The reader's own, as the post reads the file.
+  std::istringstream in(bad);
+  cldata::ClReader reader(in, "bad.cl");
+  try {
+    while (reader.next()) {
+    }
+    ADD_FAILURE() << "read";
+  } catch (const vcpost::Error& e) {
+    EXPECT_STREQ(e.what(), "bad.cl:9:11: error[E3103]: malformed number '0.1.2'");
+    EXPECT_EQ(e.where().line, 9u);
+    EXPECT_EQ(e.where().column, 11u);
+  }
 }
 
 }  // namespace

@@ -26,6 +26,7 @@
 #include "postproc/cli/model_placement.h"
 #include "postproc/cli/program_text.h"
 #include "postproc/gcode/diagnostics.h"
+#include "postproc/heidenhain/diagnostics.h"
 #include "postproc/output/gcode_writer.h"
 #include "postproc/plan/spindle_plan.h"
 #include "postproc/program/timing.h"
@@ -181,6 +182,8 @@ auto located_errors(const std::string& name, Work&& work) -> decltype(work()) {
     return std::forward<Work>(work)();
   } catch (const gcode::GcodeError& e) {
     throw CommandError(e.code(), gcode::format(e.diagnostic(), name));
+  } catch (const heidenhain::KlartextError& e) {
+    throw CommandError(e.code(), heidenhain::format(e.diagnostic(), name));
   } catch (const program::TimingError& e) {
     throw CommandError(e.code(), e.located(name));
   } catch (const output::OutputError& e) {

@@ -154,24 +154,34 @@ void ClRecordReader::split_params(ClRecord& record, std::size_t text_begin) {
 }
 
 bool ClRecordReader::next(ClRecord& record) {
+  std::uint64_t record_offset = 0;
+  switch (read_logical(record, record_offset)) {
+    case Read::end:
+      return false;
+    case Read::comment:
+      return true;
+    case Read::statement:
+      break;
+  }
+  parse_statement(record, record_offset);
+  return true;
+}
+
+ClRecordReader::Read ClRecordReader::read_logical(ClRecord& record, std::uint64_t& record_offset) {
   logical_.clear();
   segments_.clear();
   std::string_view line;
   bool continued = false;
-  std::uint64_t record_offset = 0;
   while (true) {
     if (!read_line(line)) {
       if (continued) {
         fail(Code::E3106, line_number_, 1, "the file ends inside a record continued with '$'");
       }
-      return false;
+      return Read::end;
     }
     std::size_t first = 0;
     while (first < line.size() && is_blank(line[first])) ++first;
-    if (first == line.size()) {
-      if (continued) continue;  // blank line inside a continuation
-      continue;
-    }
+    if (first == line.size()) continue;  // blank line, inside a continuation or not
     const std::string_view content = line.substr(first);
     if (content.size() >= 2 && content[0] == '$' && content[1] == '$') {
       if (continued) continue;  // comment line between continued lines
@@ -179,7 +189,7 @@ bool ClRecordReader::next(ClRecord& record) {
       record.kind = ClRecordKind::comment;
       record.text = trim(content.substr(2), kBlanks);
       record.source = {line_number_, static_cast<std::uint32_t>(first + 1), line_offset_};
-      return true;
+      return Read::comment;
     }
     // Drop a trailing "$$ comment", then look for the '$' continuation mark.
     std::string_view body = content;
@@ -193,14 +203,13 @@ bool ClRecordReader::next(ClRecord& record) {
     if (!continued) record_offset = line_offset_ + first;
     segments_.push_back({logical_.size(), line_number_, static_cast<std::uint32_t>(first + 1)});
     logical_.append(body);
-    if (continues) {
-      logical_ += ' ';
-      continued = true;
-      continue;
-    }
-    break;
+    if (!continues) return Read::statement;
+    logical_ += ' ';
+    continued = true;
   }
+}
 
+void ClRecordReader::parse_statement(ClRecord& record, std::uint64_t record_offset) {
   record.kind = ClRecordKind::statement;
   record.major = {};
   record.separator = 0;
@@ -212,9 +221,26 @@ bool ClRecordReader::next(ClRecord& record) {
     record.kind = ClRecordKind::points;
     record.text = trim(all, kBlanks);
     split_params(record, 0);
-    return true;
+    return;
   }
+  const std::size_t j = read_major(all);
+  record.major = major_;
+  std::size_t text_begin = j;
+  if (j < all.size() && (all[j] == '/' || all[j] == ',' || all[j] == '=')) {
+    record.separator = all[j];
+    text_begin = j + 1;
+  } else if (j < all.size()) {
+    record.separator = ' ';
+  }
+  record.text = trim(all.substr(text_begin), kBlanks);
+  if (is_text_major(major_) || record.separator == '=') {
+    record.params.clear();
+  } else {
+    split_params(record, text_begin);
+  }
+}
 
+std::size_t ClRecordReader::read_major(std::string_view all) {
   std::size_t i = 0;
   major_.clear();
   while (i < all.size() && is_word_char(all[i])) major_ += ascii_upper(all[i++]);
@@ -235,21 +261,7 @@ bool ClRecordReader::next(ClRecord& record) {
     fail(Code::E3117, l, c,
          "record does not start with a major word: '" + std::string(all.substr(0, 20)) + "'");
   }
-  record.major = major_;
-  std::size_t text_begin = j;
-  if (j < all.size() && (all[j] == '/' || all[j] == ',' || all[j] == '=')) {
-    record.separator = all[j];
-    text_begin = j + 1;
-  } else if (j < all.size()) {
-    record.separator = ' ';
-  }
-  record.text = trim(all.substr(text_begin), kBlanks);
-  if (is_text_major(major_) || record.separator == '=') {
-    record.params.clear();
-  } else {
-    split_params(record, text_begin);
-  }
-  return true;
+  return j;
 }
 
 }  // namespace vcpost::cldata

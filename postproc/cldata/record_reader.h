@@ -74,6 +74,17 @@ class ClRecordReader {
 
  private:
   bool read_line(std::string_view& line);
+  // The next record's physical lines: a comment line fills `record`; a
+  // statement's lines are joined into logical_ (`record_offset`: the file
+  // offset of its first byte). Read::end at the end of the input.
+  enum class Read { end, comment, statement };
+  Read read_logical(ClRecord& record, std::uint64_t& record_offset);
+  // The statement in logical_: points, or a major word and its text.
+  void parse_statement(ClRecord& record, std::uint64_t record_offset);
+  // The major word at the start of `all` into major_ ("TOOL PATH" as one);
+  // returns where what follows it starts (past blanks). Throws E3117 where
+  // there is none.
+  std::size_t read_major(std::string_view all);
   [[noreturn]] void fail(Code code, std::uint32_t line, std::uint32_t column,
                          std::string message) const;
   void split_params(ClRecord& record, std::size_t text_begin);

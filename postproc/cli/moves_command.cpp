@@ -30,6 +30,15 @@ void write_partial_transcript(std::string_view out) {
   (void)std::fflush(stdout);
 }
 
+// Writes the transcript out once past 64 KB: memory stays flat with the
+// program's length.
+void flush_when_full(std::string& out) {
+  if (out.size() > (1u << 16)) {
+    write_standard_output(out);
+    out.clear();
+  }
+}
+
 }  // namespace
 
 // APT CL data: the same events from the CL reader, printed the same way.
@@ -70,6 +79,21 @@ void print_cl_moves(std::string_view text, const std::string& name,
   for (const auto& w : reader.warnings()) std::cerr << cldata::format(w, name) << '\n';
 }
 
+// The end of a G-code or Klartext listing: the rest of the transcript,
+// then the counts (--count) and the programmed time (--time).
+template <class Options>
+void end_listing(const std::string& out, std::uint64_t lines, std::uint64_t events,
+                 const program::PathClock& clock, const Options& options) {
+  write_standard_output(out);
+  if (options.count)
+    std::printf("lines %llu events %llu\n", static_cast<unsigned long long>(lines),
+                static_cast<unsigned long long>(events));
+  if (options.time)
+    std::printf("# program time %.4f s (rapids at %.0f mm/min)\n", clock.elapsed(),
+                options.rapid_rate);
+  finish_standard_output();
+}
+
 // Heidenhain Klartext: the same events from the Klartext reader.
 template <class Options>
 void print_klartext_moves(const ProgramText& text, const std::string& name,
@@ -96,10 +120,7 @@ void print_klartext_moves(const ProgramText& text, const std::string& name,
         clock.advance(e);  // a feed move whose time is undefined fails, as in post
         if (!options.count) transcriber.append(out, e);
       }
-      if (out.size() > (1u << 16)) {
-        write_standard_output(out);
-        out.clear();
-      }
+      flush_when_full(out);
       events.clear();
     }
   } catch (const program::TimingError& e) {
@@ -111,16 +132,54 @@ void print_klartext_moves(const ProgramText& text, const std::string& name,
     show_warnings();
     throw CommandError(e.vcpost::Error::code(), heidenhain::format(e.diagnostic(), name));
   }
-  write_standard_output(out);
-  if (options.count)
-    std::printf("lines %llu events %llu\n",
-                static_cast<unsigned long long>(interpreter.lines_read()),
-                static_cast<unsigned long long>(event_count));
-  if (options.time)
-    std::printf("# program time %.4f s (rapids at %.0f mm/min)\n", clock.elapsed(),
-                options.rapid_rate);
-  finish_standard_output();
+  end_listing(out, interpreter.lines_read(), event_count, clock, options);
   show_warnings();
+}
+
+// G-code: the interpreter's events, the text behind it released as it goes.
+template <class Options>
+void print_gcode_moves(ProgramText& text, const std::string& name,
+                       const program::TranscriptOptions& print, const Options& options,
+                       const gcode::Dialect& dialect) {
+  gcode::Interpreter interpreter(text.view(), dialect);
+  std::vector<program::Event> events;
+  std::string out;
+  std::uint64_t event_count = 0;
+  std::size_t warnings_shown = 0;
+  auto flush_warnings = [&] {
+    const auto& w = interpreter.warnings();
+    for (; warnings_shown < w.size(); ++warnings_shown)
+      std::cerr << printable(gcode::format(w[warnings_shown], name)) << '\n';
+    if (interpreter.warning_count() > w.size())
+      std::cerr << name << ": " << interpreter.warning_count() - w.size()
+                << " more warnings not shown\n";
+  };
+  program::PathClock clock(program::TimingSettings{options.rapid_rate, 0.0});
+  program::Transcriber transcriber(print);
+  try {
+    while (interpreter.next(events)) {
+      event_count += events.size();
+      // A feed move whose time is undefined (no feed, G95 with the spindle
+      // stopped) fails here as it does in post (E6101-E6103).
+      for (const auto& e : events) clock.advance(e);
+      text.release_before(interpreter.block().offset);
+      if (!options.count) {
+        for (const auto& e : events) transcriber.append(out, e);
+        flush_when_full(out);
+      }
+      events.clear();
+    }
+  } catch (const program::TimingError& e) {
+    write_partial_transcript(out);
+    flush_warnings();
+    throw CommandError(e.code(), e.located(name));
+  } catch (const gcode::GcodeError& e) {
+    write_partial_transcript(out);
+    flush_warnings();
+    throw CommandError(e.code(), gcode::format(e.diagnostic(), name));
+  }
+  end_listing(out, interpreter.lines_read(), event_count, clock, options);
+  flush_warnings();
 }
 
 void add_moves_command(CLI::App& app) {
@@ -166,56 +225,7 @@ void add_moves_command(CLI::App& app) {
       print_klartext_moves(text, name, print, *options);
       return;
     }
-    gcode::Interpreter interpreter(text.view(), *dialect);
-    std::vector<program::Event> events;
-    std::string out;
-    std::uint64_t event_count = 0;
-    std::size_t warnings_shown = 0;
-    auto flush_warnings = [&] {
-      const auto& w = interpreter.warnings();
-      for (; warnings_shown < w.size(); ++warnings_shown)
-        std::cerr << printable(gcode::format(w[warnings_shown], name)) << '\n';
-      if (interpreter.warning_count() > w.size())
-        std::cerr << name << ": " << interpreter.warning_count() - w.size()
-                  << " more warnings not shown\n";
-    };
-    program::PathClock clock(program::TimingSettings{options->rapid_rate, 0.0});
-    program::Transcriber transcriber(print);
-    try {
-      while (interpreter.next(events)) {
-        event_count += events.size();
-        // A feed move whose time is undefined (no feed, G95 with the spindle
-        // stopped) fails here as it does in post (E6101-E6103).
-        for (const auto& e : events) clock.advance(e);
-        text.release_before(interpreter.block().offset);
-        if (!options->count) {
-          for (const auto& e : events) transcriber.append(out, e);
-          if (out.size() > (1u << 16)) {
-            write_standard_output(out);
-            out.clear();
-          }
-        }
-        events.clear();
-      }
-    } catch (const program::TimingError& e) {
-      write_partial_transcript(out);
-      flush_warnings();
-      throw CommandError(e.code(), e.located(name));
-    } catch (const gcode::GcodeError& e) {
-      write_partial_transcript(out);
-      flush_warnings();
-      throw CommandError(e.code(), gcode::format(e.diagnostic(), name));
-    }
-    write_standard_output(out);
-    if (options->count)
-      std::printf("lines %llu events %llu\n",
-                  static_cast<unsigned long long>(interpreter.lines_read()),
-                  static_cast<unsigned long long>(event_count));
-    if (options->time)
-      std::printf("# program time %.4f s (rapids at %.0f mm/min)\n", clock.elapsed(),
-                  options->rapid_rate);
-    finish_standard_output();
-    flush_warnings();
+    print_gcode_moves(text, name, print, *options, *dialect);
   });
 }
 

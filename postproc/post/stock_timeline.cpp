@@ -64,7 +64,7 @@ std::optional<Cutter> cutter_of(const ToolSection& s) {
   return Cutter{*tool, 0};
 }
 
-std::string mm(double v) {
+std::string decimal_text(double v) {
   std::ostringstream out;
   out << v;
   return out.str();
@@ -186,13 +186,13 @@ double stock_cell(const StockSettings& stock, const Eigen::AlignedBox3d& extent,
     const double cell = *stock.cell_mm;
     summary.cell_note = "--stock-cell";
     if (need(cell) > limit)
-      throw vcpost::Error(Code::E4724, "the stock at --stock-cell " + mm(cell) + " mm needs " +
-                                           mm(std::ceil(need(cell) / (1 << 20))) +
-                                           " MB (the field and " + std::to_string(evaluated.count) +
-                                           " copies, one per evaluated section), above " +
-                                           "--stock-memory " +
-                                           std::to_string(stock.memory_limit >> 20) +
-                                           " MB: give a coarser cell or more memory");
+      throw vcpost::Error(
+          Code::E4724, "the stock at --stock-cell " + decimal_text(cell) + " mm needs " +
+                           decimal_text(std::ceil(need(cell) / (1 << 20))) + " MB (the field and " +
+                           std::to_string(evaluated.count) +
+                           " copies, one per evaluated section), above " + "--stock-memory " +
+                           std::to_string(stock.memory_limit >> 20) +
+                           " MB: give a coarser cell or more memory");
     return cell;
   }
   const double smallest = evaluated.smallest_diameter;
@@ -203,7 +203,7 @@ double stock_cell(const StockSettings& stock, const Eigen::AlignedBox3d& extent,
     const double fine = cell;
     while (need(cell) > limit) cell *= 1.05;
     cell = std::ceil(cell * 1000) / 1000;
-    summary.cell_note = "coarsened from " + mm(fine) + " mm to fit --stock-memory " +
+    summary.cell_note = "coarsened from " + decimal_text(fine) + " mm to fit --stock-memory " +
                         std::to_string(stock.memory_limit >> 20) + " MB";
   }
   return cell;

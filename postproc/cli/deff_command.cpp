@@ -41,7 +41,7 @@ constexpr const char* kDeffDescription =
 
 // The raw option values: everything is checked by hand in run() so that
 // each error is one line naming the option.
-struct Arguments {
+struct DeffArguments {
   std::string tool, ap, ae, normal, tilt, azimuth, feed, feed_angle, side = "left";
   std::string vc, rpm, policy = "max", spindle = "cw", sweep, batch;
   bool json = false, radius = false;
@@ -123,7 +123,7 @@ void stream_batch(std::istream& in, const std::string& source, bool radius) {
   if (in.bad()) throw vcpost::Error(Code::E2002, source + ": read error");
 }
 
-void run_batch(const Arguments& args) {
+void run_batch(const DeffArguments& args) {
   try {
     if (args.batch == "-") return stream_batch(std::cin, "<stdin>", args.radius);
     std::ifstream file(args.batch);
@@ -191,7 +191,7 @@ void check_combinations(const Given& given) {
 }
 
 // The one set-up of the options (before a swept angle is filled in).
-SetupRequest read_setup(const Given& given, const Arguments& args) {
+SetupRequest read_setup(const Given& given, const DeffArguments& args) {
   for (const char* option : {"--tool", "--ap", "--ae"}) {
     if (!given(option)) throw usage(option, "required (see vcpost deff --help)");
   }
@@ -230,7 +230,7 @@ SetupRequest read_setup(const Given& given, const Arguments& args) {
 
 // --sweep: one CSV row per value of the swept angle, every set-up checked
 // before anything is printed.
-void run_sweep(const Given& given, const Arguments& args, const SetupRequest& request,
+void run_sweep(const Given& given, const DeffArguments& args, const SetupRequest& request,
                const Blame& blame) {
   Sweep sweep;
   try {
@@ -279,7 +279,7 @@ void run_sweep(const Given& given, const Arguments& args, const SetupRequest& re
 }
 
 // --vc, --rpm and --policy.
-SpeedRequest read_speed(const Given& given, const Arguments& args) {
+SpeedRequest read_speed(const Given& given, const DeffArguments& args) {
   SpeedRequest speed_request;
   const auto policy = geometry::parse_diameter_policy(args.policy);
   if (!policy) {
@@ -299,7 +299,7 @@ SpeedRequest read_speed(const Given& given, const Arguments& args) {
 }
 
 // One set-up: the table or the JSON object.
-void run_one(const Given& given, const Arguments& args, const SetupRequest& request,
+void run_one(const Given& given, const DeffArguments& args, const SetupRequest& request,
              const Blame& blame) {
   const Description description = described(request, blame);
   const SpeedRequest speed_request = read_speed(given, args);
@@ -315,7 +315,7 @@ void run_one(const Given& given, const Arguments& args, const SetupRequest& requ
   std::cout << out.str();
 }
 
-void run(const CLI::App& command, const Arguments& args) {
+void run(const CLI::App& command, const DeffArguments& args) {
   const Given given(command);
   check_combinations(given);
   if (given("--batch")) return run_batch(args);
@@ -330,7 +330,7 @@ void run(const CLI::App& command, const Arguments& args) {
 
 void add_deff_command(CLI::App& app) {
   auto* command = app.add_subcommand("deff", kDeffDescription);
-  auto args = std::make_shared<Arguments>();
+  auto args = std::make_shared<DeffArguments>();
   command
       ->add_option("--tool", args->tool,
                    "tool, sizes in mm: ball:D, bull:D:rc or flat:D, e.g. ball:10 (required "

@@ -48,8 +48,7 @@ PathNormalCounts count_sources(std::span<const PathNormal> normals) {
   return counts;
 }
 
-// Not an anonymous namespace: PathNormalEstimator::State holds its types.
-namespace path_normals_detail {
+namespace {
 
 using Eigen::Vector3d;
 
@@ -465,7 +464,7 @@ class Estimate {
   }
 
   Vector3d on_surface(const Neighbour& nb) const {
-    return path_normals_detail::on_surface(nb, p_, starts_, tangents_);
+    return pipeline::on_surface(nb, p_, starts_, tangents_);
   }
 
   // Point i's neighbour moved to where its pass crosses the plane across
@@ -578,14 +577,14 @@ class Estimate {
   std::vector<PathNormal> out_;
 };
 
-}  // namespace path_normals_detail
+}  // namespace
 
 struct PathNormalEstimator::State {
   explicit State(const PathNormalSettings& s) : settings(s), earlier(std::in_place, s) {}
   PathNormalSettings settings;
   std::vector<Eigen::Vector3d> points;
   std::vector<std::uint8_t> starts;
-  std::optional<path_normals_detail::EarlierPasses> earlier;
+  std::optional<EarlierPasses> earlier;
 };
 
 PathNormalEstimator::PathNormalEstimator(const PathNormalSettings& settings)
@@ -613,8 +612,7 @@ std::vector<PathNormal> PathNormalEstimator::finish(std::vector<EarlierPass>* ea
   auto tangents = s->earlier->take_tangents();
   auto earlier = s->earlier->take_neighbours();
   s->earlier.reset();  // the pass tracker's memory, before the rest needs more
-  path_normals_detail::Estimate estimate(s->points, s->starts, s->settings, std::move(tangents),
-                                         std::move(earlier));
+  Estimate estimate(s->points, s->starts, s->settings, std::move(tangents), std::move(earlier));
   estimate.find_normals();
   if (earlier_passes != nullptr) *earlier_passes = estimate.earlier_passes();
   return estimate.take_normals();

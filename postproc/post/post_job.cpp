@@ -515,8 +515,8 @@ ReadAhead read_ahead(std::string_view text, const std::string& file_name, Progra
                      const PostSettings& settings, const tools::ToolChoices& choices,
                      tbb::task_arena& arena, PostSummary& summary) {
   ReadAhead ahead;
-  ahead.path_normals = settings.path_normals;
   if (settings.normals_from_path) {
+    ahead.path_normals = settings.path_normals;
     if (!ahead.path_normals) {
       arena.execute([&] {
         ahead.path_normals = std::make_shared<const PathNormalsAhead>(
@@ -541,13 +541,12 @@ ReadAhead read_ahead(std::string_view text, const std::string& file_name, Progra
 class Stages {
  public:
   Stages(PathReader& reader, SectionEvaluators& evaluators, Finisher& finisher,
-         const PostSettings& settings, const PathNormalsAhead* path_normals, bool curvature,
-         ProgramKind kind, const Progress& progress,
-         const std::function<void(std::uint64_t)>& consumed, std::size_t tokens)
+         const PathNormalsAhead* path_normals, bool curvature, ProgramKind kind,
+         const Progress& progress, const std::function<void(std::uint64_t)>& consumed,
+         std::size_t tokens)
       : reader_(reader),
         evaluators_(evaluators),
         finisher_(finisher),
-        settings_(settings),
         path_normals_(path_normals),
         curvature_(curvature),
         kind_(kind),
@@ -596,7 +595,7 @@ class Stages {
       if (slot.kind != SlotKind::sample) continue;
       const pipeline::PointEvaluator& evaluator = *chunk->evaluator(slot.section);
       pipeline::PointResult& result = chunk->results.emplace_back();
-      if (settings_.normals_from_path) {
+      if (path_normals_ != nullptr) {
         const pipeline::PathNormal& normal = path_normals_->normals.at(sample++);
         result.contact = evaluator.contact(slot.sample, normal);
         result.normal_source = normal.source;
@@ -615,7 +614,7 @@ class Stages {
       if (slot.break_pass) evaluator->break_pass();
       if (slot.kind != SlotKind::sample) continue;
       pipeline::PointResult& result = chunk->results[sample_index];
-      if (settings_.normals_from_path) {
+      if (path_normals_ != nullptr) {
         // The earlier pass the normals' read-ahead found: no second tracker.
         evaluator->place(slot.sample, result,
                          path_normals_->earlier.at(chunk->first_sample + sample_index));
@@ -648,8 +647,7 @@ class Stages {
   PathReader& reader_;
   SectionEvaluators& evaluators_;
   Finisher& finisher_;
-  const PostSettings& settings_;
-  const PathNormalsAhead* path_normals_;  // set with settings_.normals_from_path
+  const PathNormalsAhead* path_normals_;  // without a model: the normals read ahead
   bool curvature_;                        // only the report's points read curvatures
   ProgramKind kind_;
   const Progress& progress_;
@@ -693,8 +691,8 @@ PostSummary post_program(std::string_view text, const std::string& file_name,
   const ReadAhead ahead =
       read_ahead(text, file_name, kind, dialect, profile, settings, choices, arena, summary);
   SectionEvaluators evaluators(model, settings.point, static_cast<bool>(points), ahead.stock.get());
-  Stages stages(reader, evaluators, finisher, settings, ahead.path_normals.get(),
-                static_cast<bool>(points), kind, progress, consumed, tokens);
+  Stages stages(reader, evaluators, finisher, ahead.path_normals.get(), static_cast<bool>(points),
+                kind, progress, consumed, tokens);
   stages.run(arena);
   finisher.finish();
   add_totals(summary, reader, writer);
